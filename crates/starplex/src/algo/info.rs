@@ -1,0 +1,331 @@
+//! `info`: the summary of a complex (counts, f-vector, Euler characteristic, boundary, components)
+//! with the field names of the dataset oracles.
+//!
+//! Distinct k-faces are counted without a hash set: a face is counted by its *owner*, the
+//! smallest-id top cell containing it, found by scanning the id-sorted vertex→cells row of the
+//! face's least-used vertex. Memory is the vertex→cells relation only; the work runs in parallel
+//! over cells and gives the same result for any thread count.
+//!
+//! ```
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! use starplex::algo::info::{info, InfoOptions};
+//! // two triangles sharing an edge, plus an isolated vertex
+//! let mut b = ComplexBuilder::new(2).unwrap();
+//! for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], [5.0, 5.0]] { b.push_vertex(&p).unwrap(); }
+//! b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+//! b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let s = info(&k, &InfoOptions::default());
+//! assert_eq!(s.f_vector, Some(vec![5, 5, 2]));
+//! assert_eq!(s.euler_characteristic, Some(2));
+//! assert_eq!(s.n_boundary_faces, Some(4));
+//! assert_eq!(s.n_connected_components, 2);
+//! assert_eq!(s.n_isolated_vertices, 1);
+//! assert!(!s.pure);
+//! ```
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use rayon::prelude::*;
+
+use crate::algo::unionfind::UnionFind;
+use crate::complex::IndexedComplex;
+use crate::csr::Csr;
+
+/// Options of [`info`].
+#[derive(Clone)]
+pub struct InfoOptions {
+    /// Largest number of (cell, face) pairs the f-vector pass may visit; above it the f-vector
+    /// (and Euler characteristic, boundary counts) are skipped and an estimate is reported.
+    pub max_faces: u128,
+    /// Called with the number of cells just processed (for progress bars).
+    pub progress: Option<std::sync::Arc<dyn Fn(u64) + Send + Sync>>,
+}
+
+impl Default for InfoOptions {
+    fn default() -> Self {
+        InfoOptions {
+            max_faces: 4_000_000_000,
+            progress: None,
+        }
+    }
+}
+
+impl std::fmt::Debug for InfoOptions {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("InfoOptions")
+            .field("max_faces", &self.max_faces)
+            .finish()
+    }
+}
+
+/// The summary of a complex. Field names match the oracle JSON files.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Info {
+    /// Number of vertices.
+    pub n_vertices: u64,
+    /// Vertices in no top cell.
+    pub n_isolated_vertices: u64,
+    /// Coordinates per vertex.
+    pub ambient_dim: u64,
+    /// Largest top-cell dimension (-1 for an empty complex).
+    pub dim: i64,
+    /// All top cells of one dimension and no isolated vertex.
+    pub pure: bool,
+    /// Top cells by type name (`tri`, `quad`, `simplex_5`, ...).
+    pub top_cells: BTreeMap<String, u64>,
+    /// Number of top cells.
+    pub n_top_cells: u64,
+    /// `[min, max]` corners, `None` without vertices.
+    pub bbox: Option<(Vec<f64>, Vec<f64>)>,
+    /// Distinct k-cells for k = 0..=dim; `None` when over the budget.
+    pub f_vector: Option<Vec<u64>>,
+    /// Upper bound of the (cell, face) pairs to visit, when the f-vector was skipped.
+    pub f_vector_estimate: Option<u128>,
+    /// Alternating sum of the f-vector.
+    pub euler_characteristic: Option<i64>,
+    /// (d-1)-faces in exactly one top d-cell (`None` when the top cells are not all of one
+    /// dimension, or the f-vector was skipped).
+    pub n_boundary_faces: Option<u64>,
+    /// (d-1)-faces in more than two top d-cells.
+    pub n_faces_shared_by_more_than_2_top_cells: Option<u64>,
+    /// 2-faces by kind for 3-dimensional CP complexes (`tri`, `quad`).
+    pub faces_by_type: Option<BTreeMap<String, u64>>,
+    /// Connected components (isolated vertices count).
+    pub n_connected_components: u64,
+}
+
+/// Computes the summary of `k`.
+pub fn info(k: &IndexedComplex, opts: &InfoOptions) -> Info {
+    let nv = k.n_vertices();
+    let n_isolated = k.n_isolated_vertices() as u64;
+    let dims: std::collections::BTreeSet<usize> = k.blocks().iter().map(|b| b.kind.dim()).collect();
+    let dim = k.dim().map_or(-1, |d| d as i64);
+    let pure = dims.len() == 1 && n_isolated == 0;
+    let mut top_cells = BTreeMap::new();
+    for b in k.blocks() {
+        *top_cells.entry(b.kind.type_name()).or_insert(0) += b.len() as u64;
+    }
+    let bbox = (nv > 0).then(|| {
+        let d = k.ambient_dim();
+        let mut lo = vec![f64::INFINITY; d];
+        let mut hi = vec![f64::NEG_INFINITY; d];
+        for p in k.coords().chunks_exact(d) {
+            for i in 0..d {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        }
+        (lo, hi)
+    });
+    let n_connected_components = components(k) as u64;
+
+    let mut out = Info {
+        n_vertices: nv as u64,
+        n_isolated_vertices: n_isolated,
+        ambient_dim: k.ambient_dim() as u64,
+        dim,
+        pure,
+        top_cells,
+        n_top_cells: k.n_cells() as u64,
+        bbox,
+        f_vector: None,
+        f_vector_estimate: None,
+        euler_characteristic: None,
+        n_boundary_faces: None,
+        n_faces_shared_by_more_than_2_top_cells: None,
+        faces_by_type: None,
+        n_connected_components,
+    };
+    if dim < 0 {
+        out.f_vector = Some(vec![]);
+        out.euler_characteristic = Some(0);
+        return out;
+    }
+    let estimate = face_visits(k);
+    if estimate > opts.max_faces {
+        out.f_vector_estimate = Some(estimate);
+        return out;
+    }
+    let counts = count_faces(k, opts);
+    let mut f = vec![0u64; dim as usize + 1];
+    f[0] = nv as u64;
+    for (i, x) in counts.per_dim.iter().enumerate().skip(1) {
+        if i < f.len() {
+            f[i] = *x;
+        }
+    }
+    out.euler_characteristic = Some(
+        f.iter()
+            .enumerate()
+            .map(|(i, &x)| if i % 2 == 0 { x as i64 } else { -(x as i64) })
+            .sum(),
+    );
+    if dims.len() == 1 && dim >= 1 {
+        out.n_boundary_faces = Some(counts.boundary);
+        out.n_faces_shared_by_more_than_2_top_cells = Some(counts.shared_more_than_2);
+    }
+    if dim == 3 && !k.is_simplicial() {
+        let mut m = BTreeMap::new();
+        m.insert("tri".to_string(), counts.tri_faces);
+        m.insert("quad".to_string(), counts.quad_faces);
+        out.faces_by_type = Some(m);
+    }
+    out.f_vector = Some(f);
+    out
+}
+
+/// Upper bound of (cell, proper face of dimension >= 1) pairs: the work of the f-vector pass.
+pub fn face_visits(k: &IndexedComplex) -> u128 {
+    k.blocks()
+        .iter()
+        .map(|b| {
+            let per: u128 = (1..b.kind.dim())
+                .map(|d| b.kind.n_faces(d))
+                .fold(0u128, |a, x| a.saturating_add(x));
+            per.saturating_mul(b.len() as u128)
+        })
+        .fold(0u128, |a, x| a.saturating_add(x))
+}
+
+/// Connected components of the 1-skeleton, isolated vertices included.
+pub fn components(k: &IndexedComplex) -> usize {
+    let mut uf = UnionFind::new(k.n_vertices());
+    for c in k.cells() {
+        let v0 = c.vertices[0];
+        for &v in &c.vertices[1..] {
+            uf.union(v0, v);
+        }
+    }
+    uf.n_sets()
+}
+
+#[derive(Default)]
+struct FaceCounts {
+    per_dim: Vec<u64>,
+    boundary: u64,
+    shared_more_than_2: u64,
+    tri_faces: u64,
+    quad_faces: u64,
+}
+
+fn count_faces(k: &IndexedComplex, opts: &InfoOptions) -> FaceCounts {
+    let vt = k.vertex_cells();
+    let dmax = k.dim().unwrap_or(0);
+    let n = k.n_cells();
+    let chunk = 4096usize;
+    let n_chunks = n.div_ceil(chunk);
+    let done = AtomicU64::new(0);
+    let partials: Vec<FaceCounts> = (0..n_chunks)
+        .into_par_iter()
+        .map(|ci| {
+            let mut acc = FaceCounts {
+                per_dim: vec![0; dmax + 1],
+                ..Default::default()
+            };
+            let mut key: Vec<u32> = Vec::with_capacity(16);
+            let lo = ci * chunk;
+            let hi = (lo + chunk).min(n);
+            for c in lo..hi {
+                count_cell(k, &vt, c as u32, dmax, &mut key, &mut acc);
+            }
+            if let Some(p) = &opts.progress {
+                p((hi - lo) as u64);
+            }
+            done.fetch_add((hi - lo) as u64, Ordering::Relaxed);
+            acc
+        })
+        .collect();
+    let mut total = FaceCounts {
+        per_dim: vec![0; dmax + 1],
+        ..Default::default()
+    };
+    for p in partials {
+        for (t, x) in total.per_dim.iter_mut().zip(&p.per_dim) {
+            *t += x;
+        }
+        total.boundary += p.boundary;
+        total.shared_more_than_2 += p.shared_more_than_2;
+        total.tri_faces += p.tri_faces;
+        total.quad_faces += p.quad_faces;
+    }
+    total
+}
+
+/// Counts the faces of cell `c` that `c` owns.
+fn count_cell(
+    k: &IndexedComplex,
+    vt: &Csr,
+    c: u32,
+    dmax: usize,
+    key: &mut Vec<u32>,
+    acc: &mut FaceCounts,
+) {
+    let cell = k.cell(crate::ids::CellId(c));
+    let d = cell.kind.dim();
+    acc.per_dim[d] += 1;
+    for fd in 1..d {
+        let track_boundary = d == dmax && fd + 1 == d;
+        cell.kind.for_each_face(fd, |local| {
+            crate::cell::canonical_key(cell.vertices, local, key);
+            // the face's vertex with the fewest incident cells
+            let &pivot = key
+                .iter()
+                .min_by_key(|&&v| vt.degree(v as usize))
+                .expect("non-empty face");
+            let row = vt.row(pivot as usize);
+            let mut owned = true;
+            let mut in_top = 1u32; // c itself
+            for &o in row {
+                if o == c {
+                    if !track_boundary {
+                        break; // rows are sorted: everything before c was checked
+                    }
+                    continue;
+                }
+                let other = k.cell(crate::ids::CellId(o));
+                if !other.kind.has_face(other.vertices, key) {
+                    continue;
+                }
+                if o < c {
+                    owned = false;
+                    break;
+                }
+                if other.kind.dim() == d {
+                    in_top += 1;
+                }
+            }
+            if owned {
+                acc.per_dim[fd] += 1;
+                if track_boundary {
+                    if in_top == 1 {
+                        acc.boundary += 1;
+                    } else if in_top > 2 {
+                        acc.shared_more_than_2 += 1;
+                    }
+                }
+                if fd == 2 && !cell.kind.is_simplex() || fd == 2 && d == 3 {
+                    match key.len() {
+                        3 => acc.tri_faces += 1,
+                        4 => acc.quad_faces += 1,
+                        _ => {}
+                    }
+                }
+            }
+        });
+    }
+    // 1-dimensional top cells: their boundary faces are vertices.
+    if d == 1 && dmax == 1 {
+        for &v in cell.vertices {
+            let row = vt.row(v as usize);
+            if row.first() == Some(&c) {
+                match row.len() {
+                    1 => acc.boundary += 1,
+                    2 => {}
+                    _ => acc.shared_more_than_2 += 1,
+                }
+            }
+        }
+    }
+}

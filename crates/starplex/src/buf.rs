@@ -1,0 +1,98 @@
+//! [`Buf`]: a read-only array that is either owned or borrowed from a memory map.
+//!
+//! The binary format is loaded without copying: its arrays stay in the mapped file and are read
+//! through `Buf`. Mutation first makes an owned copy ([`Buf::to_mut`]).
+//!
+//! ```
+//! use starplex::buf::Buf;
+//! let mut b: Buf<u32> = Buf::from(vec![1, 2, 3]);
+//! assert_eq!(&b[..], &[1, 2, 3]);
+//! b.to_mut().push(4);
+//! assert_eq!(b.len(), 4);
+//! ```
+use std::ops::Deref;
+use std::sync::Arc;
+
+/// Owned or memory-mapped array of plain-old-data values.
+#[derive(Clone)]
+pub enum Buf<T: bytemuck::Pod> {
+    /// An owned vector.
+    Owned(Vec<T>),
+    /// `len` values starting `offset` bytes into a shared memory map (offset aligned for `T`).
+    Mapped {
+        /// The map, kept alive while any buffer refers to it.
+        map: Arc<memmap2::Mmap>,
+        /// Byte offset of the first value.
+        offset: usize,
+        /// Number of values.
+        len: usize,
+    },
+}
+
+impl<T: bytemuck::Pod> Buf<T> {
+    /// The values, copied into an owned vector first when they are mapped.
+    pub fn to_mut(&mut self) -> &mut Vec<T> {
+        if let Buf::Mapped { .. } = self {
+            *self = Buf::Owned(self.deref().to_vec());
+        }
+        match self {
+            Buf::Owned(v) => v,
+            Buf::Mapped { .. } => unreachable!("converted to owned above"),
+        }
+    }
+
+    /// True when the values live in a memory map.
+    pub fn is_mapped(&self) -> bool {
+        matches!(self, Buf::Mapped { .. })
+    }
+
+    /// Takes the values out as a vector (copies when mapped).
+    pub fn into_vec(self) -> Vec<T> {
+        match self {
+            Buf::Owned(v) => v,
+            Buf::Mapped { .. } => self.deref().to_vec(),
+        }
+    }
+}
+
+impl<T: bytemuck::Pod> Deref for Buf<T> {
+    type Target = [T];
+    #[inline]
+    fn deref(&self) -> &[T] {
+        match self {
+            Buf::Owned(v) => v,
+            Buf::Mapped { map, offset, len } => {
+                let bytes = &map[*offset..*offset + *len * std::mem::size_of::<T>()];
+                bytemuck::cast_slice(bytes)
+            }
+        }
+    }
+}
+
+impl<T: bytemuck::Pod> From<Vec<T>> for Buf<T> {
+    fn from(v: Vec<T>) -> Self {
+        Buf::Owned(v)
+    }
+}
+
+impl<T: bytemuck::Pod> Default for Buf<T> {
+    fn default() -> Self {
+        Buf::Owned(Vec::new())
+    }
+}
+
+impl<T: bytemuck::Pod + std::fmt::Debug> std::fmt::Debug for Buf<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let s: &[T] = self;
+        f.debug_struct("Buf")
+            .field("mapped", &self.is_mapped())
+            .field("len", &s.len())
+            .finish()
+    }
+}
+
+impl<T: bytemuck::Pod + PartialEq> PartialEq for Buf<T> {
+    fn eq(&self, other: &Self) -> bool {
+        self.deref() == other.deref()
+    }
+}

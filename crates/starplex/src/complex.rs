@@ -1,0 +1,825 @@
+//! [`IndexedComplex`]: vertices with coordinates in any ambient dimension plus top cells of mixed
+//! kinds and dimensions, the representation every reader produces and every structure is built
+//! from.
+//!
+//! Cells are stored in blocks: maximal runs of one [`CellKind`] in input order, each a flat
+//! `u32` array. A cell's id is its position in the input's cell list across blocks.
+//!
+//! ```
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! let mut b = ComplexBuilder::new(2).unwrap();
+//! for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] {
+//!     b.push_vertex(&p).unwrap();
+//! }
+//! b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+//! b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+//! let (k, report) = b.build(&BuildOptions::default()).unwrap();
+//! assert_eq!(k.n_vertices(), 4);
+//! assert_eq!(k.n_cells(), 2);
+//! assert_eq!(k.cell(starplex::ids::CellId(1)).vertices, &[1, 3, 2]);
+//! assert_eq!(report.dropped_face_cells, 0);
+//!
+//! // A degenerate triangle is refused with the offending ids.
+//! let mut b = ComplexBuilder::new(2).unwrap();
+//! b.push_vertex(&[0.0, 0.0]).unwrap();
+//! b.push_vertex(&[1.0, 0.0]).unwrap();
+//! b.push_cell(CellKind::Simplex(2), &[0, 1, 1]).unwrap();
+//! let err = b.build(&BuildOptions::default()).unwrap_err();
+//! assert_eq!(err.to_string(), "cell 0: vertex 1 appears more than once (degenerate cell)");
+//! ```
+use crate::buf::Buf;
+use crate::cell::{CellKind, CellKindError};
+use crate::csr::Csr;
+use crate::ids::{CellId, VertexId};
+
+/// Largest supported ambient dimension.
+pub const MAX_AMBIENT_DIM: usize = 64;
+
+/// What is wrong with a complex's input. Every variant names the offending ids.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ComplexError {
+    /// A cell refers to a vertex that does not exist.
+    #[error(
+        "cell {cell}: vertex index {vertex} out of range (the complex has {n_vertices} vertices)"
+    )]
+    VertexOutOfRange {
+        /// Cell id.
+        cell: u64,
+        /// The index given.
+        vertex: u64,
+        /// Number of vertices.
+        n_vertices: u64,
+    },
+    /// A vertex appears twice in one cell.
+    #[error("cell {cell}: vertex {vertex} appears more than once (degenerate cell)")]
+    RepeatedVertex {
+        /// Cell id.
+        cell: u64,
+        /// The repeated vertex.
+        vertex: u64,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("vertex {vertex}: coordinate {axis} is not finite ({value})")]
+    NonFiniteCoordinate {
+        /// Vertex id.
+        vertex: u64,
+        /// Axis (0-based).
+        axis: usize,
+        /// The value.
+        value: f64,
+    },
+    /// A vertex with the wrong number of coordinates.
+    #[error("vertex {vertex}: expected {expected} coordinates, got {got}")]
+    WrongCoordinateCount {
+        /// Vertex id.
+        vertex: u64,
+        /// The ambient dimension.
+        expected: usize,
+        /// Coordinates given.
+        got: usize,
+    },
+    /// A cell with the wrong number of vertices for its kind.
+    #[error("cell {cell}: a {kind} needs {expected} vertices, got {got}")]
+    WrongVertexCount {
+        /// Cell id.
+        cell: u64,
+        /// Kind name.
+        kind: String,
+        /// Vertices the kind has.
+        expected: usize,
+        /// Vertices given.
+        got: usize,
+    },
+    /// Two top cells with the same vertex set.
+    #[error("cell {cell} has the same vertices as cell {first} (duplicate top cell; drop it with the duplicate option)")]
+    DuplicateCell {
+        /// The later cell.
+        cell: u64,
+        /// The earlier cell.
+        first: u64,
+    },
+    /// A top cell that is a face of another top cell.
+    #[error("cell {cell} ({kind}) is a face of cell {other} ({other_kind}); top cells must be maximal (drop such cells with the drop-faces option)")]
+    CellIsFaceOf {
+        /// The cell that is a face.
+        cell: u64,
+        /// Its kind.
+        kind: String,
+        /// The cell it is a face of.
+        other: u64,
+        /// That cell's kind.
+        other_kind: String,
+    },
+    /// Ambient dimension outside 1..=64.
+    #[error("ambient dimension {0} is outside 1..={MAX_AMBIENT_DIM}")]
+    BadAmbientDim(usize),
+    /// More vertices or cells than 32-bit ids can address.
+    #[error("too many {what}: {count} (starplex ids are 32-bit, at most {max})")]
+    TooLarge {
+        /// `vertices`, `cells` or `references`.
+        what: &'static str,
+        /// The count.
+        count: u64,
+        /// The limit.
+        max: u64,
+    },
+    /// A bad cell kind.
+    #[error("cell {cell}: {source}")]
+    Kind {
+        /// Cell id.
+        cell: u64,
+        /// What is wrong.
+        source: CellKindError,
+    },
+}
+
+/// A run of cells of one kind, in input order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellBlock {
+    /// Kind of every cell in the block.
+    pub kind: CellKind,
+    /// Id of the block's first cell.
+    pub first: u32,
+    /// Vertex ids, `kind.n_vertices()` per cell.
+    pub vertices: Buf<u32>,
+}
+
+impl CellBlock {
+    /// Number of cells in the block.
+    pub fn len(&self) -> usize {
+        self.vertices.len() / self.kind.n_vertices()
+    }
+    /// True when the block has no cells.
+    pub fn is_empty(&self) -> bool {
+        self.vertices.is_empty()
+    }
+    /// Vertices of the `i`-th cell of the block.
+    #[inline]
+    pub fn cell(&self, i: usize) -> &[u32] {
+        let n = self.kind.n_vertices();
+        &self.vertices[i * n..(i + 1) * n]
+    }
+}
+
+/// One top cell, borrowed from a complex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CellRef<'a> {
+    /// Its id.
+    pub id: CellId,
+    /// Its kind.
+    pub kind: CellKind,
+    /// Its vertex ids in the kind's (VTK) order.
+    pub vertices: &'a [u32],
+}
+
+/// Vertices with coordinates plus top cells: the input of every structure in starplex.
+#[derive(Clone, Debug, PartialEq)]
+pub struct IndexedComplex {
+    ambient_dim: usize,
+    coords: Buf<f64>,
+    blocks: Vec<CellBlock>,
+    n_cells: u32,
+}
+
+/// Options of [`ComplexBuilder::build`].
+#[derive(Clone, Debug, Default)]
+pub struct BuildOptions {
+    /// Drop top cells that are faces of other top cells instead of failing (the dropped count is
+    /// in the [`BuildReport`]).
+    pub drop_face_cells: bool,
+    /// Drop later copies of duplicate top cells instead of failing.
+    pub drop_duplicates: bool,
+    /// Skip the maximality and duplicate checks (for inputs known to be clean, e.g. the binary
+    /// format written by starplex; index and coordinate checks always run).
+    pub trust_maximality: bool,
+}
+
+/// What [`ComplexBuilder::build`] changed.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct BuildReport {
+    /// Cells dropped for being a face of another cell.
+    pub dropped_face_cells: usize,
+    /// Cells dropped as duplicates.
+    pub dropped_duplicates: usize,
+}
+
+/// Accumulates vertices and cells, then checks them into an [`IndexedComplex`].
+#[derive(Clone, Debug)]
+pub struct ComplexBuilder {
+    ambient_dim: usize,
+    coords: Vec<f64>,
+    blocks: Vec<(CellKind, Vec<u32>)>,
+    n_cells: u64,
+}
+
+impl ComplexBuilder {
+    /// A builder for points of `ambient_dim` coordinates.
+    ///
+    /// # Errors
+    /// `ambient_dim` outside 1..=64.
+    pub fn new(ambient_dim: usize) -> Result<ComplexBuilder, ComplexError> {
+        if ambient_dim == 0 || ambient_dim > MAX_AMBIENT_DIM {
+            return Err(ComplexError::BadAmbientDim(ambient_dim));
+        }
+        Ok(ComplexBuilder {
+            ambient_dim,
+            coords: Vec::new(),
+            blocks: Vec::new(),
+            n_cells: 0,
+        })
+    }
+
+    /// The ambient dimension.
+    pub fn ambient_dim(&self) -> usize {
+        self.ambient_dim
+    }
+
+    /// Vertices pushed so far.
+    pub fn n_vertices(&self) -> usize {
+        self.coords.len() / self.ambient_dim
+    }
+
+    /// Cells pushed so far.
+    pub fn n_cells(&self) -> u64 {
+        self.n_cells
+    }
+
+    /// Adds a vertex and returns its id.
+    ///
+    /// # Errors
+    /// Wrong coordinate count, a non-finite coordinate, more than `u32::MAX` vertices.
+    pub fn push_vertex(&mut self, p: &[f64]) -> Result<VertexId, ComplexError> {
+        let id = self.n_vertices() as u64;
+        if p.len() != self.ambient_dim {
+            return Err(ComplexError::WrongCoordinateCount {
+                vertex: id,
+                expected: self.ambient_dim,
+                got: p.len(),
+            });
+        }
+        if let Some(axis) = p.iter().position(|x| !x.is_finite()) {
+            return Err(ComplexError::NonFiniteCoordinate {
+                vertex: id,
+                axis,
+                value: p[axis],
+            });
+        }
+        if id >= u32::MAX as u64 {
+            return Err(ComplexError::TooLarge {
+                what: "vertices",
+                count: id + 1,
+                max: u32::MAX as u64 - 1,
+            });
+        }
+        self.coords.extend_from_slice(p);
+        Ok(VertexId(id as u32))
+    }
+
+    /// Adds a top cell (its vertex order is the kind's VTK order) and returns its id. Index
+    /// ranges and repeats are checked by [`build`](Self::build), which sees all vertices; a
+    /// reader that knows the vertex count can call [`check_cell`] earlier to report a line.
+    ///
+    /// # Errors
+    /// A vertex count that does not fit the kind, more than `u32::MAX` cells.
+    pub fn push_cell(&mut self, kind: CellKind, vertices: &[u32]) -> Result<CellId, ComplexError> {
+        let id = self.n_cells;
+        if vertices.len() != kind.n_vertices() {
+            return Err(ComplexError::WrongVertexCount {
+                cell: id,
+                kind: kind.type_name(),
+                expected: kind.n_vertices(),
+                got: vertices.len(),
+            });
+        }
+        if id >= u32::MAX as u64 {
+            return Err(ComplexError::TooLarge {
+                what: "cells",
+                count: id + 1,
+                max: u32::MAX as u64 - 1,
+            });
+        }
+        match self.blocks.last_mut() {
+            Some((k, v)) if *k == kind => v.extend_from_slice(vertices),
+            _ => self.blocks.push((kind, vertices.to_vec())),
+        }
+        self.n_cells += 1;
+        Ok(CellId(id as u32))
+    }
+
+    /// Checks everything and returns the complex.
+    ///
+    /// # Errors
+    /// The first problem found, in cell order: an index out of range, a repeated vertex, a
+    /// duplicate top cell, a top cell that is a face of another (unless the options drop them).
+    pub fn build(self, opts: &BuildOptions) -> Result<(IndexedComplex, BuildReport), ComplexError> {
+        let n_vertices = self.n_vertices();
+        let blocks: Vec<CellBlock> = {
+            let mut first = 0u32;
+            self.blocks
+                .into_iter()
+                .map(|(kind, v)| {
+                    let b = CellBlock {
+                        kind,
+                        first,
+                        vertices: Buf::Owned(v),
+                    };
+                    first += b.len() as u32;
+                    b
+                })
+                .collect()
+        };
+        let k = IndexedComplex {
+            ambient_dim: self.ambient_dim,
+            coords: Buf::Owned(self.coords),
+            n_cells: self.n_cells as u32,
+            blocks,
+        };
+        for c in k.cells() {
+            check_cell(c.id.0 as u64, c.vertices, n_vertices)?;
+        }
+        if opts.trust_maximality {
+            return Ok((k, BuildReport::default()));
+        }
+        k.check_maximality(opts)
+    }
+}
+
+/// Checks one cell's vertex indices: in range and pairwise distinct.
+///
+/// ```
+/// use starplex::complex::check_cell;
+/// assert!(check_cell(0, &[0, 1, 2], 3).is_ok());
+/// assert!(check_cell(0, &[0, 1, 3], 3).is_err());
+/// assert!(check_cell(0, &[0, 1, 0], 3).is_err());
+/// ```
+///
+/// # Errors
+/// [`ComplexError::VertexOutOfRange`] or [`ComplexError::RepeatedVertex`] naming `cell`.
+pub fn check_cell(cell: u64, vertices: &[u32], n_vertices: usize) -> Result<(), ComplexError> {
+    for (i, &v) in vertices.iter().enumerate() {
+        if v as usize >= n_vertices {
+            return Err(ComplexError::VertexOutOfRange {
+                cell,
+                vertex: v as u64,
+                n_vertices: n_vertices as u64,
+            });
+        }
+        if vertices[..i].contains(&v) {
+            return Err(ComplexError::RepeatedVertex {
+                cell,
+                vertex: v as u64,
+            });
+        }
+    }
+    Ok(())
+}
+
+impl IndexedComplex {
+    /// Assembles a complex from parts already checked elsewhere (the binary reader checks
+    /// indices itself); cell ids follow the block order.
+    ///
+    /// # Errors
+    /// Wrong coordinate array length, out-of-range or repeated vertex indices, non-finite
+    /// coordinates.
+    pub fn from_parts(
+        ambient_dim: usize,
+        coords: Buf<f64>,
+        blocks: Vec<(CellKind, Buf<u32>)>,
+    ) -> Result<IndexedComplex, ComplexError> {
+        if ambient_dim == 0 || ambient_dim > MAX_AMBIENT_DIM {
+            return Err(ComplexError::BadAmbientDim(ambient_dim));
+        }
+        if coords.len() % ambient_dim != 0 {
+            return Err(ComplexError::WrongCoordinateCount {
+                vertex: (coords.len() / ambient_dim) as u64,
+                expected: ambient_dim,
+                got: coords.len() % ambient_dim,
+            });
+        }
+        let nv = coords.len() / ambient_dim;
+        if nv >= u32::MAX as usize {
+            return Err(ComplexError::TooLarge {
+                what: "vertices",
+                count: nv as u64,
+                max: u32::MAX as u64 - 1,
+            });
+        }
+        if let Some(i) = coords.iter().position(|x| !x.is_finite()) {
+            return Err(ComplexError::NonFiniteCoordinate {
+                vertex: (i / ambient_dim) as u64,
+                axis: i % ambient_dim,
+                value: coords[i],
+            });
+        }
+        let mut first: u64 = 0;
+        let mut out = Vec::with_capacity(blocks.len());
+        for (kind, v) in blocks {
+            let n = kind.n_vertices();
+            if v.len() % n != 0 {
+                return Err(ComplexError::WrongVertexCount {
+                    cell: first + (v.len() / n) as u64,
+                    kind: kind.type_name(),
+                    expected: n,
+                    got: v.len() % n,
+                });
+            }
+            let b = CellBlock {
+                kind,
+                first: first as u32,
+                vertices: v,
+            };
+            for i in 0..b.len() {
+                check_cell(first + i as u64, b.cell(i), nv)?;
+            }
+            first += b.len() as u64;
+            if first >= u32::MAX as u64 {
+                return Err(ComplexError::TooLarge {
+                    what: "cells",
+                    count: first,
+                    max: u32::MAX as u64 - 1,
+                });
+            }
+            if !b.is_empty() {
+                out.push(b);
+            }
+        }
+        Ok(IndexedComplex {
+            ambient_dim,
+            coords,
+            blocks: out,
+            n_cells: first as u32,
+        })
+    }
+
+    /// Number of coordinates per vertex.
+    #[inline]
+    pub fn ambient_dim(&self) -> usize {
+        self.ambient_dim
+    }
+
+    /// Number of vertices (isolated ones included).
+    #[inline]
+    pub fn n_vertices(&self) -> usize {
+        self.coords.len() / self.ambient_dim
+    }
+
+    /// Number of top cells.
+    #[inline]
+    pub fn n_cells(&self) -> usize {
+        self.n_cells as usize
+    }
+
+    /// Coordinates of vertex `v`.
+    #[inline]
+    pub fn point(&self, v: VertexId) -> &[f64] {
+        let d = self.ambient_dim;
+        &self.coords[v.index() * d..(v.index() + 1) * d]
+    }
+
+    /// All coordinates, `ambient_dim` per vertex.
+    #[inline]
+    pub fn coords(&self) -> &[f64] {
+        &self.coords
+    }
+
+    /// The coordinate buffer (owned or mapped).
+    pub fn coords_buf(&self) -> &Buf<f64> {
+        &self.coords
+    }
+
+    /// Replaces the coordinates (same vertex count and ambient dimension).
+    ///
+    /// # Errors
+    /// A wrong length or a non-finite value.
+    pub fn set_coords(&mut self, coords: Vec<f64>) -> Result<(), ComplexError> {
+        if coords.len() != self.coords.len() {
+            return Err(ComplexError::WrongCoordinateCount {
+                vertex: (coords.len() / self.ambient_dim) as u64,
+                expected: self.ambient_dim,
+                got: coords.len() % self.ambient_dim,
+            });
+        }
+        if let Some(i) = coords.iter().position(|x| !x.is_finite()) {
+            return Err(ComplexError::NonFiniteCoordinate {
+                vertex: (i / self.ambient_dim) as u64,
+                axis: i % self.ambient_dim,
+                value: coords[i],
+            });
+        }
+        self.coords = Buf::Owned(coords);
+        Ok(())
+    }
+
+    /// The blocks (runs of one kind) in cell-id order.
+    #[inline]
+    pub fn blocks(&self) -> &[CellBlock] {
+        &self.blocks
+    }
+
+    /// The top cell with id `c`.
+    ///
+    /// # Panics
+    /// When `c` is out of range; see [`IndexedComplex::try_cell`].
+    #[inline]
+    pub fn cell(&self, c: CellId) -> CellRef<'_> {
+        self.try_cell(c).expect("cell id out of range")
+    }
+
+    /// The top cell with id `c`, or `None` when out of range.
+    #[inline]
+    pub fn try_cell(&self, c: CellId) -> Option<CellRef<'_>> {
+        if c.0 >= self.n_cells {
+            return None;
+        }
+        let bi = match self.blocks.len() {
+            1 => 0,
+            _ => self.blocks.partition_point(|b| b.first <= c.0) - 1,
+        };
+        let b = &self.blocks[bi];
+        Some(CellRef {
+            id: c,
+            kind: b.kind,
+            vertices: b.cell((c.0 - b.first) as usize),
+        })
+    }
+
+    /// All top cells in id order.
+    pub fn cells(&self) -> impl Iterator<Item = CellRef<'_>> + '_ {
+        self.blocks.iter().flat_map(|b| {
+            (0..b.len()).map(move |i| CellRef {
+                id: CellId(b.first + i as u32),
+                kind: b.kind,
+                vertices: b.cell(i),
+            })
+        })
+    }
+
+    /// Largest top-cell dimension (`Some(0)` for vertices only, `None` for an empty complex).
+    pub fn dim(&self) -> Option<usize> {
+        let d = self.blocks.iter().map(|b| b.kind.dim()).max();
+        match d {
+            Some(d) => Some(d),
+            None if self.n_vertices() > 0 => Some(0),
+            None => None,
+        }
+    }
+
+    /// Total number of vertex references in the cells.
+    pub fn n_refs(&self) -> usize {
+        self.blocks.iter().map(|b| b.vertices.len()).sum()
+    }
+
+    /// True when every cell is a simplex.
+    pub fn is_simplicial(&self) -> bool {
+        self.blocks.iter().all(|b| b.kind.is_simplex())
+    }
+
+    /// Bytes of the complex itself: coordinates plus cell vertex arrays.
+    pub fn bytes(&self) -> usize {
+        8 * self.coords.len()
+            + 4 * self.n_refs()
+            + std::mem::size_of::<CellBlock>() * self.blocks.len()
+    }
+
+    /// For each vertex, whether any cell uses it.
+    pub fn used_vertices(&self) -> fixedbitset::FixedBitSet {
+        let mut used = fixedbitset::FixedBitSet::with_capacity(self.n_vertices());
+        for b in &self.blocks {
+            for &v in b.vertices.iter() {
+                used.insert(v as usize);
+            }
+        }
+        used
+    }
+
+    /// Number of vertices in no cell.
+    pub fn n_isolated_vertices(&self) -> usize {
+        self.n_vertices() - self.used_vertices().count_ones(..)
+    }
+
+    /// The relation vertex → incident top cells (R_{0,top}), cells sorted by id in each row.
+    pub fn vertex_cells(&self) -> Csr {
+        let nv = self.n_vertices();
+        Csr::from_fn(nv, |emit| {
+            for b in &self.blocks {
+                let n = b.kind.n_vertices();
+                for (i, cell) in b.vertices.chunks_exact(n).enumerate() {
+                    let c = b.first + i as u32;
+                    for &v in cell {
+                        emit(v, c);
+                    }
+                }
+            }
+        })
+    }
+
+    /// Per-cell vertex counts and kinds, used by the maximality check.
+    fn check_maximality(
+        self,
+        opts: &BuildOptions,
+    ) -> Result<(IndexedComplex, BuildReport), ComplexError> {
+        let vt = self.vertex_cells();
+        let mut drop: Vec<bool> = Vec::new();
+        let mut report = BuildReport::default();
+        let mut key_a: Vec<u32> = Vec::new();
+        let mut key_b: Vec<u32> = Vec::new();
+        for c in self.cells() {
+            // the vertex of c with the fewest incident cells
+            let &v = c
+                .vertices
+                .iter()
+                .min_by_key(|&&v| vt.degree(v as usize))
+                .expect("cells have at least one vertex");
+            key_a.clear();
+            key_a.extend_from_slice(c.vertices);
+            key_a.sort_unstable();
+            for &o in vt.row(v as usize) {
+                if o == c.id.0 {
+                    continue;
+                }
+                let other = self.cell(CellId(o));
+                if other.vertices.len() < c.vertices.len() {
+                    continue;
+                }
+                if other.vertices.len() == c.vertices.len() {
+                    key_b.clear();
+                    key_b.extend_from_slice(other.vertices);
+                    key_b.sort_unstable();
+                    if key_a == key_b && o < c.id.0 {
+                        if !opts.drop_duplicates {
+                            return Err(ComplexError::DuplicateCell {
+                                cell: c.id.0 as u64,
+                                first: o as u64,
+                            });
+                        }
+                        mark(&mut drop, c.id.index(), self.n_cells());
+                        report.dropped_duplicates += 1;
+                        break;
+                    }
+                    continue;
+                }
+                if other.kind.has_face(other.vertices, &key_a) {
+                    if !opts.drop_face_cells {
+                        return Err(ComplexError::CellIsFaceOf {
+                            cell: c.id.0 as u64,
+                            kind: c.kind.type_name(),
+                            other: o as u64,
+                            other_kind: other.kind.type_name(),
+                        });
+                    }
+                    mark(&mut drop, c.id.index(), self.n_cells());
+                    report.dropped_face_cells += 1;
+                    break;
+                }
+            }
+        }
+        if drop.is_empty() {
+            return Ok((self, report));
+        }
+        let mut b = ComplexBuilder::new(self.ambient_dim)?;
+        b.coords = self.coords.to_vec();
+        for c in self.cells() {
+            if !drop[c.id.index()] {
+                b.push_cell(c.kind, c.vertices)?;
+            }
+        }
+        let (k, _) = b.build(&BuildOptions {
+            trust_maximality: true,
+            ..BuildOptions::default()
+        })?;
+        Ok((k, report))
+    }
+}
+
+fn mark(drop: &mut Vec<bool>, i: usize, n: usize) {
+    if drop.is_empty() {
+        drop.resize(n, false);
+    }
+    drop[i] = true;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(
+        cells: &[(CellKind, &[u32])],
+        opts: &BuildOptions,
+    ) -> Result<(IndexedComplex, BuildReport), ComplexError> {
+        let mut b = ComplexBuilder::new(3).unwrap();
+        for i in 0..8 {
+            b.push_vertex(&[i as f64, (i * i) as f64, 0.0]).unwrap();
+        }
+        for (k, v) in cells {
+            b.push_cell(*k, v)?;
+        }
+        b.build(opts)
+    }
+
+    #[test]
+    fn detects_each_input_problem() {
+        let d = BuildOptions::default();
+        let tri = CellKind::Simplex(2);
+        assert!(matches!(
+            square(&[(tri, &[0, 1, 9])], &d),
+            Err(ComplexError::VertexOutOfRange {
+                cell: 0,
+                vertex: 9,
+                ..
+            })
+        ));
+        assert!(matches!(
+            square(&[(tri, &[0, 1, 1])], &d),
+            Err(ComplexError::RepeatedVertex { cell: 0, vertex: 1 })
+        ));
+        assert!(matches!(
+            square(&[(tri, &[0, 1, 2]), (tri, &[2, 0, 1])], &d),
+            Err(ComplexError::DuplicateCell { cell: 1, first: 0 })
+        ));
+        assert!(matches!(
+            square(&[(CellKind::Simplex(1), &[0, 1]), (tri, &[2, 0, 1])], &d),
+            Err(ComplexError::CellIsFaceOf {
+                cell: 0,
+                other: 1,
+                ..
+            })
+        ));
+        assert!(matches!(
+            square(&[(tri, &[0, 1])], &d),
+            Err(ComplexError::WrongVertexCount {
+                cell: 0,
+                expected: 3,
+                got: 2,
+                ..
+            })
+        ));
+        // A quad's diagonal is not a face of it.
+        assert!(square(
+            &[
+                (CellKind::Quad, &[0, 1, 2, 3]),
+                (CellKind::Simplex(1), &[0, 2])
+            ],
+            &d
+        )
+        .is_ok());
+        let mut b = ComplexBuilder::new(2).unwrap();
+        assert!(matches!(
+            b.push_vertex(&[0.0, f64::NAN]),
+            Err(ComplexError::NonFiniteCoordinate {
+                vertex: 0,
+                axis: 1,
+                ..
+            })
+        ));
+        assert!(ComplexBuilder::new(0).is_err());
+        assert!(ComplexBuilder::new(65).is_err());
+    }
+
+    #[test]
+    fn drop_options_keep_the_maximal_cells() {
+        let tri = CellKind::Simplex(2);
+        let opts = BuildOptions {
+            drop_face_cells: true,
+            drop_duplicates: true,
+            ..Default::default()
+        };
+        let (k, r) = square(
+            &[
+                (CellKind::Simplex(1), &[0, 1]),
+                (tri, &[2, 0, 1]),
+                (tri, &[1, 2, 0]),
+                (tri, &[3, 4, 5]),
+            ],
+            &opts,
+        )
+        .unwrap();
+        assert_eq!(r.dropped_face_cells, 1);
+        assert_eq!(r.dropped_duplicates, 1);
+        assert_eq!(k.n_cells(), 2);
+        assert_eq!(k.cell(CellId(0)).vertices, &[2, 0, 1]);
+        assert_eq!(k.cell(CellId(1)).vertices, &[3, 4, 5]);
+        assert_eq!(k.n_isolated_vertices(), 2);
+    }
+
+    #[test]
+    fn blocks_follow_input_order() {
+        let (k, _) = square(
+            &[
+                (CellKind::Simplex(2), &[0, 1, 2]),
+                (CellKind::Quad, &[3, 4, 5, 6]),
+                (CellKind::Simplex(2), &[0, 2, 7]),
+            ],
+            &BuildOptions::default(),
+        )
+        .unwrap();
+        assert_eq!(k.blocks().len(), 3);
+        assert_eq!(k.cell(CellId(1)).kind, CellKind::Quad);
+        assert_eq!(k.cell(CellId(2)).vertices, &[0, 2, 7]);
+        assert!(k.try_cell(CellId(3)).is_none());
+        assert_eq!(k.cells().count(), 3);
+        let vt = k.vertex_cells();
+        assert_eq!(vt.row(0), &[0, 2]);
+        assert_eq!(vt.row(3), &[1]);
+    }
+}

@@ -1,0 +1,80 @@
+//! Typed index newtypes. Every id is a `u32` inside: 4 bytes per reference, and no bare `usize`
+//! in public APIs, so a vertex id can never be passed where a cell id is expected.
+//!
+//! ```
+//! use starplex::ids::{VertexId, CellId};
+//! let v = VertexId::new(3);
+//! assert_eq!(v.index(), 3);
+//! assert_eq!(CellId::from_usize(7), Some(CellId::new(7)));
+//! assert_eq!(CellId::from_usize(usize::MAX), None);
+//! ```
+
+macro_rules! id_type {
+    ($(#[$meta:meta])* $name:ident) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug, Default)]
+        #[derive(bytemuck::Pod, bytemuck::Zeroable)]
+        #[repr(transparent)]
+        pub struct $name(pub u32);
+
+        impl $name {
+            /// Wraps a raw index.
+            #[inline]
+            pub const fn new(i: u32) -> Self {
+                Self(i)
+            }
+            /// The index as `usize`, for indexing arrays.
+            #[inline]
+            pub const fn index(self) -> usize {
+                self.0 as usize
+            }
+            /// Converts a `usize`, or `None` when it does not fit in 32 bits.
+            #[inline]
+            pub fn from_usize(i: usize) -> Option<Self> {
+                u32::try_from(i).ok().map(Self)
+            }
+        }
+
+        impl From<u32> for $name {
+            #[inline]
+            fn from(i: u32) -> Self {
+                Self(i)
+            }
+        }
+
+        impl From<$name> for u32 {
+            #[inline]
+            fn from(i: $name) -> u32 {
+                i.0
+            }
+        }
+
+        impl std::fmt::Display for $name {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                self.0.fmt(f)
+            }
+        }
+    };
+}
+
+id_type!(
+    /// A vertex of a complex (0-based position in the input file unless said otherwise).
+    VertexId
+);
+id_type!(
+    /// A top cell of an [`IndexedComplex`](crate::complex::IndexedComplex) (0-based position in
+    /// the input's cell list, across blocks).
+    CellId
+);
+id_type!(
+    /// A simplex stored explicitly by a data structure (incidence graph, IS, Hasse complex, ...).
+    SimplexId
+);
+id_type!(
+    /// A node of a spatial hierarchy (Stellar tree).
+    NodeId
+);
+id_type!(
+    /// A leaf of a Stellar tree.
+    LeafId
+);

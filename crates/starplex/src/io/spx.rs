@@ -1,0 +1,176 @@
+//! `.spx`, the starplex text format (see `FORMATS.md`):
+//!
+//! ```text
+//! SPX 1
+//! # comments anywhere
+//! <ambient_dim> <n_vertices> <n_cells>
+//! x_1 ... x_ambient_dim            (n_vertices lines)
+//! <type> <k> v_0 ... v_{k-1}       (n_cells lines; type line|tri|quad|tet|pyramid|prism|hex|simplex)
+//! ```
+//!
+//! ```
+//! use starplex::io::{spx, ReadOptions};
+//! let text = "SPX 1\n2 3 1\n0 0\n1 0\n0 1\ntri 3 0 1 2\n";
+//! let r = spx::read_from(text.as_bytes(), "mem.spx".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(r.complex.n_cells(), 1);
+//! let mut out = Vec::new();
+//! spx::write(&mut out, &r.complex).unwrap();
+//! assert!(String::from_utf8(out).unwrap().ends_with("tri 3 0 1 2\n"));
+//! ```
+use std::io::{BufRead, Write};
+use std::path::Path;
+
+use super::text::{write_f64, LineReader};
+use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::cell::CellKind;
+use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
+
+/// Reads a `.spx` file.
+///
+/// # Errors
+/// See [`read_from`].
+pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let f = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+    read_from(std::io::BufReader::with_capacity(1 << 20, f), path, opts)
+}
+
+/// Reads `.spx` text from any buffered reader; `path` names it in errors.
+///
+/// # Errors
+/// A missing header, malformed or non-finite numbers, wrong token counts, unknown cell types,
+/// out-of-range or repeated vertex indices (with the line), a file shorter or longer than its
+/// counts say, and the maximality checks of [`ComplexBuilder::build`].
+pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let mut lr = LineReader::new(r, path, Some(b'#'));
+    {
+        let l = lr.expect_line("the header 'SPX 1'")?;
+        let mut t = l.tokens();
+        if t.word("'SPX'")? != b"SPX" {
+            return Err(l.err(format!(
+                "not an .spx file: the first line is '{}', expected 'SPX 1'",
+                l.text()
+            )));
+        }
+        let v = t.u64("the format version")?;
+        if v != 1 {
+            return Err(l.err(format!(
+                "unsupported .spx version {v} (this starplex reads version 1)"
+            )));
+        }
+        t.end()?;
+    }
+    let (ambient, nv, nc) = {
+        let l = lr.expect_line("the counts '<ambient_dim> <n_vertices> <n_cells>'")?;
+        let mut t = l.tokens();
+        let a = t.u64("the ambient dimension")?;
+        let nv = t.u64("the vertex count")?;
+        let nc = t.u64("the cell count")?;
+        t.end()?;
+        if a == 0 || a > crate::complex::MAX_AMBIENT_DIM as u64 {
+            return Err(l.err(format!("ambient dimension {a} is outside 1..=64")));
+        }
+        if nv >= u32::MAX as u64 || nc >= u32::MAX as u64 {
+            return Err(l.err(format!(
+                "counts {nv} vertices / {nc} cells exceed the 32-bit id limit of starplex"
+            )));
+        }
+        (a as usize, nv as usize, nc as usize)
+    };
+    let mut b = ComplexBuilder::new(ambient).map_err(|e| IoError::new(path, e))?;
+    let mut p = vec![0.0f64; ambient];
+    for i in 0..nv {
+        let l = lr.expect_line(&format!("vertex {i} of {nv}"))?;
+        let mut t = l.tokens();
+        for (axis, x) in p.iter_mut().enumerate() {
+            *x = t.f64(&format!("coordinate {axis} of vertex {i}"))?;
+        }
+        t.end()?;
+        b.push_vertex(&p)
+            .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
+    }
+    let mut verts: Vec<u32> = Vec::with_capacity(8);
+    let mut last: Option<(Vec<u8>, usize, CellKind)> = None;
+    for i in 0..nc {
+        let l = lr.expect_line(&format!("cell {i} of {nc}"))?;
+        let mut t = l.tokens();
+        let name = t.word("the cell type")?;
+        let k = t.u64("the cell's vertex count")? as usize;
+        let kind = match &last {
+            Some((n, kk, kind)) if n.as_slice() == name && *kk == k => *kind,
+            _ => {
+                let s = std::str::from_utf8(name).unwrap_or("?");
+                let kind = CellKind::from_spx(s, k).map_err(|e| l.err(e.to_string()))?;
+                last = Some((name.to_vec(), k, kind));
+                kind
+            }
+        };
+        verts.clear();
+        for j in 0..k {
+            verts.push(t.index(&format!("vertex {j} of cell {i}"), 0, nv)?);
+        }
+        t.end()?;
+        check_cell(i as u64, &verts, nv)
+            .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
+        b.push_cell(kind, &verts)
+            .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
+    }
+    if let Some(l) = lr.next_content_line()? {
+        return Err(l.err(format!(
+            "unexpected content after the {nc} cells the header announced: '{}'",
+            String::from_utf8_lossy(&l.bytes[..l.bytes.len().min(60)])
+        )));
+    }
+    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    let mut notes = Vec::new();
+    if report.dropped_duplicates > 0 {
+        notes.push(format!(
+            "dropped {} duplicate cells",
+            report.dropped_duplicates
+        ));
+    }
+    if report.dropped_face_cells > 0 {
+        notes.push(format!(
+            "dropped {} cells that are faces of other cells",
+            report.dropped_face_cells
+        ));
+    }
+    Ok(ReadResult {
+        complex,
+        format: Format::Spx,
+        notes,
+    })
+}
+
+/// Writes `k` as `.spx`.
+///
+/// # Errors
+/// OS errors of the writer.
+pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    writeln!(w, "SPX 1")?;
+    writeln!(w, "# written by starplex {}", env!("CARGO_PKG_VERSION"))?;
+    writeln!(w, "{} {} {}", k.ambient_dim(), k.n_vertices(), k.n_cells())?;
+    for p in k.coords().chunks_exact(k.ambient_dim()) {
+        for (i, &x) in p.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b" ")?;
+            }
+            write_f64(w, x)?;
+        }
+        w.write_all(b"\n")?;
+    }
+    let mut line = String::with_capacity(128);
+    for b in k.blocks() {
+        let prefix = format!("{} {}", b.kind.spx_name(), b.kind.n_vertices());
+        for i in 0..b.len() {
+            use std::fmt::Write as _;
+            line.clear();
+            line.push_str(&prefix);
+            for v in b.cell(i) {
+                let _ = write!(line, " {v}");
+            }
+            line.push('\n');
+            w.write_all(line.as_bytes())?;
+        }
+    }
+    Ok(())
+}
