@@ -390,7 +390,7 @@ impl IndexedComplex {
         if ambient_dim == 0 || ambient_dim > MAX_AMBIENT_DIM {
             return Err(ComplexError::BadAmbientDim(ambient_dim));
         }
-        if coords.len() % ambient_dim != 0 {
+        if !coords.len().is_multiple_of(ambient_dim) {
             return Err(ComplexError::WrongCoordinateCount {
                 vertex: (coords.len() / ambient_dim) as u64,
                 expected: ambient_dim,

@@ -305,7 +305,7 @@ fn count_cell(
                         acc.shared_more_than_2 += 1;
                     }
                 }
-                if fd == 2 && !cell.kind.is_simplex() || fd == 2 && d == 3 {
+                if fd == 2 && (d == 3 || !cell.kind.is_simplex()) {
                     match key.len() {
                         3 => acc.tri_faces += 1,
                         4 => acc.quad_faces += 1,

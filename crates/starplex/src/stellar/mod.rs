@@ -1,0 +1,1 @@
+//! The Stellar tree: a compressed spatial index over a complex, processed leaf by leaf.

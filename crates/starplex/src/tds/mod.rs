@@ -1,0 +1,1 @@
+//! Compact topological data structures: incidence graph, IS, IA*, simplex tree.

@@ -1,0 +1,90 @@
+//! [`VtIndex`]: the plainest structure — the indexed complex plus its vertex→cells relation. The
+//! baseline every other structure is compared with.
+//!
+//! ```
+//! use starplex::topo::{naive::VtIndex, TopCells};
+//! # use starplex::complex::{ComplexBuilder, BuildOptions};
+//! # use starplex::cell::CellKind;
+//! # let mut b = ComplexBuilder::new(1).unwrap();
+//! # for x in [0.0, 1.0] { b.push_vertex(&[x]).unwrap(); }
+//! # b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+//! # let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let idx = VtIndex::new(&k);
+//! assert_eq!(idx.n_top_cells(), 1);
+//! ```
+use super::{TopCells, VertexAdjacency, VertexStar};
+use crate::cell::CellKind;
+use crate::complex::IndexedComplex;
+use crate::csr::Csr;
+use crate::ids::{CellId, VertexId};
+
+/// An indexed complex with its vertex→top-cells relation.
+pub struct VtIndex<'a> {
+    /// The complex.
+    pub complex: &'a IndexedComplex,
+    /// Vertex → incident top cells, sorted.
+    pub vt: Csr,
+}
+
+impl<'a> VtIndex<'a> {
+    /// Builds the relation (one pass over the cells).
+    pub fn new(complex: &'a IndexedComplex) -> Self {
+        VtIndex {
+            complex,
+            vt: complex.vertex_cells(),
+        }
+    }
+}
+
+impl TopCells for VtIndex<'_> {
+    fn n_vertices(&self) -> usize {
+        self.complex.n_vertices()
+    }
+    fn n_top_cells(&self) -> usize {
+        self.complex.n_cells()
+    }
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        self.complex.cell(c).kind
+    }
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        out.extend(self.complex.cell(c).vertices.iter().map(|&v| VertexId(v)));
+    }
+}
+
+impl VertexStar for VtIndex<'_> {
+    fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
+        out.clear();
+        out.extend(self.vt.row(v.index()).iter().map(|&c| CellId(c)));
+    }
+}
+
+impl VertexAdjacency for VtIndex<'_> {
+    fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>) {
+        out.clear();
+        for &c in self.vt.row(v.index()) {
+            let cell = self.complex.cell(CellId(c));
+            edge_neighbours(cell.kind, cell.vertices, v.0, |w| out.push(VertexId(w)));
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+}
+
+/// Calls `f` with every vertex joined to `v` by an edge of the cell (`vertices` in the kind's
+/// order; `v` must be one of them).
+pub fn edge_neighbours(kind: CellKind, vertices: &[u32], v: u32, mut f: impl FnMut(u32)) {
+    if kind.is_simplex() {
+        vertices.iter().filter(|&&w| w != v).for_each(|&w| f(w));
+        return;
+    }
+    if let Some(edges) = kind.cp_faces(1) {
+        for e in edges {
+            let (a, b) = (vertices[e[0] as usize], vertices[e[1] as usize]);
+            if a == v {
+                f(b);
+            } else if b == v {
+                f(a);
+            }
+        }
+    }
+}
