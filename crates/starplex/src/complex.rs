@@ -614,63 +614,93 @@ impl IndexedComplex {
         })
     }
 
-    /// Per-cell vertex counts and kinds, used by the maximality check.
+    /// Duplicate cells (same vertex set) and cells that are faces of other cells.
+    ///
+    /// Duplicates: sort the cells by a hash of their sorted vertex set and compare equal-hash
+    /// runs exactly (O(n log n), cache-friendly). Faces: only cells below the top dimension can
+    /// be faces of others; each scans the cells around its least-used vertex.
     fn check_maximality(
         self,
         opts: &BuildOptions,
     ) -> Result<(IndexedComplex, BuildReport), ComplexError> {
-        let vt = self.vertex_cells();
+        use rayon::prelude::*;
         let mut drop: Vec<bool> = Vec::new();
         let mut report = BuildReport::default();
-        let mut key_a: Vec<u32> = Vec::new();
-        let mut key_b: Vec<u32> = Vec::new();
-        for c in self.cells() {
-            // the vertex of c with the fewest incident cells
-            let &v = c
-                .vertices
-                .iter()
-                .min_by_key(|&&v| vt.degree(v as usize))
-                .expect("cells have at least one vertex");
-            key_a.clear();
-            key_a.extend_from_slice(c.vertices);
-            key_a.sort_unstable();
-            for &o in vt.row(v as usize) {
-                if o == c.id.0 {
-                    continue;
+        let n = self.n_cells();
+        let mut keyed: Vec<(u64, u32)> = (0..n as u32)
+            .into_par_iter()
+            .map(|c| (set_hash(self.cell(CellId(c)).vertices), c))
+            .collect();
+        keyed.par_sort_unstable();
+        let mut dups: Vec<(u32, u32)> = Vec::new(); // (later, first)
+        let mut i = 0;
+        while i < keyed.len() {
+            let mut j = i + 1;
+            while j < keyed.len() && keyed[j].0 == keyed[i].0 {
+                j += 1;
+            }
+            for b in i + 1..j {
+                let cb = self.cell(CellId(keyed[b].1));
+                if let Some(a) = (i..b).find(|&a| {
+                    let ca = self.cell(CellId(keyed[a].1));
+                    ca.vertices.len() == cb.vertices.len()
+                        && cb.vertices.iter().all(|x| ca.vertices.contains(x))
+                }) {
+                    dups.push((keyed[b].1, keyed[a].1));
                 }
-                let other = self.cell(CellId(o));
-                if other.vertices.len() < c.vertices.len() {
-                    continue;
-                }
-                if other.vertices.len() == c.vertices.len() {
-                    key_b.clear();
-                    key_b.extend_from_slice(other.vertices);
-                    key_b.sort_unstable();
-                    if key_a == key_b && o < c.id.0 {
-                        if !opts.drop_duplicates {
-                            return Err(ComplexError::DuplicateCell {
-                                cell: c.id.0 as u64,
-                                first: o as u64,
+            }
+            i = j;
+        }
+        std::mem::drop(keyed);
+        if let Some(&(cell, first)) = dups.iter().min() {
+            if !opts.drop_duplicates {
+                return Err(ComplexError::DuplicateCell {
+                    cell: cell as u64,
+                    first: first as u64,
+                });
+            }
+            for &(c, _) in &dups {
+                mark(&mut drop, c as usize, n);
+            }
+            report.dropped_duplicates = dups.len();
+        }
+        let dmax = self.dim().unwrap_or(0);
+        if self.blocks.iter().any(|b| b.kind.dim() < dmax) {
+            let vt = self.vertex_cells();
+            let mut key: Vec<u32> = Vec::new();
+            for b in self.blocks.iter().filter(|b| b.kind.dim() < dmax) {
+                for i in 0..b.len() {
+                    let c = b.first + i as u32;
+                    if !drop.is_empty() && drop[c as usize] {
+                        continue;
+                    }
+                    let verts = b.cell(i);
+                    let &v = verts
+                        .iter()
+                        .min_by_key(|&&v| vt.degree(v as usize))
+                        .expect("cells have at least one vertex");
+                    key.clear();
+                    key.extend_from_slice(verts);
+                    key.sort_unstable();
+                    for &o in vt.row(v as usize) {
+                        let other = self.cell(CellId(o));
+                        if other.kind.dim() <= b.kind.dim()
+                            || !other.kind.has_face(other.vertices, &key)
+                        {
+                            continue;
+                        }
+                        if !opts.drop_face_cells {
+                            return Err(ComplexError::CellIsFaceOf {
+                                cell: c as u64,
+                                kind: b.kind.type_name(),
+                                other: o as u64,
+                                other_kind: other.kind.type_name(),
                             });
                         }
-                        mark(&mut drop, c.id.index(), self.n_cells());
-                        report.dropped_duplicates += 1;
+                        mark(&mut drop, c as usize, n);
+                        report.dropped_face_cells += 1;
                         break;
                     }
-                    continue;
-                }
-                if other.kind.has_face(other.vertices, &key_a) {
-                    if !opts.drop_face_cells {
-                        return Err(ComplexError::CellIsFaceOf {
-                            cell: c.id.0 as u64,
-                            kind: c.kind.type_name(),
-                            other: o as u64,
-                            other_kind: other.kind.type_name(),
-                        });
-                    }
-                    mark(&mut drop, c.id.index(), self.n_cells());
-                    report.dropped_face_cells += 1;
-                    break;
                 }
             }
         }
@@ -690,6 +720,20 @@ impl IndexedComplex {
         })?;
         Ok((k, report))
     }
+}
+
+/// An order-independent 64-bit hash of a vertex set (sum and xor of mixed ids, plus the size).
+#[inline]
+fn set_hash(vertices: &[u32]) -> u64 {
+    let mut sum: u64 = 0;
+    let mut x: u64 = 0;
+    for &v in vertices {
+        let h = (v as u64 ^ 0x9E37_79B9_7F4A_7C15).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        let h = (h ^ (h >> 31)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        sum = sum.wrapping_add(h);
+        x ^= h.rotate_left(17);
+    }
+    (sum ^ x.rotate_left(32)).wrapping_add(vertices.len() as u64)
 }
 
 fn mark(drop: &mut Vec<bool>, i: usize, n: usize) {

@@ -8,15 +8,19 @@
 //! use starplex::io::{self, Format, ReadOptions};
 //! let dir = std::env::temp_dir().join(format!("starplex-doc-io-{}", std::process::id()));
 //! std::fs::create_dir_all(&dir).unwrap();
-//! let off = dir.join("t.off");
-//! std::fs::write(&off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
-//! let r = io::read(&off, &ReadOptions::default()).unwrap();
-//! assert_eq!(r.complex.n_cells(), 1);
 //! let spx = dir.join("t.spx");
-//! io::write(&spx, &r.complex, None).unwrap();
-//! let back = io::read(&spx, &ReadOptions::default()).unwrap();
+//! std::fs::write(&spx, "SPX 1\n3 3 1\n0 0 0\n1 0 0\n0 1 0\ntri 3 0 1 2\n").unwrap();
+//! let r = io::read(&spx, &ReadOptions::default()).unwrap();
+//! assert_eq!(r.complex.n_cells(), 1);
+//! let copy = dir.join("copy.spx");
+//! io::write(&copy, &r.complex, None).unwrap();
+//! let back = io::read(&copy, &ReadOptions::default()).unwrap();
 //! assert_eq!(back.complex, r.complex);
 //! assert_eq!(Format::from_path(&spx), Some(Format::Spx));
+//! // a file the format cannot describe is an error naming the file and the line
+//! std::fs::write(&spx, "SPX 1\n3 3 1\n0 0 0\n1 0 0\n0 1 0\ntri 3 0 1 7\n").unwrap();
+//! let e = io::read(&spx, &ReadOptions::default()).unwrap_err();
+//! assert!(e.to_string().ends_with(":6: vertex 2 of cell 0 is 7, out of range: the file has 3 vertices, numbered from 0"), "{e}");
 //! ```
 use std::fmt;
 use std::path::{Path, PathBuf};

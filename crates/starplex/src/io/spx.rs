@@ -79,10 +79,10 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut b = ComplexBuilder::new(ambient).map_err(|e| IoError::new(path, e))?;
     let mut p = vec![0.0f64; ambient];
     for i in 0..nv {
-        let l = lr.expect_line(&format!("vertex {i} of {nv}"))?;
+        let l = lr.expect_line(format_args!("vertex {i} of {nv}"))?;
         let mut t = l.tokens();
         for (axis, x) in p.iter_mut().enumerate() {
-            *x = t.f64(&format!("coordinate {axis} of vertex {i}"))?;
+            *x = t.f64(format_args!("coordinate {axis} of vertex {i}"))?;
         }
         t.end()?;
         b.push_vertex(&p)
@@ -91,7 +91,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut verts: Vec<u32> = Vec::with_capacity(8);
     let mut last: Option<(Vec<u8>, usize, CellKind)> = None;
     for i in 0..nc {
-        let l = lr.expect_line(&format!("cell {i} of {nc}"))?;
+        let l = lr.expect_line(format_args!("cell {i} of {nc}"))?;
         let mut t = l.tokens();
         let name = t.word("the cell type")?;
         let k = t.u64("the cell's vertex count")? as usize;
@@ -106,7 +106,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         };
         verts.clear();
         for j in 0..k {
-            verts.push(t.index(&format!("vertex {j} of cell {i}"), 0, nv)?);
+            verts.push(t.index(format_args!("vertex {j} of cell {i}"), 0, nv)?);
         }
         t.end()?;
         check_cell(i as u64, &verts, nv)

@@ -154,7 +154,7 @@ impl<'p, R: BufRead> LineReader<'p, R> {
     ///
     /// # Errors
     /// End of file, OS errors.
-    pub fn expect_line(&mut self, what: &str) -> Result<Line<'_>, IoError> {
+    pub fn expect_line(&mut self, what: impl std::fmt::Display) -> Result<Line<'_>, IoError> {
         let no = self.no;
         let path = self.path;
         match self.next_content_line()? {
@@ -260,11 +260,11 @@ impl<'a> Tokens<'a> {
         IoError::parse(self.path, Some(Location::Line(self.no)), msg)
     }
 
-    fn missing(&self, what: &str) -> IoError {
+    fn missing(&self, what: &dyn std::fmt::Display) -> IoError {
         self.err(format!("expected {what}, found the end of the line"))
     }
 
-    fn bad(&self, what: &str, kind: &str, tok: &[u8]) -> IoError {
+    fn bad(&self, what: &dyn std::fmt::Display, kind: &str, tok: &[u8]) -> IoError {
         let shown: String = String::from_utf8_lossy(&tok[..tok.len().min(40)]).into_owned();
         self.err(format!("expected {what} ({kind}), found '{shown}'"))
     }
@@ -273,8 +273,8 @@ impl<'a> Tokens<'a> {
     ///
     /// # Errors
     /// A missing token.
-    pub fn word(&mut self, what: &str) -> Result<&'a [u8], IoError> {
-        self.next_token().ok_or_else(|| self.missing(what))
+    pub fn word(&mut self, what: impl std::fmt::Display) -> Result<&'a [u8], IoError> {
+        self.next_token().ok_or_else(|| self.missing(&what))
     }
 
     /// The next token as an unsigned integer.
@@ -282,17 +282,17 @@ impl<'a> Tokens<'a> {
     /// # Errors
     /// A missing or malformed token.
     #[inline]
-    pub fn u64(&mut self, what: &str) -> Result<u64, IoError> {
-        let tok = self.next_token().ok_or_else(|| self.missing(what))?;
-        parse_u64(tok).ok_or_else(|| self.bad(what, "an unsigned integer", tok))
+    pub fn u64(&mut self, what: impl std::fmt::Display) -> Result<u64, IoError> {
+        let tok = self.next_token().ok_or_else(|| self.missing(&what))?;
+        parse_u64(tok).ok_or_else(|| self.bad(&what, "an unsigned integer", tok))
     }
 
     /// The next token as a signed integer.
     ///
     /// # Errors
     /// A missing or malformed token.
-    pub fn i64(&mut self, what: &str) -> Result<i64, IoError> {
-        let tok = self.next_token().ok_or_else(|| self.missing(what))?;
+    pub fn i64(&mut self, what: impl std::fmt::Display) -> Result<i64, IoError> {
+        let tok = self.next_token().ok_or_else(|| self.missing(&what))?;
         let (neg, digits) = match tok.first() {
             Some(b'-') => (true, &tok[1..]),
             Some(b'+') => (false, &tok[1..]),
@@ -300,7 +300,7 @@ impl<'a> Tokens<'a> {
         };
         let v = parse_u64(digits)
             .filter(|&v| v <= i64::MAX as u64)
-            .ok_or_else(|| self.bad(what, "an integer", tok))? as i64;
+            .ok_or_else(|| self.bad(&what, "an integer", tok))? as i64;
         Ok(if neg { -v } else { v })
     }
 
@@ -309,13 +309,17 @@ impl<'a> Tokens<'a> {
     /// # Errors
     /// A missing or malformed token, or an index out of range.
     #[inline]
-    pub fn index(&mut self, what: &str, base: u64, n: usize) -> Result<u32, IoError> {
-        let tok = self.next_token().ok_or_else(|| self.missing(what))?;
-        let v = parse_u64(tok).ok_or_else(|| self.bad(what, "a vertex index", tok))?;
+    pub fn index(
+        &mut self,
+        what: impl std::fmt::Display,
+        base: u64,
+        n: usize,
+    ) -> Result<u32, IoError> {
+        let tok = self.next_token().ok_or_else(|| self.missing(&what))?;
+        let v = parse_u64(tok).ok_or_else(|| self.bad(&what, "a vertex index", tok))?;
         if v < base || v - base >= n as u64 {
             return Err(self.err(format!(
-                "{what} {v} is out of range: the file has {n} vertices ({}-based)",
-                base
+                "{what} is {v}, out of range: the file has {n} vertices, numbered from {base}"
             )));
         }
         Ok((v - base) as u32)
@@ -326,12 +330,12 @@ impl<'a> Tokens<'a> {
     /// # Errors
     /// A missing token, a malformed number, NaN or infinity.
     #[inline]
-    pub fn f64(&mut self, what: &str) -> Result<f64, IoError> {
-        let tok = self.next_token().ok_or_else(|| self.missing(what))?;
+    pub fn f64(&mut self, what: impl std::fmt::Display) -> Result<f64, IoError> {
+        let tok = self.next_token().ok_or_else(|| self.missing(&what))?;
         match parse_f64(tok) {
             Some(x) if x.is_finite() => Ok(x),
             Some(x) => Err(self.err(format!("{what} is not finite ({x})"))),
-            None => Err(self.bad(what, "a number", tok)),
+            None => Err(self.bad(&what, "a number", tok)),
         }
     }
 
