@@ -14,10 +14,10 @@ fn brute(k: &IndexedComplex) -> (Vec<u64>, Option<(u64, u64)>, u64) {
     let mut key = Vec::new();
     let mut top_count: BTreeMap<Vec<u32>, u64> = BTreeMap::new();
     for c in k.cells() {
-        for fd in 0..=c.kind.dim() {
+        for (fd, set) in faces.iter_mut().enumerate().take(c.kind.dim() + 1) {
             c.kind.for_each_face(fd, |l| {
                 canonical_key(c.vertices, l, &mut key);
-                faces[fd].insert(key.clone());
+                set.insert(key.clone());
                 if c.kind.dim() == dim && fd + 1 == dim {
                     *top_count.entry(key.clone()).or_default() += 1;
                 }
