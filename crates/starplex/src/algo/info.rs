@@ -253,7 +253,41 @@ fn count_faces(k: &IndexedComplex, opts: &InfoOptions) -> FaceCounts {
     total
 }
 
+/// Records one owned face of dimension `fd` with `n_vertices` vertices, in `in_top` top cells.
+#[inline]
+fn count_owned(
+    acc: &mut FaceCounts,
+    fd: usize,
+    track_boundary: bool,
+    in_top: u32,
+    n_vertices: usize,
+    d: usize,
+    simplex: bool,
+) {
+    acc.per_dim[fd] += 1;
+    if track_boundary {
+        if in_top == 1 {
+            acc.boundary += 1;
+        } else if in_top > 2 {
+            acc.shared_more_than_2 += 1;
+        }
+    }
+    if fd == 2 && (d == 3 || !simplex) {
+        match n_vertices {
+            3 => acc.tri_faces += 1,
+            4 => acc.quad_faces += 1,
+            _ => {}
+        }
+    }
+}
+
 /// Counts the faces of cell `c` that `c` owns.
+///
+/// The cells containing a face are among the common entries of the id-sorted vertex→cells rows
+/// of its two least-used vertices, found by a merge; a common entry is then checked with
+/// [`CellKind::has_face`](crate::cell::CellKind::has_face) (skipped for edges of simplicial
+/// complexes, where sharing both vertices is enough). The first cell containing the face is its
+/// owner.
 fn count_cell(
     k: &IndexedComplex,
     vt: &Csr,
@@ -265,54 +299,87 @@ fn count_cell(
     let cell = k.cell(crate::ids::CellId(c));
     let d = cell.kind.dim();
     acc.per_dim[d] += 1;
+    let all_simplices = k.is_simplicial();
     for fd in 1..d {
         let track_boundary = d == dmax && fd + 1 == d;
         cell.kind.for_each_face(fd, |local| {
             crate::cell::canonical_key(cell.vertices, local, key);
-            // the face's vertex with the fewest incident cells
-            let &pivot = key
-                .iter()
-                .min_by_key(|&&v| vt.degree(v as usize))
-                .expect("non-empty face");
-            let row = vt.row(pivot as usize);
-            let mut owned = true;
-            let mut in_top = 1u32; // c itself
-            for &o in row {
-                if o == c {
-                    if !track_boundary {
-                        break; // rows are sorted: everything before c was checked
+            // the two least-used vertices of the face (degrees read once)
+            let (mut a, mut da, mut b, mut db) = (0u32, u32::MAX, 0u32, u32::MAX);
+            for &v in key.iter() {
+                let dv = vt.degree(v as usize) as u32;
+                if dv < da {
+                    (b, db) = (a, da);
+                    (a, da) = (v, dv);
+                } else if dv < db {
+                    (b, db) = (v, dv);
+                }
+            }
+            if da == 1 {
+                // only c holds this vertex, hence the face
+                count_owned(
+                    acc,
+                    fd,
+                    track_boundary,
+                    1,
+                    key.len(),
+                    d,
+                    cell.kind.is_simplex(),
+                );
+                return;
+            }
+            let _ = db;
+            let need_check = key.len() > 2 || !all_simplices;
+            let (ra, rb) = (vt.row(a as usize), vt.row(b as usize));
+            let (mut i, mut j) = (0, 0);
+            let mut owned = false;
+            let mut in_top = 0u32;
+            while i < ra.len() && j < rb.len() {
+                let (x, y) = (ra[i], rb[j]);
+                if x < y {
+                    i += 1;
+                    continue;
+                }
+                if y < x {
+                    j += 1;
+                    continue;
+                }
+                i += 1;
+                j += 1;
+                let o = x;
+                let other_dim = if o == c {
+                    d
+                } else {
+                    let other = k.cell(crate::ids::CellId(o));
+                    if need_check && !other.kind.has_face(other.vertices, key) {
+                        continue;
                     }
-                    continue;
+                    other.kind.dim()
+                };
+                if !owned {
+                    // the first cell containing the face is its owner
+                    if o != c {
+                        return;
+                    }
+                    owned = true;
                 }
-                let other = k.cell(crate::ids::CellId(o));
-                if !other.kind.has_face(other.vertices, key) {
-                    continue;
-                }
-                if o < c {
-                    owned = false;
+                if !track_boundary {
                     break;
                 }
-                if other.kind.dim() == d {
+                if other_dim == d {
                     in_top += 1;
                 }
             }
-            if owned {
-                acc.per_dim[fd] += 1;
-                if track_boundary {
-                    if in_top == 1 {
-                        acc.boundary += 1;
-                    } else if in_top > 2 {
-                        acc.shared_more_than_2 += 1;
-                    }
-                }
-                if fd == 2 && (d == 3 || !cell.kind.is_simplex()) {
-                    match key.len() {
-                        3 => acc.tri_faces += 1,
-                        4 => acc.quad_faces += 1,
-                        _ => {}
-                    }
-                }
-            }
+            debug_assert!(owned, "a cell contains its own faces");
+            count_owned(
+                acc,
+                fd,
+                track_boundary,
+                in_top,
+                key.len(),
+                d,
+                cell.kind.is_simplex(),
+            );
         });
     }
     // 1-dimensional top cells: their boundary faces are vertices.
