@@ -1,27 +1,708 @@
-//! Reader and writer for this format (in progress).
+//! OFF (Object File Format): `OFF`, `COFF`, `NOFF`, `nOFF`, `4OFF`, `STOFF` and their
+//! combinations (`CNOFF`, `NCOFF`, ...), plus the Stellar reference's OFF for complexes of any
+//! dimension.
+//!
+//! ```text
+//! OFF                         # header keyword; the counts may follow on the same line
+//! <n_vertices> <n_faces> [<n_edges>]
+//! x y z [extras]              (n_vertices lines)
+//! k i_0 ... i_{k-1} [colour]  (n_faces lines)
+//! ```
+//!
+//! * `C`, `N`, `ST` prefixes: vertex lines carry colour, normal or texture values after the
+//!   position; they are ignored.
+//! * `n` prefix: a line with the dimension `n` follows the keyword; vertices have `n` coordinates.
+//! * `4` prefix: homogeneous coordinates (one more value per vertex, the position is divided by it).
+//! * Plain `OFF` whose vertex lines do not have 3 values (the Stellar reference's convention for
+//!   5D/7D Sierpinski and Vietoris-Rips complexes): the ambient dimension is the number of values
+//!   on the first vertex line, and every vertex line must have as many.
+//! * `#` starts a comment; blank lines, tabs and CRLF line ends are accepted; a file without the
+//!   header keyword (counts first) is read as plain `OFF`.
+//!
+//! Faces become cells according to [`ReadOptions::polygons`]: with [`PolygonMode::Polygons`] (the
+//! default) 3 -> triangle, 4 -> quad cell, more -> fan of triangles (noted), 2 -> edge, 1 ->
+//! dropped (noted); with [`PolygonMode::Simplices`] a face of `k` vertices is a `(k-1)`-simplex.
+//!
+//! ```
+//! use starplex::io::{off, PolygonMode, ReadOptions};
+//! use starplex::cell::CellKind;
+//! let text = "OFF 5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 2 2\n4 0 1 2 3\n3 2 3 4\n";
+//! let r = off::read_from(text.as_bytes(), "mem.off".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(r.complex.n_cells(), 2);
+//! assert_eq!(r.complex.blocks()[0].kind, CellKind::Quad);
+//! let mut out = Vec::new();
+//! off::write(&mut out, &r.complex).unwrap();
+//! assert_eq!(String::from_utf8(out).unwrap(), text.replacen("OFF 5 2 0", "OFF\n5 2 0", 1));
+//!
+//! // The same faces read as simplices: a 3-simplex and a triangle.
+//! let opts = ReadOptions { polygons: PolygonMode::Simplices, ..Default::default() };
+//! let r = off::read_from(text.as_bytes(), "mem.off".as_ref(), &opts).unwrap();
+//! assert_eq!(r.complex.blocks()[0].kind, CellKind::Simplex(3));
+//! ```
+use std::io::{BufRead, Write};
 use std::path::Path;
 
-use super::{IoError, IoErrorKind, ReadOptions, ReadResult};
-use crate::complex::IndexedComplex;
+use super::text::{parse_f64, parse_u64, write_f64, LineReader, Tokens};
+use super::{Format, IoError, IoErrorKind, Location, PolygonMode, ReadOptions, ReadResult};
+use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
+use crate::complex::{check_cell, ComplexBuilder, ComplexError, IndexedComplex, MAX_AMBIENT_DIM};
 
-/// Reads a file of this format.
+/// Reads an OFF file.
 ///
 /// # Errors
-/// Not implemented yet.
-pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
-    Err(IoError::parse(
-        path,
-        None,
-        "this format is not supported yet",
-    ))
+/// See [`read_from`].
+pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let f = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+    read_from(std::io::BufReader::with_capacity(1 << 20, f), path, opts)
 }
 
-/// Writes this format.
+/// What the header keyword says about the vertex lines.
+#[derive(Clone, Copy, Debug, Default)]
+struct Header {
+    /// `C`: colours after the position.
+    colour: bool,
+    /// `N`: normals after the position.
+    normal: bool,
+    /// `ST`: texture coordinates after the position.
+    texture: bool,
+    /// `4`: homogeneous coordinates.
+    homogeneous: bool,
+    /// `n`: the dimension follows the keyword.
+    ndim: bool,
+}
+
+impl Header {
+    /// Parses `[ST][C][N][4][n]OFF` (prefixes in any order, each at most once).
+    fn parse(word: &[u8]) -> Option<Header> {
+        let mut rest = word.strip_suffix(b"OFF")?;
+        let mut h = Header::default();
+        while !rest.is_empty() {
+            if let Some(r) = rest.strip_prefix(b"ST") {
+                if h.texture {
+                    return None;
+                }
+                h.texture = true;
+                rest = r;
+                continue;
+            }
+            let flag = match rest[0] {
+                b'C' => &mut h.colour,
+                b'N' => &mut h.normal,
+                b'4' => &mut h.homogeneous,
+                b'n' => &mut h.ndim,
+                _ => return None,
+            };
+            if *flag {
+                return None;
+            }
+            *flag = true;
+            rest = &rest[1..];
+        }
+        Some(h)
+    }
+
+    /// Plain OFF: the number of values on a vertex line is the dimension.
+    fn is_plain(&self) -> bool {
+        !(self.colour || self.normal || self.texture || self.homogeneous || self.ndim)
+    }
+}
+
+/// Parses a header count token and appends it to `vals` (the label names it in errors).
+fn header_value(
+    t: &Tokens<'_>,
+    tok: &[u8],
+    labels: &[&str],
+    vals: &mut Vec<u64>,
+) -> Result<(), IoError> {
+    let what = labels.get(vals.len()).copied().unwrap_or("the edge count");
+    match parse_u64(tok) {
+        Some(v) => {
+            vals.push(v);
+            Ok(())
+        }
+        None => Err(t.err(format!(
+            "expected {what} (an unsigned integer), found '{}'",
+            String::from_utf8_lossy(&tok[..tok.len().min(40)])
+        ))),
+    }
+}
+
+/// Reads OFF text from any buffered reader; `path` names it in errors.
+///
+/// Nothing is allocated from a declared count: vectors grow with the lines actually read, so a
+/// file that announces 10^12 faces fails at its end instead of exhausting memory.
 ///
 /// # Errors
-/// Not implemented yet.
-pub fn write(_w: &mut dyn std::io::Write, _k: &IndexedComplex) -> Result<(), IoErrorKind> {
-    Err(IoErrorKind::Parse(
-        "this format is not supported yet".into(),
-    ))
+/// A missing or unknown header keyword, binary OFF, malformed or non-finite numbers, vertex lines
+/// with the wrong number of values, faces with no vertices, out-of-range or repeated vertex
+/// indices (with the line), faces of more than 65 vertices in simplex mode, a file shorter or
+/// longer than its counts say, and the checks of [`ComplexBuilder::build`].
+pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let mut lr = LineReader::new(r, path, Some(b'#'));
+
+    // ---- header keyword and counts ----
+    let mut header = Header::default();
+    let mut vals: Vec<u64> = Vec::with_capacity(4);
+    let mut labels: Vec<&str> = vec!["the vertex count", "the face count"];
+    let counts_line;
+    {
+        let l = lr.expect_line("the header 'OFF'")?;
+        let mut t = l.tokens();
+        let first = t.word("the header 'OFF'")?;
+        if parse_u64(first).is_some() {
+            // No keyword: the counts come first (allowed by the OFF specification).
+            header_value(&t, first, &labels, &mut vals)?;
+        } else {
+            header = Header::parse(first).ok_or_else(|| {
+                l.err(format!(
+                    "not an OFF file: the first line is '{}', expected a header keyword such as \
+                     OFF, COFF, NOFF, nOFF or CNOFF",
+                    String::from_utf8_lossy(&l.bytes[..l.bytes.len().min(60)])
+                ))
+            })?;
+            if header.ndim {
+                labels.insert(0, "the dimension (nOFF)");
+            }
+        }
+        let mut done_line = None;
+        while let Some(tok) = t.next_token() {
+            if tok.eq_ignore_ascii_case(b"BINARY") && vals.is_empty() {
+                return Err(l.err("binary OFF is not supported (convert it to text OFF)"));
+            }
+            if vals.len() > labels.len() {
+                return Err(t.err(format!(
+                    "unexpected extra value '{}' on the header line",
+                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                )));
+            }
+            header_value(&t, tok, &labels, &mut vals)?;
+            if vals.len() >= labels.len() {
+                done_line = Some(l.no);
+            }
+        }
+        counts_line = done_line;
+    }
+    let mut counts_line = counts_line.unwrap_or(0);
+    while vals.len() < labels.len() {
+        let what = labels[vals.len()];
+        let l = lr.expect_line(what)?;
+        let mut t = l.tokens();
+        while let Some(tok) = t.next_token() {
+            if vals.len() > labels.len() {
+                return Err(t.err(format!(
+                    "unexpected extra value '{}' after the counts",
+                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                )));
+            }
+            header_value(&t, tok, &labels, &mut vals)?;
+        }
+        counts_line = l.no;
+    }
+    let (dim_decl, nv, nf) = if header.ndim {
+        (Some(vals[0]), vals[1], vals[2])
+    } else {
+        (None, vals[0], vals[1])
+    };
+    let at_counts = |msg: String| IoError::parse(path, Some(Location::Line(counts_line)), msg);
+    if nv >= u32::MAX as u64 {
+        return Err(at_counts(format!(
+            "vertex count {nv} exceeds the 32-bit id limit of starplex"
+        )));
+    }
+    let nv = nv as usize;
+    if let Some(d) = dim_decl {
+        if d == 0 || d > MAX_AMBIENT_DIM as u64 {
+            return Err(at_counts(format!(
+                "dimension {d} is outside 1..={MAX_AMBIENT_DIM}"
+            )));
+        }
+    }
+
+    // ---- vertices ----
+    // Values that make up the position on each vertex line (None: plain OFF, set by line 1).
+    let mut n_pos: Option<usize> = match (dim_decl, header.homogeneous) {
+        (Some(d), h) => Some(d as usize + h as usize),
+        (None, true) => Some(4),
+        (None, false) if header.is_plain() => None,
+        (None, false) => Some(3),
+    };
+    let mut first_vertex_line = 0u64;
+    let mut builder: Option<ComplexBuilder> = None;
+    let mut p: Vec<f64> = Vec::with_capacity(8);
+    for i in 0..nv {
+        let l = lr.expect_line("a vertex line")?;
+        let mut t = l.tokens();
+        let n = match n_pos {
+            Some(n) => n,
+            None => {
+                let n = t.count_rest();
+                if n == 0 || n > MAX_AMBIENT_DIM {
+                    return Err(l.err(format!(
+                        "the first vertex line has {n} values: the ambient dimension must be in \
+                         1..={MAX_AMBIENT_DIM}"
+                    )));
+                }
+                n_pos = Some(n);
+                first_vertex_line = l.no;
+                n
+            }
+        };
+        let parsed = parse_coords(&mut t, n, i, &mut p);
+        if header.is_plain() && (parsed.is_err() || t.next_token().is_some()) {
+            let got = l.tokens().count_rest();
+            if got != n {
+                return Err(l.err(format!(
+                    "vertex {i} has {got} values but the first vertex line (line \
+                     {first_vertex_line}) has {n}: every vertex line of a plain OFF file must \
+                     have the same number of coordinates"
+                )));
+            }
+        }
+        parsed?;
+        if header.homogeneous {
+            let w = p.pop().unwrap_or(1.0);
+            if w == 0.0 {
+                return Err(l.err(format!(
+                    "vertex {i}: homogeneous coordinate is 0 (a point at infinity)"
+                )));
+            }
+            for x in p.iter_mut() {
+                *x /= w;
+            }
+        }
+        let b = match &mut builder {
+            Some(b) => b,
+            None => builder
+                .insert(ComplexBuilder::new(p.len()).map_err(|e| l.err(e.to_string()))?),
+        };
+        b.push_vertex(&p)
+            .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
+    }
+    let mut b = match builder {
+        Some(b) => b,
+        None => {
+            let d = n_pos.map_or(3, |n| n - header.homogeneous as usize);
+            ComplexBuilder::new(d).map_err(|e| at_counts(e.to_string()))?
+        }
+    };
+
+    // ---- faces ----
+    let mut verts: Vec<u32> = Vec::with_capacity(16);
+    let mut scratch: Vec<u32> = Vec::new();
+    let mut split = 0u64;
+    let mut extra_tris = 0u64;
+    let mut points = 0u64;
+    let mut face = 0u64;
+    while face < nf {
+        let l = lr.expect_line("a face line")?;
+        let mut t = l.tokens();
+        let k = t.u64("the face's vertex count")?;
+        if k == 0 {
+            return Err(l.err(format!("face {face} has no vertices")));
+        }
+        if opts.polygons == PolygonMode::Simplices && k > MAX_SIMPLEX_DIM as u64 + 1 {
+            return Err(l.err(format!(
+                "face {face} has {k} vertices: as a simplex it would have dimension {}, above \
+                 the supported maximum {MAX_SIMPLEX_DIM}",
+                k - 1
+            )));
+        }
+        verts.clear();
+        for _ in 0..k {
+            verts.push(t.index("vertex index", 0, nv)?);
+        }
+        // Anything after the indices is a colour: ignored.
+        check_distinct(face, &verts, nv, &mut scratch)
+            .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
+        let push = |b: &mut ComplexBuilder, kind: CellKind, v: &[u32]| {
+            b.push_cell(kind, v)
+                .map(|_| ())
+                .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))
+        };
+        match (opts.polygons, verts.len()) {
+            (PolygonMode::Simplices, n) => push(&mut b, CellKind::Simplex((n - 1) as u8), &verts)?,
+            (PolygonMode::Polygons, 1) => points += 1,
+            (PolygonMode::Polygons, 2) => push(&mut b, CellKind::Simplex(1), &verts)?,
+            (PolygonMode::Polygons, 3) => push(&mut b, CellKind::Simplex(2), &verts)?,
+            (PolygonMode::Polygons, 4) => push(&mut b, CellKind::Quad, &verts)?,
+            (PolygonMode::Polygons, n) => {
+                split += 1;
+                extra_tris += n as u64 - 3;
+                for j in 1..n - 1 {
+                    push(
+                        &mut b,
+                        CellKind::Simplex(2),
+                        &[verts[0], verts[j], verts[j + 1]],
+                    )?;
+                }
+            }
+        }
+        face += 1;
+    }
+    if let Some(l) = lr.next_content_line()? {
+        return Err(l.err(format!(
+            "unexpected content after the {nf} faces the header announced: '{}'",
+            String::from_utf8_lossy(&l.bytes[..l.bytes.len().min(60)])
+        )));
+    }
+
+    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    let mut notes = Vec::new();
+    if split > 0 {
+        notes.push(format!(
+            "fan-triangulated {split} polygons with more than 4 vertices into {} triangles",
+            split + extra_tris
+        ));
+    }
+    if points > 0 {
+        notes.push(format!(
+            "dropped {points} one-vertex faces (a point is just a vertex; read with simplices \
+             to keep them as 0-simplices)"
+        ));
+    }
+    if report.dropped_duplicates > 0 {
+        notes.push(format!(
+            "dropped {} duplicate cells",
+            report.dropped_duplicates
+        ));
+    }
+    if report.dropped_face_cells > 0 {
+        notes.push(format!(
+            "dropped {} cells that are faces of other cells",
+            report.dropped_face_cells
+        ));
+    }
+    Ok(ReadResult {
+        complex,
+        format: Format::Off,
+        notes,
+    })
+}
+
+/// Parses the first `n` values of a vertex line into `p` (extras are left unread).
+#[inline]
+fn parse_coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Result<(), IoError> {
+    p.clear();
+    for axis in 0..n {
+        let Some(tok) = t.next_token() else {
+            return Err(t.err(format!(
+                "vertex {i}: expected coordinate {axis} of {n}, found the end of the line"
+            )));
+        };
+        match parse_f64(tok) {
+            Some(x) if x.is_finite() => p.push(x),
+            Some(x) => {
+                return Err(t.err(format!(
+                    "vertex {i}: coordinate {axis} is not finite ({x})"
+                )))
+            }
+            None => {
+                return Err(t.err(format!(
+                    "vertex {i}: expected coordinate {axis} (a number), found '{}'",
+                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                )))
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Indices already checked in range; checks that they are pairwise distinct ([`check_cell`] for
+/// small faces, a sort for large polygons so that a huge face is not quadratic).
+fn check_distinct(
+    face: u64,
+    verts: &[u32],
+    nv: usize,
+    scratch: &mut Vec<u32>,
+) -> Result<(), ComplexError> {
+    if verts.len() <= 32 {
+        return check_cell(face, verts, nv);
+    }
+    scratch.clear();
+    scratch.extend_from_slice(verts);
+    scratch.sort_unstable();
+    match scratch.windows(2).find(|w| w[0] == w[1]) {
+        Some(w) => Err(ComplexError::RepeatedVertex {
+            cell: face,
+            vertex: w[0] as u64,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Writes `k` as plain OFF: `OFF`, the counts, one line of `ambient_dim` coordinates per vertex
+/// (the Stellar reference's convention when the ambient dimension is not 3), then one line
+/// `k i_0 .. i_{k-1}` per cell in cell-id order (so cell ids survive a round trip).
+///
+/// Simplices of any dimension and quads are written. A complex that has both quads and
+/// tetrahedra is refused (both would be 4-vertex faces). Tetrahedra and higher simplices read
+/// back as simplices only with [`PolygonMode::Simplices`].
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::{BuildOptions, ComplexBuilder};
+/// use starplex::io::{off, IoErrorKind};
+/// let mut b = ComplexBuilder::new(3).unwrap();
+/// for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0],
+///           [0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [1.0, 1.0, 1.0], [0.0, 1.0, 1.0]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Hex, &[0, 1, 2, 3, 4, 5, 6, 7]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let err = off::write(&mut Vec::new(), &k).unwrap_err();
+/// assert!(matches!(err, IoErrorKind::CannotWrite { .. }));
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] for pyramids, prisms, hexahedra and quads mixed with tetrahedra;
+/// OS errors of the writer.
+pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let mut has_quad = false;
+    let mut has_tet = false;
+    for b in k.blocks() {
+        match b.kind {
+            CellKind::Quad => has_quad = true,
+            CellKind::Simplex(3) => has_tet = true,
+            CellKind::Simplex(_) => {}
+            kind => {
+                return Err(IoErrorKind::CannotWrite {
+                    format: Format::Off,
+                    reason: format!(
+                        "OFF holds simplices and polygons, not 3D cells; cell {} is a {}",
+                        b.first,
+                        kind.type_name()
+                    ),
+                })
+            }
+        }
+    }
+    if has_quad && has_tet {
+        return Err(IoErrorKind::CannotWrite {
+            format: Format::Off,
+            reason: "the complex has both quads and tetrahedra, which OFF cannot tell apart \
+                     (both are faces of 4 vertices)"
+                .into(),
+        });
+    }
+    writeln!(w, "OFF")?;
+    writeln!(w, "{} {} 0", k.n_vertices(), k.n_cells())?;
+    for p in k.coords().chunks_exact(k.ambient_dim()) {
+        for (i, &x) in p.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b" ")?;
+            }
+            write_f64(w, x)?;
+        }
+        w.write_all(b"\n")?;
+    }
+    let mut line = String::with_capacity(128);
+    for b in k.blocks() {
+        let n = b.kind.n_vertices();
+        for i in 0..b.len() {
+            use std::fmt::Write as _;
+            line.clear();
+            let _ = write!(line, "{n}");
+            for v in b.cell(i) {
+                let _ = write!(line, " {v}");
+            }
+            line.push('\n');
+            w.write_all(line.as_bytes())?;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::IoError;
+
+    fn rd(text: &str) -> Result<ReadResult, IoError> {
+        read_from(text.as_bytes(), "t.off".as_ref(), &ReadOptions::default())
+    }
+
+    fn rd_simplices(text: &str) -> Result<ReadResult, IoError> {
+        let opts = ReadOptions {
+            polygons: PolygonMode::Simplices,
+            ..Default::default()
+        };
+        read_from(text.as_bytes(), "t.off".as_ref(), &opts)
+    }
+
+    fn err(text: &str) -> String {
+        match rd(text) {
+            Ok(_) => panic!("expected an error for {text:?}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn header_keywords() {
+        for (kw, ok) in [
+            ("OFF", true),
+            ("COFF", true),
+            ("NOFF", true),
+            ("CNOFF", true),
+            ("NCOFF", true),
+            ("STCNOFF", true),
+            ("nOFF", true),
+            ("4OFF", true),
+            ("CCOFF", false),
+            ("OFFX", false),
+            ("XOFF", false),
+            ("off", false),
+        ] {
+            assert_eq!(Header::parse(kw.as_bytes()).is_some(), ok, "{kw}");
+        }
+    }
+
+    #[test]
+    fn counts_on_header_line_comments_tabs_crlf() {
+        let text = "# a comment\r\nOFF\t3 1 0 # counts here\r\n\r\n0 0 0\r\n1\t0 0\r\n  0 1 0  \r\n# face\r\n3 0 1 2\r\n";
+        let r = rd(text).unwrap();
+        assert_eq!(r.complex.n_vertices(), 3);
+        assert_eq!(r.complex.n_cells(), 1);
+        assert_eq!(r.complex.ambient_dim(), 3);
+    }
+
+    #[test]
+    fn counts_without_edges_and_without_keyword() {
+        let r = rd("OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+        assert_eq!(r.complex.n_cells(), 1);
+        let r = rd("3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+        assert_eq!(r.complex.n_cells(), 1);
+    }
+
+    #[test]
+    fn coff_noff_ignore_extras() {
+        let text = "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2 10 20 30\n";
+        let r = rd(text).unwrap();
+        assert_eq!(r.complex.ambient_dim(), 3);
+        assert_eq!(r.complex.coords(), &[0., 0., 0., 1., 0., 0., 0., 1., 0.]);
+        let text = "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
+        assert_eq!(rd(text).unwrap().complex.ambient_dim(), 3);
+        let text = "CNOFF\n3 1 0\n0 0 0 0 0 1 1 1 1\n1 0 0 0 0 1 1 1 1\n0 1 0 0 0 1 1 1 1\n3 0 1 2\n";
+        assert_eq!(rd(text).unwrap().complex.ambient_dim(), 3);
+    }
+
+    #[test]
+    fn noff_dimension_line_and_homogeneous() {
+        let text = "nOFF\n4\n3 1 0\n0 0 0 0\n1 0 0 0\n0 1 0 1\n3 0 1 2\n";
+        let r = rd(text).unwrap();
+        assert_eq!(r.complex.ambient_dim(), 4);
+        let r = rd("nOFF 2 3 1 0\n0 0\n1 0\n0 1\n3 0 1 2\n").unwrap();
+        assert_eq!(r.complex.ambient_dim(), 2);
+        let r = rd("4OFF\n3 1 0\n0 0 0 2\n2 0 0 2\n0 4 0 2\n3 0 1 2\n").unwrap();
+        assert_eq!(r.complex.coords(), &[0., 0., 0., 1., 0., 0., 0., 2., 0.]);
+        assert!(err("4OFF\n1 0 0\n1 1 1 0\n").contains("homogeneous coordinate is 0"));
+        assert!(err("nOFF\n0\n0 0 0\n").contains("dimension 0 is outside"));
+    }
+
+    #[test]
+    fn plain_off_takes_the_dimension_from_the_first_vertex_line() {
+        let text = "OFF\n3 1 0\n0 0 0 0 0\n1 0 0 0 0\n0 1 0 0 0.5\n3 0 1 2\n";
+        assert_eq!(rd(text).unwrap().complex.ambient_dim(), 5);
+        let e = err("OFF\n3 1 0\n0 0 0 0 0\n1 0 0 0\n0 1 0 0 0.5\n3 0 1 2\n");
+        assert!(e.starts_with("t.off:4: vertex 1 has 4 values but the first vertex line (line 3) has 5"), "{e}");
+    }
+
+    #[test]
+    fn polygon_mode() {
+        let text = "OFF\n7 4 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n-1 1 0\n5 5 5\n6 6 6\n5 0 1 2 3 4\n2 5 6\n1 6\n4 1 0 6 4 9 9 9\n";
+        let r = rd(text).unwrap();
+        let kinds: Vec<_> = r.complex.cells().map(|c| c.kind).collect();
+        assert_eq!(
+            kinds,
+            vec![
+                CellKind::Simplex(2),
+                CellKind::Simplex(2),
+                CellKind::Simplex(2),
+                CellKind::Simplex(1),
+                CellKind::Quad
+            ]
+        );
+        assert_eq!(r.complex.cells().next().unwrap().vertices, &[0, 1, 2]);
+        assert_eq!(r.notes.len(), 2, "{:?}", r.notes);
+        assert!(r.notes[0].contains("fan-triangulated 1 polygons"));
+        assert!(r.notes[1].contains("dropped 1 one-vertex faces"));
+    }
+
+    #[test]
+    fn simplex_mode_any_size() {
+        let nv = 70;
+        let text = |faces: &[Vec<u32>]| {
+            let mut t = format!("OFF\n{nv} {} 0\n", faces.len());
+            for i in 0..nv {
+                t.push_str(&format!("{i} 0 0\n"));
+            }
+            for f in faces {
+                let s: Vec<String> = f.iter().map(|i| i.to_string()).collect();
+                t.push_str(&format!("{} {}\n", f.len(), s.join(" ")));
+            }
+            t
+        };
+        let r = rd_simplices(&text(&[(0..65).collect(), vec![68, 69]])).unwrap();
+        let kinds: Vec<_> = r.complex.cells().map(|c| c.kind).collect();
+        assert_eq!(kinds, vec![CellKind::Simplex(64), CellKind::Simplex(1)]);
+        let e = rd_simplices(&text(&[(0..66).collect()]))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(":73: face 0 has 66 vertices"), "{e}");
+        // In polygon mode a 66-gon is a fan; the repeat check of large faces sorts.
+        let r = rd(&text(&[(0..66).collect()])).unwrap();
+        assert_eq!(r.complex.n_cells(), 64);
+        let e = err(&text(&[(0..40).chain([3]).collect()]));
+        assert!(e.contains(":73: cell 0: vertex 3 appears more than once"), "{e}");
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let ok = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        let cases: &[(&str, &str)] = &[
+            ("", "t.off:1: unexpected end of file"),
+            ("PLY\n", "t.off:1: not an OFF file"),
+            ("OFF BINARY\n", "binary OFF is not supported"),
+            ("OFF\n3 x 0\n", "t.off:2: expected the face count"),
+            ("OFF\n3 1 0 7\n", "t.off:2: unexpected extra value '7'"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n", "t.off:5: unexpected end of file"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 zz\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: expected coordinate 2 (a number), found 'zz'"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: coordinate 2 is not finite"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: coordinate 2 is not finite"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "t.off:6: vertex index 3 is out of range"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n", "t.off:6: cell 0: vertex 1 appears more than once"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "t.off:6: expected vertex index, found the end of the line"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n", "t.off:6: face 0 has no vertices"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n", "t.off:7: unexpected content after the 1 faces"),
+            ("OFF\n3 1000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "t.off:7: unexpected end of file"),
+            ("OFF\n5000000000 1 0\n", "t.off:2: vertex count 5000000000 exceeds"),
+            ("OFF\n1 0 0\n1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43 44 45 46 47 48 49 50 51 52 53 54 55 56 57 58 59 60 61 62 63 64 65\n", "t.off:3: the first vertex line has 65 values"),
+        ];
+        assert!(rd(ok).is_ok());
+        for (text, want) in cases {
+            let e = err(text);
+            assert!(e.contains(want), "{text:?}: got '{e}', want '{want}'");
+        }
+    }
+
+    #[test]
+    fn duplicate_faces_go_to_the_builder() {
+        let text = "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 2 1 0\n";
+        let e = err(text);
+        assert!(e.contains("duplicate"), "{e}");
+        let mut opts = ReadOptions::default();
+        opts.build.drop_duplicates = true;
+        let r = read_from(text.as_bytes(), "t.off".as_ref(), &opts).unwrap();
+        assert_eq!(r.complex.n_cells(), 1);
+        assert!(r.notes.iter().any(|n| n.contains("duplicate")));
+    }
+
+    #[test]
+    fn empty_complex_and_isolated_vertices() {
+        let r = rd("OFF\n0 0 0\n").unwrap();
+        assert_eq!(r.complex.n_vertices(), 0);
+        assert_eq!(r.complex.ambient_dim(), 3);
+        let r = rd("OFF\n2 0 0\n0 0\n1 1\n").unwrap();
+        assert_eq!(r.complex.ambient_dim(), 2);
+        assert_eq!(r.complex.n_isolated_vertices(), 2);
+    }
 }
