@@ -1,27 +1,558 @@
-//! Reader and writer for this format (in progress).
+//! `.spb`, the starplex binary format: a small checked header, then the coordinate and cell arrays
+//! exactly as [`IndexedComplex`] holds them, so a file is loaded by memory-mapping it, with no
+//! copy and no parsing ([`Buf::Mapped`]).
+//!
+//! Layout (version 1, every number little-endian, every array 8-byte aligned):
+//!
+//! ```text
+//! offset  size  field
+//!      0     8  magic b"STARPLX\0"
+//!      8     4  format version (u32) = 1
+//!     12     4  endianness tag (u32) = 0x0102_0304 (bytes 04 03 02 01)
+//!     16     4  ambient dimension (u32, 1..=64)
+//!     20     4  number of blocks (u32)
+//!     24     8  number of vertices (u64)
+//!     32     8  number of cells (u64, the sum over blocks)
+//!     40     8  byte offset of the coordinate array (u64)
+//!     48     8  total file length in bytes (u64)
+//!     56     8  FNV-1a 64 checksum of bytes 0..56 and of the block table
+//!     64  32*n  block table, one entry per block:
+//!                 kind code (u32: 0 simplex, 1 quad, 2 pyramid, 3 prism, 4 hex),
+//!                 dimension (u32), number of cells (u64), byte offset of its vertex array (u64),
+//!                 reserved (u64, 0)
+//!    ...        coordinates: n_vertices * ambient_dim f64, at the offset above
+//!    ...        each block's vertex ids: n_cells * vertices-per-cell u32, at its offset
+//! ```
+//!
+//! Arrays follow each other in this order, each starting at the end of the previous one rounded
+//! up to a multiple of 8 (zero padding); the reader accepts exactly this layout and checks every
+//! field against the file's real length before touching an array, so a corrupted or hostile file
+//! gives an [`IoError`] with the byte offset of the bad field, never a panic or an allocation sized
+//! by a declared count. The arrays themselves are not checksummed: [`IndexedComplex::from_parts`]
+//! checks every vertex index (in range, no repeats) and every coordinate (finite). Maximality of
+//! the top cells is not re-checked (the writer only writes checked complexes).
+//!
+//! Big-endian hosts are refused with a clear error (the arrays could not be used in place).
+//!
+//! ```
+//! use starplex::io::{self, ReadOptions};
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! let mut b = ComplexBuilder::new(3).unwrap();
+//! for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {
+//!     b.push_vertex(&p).unwrap();
+//! }
+//! b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+//! let (k, _) = b.build(&BuildOptions::default()).unwrap();
+//! let path = std::env::temp_dir().join(format!("starplex-doc-spb-{}.spb", std::process::id()));
+//! io::write(&path, &k, None).unwrap();
+//! let back = io::read(&path, &ReadOptions::default()).unwrap().complex;
+//! assert_eq!(back, k);
+//! assert!(back.coords_buf().is_mapped());
+//! std::fs::remove_file(&path).ok();
+//! ```
+use std::io::Write;
 use std::path::Path;
+use std::sync::Arc;
 
-use super::{IoError, IoErrorKind, ReadOptions, ReadResult};
-use crate::complex::IndexedComplex;
+use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::buf::Buf;
+use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
+use crate::complex::{IndexedComplex, MAX_AMBIENT_DIM};
 
-/// Reads a file of this format.
-///
-/// # Errors
-/// Not implemented yet.
-pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
-    Err(IoError::parse(
-        path,
-        None,
-        "this format is not supported yet",
-    ))
+/// The first 8 bytes of every `.spb` file.
+pub const MAGIC: [u8; 8] = *b"STARPLX\0";
+/// The format version this code writes and reads.
+pub const VERSION: u32 = 1;
+/// Written as a little-endian u32; reads back as this value only on a little-endian reading.
+pub const ENDIAN_TAG: u32 = 0x0102_0304;
+/// Size of the fixed header in bytes.
+pub const HEADER_LEN: usize = 64;
+/// Size of one block-table entry in bytes.
+pub const BLOCK_ENTRY_LEN: usize = 32;
+
+/// The parsed header of a `.spb` file (what [`read_header`] returns).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SpbHeader {
+    /// Coordinates per vertex.
+    pub ambient_dim: usize,
+    /// Number of vertices.
+    pub n_vertices: u64,
+    /// Number of top cells.
+    pub n_cells: u64,
+    /// Byte offset of the coordinate array.
+    pub coords_offset: u64,
+    /// Blocks: kind, number of cells, byte offset of the vertex array.
+    pub blocks: Vec<(CellKind, u64, u64)>,
+    /// File length in bytes.
+    pub file_len: u64,
 }
 
-/// Writes this format.
+fn kind_code(k: CellKind) -> (u32, u32) {
+    match k {
+        CellKind::Simplex(d) => (0, d as u32),
+        CellKind::Quad => (1, 2),
+        CellKind::Pyramid => (2, 3),
+        CellKind::Prism => (3, 3),
+        CellKind::Hex => (4, 3),
+    }
+}
+
+fn kind_from_code(code: u32, dim: u32) -> Result<CellKind, String> {
+    let k = match (code, dim) {
+        (0, d) if d as usize <= MAX_SIMPLEX_DIM => CellKind::Simplex(d as u8),
+        (0, d) => {
+            return Err(format!(
+                "simplex dimension {d} is above the supported maximum {MAX_SIMPLEX_DIM}"
+            ))
+        }
+        (1, 2) => CellKind::Quad,
+        (2, 3) => CellKind::Pyramid,
+        (3, 3) => CellKind::Prism,
+        (4, 3) => CellKind::Hex,
+        (1..=4, d) => return Err(format!("cell kind code {code} with wrong dimension {d}")),
+        _ => return Err(format!("unknown cell kind code {code}")),
+    };
+    Ok(k)
+}
+
+/// FNV-1a, 64 bit: a small checksum of the header and block table.
+fn fnv1a(chunks: &[&[u8]]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for c in chunks {
+        for &b in *c {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    h
+}
+
+#[inline]
+fn align8(x: u64) -> u64 {
+    x.div_ceil(8) * 8
+}
+
+/// The layout `k` is written with: (coords offset, per-block offsets, file length).
+fn layout(
+    ambient_dim: u64,
+    n_vertices: u64,
+    blocks: &[(CellKind, u64)],
+) -> Option<(u64, Vec<u64>, u64)> {
+    let table = (HEADER_LEN as u64)
+        .checked_add((BLOCK_ENTRY_LEN as u64).checked_mul(blocks.len() as u64)?)?;
+    let coords_offset = align8(table);
+    let mut end =
+        coords_offset.checked_add(n_vertices.checked_mul(ambient_dim)?.checked_mul(8)?)?;
+    let mut offs = Vec::with_capacity(blocks.len());
+    for &(kind, n) in blocks {
+        let start = align8(end);
+        offs.push(start);
+        end = start.checked_add(n.checked_mul(kind.n_vertices() as u64)?.checked_mul(4)?)?;
+    }
+    Some((coords_offset, offs, align8(end)))
+}
+
+/// Writes `k` as `.spb`.
+///
+/// ```
+/// use starplex::io::binary;
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// b.push_vertex(&[0.5, 1.5]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let mut out = Vec::new();
+/// binary::write(&mut out, &k).unwrap();
+/// assert_eq!(&out[..8], b"STARPLX\0");
+/// assert_eq!(out.len(), 64 + 16);
+/// let h = binary::read_header(&out, "mem.spb".as_ref()).unwrap();
+/// assert_eq!(h.n_vertices, 1);
+/// ```
 ///
 /// # Errors
-/// Not implemented yet.
-pub fn write(_w: &mut dyn std::io::Write, _k: &IndexedComplex) -> Result<(), IoErrorKind> {
-    Err(IoErrorKind::Parse(
-        "this format is not supported yet".into(),
-    ))
+/// OS errors of the writer.
+pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let blocks: Vec<(CellKind, u64)> = k
+        .blocks()
+        .iter()
+        .map(|b| (b.kind, b.len() as u64))
+        .collect();
+    let nv = k.n_vertices() as u64;
+    let (coords_offset, offs, file_len) = layout(k.ambient_dim() as u64, nv, &blocks)
+        .ok_or_else(|| IoErrorKind::Parse("complex too large for the .spb layout".into()))?;
+    let mut head = Vec::with_capacity(HEADER_LEN);
+    head.extend_from_slice(&MAGIC);
+    head.extend_from_slice(&VERSION.to_le_bytes());
+    head.extend_from_slice(&ENDIAN_TAG.to_le_bytes());
+    head.extend_from_slice(&(k.ambient_dim() as u32).to_le_bytes());
+    head.extend_from_slice(&(blocks.len() as u32).to_le_bytes());
+    head.extend_from_slice(&nv.to_le_bytes());
+    head.extend_from_slice(&(k.n_cells() as u64).to_le_bytes());
+    head.extend_from_slice(&coords_offset.to_le_bytes());
+    head.extend_from_slice(&file_len.to_le_bytes());
+    let mut table = Vec::with_capacity(BLOCK_ENTRY_LEN * blocks.len());
+    for (&(kind, n), &off) in blocks.iter().zip(&offs) {
+        let (code, dim) = kind_code(kind);
+        table.extend_from_slice(&code.to_le_bytes());
+        table.extend_from_slice(&dim.to_le_bytes());
+        table.extend_from_slice(&n.to_le_bytes());
+        table.extend_from_slice(&off.to_le_bytes());
+        table.extend_from_slice(&0u64.to_le_bytes());
+    }
+    let sum = fnv1a(&[&head, &table]);
+    head.extend_from_slice(&sum.to_le_bytes());
+    w.write_all(&head)?;
+    w.write_all(&table)?;
+    let mut pos = (HEADER_LEN + table.len()) as u64;
+    let pad = |w: &mut dyn Write, pos: &mut u64, to: u64| -> std::io::Result<()> {
+        let zeros = [0u8; 8];
+        w.write_all(&zeros[..(to - *pos) as usize])?;
+        *pos = to;
+        Ok(())
+    };
+    pad(w, &mut pos, coords_offset)?;
+    write_le_f64(w, k.coords())?;
+    pos += 8 * k.coords().len() as u64;
+    for (b, &off) in k.blocks().iter().zip(&offs) {
+        pad(w, &mut pos, off)?;
+        write_le_u32(w, &b.vertices)?;
+        pos += 4 * b.vertices.len() as u64;
+    }
+    pad(w, &mut pos, file_len)?;
+    Ok(())
+}
+
+fn write_le_f64(w: &mut dyn Write, v: &[f64]) -> std::io::Result<()> {
+    if cfg!(target_endian = "little") {
+        w.write_all(bytemuck::cast_slice(v))
+    } else {
+        for x in v {
+            w.write_all(&x.to_le_bytes())?;
+        }
+        Ok(())
+    }
+}
+
+fn write_le_u32(w: &mut dyn Write, v: &[u32]) -> std::io::Result<()> {
+    if cfg!(target_endian = "little") {
+        w.write_all(bytemuck::cast_slice(v))
+    } else {
+        for x in v {
+            w.write_all(&x.to_le_bytes())?;
+        }
+        Ok(())
+    }
+}
+
+#[inline]
+fn u32_at(b: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes(b[at..at + 4].try_into().expect("4 bytes"))
+}
+
+#[inline]
+fn u64_at(b: &[u8], at: usize) -> u64 {
+    u64::from_le_bytes(b[at..at + 8].try_into().expect("8 bytes"))
+}
+
+/// Parses and checks the header and block table of a `.spb` file held in `bytes` (the whole
+/// file); `path` names it in errors. Every declared size is checked against `bytes.len()`.
+///
+/// ```
+/// use starplex::io::binary;
+/// let e = binary::read_header(b"not a starplex file at all, sorry", "x.spb".as_ref()).unwrap_err();
+/// assert!(e.to_string().starts_with("x.spb: byte 0: "), "{e}");
+/// ```
+///
+/// # Errors
+/// A file shorter than the header, a wrong magic, version or endianness tag, a checksum mismatch,
+/// counts or offsets that do not fit the file (with the byte offset of the field).
+pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
+    let err = |at: usize, msg: String| IoError::parse(path, Some(Location::Byte(at as u64)), msg);
+    let len = bytes.len() as u64;
+    if bytes.len() < HEADER_LEN {
+        if bytes.len() < 8 || bytes[..8] != MAGIC {
+            return Err(err(
+                0,
+                format!("not a .spb file: {} bytes, no 'STARPLX' magic", bytes.len()),
+            ));
+        }
+        return Err(err(
+            bytes.len(),
+            format!(
+                "truncated .spb header: {} bytes, the header has {HEADER_LEN}",
+                bytes.len()
+            ),
+        ));
+    }
+    if bytes[..8] != MAGIC {
+        return Err(err(
+            0,
+            "not a .spb file: the magic 'STARPLX\\0' is missing".into(),
+        ));
+    }
+    let version = u32_at(bytes, 8);
+    if version != VERSION {
+        return Err(err(
+            8,
+            format!("unsupported .spb version {version} (this starplex reads version {VERSION})"),
+        ));
+    }
+    let tag = u32_at(bytes, 12);
+    if tag != ENDIAN_TAG {
+        let msg = if tag == ENDIAN_TAG.swap_bytes() {
+            "the file is big-endian; starplex writes and reads little-endian .spb only".to_string()
+        } else {
+            format!("bad endianness tag {tag:#010x} (expected {ENDIAN_TAG:#010x})")
+        };
+        return Err(err(12, msg));
+    }
+    let ambient = u32_at(bytes, 16) as u64;
+    let n_blocks = u32_at(bytes, 20) as u64;
+    let n_vertices = u64_at(bytes, 24);
+    let n_cells = u64_at(bytes, 32);
+    let coords_offset = u64_at(bytes, 40);
+    let file_len = u64_at(bytes, 48);
+    let sum = u64_at(bytes, 56);
+    if file_len != len {
+        let what = if file_len > len {
+            "truncated"
+        } else {
+            "has trailing bytes"
+        };
+        return Err(err(
+            48,
+            format!("the header says the file has {file_len} bytes but it has {len}: the file is {what}"),
+        ));
+    }
+    let table_end = (n_blocks as u128) * BLOCK_ENTRY_LEN as u128 + HEADER_LEN as u128;
+    if table_end > len as u128 {
+        return Err(err(
+            20,
+            format!(
+                "{n_blocks} blocks need a {} byte table, more than the file's {len} bytes",
+                table_end - HEADER_LEN as u128
+            ),
+        ));
+    }
+    let table = &bytes[HEADER_LEN..table_end as usize];
+    let expect = fnv1a(&[&bytes[..56], table]);
+    if expect != sum {
+        return Err(err(
+            56,
+            format!("header checksum mismatch (stored {sum:#018x}, computed {expect:#018x}): the header or block table is corrupted"),
+        ));
+    }
+    if ambient == 0 || ambient > MAX_AMBIENT_DIM as u64 {
+        return Err(err(
+            16,
+            format!("ambient dimension {ambient} is outside 1..={MAX_AMBIENT_DIM}"),
+        ));
+    }
+    if n_vertices >= u32::MAX as u64 {
+        return Err(err(
+            24,
+            format!("{n_vertices} vertices exceed the 32-bit id limit of starplex"),
+        ));
+    }
+    if n_cells >= u32::MAX as u64 {
+        return Err(err(
+            32,
+            format!("{n_cells} cells exceed the 32-bit id limit of starplex"),
+        ));
+    }
+    let coords_bytes = n_vertices as u128 * ambient as u128 * 8;
+    if coords_offset as u128 + coords_bytes > len as u128 {
+        return Err(err(
+            24,
+            format!(
+                "{n_vertices} vertices of {ambient} coordinates need {coords_bytes} bytes from offset {coords_offset}, past the end of the {len}-byte file"
+            ),
+        ));
+    }
+    let mut blocks = Vec::with_capacity(n_blocks as usize);
+    let mut total: u64 = 0;
+    for i in 0..n_blocks as usize {
+        let at = HEADER_LEN + i * BLOCK_ENTRY_LEN;
+        let kind = kind_from_code(u32_at(bytes, at), u32_at(bytes, at + 4))
+            .map_err(|m| err(at, format!("block {i}: {m}")))?;
+        let n = u64_at(bytes, at + 8);
+        let off = u64_at(bytes, at + 16);
+        if u64_at(bytes, at + 24) != 0 {
+            return Err(err(
+                at + 24,
+                format!("block {i}: reserved field is not zero"),
+            ));
+        }
+        let need = n as u128 * kind.n_vertices() as u128 * 4;
+        if off as u128 + need > len as u128 {
+            return Err(err(
+                at + 8,
+                format!(
+                    "block {i}: {n} cells of kind {} need {need} bytes from offset {off}, past the end of the {len}-byte file",
+                    kind.type_name()
+                ),
+            ));
+        }
+        total = total.saturating_add(n);
+        blocks.push((kind, n, off));
+    }
+    if total != n_cells {
+        return Err(err(
+            32,
+            format!("the header says {n_cells} cells but the blocks hold {total}"),
+        ));
+    }
+    let kinds: Vec<(CellKind, u64)> = blocks.iter().map(|&(k, n, _)| (k, n)).collect();
+    let (c_off, offs, f_len) = layout(ambient, n_vertices, &kinds)
+        .ok_or_else(|| err(24, "counts overflow the 64-bit layout".into()))?;
+    if c_off != coords_offset {
+        return Err(err(
+            40,
+            format!("coordinate array at offset {coords_offset}, expected {c_off}"),
+        ));
+    }
+    for (i, (&(_, _, off), &want)) in blocks.iter().zip(&offs).enumerate() {
+        if off != want {
+            return Err(err(
+                HEADER_LEN + i * BLOCK_ENTRY_LEN + 16,
+                format!("block {i}: vertex array at offset {off}, expected {want}"),
+            ));
+        }
+    }
+    if f_len != len {
+        return Err(err(
+            48,
+            format!("the arrays end at byte {f_len} but the file has {len} bytes"),
+        ));
+    }
+    Ok(SpbHeader {
+        ambient_dim: ambient as usize,
+        n_vertices,
+        n_cells,
+        coords_offset,
+        blocks,
+        file_len,
+    })
+}
+
+/// Maps `file` read-only. The only `unsafe` of the binary reader.
+fn map_file(file: &std::fs::File) -> std::io::Result<memmap2::Mmap> {
+    // SAFETY: memmap2 requires that the file is not modified (truncated or written) by anyone while
+    // the map lives, which Rust cannot enforce; the map is read-only and private to this process.
+    // Every slice taken from it is bounds-checked against the map length by `read_header` before
+    // use, and values are plain data (any bit pattern is a valid f64/u32), so a concurrently
+    // modified file can give wrong values but the reader itself never indexes out of bounds.
+    unsafe { memmap2::MmapOptions::new().map(file) }
+}
+
+/// Reads a `.spb` file by memory-mapping it: coordinates and cell arrays stay in the map
+/// ([`Buf::Mapped`]), nothing is copied.
+///
+/// # Errors
+/// A big-endian host, OS errors, a malformed header (see [`read_header`]), and the checks of
+/// [`IndexedComplex::from_parts`] (indices in range and not repeated, finite coordinates).
+pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    if cfg!(target_endian = "big") {
+        return Err(IoError::parse(
+            path,
+            None,
+            "reading .spb on a big-endian machine is not supported (the arrays are little-endian); convert to .spx on a little-endian machine",
+        ));
+    }
+    let file = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+    let len = file.metadata().map_err(|e| IoError::new(path, e))?.len();
+    if len < HEADER_LEN as u64 {
+        let mut head = Vec::new();
+        use std::io::Read;
+        file.take(HEADER_LEN as u64)
+            .read_to_end(&mut head)
+            .map_err(|e| IoError::new(path, e))?;
+        return Err(read_header(&head, path).expect_err("shorter than the header"));
+    }
+    let map = map_file(&file).map_err(|e| IoError::new(path, e))?;
+    #[cfg(unix)]
+    let _ = map.advise(memmap2::Advice::Sequential);
+    let map = Arc::new(map);
+    let h = read_header(&map, path)?;
+    let coords: Buf<f64> = Buf::Mapped {
+        map: Arc::clone(&map),
+        offset: h.coords_offset as usize,
+        len: (h.n_vertices as usize) * h.ambient_dim,
+    };
+    let blocks: Vec<(CellKind, Buf<u32>)> = h
+        .blocks
+        .iter()
+        .map(|&(kind, n, off)| {
+            (
+                kind,
+                Buf::Mapped {
+                    map: Arc::clone(&map),
+                    offset: off as usize,
+                    len: n as usize * kind.n_vertices(),
+                },
+            )
+        })
+        .collect();
+    let complex = IndexedComplex::from_parts(h.ambient_dim, coords, blocks)
+        .map_err(|e| IoError::new(path, e))?;
+    Ok(ReadResult {
+        complex,
+        format: Format::Binary,
+        notes: Vec::new(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::complex::{BuildOptions, ComplexBuilder};
+
+    fn sample() -> IndexedComplex {
+        let mut b = ComplexBuilder::new(3).unwrap();
+        for i in 0..12 {
+            b.push_vertex(&[i as f64, (i * i) as f64 * 0.5, -(i as f64)])
+                .unwrap();
+        }
+        b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+        b.push_cell(CellKind::Simplex(2), &[4, 5, 6]).unwrap();
+        b.push_cell(CellKind::Prism, &[5, 6, 7, 8, 9, 10]).unwrap();
+        b.build(&BuildOptions::default()).unwrap().0
+    }
+
+    #[test]
+    fn layout_is_aligned_and_header_round_trips() {
+        let k = sample();
+        let mut out = Vec::new();
+        write(&mut out, &k).unwrap();
+        assert_eq!(out.len() % 8, 0);
+        let h = read_header(&out, "m.spb".as_ref()).unwrap();
+        assert_eq!(h.blocks.len(), 3);
+        assert_eq!(h.coords_offset, 64 + 3 * 32);
+        for &(_, _, off) in &h.blocks {
+            assert_eq!(off % 8, 0);
+        }
+        assert_eq!(
+            h.blocks[1],
+            (CellKind::Simplex(2), 1, h.coords_offset + 12 * 3 * 8 + 16)
+        );
+    }
+
+    #[test]
+    fn kind_codes_round_trip() {
+        for k in [
+            CellKind::Simplex(0),
+            CellKind::Simplex(40),
+            CellKind::Simplex(64),
+            CellKind::Quad,
+            CellKind::Pyramid,
+            CellKind::Prism,
+            CellKind::Hex,
+        ] {
+            let (c, d) = kind_code(k);
+            assert_eq!(kind_from_code(c, d).unwrap(), k);
+        }
+        assert!(kind_from_code(0, 65).is_err());
+        assert!(kind_from_code(4, 2).is_err());
+        assert!(kind_from_code(9, 3).is_err());
+    }
 }

@@ -1,27 +1,221 @@
-//! Reader and writer for this format (in progress).
+//! STL (ascii and binary) reader, through `stl_io`. STL is read-only in starplex.
+//!
+//! STL stores every facet with its own three corners; the reader merges corners with equal
+//! coordinates into one vertex (equal as `f32` bit patterns after mapping `-0.0` to `0.0`, with a
+//! hash map), so neighbouring facets share vertices and edges. Vertex ids follow first appearance.
+//!
+//! A facet that is degenerate after merging (two equal corners) is an error naming the facet
+//! (0-based) unless `opts.build.drop_duplicates` is set, in which case such facets are dropped
+//! and counted in [`ReadResult::notes`] (the same option drops repeated facets). Non-finite
+//! coordinates are errors naming the facet.
+//!
+//! Binary detection: a file whose length is exactly `84 + 50 * n` where `n` is the facet count
+//! stored at byte 80 is binary even when its 80-byte header starts with `solid` (many exporters
+//! write that); anything else starting with `solid` is ascii.
+//!
+//! ```
+//! use starplex::io::{stl, ReadOptions};
+//! let text = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n\
+//!             endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\n\
+//!             vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+//! let dir = std::env::temp_dir().join(format!("starplex-doc-stl-{}", std::process::id()));
+//! std::fs::create_dir_all(&dir).unwrap();
+//! let p = dir.join("two.stl");
+//! std::fs::write(&p, text).unwrap();
+//! let r = stl::read(&p, &ReadOptions::default()).unwrap();
+//! assert_eq!(r.complex.n_vertices(), 4); // 6 corners, 2 shared
+//! assert_eq!(r.complex.n_cells(), 2);
+//! ```
+use std::io::{Read, Seek, SeekFrom};
 use std::path::Path;
 
-use super::{IoError, IoErrorKind, ReadOptions, ReadResult};
-use crate::complex::IndexedComplex;
+use rustc_hash::FxHashMap;
 
-/// Reads a file of this format.
-///
-/// # Errors
-/// Not implemented yet.
-pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
-    Err(IoError::parse(
-        path,
-        None,
-        "this format is not supported yet",
-    ))
+use super::{Format, IoError, ReadOptions, ReadResult};
+use crate::cell::CellKind;
+use crate::complex::ComplexBuilder;
+
+/// A file seen through a replaced prefix: the bytes of `prefix`, then the file from `skip` on.
+/// Lets `stl_io` read binary files whose header starts with `solid` and ascii files whose first
+/// line is a bare `solid`.
+struct Patched {
+    prefix: Vec<u8>,
+    file: std::io::BufReader<std::fs::File>,
+    skip: u64,
+    pos: u64,
 }
 
-/// Writes this format.
+impl Read for Patched {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let p = self.prefix.len() as u64;
+        if self.pos < p {
+            let from = &self.prefix[self.pos as usize..];
+            let n = from.len().min(buf.len());
+            buf[..n].copy_from_slice(&from[..n]);
+            self.pos += n as u64;
+            if self.pos == p {
+                self.file.seek(SeekFrom::Start(self.skip))?;
+            }
+            return Ok(n);
+        }
+        let n = self.file.read(buf)?;
+        self.pos += n as u64;
+        Ok(n)
+    }
+}
+
+impl Seek for Patched {
+    fn seek(&mut self, to: SeekFrom) -> std::io::Result<u64> {
+        match to {
+            SeekFrom::Start(0) => {
+                self.pos = 0;
+                if self.prefix.is_empty() {
+                    self.file.seek(SeekFrom::Start(self.skip))?;
+                }
+                Ok(0)
+            }
+            _ => Err(std::io::Error::other(
+                "only rewinding is supported on this reader",
+            )),
+        }
+    }
+}
+
+/// Reads an STL file (ascii or binary).
 ///
 /// # Errors
-/// Not implemented yet.
-pub fn write(_w: &mut dyn std::io::Write, _k: &IndexedComplex) -> Result<(), IoErrorKind> {
-    Err(IoErrorKind::Parse(
-        "this format is not supported yet".into(),
-    ))
+/// OS errors; a binary file shorter than its facet count says; malformed ascii (with the facet
+/// index); non-finite coordinates; degenerate facets (unless dropped, see the module docs);
+/// duplicate facets (unless `opts.build.drop_duplicates`).
+pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let mut f = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+    let len = f.metadata().map_err(|e| IoError::new(path, e))?.len();
+    let mut head = Vec::with_capacity(84);
+    (&mut f)
+        .take(84)
+        .read_to_end(&mut head)
+        .map_err(|e| IoError::new(path, e))?;
+    f.seek(SeekFrom::Start(0))
+        .map_err(|e| IoError::new(path, e))?;
+    let err = |at: u64, msg: String| IoError::parse(path, Some(super::Location::Byte(at)), msg);
+    let starts_solid = head.starts_with(b"solid");
+    let declared = (head.len() == 84)
+        .then(|| u32::from_le_bytes(head[80..84].try_into().expect("4 bytes")) as u64);
+    let binary_exact = declared.is_some_and(|n| 84 + 50 * n == len);
+    let mut notes = Vec::new();
+    let (prefix, skip) = if starts_solid && !binary_exact {
+        // ascii; stl_io wants "solid <name>" on the first line.
+        let first_line_end = head.iter().position(|&b| b == b'\n');
+        match first_line_end {
+            Some(e) if head[..e].trim_ascii() == b"solid" => {
+                (b"solid unnamed\n".to_vec(), e as u64 + 1)
+            }
+            _ => (Vec::new(), 0),
+        }
+    } else {
+        if len < 84 {
+            return Err(err(
+                0,
+                format!("not an STL file: {len} bytes, shorter than a binary STL header (84 bytes), and it does not start with 'solid'"),
+            ));
+        }
+        let n = declared.unwrap_or(0);
+        let need = 84 + 50 * n;
+        if need > len {
+            return Err(err(
+                80,
+                format!("binary STL declares {n} facets ({need} bytes) but the file has {len} bytes: truncated or not an STL file"),
+            ));
+        }
+        if need < len {
+            notes.push(format!("ignored {} bytes after the {n} facets", len - need));
+        }
+        if starts_solid {
+            let mut p = head.clone();
+            p[0] = b'S'; // so stl_io does not take it for ascii; header text is ignored
+            (p, 84)
+        } else {
+            (Vec::new(), 0)
+        }
+    };
+    let mut src = Patched {
+        prefix,
+        file: std::io::BufReader::with_capacity(1 << 20, f),
+        skip,
+        pos: 0,
+    };
+    let iter = stl_io::create_stl_reader(&mut src)
+        .map_err(|e| IoError::parse(path, None, format!("not a readable STL file: {e}")))?;
+    let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
+    let mut ids: FxHashMap<[u32; 3], u32> = FxHashMap::default();
+    let mut dropped_degenerate = 0u64;
+    let mut first_degenerate: Option<u64> = None;
+    for (i, t) in iter.enumerate() {
+        let i = i as u64;
+        let t = t.map_err(|e| IoError::parse(path, None, format!("facet {i}: {e}")))?;
+        let mut tri = [0u32; 3];
+        for (c, v) in t.vertices.iter().enumerate() {
+            let p = v.0;
+            if let Some(a) = p.iter().position(|x| !x.is_finite()) {
+                return Err(IoError::parse(
+                    path,
+                    None,
+                    format!(
+                        "facet {i}: corner {c} has a non-finite coordinate {} on axis {a}",
+                        p[a]
+                    ),
+                ));
+            }
+            // -0.0 and 0.0 are the same point
+            let key = p.map(|x| if x == 0.0 { 0 } else { x.to_bits() });
+            let next = b.n_vertices() as u32;
+            let id = *ids.entry(key).or_insert(next);
+            if id == next {
+                b.push_vertex(&p.map(|x| x as f64))
+                    .map_err(|e| IoError::new(path, e))?;
+            }
+            tri[c] = id;
+        }
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+            if !opts.build.drop_duplicates {
+                return Err(IoError::parse(
+                    path,
+                    None,
+                    format!(
+                        "facet {i} is degenerate: two of its corners are the same point ({:?}); drop such facets with the drop-duplicates option",
+                        t.vertices.iter().map(|v| v.0).collect::<Vec<_>>()
+                    ),
+                ));
+            }
+            dropped_degenerate += 1;
+            first_degenerate.get_or_insert(i);
+            continue;
+        }
+        b.push_cell(CellKind::Simplex(2), &tri)
+            .map_err(|e| IoError::new(path, e))?;
+    }
+    if dropped_degenerate > 0 {
+        notes.push(format!(
+            "dropped {dropped_degenerate} degenerate facets (first: facet {})",
+            first_degenerate.unwrap_or(0)
+        ));
+    }
+    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    if report.dropped_duplicates > 0 {
+        notes.push(format!(
+            "dropped {} duplicate facets",
+            report.dropped_duplicates
+        ));
+    }
+    if report.dropped_face_cells > 0 {
+        notes.push(format!(
+            "dropped {} cells that are faces of other cells",
+            report.dropped_face_cells
+        ));
+    }
+    Ok(ReadResult {
+        complex,
+        format: Format::Stl,
+        notes,
+    })
 }
