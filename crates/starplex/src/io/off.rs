@@ -668,7 +668,7 @@ mod tests {
             ("OFF\n3 1 0\n0 0 0\n1 0 zz\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: expected coordinate 2 (a number), found 'zz'"),
             ("OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: coordinate 2 is not finite"),
             ("OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: coordinate 2 is not finite"),
-            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "t.off:6: vertex index 3 is out of range"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "t.off:6: vertex index is 3, out of range"),
             ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n", "t.off:6: cell 0: vertex 1 appears more than once"),
             ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "t.off:6: expected vertex index, found the end of the line"),
             ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n", "t.off:6: face 0 has no vertices"),
