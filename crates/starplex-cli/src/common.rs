@@ -156,7 +156,8 @@ pub fn load(ctx: &Ctx, args: &InputArgs) -> Result<ReadResult, CliError> {
 
 /// The bundled sample: `data/elephant.off` of the repository (CGAL's elephant surface).
 pub fn bundled_sample() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/elephant.off")
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/elephant.off");
+    p.canonicalize().unwrap_or(p)
 }
 
 /// The main job: load the sample, print its summary.

@@ -67,7 +67,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             b"v" => {
                 let mut p = [0.0; 3];
                 for (axis, x) in p.iter_mut().enumerate() {
-                    *x = t.f64(&format!(
+                    *x = t.f64(format_args!(
                         "coordinate {axis} of vertex {}",
                         b.n_vertices() + 1
                     ))?;

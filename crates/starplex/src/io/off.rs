@@ -272,8 +272,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         }
         let b = match &mut builder {
             Some(b) => b,
-            None => builder
-                .insert(ComplexBuilder::new(p.len()).map_err(|e| l.err(e.to_string()))?),
+            None => builder.insert(ComplexBuilder::new(p.len()).map_err(|e| l.err(e.to_string()))?),
         };
         b.push_vertex(&p)
             .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
@@ -392,9 +391,7 @@ fn parse_coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Res
         match parse_f64(tok) {
             Some(x) if x.is_finite() => p.push(x),
             Some(x) => {
-                return Err(t.err(format!(
-                    "vertex {i}: coordinate {axis} is not finite ({x})"
-                )))
+                return Err(t.err(format!("vertex {i}: coordinate {axis} is not finite ({x})")))
             }
             None => {
                 return Err(t.err(format!(
@@ -581,7 +578,8 @@ mod tests {
         assert_eq!(r.complex.coords(), &[0., 0., 0., 1., 0., 0., 0., 1., 0.]);
         let text = "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
         assert_eq!(rd(text).unwrap().complex.ambient_dim(), 3);
-        let text = "CNOFF\n3 1 0\n0 0 0 0 0 1 1 1 1\n1 0 0 0 0 1 1 1 1\n0 1 0 0 0 1 1 1 1\n3 0 1 2\n";
+        let text =
+            "CNOFF\n3 1 0\n0 0 0 0 0 1 1 1 1\n1 0 0 0 0 1 1 1 1\n0 1 0 0 0 1 1 1 1\n3 0 1 2\n";
         assert_eq!(rd(text).unwrap().complex.ambient_dim(), 3);
     }
 
@@ -603,7 +601,12 @@ mod tests {
         let text = "OFF\n3 1 0\n0 0 0 0 0\n1 0 0 0 0\n0 1 0 0 0.5\n3 0 1 2\n";
         assert_eq!(rd(text).unwrap().complex.ambient_dim(), 5);
         let e = err("OFF\n3 1 0\n0 0 0 0 0\n1 0 0 0\n0 1 0 0 0.5\n3 0 1 2\n");
-        assert!(e.starts_with("t.off:4: vertex 1 has 4 values but the first vertex line (line 3) has 5"), "{e}");
+        assert!(
+            e.starts_with(
+                "t.off:4: vertex 1 has 4 values but the first vertex line (line 3) has 5"
+            ),
+            "{e}"
+        );
     }
 
     #[test]
@@ -652,7 +655,10 @@ mod tests {
         let r = rd(&text(&[(0..66).collect()])).unwrap();
         assert_eq!(r.complex.n_cells(), 64);
         let e = err(&text(&[(0..40).chain([3]).collect()]));
-        assert!(e.contains(":73: cell 0: vertex 3 appears more than once"), "{e}");
+        assert!(
+            e.contains(":73: cell 0: vertex 3 appears more than once"),
+            "{e}"
+        );
     }
 
     #[test]
