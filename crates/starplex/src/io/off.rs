@@ -432,7 +432,9 @@ fn check_distinct(
 
 /// Writes `k` as plain OFF: `OFF`, the counts, one line of `ambient_dim` coordinates per vertex
 /// (the Stellar reference's convention when the ambient dimension is not 3), then one line
-/// `k i_0 .. i_{k-1}` per cell in cell-id order (so cell ids survive a round trip).
+/// `k i_0 .. i_{k-1}` per cell in cell-id order (so cell ids survive a round trip). A complex
+/// with no vertex and an ambient dimension other than 3 is written as `nOFF` so that its
+/// dimension survives.
 ///
 /// Simplices of any dimension and quads are written. A complex that has both quads and
 /// tetrahedra is refused (both would be 4-vertex faces). Tetrahedra and higher simplices read
@@ -484,7 +486,12 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
                 .into(),
         });
     }
-    writeln!(w, "OFF")?;
+    if k.n_vertices() == 0 && k.ambient_dim() != 3 {
+        // No vertex line to carry the dimension: say it in the header.
+        writeln!(w, "nOFF\n{}", k.ambient_dim())?;
+    } else {
+        writeln!(w, "OFF")?;
+    }
     writeln!(w, "{} {} 0", k.n_vertices(), k.n_cells())?;
     for p in k.coords().chunks_exact(k.ambient_dim()) {
         for (i, &x) in p.iter().enumerate() {
@@ -701,6 +708,11 @@ mod tests {
         let r = rd("OFF\n0 0 0\n").unwrap();
         assert_eq!(r.complex.n_vertices(), 0);
         assert_eq!(r.complex.ambient_dim(), 3);
+        let r = rd("nOFF 5 0 0 0\n").unwrap();
+        assert_eq!(r.complex.ambient_dim(), 5);
+        let mut out = Vec::new();
+        write(&mut out, &r.complex).unwrap();
+        assert_eq!(rd(std::str::from_utf8(&out).unwrap()).unwrap().complex, r.complex);
         let r = rd("OFF\n2 0 0\n0 0\n1 1\n").unwrap();
         assert_eq!(r.complex.ambient_dim(), 2);
         assert_eq!(r.complex.n_isolated_vertices(), 2);
