@@ -309,7 +309,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         }
         verts.clear();
         for _ in 0..k {
-            verts.push(t.index("vertex index", 0, nv)?);
+            verts.push(t.index("face vertex", 0, nv)?);
         }
         // Anything after the indices is a colour: ignored.
         check_distinct(face, &verts, nv, &mut scratch)
@@ -675,9 +675,9 @@ mod tests {
             ("OFF\n3 1 0\n0 0 0\n1 0 zz\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: expected coordinate 2 (a number), found 'zz'"),
             ("OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: coordinate 2 is not finite"),
             ("OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: coordinate 2 is not finite"),
-            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "t.off:6: vertex index 3 is out of range"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "t.off:6: face vertex 3 is out of range"),
             ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n", "t.off:6: cell 0: vertex 1 appears more than once"),
-            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "t.off:6: expected vertex index, found the end of the line"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "t.off:6: expected face vertex, found the end of the line"),
             ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n", "t.off:6: face 0 has no vertices"),
             ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n", "t.off:7: unexpected content after the 1 faces"),
             ("OFF\n3 1000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "t.off:7: unexpected end of file"),

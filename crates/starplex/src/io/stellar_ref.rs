@@ -125,9 +125,10 @@ type Read = Result<(ComplexBuilder, Vec<String>), IoError>;
 /// Parses the count tokens of one line (`labels` name them); nothing else may be on the line.
 fn counts<R: BufRead, const N: usize>(
     lr: &mut LineReader<'_, R>,
+    line: &str,
     labels: [&str; N],
 ) -> Result<([u64; N], u64), IoError> {
-    let l = lr.expect_line(&labels.join(" "))?;
+    let l = lr.expect_line(line)?;
     let mut t = l.tokens();
     let mut out = [0u64; N];
     for (o, what) in out.iter_mut().zip(labels) {
@@ -238,7 +239,7 @@ fn cells<R: BufRead>(
         }
         v.clear();
         for _ in 0..k {
-            v.push(t.index("vertex index", 0, nv)?);
+            v.push(t.index("cell vertex", 0, nv)?);
         }
         t.end()?;
         push_checked(&l, b, i, kind, &v)?;
@@ -271,10 +272,10 @@ fn no_trailing<R: BufRead>(lr: &mut LineReader<'_, R>, what: &str) -> Result<(),
 
 fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
     let path = lr.path();
-    let ([nv], line) = counts(&mut lr, ["the vertex count"])?;
+    let ([nv], line) = counts(&mut lr, "the vertex count line 'nV'", ["the vertex count"])?;
     let nv = check_count(nv, "vertex count", path, line)?;
     let mut b = vertices_no_field(&mut lr, nv)?;
-    let ([nt], _) = counts(&mut lr, ["the triangle count"])?;
+    let ([nt], _) = counts(&mut lr, "the triangle count line 'nT'", ["the triangle count"])?;
     cells(&mut lr, &mut b, CellKind::Simplex(2), nt, 0)?;
     no_trailing(&mut lr, &format!("{nt} triangles"))?;
     Ok((b, Vec::new()))
@@ -282,7 +283,11 @@ fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
 
 fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
     let path = lr.path();
-    let ([nv, nt], line) = counts(&mut lr, ["the vertex count", "the tetrahedron count"])?;
+    let ([nv, nt], line) = counts(
+        &mut lr,
+        "the counts line 'nV nT'",
+        ["the vertex count", "the tetrahedron count"],
+    )?;
     let nv = check_count(nv, "vertex count", path, line)?;
     let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
     let mut p = Vec::with_capacity(4);
@@ -303,6 +308,7 @@ fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
     let path = lr.path();
     let ([dim, nv, nt], line) = counts(
         &mut lr,
+        "the counts line 'dim nV nT'",
         ["the simplex dimension", "the vertex count", "the simplex count"],
     )?;
     if dim > MAX_SIMPLEX_DIM as u64 {
@@ -346,7 +352,7 @@ fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
             b"h" => {
                 let nv = b.n_vertices();
                 for r in refv.iter_mut() {
-                    *r = t.index("vertex index", 1, nv)?;
+                    *r = t.index("cell vertex", 1, nv)?;
                 }
                 t.end()?;
                 for (j, &r) in refv.iter().enumerate() {
@@ -433,19 +439,19 @@ mod tests {
             ("", Format::Tri, "t.tri:1: unexpected end of file"),
             ("3\n0 0 0\n1 0 0\n", Format::Tri, "t.tri:4: unexpected end of file"),
             ("3\n0 0 0\n1 0\n0 1 0\n", Format::Tri, "t.tri:3: vertex 1 has 2 values but the first vertex line (line 2) has 3"),
-            ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 3\n", Format::Tri, "t.tri:6: vertex index 3 is out of range"),
+            ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 3\n", Format::Tri, "t.tri:6: cell vertex 3 is out of range"),
             ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2 4\n", Format::Tri, "t.tri:6: unexpected extra value '4'"),
             ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2\n0 1 2\n", Format::Tri, "t.tri:7: unexpected content after the 1 triangles"),
             ("2 0\n0 0 0\n1 0 0\n", Format::Ts, "t.ts:2: expected the field value after x y z"),
             ("1 0\n0 0 NaN 1\n", Format::Ts, "t.ts:2: vertex 0: coordinate 2 is not finite"),
             ("4 1\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 1 2 2\n", Format::Ts, "t.ts:6: cell 0: vertex 2 appears more than once"),
             ("65 1 0\n0\n", Format::Sierp, "t.sierp:1: simplex dimension 65 is above"),
-            ("2 3 1\n0 0\n1 0\n0 1\n3 0 1\n", Format::Sierp, "t.sierp:5: expected vertex index, found the end of the line"),
+            ("2 3 1\n0 0\n1 0\n0 1\n3 0 1\n", Format::Sierp, "t.sierp:5: expected cell vertex, found the end of the line"),
             ("2 3 1\n0 0\n1 0\n0 1\nx 0 1 2\n", Format::Sierp, "t.sierp:5: expected the vertex count (ignored)"),
             ("", Format::Hex, "t.hex:1: the file is empty"),
             ("# only a comment\n", Format::Hex, "the file is empty"),
             ("v 0 0 0\nq 1\n", Format::Hex, "t.hex:2: expected a line 'v x y z' or 'h i_0 .. i_7', found 'q'"),
-            ("v 0 0 0\nh 1 1 1 1 1 1 1 0\n", Format::Hex, "t.hex:2: vertex index 0 is out of range"),
+            ("v 0 0 0\nh 1 1 1 1 1 1 1 0\n", Format::Hex, "t.hex:2: cell vertex 0 is out of range"),
             ("v 0 0 0\nv 1 0 0\nh 1 2 1 2 1 2 1 2\n", Format::Hex, "t.hex:3: cell 0: vertex"),
             ("v 0 0 0\nv 1 0 0 2\n", Format::Hex, "t.hex:2: unexpected extra value '2'"),
             ("3\n0 0 0\n", Format::Spx, "spx is not a Stellar reference format"),
