@@ -122,7 +122,7 @@ fn header_value(
         }
         None => Err(t.err(format!(
             "expected {what} (an unsigned integer), found '{}'",
-            String::from_utf8_lossy(&tok[..tok.len().min(40)])
+            shown(tok, 40)
         ))),
     }
 }
@@ -157,7 +157,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 l.err(format!(
                     "not an OFF file: the first line is '{}', expected a header keyword such as \
                      OFF, COFF, NOFF, nOFF or CNOFF",
-                    String::from_utf8_lossy(&l.bytes[..l.bytes.len().min(60)])
+                    shown(l.bytes, 60)
                 ))
             })?;
             if header.ndim {
@@ -172,7 +172,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             if vals.len() > labels.len() {
                 return Err(t.err(format!(
                     "unexpected extra value '{}' on the header line",
-                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                    shown(tok, 40)
                 )));
             }
             header_value(&t, tok, &labels, &mut vals)?;
@@ -191,7 +191,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             if vals.len() > labels.len() {
                 return Err(t.err(format!(
                     "unexpected extra value '{}' after the counts",
-                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                    shown(tok, 40)
                 )));
             }
             header_value(&t, tok, &labels, &mut vals)?;
@@ -342,7 +342,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     if let Some(l) = lr.next_content_line()? {
         return Err(l.err(format!(
             "unexpected content after the {nf} faces the header announced: '{}'",
-            String::from_utf8_lossy(&l.bytes[..l.bytes.len().min(60)])
+            shown(l.bytes, 60)
         )));
     }
 
@@ -379,6 +379,23 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     })
 }
 
+/// At most `max` bytes of `b` for a message: invalid UTF-8 replaced, control characters escaped
+/// (so binary garbage cannot send escape sequences to a terminal), `...` when cut.
+pub(crate) fn shown(b: &[u8], max: usize) -> String {
+    let mut s = String::new();
+    for c in String::from_utf8_lossy(&b[..b.len().min(max)]).chars() {
+        if c.is_control() {
+            s.extend(c.escape_default());
+        } else {
+            s.push(c);
+        }
+    }
+    if b.len() > max {
+        s.push_str("...");
+    }
+    s
+}
+
 /// Parses the first `n` values of a vertex line into `p` (extras are left unread).
 #[inline]
 fn parse_coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Result<(), IoError> {
@@ -399,7 +416,7 @@ fn parse_coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Res
             None => {
                 return Err(t.err(format!(
                     "vertex {i}: expected coordinate {axis} (a number), found '{}'",
-                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                    shown(tok, 40)
                 )))
             }
         }
@@ -689,6 +706,16 @@ mod tests {
             let e = err(text);
             assert!(e.contains(want), "{text:?}: got '{e}', want '{want}'");
         }
+    }
+
+    #[test]
+    fn messages_escape_control_characters() {
+        assert_eq!(shown(b"\x1b[31mX\tY", 40), "\\u{1b}[31mX\\tY");
+        assert_eq!(shown(b"abcdef", 3), "abc...");
+        let e = read_from(&b"\x1b[2J\xff\n"[..], "t.off".as_ref(), &ReadOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("'\\u{1b}[2J\u{fffd}'"), "{e}");
     }
 
     #[test]

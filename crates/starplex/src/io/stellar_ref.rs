@@ -33,7 +33,8 @@
 use std::io::BufRead;
 use std::path::Path;
 
-use super::text::{parse_f64, LineReader, Line, Tokens};
+use super::off::shown;
+use super::text::{parse_f64, Line, LineReader, Tokens};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
 use crate::complex::{check_cell, ComplexBuilder, IndexedComplex, MAX_AMBIENT_DIM};
@@ -169,7 +170,7 @@ fn coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Result<()
             None => {
                 return Err(t.err(format!(
                     "vertex {i}: expected coordinate {axis} (a number), found '{}'",
-                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                    shown(tok, 40)
                 )))
             }
         }
@@ -264,7 +265,7 @@ fn no_trailing<R: BufRead>(lr: &mut LineReader<'_, R>, what: &str) -> Result<(),
     if let Some(l) = lr.next_content_line()? {
         return Err(l.err(format!(
             "unexpected content after the {what} the file announced: '{}'",
-            String::from_utf8_lossy(&l.bytes[..l.bytes.len().min(60)])
+            shown(l.bytes, 60)
         )));
     }
     Ok(())
@@ -364,7 +365,7 @@ fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
             other => {
                 return Err(l.err(format!(
                     "expected a line 'v x y z' or 'h i_0 .. i_7', found '{}'",
-                    String::from_utf8_lossy(&other[..other.len().min(40)])
+                    shown(other, 40)
                 )))
             }
         }
