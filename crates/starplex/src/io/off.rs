@@ -122,7 +122,7 @@ fn header_value(
         }
         None => Err(t.err(format!(
             "expected {what} (an unsigned integer), found '{}'",
-            String::from_utf8_lossy(&tok[..tok.len().min(40)])
+            shown(tok, 40)
         ))),
     }
 }
@@ -157,7 +157,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 l.err(format!(
                     "not an OFF file: the first line is '{}', expected a header keyword such as \
                      OFF, COFF, NOFF, nOFF or CNOFF",
-                    String::from_utf8_lossy(&l.bytes[..l.bytes.len().min(60)])
+                    shown(l.bytes, 60)
                 ))
             })?;
             if header.ndim {
@@ -172,7 +172,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             if vals.len() > labels.len() {
                 return Err(t.err(format!(
                     "unexpected extra value '{}' on the header line",
-                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                    shown(tok, 40)
                 )));
             }
             header_value(&t, tok, &labels, &mut vals)?;
@@ -191,7 +191,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             if vals.len() > labels.len() {
                 return Err(t.err(format!(
                     "unexpected extra value '{}' after the counts",
-                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                    shown(tok, 40)
                 )));
             }
             header_value(&t, tok, &labels, &mut vals)?;
@@ -308,7 +308,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         }
         verts.clear();
         for _ in 0..k {
-            verts.push(t.index("vertex index", 0, nv)?);
+            verts.push(t.index("face vertex", 0, nv)?);
         }
         // Anything after the indices is a colour: ignored.
         check_distinct(face, &verts, nv, &mut scratch)
@@ -341,7 +341,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     if let Some(l) = lr.next_content_line()? {
         return Err(l.err(format!(
             "unexpected content after the {nf} faces the header announced: '{}'",
-            String::from_utf8_lossy(&l.bytes[..l.bytes.len().min(60)])
+            shown(l.bytes, 60)
         )));
     }
 
@@ -378,6 +378,23 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     })
 }
 
+/// At most `max` bytes of `b` for a message: invalid UTF-8 replaced, control characters escaped
+/// (so binary garbage cannot send escape sequences to a terminal), `...` when cut.
+pub(crate) fn shown(b: &[u8], max: usize) -> String {
+    let mut s = String::new();
+    for c in String::from_utf8_lossy(&b[..b.len().min(max)]).chars() {
+        if c.is_control() {
+            s.extend(c.escape_default());
+        } else {
+            s.push(c);
+        }
+    }
+    if b.len() > max {
+        s.push_str("...");
+    }
+    s
+}
+
 /// Parses the first `n` values of a vertex line into `p` (extras are left unread).
 #[inline]
 fn parse_coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Result<(), IoError> {
@@ -396,7 +413,7 @@ fn parse_coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Res
             None => {
                 return Err(t.err(format!(
                     "vertex {i}: expected coordinate {axis} (a number), found '{}'",
-                    String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                    shown(tok, 40)
                 )))
             }
         }
@@ -429,7 +446,9 @@ fn check_distinct(
 
 /// Writes `k` as plain OFF: `OFF`, the counts, one line of `ambient_dim` coordinates per vertex
 /// (the Stellar reference's convention when the ambient dimension is not 3), then one line
-/// `k i_0 .. i_{k-1}` per cell in cell-id order (so cell ids survive a round trip).
+/// `k i_0 .. i_{k-1}` per cell in cell-id order (so cell ids survive a round trip). A complex
+/// with no vertex and an ambient dimension other than 3 is written as `nOFF` so that its
+/// dimension survives.
 ///
 /// Simplices of any dimension and quads are written. A complex that has both quads and
 /// tetrahedra is refused (both would be 4-vertex faces). Tetrahedra and higher simplices read
@@ -481,7 +500,12 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
                 .into(),
         });
     }
-    writeln!(w, "OFF")?;
+    if k.n_vertices() == 0 && k.ambient_dim() != 3 {
+        // No vertex line to carry the dimension: say it in the header.
+        writeln!(w, "nOFF\n{}", k.ambient_dim())?;
+    } else {
+        writeln!(w, "OFF")?;
+    }
     writeln!(w, "{} {} 0", k.n_vertices(), k.n_cells())?;
     for p in k.coords().chunks_exact(k.ambient_dim()) {
         for (i, &x) in p.iter().enumerate() {
@@ -674,9 +698,9 @@ mod tests {
             ("OFF\n3 1 0\n0 0 0\n1 0 zz\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: expected coordinate 2 (a number), found 'zz'"),
             ("OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: coordinate 2 is not finite"),
             ("OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n", "t.off:4: vertex 1: coordinate 2 is not finite"),
-            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "t.off:6: vertex index is 3, out of range"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "t.off:6: face vertex 3 is out of range"),
             ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n", "t.off:6: cell 0: vertex 1 appears more than once"),
-            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "t.off:6: expected vertex index, found the end of the line"),
+            ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "t.off:6: expected face vertex, found the end of the line"),
             ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n", "t.off:6: face 0 has no vertices"),
             ("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n", "t.off:7: unexpected content after the 1 faces"),
             ("OFF\n3 1000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "t.off:7: unexpected end of file"),
@@ -688,6 +712,16 @@ mod tests {
             let e = err(text);
             assert!(e.contains(want), "{text:?}: got '{e}', want '{want}'");
         }
+    }
+
+    #[test]
+    fn messages_escape_control_characters() {
+        assert_eq!(shown(b"\x1b[31mX\tY", 40), "\\u{1b}[31mX\\tY");
+        assert_eq!(shown(b"abcdef", 3), "abc...");
+        let e = read_from(&b"\x1b[2J\xff\n"[..], "t.off".as_ref(), &ReadOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("'\\u{1b}[2J\u{fffd}'"), "{e}");
     }
 
     #[test]
@@ -707,6 +741,11 @@ mod tests {
         let r = rd("OFF\n0 0 0\n").unwrap();
         assert_eq!(r.complex.n_vertices(), 0);
         assert_eq!(r.complex.ambient_dim(), 3);
+        let r = rd("nOFF 5 0 0 0\n").unwrap();
+        assert_eq!(r.complex.ambient_dim(), 5);
+        let mut out = Vec::new();
+        write(&mut out, &r.complex).unwrap();
+        assert_eq!(rd(std::str::from_utf8(&out).unwrap()).unwrap().complex, r.complex);
         let r = rd("OFF\n2 0 0\n0 0\n1 1\n").unwrap();
         assert_eq!(r.complex.ambient_dim(), 2);
         assert_eq!(r.complex.n_isolated_vertices(), 2);

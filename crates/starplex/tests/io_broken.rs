@@ -1,0 +1,300 @@
+//! A corpus of broken files, generated here, for every text reader: each must give `Err` (never a
+//! panic), and the message must name the file, the line and the problem.
+//!
+//! The corpus is a table: one row per format, a small valid file with markers
+//! (`@NV@` vertex count, `@NC@` cell count, `@X@` one coordinate, `@I@` one vertex index), and the
+//! values that break it. Every breakage (truncated, counts that lie, bad number, NaN, index out
+//! of range, repeated vertex, binary garbage, empty, a declared count of 10^12, wrong header) is
+//! derived from the row, so a new format is one more line in [`FORMATS`].
+use std::path::{Path, PathBuf};
+
+use starplex::io::{self, ReadOptions};
+
+/// One format of the corpus.
+struct Row {
+    /// File extension (the reader is chosen by it).
+    ext: &'static str,
+    /// A valid file with markers; the last line is a cell line.
+    template: &'static str,
+    /// Values of `@NV@`, `@NC@`, `@X@`, `@I@` in the valid file.
+    nv: u64,
+    nc: u64,
+    x: &'static str,
+    i: &'static str,
+    /// An index value out of range, and one that repeats another index of the same cell.
+    out_of_range: &'static str,
+    repeated: &'static str,
+}
+
+#[rustfmt::skip]
+const FORMATS: &[Row] = &[
+    Row { ext: "spx", template: "SPX 1\n# c\n3 @NV@ @NC@\n0 0 0\n1 @X@ 0\n0 1 0\n0 0 1\ntri 3 0 1 2\ntri 3 0 @I@ 3\n", nv: 4, nc: 2, x: "0.5", i: "2", out_of_range: "4", repeated: "3" },
+    Row { ext: "off", template: "OFF\n# c\n@NV@ @NC@ 0\n0 0 0\n1 @X@ 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 @I@ 3\n", nv: 4, nc: 2, x: "0.5", i: "2", out_of_range: "4", repeated: "3" },
+    Row { ext: "off", template: "COFF @NV@ @NC@ 0\n0 0 0 1 0 0\n1 @X@ 0 1 0 0\n0 1 0 1 0 0\n0 0 1 1 0 0\n4 0 1 2 3 7 7 7\n3 1 @I@ 3\n", nv: 4, nc: 2, x: "0.5", i: "2", out_of_range: "4", repeated: "1" },
+    Row { ext: "off", template: "OFF\n@NV@ @NC@ 0\n0 0 0 0 0\n1 @X@ 0 0 0\n0 1 0 0 0\n0 0 1 0 0\n0 0 0 1 0\n1 1 1 1 1\n5 0 1 2 3 4\n2 @I@ 5\n", nv: 6, nc: 2, x: "0.5", i: "4", out_of_range: "6", repeated: "5" },
+    Row { ext: "tri", template: "@NV@\n0 0 0\n1 @X@ 0\n0 1 0\n0 0 1\n@NC@\n0 1 2\n0 @I@ 3\n", nv: 4, nc: 2, x: "0.5", i: "2", out_of_range: "4", repeated: "0" },
+    Row { ext: "ts", template: "@NV@ @NC@\n0 0 0 0\n1 @X@ 0 0\n0 1 0 0\n0 0 1 1\n1 1 1 1\n0 1 2 3\n1 @I@ 3 4\n", nv: 5, nc: 2, x: "0.5", i: "2", out_of_range: "5", repeated: "4" },
+    Row { ext: "sierp", template: "2 @NV@ @NC@\n0 0\n1 @X@\n0 1\n1 1\n3 0 1 2\n3 1 @I@ 3\n", nv: 4, nc: 2, x: "0.5", i: "2", out_of_range: "4", repeated: "3" },
+    Row { ext: "hex", template: "v 0 0 0\nv 1 @X@ 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n# 1 hexahedra\nh 1 2 8 4 6 5 @I@ 7\n", nv: 8, nc: 1, x: "0", i: "3", out_of_range: "9", repeated: "2" },
+];
+
+/// What a broken file must produce.
+struct Expect {
+    /// The error must be at one of these lines (empty: at some line).
+    lines: Vec<u64>,
+    /// The message must contain one of these (empty: no check beyond file and line).
+    any_of: Vec<&'static str>,
+}
+
+struct Case {
+    name: String,
+    ext: &'static str,
+    bytes: Vec<u8>,
+    expect: Expect,
+}
+
+fn line_of(text: &str, marker: &str) -> u64 {
+    text.lines()
+        .position(|l| l.contains(marker))
+        .map(|p| p as u64 + 1)
+        .unwrap_or_else(|| panic!("marker {marker} not in the template"))
+}
+
+fn fill(row: &Row, nv: &str, nc: &str, x: &str, i: &str) -> String {
+    row.template
+        .replace("@NV@", nv)
+        .replace("@NC@", nc)
+        .replace("@X@", x)
+        .replace("@I@", i)
+}
+
+/// Deterministic pseudo-random bytes (xorshift), with a few newlines.
+fn garbage(seed: u64, n: usize) -> Vec<u8> {
+    let mut s = seed | 1;
+    (0..n)
+        .map(|_| {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 24) as u8
+        })
+        .collect()
+}
+
+/// The broken variants of one row (and the valid file, which must read).
+fn cases(k: usize, row: &Row) -> (String, Vec<Case>) {
+    let (nv, nc) = (row.nv.to_string(), row.nc.to_string());
+    let valid = fill(row, &nv, &nc, row.x, row.i);
+    let last = valid.lines().count() as u64;
+    let has_counts = row.template.contains("@NC@");
+    let mut out = Vec::new();
+    let mut add = |name: &str, text: Vec<u8>, lines: Vec<u64>, any_of: Vec<&'static str>| {
+        out.push(Case {
+            name: format!("{}{k}_{name}", row.ext),
+            ext: row.ext,
+            bytes: text,
+            expect: Expect { lines, any_of },
+        })
+    };
+    // Truncated in the middle of the last line (its last value and the newline are gone).
+    let cut = valid.trim_end_matches('\n');
+    let cut = &cut[..cut.rfind(' ').unwrap()];
+    add(
+        "truncated_mid_line",
+        cut.into(),
+        vec![last],
+        vec!["found the end of the line"],
+    );
+    if has_counts {
+        // Truncated at a line boundary: the last cell is missing.
+        let cut = &valid[..valid.trim_end_matches('\n').rfind('\n').unwrap() + 1];
+        add(
+            "truncated_line",
+            cut.into(),
+            vec![last],
+            vec!["unexpected end of file"],
+        );
+        let more = (row.nc + 1).to_string();
+        add(
+            "count_says_more",
+            fill(row, &nv, &more, row.x, row.i).into(),
+            vec![last + 1],
+            vec!["unexpected end of file"],
+        );
+        let fewer = (row.nc - 1).to_string();
+        add(
+            "count_says_fewer",
+            fill(row, &nv, &fewer, row.x, row.i).into(),
+            vec![last],
+            vec!["unexpected content after"],
+        );
+        add(
+            "count_1e12",
+            fill(row, &nv, "1000000000000", row.x, row.i).into(),
+            vec![last + 1, line_of(row.template, "@NC@")],
+            vec!["unexpected end of file", "32-bit"],
+        );
+        add(
+            "vertex_count_1e12",
+            fill(row, "1000000000000", &nc, row.x, row.i).into(),
+            vec![line_of(row.template, "@NV@")],
+            vec!["32-bit"],
+        );
+    }
+    let xl = line_of(row.template, "@X@");
+    let il = line_of(row.template, "@I@");
+    add(
+        "bad_number",
+        fill(row, &nv, &nc, "1.2.3", row.i).into(),
+        vec![xl],
+        vec!["'1.2.3'"],
+    );
+    add(
+        "nan",
+        fill(row, &nv, &nc, "nan", row.i).into(),
+        vec![xl],
+        vec!["not finite"],
+    );
+    add(
+        "inf",
+        fill(row, &nv, &nc, "-inf", row.i).into(),
+        vec![xl],
+        vec!["not finite"],
+    );
+    add(
+        "index_out_of_range",
+        fill(row, &nv, &nc, row.x, row.out_of_range).into(),
+        vec![il],
+        vec!["out of range"],
+    );
+    add(
+        "index_not_a_number",
+        fill(row, &nv, &nc, row.x, "-1").into(),
+        vec![il],
+        vec!["'-1'"],
+    );
+    add(
+        "index_huge",
+        fill(row, &nv, &nc, row.x, "99999999999999999999999").into(),
+        vec![il],
+        vec!["99999999999999999999999"],
+    );
+    add(
+        "repeated_vertex",
+        fill(row, &nv, &nc, row.x, row.repeated).into(),
+        vec![il],
+        vec!["appears more than once"],
+    );
+    add("empty", Vec::new(), vec![1], vec!["end of file", "empty"]);
+    add(
+        "only_comments_and_blanks",
+        b"\n\n   \n\t\n".to_vec(),
+        vec![1, 4, 5],
+        vec!["end of file", "empty"],
+    );
+    let mut wrong = valid.clone();
+    let first_end = wrong.find('\n').unwrap();
+    wrong.replace_range(..first_end, "solid starplex");
+    add("wrong_header", wrong.into(), vec![1], vec!["'solid"]);
+    for seed in 1..=4u64 {
+        add(
+            &format!("binary_garbage_{seed}"),
+            garbage(seed * 7919 + k as u64, 3000),
+            vec![],
+            vec![],
+        );
+    }
+    // Garbage after a valid file.
+    let mut tail = valid.clone().into_bytes();
+    tail.extend_from_slice(&garbage(99, 200));
+    add("garbage_after_the_end", tail, vec![], vec![]);
+    (valid, out)
+}
+
+fn corpus_dir() -> PathBuf {
+    let d = std::env::temp_dir().join(format!("starplex-io-broken-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `path:LINE: ...` -> LINE.
+fn line_in(msg: &str, path: &Path) -> Option<u64> {
+    let rest = msg.strip_prefix(&format!("{}:", path.display()))?;
+    let digits: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
+    if digits.is_empty() || !rest[digits.len()..].starts_with(':') {
+        return None;
+    }
+    digits.parse().ok()
+}
+
+#[test]
+fn every_broken_file_is_a_clear_error() {
+    let dir = corpus_dir();
+    let mut failures = Vec::new();
+    let mut n = 0;
+    for (k, row) in FORMATS.iter().enumerate() {
+        let (valid, cases) = cases(k, row);
+        // The unbroken file reads: the errors below come from the breakage.
+        let vp = dir.join(format!("{}{k}_valid.{}", row.ext, row.ext));
+        std::fs::write(&vp, &valid).unwrap();
+        if let Err(e) = io::read(&vp, &ReadOptions::default()) {
+            failures.push(format!("{}: the valid file does not read: {e}", vp.display()));
+        }
+        for c in cases {
+            n += 1;
+            let p = dir.join(format!("{}.{}", c.name, c.ext));
+            std::fs::write(&p, &c.bytes).unwrap();
+            let r = std::panic::catch_unwind(|| io::read(&p, &ReadOptions::default()));
+            let msg = match r {
+                Err(_) => {
+                    failures.push(format!("{}: PANIC", c.name));
+                    continue;
+                }
+                Ok(Ok(_)) => {
+                    failures.push(format!("{}: read without error", c.name));
+                    continue;
+                }
+                Ok(Err(e)) => {
+                    println!("{}: {e}", c.name);
+                    e.to_string()
+                }
+            };
+            let Some(line) = line_in(&msg, &p) else {
+                failures.push(format!("{}: no 'file:line:' in '{msg}'", c.name));
+                continue;
+            };
+            if !c.expect.lines.is_empty() && !c.expect.lines.contains(&line) {
+                failures.push(format!(
+                    "{}: line {line}, expected one of {:?}: '{msg}'",
+                    c.name, c.expect.lines
+                ));
+            }
+            if !c.expect.any_of.is_empty() && !c.expect.any_of.iter().any(|w| msg.contains(w)) {
+                failures.push(format!(
+                    "{}: '{msg}' says none of {:?}",
+                    c.name, c.expect.any_of
+                ));
+            }
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(
+        failures.is_empty(),
+        "{} of {n} cases failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    assert!(n > 100, "the corpus is smaller than expected ({n})");
+}
+
+#[test]
+fn missing_file_and_unknown_extension_name_the_file() {
+    let dir = corpus_dir().join("missing");
+    for ext in ["spx", "off", "tri", "ts", "sierp", "hex"] {
+        let p = dir.join(format!("nope.{ext}"));
+        let e = io::read(&p, &ReadOptions::default()).unwrap_err();
+        assert!(e.to_string().starts_with(&p.display().to_string()), "{e}");
+    }
+    let e = io::read(&dir.join("x.unknown"), &ReadOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("unknown format"), "{e}");
+}

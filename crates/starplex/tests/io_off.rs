@@ -1,0 +1,254 @@
+//! OFF and the Stellar reference formats against the `.spx` of the same dataset (identical
+//! complexes: same coordinates, same cells in the same order), and OFF write/read round trips
+//! (seeded property tests against the complex itself as the model).
+//!
+//! Files under `../shared/datasets/small/` are used when present; files that only exist under
+//! `$STARPLEX_DATA/small/<name>/` are used when `STARPLEX_DATA` is set and skipped (with a printed
+//! reason) otherwise.
+use std::path::{Path, PathBuf};
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config as ProptestConfig, RngSeed};
+use starplex::cell::CellKind;
+use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
+use starplex::io::{self, off, Format, PolygonMode, ReadOptions};
+
+fn shared_small() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/datasets/small")
+}
+
+/// The dataset file `file` (e.g. `tri_elephant.off`): from the shared datasets, else from
+/// `$STARPLEX_DATA/small/<stem>/`. `None` (with a printed reason) when it cannot be used here.
+fn dataset(file: &str) -> Option<PathBuf> {
+    let p = shared_small().join(file);
+    if p.exists() {
+        return Some(p);
+    }
+    let stem = file.split('.').next().unwrap_or(file);
+    match std::env::var("STARPLEX_DATA") {
+        Ok(d) => {
+            let p = Path::new(&d).join("small").join(stem).join(file);
+            assert!(
+                p.exists(),
+                "STARPLEX_DATA is set but {} does not exist",
+                p.display()
+            );
+            Some(p)
+        }
+        Err(_) => {
+            println!(
+                "SKIPPED: {file} is not in {} and STARPLEX_DATA is not set",
+                shared_small().display()
+            );
+            None
+        }
+    }
+}
+
+fn read(p: &Path, simplices: bool) -> IndexedComplex {
+    let opts = ReadOptions {
+        polygons: if simplices {
+            PolygonMode::Simplices
+        } else {
+            PolygonMode::Polygons
+        },
+        ..Default::default()
+    };
+    match io::read(p, &opts) {
+        Ok(r) => r.complex,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// `file` read (with simplex mode if asked) equals `<stem>.spx` exactly.
+fn same_as_spx(file: &str, simplices: bool) {
+    let Some(p) = dataset(file) else { return };
+    let stem = file.split('.').next().unwrap();
+    let Some(spx) = dataset(&format!("{stem}.spx")) else {
+        return;
+    };
+    let a = read(&p, simplices);
+    let b = read(&spx, false);
+    assert_eq!(a.n_vertices(), b.n_vertices(), "{file}");
+    assert_eq!(a.n_cells(), b.n_cells(), "{file}");
+    assert!(a == b, "{file}: the complex differs from {stem}.spx");
+    println!(
+        "{file}: {} vertices, {} cells, identical to {stem}.spx",
+        a.n_vertices(),
+        a.n_cells()
+    );
+}
+
+#[test]
+fn off_tri_elephant_equals_spx() {
+    same_as_spx("tri_elephant.off", false);
+}
+
+#[test]
+fn off_vr_kitten_as_simplices_equals_spx() {
+    same_as_spx("vr_kitten_s.off", true);
+}
+
+#[test]
+fn off_sierp5_as_simplices_equals_spx() {
+    same_as_spx("sierp5_xs.off", true);
+}
+
+#[test]
+fn off_quad_elephant_equals_spx() {
+    same_as_spx("quad_elephant.off", false);
+}
+
+#[test]
+fn tri_equals_spx() {
+    same_as_spx("tri_elephant.tri", false);
+}
+
+#[test]
+fn ts_equals_spx() {
+    same_as_spx("tet_elephant.ts", false);
+}
+
+#[test]
+fn sierp_equals_spx() {
+    same_as_spx("sierp5_xs.sierp", false);
+}
+
+#[test]
+fn hex_equals_spx() {
+    same_as_spx("hex_knot1.hex", false);
+}
+
+/// Writes `k` as OFF into memory and reads it back.
+fn off_round_trip(k: &IndexedComplex, mode: PolygonMode) -> IndexedComplex {
+    let mut buf = Vec::new();
+    off::write(&mut buf, k).unwrap();
+    let opts = ReadOptions {
+        polygons: mode,
+        ..Default::default()
+    };
+    match off::read_from(&buf[..], "mem.off".as_ref(), &opts) {
+        Ok(r) => r.complex,
+        Err(e) => panic!("{e}\n{}", String::from_utf8_lossy(&buf)),
+    }
+}
+
+#[test]
+fn datasets_round_trip_through_off_files() {
+    let dir = std::env::temp_dir().join(format!("starplex-io-off-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (file, simplices) in [
+        ("tri_elephant.spx", false),
+        ("vr_kitten_s.spx", true),
+        ("tet_elephant.spx", true),
+        ("quad_elephant.spx", false),
+        ("sierp5_xs.spx", true),
+    ] {
+        let Some(p) = dataset(file) else { continue };
+        let k = read(&p, false);
+        let out = dir.join(file.replace(".spx", ".off"));
+        io::write(&out, &k, None).unwrap();
+        let back = read(&out, simplices);
+        assert!(back == k, "{file}: OFF round trip changed the complex");
+    }
+    // 3D cells cannot be written, with a clear reason.
+    if let Some(p) = dataset("hexvox_skull.spx") {
+        let k = read(&p, false);
+        let e = io::write(&dir.join("h.off"), &k, None).unwrap_err();
+        assert!(
+            e.to_string().contains("off cannot hold this complex")
+                && e.to_string().contains("hex"),
+            "{e}"
+        );
+        assert!(!dir.join("h.off").exists());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A random complex: simplices of dimension min_dim..=max_dim on `nv` vertices in `ambient`
+/// dimensions, made valid by dropping duplicates and faces of other cells.
+fn arb_simplicial(min_dim: usize, max_dim: usize) -> impl Strategy<Value = IndexedComplex> {
+    (1usize..=7, (min_dim + 1)..=24).prop_flat_map(move |(ambient, nv)| {
+        let cell = proptest::collection::btree_set(0..nv as u32, (min_dim + 1)..=(max_dim + 1).min(nv))
+            .prop_map(|s| s.into_iter().collect::<Vec<u32>>())
+            .prop_shuffle();
+        (
+            proptest::collection::vec(-1e6f64..1e6, ambient * nv),
+            proptest::collection::vec(cell, 0..30),
+        )
+            .prop_map(move |(coords, cells)| {
+                let mut b = ComplexBuilder::new(ambient).unwrap();
+                for p in coords.chunks(ambient) {
+                    b.push_vertex(p).unwrap();
+                }
+                for c in cells {
+                    b.push_cell(CellKind::Simplex((c.len() - 1) as u8), &c)
+                        .unwrap();
+                }
+                let opts = BuildOptions {
+                    drop_face_cells: true,
+                    drop_duplicates: true,
+                    ..Default::default()
+                };
+                b.build(&opts).unwrap().0
+            })
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 200,
+        rng_seed: RngSeed::Fixed(0x0ff),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    /// Simplicial complexes of any dimension and ambient dimension survive write + read in
+    /// simplex mode exactly (coordinates, cells, vertex orders, cell ids).
+    #[test]
+    fn simplicial_round_trip(k in arb_simplicial(0, 6)) {
+        let back = off_round_trip(&k, PolygonMode::Simplices);
+        prop_assert!(back == k);
+    }
+
+    /// Edges and triangles also survive polygon mode (the default; 0-simplices would be dropped
+    /// there with a note, so the model has none).
+    #[test]
+    fn surface_round_trip_in_polygon_mode(k in arb_simplicial(1, 2)) {
+        let back = off_round_trip(&k, PolygonMode::Polygons);
+        prop_assert!(back == k);
+    }
+}
+
+#[test]
+fn quads_round_trip_and_mixed_quad_tet_is_refused() {
+    let mut b = ComplexBuilder::new(3).unwrap();
+    for i in 0..6 {
+        b.push_vertex(&[i as f64, (i * i) as f64 * 0.5, -0.25]).unwrap();
+    }
+    b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
+    b.push_cell(CellKind::Simplex(2), &[2, 3, 4]).unwrap();
+    b.push_cell(CellKind::Quad, &[3, 2, 5, 4]).unwrap();
+    let k = b.clone().build(&BuildOptions::default()).unwrap().0;
+    assert!(off_round_trip(&k, PolygonMode::Polygons) == k);
+    b.push_cell(CellKind::Simplex(3), &[0, 1, 4, 5]).unwrap();
+    let k = b.build(&BuildOptions::default()).unwrap().0;
+    let e = off::write(&mut Vec::new(), &k).unwrap_err();
+    assert!(e.to_string().contains("both quads and tetrahedra"), "{e}");
+}
+
+#[test]
+fn big_polygons_are_fan_triangulated_with_a_note() {
+    let text = "OFF\n6 1 0\n0 0 0\n1 0 0\n2 1 0\n1 2 0\n0 2 0\n-1 1 0\n6 0 1 2 3 4 5\n";
+    let r = off::read_from(text.as_bytes(), "m.off".as_ref(), &ReadOptions::default()).unwrap();
+    let cells: Vec<Vec<u32>> = r.complex.cells().map(|c| c.vertices.to_vec()).collect();
+    assert_eq!(
+        cells,
+        vec![vec![0, 1, 2], vec![0, 2, 3], vec![0, 3, 4], vec![0, 4, 5]]
+    );
+    assert_eq!(
+        r.notes,
+        vec!["fan-triangulated 1 polygons with more than 4 vertices into 4 triangles".to_string()]
+    );
+    assert_eq!(r.format, Format::Off);
+}
