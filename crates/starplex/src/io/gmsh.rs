@@ -1,27 +1,580 @@
-//! Reader and writer for this format (in progress).
+//! gmsh `.msh`, ascii versions 4.1 and 2.2.
+//!
+//! Read: `$MeshFormat`, `$Nodes` and `$Elements` (4.1: entity blocks, node tags in any order and
+//! possibly non-contiguous; 2.2: one node or element per entry, elements with their tag counts);
+//! every other section (`$Entities`, `$PhysicalNames`, `$Periodic`, `$NodeData`, ...) is skipped
+//! up to its `$End` line. Element types 1 (line), 2 (triangle), 3 (quad), 4 (tetrahedron),
+//! 5 (hexahedron), 6 (prism), 7 (pyramid) and 15 (point) are read; others are an error naming
+//! the type.
+//!
+//! A gmsh file lists the mesh of every geometric entity: besides the volume cells, the boundary
+//! triangles, quads and lines, and a point element on each geometry vertex. The reader keeps only
+//! the maximal cells, whatever [`ReadOptions::build`] says: elements that are faces of other
+//! elements and exact duplicates (gmsh occasionally emits a tetrahedron twice) are dropped, point
+//! elements are dropped, and nodes then used by no cell (the centre of a circle, a geometry point)
+//! are dropped, keeping the order of the others; [`ReadResult::notes`] says how many of each.
+//! Node ids are the nodes' positions in order of appearance in the file.
+//!
+//! Vertex order: gmsh's first-order line, triangle, quad, tetrahedron, hexahedron and pyramid are
+//! in VTK order; gmsh's prism is the mirror image of VTK's wedge (its triangle 0-1-2 faces the
+//! other one, VTK's faces outward), so prisms are read as `[0, 2, 1, 3, 5, 4]` of the gmsh nodes
+//! and written back the same way, as gmsh itself does when it exports VTK.
+//!
+//! Write: version 4.1 ascii, one node block, one element block per run of one kind, no
+//! `$Entities`. Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are
+//! written as nodes, which this reader then drops.
+//!
+//! ```
+//! use starplex::io::{gmsh, ReadOptions};
+//! let text = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n\
+//!             $Nodes\n1 4 10 40\n3 1 0 4\n10\n20\n30\n40\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n\
+//!             $Elements\n2 2 1 2\n2 1 2 1\n1 10 20 30\n3 1 4 1\n2 10 20 30 40\n$EndElements\n";
+//! let r = gmsh::read_from(text.as_bytes(), "mem.msh".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(r.complex.n_cells(), 1); // the boundary triangle is a face of the tetrahedron
+//! assert_eq!(r.notes, vec!["dropped 1 elements that are faces of other elements (boundary elements)"]);
+//! let mut out = Vec::new();
+//! gmsh::write(&mut out, &r.complex).unwrap();
+//! let back = gmsh::read_from(&out[..], "mem.msh".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(back.complex, r.complex);
+//! ```
+use std::io::{BufRead, Write};
 use std::path::Path;
 
-use super::{IoError, IoErrorKind, ReadOptions, ReadResult};
-use crate::complex::IndexedComplex;
+use rustc_hash::FxHashMap;
 
-/// Reads a file of this format.
-///
-/// # Errors
-/// Not implemented yet.
-pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
-    Err(IoError::parse(
-        path,
-        None,
-        "this format is not supported yet",
-    ))
+use super::text::write_f64;
+use super::words::Words;
+use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::cell::CellKind;
+use crate::complex::{check_cell, BuildOptions, ComplexBuilder, IndexedComplex};
+
+/// gmsh prism node `PRISM_PERM[i]` is VTK wedge node `i` (an involution: the same map converts
+/// back).
+pub const PRISM_PERM: [usize; 6] = [0, 2, 1, 3, 5, 4];
+
+/// The gmsh element type of a kind (`None` for kinds gmsh has no first-order element for here).
+pub fn gmsh_type(kind: CellKind) -> Option<u32> {
+    Some(match kind {
+        CellKind::Simplex(0) => 15,
+        CellKind::Simplex(1) => 1,
+        CellKind::Simplex(2) => 2,
+        CellKind::Quad => 3,
+        CellKind::Simplex(3) => 4,
+        CellKind::Hex => 5,
+        CellKind::Prism => 6,
+        CellKind::Pyramid => 7,
+        CellKind::Simplex(_) => return None,
+    })
 }
 
-/// Writes this format.
+/// The kind of a gmsh element type starplex reads.
+pub fn kind_of_gmsh_type(t: u64) -> Option<CellKind> {
+    Some(match t {
+        15 => CellKind::Simplex(0),
+        1 => CellKind::Simplex(1),
+        2 => CellKind::Simplex(2),
+        3 => CellKind::Quad,
+        4 => CellKind::Simplex(3),
+        5 => CellKind::Hex,
+        6 => CellKind::Prism,
+        7 => CellKind::Pyramid,
+        _ => return None,
+    })
+}
+
+fn unsupported_type(t: u64) -> String {
+    let what = match t {
+        8..=14 | 16..=31 => "a second- or higher-order element",
+        _ => "an element type starplex does not know",
+    };
+    format!(
+        "gmsh element type {t} ({what}) is not supported (starplex reads first-order types 1-7 and 15)"
+    )
+}
+
+/// Reads a `.msh` file.
 ///
 /// # Errors
-/// Not implemented yet.
-pub fn write(_w: &mut dyn std::io::Write, _k: &IndexedComplex) -> Result<(), IoErrorKind> {
-    Err(IoErrorKind::Parse(
-        "this format is not supported yet".into(),
-    ))
+/// See [`read_from`].
+pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let f = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+    read_from(std::io::BufReader::with_capacity(1 << 20, f), path, opts)
+}
+
+/// Node tag -> 0-based id, dense while the tags are, hashed otherwise. Its size follows the
+/// nodes actually read, never a declared count or a tag's value alone.
+#[derive(Default)]
+struct TagMap {
+    dense: Vec<u32>,
+    sparse: FxHashMap<u64, u32>,
+    n: usize,
+}
+
+impl TagMap {
+    /// Inserts `tag -> id`; false when the tag is already there.
+    fn insert(&mut self, tag: u64, id: u32) -> bool {
+        if (tag as usize) < self.dense.len() || tag <= 2 * self.n as u64 + 4096 {
+            let t = tag as usize;
+            if t >= self.dense.len() {
+                let want = (t + 1).max(self.dense.len() * 3 / 2);
+                self.dense.resize(want, u32::MAX);
+            }
+            if self.dense[t] != u32::MAX || self.sparse.contains_key(&tag) {
+                return false;
+            }
+            self.dense[t] = id;
+        } else {
+            if self.sparse.contains_key(&tag) {
+                return false;
+            }
+            self.sparse.insert(tag, id);
+        }
+        self.n += 1;
+        true
+    }
+
+    #[inline]
+    fn get(&self, tag: u64) -> Option<u32> {
+        match self.dense.get(tag as usize) {
+            Some(&id) if id != u32::MAX => Some(id),
+            Some(_) => None,
+            None => self.sparse.get(&tag).copied(),
+        }
+    }
+}
+
+/// What the element pass collects.
+struct Elements {
+    /// `(kind, flat vertex ids)` runs in file order.
+    blocks: Vec<(CellKind, Vec<u32>)>,
+    points: usize,
+}
+
+impl Elements {
+    fn push(&mut self, kind: CellKind, verts: &[u32]) {
+        match self.blocks.last_mut() {
+            Some((k, v)) if *k == kind => v.extend_from_slice(verts),
+            _ => self.blocks.push((kind, verts.to_vec())),
+        }
+    }
+}
+
+/// Reads an element's node tags into `verts` (VTK order), checking them.
+fn read_element_nodes(
+    w: &mut Words<'_, impl BufRead>,
+    kind: CellKind,
+    tags: &TagMap,
+    n_elem: u64,
+    verts: &mut Vec<u32>,
+) -> Result<(), IoError> {
+    let k = kind.n_vertices();
+    verts.clear();
+    let mut raw = [0u32; 8];
+    let line = w.line();
+    for slot in raw.iter_mut().take(k) {
+        let t = w.u64("a node tag")?;
+        *slot = tags.get(t).ok_or_else(|| {
+            w.err(format!(
+                "element node tag {t} is not a node of the $Nodes section"
+            ))
+        })?;
+    }
+    if kind == CellKind::Prism {
+        verts.extend(PRISM_PERM.iter().map(|&i| raw[i]));
+    } else {
+        verts.extend_from_slice(&raw[..k]);
+    }
+    check_cell(n_elem, verts, tags.n)
+        .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line.max(w.line()))))
+}
+
+/// Reads gmsh ascii text from any buffered reader; `path` names it in errors. `opts.build` is
+/// not used: a gmsh file always has its boundary elements and point elements dropped (see the
+/// module docs).
+///
+/// # Errors
+/// A missing `$MeshFormat`, a binary file ("binary .msh is not supported; re-save as ascii"),
+/// versions other than 2.x and 4.1, malformed or non-finite numbers, repeated node tags, element
+/// nodes that are not in `$Nodes`, unsupported element types, repeated nodes in one element,
+/// counts that do not match the data, a missing `$End...` line; each with the line.
+pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let mut w = Words::new(r, path, None);
+    w.keyword("$MeshFormat").map_err(|e| {
+        IoError::parse(
+            path,
+            e.location,
+            "not a gmsh file: expected '$MeshFormat' first",
+        )
+    })?;
+    let version = w.expect("the format version")?.to_vec();
+    let version = String::from_utf8_lossy(&version).into_owned();
+    let file_type = w.u64("the file type (0 ascii, 1 binary)")?;
+    if file_type == 1 {
+        return Err(w.err("binary .msh is not supported; re-save as ascii"));
+    }
+    if file_type != 0 {
+        return Err(w.err(format!(
+            "file type {file_type} is neither 0 (ascii) nor 1 (binary)"
+        )));
+    }
+    w.u64("the data size")?;
+    let v4 = match version.as_str() {
+        "4.1" => true,
+        v if v == "2" || v.starts_with("2.") => false,
+        v => {
+            return Err(w.err(format!(
+                "gmsh format version {v} is not supported (starplex reads 4.1 and 2.2; re-save in one of them)"
+            )))
+        }
+    };
+    w.keyword("$EndMeshFormat")?;
+
+    let mut tags = TagMap::default();
+    let mut coords: Vec<f64> = Vec::new();
+    let mut have_nodes = false;
+    let mut elems = Elements {
+        blocks: Vec::new(),
+        points: 0,
+    };
+    let mut have_elements = false;
+    let mut verts: Vec<u32> = Vec::with_capacity(8);
+    while let Some(sec) = w.next_word()?.map(|s| s.to_vec()) {
+        let name = String::from_utf8_lossy(&sec[..sec.len().min(60)]).into_owned();
+        match name.as_str() {
+            "$Nodes" => {
+                if have_nodes {
+                    return Err(w.err("a second $Nodes section"));
+                }
+                have_nodes = true;
+                if v4 {
+                    read_nodes_41(&mut w, &mut tags, &mut coords)?;
+                } else {
+                    read_nodes_22(&mut w, &mut tags, &mut coords)?;
+                }
+                w.keyword("$EndNodes")?;
+            }
+            "$Elements" => {
+                if !have_nodes {
+                    return Err(w.err("$Elements before $Nodes"));
+                }
+                if have_elements {
+                    return Err(w.err("a second $Elements section"));
+                }
+                have_elements = true;
+                if v4 {
+                    read_elements_41(&mut w, &tags, &mut elems, &mut verts)?;
+                } else {
+                    read_elements_22(&mut w, &tags, &mut elems, &mut verts)?;
+                }
+                w.keyword("$EndElements")?;
+            }
+            s if s.starts_with('$') && !s.starts_with("$End") => {
+                let end = format!("$End{}", &s[1..]);
+                loop {
+                    match w.next_word()? {
+                        Some(x) if x == end.as_bytes() => break,
+                        Some(_) => {}
+                        None => return Err(w.err_at(
+                            w.line(),
+                            format!(
+                                "unexpected end of file: expected '{end}' (the file is truncated)"
+                            ),
+                        )),
+                    }
+                }
+            }
+            _ => {
+                return Err(w.err(format!(
+                    "expected a section such as '$Nodes' or '$Elements', found '{name}'"
+                )))
+            }
+        }
+    }
+    if !have_nodes {
+        return Err(w.err("the file has no $Nodes section"));
+    }
+    // Keep the nodes used by some cell, in order.
+    let nv = tags.n;
+    let mut new_id = vec![u32::MAX; nv];
+    for (_, v) in &elems.blocks {
+        for &x in v {
+            new_id[x as usize] = 0;
+        }
+    }
+    let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
+    let mut dropped_nodes = 0usize;
+    for (i, id) in new_id.iter_mut().enumerate() {
+        if *id == u32::MAX {
+            dropped_nodes += 1;
+            continue;
+        }
+        *id = b
+            .push_vertex(&coords[3 * i..3 * i + 3])
+            .map_err(|e| IoError::new(path, e))?
+            .0;
+    }
+    for (kind, v) in &mut elems.blocks {
+        for x in v.iter_mut() {
+            *x = new_id[*x as usize];
+        }
+        let k = kind.n_vertices();
+        for cell in v.chunks_exact(k) {
+            b.push_cell(*kind, cell)
+                .map_err(|e| IoError::new(path, e))?;
+        }
+    }
+    let (complex, report) = b
+        .build(&BuildOptions {
+            drop_face_cells: true,
+            drop_duplicates: true,
+            trust_maximality: false,
+        })
+        .map_err(|e| IoError::new(path, e))?;
+    let mut notes = Vec::new();
+    if report.dropped_face_cells > 0 {
+        notes.push(format!(
+            "dropped {} elements that are faces of other elements (boundary elements)",
+            report.dropped_face_cells
+        ));
+    }
+    if report.dropped_duplicates > 0 {
+        notes.push(format!(
+            "dropped {} duplicate elements",
+            report.dropped_duplicates
+        ));
+    }
+    if elems.points > 0 {
+        notes.push(format!("dropped {} point elements (type 15)", elems.points));
+    }
+    if dropped_nodes > 0 {
+        notes.push(format!(
+            "dropped {dropped_nodes} nodes used by no element (geometry points)"
+        ));
+    }
+    Ok(ReadResult {
+        complex,
+        format: Format::Gmsh,
+        notes,
+    })
+}
+
+fn add_node(
+    w: &Words<'_, impl BufRead>,
+    tags: &mut TagMap,
+    tag: u64,
+    line: u64,
+) -> Result<(), IoError> {
+    let id = tags.n;
+    if id as u64 >= u32::MAX as u64 - 1 {
+        return Err(w.err_at(
+            line,
+            "more nodes than the 32-bit ids of starplex can address",
+        ));
+    }
+    if !tags.insert(tag, id as u32) {
+        return Err(w.err_at(line, format!("node tag {tag} appears twice")));
+    }
+    Ok(())
+}
+
+fn read_xyz(w: &mut Words<'_, impl BufRead>, coords: &mut Vec<f64>) -> Result<(), IoError> {
+    for _ in 0..3 {
+        coords.push(w.f64("a node coordinate")?);
+    }
+    Ok(())
+}
+
+fn read_nodes_41(
+    w: &mut Words<'_, impl BufRead>,
+    tags: &mut TagMap,
+    coords: &mut Vec<f64>,
+) -> Result<(), IoError> {
+    let n_blocks = w.u64("the number of node blocks")?;
+    let n_nodes = w.u64("the number of nodes")?;
+    w.u64("the smallest node tag")?;
+    w.u64("the largest node tag")?;
+    let mut block_tags: Vec<(u64, u64)> = Vec::new();
+    for _ in 0..n_blocks {
+        let dim = w.u64("the entity dimension")?;
+        w.u64("the entity tag")?;
+        let parametric = w.u64("the parametric flag")?;
+        let n = w.u64("the number of nodes in the block")?;
+        if dim > 3 || parametric > 1 {
+            return Err(w.err(format!(
+                "node block with entity dimension {dim} and parametric flag {parametric}"
+            )));
+        }
+        let extra = if parametric == 1 { dim } else { 0 };
+        block_tags.clear();
+        for _ in 0..n {
+            let t = w.u64("a node tag")?;
+            block_tags.push((t, w.line()));
+        }
+        for &(t, line) in &block_tags {
+            read_xyz(w, coords)?;
+            for _ in 0..extra {
+                w.f64("a parametric coordinate")?;
+            }
+            add_node(w, tags, t, line)?;
+        }
+    }
+    if tags.n as u64 != n_nodes {
+        return Err(w.err(format!(
+            "$Nodes declares {n_nodes} nodes, its blocks hold {}",
+            tags.n
+        )));
+    }
+    Ok(())
+}
+
+fn read_nodes_22(
+    w: &mut Words<'_, impl BufRead>,
+    tags: &mut TagMap,
+    coords: &mut Vec<f64>,
+) -> Result<(), IoError> {
+    let n = w.u64("the number of nodes")?;
+    for _ in 0..n {
+        let t = w.u64("a node tag")?;
+        let line = w.line();
+        read_xyz(w, coords)?;
+        add_node(w, tags, t, line)?;
+    }
+    Ok(())
+}
+
+fn read_elements_41(
+    w: &mut Words<'_, impl BufRead>,
+    tags: &TagMap,
+    elems: &mut Elements,
+    verts: &mut Vec<u32>,
+) -> Result<(), IoError> {
+    let n_blocks = w.u64("the number of element blocks")?;
+    let n_elems = w.u64("the number of elements")?;
+    w.u64("the smallest element tag")?;
+    w.u64("the largest element tag")?;
+    let mut seen: u64 = 0;
+    for _ in 0..n_blocks {
+        w.u64("the entity dimension")?;
+        w.u64("the entity tag")?;
+        let ty = w.u64("the element type")?;
+        let kind = kind_of_gmsh_type(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
+        let n = w.u64("the number of elements in the block")?;
+        for _ in 0..n {
+            w.u64("an element tag")?;
+            read_element_nodes(w, kind, tags, seen, verts)?;
+            seen += 1;
+            if kind == CellKind::Simplex(0) {
+                elems.points += 1;
+            } else {
+                elems.push(kind, verts);
+            }
+        }
+    }
+    if seen != n_elems {
+        return Err(w.err(format!(
+            "$Elements declares {n_elems} elements, its blocks hold {seen}"
+        )));
+    }
+    Ok(())
+}
+
+fn read_elements_22(
+    w: &mut Words<'_, impl BufRead>,
+    tags: &TagMap,
+    elems: &mut Elements,
+    verts: &mut Vec<u32>,
+) -> Result<(), IoError> {
+    let n = w.u64("the number of elements")?;
+    for i in 0..n {
+        w.u64("an element tag")?;
+        let ty = w.u64("the element type")?;
+        let kind = kind_of_gmsh_type(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
+        let n_tags = w.u64("the number of element tags")?;
+        for _ in 0..n_tags {
+            w.i64("an element tag value")?;
+        }
+        read_element_nodes(w, kind, tags, i, verts)?;
+        if kind == CellKind::Simplex(0) {
+            elems.points += 1;
+        } else {
+            elems.push(kind, verts);
+        }
+    }
+    Ok(())
+}
+
+/// Writes `k` as gmsh 4.1 ascii.
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] for an ambient dimension above 3 or simplices of dimension 4 and
+/// more; OS errors of the writer.
+pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let d = k.ambient_dim();
+    if d > 3 {
+        return Err(IoErrorKind::CannotWrite {
+            format: Format::Gmsh,
+            reason: format!("gmsh nodes have 3 coordinates, the complex has {d}"),
+        });
+    }
+    for b in k.blocks() {
+        if gmsh_type(b.kind).is_none() {
+            return Err(IoErrorKind::CannotWrite {
+                format: Format::Gmsh,
+                reason: format!("gmsh has no first-order element for {} cells", b.kind),
+            });
+        }
+    }
+    let nv = k.n_vertices();
+    let node_dim = k.dim().unwrap_or(0);
+    writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
+    writeln!(w, "$Nodes")?;
+    if nv == 0 {
+        writeln!(w, "0 0 0 0")?;
+    } else {
+        writeln!(w, "1 {nv} 1 {nv}")?;
+        writeln!(w, "{node_dim} 1 0 {nv}")?;
+        for i in 1..=nv {
+            writeln!(w, "{i}")?;
+        }
+        for p in k.coords().chunks_exact(d) {
+            for (i, &x) in p.iter().enumerate() {
+                if i > 0 {
+                    w.write_all(b" ")?;
+                }
+                write_f64(w, x)?;
+            }
+            for _ in d..3 {
+                w.write_all(b" 0")?;
+            }
+            w.write_all(b"\n")?;
+        }
+    }
+    writeln!(w, "$EndNodes")?;
+    writeln!(w, "$Elements")?;
+    let ne = k.n_cells();
+    writeln!(w, "{} {ne} {} {ne}", k.blocks().len(), ne.min(1))?;
+    let mut line = String::with_capacity(128);
+    for (bi, b) in k.blocks().iter().enumerate() {
+        let t = gmsh_type(b.kind).unwrap_or(0);
+        writeln!(w, "{} {} {t} {}", b.kind.dim(), bi + 1, b.len())?;
+        for i in 0..b.len() {
+            use std::fmt::Write as _;
+            line.clear();
+            let _ = write!(line, "{}", b.first as usize + i + 1);
+            let c = b.cell(i);
+            if b.kind == CellKind::Prism {
+                for &j in &PRISM_PERM {
+                    let _ = write!(line, " {}", c[j] + 1);
+                }
+            } else {
+                for v in c {
+                    let _ = write!(line, " {}", v + 1);
+                }
+            }
+            line.push('\n');
+            w.write_all(line.as_bytes())?;
+        }
+    }
+    writeln!(w, "$EndElements")?;
+    Ok(())
 }

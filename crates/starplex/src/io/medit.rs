@@ -1,27 +1,313 @@
-//! Reader and writer for this format (in progress).
+//! Medit `.mesh` (ascii, the format of INRIA's Medit/libMeshb, MMG, TetGen, meshio).
+//!
+//! ```text
+//! MeshVersionFormatted 2
+//! Dimension 3
+//! Vertices
+//! <n>
+//! x y z ref                 (n entries)
+//! Tetrahedra                (or Edges, Triangles, Quadrilaterals, Pyramids, Prisms, Hexahedra)
+//! <m>
+//! v_1 ... v_k ref           (m entries, 1-based vertex indices)
+//! End
+//! ```
+//!
+//! The format is free-form: words separated by any whitespace, `#` comments. Keywords are
+//! case-insensitive. References (`ref`) are read and ignored; the writer writes 0. Sections whose
+//! layout is known but that carry no cells (`Corners`, `Ridges`, `Required*`, `Normals`,
+//! `Tangents`, `NormalAt*`, `TangentAt*`) are skipped with a note; any other keyword is an error
+//! naming it.
+//!
+//! Vertex order: Medit's element numbering is VTK's for every kind read here (tetrahedra, pyramids
+//! with base 1-2-3-4 and apex 5, prisms with triangles 1-2-3 / 4-5-6 where 1-2-3 is oriented
+//! outward, hexahedra 1-2-3-4 / 5-6-7-8), as in MMG's prism face table and SALOME's Medit driver;
+//! cells are kept as written. (meshio writes its prisms, which follow gmsh's orientation, to
+//! Medit unchanged, so prisms in meshio-written files come out mirrored.)
+//!
+//! ```
+//! use starplex::io::{medit, ReadOptions};
+//! let text = "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n\
+//!             Tetrahedra\n1\n1 2 3 4 7\nEnd\n";
+//! let r = medit::read_from(text.as_bytes(), "mem.mesh".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(r.complex.n_cells(), 1);
+//! assert_eq!(r.complex.cells().next().unwrap().vertices, &[0, 1, 2, 3]);
+//! let mut out = Vec::new();
+//! medit::write(&mut out, &r.complex).unwrap();
+//! let back = medit::read_from(&out[..], "mem.mesh".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(back.complex, r.complex);
+//! ```
+use std::io::{BufRead, Write};
 use std::path::Path;
 
-use super::{IoError, IoErrorKind, ReadOptions, ReadResult};
-use crate::complex::IndexedComplex;
+use super::text::write_f64;
+use super::words::Words;
+use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::cell::CellKind;
+use crate::complex::{check_cell, BuildReport, ComplexBuilder, IndexedComplex};
 
-/// Reads a file of this format.
+/// The Medit keyword of each cell kind the format holds.
+const CELL_KEYWORDS: [(&str, CellKind); 7] = [
+    ("Edges", CellKind::Simplex(1)),
+    ("Triangles", CellKind::Simplex(2)),
+    ("Quadrilaterals", CellKind::Quad),
+    ("Tetrahedra", CellKind::Simplex(3)),
+    ("Pyramids", CellKind::Pyramid),
+    ("Prisms", CellKind::Prism),
+    ("Hexahedra", CellKind::Hex),
+];
+
+/// Sections without cells whose layout is known: `(keyword, integers per entry, reals per entry
+/// per coordinate)`.
+const SKIPPABLE: [(&str, usize, usize); 13] = [
+    ("Corners", 1, 0),
+    ("Ridges", 1, 0),
+    ("RequiredVertices", 1, 0),
+    ("RequiredEdges", 1, 0),
+    ("RequiredTriangles", 1, 0),
+    ("RequiredQuadrilaterals", 1, 0),
+    ("Normals", 0, 1),
+    ("Tangents", 0, 1),
+    ("NormalAtVertices", 2, 0),
+    ("TangentAtVertices", 2, 0),
+    ("NormalAtTriangleVertices", 3, 0),
+    ("NormalAtQuadrilateralVertices", 3, 0),
+    ("TangentAtEdgeVertices", 3, 0),
+];
+
+/// Reads a `.mesh` file.
 ///
 /// # Errors
-/// Not implemented yet.
-pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
-    Err(IoError::parse(
-        path,
-        None,
-        "this format is not supported yet",
-    ))
+/// See [`read_from`].
+pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let f = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+    read_from(std::io::BufReader::with_capacity(1 << 20, f), path, opts)
 }
 
-/// Writes this format.
+fn count_at(w: &mut Words<'_, impl BufRead>, what: &str) -> Result<usize, IoError> {
+    let n = w.u64(what)?;
+    if n >= u32::MAX as u64 {
+        return Err(w.err(format!(
+            "{what} {n} exceeds the 32-bit id limit of starplex"
+        )));
+    }
+    Ok(n as usize)
+}
+
+/// Reads Medit text from any buffered reader; `path` names it in errors.
 ///
 /// # Errors
-/// Not implemented yet.
-pub fn write(_w: &mut dyn std::io::Write, _k: &IndexedComplex) -> Result<(), IoErrorKind> {
-    Err(IoErrorKind::Parse(
-        "this format is not supported yet".into(),
-    ))
+/// A missing `MeshVersionFormatted` header, a `Dimension` other than 2 or 3, malformed or
+/// non-finite numbers, out-of-range or repeated vertex indices, unknown keywords, a file that ends
+/// before a section is complete or before `End`, and the checks of
+/// [`ComplexBuilder::build`](crate::complex::ComplexBuilder::build) under `opts.build`; each with
+/// the line.
+pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let mut w = Words::new(r, path, Some(b'#'));
+    {
+        let first = w.expect("'MeshVersionFormatted'")?;
+        if !first.eq_ignore_ascii_case(b"MeshVersionFormatted") {
+            let shown = String::from_utf8_lossy(&first[..first.len().min(40)]).into_owned();
+            return Err(w.err(format!(
+                "not a Medit file: expected 'MeshVersionFormatted', found '{shown}'"
+            )));
+        }
+        let v = w.u64("the format version")?;
+        if !(1..=4).contains(&v) {
+            return Err(w.err(format!(
+                "unsupported MeshVersionFormatted {v} (expected 1 to 4)"
+            )));
+        }
+    }
+    let mut dim: Option<usize> = None;
+    let mut builder: Option<ComplexBuilder> = None;
+    let mut nv = 0usize;
+    let mut notes = Vec::new();
+    let mut verts: Vec<u32> = Vec::with_capacity(8);
+    let mut p = [0.0f64; 3];
+    let mut n_cells: u64 = 0;
+    loop {
+        let Some(kw) = w.next_word()? else {
+            return Err(w.err_at(
+                w.line(),
+                "unexpected end of file: expected a keyword or 'End' (the file is truncated)",
+            ));
+        };
+        let kw = String::from_utf8_lossy(&kw[..kw.len().min(60)]).into_owned();
+        let kw_line = w.line();
+        let lower = kw.to_ascii_lowercase();
+        if lower == "end" {
+            break;
+        }
+        if lower == "dimension" {
+            let d = w.u64("the dimension")?;
+            if d != 2 && d != 3 {
+                return Err(w.err(format!("Dimension {d} is not supported (expected 2 or 3)")));
+            }
+            match dim {
+                Some(old) if old != d as usize => {
+                    return Err(w.err(format!(
+                        "Dimension {d} contradicts the earlier Dimension {old}"
+                    )))
+                }
+                _ => dim = Some(d as usize),
+            }
+            continue;
+        }
+        if lower == "vertices" {
+            let Some(d) = dim else {
+                return Err(w.err_at(kw_line, "'Vertices' before 'Dimension'"));
+            };
+            if builder.is_some() {
+                return Err(w.err_at(kw_line, "a second 'Vertices' section"));
+            }
+            let n = count_at(&mut w, "the vertex count")?;
+            let mut b = ComplexBuilder::new(d).map_err(|e| IoError::new(path, e))?;
+            for _ in 0..n {
+                for x in p[..d].iter_mut() {
+                    *x = w.f64("a vertex coordinate")?;
+                }
+                w.i64("the vertex reference")?;
+                b.push_vertex(&p[..d])
+                    .map_err(|e| IoError::new(path, e).at(Location::Line(w.line())))?;
+            }
+            nv = n;
+            builder = Some(b);
+            continue;
+        }
+        if let Some(&(name, kind)) = CELL_KEYWORDS
+            .iter()
+            .find(|(name, _)| name.eq_ignore_ascii_case(&kw))
+        {
+            let Some(b) = builder.as_mut() else {
+                return Err(w.err_at(kw_line, format!("'{name}' before 'Vertices'")));
+            };
+            let n = count_at(&mut w, &format!("the number of {name}"))?;
+            let k = kind.n_vertices();
+            for _ in 0..n {
+                verts.clear();
+                for _ in 0..k {
+                    verts.push(w.index("vertex index", 1, nv)?);
+                }
+                let line = w.line();
+                w.i64("the element reference")?;
+                check_cell(n_cells, &verts, nv)
+                    .map_err(|e| IoError::new(path, e).at(Location::Line(line)))?;
+                b.push_cell(kind, &verts)
+                    .map_err(|e| IoError::new(path, e).at(Location::Line(line)))?;
+                n_cells += 1;
+            }
+            continue;
+        }
+        if let Some(&(name, ints, reals)) = SKIPPABLE
+            .iter()
+            .find(|(name, _, _)| name.eq_ignore_ascii_case(&kw))
+        {
+            let n = w.u64(&format!("the number of {name}"))?;
+            let per = ints + reals * dim.unwrap_or(3);
+            for _ in 0..n {
+                for _ in 0..per {
+                    w.f64("a value")?;
+                }
+            }
+            notes.push(format!("skipped the Medit section '{name}' ({n} entries)"));
+            continue;
+        }
+        return Err(w.err_at(
+            kw_line,
+            format!(
+                "unknown Medit keyword '{kw}' (its layout is not known, so it cannot be skipped)"
+            ),
+        ));
+    }
+    let Some(b) = builder else {
+        return Err(w.err("the file has no 'Vertices' section"));
+    };
+    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    push_build_notes(&mut notes, &report);
+    Ok(ReadResult {
+        complex,
+        format: Format::Medit,
+        notes,
+    })
+}
+
+pub(crate) fn push_build_notes(notes: &mut Vec<String>, report: &BuildReport) {
+    if report.dropped_duplicates > 0 {
+        notes.push(format!(
+            "dropped {} duplicate cells",
+            report.dropped_duplicates
+        ));
+    }
+    if report.dropped_face_cells > 0 {
+        notes.push(format!(
+            "dropped {} cells that are faces of other cells",
+            report.dropped_face_cells
+        ));
+    }
+}
+
+/// Writes `k` as Medit `.mesh` (version 2, references 0).
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] for an ambient dimension other than 2 or 3, vertex cells (0-simplex
+/// top cells) or simplices of dimension 4 and more; OS errors of the writer.
+pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let d = k.ambient_dim();
+    if d != 2 && d != 3 {
+        return Err(IoErrorKind::CannotWrite {
+            format: Format::Medit,
+            reason: format!("Medit holds 2 or 3 coordinates per vertex, the complex has {d}"),
+        });
+    }
+    for b in k.blocks() {
+        if !CELL_KEYWORDS.iter().any(|(_, kind)| *kind == b.kind) {
+            return Err(IoErrorKind::CannotWrite {
+                format: Format::Medit,
+                reason: format!(
+                    "Medit has no element for {} cells (it holds edges, triangles, quads, tets, pyramids, prisms and hexahedra)",
+                    b.kind
+                ),
+            });
+        }
+    }
+    writeln!(w, "MeshVersionFormatted 2")?;
+    writeln!(w, "# written by starplex {}", env!("CARGO_PKG_VERSION"))?;
+    writeln!(w, "Dimension {d}")?;
+    writeln!(w, "Vertices")?;
+    writeln!(w, "{}", k.n_vertices())?;
+    for p in k.coords().chunks_exact(d) {
+        for &x in p {
+            write_f64(w, x)?;
+            w.write_all(b" ")?;
+        }
+        w.write_all(b"0\n")?;
+    }
+    // Medit groups cells by keyword: write each kind's cells in id order.
+    let mut line = String::with_capacity(128);
+    for (name, kind) in CELL_KEYWORDS {
+        let n: usize = k
+            .blocks()
+            .iter()
+            .filter(|b| b.kind == kind)
+            .map(|b| b.len())
+            .sum();
+        if n == 0 {
+            continue;
+        }
+        writeln!(w, "{name}")?;
+        writeln!(w, "{n}")?;
+        for b in k.blocks().iter().filter(|b| b.kind == kind) {
+            for i in 0..b.len() {
+                use std::fmt::Write as _;
+                line.clear();
+                for v in b.cell(i) {
+                    let _ = write!(line, "{} ", v + 1);
+                }
+                line.push_str("0\n");
+                w.write_all(line.as_bytes())?;
+            }
+        }
+    }
+    writeln!(w, "End")?;
+    Ok(())
 }

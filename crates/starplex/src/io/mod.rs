@@ -38,6 +38,7 @@ pub mod stellar_ref;
 pub mod stl;
 pub mod text;
 pub mod vtk;
+pub mod words;
 
 /// A file format starplex reads or writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

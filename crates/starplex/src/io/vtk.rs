@@ -1,27 +1,611 @@
-//! Reader and writer for this format (in progress).
+//! Legacy VTK `.vtk`, `DATASET UNSTRUCTURED_GRID`, ascii.
+//!
+//! Read: the classic layout (`CELLS n size` followed by `k v_0 .. v_{k-1}` per cell) and the
+//! layout of version 5.x (`CELLS n_offsets n_connectivity`, `OFFSETS type`, `CONNECTIVITY type`),
+//! with cell types 1 (vertex: dropped with a note, the point stays), 3 (line), 5 (triangle),
+//! 9 (quad), 10 (tetra), 12 (hexahedron), 13 (wedge) and 14 (pyramid); any other type is an
+//! error naming it. `POINT_DATA`, `CELL_DATA`, `FIELD` and `METADATA` blocks are skipped. VTK's
+//! vertex order is starplex's, so cells are kept as written. Points always have 3 coordinates,
+//! so the complex read has ambient dimension 3.
+//!
+//! Write: `# vtk DataFile Version 4.2`, classic layout (read by every VTK version, ParaView and
+//! meshio); points of ambient dimension 1 or 2 are padded with zeros.
+//!
+//! ```
+//! use starplex::io::{vtk, ReadOptions};
+//! let text = "# vtk DataFile Version 4.2\ntwo triangles\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+//!             POINTS 4 double\n0 0 0 1 0 0 0 1 0 1 1 0\nCELLS 2 8\n3 0 1 2\n3 1 3 2\n\
+//!             CELL_TYPES 2\n5\n5\n";
+//! let r = vtk::read_from(text.as_bytes(), "mem.vtk".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(r.complex.n_cells(), 2);
+//! let mut out = Vec::new();
+//! vtk::write(&mut out, &r.complex).unwrap();
+//! let back = vtk::read_from(&out[..], "mem.vtk".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(back.complex, r.complex);
+//! ```
+use std::io::{BufRead, Write};
 use std::path::Path;
 
-use super::{IoError, IoErrorKind, ReadOptions, ReadResult};
-use crate::complex::IndexedComplex;
+use super::medit::push_build_notes;
+use super::text::write_f64;
+use super::words::Words;
+use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::cell::CellKind;
+use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
 
-/// Reads a file of this format.
-///
-/// # Errors
-/// Not implemented yet.
-pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
-    Err(IoError::parse(
-        path,
-        None,
-        "this format is not supported yet",
-    ))
+/// The VTK cell type of a kind (`None` for kinds legacy VTK has no linear cell for).
+pub fn vtk_type(kind: CellKind) -> Option<u8> {
+    Some(match kind {
+        CellKind::Simplex(0) => 1,
+        CellKind::Simplex(1) => 3,
+        CellKind::Simplex(2) => 5,
+        CellKind::Simplex(3) => 10,
+        CellKind::Quad => 9,
+        CellKind::Hex => 12,
+        CellKind::Prism => 13,
+        CellKind::Pyramid => 14,
+        CellKind::Simplex(_) => return None,
+    })
 }
 
-/// Writes this format.
+/// The kind of a VTK cell type starplex reads (`Simplex(0)` for VTK_VERTEX).
+pub fn kind_of_vtk_type(t: u64) -> Option<CellKind> {
+    Some(match t {
+        1 => CellKind::Simplex(0),
+        3 => CellKind::Simplex(1),
+        5 => CellKind::Simplex(2),
+        9 => CellKind::Quad,
+        10 => CellKind::Simplex(3),
+        12 => CellKind::Hex,
+        13 => CellKind::Prism,
+        14 => CellKind::Pyramid,
+        _ => return None,
+    })
+}
+
+fn vtk_type_name(t: u64) -> &'static str {
+    match t {
+        1 => "vertex",
+        2 => "poly_vertex",
+        3 => "line",
+        4 => "poly_line",
+        5 => "triangle",
+        6 => "triangle_strip",
+        7 => "polygon",
+        8 => "pixel",
+        9 => "quad",
+        10 => "tetra",
+        11 => "voxel",
+        12 => "hexahedron",
+        13 => "wedge",
+        14 => "pyramid",
+        15 => "pentagonal_prism",
+        16 => "hexagonal_prism",
+        21..=37 => "a quadratic or higher-order cell",
+        42 => "polyhedron",
+        _ => "an unknown type",
+    }
+}
+
+/// Reads a `.vtk` file.
 ///
 /// # Errors
-/// Not implemented yet.
-pub fn write(_w: &mut dyn std::io::Write, _k: &IndexedComplex) -> Result<(), IoErrorKind> {
-    Err(IoErrorKind::Parse(
-        "this format is not supported yet".into(),
-    ))
+/// See [`read_from`].
+pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let f = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+    read_from(std::io::BufReader::with_capacity(1 << 20, f), path, opts)
+}
+
+fn lossy(w: &[u8]) -> String {
+    String::from_utf8_lossy(&w[..w.len().min(60)]).into_owned()
+}
+
+fn count(w: &mut Words<'_, impl BufRead>, what: &str) -> Result<usize, IoError> {
+    let n = w.u64(what)?;
+    if n >= u32::MAX as u64 {
+        return Err(w.err(format!(
+            "{what} {n} exceeds the 32-bit id limit of starplex"
+        )));
+    }
+    Ok(n as usize)
+}
+
+/// Skips `n` words (data values of a skipped block), failing at the end of the file.
+fn skip_values(w: &mut Words<'_, impl BufRead>, n: u64, what: &str) -> Result<(), IoError> {
+    for _ in 0..n {
+        w.expect(what)?;
+    }
+    Ok(())
+}
+
+/// Skips a `METADATA` block if one comes next (it ends at an empty line).
+fn skip_metadata(w: &mut Words<'_, impl BufRead>) -> Result<(), IoError> {
+    match w.next_word()? {
+        Some(k) if k.eq_ignore_ascii_case(b"METADATA") => {
+            w.rest_of_line()?;
+            loop {
+                let l = w.rest_of_line()?;
+                if l.iter().all(|b| b.is_ascii_whitespace()) {
+                    return Ok(());
+                }
+            }
+        }
+        Some(_) => {
+            w.unread();
+            Ok(())
+        }
+        None => {
+            w.unread();
+            Ok(())
+        }
+    }
+}
+
+/// Skips a `FIELD name n_arrays` block (the `FIELD` word already read).
+fn skip_field(w: &mut Words<'_, impl BufRead>) -> Result<(), IoError> {
+    w.expect("the field name")?;
+    let arrays = w.u64("the number of field arrays")?;
+    for _ in 0..arrays {
+        w.expect("a field array name")?;
+        let comps = w.u64("the number of components")?;
+        let tuples = w.u64("the number of tuples")?;
+        w.expect("the data type")?;
+        let n = comps
+            .checked_mul(tuples)
+            .ok_or_else(|| w.err(format!("field array size {comps} x {tuples} overflows")))?;
+        skip_values(w, n, "a field value")?;
+        skip_metadata(w)?;
+    }
+    Ok(())
+}
+
+/// Skips the attributes of a `POINT_DATA n` / `CELL_DATA n` section up to the next section
+/// keyword (left unread) or the end of the file.
+fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoError> {
+    let n3 = n.saturating_mul(3);
+    while let Some(word) = w.next_word()?.map(|t| t.to_vec()) {
+        let kw = word.to_ascii_uppercase();
+        let values = match kw.as_slice() {
+            b"POINT_DATA" | b"CELL_DATA" | b"POINTS" | b"CELLS" | b"CELL_TYPES" => {
+                w.unread();
+                return Ok(());
+            }
+            b"SCALARS" => {
+                w.expect("the scalars' name")?;
+                w.expect("the scalars' type")?;
+                // optional component count, then optional LOOKUP_TABLE name
+                let mut comps = 1;
+                match w.next_word()?.map(|t| t.to_vec()) {
+                    Some(t) if t.eq_ignore_ascii_case(b"LOOKUP_TABLE") => {
+                        w.expect("the lookup table name")?;
+                    }
+                    Some(t) => {
+                        comps = super::text::parse_u64(&t).ok_or_else(|| {
+                            w.err(format!(
+                                "expected the number of components or LOOKUP_TABLE, found '{}'",
+                                lossy(&t)
+                            ))
+                        })?;
+                        match w.next_word()? {
+                            Some(t) if t.eq_ignore_ascii_case(b"LOOKUP_TABLE") => {
+                                w.expect("the lookup table name")?;
+                            }
+                            _ => w.unread(),
+                        }
+                    }
+                    None => w.unread(),
+                }
+                n.saturating_mul(comps)
+            }
+            b"VECTORS" | b"NORMALS" => {
+                w.expect("the array name")?;
+                w.expect("the array type")?;
+                n3
+            }
+            b"TENSORS" | b"TENSORS9" => {
+                w.expect("the array name")?;
+                w.expect("the array type")?;
+                n.saturating_mul(9)
+            }
+            b"TENSORS6" => {
+                w.expect("the array name")?;
+                w.expect("the array type")?;
+                n.saturating_mul(6)
+            }
+            b"TEXTURE_COORDINATES" => {
+                w.expect("the array name")?;
+                let d = w.u64("the texture dimension")?;
+                w.expect("the array type")?;
+                n.saturating_mul(d)
+            }
+            b"COLOR_SCALARS" => {
+                w.expect("the array name")?;
+                let c = w.u64("the number of color values")?;
+                n.saturating_mul(c)
+            }
+            b"LOOKUP_TABLE" => {
+                w.expect("the lookup table name")?;
+                let s = w.u64("the lookup table size")?;
+                s.saturating_mul(4)
+            }
+            b"GLOBAL_IDS" | b"PEDIGREE_IDS" => {
+                w.expect("the array name")?;
+                w.expect("the array type")?;
+                n
+            }
+            b"FIELD" => {
+                skip_field(w)?;
+                continue;
+            }
+            b"METADATA" => {
+                w.unread();
+                skip_metadata(w)?;
+                continue;
+            }
+            _ => {
+                return Err(w.err(format!(
+                    "unknown keyword '{}' in a POINT_DATA/CELL_DATA section",
+                    lossy(&word)
+                )))
+            }
+        };
+        skip_values(w, values, "a data value")?;
+        skip_metadata(w)?;
+    }
+    Ok(())
+}
+
+/// Reads legacy VTK text from any buffered reader; `path` names it in errors.
+///
+/// # Errors
+/// A missing or malformed header, a binary file, a dataset other than `UNSTRUCTURED_GRID`,
+/// malformed or non-finite numbers, counts that do not match the data, unsupported cell types,
+/// vertex counts that do not fit the cell type, out-of-range or repeated vertex indices, and the
+/// checks of [`ComplexBuilder::build`](crate::complex::ComplexBuilder::build) under
+/// `opts.build`; each with the line.
+pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let mut w = Words::new(r, path, None);
+    let head = w.rest_of_line()?;
+    let head_s = String::from_utf8_lossy(&head).into_owned();
+    let lower = head_s.to_ascii_lowercase();
+    let Some(ver) = lower.trim().strip_prefix("# vtk datafile version") else {
+        return Err(w.err_at(
+            1,
+            format!(
+                "not a legacy VTK file: the first line is '{}', expected '# vtk DataFile Version x.y'",
+                head_s.chars().take(60).collect::<String>()
+            ),
+        ));
+    };
+    let major: u32 = ver
+        .trim()
+        .split('.')
+        .next()
+        .and_then(|s| s.parse().ok())
+        .ok_or_else(|| w.err_at(1, format!("unreadable VTK version '{}'", ver.trim())))?;
+    w.rest_of_line()?; // title
+    let enc = w.expect("ASCII or BINARY")?.to_vec();
+    if enc.eq_ignore_ascii_case(b"BINARY") {
+        return Err(w.err("binary legacy .vtk is not supported; re-save as ascii"));
+    }
+    if !enc.eq_ignore_ascii_case(b"ASCII") {
+        return Err(w.err(format!("expected ASCII or BINARY, found '{}'", lossy(&enc))));
+    }
+    w.keyword("DATASET")?;
+    let ds = w.expect("the dataset type")?.to_vec();
+    if !ds.eq_ignore_ascii_case(b"UNSTRUCTURED_GRID") {
+        return Err(w.err(format!(
+            "dataset type '{}' is not supported (starplex reads UNSTRUCTURED_GRID)",
+            lossy(&ds)
+        )));
+    }
+
+    let mut builder: Option<ComplexBuilder> = None;
+    let mut nv = 0usize;
+    // Cells: vertex lists flat, with the end of each cell, and the line of each cell's first index.
+    let mut conn: Vec<u32> = Vec::new();
+    let mut ends: Vec<u64> = Vec::new();
+    let mut cells_line = 0u64;
+    let mut have_cells = false;
+    let mut types: Option<Vec<CellKind>> = None;
+    let mut notes = Vec::new();
+    while let Some(word) = w.next_word()?.map(|t| t.to_vec()) {
+        let kw = word.to_ascii_uppercase();
+        match kw.as_slice() {
+            b"POINTS" => {
+                if builder.is_some() {
+                    return Err(w.err("a second POINTS section"));
+                }
+                let n = count(&mut w, "the point count")?;
+                w.expect("the point data type")?;
+                let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
+                let mut p = [0.0f64; 3];
+                for _ in 0..n {
+                    for x in p.iter_mut() {
+                        *x = w.f64("a point coordinate")?;
+                    }
+                    b.push_vertex(&p)
+                        .map_err(|e| IoError::new(path, e).at(Location::Line(w.line())))?;
+                }
+                skip_metadata(&mut w)?;
+                nv = n;
+                builder = Some(b);
+            }
+            b"CELLS" => {
+                if builder.is_none() {
+                    return Err(w.err("CELLS before POINTS"));
+                }
+                if have_cells {
+                    return Err(w.err("a second CELLS section"));
+                }
+                have_cells = true;
+                cells_line = w.line();
+                let a = w.u64("the cell count")?;
+                let size = w.u64("the cell list size")?;
+                let next = w.expect("the cells")?;
+                if next.eq_ignore_ascii_case(b"OFFSETS") {
+                    read_offsets_layout(&mut w, a, size, nv, &mut conn, &mut ends)?;
+                } else {
+                    w.unread();
+                    if major >= 5 {
+                        return Err(w.err(format!(
+                            "this file says VTK version {major}, whose CELLS section starts with OFFSETS"
+                        )));
+                    }
+                    read_classic_layout(&mut w, a, size, nv, &mut conn, &mut ends)?;
+                }
+            }
+            b"CELL_TYPES" => {
+                if types.is_some() {
+                    return Err(w.err("a second CELL_TYPES section"));
+                }
+                let n = w.u64("the cell type count")?;
+                if !have_cells {
+                    return Err(w.err("CELL_TYPES before CELLS"));
+                }
+                if n != ends.len() as u64 {
+                    return Err(w.err(format!(
+                        "CELL_TYPES counts {n} cells but CELLS has {}",
+                        ends.len()
+                    )));
+                }
+                let mut kinds = Vec::new();
+                let mut start = 0u64;
+                for (i, &end) in ends.iter().enumerate() {
+                    let ty = w.u64("a cell type")?;
+                    let Some(kind) = kind_of_vtk_type(ty) else {
+                        return Err(w.err(format!(
+                            "cell {i}: VTK cell type {ty} ({}) is not supported (starplex reads types 1, 3, 5, 9, 10, 12, 13, 14)",
+                            vtk_type_name(ty)
+                        )));
+                    };
+                    if end - start != kind.n_vertices() as u64 {
+                        return Err(w.err(format!(
+                            "cell {i}: VTK cell type {ty} ({}) needs {} points, the cell lists {}",
+                            vtk_type_name(ty),
+                            kind.n_vertices(),
+                            end - start
+                        )));
+                    }
+                    start = end;
+                    kinds.push(kind);
+                }
+                types = Some(kinds);
+            }
+            b"POINT_DATA" | b"CELL_DATA" => {
+                let n = w.u64("the data count")?;
+                skip_attributes(&mut w, n)?;
+            }
+            b"FIELD" => skip_field(&mut w)?,
+            b"METADATA" => {
+                w.unread();
+                skip_metadata(&mut w)?;
+            }
+            _ => {
+                return Err(w.err(format!(
+                    "unknown keyword '{}' in an UNSTRUCTURED_GRID dataset",
+                    lossy(&word)
+                )))
+            }
+        }
+    }
+    let Some(mut b) = builder else {
+        return Err(w.err("the file has no POINTS section"));
+    };
+    if have_cells && types.is_none() {
+        return Err(w.err_at(
+            cells_line,
+            "the file has CELLS but no CELL_TYPES section (it is truncated)",
+        ));
+    }
+    let mut n_vertex_cells = 0usize;
+    if let Some(kinds) = types {
+        let mut start = 0usize;
+        for (&kind, &end) in kinds.iter().zip(ends.iter()) {
+            let end = end as usize;
+            let verts = &conn[start..end];
+            start = end;
+            if kind == CellKind::Simplex(0) {
+                n_vertex_cells += 1;
+                continue;
+            }
+            b.push_cell(kind, verts)
+                .map_err(|e| IoError::new(path, e))?;
+        }
+    }
+    if n_vertex_cells > 0 {
+        notes.push(format!(
+            "dropped {n_vertex_cells} VTK vertex cells (type 1); their points stay as vertices"
+        ));
+    }
+    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    push_build_notes(&mut notes, &report);
+    Ok(ReadResult {
+        complex,
+        format: Format::Vtk,
+        notes,
+    })
+}
+
+/// Reads the classic `CELLS n size` body: `n` lines `k v_0 .. v_{k-1}`, `size = n + sum k`.
+fn read_classic_layout(
+    w: &mut Words<'_, impl BufRead>,
+    n: u64,
+    size: u64,
+    nv: usize,
+    conn: &mut Vec<u32>,
+    ends: &mut Vec<u64>,
+) -> Result<(), IoError> {
+    if n >= u32::MAX as u64 {
+        return Err(w.err(format!(
+            "cell count {n} exceeds the 32-bit id limit of starplex"
+        )));
+    }
+    let mut used: u64 = 0;
+    for i in 0..n {
+        let k = w.u64("a cell's point count")?;
+        if k == 0 || k > 64 {
+            return Err(w.err(format!(
+                "cell {i} lists {k} points (a supported cell has 2 to 8, a vertex 1)"
+            )));
+        }
+        let line = w.line();
+        let start = conn.len();
+        for _ in 0..k {
+            conn.push(w.index("point index", 0, nv)?);
+        }
+        check_cell(i, &conn[start..], nv)
+            .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line)))?;
+        used += k + 1;
+        ends.push(conn.len() as u64);
+    }
+    if used != size {
+        return Err(w.err(format!(
+            "CELLS says the cell list has {size} numbers, the {n} cells hold {used}"
+        )));
+    }
+    Ok(())
+}
+
+/// Reads the version-5 body: `OFFSETS type` with `n_off` offsets, then `CONNECTIVITY type` with
+/// `n_conn` point indices (the word `OFFSETS` already read).
+fn read_offsets_layout(
+    w: &mut Words<'_, impl BufRead>,
+    n_off: u64,
+    n_conn: u64,
+    nv: usize,
+    conn: &mut Vec<u32>,
+    ends: &mut Vec<u64>,
+) -> Result<(), IoError> {
+    if n_off == 0 {
+        return Err(w.err("CELLS declares 0 offsets (there must be cells + 1)"));
+    }
+    if n_off >= u32::MAX as u64 {
+        return Err(w.err(format!(
+            "cell count {n_off} exceeds the 32-bit id limit of starplex"
+        )));
+    }
+    w.expect("the offsets' data type")?;
+    let mut prev = w.u64("an offset")?;
+    if prev != 0 {
+        return Err(w.err(format!("the first offset is {prev}, expected 0")));
+    }
+    let mut lines = Vec::new();
+    for i in 1..n_off {
+        let o = w.u64("an offset")?;
+        if o < prev || o - prev > 64 {
+            return Err(w.err(format!(
+                "offset {i} is {o} after {prev}: a cell has 1 to 64 points"
+            )));
+        }
+        if o > n_conn {
+            return Err(w.err(format!(
+                "offset {o} is past the {n_conn} connectivity entries CELLS declares"
+            )));
+        }
+        prev = o;
+        ends.push(o);
+        lines.push(w.line());
+    }
+    if prev != n_conn {
+        return Err(w.err(format!(
+            "the last offset is {prev} but CELLS declares {n_conn} connectivity entries"
+        )));
+    }
+    w.keyword("CONNECTIVITY")?;
+    w.expect("the connectivity's data type")?;
+    let mut start = 0usize;
+    for (i, &end) in ends.iter().enumerate() {
+        let line = w.line();
+        while (conn.len() as u64) < end {
+            conn.push(w.index("point index", 0, nv)?);
+        }
+        check_cell(i as u64, &conn[start..], nv)
+            .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line.max(lines[i]))))?;
+        start = conn.len();
+    }
+    Ok(())
+}
+
+/// Writes `k` as legacy VTK (version 4.2, ascii, classic layout).
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] for an ambient dimension above 3 or simplices of dimension 4 and
+/// more; OS errors of the writer.
+pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let d = k.ambient_dim();
+    if d > 3 {
+        return Err(IoErrorKind::CannotWrite {
+            format: Format::Vtk,
+            reason: format!("VTK points have 3 coordinates, the complex has {d}"),
+        });
+    }
+    for b in k.blocks() {
+        if vtk_type(b.kind).is_none() {
+            return Err(IoErrorKind::CannotWrite {
+                format: Format::Vtk,
+                reason: format!("VTK has no cell type for {} cells", b.kind),
+            });
+        }
+    }
+    writeln!(w, "# vtk DataFile Version 4.2")?;
+    writeln!(w, "written by starplex {}", env!("CARGO_PKG_VERSION"))?;
+    writeln!(w, "ASCII")?;
+    writeln!(w, "DATASET UNSTRUCTURED_GRID")?;
+    writeln!(w, "POINTS {} double", k.n_vertices())?;
+    for p in k.coords().chunks_exact(d) {
+        for (i, &x) in p.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b" ")?;
+            }
+            write_f64(w, x)?;
+        }
+        for _ in d..3 {
+            w.write_all(b" 0")?;
+        }
+        w.write_all(b"\n")?;
+    }
+    writeln!(w, "CELLS {} {}", k.n_cells(), k.n_cells() + k.n_refs())?;
+    let mut line = String::with_capacity(128);
+    for b in k.blocks() {
+        let n = b.kind.n_vertices();
+        for i in 0..b.len() {
+            use std::fmt::Write as _;
+            line.clear();
+            let _ = write!(line, "{n}");
+            for v in b.cell(i) {
+                let _ = write!(line, " {v}");
+            }
+            line.push('\n');
+            w.write_all(line.as_bytes())?;
+        }
+    }
+    writeln!(w, "CELL_TYPES {}", k.n_cells())?;
+    for b in k.blocks() {
+        let t = vtk_type(b.kind).unwrap_or(0);
+        for _ in 0..b.len() {
+            writeln!(w, "{t}")?;
+        }
+    }
+    Ok(())
 }
