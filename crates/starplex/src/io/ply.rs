@@ -237,6 +237,18 @@ fn ply_err(path: &Path, e: ParseError, fallback: Location) -> IoError {
         Some((head, rest)) if head.starts_with("Line ") => rest.to_string(),
         _ => msg,
     };
+    // Drop the grammar's debug dump ("Error: ParseError { location: LineCol { line: 1, column:
+    // 10, ... }, expected: ... }"), keeping the column.
+    let msg = match msg.find("Error: ParseError") {
+        Some(i) => {
+            let col = msg[i..]
+                .split_once("column: ")
+                .and_then(|(_, r)| r.split(|c: char| !c.is_ascii_digit()).next())
+                .unwrap_or("?");
+            format!("{} (column {col})", msg[..i].trim_end())
+        }
+        None => msg,
+    };
     IoError::parse(path, Some(loc), msg.replace(['\n', '\t'], " "))
 }
 
