@@ -7,6 +7,8 @@ use clap::{Parser, Subcommand};
 
 mod cmd_convert;
 mod cmd_info;
+mod cmd_stellar;
+mod cmd_validate;
 mod common;
 
 /// Topology of meshes and complexes.
@@ -26,6 +28,11 @@ enum Command {
     Info(cmd_info::InfoArgs),
     /// Convert between formats (by extension, or --format / --to).
     Convert(cmd_convert::ConvertArgs),
+    /// Build a Stellar tree: statistics and build-phase timings (optionally save it).
+    Stellar(cmd_stellar::StellarArgs),
+    /// Topological validation: components, purity, pseudo-manifoldness, boundary,
+    /// non-manifold vertices and edges, orientability.
+    Validate(cmd_validate::ValidateArgs),
     /// The main job on the bundled sample (what `cargo run --release` does without arguments).
     Demo {
         /// A file to use instead of the bundled sample.
@@ -41,6 +48,8 @@ fn main() -> ExitCode {
         Some(Command::Demo { file }) => common::demo(&ctx, file),
         Some(Command::Info(a)) => cmd_info::run(&ctx, &a),
         Some(Command::Convert(a)) => cmd_convert::run(&ctx, &a),
+        Some(Command::Stellar(a)) => cmd_stellar::run(&ctx, &a),
+        Some(Command::Validate(a)) => cmd_validate::run(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

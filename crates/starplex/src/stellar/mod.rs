@@ -1,1 +1,368 @@
 //! The Stellar tree: a compressed spatial index over a complex, processed leaf by leaf.
+//!
+//! Built from an [`IndexedComplex`] with a bucketing threshold k_V: a nested spatial
+//! decomposition of the vertices (2^n regular split for ambient dimension <= 3, kD bisection
+//! cycling the axes above), vertices reindexed so each leaf owns a contiguous range, top cells
+//! reindexed by the tuple of leaves they touch, and every leaf's list of top cells compressed
+//! with Sequential Range Encoding ([`sre`]). Every query answers in the input's numbering.
+//!
+//! ```
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! use starplex::ids::{VertexId, CellId};
+//! use starplex::stellar::{StellarTree, StellarOptions};
+//! use starplex::topo::VertexStar;
+//! let mut b = ComplexBuilder::new(2).unwrap();
+//! for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+//! b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+//! b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+//! assert_eq!(t.n_leaves(), 4);
+//! let mut cells = Vec::new();
+//! t.vertex_top_cells(VertexId(1), &mut cells);
+//! assert_eq!(cells, vec![CellId(0), CellId(1)]);
+//! ```
+use crate::cell::CellKind;
+use crate::complex::IndexedComplex;
+use crate::ids::{CellId, LeafId, NodeId, VertexId};
+
+mod build;
+pub mod relations;
+mod save;
+pub mod sre;
+pub mod stats;
+pub mod validate;
+pub mod visit;
+
+pub use relations::FaceList;
+pub use stats::StellarStats;
+pub use validate::{Manifoldness, ValidationReport};
+pub use visit::{ExpandedLeaf, LeafCache, LeafView};
+
+/// How blocks are split.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SplitMode {
+    /// Regular 2^n split for ambient dimension <= 3, kD bisection above.
+    #[default]
+    Auto,
+    /// Regular 2^n split (quadtree, octree); only allowed up to ambient dimension 8.
+    Regular,
+    /// Bisection at the block's midpoint, cycling the axes (kD tree).
+    Kd,
+}
+
+/// Options of [`StellarTree::build`].
+///
+/// ```
+/// let o = starplex::stellar::StellarOptions::default();
+/// assert_eq!(o.kv, None);
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct StellarOptions {
+    /// Bucketing threshold: at most this many vertices per leaf (except at the depth limit).
+    /// `Some(0)` makes a single leaf; `None` picks [`default_kv`].
+    pub kv: Option<u32>,
+    /// Split rule.
+    pub split: SplitMode,
+    /// Deepest level of the tree (`None`: 64 for regular splits, 64 x ambient dimension, at
+    /// most 2048, for kD bisection). Leaves at this depth may hold more than k_V vertices
+    /// (coincident points).
+    pub max_depth: Option<u32>,
+}
+
+/// The default bucketing threshold for a complex: 100 for dimension <= 2 (the paper's k_S for
+/// triangles and quads), 400 above.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// let k = ComplexBuilder::new(3).unwrap().build(&BuildOptions::default()).unwrap().0;
+/// assert_eq!(starplex::stellar::default_kv(&k), 100);
+/// ```
+pub fn default_kv(k: &IndexedComplex) -> u32 {
+    match k.dim() {
+        Some(d) if d >= 3 => 400,
+        _ => 100,
+    }
+}
+
+/// Why a Stellar tree could not be built or queried.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum StellarError {
+    /// More top cells than the SRE encoding addresses.
+    #[error("{0} top cells: the Stellar tree's compressed lists address at most 2^31 - 1")]
+    TooManyCells(u64),
+    /// Regular split asked in too high a dimension.
+    #[error("a regular 2^n split in ambient dimension {0} would make {1} children per node; use the kD split")]
+    RegularTooWide(usize, u128),
+    /// An operation whose output would be too large.
+    #[error("{what}: about {estimate} items, over the budget of {budget}")]
+    TooLarge {
+        /// What was asked.
+        what: String,
+        /// Estimated size.
+        estimate: u128,
+        /// The budget.
+        budget: u128,
+    },
+    /// A vertex id out of range.
+    #[error("vertex {0} out of range ({1} vertices)")]
+    NoSuchVertex(u32, usize),
+    /// A bad or truncated tree file.
+    #[error("stellar tree file {path}: {reason}")]
+    File {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// A node of the hierarchy. Children of a node are contiguous (brood encoding); a leaf has
+/// `n_children == 0` and `first` is its [`LeafId`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
+pub struct Node {
+    /// First vertex (tree numbering) of the block.
+    pub v_start: u32,
+    /// One past the last vertex of the block.
+    pub v_end: u32,
+    /// First child node, or the leaf id for a leaf.
+    pub first: u32,
+    /// Number of children (0 for a leaf).
+    pub n_children: u32,
+}
+
+/// Seconds spent in each build phase.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BuildTimings {
+    /// Spatial decomposition of the vertices.
+    pub decomposition_s: f64,
+    /// Vertex permutation.
+    pub vertex_reindex_s: f64,
+    /// Top-cell reindexing by region tuples and the reindexed cell array.
+    pub cell_reindex_s: f64,
+    /// SRE-compressed leaf cell lists.
+    pub leaf_lists_s: f64,
+}
+
+/// Kind code of a cell in the flat store.
+pub(crate) fn kind_code(k: CellKind) -> u8 {
+    match k {
+        CellKind::Simplex(d) => d,
+        CellKind::Quad => 65,
+        CellKind::Pyramid => 66,
+        CellKind::Prism => 67,
+        CellKind::Hex => 68,
+    }
+}
+
+pub(crate) fn code_kind(c: u8) -> CellKind {
+    match c {
+        65 => CellKind::Quad,
+        66 => CellKind::Pyramid,
+        67 => CellKind::Prism,
+        68 => CellKind::Hex,
+        d => CellKind::Simplex(d),
+    }
+}
+
+/// Top cells in tree numbering: one uniform kind with a fixed stride, or per-cell kinds and
+/// offsets.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct CellStore {
+    /// Kind code when every cell has the same kind, else 255.
+    pub uniform: u8,
+    /// Vertex count of the uniform kind.
+    pub stride: u32,
+    /// Per-cell kind codes (mixed only).
+    pub kinds: Vec<u8>,
+    /// Per-cell offsets into `verts`, n+1 entries (mixed only).
+    pub offsets: Vec<u32>,
+    /// Vertex ids (tree numbering).
+    pub verts: Vec<u32>,
+    /// Number of cells.
+    pub n: u32,
+}
+
+impl CellStore {
+    #[inline]
+    pub fn get(&self, i: u32) -> (CellKind, &[u32]) {
+        if self.uniform != 255 {
+            let s = self.stride as usize;
+            let i = i as usize;
+            (code_kind(self.uniform), &self.verts[i * s..(i + 1) * s])
+        } else {
+            let (a, b) = (
+                self.offsets[i as usize] as usize,
+                self.offsets[i as usize + 1] as usize,
+            );
+            (code_kind(self.kinds[i as usize]), &self.verts[a..b])
+        }
+    }
+    #[inline]
+    pub fn verts(&self, i: u32) -> &[u32] {
+        self.get(i).1
+    }
+    pub fn bytes(&self) -> usize {
+        self.kinds.len() + 4 * (self.offsets.len() + self.verts.len())
+    }
+}
+
+/// A Stellar tree over a complex. See the [module docs](self).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StellarTree {
+    pub(crate) ambient_dim: u32,
+    pub(crate) kv: u32,
+    pub(crate) split: SplitMode,
+    pub(crate) bbox: (Vec<f64>, Vec<f64>),
+    pub(crate) nodes: Vec<Node>,
+    /// `leaf_vstart[l]..leaf_vstart[l+1]` are the vertices of leaf `l` (tree numbering).
+    pub(crate) leaf_vstart: Vec<u32>,
+    /// `leaf_toff[l]..leaf_toff[l+1]` is leaf `l`'s SRE list in `leaf_tops`.
+    pub(crate) leaf_toff: Vec<u32>,
+    pub(crate) leaf_tops: Vec<u32>,
+    pub(crate) cells: CellStore,
+    /// Tree vertex id -> input vertex id.
+    pub(crate) v_orig: Vec<u32>,
+    /// Input vertex id -> tree vertex id.
+    pub(crate) v_new: Vec<u32>,
+    /// Tree cell id -> input cell id.
+    pub(crate) c_orig: Vec<u32>,
+    /// Input cell id -> tree cell id.
+    pub(crate) c_new: Vec<u32>,
+    pub(crate) timings: BuildTimings,
+}
+
+impl StellarTree {
+    /// Builds the tree.
+    ///
+    /// # Errors
+    /// More than 2^31 - 1 top cells; a regular split asked above ambient dimension 8.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::stellar::{StellarTree, StellarOptions};
+    /// let mut b = ComplexBuilder::new(1).unwrap();
+    /// for x in 0..10 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// for x in 0..9 { b.push_cell(CellKind::Simplex(1), &[x, x + 1]).unwrap(); }
+    /// let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(3), ..Default::default() }).unwrap();
+    /// assert!(t.n_leaves() >= 4);
+    /// assert_eq!(t.n_top_cells(), 9);
+    /// ```
+    pub fn build(k: &IndexedComplex, opts: &StellarOptions) -> Result<StellarTree, StellarError> {
+        build::build(k, opts)
+    }
+
+    /// Number of vertices.
+    pub fn n_vertices(&self) -> usize {
+        self.v_orig.len()
+    }
+    /// Number of top cells.
+    pub fn n_top_cells(&self) -> usize {
+        self.c_orig.len()
+    }
+    /// Number of nodes (internal + leaves).
+    pub fn n_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+    /// Number of leaves.
+    pub fn n_leaves(&self) -> usize {
+        self.leaf_vstart.len().saturating_sub(1)
+    }
+    /// The bucketing threshold used.
+    pub fn kv(&self) -> u32 {
+        self.kv
+    }
+    /// The split rule used (`Regular` or `Kd`).
+    pub fn split(&self) -> SplitMode {
+        self.split
+    }
+    /// Ambient dimension.
+    pub fn ambient_dim(&self) -> usize {
+        self.ambient_dim as usize
+    }
+    /// The root block `(lo, hi)`.
+    pub fn bbox(&self) -> (&[f64], &[f64]) {
+        (&self.bbox.0, &self.bbox.1)
+    }
+    /// The nodes, root first.
+    pub fn nodes(&self) -> &[Node] {
+        &self.nodes
+    }
+    /// One node.
+    pub fn node(&self, n: NodeId) -> Node {
+        self.nodes[n.index()]
+    }
+    /// Time of each build phase.
+    pub fn timings(&self) -> &BuildTimings {
+        &self.timings
+    }
+    /// Largest top-cell dimension (`None` without cells).
+    pub fn dim(&self) -> Option<usize> {
+        if self.cells.uniform != 255 {
+            return (self.cells.n > 0).then(|| code_kind(self.cells.uniform).dim());
+        }
+        self.cells.kinds.iter().map(|&c| code_kind(c).dim()).max()
+    }
+    /// Permutation tree vertex id -> input vertex id.
+    pub fn vertex_to_input(&self) -> &[u32] {
+        &self.v_orig
+    }
+    /// Permutation input vertex id -> tree vertex id.
+    pub fn vertex_from_input(&self) -> &[u32] {
+        &self.v_new
+    }
+    /// Permutation tree cell id -> input cell id.
+    pub fn cell_to_input(&self) -> &[u32] {
+        &self.c_orig
+    }
+    /// Permutation input cell id -> tree cell id.
+    pub fn cell_from_input(&self) -> &[u32] {
+        &self.c_new
+    }
+    /// Tree vertex range of a leaf.
+    pub fn leaf_vertices(&self, l: LeafId) -> std::ops::Range<u32> {
+        self.leaf_vstart[l.index()]..self.leaf_vstart[l.index() + 1]
+    }
+    /// The SRE-encoded top-cell list of a leaf (tree cell ids).
+    pub fn leaf_encoded_cells(&self, l: LeafId) -> &[u32] {
+        &self.leaf_tops[self.leaf_toff[l.index()] as usize..self.leaf_toff[l.index() + 1] as usize]
+    }
+    /// The leaf holding a vertex given in tree numbering.
+    pub fn leaf_of_tree_vertex(&self, v: u32) -> LeafId {
+        // last l with leaf_vstart[l] <= v
+        let l = self.leaf_vstart.partition_point(|&s| s <= v) - 1;
+        LeafId(l as u32)
+    }
+    /// The leaf holding an input vertex.
+    ///
+    /// # Errors
+    /// The vertex does not exist.
+    pub fn leaf_of_vertex(&self, v: VertexId) -> Result<LeafId, StellarError> {
+        let tv = self.tree_vertex(v)?;
+        Ok(self.leaf_of_tree_vertex(tv))
+    }
+    pub(crate) fn tree_vertex(&self, v: VertexId) -> Result<u32, StellarError> {
+        self.v_new
+            .get(v.index())
+            .copied()
+            .ok_or(StellarError::NoSuchVertex(v.0, self.v_new.len()))
+    }
+    /// Kind and vertices (tree numbering) of a cell given in tree numbering.
+    pub fn tree_cell(&self, c: u32) -> (CellKind, &[u32]) {
+        self.cells.get(c)
+    }
+    /// Kind and vertices (input numbering, the kind's vertex order) of an input cell.
+    pub fn input_cell(&self, c: CellId) -> (CellKind, Vec<VertexId>) {
+        let (k, v) = self.cells.get(self.c_new[c.index()]);
+        (
+            k,
+            v.iter()
+                .map(|&w| VertexId(self.v_orig[w as usize]))
+                .collect(),
+        )
+    }
+}

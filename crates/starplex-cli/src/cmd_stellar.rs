@@ -1,0 +1,213 @@
+//! `starplex stellar FILE [--kv N] [--threads T] [--save OUT] [--json]`: build a Stellar tree,
+//! print its statistics and the time of each build phase.
+use std::path::PathBuf;
+use std::time::Instant;
+
+use serde_json::{json, Value};
+use starplex::stellar::{SplitMode, StellarOptions, StellarStats, StellarTree};
+
+use crate::common::{self, CliError, Ctx, InputArgs};
+
+#[derive(clap::Args, Debug)]
+pub struct StellarArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+    /// Bucketing threshold: most vertices per leaf (0 = a single leaf; default 100 for
+    /// surfaces, 400 for volumes and above).
+    #[arg(long)]
+    pub kv: Option<u32>,
+    /// Split rule: auto (2^n regular up to 3 ambient dimensions, kD above), regular, kd.
+    #[arg(long, default_value = "auto")]
+    pub split: String,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Save the tree to this file (binary, memory-mappable).
+    #[arg(long)]
+    pub save: Option<PathBuf>,
+    /// Also time the batched queries (VT, p-faces, validation) after the build.
+    #[arg(long)]
+    pub bench: bool,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn split_mode(s: &str) -> Result<SplitMode, CliError> {
+    match s {
+        "auto" => Ok(SplitMode::Auto),
+        "regular" => Ok(SplitMode::Regular),
+        "kd" => Ok(SplitMode::Kd),
+        _ => Err(CliError::Input(
+            format!("unknown split rule '{s}'"),
+            Some("use auto, regular or kd".into()),
+        )),
+    }
+}
+
+/// Runs `f` on a pool of `threads` threads (or the global pool).
+pub fn with_threads<T: Send>(
+    threads: Option<usize>,
+    f: impl FnOnce() -> T + Send,
+) -> Result<T, CliError> {
+    match threads {
+        None => Ok(f()),
+        Some(0) => Err(CliError::Input("--threads must be at least 1".into(), None)),
+        Some(t) => {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .map_err(|e| CliError::Other(e.to_string()))?;
+            Ok(pool.install(f))
+        }
+    }
+}
+
+pub fn build_tree(
+    ctx: &Ctx,
+    k: &starplex::complex::IndexedComplex,
+    kv: Option<u32>,
+    split: &str,
+) -> Result<StellarTree, CliError> {
+    let opts = StellarOptions {
+        kv,
+        split: split_mode(split)?,
+        ..Default::default()
+    };
+    common::with_spinner(ctx, "building the Stellar tree", || {
+        StellarTree::build(k, &opts)
+    })
+    .map_err(|e| CliError::Input(e.to_string(), None))
+}
+
+pub fn stats_json(s: &StellarStats) -> Value {
+    let enc =
+        |e: &starplex::stellar::stats::EncodingStorage| json!({"refs": e.refs, "bytes": e.bytes});
+    json!({
+        "n_nodes": s.n_nodes,
+        "n_leaves": s.n_leaves,
+        "kv": s.kv,
+        "n_vertices": s.n_vertices,
+        "n_top_cells": s.n_top_cells,
+        "max_depth": s.max_depth,
+        "chi": s.chi,
+        "mu": s.mu,
+        "leaf_max_vertices": s.leaf_max_vertices,
+        "leaf_mean_vertices": s.leaf_mean_vertices,
+        "leaf_max_cells": s.leaf_max_cells,
+        "leaf_mean_cells": s.leaf_mean_cells,
+        "storage": {
+            "base_complex": {"refs": s.storage.base_refs, "bytes": s.storage.base_bytes},
+            "explicit": enc(&s.storage.explicit),
+            "vertex_compressed": enc(&s.storage.vertex_compressed),
+            "compressed": enc(&s.storage.compressed),
+            "in_memory_bytes": s.storage.in_memory_bytes,
+        },
+    })
+}
+
+pub fn print_stats(s: &StellarStats) {
+    let mb = |b: u64| b as f64 / 1e6;
+    println!(
+        "  tree                {} nodes, {} leaves, depth {}, k_V {}",
+        s.n_nodes, s.n_leaves, s.max_depth, s.kv
+    );
+    println!(
+        "  leaves              vertices max {} mean {:.1}; top cells max {} mean {:.1}",
+        s.leaf_max_vertices, s.leaf_mean_vertices, s.leaf_max_cells, s.leaf_mean_cells
+    );
+    println!("  chi / mu            {:.3} / {:.3}", s.chi, s.mu);
+    let st = &s.storage;
+    println!(
+        "  storage (MB)        base complex {:.2}; explicit {:.2}, vertex-compressed {:.2}, compressed {:.2} (in memory {:.2})",
+        mb(st.base_bytes),
+        mb(st.explicit.bytes),
+        mb(st.vertex_compressed.bytes),
+        mb(st.compressed.bytes),
+        mb(st.in_memory_bytes)
+    );
+}
+
+pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
+    let t0 = Instant::now();
+    let r = common::load(ctx, &a.input)?;
+    let read_s = t0.elapsed().as_secs_f64();
+    let k = r.complex;
+    let (t, build_s) = with_threads(a.threads, || {
+        let t1 = Instant::now();
+        let t = build_tree(ctx, &k, a.kv, &a.split);
+        (t, t1.elapsed().as_secs_f64())
+    })?;
+    let t = t?;
+    let s = t.stats();
+    let bt = t.timings();
+    let mut timings = json!({
+        "read_s": read_s,
+        "build_s": build_s,
+        "decomposition_s": bt.decomposition_s,
+        "vertex_reindex_s": bt.vertex_reindex_s,
+        "cell_reindex_s": bt.cell_reindex_s,
+        "leaf_lists_s": bt.leaf_lists_s,
+    });
+    if a.bench {
+        let (vt_s, faces_s, validate_s) = with_threads(a.threads, || {
+            let t1 = Instant::now();
+            let sum = std::sync::atomic::AtomicU64::new(0);
+            t.par_for_each_vt(|_, cells| {
+                sum.fetch_add(cells.len() as u64, std::sync::atomic::Ordering::Relaxed);
+            });
+            let vt_s = t1.elapsed().as_secs_f64();
+            let t2 = Instant::now();
+            let d = t.dim().unwrap_or(0);
+            let mut faces = Vec::new();
+            for p in 1..d {
+                faces.push(t.count_p_faces(p).ok());
+            }
+            let faces_s = t2.elapsed().as_secs_f64();
+            let t3 = Instant::now();
+            let _ = t.validate();
+            (vt_s, faces_s, t3.elapsed().as_secs_f64())
+        })?;
+        timings["vt_all_s"] = json!(vt_s);
+        timings["p_faces_s"] = json!(faces_s);
+        timings["validate_s"] = json!(validate_s);
+    }
+    if let Some(out) = &a.save {
+        let t1 = Instant::now();
+        t.save(out).map_err(|e| CliError::Other(e.to_string()))?;
+        timings["save_s"] = json!(t1.elapsed().as_secs_f64());
+    }
+    if a.json {
+        let mut v = stats_json(&s);
+        v["split"] = json!(format!("{:?}", t.split()).to_lowercase());
+        v["timings"] = timings;
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(|e| CliError::Other(e.to_string()))?
+        );
+    } else {
+        println!("{}", a.input.file.display());
+        print_stats(&s);
+        let per = |x: f64| 1e6 * x / (k.n_cells().max(1) as f64);
+        println!(
+            "  build               {:.3} s ({:.3} us per top cell): decomposition {:.3}, vertex reindex {:.3}, cell reindex {:.3}, leaf lists {:.3}",
+            build_s,
+            per(build_s),
+            bt.decomposition_s,
+            bt.vertex_reindex_s,
+            bt.cell_reindex_s,
+            bt.leaf_lists_s
+        );
+        for key in ["vt_all_s", "p_faces_s", "validate_s", "save_s"] {
+            if let Some(x) = timings[key].as_f64() {
+                println!(
+                    "  {:<19} {:.3} s ({:.3} us per top cell)",
+                    key.trim_end_matches("_s"),
+                    x,
+                    per(x)
+                );
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,523 @@
+//! Building a Stellar tree: decomposition, vertex reindexing, top-cell reindexing by region
+//! tuples, SRE-compressed leaf lists. The result does not depend on the number of threads.
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::sre::{self, RUN_FLAG};
+use super::{
+    default_kv, kind_code, BuildTimings, CellStore, Node, SplitMode, StellarError, StellarOptions,
+    StellarTree,
+};
+use crate::complex::IndexedComplex;
+
+/// A subtree while splitting.
+enum T {
+    Leaf(u32, u32),
+    Inner(u32, u32, Vec<T>),
+}
+
+impl T {
+    fn range(&self) -> (u32, u32) {
+        match self {
+            T::Leaf(a, b) | T::Inner(a, b, _) => (*a, *b),
+        }
+    }
+}
+
+struct Ctx<'a> {
+    coords: &'a [f64],
+    n: usize,
+    kv: usize,
+    regular: bool,
+    max_depth: u32,
+}
+
+const PAR_MIN: usize = 32_768;
+
+pub(super) fn build(
+    k: &IndexedComplex,
+    opts: &StellarOptions,
+) -> Result<StellarTree, StellarError> {
+    let nv = k.n_vertices();
+    let nc = k.n_cells();
+    if nc as u64 >= RUN_FLAG as u64 {
+        return Err(StellarError::TooManyCells(nc as u64));
+    }
+    let n = k.ambient_dim();
+    let split = match opts.split {
+        SplitMode::Auto if n <= 3 => SplitMode::Regular,
+        SplitMode::Auto => SplitMode::Kd,
+        SplitMode::Regular if n > 8 => {
+            return Err(StellarError::RegularTooWide(n, 1u128 << n.min(127)))
+        }
+        s => s,
+    };
+    let kv = opts.kv.unwrap_or_else(|| default_kv(k));
+    let max_depth = opts.max_depth.unwrap_or(match split {
+        SplitMode::Regular => 64,
+        _ => (64 * n as u32).min(2048),
+    });
+    let coords = k.coords();
+    let mut timings = BuildTimings::default();
+
+    // ---- 1. decomposition
+    let t0 = Instant::now();
+    let mut lo = vec![f64::INFINITY; n];
+    let mut hi = vec![f64::NEG_INFINITY; n];
+    for p in coords.chunks_exact(n) {
+        for i in 0..n {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    if nv == 0 {
+        lo.iter_mut().for_each(|x| *x = 0.0);
+        hi.iter_mut().for_each(|x| *x = 0.0);
+    }
+    let mut idx: Vec<u32> = (0..nv as u32).collect();
+    let ctx = Ctx {
+        coords,
+        n,
+        kv: kv as usize,
+        regular: split == SplitMode::Regular,
+        max_depth,
+    };
+    let root = if kv == 0 || nv <= kv as usize {
+        T::Leaf(0, nv as u32)
+    } else {
+        split_rec(&ctx, &mut idx, 0, lo.clone(), hi.clone(), 0)
+    };
+    // flatten: leaves in DFS order, nodes in brood (BFS) order
+    let mut leaf_vstart: Vec<u32> = Vec::new();
+    collect_leaves(&root, &mut leaf_vstart);
+    leaf_vstart.push(nv as u32);
+    let mut nodes: Vec<Node> = Vec::new();
+    {
+        let (a, b) = root.range();
+        nodes.push(Node {
+            v_start: a,
+            v_end: b,
+            first: 0,
+            n_children: 0,
+        });
+        let mut queue: std::collections::VecDeque<(usize, &T)> = Default::default();
+        queue.push_back((0, &root));
+        while let Some((id, t)) = queue.pop_front() {
+            match t {
+                T::Leaf(a, _) => {
+                    let l = leaf_vstart.partition_point(|&s| s < *a);
+                    nodes[id].first = l as u32;
+                }
+                T::Inner(_, _, ch) => {
+                    nodes[id].first = nodes.len() as u32;
+                    nodes[id].n_children = ch.len() as u32;
+                    for c in ch {
+                        let (a, b) = c.range();
+                        queue.push_back((nodes.len(), c));
+                        nodes.push(Node {
+                            v_start: a,
+                            v_end: b,
+                            first: 0,
+                            n_children: 0,
+                        });
+                    }
+                }
+            }
+        }
+    }
+    drop(root);
+    let n_leaves = leaf_vstart.len() - 1;
+    timings.decomposition_s = t0.elapsed().as_secs_f64();
+
+    // ---- 2. vertex reindexing: sort each leaf's range by input id (deterministic, local)
+    let t1 = Instant::now();
+    {
+        let mut rest: &mut [u32] = &mut idx;
+        let mut parts: Vec<&mut [u32]> = Vec::with_capacity(n_leaves);
+        for l in 0..n_leaves {
+            let len = (leaf_vstart[l + 1] - leaf_vstart[l]) as usize;
+            let (a, b) = rest.split_at_mut(len);
+            parts.push(a);
+            rest = b;
+        }
+        parts.par_iter_mut().for_each(|p| p.sort_unstable());
+    }
+    let v_orig = idx;
+    let mut v_new = vec![0u32; nv];
+    for (new, &old) in v_orig.iter().enumerate() {
+        v_new[old as usize] = new as u32;
+    }
+    // leaf of each tree vertex (temporary)
+    let mut leaf_of = vec![0u32; nv];
+    leaf_of
+        .par_chunks_mut(65_536)
+        .enumerate()
+        .for_each(|(ci, ch)| {
+            let base = (ci * 65_536) as u32;
+            let mut l = leaf_vstart
+                .partition_point(|&s| s <= base)
+                .saturating_sub(1);
+            for (i, x) in ch.iter_mut().enumerate() {
+                let v = base + i as u32;
+                while leaf_vstart[l + 1] <= v {
+                    l += 1;
+                }
+                *x = l as u32;
+            }
+        });
+    timings.vertex_reindex_s = t1.elapsed().as_secs_f64();
+
+    // ---- 3. top-cell reindexing by region tuples
+    let t2 = Instant::now();
+    // gather input cells into a flat (kind, verts) view in input order, verts in tree numbering
+    let mixed = k.blocks().len() > 1 && k.blocks().iter().any(|b| b.kind != k.blocks()[0].kind);
+    let (in_kinds, in_off, in_verts) = {
+        let mut verts = vec![0u32; k.n_refs()];
+        let mut kinds: Vec<u8> = Vec::new();
+        let mut off: Vec<u32> = Vec::new();
+        if mixed {
+            kinds.reserve(nc);
+            off.reserve(nc + 1);
+            off.push(0);
+        }
+        let mut pos = 0usize;
+        for b in k.blocks() {
+            let src = &b.vertices[..];
+            let dst = &mut verts[pos..pos + src.len()];
+            dst.par_chunks_mut(65_536)
+                .zip(src.par_chunks(65_536))
+                .for_each(|(d, s)| {
+                    for (x, &y) in d.iter_mut().zip(s) {
+                        *x = v_new[y as usize];
+                    }
+                });
+            if mixed {
+                let m = b.kind.n_vertices() as u32;
+                for _ in 0..b.len() {
+                    kinds.push(kind_code(b.kind));
+                    let last = *off.last().unwrap_or(&0);
+                    off.push(last + m);
+                }
+            }
+            pos += src.len();
+        }
+        (kinds, off, verts)
+    };
+    let (uniform, stride) = if mixed || nc == 0 {
+        if nc == 0 {
+            (255u8, 0u32)
+        } else {
+            (255, 0)
+        }
+    } else {
+        let kind = k.blocks()[0].kind;
+        (kind_code(kind), kind.n_vertices() as u32)
+    };
+    let input = CellStore {
+        uniform,
+        stride,
+        kinds: in_kinds,
+        offsets: in_off,
+        verts: in_verts,
+        n: nc as u32,
+    };
+    if input.uniform == 255
+        && nc > 0
+        && input.offsets.last().copied().unwrap_or(0) as usize != k.n_refs()
+    {
+        return Err(StellarError::TooLarge {
+            what: "vertex references".into(),
+            estimate: k.n_refs() as u128,
+            budget: u32::MAX as u128,
+        });
+    }
+    // home leaf of every input cell = leaf of its smallest tree vertex
+    let home: Vec<u32> = (0..nc as u32)
+        .into_par_iter()
+        .with_min_len(4096)
+        .map(|c| {
+            let m = *input.verts(c).iter().min().expect("cells have vertices");
+            leaf_of[m as usize]
+        })
+        .collect();
+    let mut start = vec![0u32; n_leaves + 1];
+    for &h in &home {
+        start[h as usize + 1] += 1;
+    }
+    for l in 0..n_leaves {
+        start[l + 1] += start[l];
+    }
+    let mut order = vec![0u32; nc];
+    {
+        let mut pos = start.clone();
+        for (c, &h) in home.iter().enumerate() {
+            order[pos[h as usize] as usize] = c as u32;
+            pos[h as usize] += 1;
+        }
+    }
+    drop(home);
+    {
+        // within each home leaf: sort by (tuple of leaves, kind, input id)
+        let mut rest: &mut [u32] = &mut order;
+        let mut parts: Vec<&mut [u32]> = Vec::with_capacity(n_leaves);
+        for l in 0..n_leaves {
+            let len = (start[l + 1] - start[l]) as usize;
+            let (a, b) = rest.split_at_mut(len);
+            parts.push(a);
+            rest = b;
+        }
+        parts.par_iter_mut().for_each_init(
+            || (Vec::<u32>::new(), Vec::<(u32, u32, u32, u8)>::new()),
+            |(scratch, keyed), part| {
+                if part.len() < 2 {
+                    return;
+                }
+                scratch.clear();
+                keyed.clear();
+                for &c in part.iter() {
+                    let (kind, vs) = input.get(c);
+                    let s = scratch.len();
+                    scratch.extend(vs.iter().map(|&v| leaf_of[v as usize]));
+                    scratch[s..].sort_unstable();
+                    let mut w = s;
+                    for r in s..scratch.len() {
+                        if r == s || scratch[r] != scratch[w - 1] {
+                            scratch[w] = scratch[r];
+                            w += 1;
+                        }
+                    }
+                    scratch.truncate(w);
+                    keyed.push((c, s as u32, w as u32, kind_code(kind)));
+                }
+                keyed.sort_unstable_by(|a, b| {
+                    scratch[a.1 as usize..a.2 as usize]
+                        .cmp(&scratch[b.1 as usize..b.2 as usize])
+                        .then(a.3.cmp(&b.3))
+                        .then(a.0.cmp(&b.0))
+                });
+                for (dst, k) in part.iter_mut().zip(keyed.iter()) {
+                    *dst = k.0;
+                }
+            },
+        );
+    }
+    let c_orig = order;
+    let mut c_new = vec![0u32; nc];
+    for (new, &old) in c_orig.iter().enumerate() {
+        c_new[old as usize] = new as u32;
+    }
+    // reindexed cell store
+    let cells = if input.uniform != 255 {
+        let s = input.stride as usize;
+        let mut verts = vec![0u32; input.verts.len()];
+        verts
+            .par_chunks_mut(s * 4096)
+            .enumerate()
+            .for_each(|(ci, ch)| {
+                let base = ci * 4096;
+                for (i, dst) in ch.chunks_exact_mut(s).enumerate() {
+                    dst.copy_from_slice(input.verts(c_orig[base + i]));
+                }
+            });
+        CellStore { verts, ..input }
+    } else {
+        let mut kinds = Vec::with_capacity(nc);
+        let mut offsets = Vec::with_capacity(nc + 1);
+        let mut verts = Vec::with_capacity(input.verts.len());
+        offsets.push(0u32);
+        for &old in &c_orig {
+            let (kind, vs) = input.get(old);
+            kinds.push(kind_code(kind));
+            verts.extend_from_slice(vs);
+            offsets.push(verts.len() as u32);
+        }
+        CellStore {
+            uniform: 255,
+            stride: 0,
+            kinds,
+            offsets,
+            verts,
+            n: nc as u32,
+        }
+    };
+    timings.cell_reindex_s = t2.elapsed().as_secs_f64();
+
+    // ---- 4. SRE-compressed leaf lists: stream the cells in tree order (two passes)
+    let t3 = Instant::now();
+    let (leaf_toff, leaf_tops) = leaf_lists(&cells, &leaf_of, n_leaves);
+    timings.leaf_lists_s = t3.elapsed().as_secs_f64();
+
+    Ok(StellarTree {
+        ambient_dim: n as u32,
+        kv,
+        split,
+        bbox: (lo, hi),
+        nodes,
+        leaf_vstart,
+        leaf_toff,
+        leaf_tops,
+        cells,
+        v_orig,
+        v_new,
+        c_orig,
+        c_new,
+        timings,
+    })
+}
+
+/// Builds every leaf's SRE list from the cells in tree order.
+fn leaf_lists(cells: &CellStore, leaf_of: &[u32], n_leaves: usize) -> (Vec<u32>, Vec<u32>) {
+    const NONE: u32 = u32::MAX;
+    // per-leaf open run: (start, len)
+    let mut run_start = vec![NONE; n_leaves];
+    let mut run_len = vec![0u32; n_leaves];
+    let mut cost = vec![0u32; n_leaves + 1];
+    let mut buf: Vec<u32> = Vec::with_capacity(72);
+    let mut each_leaf = |c: u32, f: &mut dyn FnMut(u32)| {
+        buf.clear();
+        buf.extend(cells.verts(c).iter().map(|&v| leaf_of[v as usize]));
+        if buf.len() > 1 {
+            buf.sort_unstable();
+            buf.dedup();
+        }
+        for &l in buf.iter() {
+            f(l);
+        }
+    };
+    // pass 1: sizes
+    for c in 0..cells.n {
+        each_leaf(c, &mut |l| {
+            let l = l as usize;
+            if run_start[l] != NONE && run_start[l] + run_len[l] == c {
+                run_len[l] += 1;
+            } else {
+                if run_start[l] != NONE {
+                    cost[l + 1] += sre::run_cost(run_len[l]);
+                }
+                run_start[l] = c;
+                run_len[l] = 1;
+            }
+        });
+    }
+    for l in 0..n_leaves {
+        if run_start[l] != NONE {
+            cost[l + 1] += sre::run_cost(run_len[l]);
+        }
+        cost[l + 1] += cost[l];
+    }
+    let offsets = cost;
+    let mut out = vec![0u32; offsets[n_leaves] as usize];
+    let mut cursor: Vec<u32> = offsets[..n_leaves].to_vec();
+    run_start.iter_mut().for_each(|x| *x = NONE);
+    let mut tmp: Vec<u32> = Vec::with_capacity(4);
+    let mut flush = |l: usize, s: u32, len: u32, out: &mut Vec<u32>, cursor: &mut Vec<u32>| {
+        tmp.clear();
+        sre::push_run(s, len, &mut tmp);
+        let p = cursor[l] as usize;
+        out[p..p + tmp.len()].copy_from_slice(&tmp);
+        cursor[l] += tmp.len() as u32;
+    };
+    for c in 0..cells.n {
+        each_leaf(c, &mut |l| {
+            let l = l as usize;
+            if run_start[l] != NONE && run_start[l] + run_len[l] == c {
+                run_len[l] += 1;
+            } else {
+                if run_start[l] != NONE {
+                    flush(l, run_start[l], run_len[l], &mut out, &mut cursor);
+                }
+                run_start[l] = c;
+                run_len[l] = 1;
+            }
+        });
+    }
+    for l in 0..n_leaves {
+        if run_start[l] != NONE {
+            flush(l, run_start[l], run_len[l], &mut out, &mut cursor);
+        }
+    }
+    debug_assert!((0..n_leaves).all(|l| cursor[l] == offsets[l + 1]));
+    (offsets, out)
+}
+
+fn collect_leaves(t: &T, out: &mut Vec<u32>) {
+    match t {
+        T::Leaf(a, _) => out.push(*a),
+        T::Inner(_, _, ch) => ch.iter().for_each(|c| collect_leaves(c, out)),
+    }
+}
+
+/// True when all points of `idx` are equal.
+fn all_equal(ctx: &Ctx, idx: &[u32]) -> bool {
+    let n = ctx.n;
+    let p0 = &ctx.coords[idx[0] as usize * n..idx[0] as usize * n + n];
+    idx.iter()
+        .all(|&i| &ctx.coords[i as usize * n..i as usize * n + n] == p0)
+}
+
+/// Partitions `idx` in place: points with coordinate `axis` < `mid` first. Returns the split.
+fn partition(ctx: &Ctx, idx: &mut [u32], axis: usize, mid: f64) -> usize {
+    let n = ctx.n;
+    let c = ctx.coords;
+    let mut i = 0usize;
+    let mut j = idx.len();
+    while i < j {
+        if c[idx[i] as usize * n + axis] < mid {
+            i += 1;
+        } else {
+            j -= 1;
+            idx.swap(i, j);
+        }
+    }
+    i
+}
+
+fn split_rec(ctx: &Ctx, idx: &mut [u32], offset: u32, lo: Vec<f64>, hi: Vec<f64>, depth: u32) -> T {
+    let len = idx.len();
+    let end = offset + len as u32;
+    if len <= ctx.kv || depth >= ctx.max_depth || (depth % 16 == 15 && all_equal(ctx, idx)) {
+        return T::Leaf(offset, end);
+    }
+    // children: (slice, lo, hi)
+    let mut parts: Vec<(&mut [u32], Vec<f64>, Vec<f64>)> = vec![(idx, lo, hi)];
+    let axes: Vec<usize> = if ctx.regular {
+        (0..ctx.n).collect()
+    } else {
+        vec![depth as usize % ctx.n]
+    };
+    for &axis in &axes {
+        let mut next = Vec::with_capacity(parts.len() * 2);
+        for (s, l, h) in parts {
+            let mid = 0.5 * (l[axis] + h[axis]);
+            let m = partition(ctx, s, axis, mid);
+            let (a, b) = s.split_at_mut(m);
+            let mut h1 = h.clone();
+            h1[axis] = mid;
+            let mut l2 = l.clone();
+            l2[axis] = mid;
+            next.push((a, l, h1));
+            next.push((b, l2, h));
+        }
+        parts = next;
+    }
+    let mut jobs = Vec::with_capacity(parts.len());
+    let mut off = offset;
+    for (s, l, h) in parts {
+        let n = s.len() as u32;
+        if n > 0 {
+            jobs.push((s, off, l, h));
+        }
+        off += n;
+    }
+    let children: Vec<T> = if len >= PAR_MIN {
+        jobs.into_par_iter()
+            .map(|(s, o, l, h)| split_rec(ctx, s, o, l, h, depth + 1))
+            .collect()
+    } else {
+        jobs.into_iter()
+            .map(|(s, o, l, h)| split_rec(ctx, s, o, l, h, depth + 1))
+            .collect()
+    };
+    T::Inner(offset, end, children)
+}

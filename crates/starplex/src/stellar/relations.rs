@@ -1,0 +1,790 @@
+//! Relations extracted leaf by leaf, answered in the input's numbering: VT (R_{0,top}), VV,
+//! vertex links, boundary p-faces of every dimension (simplices and CP cells), and top-cell
+//! adjacency across (d-1)-faces; plus the [`topo`](crate::topo) traits.
+//!
+//! Every face is handled in exactly one leaf: the leaf owning its smallest vertex (tree
+//! numbering), which lists every top cell containing the face, so multiplicities are exact.
+//!
+//! ```
+//! # use starplex::complex::{ComplexBuilder, BuildOptions};
+//! # use starplex::cell::CellKind;
+//! use starplex::stellar::{StellarTree, StellarOptions};
+//! # let mut b = ComplexBuilder::new(2).unwrap();
+//! # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+//! # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+//! # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+//! # let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+//! assert_eq!(t.vt_all().row(1), &[0, 1]);
+//! assert_eq!(t.vv_all().row(0), &[1, 2]);
+//! let edges = t.p_faces(1).unwrap();
+//! assert_eq!(edges.len(), 5);
+//! assert_eq!(t.top_adjacency().row(0), &[1]);
+//! ```
+use rayon::prelude::*;
+use rustc_hash::FxHashSet;
+
+use super::{LeafView, StellarError, StellarTree};
+use crate::cell::CellKind;
+use crate::csr::Csr;
+use crate::ids::{CellId, LeafId, VertexId};
+use crate::topo::link::{LinkError, VertexLink};
+use crate::topo::naive::edge_neighbours;
+use crate::topo::{TopCells, VertexAdjacency, VertexStar};
+
+/// Default budget of (cell, face) pairs for face extraction.
+pub const FACE_BUDGET: u128 = 2_000_000_000;
+
+/// Faces of one dimension: vertex lists (input ids, sorted) and how many top cells contain
+/// each face.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FaceList {
+    /// Face `i` is `faces.row(i)`.
+    pub faces: Csr,
+    /// Number of top cells (of any dimension) that contain face `i`.
+    pub n_cofaces: Vec<u32>,
+}
+
+impl FaceList {
+    /// Number of faces.
+    pub fn len(&self) -> usize {
+        self.n_cofaces.len()
+    }
+    /// True without faces.
+    pub fn is_empty(&self) -> bool {
+        self.n_cofaces.is_empty()
+    }
+}
+
+/// Sorted face keys with payloads, grouped by key. Keys up to 4 vertices are packed in a
+/// `u128`; longer ones are sorted as slices.
+#[derive(Default)]
+pub(crate) struct FaceKeys {
+    w: usize,
+    flat: Vec<u32>,
+    payload: Vec<u32>,
+    small: Vec<(u128, u32)>,
+    order: Vec<u32>,
+    key: Vec<u32>,
+    pays: Vec<u32>,
+}
+
+const PAD: u32 = u32::MAX;
+
+impl FaceKeys {
+    pub fn clear(&mut self, w: usize) {
+        self.w = w;
+        self.flat.clear();
+        self.payload.clear();
+        self.small.clear();
+    }
+    /// Pushes a sorted key (at most `w` ids).
+    #[inline]
+    pub fn push(&mut self, key: &[u32], payload: u32) {
+        debug_assert!(key.len() <= self.w);
+        if self.w <= 4 {
+            let mut x: u128 = 0;
+            for i in 0..4 {
+                x = (x << 32) | key.get(i).copied().unwrap_or(PAD) as u128;
+            }
+            self.small.push((x, payload));
+        } else {
+            self.flat.extend_from_slice(key);
+            self.flat
+                .extend(std::iter::repeat_n(PAD, self.w - key.len()));
+            self.payload.push(payload);
+        }
+    }
+    /// Calls `f(key, payloads)` for every distinct key, in key order.
+    pub fn for_each_group(&mut self, mut f: impl FnMut(&[u32], &[u32])) {
+        if self.w <= 4 {
+            self.small.sort_unstable();
+            let mut i = 0;
+            while i < self.small.len() {
+                let k = self.small[i].0;
+                let mut j = i;
+                self.pays.clear();
+                while j < self.small.len() && self.small[j].0 == k {
+                    self.pays.push(self.small[j].1);
+                    j += 1;
+                }
+                self.key.clear();
+                for s in (0..4).rev() {
+                    let x = (k >> (32 * s)) as u32;
+                    if x != PAD {
+                        self.key.push(x);
+                    }
+                }
+                f(&self.key, &self.pays);
+                i = j;
+            }
+        } else {
+            let w = self.w;
+            let n = self.payload.len();
+            self.order.clear();
+            self.order.extend(0..n as u32);
+            let flat = &self.flat;
+            let payload = &self.payload;
+            self.order.sort_unstable_by(|&a, &b| {
+                flat[a as usize * w..a as usize * w + w]
+                    .cmp(&flat[b as usize * w..b as usize * w + w])
+                    .then(payload[a as usize].cmp(&payload[b as usize]))
+            });
+            let mut i = 0;
+            while i < n {
+                let a = self.order[i] as usize;
+                let ka = &flat[a * w..a * w + w];
+                let mut j = i;
+                self.pays.clear();
+                while j < n {
+                    let b = self.order[j] as usize;
+                    if &flat[b * w..b * w + w] != ka {
+                        break;
+                    }
+                    self.pays.push(payload[b]);
+                    j += 1;
+                }
+                self.key.clear();
+                self.key.extend(ka.iter().copied().filter(|&x| x != PAD));
+                f(&self.key, &self.pays);
+                i = j;
+            }
+        }
+    }
+}
+
+/// Largest number of vertices of a `p`-face of `kind`.
+pub(crate) fn face_width(kind: CellKind, p: usize) -> usize {
+    if kind.is_simplex() {
+        p + 1
+    } else {
+        kind.cp_faces(p)
+            .map_or(0, |t| t.iter().map(|f| f.len()).max().unwrap_or(0))
+    }
+}
+
+impl StellarTree {
+    /// Distinct kinds of the top cells.
+    pub(crate) fn kinds(&self) -> Vec<CellKind> {
+        if self.cells.uniform != 255 {
+            return if self.cells.n > 0 {
+                vec![super::code_kind(self.cells.uniform)]
+            } else {
+                vec![]
+            };
+        }
+        let mut seen = [false; 256];
+        for &c in &self.cells.kinds {
+            seen[c as usize] = true;
+        }
+        (0..=255u8)
+            .filter(|&c| seen[c as usize])
+            .map(super::code_kind)
+            .collect()
+    }
+
+    /// Rows of per-leaf results (rows of the leaf's vertices in tree order) reassembled into a
+    /// [`Csr`] keyed by input vertex.
+    fn gather_vertex_rows(&self, per_leaf: Vec<(Vec<u32>, Vec<u32>)>) -> Csr {
+        let nv = self.n_vertices();
+        let mut offsets = vec![0u32; nv + 1];
+        let mut tv = 0usize;
+        for (lens, _) in &per_leaf {
+            for &len in lens {
+                offsets[self.v_orig[tv] as usize + 1] = len;
+                tv += 1;
+            }
+        }
+        for i in 0..nv {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut targets = vec![0u32; offsets[nv] as usize];
+        let mut tv = 0usize;
+        for (lens, data) in &per_leaf {
+            let mut pos = 0usize;
+            for &len in lens {
+                let o = offsets[self.v_orig[tv] as usize] as usize;
+                let len = len as usize;
+                targets[o..o + len].copy_from_slice(&data[pos..pos + len]);
+                pos += len;
+                tv += 1;
+            }
+        }
+        Csr { offsets, targets }
+    }
+
+    /// Calls `f(v, cells)` for every vertex of the leaf, cells = VT(v) in input ids, sorted.
+    fn leaf_vt_rows(view: &LeafView<'_>, mut f: impl FnMut(u32, &[u32])) {
+        let mut row: Vec<u32> = Vec::with_capacity(64);
+        for v in view.tree_vertices() {
+            row.clear();
+            row.extend(
+                view.vt_tree(v)
+                    .iter()
+                    .map(|&c| view.tree.c_orig[c as usize]),
+            );
+            row.sort_unstable();
+            f(v, &row);
+        }
+    }
+
+    /// R_{0,top} of every vertex: row `v` (input id) holds the input ids of the top cells
+    /// incident to `v`, sorted. Computed leaf by leaf in parallel.
+    pub fn vt_all(&self) -> Csr {
+        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
+            let mut lens = Vec::with_capacity(view.tree_vertices().len());
+            let mut data = Vec::with_capacity(view.e.vt.len());
+            Self::leaf_vt_rows(view, |_, row| {
+                lens.push(row.len() as u32);
+                data.extend_from_slice(row);
+            });
+            (lens, data)
+        });
+        self.gather_vertex_rows(per_leaf)
+    }
+
+    /// Visits R_{0,top} of every vertex, leaf by leaf in parallel: `f(v, cells)` with input
+    /// ids, cells sorted. Nothing global is materialised.
+    pub fn par_for_each_vt(&self, f: impl Fn(VertexId, &[CellId]) + Sync + Send) {
+        self.par_map_leaves(|view| {
+            let mut row: Vec<CellId> = Vec::with_capacity(64);
+            for v in view.tree_vertices() {
+                row.clear();
+                row.extend(
+                    view.vt_tree(v)
+                        .iter()
+                        .map(|&c| CellId(view.tree.c_orig[c as usize])),
+                );
+                row.sort_unstable();
+                f(view.input_vertex(v), &row);
+            }
+        });
+    }
+
+    /// R_{0,0} of every vertex: row `v` holds the input ids of the vertices joined to `v` by an
+    /// edge (of a top cell's face table), sorted.
+    pub fn vv_all(&self) -> Csr {
+        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
+            let mut lens = Vec::new();
+            let mut data = Vec::new();
+            let mut row = Vec::new();
+            for v in view.tree_vertices() {
+                self.vv_row(view, v, &mut row);
+                lens.push(row.len() as u32);
+                data.extend_from_slice(&row);
+            }
+            (lens, data)
+        });
+        self.gather_vertex_rows(per_leaf)
+    }
+
+    fn vv_row(&self, view: &LeafView<'_>, v: u32, row: &mut Vec<u32>) {
+        row.clear();
+        for &c in view.vt_tree(v) {
+            let (kind, vs) = view.cell(c);
+            edge_neighbours(kind, vs, v, |w| row.push(self.v_orig[w as usize]));
+        }
+        row.sort_unstable();
+        row.dedup();
+    }
+
+    /// Groups input vertices by leaf and calls `f(view, tree vertex, position in vs)` with each
+    /// leaf expanded once.
+    fn for_given_vertices(
+        &self,
+        vs: &[VertexId],
+        mut f: impl FnMut(&LeafView<'_>, u32, usize),
+    ) -> Result<(), StellarError> {
+        let mut items: Vec<(u32, u32, usize)> = Vec::with_capacity(vs.len());
+        for (i, &v) in vs.iter().enumerate() {
+            let tv = self.tree_vertex(v)?;
+            items.push((self.leaf_of_tree_vertex(tv).0, tv, i));
+        }
+        items.sort_unstable();
+        let mut e = super::ExpandedLeaf::default();
+        let mut cur = u32::MAX;
+        for (l, tv, i) in items {
+            if l != cur {
+                self.expand_leaf_into(LeafId(l), &mut e);
+                cur = l;
+            }
+            f(&LeafView { tree: self, e: &e }, tv, i);
+        }
+        Ok(())
+    }
+
+    /// VT of the given input vertices (each leaf expanded once).
+    ///
+    /// # Errors
+    /// A vertex out of range.
+    pub fn vt_of(&self, vs: &[VertexId]) -> Result<Vec<Vec<CellId>>, StellarError> {
+        let mut out = vec![Vec::new(); vs.len()];
+        self.for_given_vertices(vs, |view, tv, i| {
+            let mut r: Vec<CellId> = view
+                .vt_tree(tv)
+                .iter()
+                .map(|&c| CellId(self.c_orig[c as usize]))
+                .collect();
+            r.sort_unstable();
+            out[i] = r;
+        })?;
+        Ok(out)
+    }
+
+    /// VV of the given input vertices.
+    ///
+    /// # Errors
+    /// A vertex out of range.
+    pub fn vv_of(&self, vs: &[VertexId]) -> Result<Vec<Vec<VertexId>>, StellarError> {
+        let mut out = vec![Vec::new(); vs.len()];
+        let mut row = Vec::new();
+        self.for_given_vertices(vs, |view, tv, i| {
+            self.vv_row(view, tv, &mut row);
+            out[i] = row.iter().map(|&w| VertexId(w)).collect();
+        })?;
+        Ok(out)
+    }
+
+    /// Links of the given input vertices (maximal simplices in input ids and f-vector), with a
+    /// budget of 50 million link faces per vertex.
+    ///
+    /// # Errors
+    /// A vertex out of range (the outer error); per vertex, a non-simplicial star or a link
+    /// over the budget.
+    pub fn links_of(
+        &self,
+        vs: &[VertexId],
+    ) -> Result<Vec<Result<VertexLink, LinkError>>, StellarError> {
+        let mut out: Vec<Option<Result<VertexLink, LinkError>>> = vec![None; vs.len()];
+        self.for_given_vertices(vs, |view, tv, i| {
+            out[i] = Some(self.link_in_leaf(view, tv, 50_000_000));
+        })?;
+        Ok(out
+            .into_iter()
+            .map(|x| x.expect("every vertex visited"))
+            .collect())
+    }
+
+    /// Link f-vectors of every vertex, leaf by leaf in parallel; entry `v` (input id) is the
+    /// f-vector or why it could not be computed.
+    pub fn link_f_vectors_all(&self, budget: u128) -> Vec<Result<Vec<u64>, LinkError>> {
+        let per_leaf: Vec<Vec<Result<Vec<u64>, LinkError>>> = self.par_map_leaves(|view| {
+            view.tree_vertices()
+                .map(|v| self.link_in_leaf(view, v, budget).map(|l| l.f_vector))
+                .collect()
+        });
+        let mut out: Vec<Option<Result<Vec<u64>, LinkError>>> = vec![None; self.n_vertices()];
+        let mut tv = 0usize;
+        for leaf in per_leaf {
+            for r in leaf {
+                out[self.v_orig[tv] as usize] = Some(r);
+                tv += 1;
+            }
+        }
+        out.into_iter().map(|x| x.expect("all vertices")).collect()
+    }
+
+    fn link_in_leaf(
+        &self,
+        view: &LeafView<'_>,
+        tv: u32,
+        budget: u128,
+    ) -> Result<VertexLink, LinkError> {
+        let vin = self.v_orig[tv as usize];
+        let mut maximal: Vec<Vec<u32>> = Vec::new();
+        let mut estimate: u128 = 0;
+        for &c in view.vt_tree(tv) {
+            let (kind, vs) = view.cell(c);
+            if !kind.is_simplex() {
+                return Err(LinkError::NotSimplicial(vin));
+            }
+            let mut m: Vec<u32> = vs
+                .iter()
+                .filter(|&&w| w != tv)
+                .map(|&w| self.v_orig[w as usize])
+                .collect();
+            m.sort_unstable();
+            estimate = estimate.saturating_add((1u128 << m.len().min(127)) - 1);
+            maximal.push(m);
+        }
+        if estimate > budget {
+            return Err(LinkError::TooLarge {
+                vertex: vin,
+                estimate,
+                budget,
+            });
+        }
+        maximal.sort();
+        maximal.dedup();
+        let dim = maximal.iter().map(|m| m.len()).max().unwrap_or(0);
+        let mut f_vector = vec![0u64; dim];
+        let mut seen: FxHashSet<Vec<u32>> = FxHashSet::default();
+        for m in &maximal {
+            let n = m.len();
+            for mask in 1u64..(1u64 << n) {
+                let face: Vec<u32> = (0..n)
+                    .filter(|i| mask >> i & 1 == 1)
+                    .map(|i| m[i])
+                    .collect();
+                let k = face.len() - 1;
+                if seen.insert(face) {
+                    f_vector[k] += 1;
+                }
+            }
+        }
+        Ok(VertexLink {
+            maximal_simplices: maximal,
+            f_vector,
+        })
+    }
+
+    /// Upper bound of (cell, p-face) pairs visited by [`p_faces`](Self::p_faces).
+    pub fn face_visits(&self, p: usize) -> u128 {
+        if self.cells.uniform != 255 {
+            return super::code_kind(self.cells.uniform)
+                .n_faces(p)
+                .saturating_mul(self.cells.n as u128);
+        }
+        self.cells
+            .kinds
+            .iter()
+            .map(|&c| super::code_kind(c).n_faces(p))
+            .fold(0u128, |a, x| a.saturating_add(x))
+    }
+
+    fn check_budget(&self, p: usize, budget: u128) -> Result<(), StellarError> {
+        let est = self.face_visits(p);
+        if est > budget {
+            return Err(StellarError::TooLarge {
+                what: format!("{p}-faces"),
+                estimate: est,
+                budget,
+            });
+        }
+        Ok(())
+    }
+
+    /// Runs `f(view, keys)` for every leaf with the leaf's owned `p`-faces grouped: the
+    /// payload of every entry is the tree id of a top cell containing the face.
+    fn par_face_groups<R: Send>(
+        &self,
+        p: usize,
+        f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
+    ) -> Vec<R> {
+        let w = self
+            .kinds()
+            .iter()
+            .map(|&k| face_width(k, p))
+            .max()
+            .unwrap_or(1);
+        let pool_init = FaceKeys::default;
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(
+                || {
+                    (
+                        super::ExpandedLeaf::default(),
+                        pool_init(),
+                        Vec::<u32>::new(),
+                    )
+                },
+                |(e, keys, key), l| {
+                    self.expand_leaf_cells(LeafId(l), e);
+                    keys.clear(w);
+                    let view = LeafView { tree: self, e };
+                    for &c in &e.cells {
+                        let (kind, vs) = self.cells.get(c);
+                        if kind.dim() < p {
+                            continue;
+                        }
+                        kind.for_each_face(p, |local| {
+                            key.clear();
+                            key.extend(local.iter().map(|&i| vs[i as usize]));
+                            let m = *key.iter().min().expect("faces have vertices");
+                            if view.owns(m) {
+                                key.sort_unstable();
+                                keys.push(key, c);
+                            }
+                        });
+                    }
+                    f(&view, keys)
+                },
+            )
+            .collect()
+    }
+
+    /// Expands only the cell list of a leaf (no VT).
+    pub(crate) fn expand_leaf_cells(&self, l: LeafId, e: &mut super::ExpandedLeaf) {
+        let r = self.leaf_vertices(l);
+        e.leaf = l;
+        e.v_start = r.start;
+        e.v_end = r.end;
+        e.cells.clear();
+        super::sre::decode(self.leaf_encoded_cells(l), &mut e.cells);
+        e.vt_off.clear();
+        e.vt.clear();
+    }
+
+    /// Every `p`-face (p >= 0) of the complex once, with its number of top cofaces, budget
+    /// [`FACE_BUDGET`] (cell, face) pairs. Faces of CP cells follow their face tables (the
+    /// diagonal of a quad is not an edge). Order: by leaf, then by sorted tree ids.
+    ///
+    /// # Errors
+    /// Over the budget (e.g. the 20-faces of 40-simplices).
+    pub fn p_faces(&self, p: usize) -> Result<FaceList, StellarError> {
+        self.p_faces_with_budget(p, FACE_BUDGET)
+    }
+
+    /// [`p_faces`](Self::p_faces) with an explicit budget.
+    ///
+    /// # Errors
+    /// Over the budget.
+    pub fn p_faces_with_budget(&self, p: usize, budget: u128) -> Result<FaceList, StellarError> {
+        self.check_budget(p, budget)?;
+        let per_leaf: Vec<(Vec<u32>, Vec<u32>, Vec<u32>)> = self.par_face_groups(p, |_, keys| {
+            let mut lens = Vec::new();
+            let mut verts = Vec::new();
+            let mut co = Vec::new();
+            keys.for_each_group(|k, pays| {
+                lens.push(k.len() as u32);
+                let s = verts.len();
+                verts.extend(k.iter().map(|&v| self.v_orig[v as usize]));
+                verts[s..].sort_unstable();
+                co.push(pays.len() as u32);
+            });
+            (lens, verts, co)
+        });
+        let mut offsets = vec![0u32];
+        let mut targets = Vec::new();
+        let mut n_cofaces = Vec::new();
+        for (lens, verts, co) in per_leaf {
+            for l in lens {
+                let last = *offsets.last().expect("non-empty");
+                offsets.push(last + l);
+            }
+            targets.extend_from_slice(&verts);
+            n_cofaces.extend_from_slice(&co);
+        }
+        Ok(FaceList {
+            faces: Csr { offsets, targets },
+            n_cofaces,
+        })
+    }
+
+    /// Number of distinct `p`-faces, without materialising them.
+    ///
+    /// # Errors
+    /// Over the budget [`FACE_BUDGET`].
+    pub fn count_p_faces(&self, p: usize) -> Result<u64, StellarError> {
+        self.check_budget(p, FACE_BUDGET)?;
+        Ok(self
+            .par_face_groups(p, |_, keys| {
+                let mut n = 0u64;
+                keys.for_each_group(|_, _| n += 1);
+                n
+            })
+            .into_iter()
+            .sum())
+    }
+
+    /// Adjacency of top cells across (k-1)-faces (R_{k,k}, k = the cell's dimension >= 1):
+    /// row `c` (input id) holds the input ids of the other top k-cells sharing a facet with
+    /// `c`, sorted; non-manifold facets (in three or more cells) connect all their cells.
+    pub fn top_adjacency(&self) -> Csr {
+        let pairs = self.facet_pairs();
+        let n = self.n_top_cells();
+        let mut csr = Csr::from_fn(n, |emit| {
+            for &(a, b, _) in &pairs {
+                emit(self.c_orig[a as usize], self.c_orig[b as usize]);
+                emit(self.c_orig[b as usize], self.c_orig[a as usize]);
+            }
+        });
+        for i in 0..n {
+            let (s, e) = (csr.offsets[i] as usize, csr.offsets[i + 1] as usize);
+            csr.targets[s..e].sort_unstable();
+        }
+        // dedup rows (two cells may share several facets only in degenerate CP configurations)
+        let mut out = Csr {
+            offsets: vec![0],
+            targets: Vec::with_capacity(csr.targets.len()),
+        };
+        for i in 0..n {
+            let row = csr.row(i);
+            for (j, &x) in row.iter().enumerate() {
+                if j == 0 || row[j - 1] != x {
+                    out.targets.push(x);
+                }
+            }
+            out.offsets.push(out.targets.len() as u32);
+        }
+        out
+    }
+
+    /// All pairs (a, b, relative sign) of tree cells of one dimension sharing a facet; the sign
+    /// is the product of the two induced facet orientations (+1: the cells induce the same
+    /// orientation on the facet, so they are inconsistently oriented).
+    pub(crate) fn facet_pairs(&self) -> Vec<(u32, u32, i8)> {
+        let per_leaf = self.par_facet_groups(|_, key_groups| {
+            let mut out = Vec::new();
+            key_groups.for_each_group(|_, pays| {
+                for i in 0..pays.len() {
+                    for j in i + 1..pays.len() {
+                        let (a, sa) = unpack(pays[i]);
+                        let (b, sb) = unpack(pays[j]);
+                        out.push((a, b, sa * sb));
+                    }
+                }
+            });
+            out
+        });
+        per_leaf.into_iter().flatten().collect()
+    }
+
+    /// Like [`par_face_groups`] for facets: each top k-cell (k >= 1) emits its facets with the
+    /// cell dimension as an extra leading key entry; payload = tree cell id | sign bit.
+    pub(crate) fn par_facet_groups<R: Send>(
+        &self,
+        f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
+    ) -> Vec<R> {
+        let w = 1 + self
+            .kinds()
+            .iter()
+            .map(|&k| {
+                if k.dim() >= 1 {
+                    face_width(k, k.dim() - 1)
+                } else {
+                    0
+                }
+            })
+            .max()
+            .unwrap_or(0);
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(
+                || {
+                    (
+                        super::ExpandedLeaf::default(),
+                        FaceKeys::default(),
+                        Vec::<u32>::new(),
+                    )
+                },
+                |(e, keys, key), l| {
+                    self.expand_leaf_cells(LeafId(l), e);
+                    keys.clear(w);
+                    let view = LeafView { tree: self, e };
+                    for &c in &e.cells {
+                        let (kind, vs) = self.cells.get(c);
+                        let d = kind.dim();
+                        if d == 0 {
+                            continue;
+                        }
+                        kind.for_each_oriented_facet(|local, sign| {
+                            key.clear();
+                            key.extend(local.iter().map(|&i| vs[i as usize]));
+                            let m = *key.iter().min().expect("facets have vertices");
+                            if !view.owns(m) {
+                                return;
+                            }
+                            let s = sign * listed_sign(key, !kind.is_simplex() && key.len() >= 3);
+                            key.sort_unstable();
+                            key.insert(0, d as u32);
+                            keys.push(key, pack(c, s));
+                        });
+                    }
+                    f(&view, keys)
+                },
+            )
+            .collect()
+    }
+}
+
+#[inline]
+pub(crate) fn pack(c: u32, sign: i8) -> u32 {
+    if sign < 0 {
+        c | (1 << 31)
+    } else {
+        c
+    }
+}
+
+#[inline]
+pub(crate) fn unpack(x: u32) -> (u32, i8) {
+    (x & !(1 << 31), if x >> 31 == 1 { -1 } else { 1 })
+}
+
+/// Orientation of a listed facet relative to its sorted order: the parity of the sorting
+/// permutation, or for a polygon (CP facet) the cyclic direction.
+pub(crate) fn listed_sign(key: &[u32], polygon: bool) -> i8 {
+    let n = key.len();
+    if polygon {
+        let i = (0..n).min_by_key(|&i| key[i]).expect("non-empty");
+        let next = key[(i + 1) % n];
+        let prev = key[(i + n - 1) % n];
+        return if next < prev { 1 } else { -1 };
+    }
+    let mut inv = 0usize;
+    for i in 0..n {
+        for j in i + 1..n {
+            if key[i] > key[j] {
+                inv += 1;
+            }
+        }
+    }
+    if inv % 2 == 0 {
+        1
+    } else {
+        -1
+    }
+}
+
+impl TopCells for StellarTree {
+    fn n_vertices(&self) -> usize {
+        self.v_orig.len()
+    }
+    fn n_top_cells(&self) -> usize {
+        self.c_orig.len()
+    }
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        self.cells.get(self.c_new[c.index()]).0
+    }
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        let (_, vs) = self.cells.get(self.c_new[c.index()]);
+        out.extend(vs.iter().map(|&v| VertexId(self.v_orig[v as usize])));
+    }
+}
+
+impl VertexStar for StellarTree {
+    fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
+        out.clear();
+        let Ok(tv) = self.tree_vertex(v) else {
+            return;
+        };
+        let l = self.leaf_of_tree_vertex(tv);
+        for c in super::sre::SreIter::new(self.leaf_encoded_cells(l)) {
+            if self.cells.verts(c).contains(&tv) {
+                out.push(CellId(self.c_orig[c as usize]));
+            }
+        }
+        out.sort_unstable();
+    }
+}
+
+impl VertexAdjacency for StellarTree {
+    fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>) {
+        out.clear();
+        let Ok(tv) = self.tree_vertex(v) else {
+            return;
+        };
+        let l = self.leaf_of_tree_vertex(tv);
+        for c in super::sre::SreIter::new(self.leaf_encoded_cells(l)) {
+            let (kind, vs) = self.cells.get(c);
+            if vs.contains(&tv) {
+                edge_neighbours(kind, vs, tv, |w| {
+                    out.push(VertexId(self.v_orig[w as usize]))
+                });
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+}

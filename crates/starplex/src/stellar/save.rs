@@ -1,0 +1,286 @@
+//! Saving and loading a Stellar tree: a small fixed header followed by 8-byte-aligned arrays
+//! (little-endian), read back through a memory map with `bytemuck` and checked before use.
+//!
+//! Layout: `b"SPXSTEL1"`, then 13 `u64` header words (version, ambient dimension, k_V, split,
+//! vertices, cells, nodes, leaves, SRE words, vertex references, uniform kind code, stride,
+//! flags), the root block (2 x ambient `f64`), then the arrays: nodes, leaf vertex starts, leaf
+//! list offsets, SRE words, cell kinds (mixed only), cell offsets (mixed only), cell vertices,
+//! vertex permutation (tree -> input), cell permutation (tree -> input).
+//!
+//! ```
+//! # use starplex::complex::{ComplexBuilder, BuildOptions};
+//! # use starplex::cell::CellKind;
+//! use starplex::stellar::{StellarTree, StellarOptions};
+//! # let mut b = ComplexBuilder::new(2).unwrap();
+//! # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+//! # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+//! # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+//! # let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+//! let path = std::env::temp_dir().join(format!("starplex-doc-stellar-{}.stl", std::process::id()));
+//! t.save(&path).unwrap();
+//! let u = StellarTree::load(&path).unwrap();
+//! assert_eq!(u.vt_all(), t.vt_all());
+//! # std::fs::remove_file(&path).ok();
+//! ```
+use std::io::Write;
+use std::path::Path;
+
+use super::sre::RUN_FLAG;
+use super::{code_kind, BuildTimings, CellStore, Node, SplitMode, StellarError, StellarTree};
+
+const MAGIC: &[u8; 8] = b"SPXSTEL1";
+const VERSION: u64 = 1;
+const N_HEADER: usize = 13;
+
+fn write_arr<T: bytemuck::Pod>(w: &mut dyn Write, a: &[T]) -> std::io::Result<()> {
+    let bytes: &[u8] = bytemuck::cast_slice(a);
+    w.write_all(bytes)?;
+    let pad = (8 - bytes.len() % 8) % 8;
+    w.write_all(&[0u8; 8][..pad])
+}
+
+impl StellarTree {
+    /// Writes the tree to `path` (atomically: a temporary file renamed into place).
+    ///
+    /// # Errors
+    /// The file cannot be written.
+    pub fn save(&self, path: &Path) -> Result<(), crate::io::IoError> {
+        crate::io::atomic_write(path, |w| {
+            w.write_all(MAGIC)?;
+            let split = match self.split {
+                SplitMode::Kd => 2u64,
+                _ => 1,
+            };
+            let header: [u64; N_HEADER] = [
+                VERSION,
+                self.ambient_dim as u64,
+                self.kv as u64,
+                split,
+                self.v_orig.len() as u64,
+                self.c_orig.len() as u64,
+                self.nodes.len() as u64,
+                self.n_leaves() as u64,
+                self.leaf_tops.len() as u64,
+                self.cells.verts.len() as u64,
+                self.cells.uniform as u64,
+                self.cells.stride as u64,
+                0,
+            ];
+            write_arr(w, &header)?;
+            write_arr(w, &self.bbox.0)?;
+            write_arr(w, &self.bbox.1)?;
+            write_arr(w, &self.nodes)?;
+            write_arr(w, &self.leaf_vstart)?;
+            write_arr(w, &self.leaf_toff)?;
+            write_arr(w, &self.leaf_tops)?;
+            if self.cells.uniform == 255 {
+                write_arr(w, &self.cells.kinds)?;
+                write_arr(w, &self.cells.offsets)?;
+            }
+            write_arr(w, &self.cells.verts)?;
+            write_arr(w, &self.v_orig)?;
+            write_arr(w, &self.c_orig)?;
+            Ok(())
+        })
+    }
+
+    /// Reads a tree written by [`save`](Self::save), checking every array.
+    ///
+    /// # Errors
+    /// A missing, truncated or inconsistent file.
+    pub fn load(path: &Path) -> Result<StellarTree, StellarError> {
+        let err = |reason: String| StellarError::File {
+            path: path.display().to_string(),
+            reason,
+        };
+        let file = std::fs::File::open(path).map_err(|e| err(e.to_string()))?;
+        // SAFETY: the map is read-only and only read through bounds-checked slices; the file
+        // may change under us only if another process writes it, which at worst yields data
+        // that fails the checks below.
+        let map = unsafe { memmap2::Mmap::map(&file) }.map_err(|e| err(e.to_string()))?;
+        let mut r = Reader {
+            data: &map,
+            pos: 0,
+            err: &err,
+        };
+        if r.bytes(8)? != MAGIC {
+            return Err(err("not a starplex Stellar tree (bad magic)".into()));
+        }
+        let h: Vec<u64> = r.arr::<u64>(N_HEADER)?;
+        if h[0] != VERSION {
+            return Err(err(format!("unsupported version {}", h[0])));
+        }
+        let lim = |x: u64, what: &str, max: u64| {
+            if x > max {
+                Err(err(format!("{what} = {x} is out of range")))
+            } else {
+                Ok(x as usize)
+            }
+        };
+        let amb = lim(h[1], "ambient dimension", 64)?;
+        let kv = lim(h[2], "k_V", u32::MAX as u64)? as u32;
+        let split = match h[3] {
+            1 => SplitMode::Regular,
+            2 => SplitMode::Kd,
+            x => return Err(err(format!("bad split code {x}"))),
+        };
+        let nv = lim(h[4], "vertices", u32::MAX as u64 - 1)?;
+        let nc = lim(h[5], "cells", RUN_FLAG as u64 - 1)?;
+        let nn = lim(h[6], "nodes", u32::MAX as u64)?;
+        let nl = lim(h[7], "leaves", u32::MAX as u64 - 1)?;
+        let ntops = lim(h[8], "SRE words", u32::MAX as u64)?;
+        let nrefs = lim(h[9], "vertex references", u32::MAX as u64)?;
+        let uniform = lim(h[10], "kind code", 255)? as u8;
+        let stride = lim(h[11], "stride", 65)? as u32;
+        let lo = r.arr::<f64>(amb)?;
+        let hi = r.arr::<f64>(amb)?;
+        let nodes = r.arr::<Node>(nn)?;
+        let leaf_vstart = r.arr::<u32>(nl + 1)?;
+        let leaf_toff = r.arr::<u32>(nl + 1)?;
+        let leaf_tops = r.arr::<u32>(ntops)?;
+        let (kinds, offsets) = if uniform == 255 {
+            (r.arr::<u8>(nc)?, r.arr::<u32>(nc + 1)?)
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        let verts = r.arr::<u32>(nrefs)?;
+        let v_orig = r.arr::<u32>(nv)?;
+        let c_orig = r.arr::<u32>(nc)?;
+        // ---- checks
+        let monotone = |a: &[u32], first: u32, last: usize| {
+            a.first() == Some(&first)
+                && a.last().map(|&x| x as usize) == Some(last)
+                && a.windows(2).all(|w| w[0] <= w[1])
+        };
+        if !monotone(&leaf_vstart, 0, nv) {
+            return Err(err(
+                "leaf vertex ranges are not increasing over all vertices".into(),
+            ));
+        }
+        if !monotone(&leaf_toff, 0, ntops) {
+            return Err(err("leaf list offsets are inconsistent".into()));
+        }
+        if uniform == 255 {
+            if !monotone(&offsets, 0, nrefs) || kinds.iter().any(|&k| k > 68) {
+                return Err(err("cell offsets or kinds are inconsistent".into()));
+            }
+            for c in 0..nc {
+                if (offsets[c + 1] - offsets[c]) as usize != code_kind(kinds[c]).n_vertices() {
+                    return Err(err(format!("cell {c}: wrong vertex count for its kind")));
+                }
+            }
+        } else if uniform > 68
+            || code_kind(uniform).n_vertices() != stride as usize
+            || nrefs != nc * stride as usize
+        {
+            return Err(err("uniform cell kind and array size disagree".into()));
+        }
+        if let Some(v) = verts.iter().find(|&&v| v as usize >= nv) {
+            return Err(err(format!("vertex index {v} out of range")));
+        }
+        let inverse = |p: &[u32], what: &str| -> Result<Vec<u32>, StellarError> {
+            let mut inv = vec![u32::MAX; p.len()];
+            for (i, &x) in p.iter().enumerate() {
+                if x as usize >= p.len() || inv[x as usize] != u32::MAX {
+                    return Err(err(format!("{what} permutation is not a bijection")));
+                }
+                inv[x as usize] = i as u32;
+            }
+            Ok(inv)
+        };
+        let v_new = inverse(&v_orig, "vertex")?;
+        let c_new = inverse(&c_orig, "cell")?;
+        // SRE words: runs complete, ids in range, increasing
+        for l in 0..nl {
+            let enc = &leaf_tops[leaf_toff[l] as usize..leaf_toff[l + 1] as usize];
+            let mut i = 0;
+            let mut last: i64 = -1;
+            while i < enc.len() {
+                let (s, e) = if enc[i] & RUN_FLAG != 0 {
+                    let Some(&rlen) = enc.get(i + 1) else {
+                        return Err(err(format!("leaf {l}: truncated run")));
+                    };
+                    let s = (enc[i] & !RUN_FLAG) as u64;
+                    i += 2;
+                    (s, s + rlen as u64)
+                } else {
+                    i += 1;
+                    (enc[i - 1] as u64, enc[i - 1] as u64)
+                };
+                if (s as i64) <= last || e >= nc as u64 {
+                    return Err(err(format!("leaf {l}: cell list out of order or range")));
+                }
+                last = e as i64;
+            }
+        }
+        for (i, n) in nodes.iter().enumerate() {
+            let ok = n.v_start <= n.v_end
+                && (n.v_end as usize) <= nv
+                && if n.n_children == 0 {
+                    (n.first as usize) < nl.max(1)
+                } else {
+                    (n.first as usize) > i && (n.first as u64 + n.n_children as u64) <= nn as u64
+                };
+            if !ok {
+                return Err(err(format!("node {i} is inconsistent")));
+            }
+        }
+        if nodes.is_empty() {
+            return Err(err("no root node".into()));
+        }
+        Ok(StellarTree {
+            ambient_dim: amb as u32,
+            kv,
+            split,
+            bbox: (lo, hi),
+            nodes,
+            leaf_vstart,
+            leaf_toff,
+            leaf_tops,
+            cells: CellStore {
+                uniform,
+                stride,
+                kinds,
+                offsets,
+                verts,
+                n: nc as u32,
+            },
+            v_orig,
+            v_new,
+            c_orig,
+            c_new,
+            timings: BuildTimings::default(),
+        })
+    }
+}
+
+struct Reader<'a, F: Fn(String) -> StellarError> {
+    data: &'a [u8],
+    pos: usize,
+    err: &'a F,
+}
+
+impl<F: Fn(String) -> StellarError> Reader<'_, F> {
+    fn bytes(&mut self, n: usize) -> Result<&[u8], StellarError> {
+        let end = self
+            .pos
+            .checked_add(n)
+            .filter(|&e| e <= self.data.len())
+            .ok_or_else(|| (self.err)(format!("truncated at byte {}", self.pos)))?;
+        let s = &self.data[self.pos..end];
+        self.pos = end;
+        Ok(s)
+    }
+    fn arr<T: bytemuck::Pod>(&mut self, n: usize) -> Result<Vec<T>, StellarError> {
+        let size = n
+            .checked_mul(std::mem::size_of::<T>())
+            .ok_or_else(|| (self.err)("array size overflows".into()))?;
+        let b = self.bytes(size)?;
+        let mut v: Vec<T> = vec![T::zeroed(); n];
+        bytemuck::cast_slice_mut::<T, u8>(&mut v).copy_from_slice(b);
+        let pad = (8 - size % 8) % 8;
+        self.bytes(pad)?;
+        Ok(v)
+    }
+}

@@ -1,0 +1,278 @@
+//! The processing paradigm: visit the leaves one by one (or in parallel), each expanded into
+//! an [`ExpandedLeaf`] — its decoded top-cell list and the local vertex → top cells relation —
+//! read through a [`LeafView`]. An LRU cache ([`LeafCache`]) keeps recently expanded leaves
+//! for algorithms that look into neighbouring leaves.
+//!
+//! ```
+//! # use starplex::complex::{ComplexBuilder, BuildOptions};
+//! # use starplex::cell::CellKind;
+//! use starplex::stellar::{StellarTree, StellarOptions};
+//! # let mut b = ComplexBuilder::new(2).unwrap();
+//! # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+//! # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+//! # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+//! # let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let t = StellarTree::build(&k, &StellarOptions { kv: Some(2), ..Default::default() }).unwrap();
+//! // sum of |VT(v)| over all vertices, one leaf at a time, in parallel
+//! let per_leaf: Vec<usize> = t.par_map_leaves(|leaf| {
+//!     leaf.tree_vertices().map(|v| leaf.vt_tree(v).len()).sum()
+//! });
+//! assert_eq!(per_leaf.iter().sum::<usize>(), 6);
+//! ```
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use super::sre;
+use super::StellarTree;
+use crate::cell::CellKind;
+use crate::ids::{CellId, LeafId, VertexId};
+
+/// A leaf expanded for processing: its cells and its local VT relation, in tree numbering.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ExpandedLeaf {
+    /// The leaf.
+    pub leaf: LeafId,
+    /// First tree vertex of the leaf.
+    pub v_start: u32,
+    /// One past the last tree vertex.
+    pub v_end: u32,
+    /// Top cells of the leaf (tree ids, increasing).
+    pub cells: Vec<u32>,
+    /// `vt_off[i]..vt_off[i+1]` in `vt` are the cells of vertex `v_start + i`.
+    pub vt_off: Vec<u32>,
+    /// Tree cell ids, increasing within each vertex.
+    pub vt: Vec<u32>,
+}
+
+impl ExpandedLeaf {
+    /// Bytes used.
+    pub fn bytes(&self) -> usize {
+        4 * (self.cells.len() + self.vt_off.len() + self.vt.len())
+    }
+}
+
+impl StellarTree {
+    /// Expands leaf `l` into `out` (reusing its buffers).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::stellar::{StellarTree, StellarOptions, ExpandedLeaf};
+    /// use starplex::ids::LeafId;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in 0..3 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(1), &[1, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(0), ..Default::default() }).unwrap();
+    /// let mut e = ExpandedLeaf::default();
+    /// t.expand_leaf_into(LeafId(0), &mut e);
+    /// assert_eq!(e.cells.len(), 2);
+    /// assert_eq!(e.vt_off.len(), 4);
+    /// ```
+    pub fn expand_leaf_into(&self, l: LeafId, out: &mut ExpandedLeaf) {
+        let r = self.leaf_vertices(l);
+        out.leaf = l;
+        out.v_start = r.start;
+        out.v_end = r.end;
+        out.cells.clear();
+        sre::decode(self.leaf_encoded_cells(l), &mut out.cells);
+        let nloc = (r.end - r.start) as usize;
+        out.vt_off.clear();
+        out.vt_off.resize(nloc + 1, 0);
+        let (vs, ve) = (r.start, r.end);
+        let mut total = 0usize;
+        for &c in &out.cells {
+            for &v in self.cells.verts(c) {
+                if v >= vs && v < ve {
+                    out.vt_off[(v - vs) as usize + 1] += 1;
+                    total += 1;
+                }
+            }
+        }
+        for i in 0..nloc {
+            out.vt_off[i + 1] += out.vt_off[i];
+        }
+        out.vt.clear();
+        out.vt.resize(total, 0);
+        // fill using vt_off as cursors (shifted), then restore
+        for &c in &out.cells {
+            for &v in self.cells.verts(c) {
+                if v >= vs && v < ve {
+                    let i = (v - vs) as usize;
+                    out.vt[out.vt_off[i] as usize] = c;
+                    out.vt_off[i] += 1;
+                }
+            }
+        }
+        for i in (1..=nloc).rev() {
+            out.vt_off[i] = out.vt_off[i - 1];
+        }
+        if nloc > 0 {
+            out.vt_off[0] = 0;
+        }
+    }
+
+    /// Expands leaf `l` into a new [`ExpandedLeaf`].
+    pub fn expand_leaf(&self, l: LeafId) -> ExpandedLeaf {
+        let mut e = ExpandedLeaf::default();
+        self.expand_leaf_into(l, &mut e);
+        e
+    }
+
+    /// Calls `f` on every leaf, in order, on one thread.
+    pub fn for_each_leaf(&self, mut f: impl FnMut(&LeafView<'_>)) {
+        let mut e = ExpandedLeaf::default();
+        for l in 0..self.n_leaves() {
+            self.expand_leaf_into(LeafId(l as u32), &mut e);
+            f(&LeafView { tree: self, e: &e });
+        }
+    }
+
+    /// Maps every leaf in parallel (per-worker expansion buffers); results in leaf order, the
+    /// same for any number of threads.
+    pub fn par_map_leaves<R: Send>(&self, f: impl Fn(&LeafView<'_>) -> R + Sync + Send) -> Vec<R> {
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(ExpandedLeaf::default, |e, l| {
+                self.expand_leaf_into(LeafId(l), e);
+                f(&LeafView { tree: self, e })
+            })
+            .collect()
+    }
+
+    /// Maps every leaf in parallel with a per-worker LRU cache of `cache_size` expanded leaves:
+    /// `f` gets the leaf and the worker's cache, through which it may expand neighbouring
+    /// leaves cheaply. Results in leaf order.
+    pub fn par_map_leaves_cached<R: Send>(
+        &self,
+        cache_size: usize,
+        f: impl Fn(&LeafView<'_>, &mut LeafCache) -> R + Sync + Send,
+    ) -> Vec<R> {
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(
+                || LeafCache::new(cache_size),
+                |cache, l| {
+                    let e = cache.get(self, LeafId(l));
+                    f(&LeafView { tree: self, e: &e }, cache)
+                },
+            )
+            .collect()
+    }
+}
+
+/// An LRU cache of expanded leaves (capacity 0 disables caching).
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// use starplex::stellar::{StellarTree, StellarOptions, LeafCache};
+/// use starplex::ids::LeafId;
+/// # let mut b = ComplexBuilder::new(1).unwrap();
+/// # for x in 0..3 { b.push_vertex(&[x as f64]).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// let mut c = LeafCache::new(2);
+/// let a = c.get(&t, LeafId(0));
+/// let b = c.get(&t, LeafId(0));
+/// assert!(std::sync::Arc::ptr_eq(&a, &b));
+/// assert_eq!(c.hits(), 1);
+/// ```
+pub struct LeafCache {
+    cache: Option<lru::LruCache<u32, Arc<ExpandedLeaf>>>,
+    hits: u64,
+    misses: u64,
+}
+
+impl LeafCache {
+    /// A cache of `capacity` leaves.
+    pub fn new(capacity: usize) -> LeafCache {
+        LeafCache {
+            cache: std::num::NonZeroUsize::new(capacity).map(lru::LruCache::new),
+            hits: 0,
+            misses: 0,
+        }
+    }
+    /// The expanded leaf, from the cache or freshly expanded (and cached).
+    pub fn get(&mut self, t: &StellarTree, l: LeafId) -> Arc<ExpandedLeaf> {
+        if let Some(c) = &mut self.cache {
+            if let Some(e) = c.get(&l.0) {
+                self.hits += 1;
+                return e.clone();
+            }
+        }
+        self.misses += 1;
+        let e = Arc::new(t.expand_leaf(l));
+        if let Some(c) = &mut self.cache {
+            c.put(l.0, e.clone());
+        }
+        e
+    }
+    /// Lookups answered from the cache.
+    pub fn hits(&self) -> u64 {
+        self.hits
+    }
+    /// Lookups that expanded a leaf.
+    pub fn misses(&self) -> u64 {
+        self.misses
+    }
+}
+
+/// A read-only view of one expanded leaf: its vertices, its top cells and their local
+/// relations, with conversions to input numbering.
+#[derive(Clone, Copy)]
+pub struct LeafView<'a> {
+    /// The tree.
+    pub tree: &'a StellarTree,
+    /// The expansion.
+    pub e: &'a ExpandedLeaf,
+}
+
+impl<'a> LeafView<'a> {
+    /// The leaf id.
+    pub fn leaf(&self) -> LeafId {
+        self.e.leaf
+    }
+    /// Tree ids of the leaf's vertices.
+    pub fn tree_vertices(&self) -> std::ops::Range<u32> {
+        self.e.v_start..self.e.v_end
+    }
+    /// Input ids of the leaf's vertices (in tree order).
+    pub fn input_vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
+        self.tree_vertices()
+            .map(|v| VertexId(self.tree.v_orig[v as usize]))
+    }
+    /// True when tree vertex `v` belongs to the leaf.
+    #[inline]
+    pub fn owns(&self, v: u32) -> bool {
+        v >= self.e.v_start && v < self.e.v_end
+    }
+    /// Tree ids of the leaf's top cells (increasing).
+    pub fn tree_cells(&self) -> &'a [u32] {
+        &self.e.cells
+    }
+    /// Kind and tree-numbered vertices of a tree cell.
+    #[inline]
+    pub fn cell(&self, c: u32) -> (CellKind, &'a [u32]) {
+        self.tree.cells.get(c)
+    }
+    /// Top cells (tree ids, increasing) incident to tree vertex `v` of this leaf.
+    #[inline]
+    pub fn vt_tree(&self, v: u32) -> &'a [u32] {
+        let i = (v - self.e.v_start) as usize;
+        &self.e.vt[self.e.vt_off[i] as usize..self.e.vt_off[i + 1] as usize]
+    }
+    /// Input id of a tree vertex.
+    #[inline]
+    pub fn input_vertex(&self, v: u32) -> VertexId {
+        VertexId(self.tree.v_orig[v as usize])
+    }
+    /// Input id of a tree cell.
+    #[inline]
+    pub fn input_cell(&self, c: u32) -> CellId {
+        CellId(self.tree.c_orig[c as usize])
+    }
+}
