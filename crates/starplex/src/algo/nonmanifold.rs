@@ -186,7 +186,13 @@ fn star_test(tops: &[Vec<u32>], sigma: &[u32]) -> Manifoldness {
     }
     let link: Vec<Vec<u32>> = tops
         .iter()
-        .map(|t| t.iter().copied().filter(|v| !sigma.contains(v)).collect())
+        .map(|t| {
+            t.iter()
+                .copied()
+                .filter(|v| !sigma.contains(v))
+                .collect::<Vec<u32>>()
+        })
+        .filter(|l| !l.is_empty())
         .collect();
     sphere_or_ball(&link, k as isize - sigma.len() as isize - 1)
 }

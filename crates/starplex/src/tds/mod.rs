@@ -4,3 +4,6 @@
 //! [`topo`](crate::topo) traits in input numbering (see the table there).
 
 pub mod iastar;
+pub mod ig;
+pub mod is;
+pub mod simplex_tree;

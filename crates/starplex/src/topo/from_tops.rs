@@ -99,7 +99,23 @@ pub fn for_each_subset<T: Copy>(items: &[T], k: usize, buf: &mut Vec<T>, f: &mut
     if k > n {
         return;
     }
-    let mut idx: Vec<usize> = (0..k).collect();
+    if k == n {
+        buf.clear();
+        buf.extend_from_slice(items);
+        f(buf);
+        return;
+    }
+    let mut small = [0usize; 72];
+    let mut large: Vec<usize>;
+    let idx: &mut [usize] = if k <= small.len() {
+        &mut small[..k]
+    } else {
+        large = vec![0; k];
+        &mut large[..]
+    };
+    for (i, x) in idx.iter_mut().enumerate() {
+        *x = i;
+    }
     loop {
         buf.clear();
         buf.extend(idx.iter().map(|&i| items[i]));
