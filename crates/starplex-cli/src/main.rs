@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod cmd_bench;
 mod cmd_convert;
 mod cmd_info;
 mod cmd_stellar;
@@ -33,6 +34,8 @@ enum Command {
     /// Topological validation: components, purity, pseudo-manifoldness, boundary,
     /// non-manifold vertices and edges, orientability.
     Validate(cmd_validate::ValidateArgs),
+    /// Timings of one data structure (single thread): `bench simplex-tree FILE`.
+    Bench(cmd_bench::BenchArgs),
     /// The main job on the bundled sample (what `cargo run --release` does without arguments).
     Demo {
         /// A file to use instead of the bundled sample.
@@ -50,6 +53,7 @@ fn main() -> ExitCode {
         Some(Command::Convert(a)) => cmd_convert::run(&ctx, &a),
         Some(Command::Stellar(a)) => cmd_stellar::run(&ctx, &a),
         Some(Command::Validate(a)) => cmd_validate::run(&ctx, &a),
+        Some(Command::Bench(a)) => cmd_bench::run(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

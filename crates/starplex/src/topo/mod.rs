@@ -2,17 +2,41 @@
 //! each, in the style of petgraph's `visit`. Every data structure implements the ones it answers
 //! efficiently; algorithms are written once against them.
 //!
-//! Answers are always in the *input* numbering of the [`IndexedComplex`] the structure was built
-//! from (a structure that renumbers internally, like the Stellar tree, maps back), and lists are
-//! sorted, so different structures can be compared with `==`.
+//! Answers are always in the *input* numbering of the [`IndexedComplex`](crate::complex::IndexedComplex)
+//! the structure was built from (a structure that renumbers internally maps back), simplices are
+//! sorted vertex tuples, and lists are sorted, so different structures can be compared with `==`.
+//! A list of p-simplices is a flat `Vec<VertexId>` with stride p+1, sorted lexicographically and
+//! without repeats; a mixed set is a [`SimplexSet`] (one such list per dimension).
 //!
 //! | trait | question |
 //! |---|---|
 //! | [`TopCells`] | counts, the vertices and kind of a top cell |
 //! | [`VertexStar`] | R_{0,top}: the top cells incident to a vertex (VT) |
 //! | [`VertexAdjacency`] | R_{0,0}: the vertices joined to a vertex by an edge (VV) |
+//! | [`TopStar`] | St_T(σ): the top cells containing any simplex σ |
+//! | [`Counts`] | the f-vector: number of simplices per dimension |
+//! | [`SimplexVertices`] | vertices of an explicitly stored simplex, and its id from its vertices |
+//! | [`Boundary`] | R_{p,q}, q < p: the q-faces of σ |
+//! | [`Coboundary`] | R_{p,q}, q > p: the q-simplices having σ as a face |
+//! | [`Adjacency`] | R_{p,p}: p-simplices sharing a (p-1)-face with σ (p = 0: an edge) |
+//! | [`Star`] | St(σ): every simplex containing σ |
+//! | [`Levels`] | iteration over the p-simplices, level by level |
+//! | [`Storage`] | size in references and bytes |
 //!
-//! Generic algorithms on top: [`link::vertex_link`].
+//! Generic algorithms written once against them: [`generic`] (closure, link, skeleton,
+//! Euler characteristic), [`link::vertex_link`], [`crate::algo::components`],
+//! [`crate::algo::nonmanifold`].
+//!
+//! Which structure implements which trait (✓ native, g = through the generic top-star helpers
+//! of [`from_tops`], – = not implemented):
+//!
+//! | structure | TopCells | VertexStar | VertexAdjacency | TopStar | Counts | SimplexVertices | Boundary | Coboundary | Adjacency | Star | Levels | Storage |
+//! |---|---|---|---|---|---|---|---|---|---|---|---|---|
+//! | [`naive::VtIndex`] (baseline) | ✓ | ✓ | ✓ | g | g | – | g | g | g | g | g | ✓ |
+//! | [`IaStar`](crate::tds::iastar::IaStar) | ✓ | ✓ | g | g | g | – | g | g | g | g | g | ✓ |
+//! | [`SimplexTree`](crate::tds::simplex_tree::SimplexTree) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
+//! | [`IncidenceGraph`](crate::tds::ig::IncidenceGraph) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
+//! | [`Is`](crate::tds::is::Is) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
 //!
 //! ```
 //! use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -35,10 +59,36 @@
 //! assert_eq!(l.f_vector, vec![3, 2]);
 //! ```
 use crate::cell::CellKind;
-use crate::ids::{CellId, VertexId};
+use crate::ids::{CellId, SimplexId, VertexId};
 
+pub mod from_tops;
+pub mod generic;
 pub mod link;
 pub mod naive;
+
+/// Default budget of simplices a query may enumerate before refusing with an estimate.
+pub const DEFAULT_BUDGET: u128 = 50_000_000;
+
+/// Why a query could not be answered.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum QueryError {
+    /// The simplex is not in the complex (or has a vertex out of range, or a repeated vertex).
+    #[error("{0:?} is not a simplex of the complex")]
+    NotInComplex(Vec<u32>),
+    /// The answer would exceed the budget.
+    #[error("{what}: about {estimate} simplices, over the budget of {budget}")]
+    TooLarge {
+        /// What was asked.
+        what: String,
+        /// Upper bound of the simplices to enumerate.
+        estimate: u128,
+        /// The budget.
+        budget: u128,
+    },
+    /// The question is answered for simplicial complexes only.
+    #[error("{0}: the complex holds non-simplicial cells; this query needs simplices")]
+    NotSimplicial(String),
+}
 
 /// Counts and top-cell access.
 pub trait TopCells {
@@ -63,4 +113,273 @@ pub trait VertexStar {
 pub trait VertexAdjacency {
     /// Replaces `out` with the neighbours of `v`, sorted.
     fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>);
+}
+
+/// St_T(σ): the top cells containing a simplex (any dimension).
+pub trait TopStar {
+    /// Replaces `out` with the top cells containing `s` (vertices in any order), sorted by id.
+    ///
+    /// # Errors
+    /// [`QueryError::NotInComplex`] when `s` is not a simplex of the complex.
+    fn top_star(&self, s: &[VertexId], out: &mut Vec<CellId>) -> Result<(), QueryError>;
+}
+
+/// The f-vector.
+pub trait Counts {
+    /// Number of p-simplices for p = 0..=dim (vertices include isolated ones).
+    ///
+    /// # Errors
+    /// [`QueryError::TooLarge`] when counting would enumerate too many faces.
+    fn f_vector(&self) -> Result<Vec<u64>, QueryError>;
+}
+
+/// Explicitly stored simplices: id ↔ vertices.
+pub trait SimplexVertices {
+    /// Number of stored simplices.
+    fn n_simplices(&self) -> usize;
+    /// Replaces `out` with the sorted vertices of simplex `s`.
+    fn simplex_vertices(&self, s: SimplexId, out: &mut Vec<VertexId>);
+    /// The id of the simplex with these vertices (any order), if stored.
+    fn find_simplex(&self, verts: &[VertexId]) -> Option<SimplexId>;
+}
+
+/// R_{p,q}, q < p: the q-faces of a p-simplex.
+pub trait Boundary {
+    /// Replaces `out` with the q-faces of `s` (flat, stride q+1, sorted).
+    ///
+    /// # Errors
+    /// `s` not in the complex; `q >= dim s`; an answer over the budget.
+    fn boundary(&self, s: &[VertexId], q: usize, out: &mut Vec<VertexId>)
+        -> Result<(), QueryError>;
+}
+
+/// R_{p,q}, q > p: the q-simplices having a p-simplex as a face.
+pub trait Coboundary {
+    /// Replaces `out` with the q-cofaces of `s` (flat, stride q+1, sorted).
+    ///
+    /// # Errors
+    /// `s` not in the complex; an answer over the budget.
+    fn coboundary(
+        &self,
+        s: &[VertexId],
+        q: usize,
+        out: &mut Vec<VertexId>,
+    ) -> Result<(), QueryError>;
+}
+
+/// R_{p,p}: for p ≥ 1 the p-simplices sharing a (p-1)-face with σ; for p = 0 the vertices
+/// sharing an edge with σ.
+pub trait Adjacency {
+    /// Replaces `out` with the simplices adjacent to `s` (flat, stride p+1, sorted).
+    ///
+    /// # Errors
+    /// `s` not in the complex; an answer over the budget.
+    fn adjacent(&self, s: &[VertexId], out: &mut Vec<VertexId>) -> Result<(), QueryError>;
+}
+
+/// St(σ): every simplex containing σ (σ included).
+pub trait Star {
+    /// The star of `s`.
+    ///
+    /// # Errors
+    /// `s` not in the complex; a star over the budget.
+    fn star(&self, s: &[VertexId]) -> Result<SimplexSet, QueryError>;
+}
+
+/// Iteration by level.
+pub trait Levels {
+    /// Calls `f` once per p-simplex (sorted vertices), in an order fixed by the structure.
+    ///
+    /// # Errors
+    /// [`QueryError::TooLarge`] when the level would enumerate more than the budget.
+    fn for_each_simplex(&self, p: usize, f: &mut dyn FnMut(&[VertexId])) -> Result<(), QueryError>;
+}
+
+/// Size of a structure.
+pub trait Storage {
+    /// Topological references stored (the papers' unit; coordinates and auxiliary indexes are
+    /// not counted).
+    fn refs(&self) -> u64;
+    /// Bytes actually allocated for the topology (everything the structure owns but
+    /// coordinates).
+    fn bytes(&self) -> u64;
+}
+
+/// Every query of the interface: what the CLI needs of a structure.
+pub trait Queries:
+    TopCells
+    + VertexStar
+    + VertexAdjacency
+    + TopStar
+    + Counts
+    + Boundary
+    + Coboundary
+    + Adjacency
+    + Star
+    + Levels
+    + Storage
+{
+}
+impl<T> Queries for T where
+    T: TopCells
+        + VertexStar
+        + VertexAdjacency
+        + TopStar
+        + Counts
+        + Boundary
+        + Coboundary
+        + Adjacency
+        + Star
+        + Levels
+        + Storage
+{
+}
+
+/// A set of simplices of mixed dimensions: `levels[p]` is a flat list of p-simplices (stride
+/// p+1), sorted and without repeats; no trailing empty level.
+///
+/// ```
+/// use starplex::topo::SimplexSet;
+/// use starplex::ids::VertexId;
+/// let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+/// let mut s = SimplexSet::default();
+/// s.insert(&v(&[2, 1]));
+/// s.insert(&v(&[0]));
+/// s.insert(&v(&[1, 2]));
+/// s.normalize();
+/// assert_eq!(s.len(), 2);
+/// assert_eq!(s.level(1), &v(&[1, 2])[..]);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct SimplexSet {
+    /// Flat lists per dimension.
+    pub levels: Vec<Vec<VertexId>>,
+}
+
+impl SimplexSet {
+    /// Adds a simplex (sorted on insertion; call [`normalize`](Self::normalize) before comparing).
+    pub fn insert(&mut self, s: &[VertexId]) {
+        if s.is_empty() {
+            return;
+        }
+        let p = s.len() - 1;
+        if self.levels.len() <= p {
+            self.levels.resize(p + 1, Vec::new());
+        }
+        let start = self.levels[p].len();
+        self.levels[p].extend_from_slice(s);
+        self.levels[p][start..].sort_unstable();
+    }
+    /// Sorts and deduplicates every level, drops trailing empty levels.
+    pub fn normalize(&mut self) {
+        for (p, l) in self.levels.iter_mut().enumerate() {
+            sort_flat(l, p + 1);
+        }
+        while self.levels.last().is_some_and(|l| l.is_empty()) {
+            self.levels.pop();
+        }
+    }
+    /// The flat list of p-simplices.
+    pub fn level(&self, p: usize) -> &[VertexId] {
+        self.levels.get(p).map_or(&[], |l| l.as_slice())
+    }
+    /// Number of simplices.
+    pub fn len(&self) -> usize {
+        self.levels
+            .iter()
+            .enumerate()
+            .map(|(p, l)| l.len() / (p + 1))
+            .sum()
+    }
+    /// True when empty.
+    pub fn is_empty(&self) -> bool {
+        self.levels.iter().all(|l| l.is_empty())
+    }
+    /// Number of simplices per dimension.
+    pub fn f_vector(&self) -> Vec<u64> {
+        self.levels
+            .iter()
+            .enumerate()
+            .map(|(p, l)| (l.len() / (p + 1)) as u64)
+            .collect()
+    }
+    /// Iterates over the simplices, by dimension then lexicographically.
+    pub fn iter(&self) -> impl Iterator<Item = &[VertexId]> + '_ {
+        self.levels
+            .iter()
+            .enumerate()
+            .flat_map(|(p, l)| l.chunks_exact(p + 1))
+    }
+    /// Whether the (sorted) simplex is in the set (the set must be normalized).
+    pub fn contains(&self, s: &[VertexId]) -> bool {
+        if s.is_empty() {
+            return false;
+        }
+        let l = self.level(s.len() - 1);
+        let n = s.len();
+        let (mut lo, mut hi) = (0usize, l.len() / n);
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            match l[mid * n..(mid + 1) * n].cmp(s) {
+                std::cmp::Ordering::Less => lo = mid + 1,
+                std::cmp::Ordering::Greater => hi = mid,
+                std::cmp::Ordering::Equal => return true,
+            }
+        }
+        false
+    }
+}
+
+/// Sorts a flat list of tuples of `stride` lexicographically and removes repeats.
+///
+/// ```
+/// use starplex::topo::sort_flat;
+/// let mut v = vec![3u32, 4, 1, 2, 3, 4];
+/// sort_flat(&mut v, 2);
+/// assert_eq!(v, vec![1, 2, 3, 4]);
+/// ```
+pub fn sort_flat<T: Ord + Copy>(v: &mut Vec<T>, stride: usize) {
+    if stride == 1 {
+        v.sort_unstable();
+        v.dedup();
+        return;
+    }
+    let n = v.len() / stride;
+    if n < 2 {
+        return;
+    }
+    let mut idx: Vec<u32> = (0..n as u32).collect();
+    idx.sort_unstable_by(|&a, &b| {
+        v[a as usize * stride..(a as usize + 1) * stride]
+            .cmp(&v[b as usize * stride..(b as usize + 1) * stride])
+    });
+    let mut out: Vec<T> = Vec::with_capacity(v.len());
+    for &i in &idx {
+        let t = &v[i as usize * stride..(i as usize + 1) * stride];
+        if out.len() >= stride && &out[out.len() - stride..] == t {
+            continue;
+        }
+        out.extend_from_slice(t);
+    }
+    *v = out;
+}
+
+/// Sorts a simplex given in any order and checks it has no repeated vertex.
+///
+/// # Errors
+/// [`QueryError::NotInComplex`] for an empty simplex or a repeated vertex.
+///
+/// ```
+/// use starplex::topo::sorted_simplex;
+/// use starplex::ids::VertexId;
+/// assert_eq!(sorted_simplex(&[VertexId(2), VertexId(1)]).unwrap(), vec![VertexId(1), VertexId(2)]);
+/// assert!(sorted_simplex(&[VertexId(2), VertexId(2)]).is_err());
+/// ```
+pub fn sorted_simplex(s: &[VertexId]) -> Result<Vec<VertexId>, QueryError> {
+    let mut v = s.to_vec();
+    v.sort_unstable();
+    if v.is_empty() || v.windows(2).any(|w| w[0] == w[1]) {
+        return Err(QueryError::NotInComplex(s.iter().map(|x| x.0).collect()));
+    }
+    Ok(v)
 }

@@ -12,7 +12,7 @@
 //! let idx = VtIndex::new(&k);
 //! assert_eq!(idx.n_top_cells(), 1);
 //! ```
-use super::{TopCells, VertexAdjacency, VertexStar};
+use super::{Storage, TopCells, VertexAdjacency, VertexStar};
 use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::csr::Csr;
@@ -69,6 +69,18 @@ impl VertexAdjacency for VtIndex<'_> {
         out.dedup();
     }
 }
+
+impl Storage for VtIndex<'_> {
+    /// The top cells' vertex references plus one reference per (vertex, incident cell) pair.
+    fn refs(&self) -> u64 {
+        (self.complex.n_refs() + self.vt.n_refs()) as u64
+    }
+    fn bytes(&self) -> u64 {
+        (4 * self.complex.n_refs() + self.vt.bytes()) as u64
+    }
+}
+
+crate::impl_relations_from_tops!(VtIndex<'_>);
 
 /// Calls `f` with every vertex joined to `v` by an edge of the cell (`vertices` in the kind's
 /// order; `v` must be one of them).

@@ -1,0 +1,58 @@
+//! Connected components of any structure, written once against [`TopCells`]: union of the
+//! vertices of each top cell (isolated vertices are components).
+//!
+//! ```
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! use starplex::topo::naive::VtIndex;
+//! use starplex::algo::components::components;
+//! let mut b = ComplexBuilder::new(1).unwrap();
+//! for x in 0..5 { b.push_vertex(&[x as f64]).unwrap(); }
+//! b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+//! b.push_cell(CellKind::Simplex(1), &[2, 3]).unwrap();
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let c = components(&VtIndex::new(&k));
+//! assert_eq!(c.n_components, 3);
+//! assert_eq!(c.label[0], c.label[1]);
+//! ```
+use crate::algo::unionfind::UnionFind;
+use crate::ids::{CellId, VertexId};
+use crate::topo::TopCells;
+
+/// The components: a label per vertex (0-based, numbered by smallest vertex).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Components {
+    /// Number of components.
+    pub n_components: usize,
+    /// Component of each vertex.
+    pub label: Vec<u32>,
+}
+
+/// Connected components through the top cells.
+pub fn components<S: TopCells + ?Sized>(s: &S) -> Components {
+    let n = s.n_vertices();
+    let mut uf = UnionFind::new(n);
+    let mut buf: Vec<VertexId> = Vec::new();
+    for c in 0..s.n_top_cells() {
+        buf.clear();
+        s.top_cell_vertices(CellId(c as u32), &mut buf);
+        for w in &buf[1..] {
+            uf.union(buf[0].0, w.0);
+        }
+    }
+    let mut label = vec![u32::MAX; n];
+    let mut root_label = vec![u32::MAX; n];
+    let mut next = 0u32;
+    for v in 0..n {
+        let r = uf.find(v as u32) as usize;
+        if root_label[r] == u32::MAX {
+            root_label[r] = next;
+            next += 1;
+        }
+        label[v] = root_label[r];
+    }
+    Components {
+        n_components: next as usize,
+        label,
+    }
+}

@@ -1,0 +1,783 @@
+//! IA*: the generalized indexed data structure with adjacencies (Canino, De Floriani, Weiss
+//! 2011) for non-manifold simplicial complexes of any dimension and mixed dimensions, as
+//! specified in `shared/specs/ia-star-is-ghosts.md` §2.
+//!
+//! Stored (all ids are input ids):
+//! * R_{k,0}: the vertices of every top k-simplex (input order; facet j = the top without its
+//!   j-th vertex);
+//! * R_{k,k}, k ≥ 2: one slot per facet — none (boundary), the other top k-simplex
+//!   (manifold adjacency), or a non-manifold (k-1)-face record when ≥ 3 top k-simplices share
+//!   the facet;
+//! * R_{k-1,k} of every non-manifold (k-1)-face: the list of its top k-simplices;
+//! * per vertex: every top edge at it, and one top k-simplex per k-cluster (k ≥ 2).
+//!
+//! On a pure pseudo-manifold there are no non-manifold faces nor top edges and it is IA
+//! (one reference per cluster per vertex). Storage follows the spec's formula exactly
+//! ([`IaStar::refs`]); ghost simplices ([`Ghost`]) name faces that are not stored.
+//!
+//! ```
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! use starplex::ids::{CellId, VertexId};
+//! use starplex::tds::iastar::IaStar;
+//! use starplex::topo::{VertexStar, Storage};
+//! // the book: three triangles sharing edge {0,1}
+//! let mut b = ComplexBuilder::new(2).unwrap();
+//! for _ in 0..5 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+//! for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let ia = IaStar::new(&k).unwrap();
+//! assert_eq!(ia.refs(), 26); // 9 + 9 + 3 + 5, the spec's worked anchor
+//! let mut vt = Vec::new();
+//! ia.vertex_top_cells(VertexId(0), &mut vt);
+//! assert_eq!(vt, vec![CellId(0), CellId(1), CellId(2)]);
+//! assert_eq!(ia.n_nm_faces(2), 1);
+//! ```
+use rustc_hash::{FxHashMap, FxHashSet};
+
+use crate::cell::{binomial, CellKind};
+use crate::complex::IndexedComplex;
+use crate::csr::Csr;
+use crate::ids::{CellId, VertexId};
+use crate::topo::{sorted_simplex, QueryError, Storage, TopCells, VertexAdjacency, VertexStar};
+
+/// Why an IA* could not be built.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum IaStarError {
+    /// A top cell that is not a simplex.
+    #[error("cell {0} is a {1}; IA* holds simplicial complexes only")]
+    NotSimplicial(u32, String),
+    /// Too many top cells for the 31-bit adjacency encoding.
+    #[error("{0} top cells: IA* adjacency slots address at most 2^31 - 1")]
+    TooManyCells(usize),
+}
+
+/// One adjacency slot of a top k-simplex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Adj {
+    /// The facet is in no other top k-simplex.
+    None,
+    /// The facet is shared with exactly this other top k-simplex.
+    Top(CellId),
+    /// The facet is shared by ≥ 3 top k-simplices: the id of its non-manifold face record
+    /// (per dimension k, see [`IaStar::nm_face_tops`]).
+    NmFace(u32),
+}
+
+const NONE: u32 = u32::MAX;
+const NM_BIT: u32 = 0x8000_0000;
+
+#[inline]
+fn decode(x: u32) -> Adj {
+    if x == NONE {
+        Adj::None
+    } else if x & NM_BIT != 0 {
+        Adj::NmFace(x & !NM_BIT)
+    } else {
+        Adj::Top(CellId(x))
+    }
+}
+
+/// The tops of one block of the input (one dimension).
+#[derive(Clone, Debug)]
+struct Block {
+    dim: usize,
+    first: u32,
+    /// Index of the block's first top among the tops of its dimension.
+    dim_offset: u32,
+    verts: Vec<u32>,
+    adj: Vec<u32>,
+}
+
+/// The IA* data structure. See the [module docs](self).
+#[derive(Clone, Debug)]
+pub struct IaStar {
+    n_vertices: u32,
+    n_cells: u32,
+    blocks: Vec<Block>,
+    /// `nm[k]`: non-manifold (k-1)-faces of the top k-simplices, row = face, targets = tops.
+    nm: Vec<Csr>,
+    /// Per vertex: top edges and one top per k-cluster, sorted by cell id.
+    vrefs: Csr,
+    /// Number of tops per dimension.
+    t: Vec<u64>,
+}
+
+impl IaStar {
+    /// Builds IA* from an indexed simplicial complex (top cells assumed maximal, as the
+    /// complex's checked builder guarantees).
+    ///
+    /// # Errors
+    /// A CP cell; more than 2^31 - 1 top cells.
+    pub fn new(k: &IndexedComplex) -> Result<IaStar, IaStarError> {
+        if k.n_cells() >= NM_BIT as usize {
+            return Err(IaStarError::TooManyCells(k.n_cells()));
+        }
+        let mut blocks = Vec::with_capacity(k.blocks().len());
+        let dmax = k.dim().unwrap_or(0);
+        let mut t = vec![0u64; dmax + 1];
+        for b in k.blocks() {
+            if !b.kind.is_simplex() {
+                return Err(IaStarError::NotSimplicial(b.first, b.kind.type_name()));
+            }
+            let dim = b.kind.dim();
+            blocks.push(Block {
+                dim,
+                first: b.first,
+                dim_offset: t[dim] as u32,
+                verts: b.vertices.to_vec(),
+                adj: if dim >= 2 {
+                    vec![NONE; b.vertices.len()]
+                } else {
+                    Vec::new()
+                },
+            });
+            t[dim] += b.len() as u64;
+        }
+        let nv = k.n_vertices();
+        let mut nm: Vec<Csr> = vec![Csr::default(); dmax + 1];
+        for d in 2..=dmax {
+            if t[d] > 0 {
+                nm[d] = build_adjacency(&mut blocks, d, nv);
+            }
+        }
+        let mut ia = IaStar {
+            n_vertices: nv as u32,
+            n_cells: k.n_cells() as u32,
+            blocks,
+            nm,
+            vrefs: Csr::default(),
+            t,
+        };
+        ia.vrefs = ia.cluster_representatives(&k.vertex_cells());
+        Ok(ia)
+    }
+
+    #[inline]
+    fn block_of(&self, c: u32) -> &Block {
+        if self.blocks.len() == 1 {
+            return &self.blocks[0];
+        }
+        let i = self.blocks.partition_point(|b| b.first <= c) - 1;
+        &self.blocks[i]
+    }
+
+    /// Vertices (input order) and adjacency slots of top `c`.
+    #[inline]
+    fn top(&self, c: u32) -> (usize, &[u32], &[u32]) {
+        let b = self.block_of(c);
+        let n = b.dim + 1;
+        let i = (c - b.first) as usize;
+        let adj = if b.adj.is_empty() {
+            &[][..]
+        } else {
+            &b.adj[i * n..(i + 1) * n]
+        };
+        (b.dim, &b.verts[i * n..(i + 1) * n], adj)
+    }
+
+    /// Calls `f` with every top reached from `c` through a facet containing `v`.
+    #[inline]
+    fn for_each_neighbour_at(&self, c: u32, v: u32, mut f: impl FnMut(u32)) {
+        let (dim, verts, adj) = self.top(c);
+        for j in 0..adj.len() {
+            if verts[j] == v {
+                continue;
+            }
+            match decode(adj[j]) {
+                Adj::None => {}
+                Adj::Top(u) => f(u.0),
+                Adj::NmFace(fid) => {
+                    for &u in self.nm[dim].row(fid as usize) {
+                        if u != c {
+                            f(u)
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    fn cluster_representatives(&self, vt: &Csr) -> Csr {
+        let nv = self.n_vertices as usize;
+        let mut stamp = vec![u32::MAX; self.n_cells as usize];
+        let mut offsets = Vec::with_capacity(nv + 1);
+        let mut targets = Vec::new();
+        let mut queue: Vec<u32> = Vec::new();
+        offsets.push(0u32);
+        for v in 0..nv as u32 {
+            for &c in vt.row(v as usize) {
+                let (dim, _, _) = self.top(c);
+                if dim <= 1 {
+                    targets.push(c);
+                    continue;
+                }
+                if stamp[c as usize] == v {
+                    continue;
+                }
+                targets.push(c);
+                stamp[c as usize] = v;
+                queue.clear();
+                queue.push(c);
+                while let Some(x) = queue.pop() {
+                    self.for_each_neighbour_at(x, v, |u| {
+                        if stamp[u as usize] != v {
+                            stamp[u as usize] = v;
+                            queue.push(u);
+                        }
+                    });
+                }
+            }
+            offsets.push(targets.len() as u32);
+        }
+        Csr { offsets, targets }
+    }
+
+    /// The adjacency slots of top `c` (empty for vertices and edges).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::CellId;
+    /// use starplex::tds::iastar::{IaStar, Adj};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap();
+    /// // facet 0 of triangle 0 is edge {1,2}, shared with triangle 1
+    /// assert_eq!(ia.adjacency(CellId(0))[0], Adj::Top(CellId(1)));
+    /// assert_eq!(ia.adjacency(CellId(0))[1], Adj::None);
+    /// ```
+    pub fn adjacency(&self, c: CellId) -> Vec<Adj> {
+        self.top(c.0).2.iter().map(|&x| decode(x)).collect()
+    }
+
+    /// R_{k,k} among tops: the top k-simplices sharing a facet with top `c`, sorted.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::CellId;
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..5 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap();
+    /// assert_eq!(ia.top_adjacent(CellId(0)), vec![CellId(1), CellId(2)]);
+    /// ```
+    pub fn top_adjacent(&self, c: CellId) -> Vec<CellId> {
+        let (dim, _, adj) = self.top(c.0);
+        let mut out = Vec::new();
+        for &x in adj {
+            match decode(x) {
+                Adj::None => {}
+                Adj::Top(u) => out.push(u),
+                Adj::NmFace(f) => out.extend(
+                    self.nm[dim]
+                        .row(f as usize)
+                        .iter()
+                        .filter(|&&u| u != c.0)
+                        .map(|&u| CellId(u)),
+                ),
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Number of non-manifold (k-1)-faces of the top k-simplices.
+    pub fn n_nm_faces(&self, k: usize) -> usize {
+        self.nm.get(k).map_or(0, |c| c.n_rows())
+    }
+
+    /// The top k-simplices of non-manifold face `f` (sorted).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::CellId;
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..5 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap();
+    /// assert_eq!(ia.nm_face_tops(2, 0), &[0, 1, 2]);
+    /// ```
+    pub fn nm_face_tops(&self, k: usize, f: u32) -> &[u32] {
+        self.nm[k].row(f as usize)
+    }
+
+    /// The sorted vertices of non-manifold face `f` of dimension k-1.
+    pub fn nm_face_vertices(&self, k: usize, f: u32) -> Vec<VertexId> {
+        let tops = self.nm_face_tops(k, f);
+        let (_, verts, adj) = self.top(tops[0]);
+        let j = adj
+            .iter()
+            .position(|&x| x == (NM_BIT | f))
+            .expect("an NmFace record is referenced by its tops");
+        let mut out: Vec<VertexId> = verts
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| i != j)
+            .map(|(_, &v)| VertexId(v))
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// The stored per-vertex references: every top edge at `v` and one top k-simplex per
+    /// k-cluster of `v` (k ≥ 2), sorted by id.
+    pub fn vertex_references(&self, v: VertexId) -> &[u32] {
+        self.vrefs.row(v.index())
+    }
+
+    /// Number of k-clusters at `v` (k ≥ 2), or of top edges for k = 1.
+    pub fn n_clusters(&self, v: VertexId, k: usize) -> usize {
+        self.vrefs
+            .row(v.index())
+            .iter()
+            .filter(|&&c| self.top(c).0 == k)
+            .count()
+    }
+
+    /// Number of top k-simplices.
+    pub fn n_tops(&self, k: usize) -> u64 {
+        self.t.get(k).copied().unwrap_or(0)
+    }
+
+    /// References with the Stellar-code variant (adjacency slots also for top edges: +2 t_1).
+    pub fn refs_stellar_variant(&self) -> u64 {
+        self.refs() + 2 * self.n_tops(1)
+    }
+
+    /// The index of top `c` among the top simplices of its dimension, and that dimension.
+    pub fn dim_index(&self, c: CellId) -> (usize, u32) {
+        let b = self.block_of(c.0);
+        (b.dim, b.dim_offset + (c.0 - b.first))
+    }
+
+    /// The input id of the `i`-th top m-simplex.
+    pub fn cell_of(&self, m: usize, i: u32) -> Option<CellId> {
+        let b = self
+            .blocks
+            .iter()
+            .filter(|b| b.dim == m && b.dim_offset <= i)
+            .last()?;
+        let local = i - b.dim_offset;
+        ((local as usize) < b.verts.len() / (m + 1)).then(|| CellId(b.first + local))
+    }
+
+    fn vt_into(&self, v: u32, out: &mut Vec<CellId>) {
+        out.clear();
+        let reps = self.vrefs.row(v as usize);
+        let mut seen: FxHashSet<u32> = FxHashSet::default();
+        let mut queue: Vec<u32> = Vec::new();
+        let mut cells: Vec<u32> = Vec::new();
+        for &r in reps {
+            if self.top(r).0 <= 1 {
+                cells.push(r);
+                continue;
+            }
+            // small stars: linear membership; large ones: a hash set
+            let start = cells.len();
+            cells.push(r);
+            queue.clear();
+            queue.push(r);
+            while let Some(x) = queue.pop() {
+                self.for_each_neighbour_at(x, v, |u| {
+                    let found = if cells.len() - start < 48 {
+                        cells[start..].contains(&u)
+                    } else {
+                        if seen.is_empty() {
+                            seen.extend(cells[start..].iter().copied());
+                        }
+                        !seen.insert(u)
+                    };
+                    if !found {
+                        if cells.len() - start < 48 {
+                            cells.push(u);
+                        } else {
+                            cells.push(u);
+                            seen.insert(u);
+                        }
+                        queue.push(u);
+                    }
+                });
+            }
+            seen.clear();
+        }
+        cells.sort_unstable();
+        out.extend(cells.into_iter().map(CellId));
+    }
+}
+
+/// Groups the facets of the top d-simplices and fills their adjacency slots; returns the
+/// non-manifold face lists.
+fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
+    let n = d + 1;
+    // sorted copy of every top's vertices and global ids, in dimension order
+    let mut sorted: Vec<u32> = Vec::new();
+    let mut ids: Vec<u32> = Vec::new();
+    for b in blocks.iter().filter(|b| b.dim == d) {
+        for (i, c) in b.verts.chunks_exact(n).enumerate() {
+            let s0 = sorted.len();
+            sorted.extend_from_slice(c);
+            sorted[s0..].sort_unstable();
+            ids.push(b.first + i as u32);
+        }
+    }
+    let nt = ids.len();
+    // slot (li, jj) where jj is the position in the *sorted* tuple of the removed vertex.
+    // bucket by the facet's smallest vertex: sorted[0] unless jj == 0, then sorted[1].
+    let min_of = |slot: usize| -> u32 {
+        let (li, jj) = (slot / n, slot % n);
+        sorted[li * n + usize::from(jj == 0)]
+    };
+    let mut counts = vec![0u32; nv + 1];
+    for slot in 0..nt * n {
+        counts[min_of(slot) as usize + 1] += 1;
+    }
+    for i in 0..nv {
+        counts[i + 1] += counts[i];
+    }
+    let mut pos = counts.clone();
+    let mut order = vec![0u32; nt * n];
+    for slot in 0..nt * n {
+        let m = min_of(slot) as usize;
+        order[pos[m] as usize] = slot as u32;
+        pos[m] += 1;
+    }
+    // facet key without its first vertex, packed when it fits
+    let facet = |slot: u32, out: &mut [u32]| {
+        let (li, jj) = (slot as usize / n, slot as usize % n);
+        let t = &sorted[li * n..(li + 1) * n];
+        let mut w = 0;
+        for (i, &x) in t.iter().enumerate() {
+            if i != jj {
+                out[w] = x;
+                w += 1;
+            }
+        }
+    };
+    let mut nm_pairs: Vec<u32> = Vec::new(); // flat: tops of each nm face
+    let mut nm_offsets: Vec<u32> = vec![0];
+    // global id -> (block index, local)
+    let locate = |blocks: &[Block], c: u32| -> (usize, usize) {
+        let bi = blocks.partition_point(|b| b.first <= c) - 1;
+        (bi, (c - blocks[bi].first) as usize)
+    };
+    let set_slot = |blocks: &mut [Block], slot: u32, val: u32, ids: &[u32], sorted: &[u32]| {
+        let (li, jj) = (slot as usize / n, slot as usize % n);
+        let c = ids[li];
+        let removed = sorted[li * n + jj];
+        let (bi, local) = locate(blocks, c);
+        let b = &mut blocks[bi];
+        let verts = &b.verts[local * n..(local + 1) * n];
+        let j = verts
+            .iter()
+            .position(|&x| x == removed)
+            .expect("vertex of its top");
+        b.adj[local * n + j] = val;
+    };
+    let mut ka = vec![0u32; n];
+    let mut kb = vec![0u32; n];
+    let mut keyed: Vec<(u64, u32)> = Vec::new();
+    for v in 0..nv {
+        let bucket = &mut order[counts[v] as usize..counts[v + 1] as usize];
+        if bucket.len() < 2 {
+            continue;
+        }
+        if d <= 3 {
+            // the facet minus its min vertex has d-1 ≤ 2 vertices: pack into u64
+            keyed.clear();
+            for &s in bucket.iter() {
+                facet(s, &mut ka[..d]);
+                let key = if d == 2 {
+                    ka[1] as u64
+                } else {
+                    ((ka[1] as u64) << 32) | ka[2] as u64
+                };
+                keyed.push((key, s));
+            }
+            keyed.sort_unstable();
+            for (dst, &(_, s)) in bucket.iter_mut().zip(keyed.iter()) {
+                *dst = s;
+            }
+        } else {
+            bucket.sort_unstable_by(|&a, &b| {
+                facet(a, &mut ka[..d]);
+                facet(b, &mut kb[..d]);
+                ka[..d].cmp(&kb[..d])
+            });
+        }
+        let mut i = 0;
+        while i < bucket.len() {
+            facet(bucket[i], &mut ka[..d]);
+            let mut j = i + 1;
+            while j < bucket.len() {
+                facet(bucket[j], &mut kb[..d]);
+                if ka[..d] != kb[..d] {
+                    break;
+                }
+                j += 1;
+            }
+            match j - i {
+                1 => {}
+                2 => {
+                    let (s1, s2) = (bucket[i], bucket[i + 1]);
+                    let (c1, c2) = (ids[s1 as usize / n], ids[s2 as usize / n]);
+                    set_slot(blocks, s1, c2, &ids, &sorted);
+                    set_slot(blocks, s2, c1, &ids, &sorted);
+                }
+                _ => {
+                    let f = (nm_offsets.len() - 1) as u32;
+                    let start = nm_pairs.len();
+                    for &s in &bucket[i..j] {
+                        nm_pairs.push(ids[s as usize / n]);
+                        set_slot(blocks, s, NM_BIT | f, &ids, &sorted);
+                    }
+                    nm_pairs[start..].sort_unstable();
+                    nm_offsets.push(nm_pairs.len() as u32);
+                }
+            }
+            i = j;
+        }
+    }
+    Csr {
+        offsets: nm_offsets,
+        targets: nm_pairs,
+    }
+}
+
+impl TopCells for IaStar {
+    fn n_vertices(&self) -> usize {
+        self.n_vertices as usize
+    }
+    fn n_top_cells(&self) -> usize {
+        self.n_cells as usize
+    }
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        CellKind::Simplex(self.top(c.0).0 as u8)
+    }
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        out.extend(self.top(c.0).1.iter().map(|&v| VertexId(v)));
+    }
+}
+
+impl VertexStar for IaStar {
+    fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
+        self.vt_into(v.0, out);
+    }
+}
+
+impl VertexAdjacency for IaStar {
+    fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>) {
+        let mut cells = Vec::new();
+        self.vt_into(v.0, &mut cells);
+        out.clear();
+        for c in cells {
+            out.extend(
+                self.top(c.0)
+                    .1
+                    .iter()
+                    .filter(|&&w| w != v.0)
+                    .map(|&w| VertexId(w)),
+            );
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+}
+
+impl Storage for IaStar {
+    /// The spec's formula: Σ_{k≥1}(k+1)t_k + Σ_{k≥2}(k+1)t_k + Σ |NM lists| + 2t_1 + Σ_v Σ_k κ_k(v).
+    fn refs(&self) -> u64 {
+        let verts: u64 = self.blocks.iter().map(|b| b.verts.len() as u64).sum();
+        let adj: u64 = self.blocks.iter().map(|b| b.adj.len() as u64).sum();
+        let nm: u64 = self.nm.iter().map(|c| c.n_refs() as u64).sum();
+        verts + adj + nm + self.vrefs.n_refs() as u64
+    }
+    fn bytes(&self) -> u64 {
+        let blocks: usize = self
+            .blocks
+            .iter()
+            .map(|b| 4 * (b.verts.len() + b.adj.len()) + std::mem::size_of::<Block>())
+            .sum();
+        let nm: usize = self.nm.iter().map(|c| c.bytes()).sum();
+        (blocks + nm + self.vrefs.bytes()) as u64
+    }
+}
+
+crate::impl_relations_from_tops!(IaStar);
+
+// ---------------------------------------------------------------------------------------------
+// Ghost simplices
+
+/// A ghost simplex: "the i-th p-face of the k-th top m-simplex" (k counts the top m-simplices in
+/// input order; i ranks the face's vertex positions in colex order,
+/// rank({s_0<…<s_p}) = Σ_j C(s_j, j+1)). Ghosts returned by [`IaStar`] are canonical: the top
+/// is the smallest (m, k) containing the face, so one simplex has one ghost and `==` is
+/// simplex equality.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Ghost {
+    /// Dimension of the top.
+    pub m: u8,
+    /// Index of the top among the top m-simplices.
+    pub k: u32,
+    /// Dimension of the face.
+    pub p: u8,
+    /// Colex rank of the face's vertex positions in the top.
+    pub i: u64,
+}
+
+/// Colex rank of sorted positions.
+fn colex_rank(pos: &[usize]) -> u64 {
+    pos.iter()
+        .enumerate()
+        .map(|(j, &s)| binomial(s as u64, j as u64 + 1) as u64)
+        .sum()
+}
+
+/// Positions (sorted) of the colex rank `i` among (p+1)-subsets.
+fn colex_unrank(mut i: u64, p: usize) -> Vec<usize> {
+    let mut out = vec![0usize; p + 1];
+    for j in (0..=p).rev() {
+        // largest s with C(s, j+1) <= i
+        let mut s = j;
+        while binomial(s as u64 + 1, j as u64 + 1) as u64 <= i {
+            s += 1;
+        }
+        out[j] = s;
+        i -= binomial(s as u64, j as u64 + 1) as u64;
+    }
+    out
+}
+
+/// Attributes attached to ghost simplices (sparse: a hash map keyed by the canonical ghost).
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// use starplex::ids::VertexId;
+/// use starplex::tds::iastar::{IaStar, GhostAttributes};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let ia = IaStar::new(&k).unwrap();
+/// let mut w: GhostAttributes<f64> = GhostAttributes::default();
+/// let e = ia.ghost(&[VertexId(2), VertexId(1)]).unwrap();
+/// w.insert(e, 0.5);
+/// // the same edge named from the other triangle's side is the same canonical ghost
+/// let again = ia.ghost(&[VertexId(1), VertexId(2)]).unwrap();
+/// assert_eq!(w.get(&again), Some(&0.5));
+/// ```
+pub type GhostAttributes<T> = FxHashMap<Ghost, T>;
+
+impl IaStar {
+    /// The canonical ghost of simplex `s` (vertices in any order).
+    ///
+    /// # Errors
+    /// `s` is not a simplex of the complex.
+    pub fn ghost(&self, s: &[VertexId]) -> Result<Ghost, QueryError> {
+        let s = sorted_simplex(s)?;
+        let mut cells = Vec::new();
+        crate::topo::from_tops::top_star(self, &s, &mut cells)?;
+        let best = cells
+            .iter()
+            .map(|&c| {
+                let (m, k) = self.dim_index(c);
+                (m, k, c)
+            })
+            .min()
+            .ok_or_else(|| QueryError::NotInComplex(s.iter().map(|v| v.0).collect()))?;
+        let (m, k, c) = best;
+        let verts = self.top(c.0).1;
+        let mut pos: Vec<usize> = s
+            .iter()
+            .map(|v| {
+                verts
+                    .iter()
+                    .position(|&w| w == v.0)
+                    .expect("a top of the star contains the simplex")
+            })
+            .collect();
+        pos.sort_unstable();
+        Ok(Ghost {
+            m: m as u8,
+            k,
+            p: (s.len() - 1) as u8,
+            i: colex_rank(&pos),
+        })
+    }
+
+    /// The sorted vertices of a ghost.
+    ///
+    /// # Errors
+    /// A ghost that names no face of a top.
+    pub fn ghost_vertices(&self, g: Ghost) -> Result<Vec<VertexId>, QueryError> {
+        let bad = || QueryError::NotInComplex(vec![]);
+        let c = self.cell_of(g.m as usize, g.k).ok_or_else(bad)?;
+        if g.p > g.m || g.i as u128 >= binomial(g.m as u64 + 1, g.p as u64 + 1) {
+            return Err(bad());
+        }
+        let verts = self.top(c.0).1;
+        let mut out: Vec<VertexId> = colex_unrank(g.i, g.p as usize)
+            .into_iter()
+            .map(|j| VertexId(verts[j]))
+            .collect();
+        out.sort_unstable();
+        Ok(out)
+    }
+
+    /// R_{p,q} on a ghost, q < p: its q-faces as canonical ghosts, sorted.
+    ///
+    /// # Errors
+    /// A bad ghost; too many faces.
+    pub fn ghost_boundary(&self, g: Ghost, q: usize) -> Result<Vec<Ghost>, QueryError> {
+        let s = self.ghost_vertices(g)?;
+        let mut flat = Vec::new();
+        crate::topo::from_tops::boundary_of_sorted(&s, q, crate::topo::DEFAULT_BUDGET, &mut flat)?;
+        self.ghosts_of_flat(&flat, q)
+    }
+
+    /// R_{p,q} on a ghost, q > p: its q-cofaces as canonical ghosts, sorted.
+    ///
+    /// # Errors
+    /// A bad ghost; too many cofaces.
+    pub fn ghost_coboundary(&self, g: Ghost, q: usize) -> Result<Vec<Ghost>, QueryError> {
+        let s = self.ghost_vertices(g)?;
+        let mut flat = Vec::new();
+        crate::topo::from_tops::coboundary(self, &s, q, crate::topo::DEFAULT_BUDGET, &mut flat)?;
+        self.ghosts_of_flat(&flat, q)
+    }
+
+    /// R_{p,p} on a ghost: adjacent simplices as canonical ghosts, sorted (p ≥ 1).
+    ///
+    /// # Errors
+    /// A bad ghost; too many simplices.
+    pub fn ghost_adjacent(&self, g: Ghost) -> Result<Vec<Ghost>, QueryError> {
+        let s = self.ghost_vertices(g)?;
+        let mut flat = Vec::new();
+        crate::topo::from_tops::adjacent(self, &s, crate::topo::DEFAULT_BUDGET, &mut flat)?;
+        if s.len() == 1 {
+            return Ok(Vec::new());
+        }
+        self.ghosts_of_flat(&flat, s.len() - 1)
+    }
+
+    fn ghosts_of_flat(&self, flat: &[VertexId], q: usize) -> Result<Vec<Ghost>, QueryError> {
+        let mut out = flat
+            .chunks_exact(q + 1)
+            .map(|f| self.ghost(f))
+            .collect::<Result<Vec<_>, _>>()?;
+        out.sort_unstable();
+        Ok(out)
+    }
+}

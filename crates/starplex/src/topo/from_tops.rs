@@ -1,0 +1,486 @@
+//! Every relation from the top-cell queries: a structure that answers [`TopCells`] and
+//! [`VertexStar`] (top cells and VT, like [`VtIndex`](super::naive::VtIndex) or IA*) gets
+//! [`TopStar`](super::TopStar), [`Boundary`](super::Boundary), [`Coboundary`](super::Coboundary),
+//! [`Adjacency`](super::Adjacency), [`Star`](super::Star), [`Levels`](super::Levels) and
+//! [`Counts`](super::Counts) through these functions (the spec's §2.3 algorithms: filter the
+//! vertex star, then enumerate faces of the tops, each face emitted once).
+//!
+//! Faces are enumerated for simplicial tops only; a CP cell in the star gives
+//! [`QueryError::NotSimplicial`]. Every enumeration checks an estimate against a budget first.
+//!
+//! ```
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! use starplex::ids::VertexId;
+//! use starplex::topo::{naive::VtIndex, from_tops};
+//! let mut b = ComplexBuilder::new(1).unwrap();
+//! for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+//! b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let idx = VtIndex::new(&k);
+//! let st = from_tops::star(&idx, &[VertexId(0), VertexId(1)], 1000).unwrap();
+//! assert_eq!(st.f_vector(), vec![0, 1, 2, 1]);
+//! ```
+use super::{sort_flat, sorted_simplex, QueryError, SimplexSet, TopCells, VertexStar};
+use crate::cell::binomial;
+use crate::ids::{CellId, VertexId};
+
+fn not_in(s: &[VertexId]) -> QueryError {
+    QueryError::NotInComplex(s.iter().map(|v| v.0).collect())
+}
+
+/// True when sorted `small` ⊆ `big` (any order).
+#[inline]
+fn subset(small: &[VertexId], big: &[VertexId]) -> bool {
+    small.iter().all(|v| big.contains(v))
+}
+
+/// St_T(s): the top cells containing `s`, sorted; for a vertex, its VT (possibly empty for an
+/// isolated vertex).
+///
+/// # Errors
+/// `s` is not a simplex of the complex.
+pub fn top_star<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    s: &[VertexId],
+    out: &mut Vec<CellId>,
+) -> Result<(), QueryError> {
+    let s = sorted_simplex(s)?;
+    if s.iter().any(|v| v.index() >= st.n_vertices()) {
+        return Err(not_in(&s));
+    }
+    st.vertex_top_cells(s[0], out);
+    if s.len() == 1 {
+        return Ok(());
+    }
+    let mut buf = Vec::new();
+    let raw: Vec<u32> = s.iter().map(|v| v.0).collect();
+    out.retain(|&c| {
+        buf.clear();
+        st.top_cell_vertices(c, &mut buf);
+        let kind = st.top_cell_kind(c);
+        if kind.is_simplex() {
+            subset(&s, &buf)
+        } else {
+            let cv: Vec<u32> = buf.iter().map(|v| v.0).collect();
+            kind.has_face(&cv, &raw)
+        }
+    });
+    if out.is_empty() {
+        return Err(not_in(&s));
+    }
+    Ok(())
+}
+
+/// The tops of St_T(s) as sorted vertex lists (simplicial tops only).
+fn star_tops<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    s: &[VertexId],
+    what: &str,
+) -> Result<Vec<Vec<VertexId>>, QueryError> {
+    let mut cells = Vec::new();
+    top_star(st, s, &mut cells)?;
+    let mut tops = Vec::with_capacity(cells.len());
+    for c in cells {
+        if !st.top_cell_kind(c).is_simplex() {
+            return Err(QueryError::NotSimplicial(what.to_string()));
+        }
+        let mut t = Vec::new();
+        st.top_cell_vertices(c, &mut t);
+        t.sort_unstable();
+        tops.push(t);
+    }
+    Ok(tops)
+}
+
+/// Calls `f` with every `k`-subset of `items` (in lexicographic order of positions).
+pub fn for_each_subset<T: Copy>(items: &[T], k: usize, buf: &mut Vec<T>, f: &mut dyn FnMut(&[T])) {
+    let n = items.len();
+    if k > n {
+        return;
+    }
+    if k == n {
+        buf.clear();
+        buf.extend_from_slice(items);
+        f(buf);
+        return;
+    }
+    let mut small = [0usize; 72];
+    let mut large: Vec<usize>;
+    let idx: &mut [usize] = if k <= small.len() {
+        &mut small[..k]
+    } else {
+        large = vec![0; k];
+        &mut large[..]
+    };
+    for (i, x) in idx.iter_mut().enumerate() {
+        *x = i;
+    }
+    loop {
+        buf.clear();
+        buf.extend(idx.iter().map(|&i| items[i]));
+        f(buf);
+        let mut i = k as isize - 1;
+        while i >= 0 && idx[i as usize] == n - k + i as usize {
+            i -= 1;
+        }
+        if i < 0 {
+            return;
+        }
+        let i = i as usize;
+        idx[i] += 1;
+        for j in i + 1..k {
+            idx[j] = idx[j - 1] + 1;
+        }
+    }
+}
+
+fn too_large(what: String, estimate: u128, budget: u128) -> QueryError {
+    QueryError::TooLarge {
+        what,
+        estimate,
+        budget,
+    }
+}
+
+/// St(s): every simplex containing `s`.
+///
+/// # Errors
+/// `s` not in the complex, a CP cell in the star, more than `budget` simplices.
+pub fn star<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    s: &[VertexId],
+    budget: u128,
+) -> Result<SimplexSet, QueryError> {
+    let s = sorted_simplex(s)?;
+    let tops = star_tops(st, &s, "star")?;
+    let est: u128 = tops
+        .iter()
+        .map(|t| 1u128 << (t.len() - s.len()).min(120))
+        .fold(1, |a, x| a.saturating_add(x));
+    if est > budget {
+        return Err(too_large(format!("star of {s:?}"), est, budget));
+    }
+    let mut set = SimplexSet::default();
+    set.insert(&s);
+    let mut buf = Vec::new();
+    let mut face = Vec::new();
+    for t in &tops {
+        let rest: Vec<VertexId> = t.iter().copied().filter(|v| !s.contains(v)).collect();
+        for k in 1..=rest.len() {
+            for_each_subset(&rest, k, &mut buf, &mut |sub| {
+                face.clear();
+                face.extend_from_slice(&s);
+                face.extend_from_slice(sub);
+                set.insert(&face);
+            });
+        }
+    }
+    set.normalize();
+    Ok(set)
+}
+
+/// R_{p,q}, q > p: the q-simplices containing `s` (empty for q ≤ p).
+///
+/// # Errors
+/// `s` not in the complex, a CP cell in the star, more than `budget` simplices.
+pub fn coboundary<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    s: &[VertexId],
+    q: usize,
+    budget: u128,
+    out: &mut Vec<VertexId>,
+) -> Result<(), QueryError> {
+    let s = sorted_simplex(s)?;
+    out.clear();
+    let tops = star_tops(st, &s, "co-boundary")?;
+    let p = s.len() - 1;
+    if q <= p {
+        return Ok(());
+    }
+    let est: u128 = tops
+        .iter()
+        .map(|t| binomial((t.len() - s.len()) as u64, (q - p) as u64))
+        .fold(0, |a, x| a.saturating_add(x));
+    if est > budget {
+        return Err(too_large(format!("co-boundary R_{p},{q}"), est, budget));
+    }
+    let mut buf = Vec::new();
+    for t in &tops {
+        let rest: Vec<VertexId> = t.iter().copied().filter(|v| !s.contains(v)).collect();
+        for_each_subset(&rest, q - p, &mut buf, &mut |sub| {
+            let start = out.len();
+            out.extend_from_slice(&s);
+            out.extend_from_slice(sub);
+            out[start..].sort_unstable();
+        });
+    }
+    sort_flat(out, q + 1);
+    Ok(())
+}
+
+/// R_{p,q}, q < p: the q-faces of `s` (empty for q ≥ p).
+///
+/// # Errors
+/// `s` not in the complex; more than `budget` faces.
+pub fn boundary<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    s: &[VertexId],
+    q: usize,
+    budget: u128,
+    out: &mut Vec<VertexId>,
+) -> Result<(), QueryError> {
+    let s = sorted_simplex(s)?;
+    out.clear();
+    let mut cells = Vec::new();
+    top_star(st, &s, &mut cells)?;
+    boundary_of_sorted(&s, q, budget, out)
+}
+
+/// The q-faces of a sorted simplex known to be in the complex.
+///
+/// # Errors
+/// More than `budget` faces.
+pub fn boundary_of_sorted(
+    s: &[VertexId],
+    q: usize,
+    budget: u128,
+    out: &mut Vec<VertexId>,
+) -> Result<(), QueryError> {
+    out.clear();
+    if q + 1 >= s.len() {
+        return Ok(());
+    }
+    let est = binomial(s.len() as u64, q as u64 + 1);
+    if est > budget {
+        return Err(too_large(
+            format!("boundary R_{},{q}", s.len() - 1),
+            est,
+            budget,
+        ));
+    }
+    let mut buf = Vec::new();
+    for_each_subset(s, q + 1, &mut buf, &mut |f| out.extend_from_slice(f));
+    Ok(())
+}
+
+/// R_{p,p}: simplices adjacent to `s` (p ≥ 1: sharing a facet; p = 0: sharing an edge).
+///
+/// # Errors
+/// `s` not in the complex, a CP cell in the star, more than `budget` simplices.
+pub fn adjacent<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    s: &[VertexId],
+    budget: u128,
+    out: &mut Vec<VertexId>,
+) -> Result<(), QueryError> {
+    let s = sorted_simplex(s)?;
+    out.clear();
+    let p = s.len() - 1;
+    if p == 0 {
+        let mut e = Vec::new();
+        coboundary(st, &s, 1, budget, &mut e)?;
+        out.extend(
+            e.chunks_exact(2)
+                .map(|c| if c[0] == s[0] { c[1] } else { c[0] }),
+        );
+        out.sort_unstable();
+        return Ok(());
+    }
+    let mut cells = Vec::new();
+    top_star(st, &s, &mut cells)?;
+    let mut co = Vec::new();
+    let mut facet = Vec::with_capacity(p);
+    for j in 0..=p {
+        facet.clear();
+        facet.extend(
+            s.iter()
+                .enumerate()
+                .filter(|&(i, _)| i != j)
+                .map(|(_, &v)| v),
+        );
+        coboundary(st, &facet, p, budget, &mut co)?;
+        for c in co.chunks_exact(p + 1) {
+            if c != s.as_slice() {
+                out.extend_from_slice(c);
+            }
+        }
+    }
+    sort_flat(out, p + 1);
+    Ok(())
+}
+
+/// An upper bound of the (top, p-face) pairs of the complex.
+pub fn face_estimate<S: TopCells + ?Sized>(st: &S, p: usize) -> u128 {
+    let mut est: u128 = 0;
+    for c in 0..st.n_top_cells() {
+        let kind = st.top_cell_kind(CellId(c as u32));
+        est = est.saturating_add(kind.n_faces(p));
+    }
+    est
+}
+
+fn check_simplicial<S: TopCells + ?Sized>(st: &S, what: &str) -> Result<(), QueryError> {
+    for c in 0..st.n_top_cells() {
+        if !st.top_cell_kind(CellId(c as u32)).is_simplex() {
+            return Err(QueryError::NotSimplicial(what.to_string()));
+        }
+    }
+    Ok(())
+}
+
+/// Calls `f` once per p-simplex: vertex by vertex, each face emitted from its smallest vertex
+/// (sorted within one vertex). p = 0 lists every vertex, isolated ones included.
+///
+/// # Errors
+/// A CP cell; more than `budget` (top, face) pairs.
+pub fn for_each_simplex<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    p: usize,
+    budget: u128,
+    f: &mut dyn FnMut(&[VertexId]),
+) -> Result<(), QueryError> {
+    if p == 0 {
+        for v in 0..st.n_vertices() {
+            f(&[VertexId(v as u32)]);
+        }
+        return Ok(());
+    }
+    check_simplicial(st, "level iteration")?;
+    let est = face_estimate(st, p);
+    if est > budget {
+        return Err(too_large(format!("the {p}-simplices"), est, budget));
+    }
+    let mut cells = Vec::new();
+    let mut tv = Vec::new();
+    let mut local: Vec<VertexId> = Vec::new();
+    let mut buf = Vec::new();
+    for v in 0..st.n_vertices() {
+        let v = VertexId(v as u32);
+        st.vertex_top_cells(v, &mut cells);
+        local.clear();
+        for &c in &cells {
+            tv.clear();
+            st.top_cell_vertices(c, &mut tv);
+            let upper: Vec<VertexId> = tv.iter().copied().filter(|&w| w > v).collect();
+            let mut upper = upper;
+            upper.sort_unstable();
+            for_each_subset(&upper, p, &mut buf, &mut |sub| {
+                local.push(v);
+                local.extend_from_slice(sub);
+            });
+        }
+        sort_flat(&mut local, p + 1);
+        for s in local.chunks_exact(p + 1) {
+            f(s);
+        }
+    }
+    Ok(())
+}
+
+/// The f-vector by level iteration.
+///
+/// # Errors
+/// A CP cell; more than `budget` (top, face) pairs in total.
+pub fn f_vector<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    budget: u128,
+) -> Result<Vec<u64>, QueryError> {
+    let mut dim = None;
+    for c in 0..st.n_top_cells() {
+        let d = st.top_cell_kind(CellId(c as u32)).dim();
+        dim = Some(dim.map_or(d, |x: usize| x.max(d)));
+    }
+    let dim = match dim {
+        None if st.n_vertices() == 0 => return Ok(vec![]),
+        None => 0,
+        Some(d) => d,
+    };
+    let total: u128 = (1..=dim)
+        .map(|p| face_estimate(st, p))
+        .fold(0, |a, x| a.saturating_add(x));
+    if total > budget {
+        return Err(too_large("the f-vector".into(), total, budget));
+    }
+    let mut f = vec![0u64; dim + 1];
+    for (p, x) in f.iter_mut().enumerate() {
+        let mut n = 0u64;
+        for_each_simplex(st, p, budget, &mut |_| n += 1)?;
+        *x = n;
+    }
+    Ok(f)
+}
+
+/// Implements `TopStar`, `Counts`, `Boundary`, `Coboundary`, `Adjacency`, `Star` and `Levels`
+/// for a type that implements `TopCells + VertexStar`, through this module's functions with
+/// [`DEFAULT_BUDGET`](super::DEFAULT_BUDGET).
+#[macro_export]
+macro_rules! impl_relations_from_tops {
+    ($t:ty) => {
+        impl $crate::topo::TopStar for $t {
+            fn top_star(
+                &self,
+                s: &[$crate::ids::VertexId],
+                out: &mut Vec<$crate::ids::CellId>,
+            ) -> Result<(), $crate::topo::QueryError> {
+                $crate::topo::from_tops::top_star(self, s, out)
+            }
+        }
+        impl $crate::topo::Counts for $t {
+            fn f_vector(&self) -> Result<Vec<u64>, $crate::topo::QueryError> {
+                $crate::topo::from_tops::f_vector(self, $crate::topo::DEFAULT_BUDGET * 100)
+            }
+        }
+        impl $crate::topo::Boundary for $t {
+            fn boundary(
+                &self,
+                s: &[$crate::ids::VertexId],
+                q: usize,
+                out: &mut Vec<$crate::ids::VertexId>,
+            ) -> Result<(), $crate::topo::QueryError> {
+                $crate::topo::from_tops::boundary(self, s, q, $crate::topo::DEFAULT_BUDGET, out)
+            }
+        }
+        impl $crate::topo::Coboundary for $t {
+            fn coboundary(
+                &self,
+                s: &[$crate::ids::VertexId],
+                q: usize,
+                out: &mut Vec<$crate::ids::VertexId>,
+            ) -> Result<(), $crate::topo::QueryError> {
+                $crate::topo::from_tops::coboundary(self, s, q, $crate::topo::DEFAULT_BUDGET, out)
+            }
+        }
+        impl $crate::topo::Adjacency for $t {
+            fn adjacent(
+                &self,
+                s: &[$crate::ids::VertexId],
+                out: &mut Vec<$crate::ids::VertexId>,
+            ) -> Result<(), $crate::topo::QueryError> {
+                $crate::topo::from_tops::adjacent(self, s, $crate::topo::DEFAULT_BUDGET, out)
+            }
+        }
+        impl $crate::topo::Star for $t {
+            fn star(
+                &self,
+                s: &[$crate::ids::VertexId],
+            ) -> Result<$crate::topo::SimplexSet, $crate::topo::QueryError> {
+                $crate::topo::from_tops::star(self, s, $crate::topo::DEFAULT_BUDGET)
+            }
+        }
+        impl $crate::topo::Levels for $t {
+            fn for_each_simplex(
+                &self,
+                p: usize,
+                f: &mut dyn FnMut(&[$crate::ids::VertexId]),
+            ) -> Result<(), $crate::topo::QueryError> {
+                $crate::topo::from_tops::for_each_simplex(
+                    self,
+                    p,
+                    $crate::topo::DEFAULT_BUDGET * 100,
+                    f,
+                )
+            }
+        }
+    };
+}

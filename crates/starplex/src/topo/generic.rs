@@ -1,0 +1,88 @@
+//! Generic algorithms written once against the capability traits: closure, link, skeleton and
+//! Euler characteristic of any structure.
+//!
+//! ```
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! use starplex::ids::VertexId;
+//! use starplex::topo::{naive::VtIndex, generic};
+//! let mut b = ComplexBuilder::new(1).unwrap();
+//! for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+//! b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let idx = VtIndex::new(&k);
+//! assert_eq!(generic::euler_characteristic(&idx).unwrap(), 1);
+//! let lk = generic::link(&idx, &[VertexId(0)]).unwrap();
+//! assert_eq!(lk.f_vector(), vec![3, 3, 1]);
+//! let cl = generic::closure(&idx, &[VertexId(1), VertexId(2)]).unwrap();
+//! assert_eq!(cl.f_vector(), vec![2, 1]);
+//! assert_eq!(generic::skeleton(&idx, 1).unwrap().f_vector(), vec![4, 6]);
+//! ```
+use super::{sorted_simplex, Boundary, Counts, Levels, QueryError, SimplexSet, Star};
+use crate::ids::VertexId;
+
+/// The closure of `s`: `s` and all its faces.
+///
+/// # Errors
+/// `s` not in the complex; too many faces.
+pub fn closure<S: Boundary + ?Sized>(st: &S, s: &[VertexId]) -> Result<SimplexSet, QueryError> {
+    let s = sorted_simplex(s)?;
+    let mut set = SimplexSet::default();
+    let mut out = Vec::new();
+    for q in 0..s.len() - 1 {
+        st.boundary(&s, q, &mut out)?;
+        set.levels.push(out.clone());
+    }
+    set.insert(&s);
+    set.normalize();
+    Ok(set)
+}
+
+/// The link of `s`: {τ ∖ s : τ ∈ St(s), τ ≠ s}.
+///
+/// # Errors
+/// `s` not in the complex; a star over the budget.
+pub fn link<S: Star + ?Sized>(st: &S, s: &[VertexId]) -> Result<SimplexSet, QueryError> {
+    let s = sorted_simplex(s)?;
+    let star = st.star(&s)?;
+    let mut set = SimplexSet::default();
+    let mut buf = Vec::new();
+    for t in star.iter() {
+        if t.len() == s.len() {
+            continue;
+        }
+        buf.clear();
+        buf.extend(t.iter().copied().filter(|v| s.binary_search(v).is_err()));
+        set.insert(&buf);
+    }
+    set.normalize();
+    Ok(set)
+}
+
+/// The p-skeleton: every simplex of dimension ≤ p.
+///
+/// # Errors
+/// Too many simplices.
+pub fn skeleton<S: Levels + ?Sized>(st: &S, p: usize) -> Result<SimplexSet, QueryError> {
+    let mut set = SimplexSet::default();
+    for q in 0..=p {
+        let mut l = Vec::new();
+        st.for_each_simplex(q, &mut |s| l.extend_from_slice(s))?;
+        set.levels.push(l);
+    }
+    set.normalize();
+    Ok(set)
+}
+
+/// χ = Σ (-1)^p f_p.
+///
+/// # Errors
+/// The f-vector is over the budget.
+pub fn euler_characteristic<S: Counts + ?Sized>(st: &S) -> Result<i64, QueryError> {
+    Ok(st
+        .f_vector()?
+        .iter()
+        .enumerate()
+        .map(|(p, &x)| if p % 2 == 0 { x as i64 } else { -(x as i64) })
+        .sum())
+}
