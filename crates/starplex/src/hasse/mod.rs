@@ -95,6 +95,10 @@ impl Node {
     }
 }
 
+fn fmt_verts(v: &[VertexId]) -> String {
+    format!("{:?}", v.iter().map(|x| x.0).collect::<Vec<_>>())
+}
+
 /// Errors of the Hasse complex.
 ///
 /// ```
@@ -106,7 +110,7 @@ impl Node {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum HasseError {
     /// A simplex with a repeated vertex.
-    #[error("simplex {vertices:?}: vertex {repeated} appears more than once (degenerate)")]
+    #[error("simplex {}: vertex {repeated} appears more than once (degenerate)", fmt_verts(.vertices))]
     Degenerate {
         /// The vertices given.
         vertices: Vec<VertexId>,
@@ -133,7 +137,7 @@ pub enum HasseError {
         got: usize,
     },
     /// No simplex with these vertices.
-    #[error("no simplex with vertices {0:?}")]
+    #[error("no simplex with vertices {}", fmt_verts(.0))]
     NotFound(Vec<VertexId>),
     /// A node handle that is not in the complex.
     #[error("node {0:?} is not in the complex")]

@@ -131,7 +131,8 @@ impl<L: Levels> Hasse<L> {
     /// h.insert(&[1.into(), 2.into(), 3.into()]).unwrap();
     /// let e = h.find(&[1.into(), 2.into()]).unwrap();
     /// let c = h.oriented_cofaces(e, 1);
-    /// assert_eq!(c.iter().map(|x| x.1).collect::<Vec<_>>(), vec![1, -1]);
+    /// // {1,2} is facet 0 of {0,1,2} and facet 2 of {1,2,3}: both sorted orders induce +1
+    /// assert_eq!(c.iter().map(|x| x.1).collect::<Vec<_>>(), vec![1, 1]);
     /// ```
     pub fn oriented_cofaces(&self, s: Node, sign: i8) -> Vec<(Node, i8)> {
         self.up(s)
