@@ -203,7 +203,7 @@ impl<L: Levels> Hasse<L> {
             .sum()
     }
 
-    /// Bytes used by the topology (levels, up lists, vertex lookup), without user data.
+    /// Heap bytes used by the topology (levels, up lists, vertex lookup), without user data.
     ///
     /// ```
     /// let mut h: starplex::hasse::Hasse = starplex::hasse::Hasse::new();
@@ -213,7 +213,6 @@ impl<L: Levels> Hasse<L> {
     pub fn topology_bytes(&self) -> usize {
         self.levels.iter().map(|l| l.bytes()).sum::<usize>()
             + self.root.capacity() * 9
-            + std::mem::size_of::<Self>()
     }
 
     /// Bytes used by user data (column capacities); zero for levels without data.
