@@ -134,7 +134,7 @@ impl<L: Levels> Hasse<L> {
     }
 
     /// Checks a bistellar flip of `s`: its link must be the boundary of a simplex `t` that is
-    /// not in the complex. Returns `t`'s vertices.
+    /// not in the complex. Returns `t`'s vertices, sorted.
     ///
     /// # Errors
     /// [`EditError::NotANode`], [`EditError::NotFlippable`].
@@ -155,11 +155,12 @@ impl<L: Levels> Hasse<L> {
             why,
         };
         let lk = self.link(s);
-        let t: Vec<VertexId> = lk
+        let mut t: Vec<VertexId> = lk
             .level(0)
             .iter()
             .map(|&i| self.vertices(Node::new(0, i))[0])
             .collect();
+        t.sort_unstable();
         if t.len() < 2 {
             return Err(refuse(format!("its link has {} vertices", t.len())));
         }
