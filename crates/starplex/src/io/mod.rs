@@ -20,7 +20,7 @@
 //! // a file the format cannot describe is an error naming the file and the line
 //! std::fs::write(&spx, "SPX 1\n3 3 1\n0 0 0\n1 0 0\n0 1 0\ntri 3 0 1 7\n").unwrap();
 //! let e = io::read(&spx, &ReadOptions::default()).unwrap_err();
-//! assert!(e.to_string().ends_with(":6: vertex 2 of cell 0 is 7, out of range: the file has 3 vertices, numbered from 0"), "{e}");
+//! assert!(e.to_string().ends_with(":6: cell 0: vertex index 7 is out of range: the file has 3 vertices, numbered from 0"), "{e}");
 //! ```
 use std::fmt;
 use std::path::{Path, PathBuf};

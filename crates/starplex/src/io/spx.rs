@@ -106,7 +106,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         };
         verts.clear();
         for j in 0..k {
-            verts.push(t.index(format_args!("vertex {j} of cell {i}"), 0, nv)?);
+            verts.push(t.index(format_args!("cell {i}: vertex index"), 0, nv)?);
         }
         t.end()?;
         check_cell(i as u64, &verts, nv)

@@ -319,7 +319,7 @@ impl<'a> Tokens<'a> {
         let v = parse_u64(tok).ok_or_else(|| self.bad(&what, "a vertex index", tok))?;
         if v < base || v - base >= n as u64 {
             return Err(self.err(format!(
-                "{what} is {v}, out of range: the file has {n} vertices, numbered from {base}"
+                "{what} {v} is out of range: the file has {n} vertices, numbered from {base}"
             )));
         }
         Ok((v - base) as u32)
