@@ -238,7 +238,10 @@ fn every_broken_file_is_a_clear_error() {
         let vp = dir.join(format!("{}{k}_valid.{}", row.ext, row.ext));
         std::fs::write(&vp, &valid).unwrap();
         if let Err(e) = io::read(&vp, &ReadOptions::default()) {
-            failures.push(format!("{}: the valid file does not read: {e}", vp.display()));
+            failures.push(format!(
+                "{}: the valid file does not read: {e}",
+                vp.display()
+            ));
         }
         for c in cases {
             n += 1;

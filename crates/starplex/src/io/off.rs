@@ -272,8 +272,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         }
         let b = match &mut builder {
             Some(b) => b,
-            None => builder
-                .insert(ComplexBuilder::new(p.len()).map_err(|e| l.err(e.to_string()))?),
+            None => builder.insert(ComplexBuilder::new(p.len()).map_err(|e| l.err(e.to_string()))?),
         };
         b.push_vertex(&p)
             .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
@@ -409,9 +408,7 @@ fn parse_coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Res
         match parse_f64(tok) {
             Some(x) if x.is_finite() => p.push(x),
             Some(x) => {
-                return Err(t.err(format!(
-                    "vertex {i}: coordinate {axis} is not finite ({x})"
-                )))
+                return Err(t.err(format!("vertex {i}: coordinate {axis} is not finite ({x})")))
             }
             None => {
                 return Err(t.err(format!(
@@ -605,7 +602,8 @@ mod tests {
         assert_eq!(r.complex.coords(), &[0., 0., 0., 1., 0., 0., 0., 1., 0.]);
         let text = "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
         assert_eq!(rd(text).unwrap().complex.ambient_dim(), 3);
-        let text = "CNOFF\n3 1 0\n0 0 0 0 0 1 1 1 1\n1 0 0 0 0 1 1 1 1\n0 1 0 0 0 1 1 1 1\n3 0 1 2\n";
+        let text =
+            "CNOFF\n3 1 0\n0 0 0 0 0 1 1 1 1\n1 0 0 0 0 1 1 1 1\n0 1 0 0 0 1 1 1 1\n3 0 1 2\n";
         assert_eq!(rd(text).unwrap().complex.ambient_dim(), 3);
     }
 
@@ -627,7 +625,12 @@ mod tests {
         let text = "OFF\n3 1 0\n0 0 0 0 0\n1 0 0 0 0\n0 1 0 0 0.5\n3 0 1 2\n";
         assert_eq!(rd(text).unwrap().complex.ambient_dim(), 5);
         let e = err("OFF\n3 1 0\n0 0 0 0 0\n1 0 0 0\n0 1 0 0 0.5\n3 0 1 2\n");
-        assert!(e.starts_with("t.off:4: vertex 1 has 4 values but the first vertex line (line 3) has 5"), "{e}");
+        assert!(
+            e.starts_with(
+                "t.off:4: vertex 1 has 4 values but the first vertex line (line 3) has 5"
+            ),
+            "{e}"
+        );
     }
 
     #[test]
@@ -676,7 +679,10 @@ mod tests {
         let r = rd(&text(&[(0..66).collect()])).unwrap();
         assert_eq!(r.complex.n_cells(), 64);
         let e = err(&text(&[(0..40).chain([3]).collect()]));
-        assert!(e.contains(":73: cell 0: vertex 3 appears more than once"), "{e}");
+        assert!(
+            e.contains(":73: cell 0: vertex 3 appears more than once"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -712,9 +718,13 @@ mod tests {
     fn messages_escape_control_characters() {
         assert_eq!(shown(b"\x1b[31mX\tY", 40), "\\u{1b}[31mX\\tY");
         assert_eq!(shown(b"abcdef", 3), "abc...");
-        let e = read_from(&b"\x1b[2J\xff\n"[..], "t.off".as_ref(), &ReadOptions::default())
-            .unwrap_err()
-            .to_string();
+        let e = read_from(
+            &b"\x1b[2J\xff\n"[..],
+            "t.off".as_ref(),
+            &ReadOptions::default(),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("'\\u{1b}[2J\u{fffd}'"), "{e}");
     }
 
@@ -739,7 +749,10 @@ mod tests {
         assert_eq!(r.complex.ambient_dim(), 5);
         let mut out = Vec::new();
         write(&mut out, &r.complex).unwrap();
-        assert_eq!(rd(std::str::from_utf8(&out).unwrap()).unwrap().complex, r.complex);
+        assert_eq!(
+            rd(std::str::from_utf8(&out).unwrap()).unwrap().complex,
+            r.complex
+        );
         let r = rd("OFF\n2 0 0\n0 0\n1 1\n").unwrap();
         assert_eq!(r.complex.ambient_dim(), 2);
         assert_eq!(r.complex.n_isolated_vertices(), 2);

@@ -163,9 +163,7 @@ fn coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Result<()
         match parse_f64(tok) {
             Some(x) if x.is_finite() => p.push(x),
             Some(x) => {
-                return Err(t.err(format!(
-                    "vertex {i}: coordinate {axis} is not finite ({x})"
-                )))
+                return Err(t.err(format!("vertex {i}: coordinate {axis} is not finite ({x})")))
             }
             None => {
                 return Err(t.err(format!(
@@ -180,7 +178,10 @@ fn coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Result<()
 
 /// Reads `nv` vertex lines whose values are all coordinates; the first line sets the dimension.
 /// Returns the builder (ambient 3 when there are no vertices).
-fn vertices_no_field<R: BufRead>(lr: &mut LineReader<'_, R>, nv: usize) -> Result<ComplexBuilder, IoError> {
+fn vertices_no_field<R: BufRead>(
+    lr: &mut LineReader<'_, R>,
+    nv: usize,
+) -> Result<ComplexBuilder, IoError> {
     let mut builder: Option<ComplexBuilder> = None;
     let mut first = 0u64;
     let mut p = Vec::with_capacity(8);
@@ -276,7 +277,11 @@ fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
     let ([nv], line) = counts(&mut lr, "the vertex count line 'nV'", ["the vertex count"])?;
     let nv = check_count(nv, "vertex count", path, line)?;
     let mut b = vertices_no_field(&mut lr, nv)?;
-    let ([nt], _) = counts(&mut lr, "the triangle count line 'nT'", ["the triangle count"])?;
+    let ([nt], _) = counts(
+        &mut lr,
+        "the triangle count line 'nT'",
+        ["the triangle count"],
+    )?;
     cells(&mut lr, &mut b, CellKind::Simplex(2), nt, 0)?;
     no_trailing(&mut lr, &format!("{nt} triangles"))?;
     Ok((b, Vec::new()))
@@ -310,7 +315,11 @@ fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
     let ([dim, nv, nt], line) = counts(
         &mut lr,
         "the counts line 'dim nV nT'",
-        ["the simplex dimension", "the vertex count", "the simplex count"],
+        [
+            "the simplex dimension",
+            "the vertex count",
+            "the simplex count",
+        ],
     )?;
     if dim > MAX_SIMPLEX_DIM as u64 {
         return Err(IoError::parse(
@@ -438,24 +447,88 @@ mod tests {
     fn errors_name_the_line() {
         let cases: &[(&str, Format, &str)] = &[
             ("", Format::Tri, "t.tri:1: unexpected end of file"),
-            ("3\n0 0 0\n1 0 0\n", Format::Tri, "t.tri:4: unexpected end of file"),
-            ("3\n0 0 0\n1 0\n0 1 0\n", Format::Tri, "t.tri:3: vertex 1 has 2 values but the first vertex line (line 2) has 3"),
-            ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 3\n", Format::Tri, "t.tri:6: cell vertex 3 is out of range"),
-            ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2 4\n", Format::Tri, "t.tri:6: unexpected extra value '4'"),
-            ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2\n0 1 2\n", Format::Tri, "t.tri:7: unexpected content after the 1 triangles"),
-            ("2 0\n0 0 0\n1 0 0\n", Format::Ts, "t.ts:2: expected the field value after x y z"),
-            ("1 0\n0 0 NaN 1\n", Format::Ts, "t.ts:2: vertex 0: coordinate 2 is not finite"),
-            ("4 1\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 1 2 2\n", Format::Ts, "t.ts:6: cell 0: vertex 2 appears more than once"),
-            ("65 1 0\n0\n", Format::Sierp, "t.sierp:1: simplex dimension 65 is above"),
-            ("2 3 1\n0 0\n1 0\n0 1\n3 0 1\n", Format::Sierp, "t.sierp:5: expected cell vertex, found the end of the line"),
-            ("2 3 1\n0 0\n1 0\n0 1\nx 0 1 2\n", Format::Sierp, "t.sierp:5: expected the vertex count (ignored)"),
+            (
+                "3\n0 0 0\n1 0 0\n",
+                Format::Tri,
+                "t.tri:4: unexpected end of file",
+            ),
+            (
+                "3\n0 0 0\n1 0\n0 1 0\n",
+                Format::Tri,
+                "t.tri:3: vertex 1 has 2 values but the first vertex line (line 2) has 3",
+            ),
+            (
+                "3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 3\n",
+                Format::Tri,
+                "t.tri:6: cell vertex 3 is out of range",
+            ),
+            (
+                "3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2 4\n",
+                Format::Tri,
+                "t.tri:6: unexpected extra value '4'",
+            ),
+            (
+                "3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2\n0 1 2\n",
+                Format::Tri,
+                "t.tri:7: unexpected content after the 1 triangles",
+            ),
+            (
+                "2 0\n0 0 0\n1 0 0\n",
+                Format::Ts,
+                "t.ts:2: expected the field value after x y z",
+            ),
+            (
+                "1 0\n0 0 NaN 1\n",
+                Format::Ts,
+                "t.ts:2: vertex 0: coordinate 2 is not finite",
+            ),
+            (
+                "4 1\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 1 2 2\n",
+                Format::Ts,
+                "t.ts:6: cell 0: vertex 2 appears more than once",
+            ),
+            (
+                "65 1 0\n0\n",
+                Format::Sierp,
+                "t.sierp:1: simplex dimension 65 is above",
+            ),
+            (
+                "2 3 1\n0 0\n1 0\n0 1\n3 0 1\n",
+                Format::Sierp,
+                "t.sierp:5: expected cell vertex, found the end of the line",
+            ),
+            (
+                "2 3 1\n0 0\n1 0\n0 1\nx 0 1 2\n",
+                Format::Sierp,
+                "t.sierp:5: expected the vertex count (ignored)",
+            ),
             ("", Format::Hex, "t.hex:1: the file is empty"),
             ("# only a comment\n", Format::Hex, "the file is empty"),
-            ("v 0 0 0\nq 1\n", Format::Hex, "t.hex:2: expected a line 'v x y z' or 'h i_0 .. i_7', found 'q'"),
-            ("v 0 0 0\nh 1 1 1 1 1 1 1 0\n", Format::Hex, "t.hex:2: cell vertex 0 is out of range"),
-            ("v 0 0 0\nv 1 0 0\nh 1 2 1 2 1 2 1 2\n", Format::Hex, "t.hex:3: cell 0: vertex"),
-            ("v 0 0 0\nv 1 0 0 2\n", Format::Hex, "t.hex:2: unexpected extra value '2'"),
-            ("3\n0 0 0\n", Format::Spx, "spx is not a Stellar reference format"),
+            (
+                "v 0 0 0\nq 1\n",
+                Format::Hex,
+                "t.hex:2: expected a line 'v x y z' or 'h i_0 .. i_7', found 'q'",
+            ),
+            (
+                "v 0 0 0\nh 1 1 1 1 1 1 1 0\n",
+                Format::Hex,
+                "t.hex:2: cell vertex 0 is out of range",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nh 1 2 1 2 1 2 1 2\n",
+                Format::Hex,
+                "t.hex:3: cell 0: vertex",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0 2\n",
+                Format::Hex,
+                "t.hex:2: unexpected extra value '2'",
+            ),
+            (
+                "3\n0 0 0\n",
+                Format::Spx,
+                "spx is not a Stellar reference format",
+            ),
         ];
         for (text, f, want) in cases {
             let e = err(text, *f);
