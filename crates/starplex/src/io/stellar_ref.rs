@@ -22,8 +22,9 @@
 //! assert_eq!(r.complex.n_cells(), 2);
 //!
 //! // A unit cube as a .hex: the reference's corner order becomes VTK's.
-//! let hex = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
-//!            # 1 hexahedra\nh 1 2 8 4 6 5 3 7\n";
+//! let hex = concat!("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n",
+//!                   "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n",
+//!                   "# 1 hexahedra\nh 1 2 8 4 6 5 3 7\n");
 //! let r = stellar_ref::read_from(hex.as_bytes(), "m.hex".as_ref(), Format::Hex,
 //!                                &ReadOptions::default()).unwrap();
 //! let c = r.complex.cells().next().unwrap();
