@@ -141,6 +141,21 @@ fn cases(k: usize, row: &Row) -> (String, Vec<Case>) {
             vec!["32-bit"],
         );
     }
+    // The last cell repeated (a duplicate top cell, found when the complex is built). The .spx
+    // reader (io/spx.rs) reports build errors without a line, so it is not in this case.
+    if row.ext != "spx" {
+        let more = (row.nc + 1).to_string();
+        let mut dup = fill(row, &nv, &more, row.x, row.i);
+        let last_line = dup.lines().last().unwrap().to_string();
+        dup.push_str(&last_line);
+        dup.push('\n');
+        add(
+            "duplicate_cell",
+            dup.into(),
+            vec![last + 1],
+            vec!["has the same vertices as"],
+        );
+    }
     let xl = line_of(row.template, "@X@");
     let il = line_of(row.template, "@I@");
     add(

@@ -34,7 +34,7 @@
 use std::io::BufRead;
 use std::path::Path;
 
-use super::off::shown;
+use super::off::{shown, CellLines};
 use super::text::{parse_f64, Line, LineReader, Tokens};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
@@ -72,11 +72,12 @@ pub fn read_from(
     format: Format,
     opts: &ReadOptions,
 ) -> Result<ReadResult, IoError> {
+    let mut lines = CellLines::default();
     let (b, mut notes) = match format {
-        Format::Tri => read_tri(LineReader::new(r, path, None))?,
-        Format::Ts => read_ts(LineReader::new(r, path, None))?,
-        Format::Sierp => read_sierp(LineReader::new(r, path, None))?,
-        Format::Hex => read_hex(LineReader::new(r, path, Some(b'#')))?,
+        Format::Tri => read_tri(LineReader::new(r, path, None), &mut lines)?,
+        Format::Ts => read_ts(LineReader::new(r, path, None), &mut lines)?,
+        Format::Sierp => read_sierp(LineReader::new(r, path, None), &mut lines)?,
+        Format::Hex => read_hex(LineReader::new(r, path, Some(b'#')), &mut lines)?,
         other => {
             return Err(IoError::parse(
                 path,
@@ -85,7 +86,7 @@ pub fn read_from(
             ))
         }
     };
-    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
     if report.dropped_duplicates > 0 {
         notes.push(format!(
             "dropped {} duplicate cells",
@@ -226,6 +227,7 @@ fn vertices_no_field<R: BufRead>(
 /// Reads `nc` lines of exactly `k` 0-based indices (after `skip` ignored leading integers).
 fn cells<R: BufRead>(
     lr: &mut LineReader<'_, R>,
+    lines: &mut CellLines,
     b: &mut ComplexBuilder,
     kind: CellKind,
     nc: u64,
@@ -245,13 +247,14 @@ fn cells<R: BufRead>(
             v.push(t.index("cell vertex", 0, nv)?);
         }
         t.end()?;
-        push_checked(&l, b, i, kind, &v)?;
+        push_checked(&l, lines, b, i, kind, &v)?;
     }
     Ok(())
 }
 
 fn push_checked(
     l: &Line<'_>,
+    lines: &mut CellLines,
     b: &mut ComplexBuilder,
     i: u64,
     kind: CellKind,
@@ -259,7 +262,8 @@ fn push_checked(
 ) -> Result<(), IoError> {
     let at = |e| IoError::new(l.path, e).at(Location::Line(l.no));
     check_cell(i, v, b.n_vertices()).map_err(at)?;
-    b.push_cell(kind, v).map_err(at)?;
+    let id = b.push_cell(kind, v).map_err(at)?;
+    lines.record(id.0 as u64, l.no);
     Ok(())
 }
 
@@ -273,7 +277,7 @@ fn no_trailing<R: BufRead>(lr: &mut LineReader<'_, R>, what: &str) -> Result<(),
     Ok(())
 }
 
-fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
+fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
     let path = lr.path();
     let ([nv], line) = counts(&mut lr, "the vertex count line 'nV'", ["the vertex count"])?;
     let nv = check_count(nv, "vertex count", path, line)?;
@@ -283,12 +287,12 @@ fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
         "the triangle count line 'nT'",
         ["the triangle count"],
     )?;
-    cells(&mut lr, &mut b, CellKind::Simplex(2), nt, 0)?;
+    cells(&mut lr, lines, &mut b, CellKind::Simplex(2), nt, 0)?;
     no_trailing(&mut lr, &format!("{nt} triangles"))?;
     Ok((b, Vec::new()))
 }
 
-fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
+fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
     let path = lr.path();
     let ([nv, nt], line) = counts(
         &mut lr,
@@ -306,12 +310,12 @@ fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
         t.end()?;
         b.push_vertex(&p).map_err(|e| l.err(e.to_string()))?;
     }
-    cells(&mut lr, &mut b, CellKind::Simplex(3), nt, 0)?;
+    cells(&mut lr, lines, &mut b, CellKind::Simplex(3), nt, 0)?;
     no_trailing(&mut lr, &format!("{nt} tetrahedra"))?;
     Ok((b, Vec::new()))
 }
 
-fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
+fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
     let path = lr.path();
     let ([dim, nv, nt], line) = counts(
         &mut lr,
@@ -331,12 +335,12 @@ fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
     }
     let nv = check_count(nv, "vertex count", path, line)?;
     let mut b = vertices_no_field(&mut lr, nv)?;
-    cells(&mut lr, &mut b, CellKind::Simplex(dim as u8), nt, 1)?;
+    cells(&mut lr, lines, &mut b, CellKind::Simplex(dim as u8), nt, 1)?;
     no_trailing(&mut lr, &format!("{nt} simplices"))?;
     Ok((b, Vec::new()))
 }
 
-fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
+fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
     let path = lr.path();
     let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
     let mut p = Vec::with_capacity(3);
@@ -369,7 +373,7 @@ fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
                 for (j, &r) in refv.iter().enumerate() {
                     vtk[HEX_REF_TO_VTK[j]] = r;
                 }
-                push_checked(&l, &mut b, n_hex, CellKind::Hex, &vtk)?;
+                push_checked(&l, lines, &mut b, n_hex, CellKind::Hex, &vtk)?;
                 n_hex += 1;
             }
             other => {
@@ -529,6 +533,11 @@ mod tests {
                 "3\n0 0 0\n",
                 Format::Spx,
                 "spx is not a Stellar reference format",
+            ),
+            (
+                "4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3\n0 1 2\n0 2 3\n2 1 0\n",
+                Format::Tri,
+                "t.tri:9: cell 2 has the same vertices as cell 0",
             ),
         ];
         for (text, f, want) in cases {
