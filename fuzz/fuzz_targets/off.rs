@@ -22,7 +22,10 @@ fuzz_target!(|data: &[u8]| {
         if off::write(&mut out, &r.complex).is_ok() {
             let back = off::read_from(&out[..], "back.off".as_ref(), &opts)
                 .expect("a written OFF file must read back");
-            assert!(back.complex == r.complex, "OFF round trip changed the complex");
+            assert!(
+                back.complex == r.complex,
+                "OFF round trip changed the complex"
+            );
         }
     }
 });

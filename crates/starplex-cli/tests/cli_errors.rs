@@ -19,13 +19,34 @@ fn info_fails(name: &str, content: &[u8], line: u64, problem: &str) -> String {
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert_eq!(out.status.code(), Some(2), "{name}: status {:?}, stderr {stderr}", out.status);
-    assert!(out.stdout.is_empty(), "{name}: stdout {:?}", String::from_utf8_lossy(&out.stdout));
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{name}: status {:?}, stderr {stderr}",
+        out.status
+    );
+    assert!(
+        out.stdout.is_empty(),
+        "{name}: stdout {:?}",
+        String::from_utf8_lossy(&out.stdout)
+    );
     let lines: Vec<&str> = stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "{name}: expected one error line, got {stderr:?}");
+    assert_eq!(
+        lines.len(),
+        1,
+        "{name}: expected one error line, got {stderr:?}"
+    );
     let want = format!("starplex: error: {}:{line}: ", p.display());
-    assert!(lines[0].starts_with(&want), "{name}: '{}' does not start with '{want}'", lines[0]);
-    assert!(lines[0].contains(problem), "{name}: '{}' does not say '{problem}'", lines[0]);
+    assert!(
+        lines[0].starts_with(&want),
+        "{name}: '{}' does not start with '{want}'",
+        lines[0]
+    );
+    assert!(
+        lines[0].contains(problem),
+        "{name}: '{}' does not say '{problem}'",
+        lines[0]
+    );
     lines[0].to_string()
 }
 
@@ -71,6 +92,8 @@ fn hex_with_a_repeated_vertex() {
 
 #[test]
 fn binary_garbage_as_off() {
-    let bytes: Vec<u8> = (0..4000u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8).collect();
+    let bytes: Vec<u8> = (0..4000u32)
+        .map(|i| (i.wrapping_mul(2654435761) >> 13) as u8)
+        .collect();
     info_fails("garbage.off", &bytes, 1, "not an OFF file");
 }

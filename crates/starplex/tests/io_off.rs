@@ -156,8 +156,7 @@ fn datasets_round_trip_through_off_files() {
         let k = read(&p, false);
         let e = io::write(&dir.join("h.off"), &k, None).unwrap_err();
         assert!(
-            e.to_string().contains("off cannot hold this complex")
-                && e.to_string().contains("hex"),
+            e.to_string().contains("off cannot hold this complex") && e.to_string().contains("hex"),
             "{e}"
         );
         assert!(!dir.join("h.off").exists());
@@ -169,9 +168,10 @@ fn datasets_round_trip_through_off_files() {
 /// dimensions, made valid by dropping duplicates and faces of other cells.
 fn arb_simplicial(min_dim: usize, max_dim: usize) -> impl Strategy<Value = IndexedComplex> {
     (1usize..=7, (min_dim + 1)..=24).prop_flat_map(move |(ambient, nv)| {
-        let cell = proptest::collection::btree_set(0..nv as u32, (min_dim + 1)..=(max_dim + 1).min(nv))
-            .prop_map(|s| s.into_iter().collect::<Vec<u32>>())
-            .prop_shuffle();
+        let cell =
+            proptest::collection::btree_set(0..nv as u32, (min_dim + 1)..=(max_dim + 1).min(nv))
+                .prop_map(|s| s.into_iter().collect::<Vec<u32>>())
+                .prop_shuffle();
         (
             proptest::collection::vec(-1e6f64..1e6, ambient * nv),
             proptest::collection::vec(cell, 0..30),
@@ -224,7 +224,8 @@ proptest! {
 fn quads_round_trip_and_mixed_quad_tet_is_refused() {
     let mut b = ComplexBuilder::new(3).unwrap();
     for i in 0..6 {
-        b.push_vertex(&[i as f64, (i * i) as f64 * 0.5, -0.25]).unwrap();
+        b.push_vertex(&[i as f64, (i * i) as f64 * 0.5, -0.25])
+            .unwrap();
     }
     b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
     b.push_cell(CellKind::Simplex(2), &[2, 3, 4]).unwrap();

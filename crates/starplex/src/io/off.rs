@@ -292,6 +292,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut extra_tris = 0u64;
     let mut points = 0u64;
     let mut face = 0u64;
+    let mut lines = CellLines::default();
     while face < nf {
         let l = lr.expect_line("a face line")?;
         let mut t = l.tokens();
@@ -313,10 +314,12 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         // Anything after the indices is a colour: ignored.
         check_distinct(face, &verts, nv, &mut scratch)
             .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
-        let push = |b: &mut ComplexBuilder, kind: CellKind, v: &[u32]| {
-            b.push_cell(kind, v)
-                .map(|_| ())
-                .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))
+        let mut push = |b: &mut ComplexBuilder, kind: CellKind, v: &[u32]| {
+            let id = b
+                .push_cell(kind, v)
+                .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
+            lines.record(id.0 as u64, l.no);
+            Ok::<(), IoError>(())
         };
         match (opts.polygons, verts.len()) {
             (PolygonMode::Simplices, n) => push(&mut b, CellKind::Simplex((n - 1) as u8), &verts)?,
@@ -345,7 +348,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         )));
     }
 
-    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
     let mut notes = Vec::new();
     if split > 0 {
         notes.push(format!(
@@ -376,6 +379,76 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         format: Format::Off,
         notes,
     })
+}
+
+/// The line of every cell pushed so far, kept as runs (cell `c` of a run is on line
+/// `line + step * (c - first)`), so that an error of [`ComplexBuilder::build`] about a cell can
+/// name its line. A file with one cell per line needs one run; gaps (comments, blank lines) and
+/// fan-triangulated polygons add runs. Past [`CellLines::MAX_RUNS`] runs recording stops and later
+/// cells have no known line.
+#[derive(Debug, Default)]
+pub(crate) struct CellLines {
+    /// `(first cell, its line, step)`; step 2 = not known yet (a run of one cell).
+    runs: Vec<(u64, u64, u8)>,
+    /// Cells from this id on have no recorded line (recording stopped).
+    limit: Option<u64>,
+}
+
+impl CellLines {
+    /// At most this many runs are kept (24 MiB).
+    pub(crate) const MAX_RUNS: usize = 1 << 20;
+
+    /// Records that `cell` (ids increase by one on each call) is on `line`.
+    #[inline]
+    pub(crate) fn record(&mut self, cell: u64, line: u64) {
+        if self.limit.is_some() {
+            return;
+        }
+        if let Some((first, l0, step)) = self.runs.last_mut() {
+            let d = cell - *first;
+            if *step == 2 && d == 1 && (line == *l0 || line == *l0 + 1) {
+                *step = (line - *l0) as u8;
+                return;
+            }
+            if *step != 2 && *l0 + *step as u64 * d == line {
+                return;
+            }
+        }
+        if self.runs.len() >= Self::MAX_RUNS {
+            self.limit = Some(cell);
+            return;
+        }
+        self.runs.push((cell, line, 2));
+    }
+
+    /// The line of `cell`, when recorded.
+    pub(crate) fn line(&self, cell: u64) -> Option<u64> {
+        if self.limit.is_some_and(|lim| cell >= lim) {
+            return None;
+        }
+        let i = self.runs.partition_point(|r| r.0 <= cell).checked_sub(1)?;
+        let (first, l0, step) = self.runs[i];
+        Some(l0 + (step % 2) as u64 * (cell - first))
+    }
+
+    /// `e` as an [`IoError`] at the line of the cell it names (the later one for duplicates).
+    pub(crate) fn error(&self, path: &Path, e: ComplexError) -> IoError {
+        let cell = match &e {
+            ComplexError::DuplicateCell { cell, .. }
+            | ComplexError::CellIsFaceOf { cell, .. }
+            | ComplexError::VertexOutOfRange { cell, .. }
+            | ComplexError::RepeatedVertex { cell, .. }
+            | ComplexError::WrongVertexCount { cell, .. }
+            | ComplexError::Kind { cell, .. } => Some(*cell),
+            _ => None,
+        };
+        let line = cell.and_then(|c| self.line(c));
+        let err = IoError::new(path, e);
+        match line {
+            Some(l) => err.at(Location::Line(l)),
+            None => err,
+        }
+    }
 }
 
 /// At most `max` bytes of `b` for a message: invalid UTF-8 replaced, control characters escaped
@@ -718,17 +791,52 @@ mod tests {
     fn messages_escape_control_characters() {
         assert_eq!(shown(b"\x1b[31mX\tY", 40), "\\u{1b}[31mX\\tY");
         assert_eq!(shown(b"abcdef", 3), "abc...");
-        let e = read_from(&b"\x1b[2J\xff\n"[..], "t.off".as_ref(), &ReadOptions::default())
-            .unwrap_err()
-            .to_string();
+        let e = read_from(
+            &b"\x1b[2J\xff\n"[..],
+            "t.off".as_ref(),
+            &ReadOptions::default(),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("'\\u{1b}[2J\u{fffd}'"), "{e}");
     }
 
     #[test]
+    fn cell_lines_follow_gaps_and_fans() {
+        let mut cl = CellLines::default();
+        // cells 0..3 on lines 10..13, a comment, cells 3..5 on 15..17, a fan of 3 on line 18.
+        for (c, l) in [
+            (0, 10),
+            (1, 11),
+            (2, 12),
+            (3, 15),
+            (4, 16),
+            (5, 18),
+            (6, 18),
+            (7, 18),
+            (8, 19),
+            (9, 20),
+        ] {
+            cl.record(c, l);
+        }
+        let got: Vec<_> = (0..10).map(|c| cl.line(c).unwrap()).collect();
+        assert_eq!(got, vec![10, 11, 12, 15, 16, 18, 18, 18, 19, 20]);
+        assert_eq!(cl.runs.len(), 4);
+    }
+
+    #[test]
     fn duplicate_faces_go_to_the_builder() {
-        let text = "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 2 1 0\n";
+        let text = "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n# c\n3 2 1 0\n";
         let e = err(text);
-        assert!(e.contains("duplicate"), "{e}");
+        assert!(
+            e.starts_with("t.off:8: cell 1 has the same vertices as cell 0"),
+            "{e}"
+        );
+        let e = err("OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n2 2 2\n5 0 1 3 2 4\n2 2 4\n");
+        assert!(
+            e.starts_with("t.off:9: cell 3 (line) is a face of cell 2"),
+            "{e}"
+        );
         let mut opts = ReadOptions::default();
         opts.build.drop_duplicates = true;
         let r = read_from(text.as_bytes(), "t.off".as_ref(), &opts).unwrap();
@@ -745,7 +853,10 @@ mod tests {
         assert_eq!(r.complex.ambient_dim(), 5);
         let mut out = Vec::new();
         write(&mut out, &r.complex).unwrap();
-        assert_eq!(rd(std::str::from_utf8(&out).unwrap()).unwrap().complex, r.complex);
+        assert_eq!(
+            rd(std::str::from_utf8(&out).unwrap()).unwrap().complex,
+            r.complex
+        );
         let r = rd("OFF\n2 0 0\n0 0\n1 1\n").unwrap();
         assert_eq!(r.complex.ambient_dim(), 2);
         assert_eq!(r.complex.n_isolated_vertices(), 2);

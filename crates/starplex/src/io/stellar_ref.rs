@@ -22,8 +22,9 @@
 //! assert_eq!(r.complex.n_cells(), 2);
 //!
 //! // A unit cube as a .hex: the reference's corner order becomes VTK's.
-//! let hex = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
-//!            # 1 hexahedra\nh 1 2 8 4 6 5 3 7\n";
+//! let hex = concat!("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n",
+//!                   "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n",
+//!                   "# 1 hexahedra\nh 1 2 8 4 6 5 3 7\n");
 //! let r = stellar_ref::read_from(hex.as_bytes(), "m.hex".as_ref(), Format::Hex,
 //!                                &ReadOptions::default()).unwrap();
 //! let c = r.complex.cells().next().unwrap();
@@ -33,7 +34,7 @@
 use std::io::BufRead;
 use std::path::Path;
 
-use super::off::shown;
+use super::off::{shown, CellLines};
 use super::text::{parse_f64, Line, LineReader, Tokens};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
@@ -71,11 +72,12 @@ pub fn read_from(
     format: Format,
     opts: &ReadOptions,
 ) -> Result<ReadResult, IoError> {
+    let mut lines = CellLines::default();
     let (b, mut notes) = match format {
-        Format::Tri => read_tri(LineReader::new(r, path, None))?,
-        Format::Ts => read_ts(LineReader::new(r, path, None))?,
-        Format::Sierp => read_sierp(LineReader::new(r, path, None))?,
-        Format::Hex => read_hex(LineReader::new(r, path, Some(b'#')))?,
+        Format::Tri => read_tri(LineReader::new(r, path, None), &mut lines)?,
+        Format::Ts => read_ts(LineReader::new(r, path, None), &mut lines)?,
+        Format::Sierp => read_sierp(LineReader::new(r, path, None), &mut lines)?,
+        Format::Hex => read_hex(LineReader::new(r, path, Some(b'#')), &mut lines)?,
         other => {
             return Err(IoError::parse(
                 path,
@@ -84,7 +86,7 @@ pub fn read_from(
             ))
         }
     };
-    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
     if report.dropped_duplicates > 0 {
         notes.push(format!(
             "dropped {} duplicate cells",
@@ -163,9 +165,7 @@ fn coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Result<()
         match parse_f64(tok) {
             Some(x) if x.is_finite() => p.push(x),
             Some(x) => {
-                return Err(t.err(format!(
-                    "vertex {i}: coordinate {axis} is not finite ({x})"
-                )))
+                return Err(t.err(format!("vertex {i}: coordinate {axis} is not finite ({x})")))
             }
             None => {
                 return Err(t.err(format!(
@@ -180,7 +180,10 @@ fn coords(t: &mut Tokens<'_>, n: usize, i: usize, p: &mut Vec<f64>) -> Result<()
 
 /// Reads `nv` vertex lines whose values are all coordinates; the first line sets the dimension.
 /// Returns the builder (ambient 3 when there are no vertices).
-fn vertices_no_field<R: BufRead>(lr: &mut LineReader<'_, R>, nv: usize) -> Result<ComplexBuilder, IoError> {
+fn vertices_no_field<R: BufRead>(
+    lr: &mut LineReader<'_, R>,
+    nv: usize,
+) -> Result<ComplexBuilder, IoError> {
     let mut builder: Option<ComplexBuilder> = None;
     let mut first = 0u64;
     let mut p = Vec::with_capacity(8);
@@ -224,6 +227,7 @@ fn vertices_no_field<R: BufRead>(lr: &mut LineReader<'_, R>, nv: usize) -> Resul
 /// Reads `nc` lines of exactly `k` 0-based indices (after `skip` ignored leading integers).
 fn cells<R: BufRead>(
     lr: &mut LineReader<'_, R>,
+    lines: &mut CellLines,
     b: &mut ComplexBuilder,
     kind: CellKind,
     nc: u64,
@@ -243,13 +247,14 @@ fn cells<R: BufRead>(
             v.push(t.index("cell vertex", 0, nv)?);
         }
         t.end()?;
-        push_checked(&l, b, i, kind, &v)?;
+        push_checked(&l, lines, b, i, kind, &v)?;
     }
     Ok(())
 }
 
 fn push_checked(
     l: &Line<'_>,
+    lines: &mut CellLines,
     b: &mut ComplexBuilder,
     i: u64,
     kind: CellKind,
@@ -257,7 +262,8 @@ fn push_checked(
 ) -> Result<(), IoError> {
     let at = |e| IoError::new(l.path, e).at(Location::Line(l.no));
     check_cell(i, v, b.n_vertices()).map_err(at)?;
-    b.push_cell(kind, v).map_err(at)?;
+    let id = b.push_cell(kind, v).map_err(at)?;
+    lines.record(id.0 as u64, l.no);
     Ok(())
 }
 
@@ -271,18 +277,22 @@ fn no_trailing<R: BufRead>(lr: &mut LineReader<'_, R>, what: &str) -> Result<(),
     Ok(())
 }
 
-fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
+fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
     let path = lr.path();
     let ([nv], line) = counts(&mut lr, "the vertex count line 'nV'", ["the vertex count"])?;
     let nv = check_count(nv, "vertex count", path, line)?;
     let mut b = vertices_no_field(&mut lr, nv)?;
-    let ([nt], _) = counts(&mut lr, "the triangle count line 'nT'", ["the triangle count"])?;
-    cells(&mut lr, &mut b, CellKind::Simplex(2), nt, 0)?;
+    let ([nt], _) = counts(
+        &mut lr,
+        "the triangle count line 'nT'",
+        ["the triangle count"],
+    )?;
+    cells(&mut lr, lines, &mut b, CellKind::Simplex(2), nt, 0)?;
     no_trailing(&mut lr, &format!("{nt} triangles"))?;
     Ok((b, Vec::new()))
 }
 
-fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
+fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
     let path = lr.path();
     let ([nv, nt], line) = counts(
         &mut lr,
@@ -300,17 +310,21 @@ fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
         t.end()?;
         b.push_vertex(&p).map_err(|e| l.err(e.to_string()))?;
     }
-    cells(&mut lr, &mut b, CellKind::Simplex(3), nt, 0)?;
+    cells(&mut lr, lines, &mut b, CellKind::Simplex(3), nt, 0)?;
     no_trailing(&mut lr, &format!("{nt} tetrahedra"))?;
     Ok((b, Vec::new()))
 }
 
-fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
+fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
     let path = lr.path();
     let ([dim, nv, nt], line) = counts(
         &mut lr,
         "the counts line 'dim nV nT'",
-        ["the simplex dimension", "the vertex count", "the simplex count"],
+        [
+            "the simplex dimension",
+            "the vertex count",
+            "the simplex count",
+        ],
     )?;
     if dim > MAX_SIMPLEX_DIM as u64 {
         return Err(IoError::parse(
@@ -321,12 +335,12 @@ fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
     }
     let nv = check_count(nv, "vertex count", path, line)?;
     let mut b = vertices_no_field(&mut lr, nv)?;
-    cells(&mut lr, &mut b, CellKind::Simplex(dim as u8), nt, 1)?;
+    cells(&mut lr, lines, &mut b, CellKind::Simplex(dim as u8), nt, 1)?;
     no_trailing(&mut lr, &format!("{nt} simplices"))?;
     Ok((b, Vec::new()))
 }
 
-fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
+fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
     let path = lr.path();
     let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
     let mut p = Vec::with_capacity(3);
@@ -359,7 +373,7 @@ fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>) -> Read {
                 for (j, &r) in refv.iter().enumerate() {
                     vtk[HEX_REF_TO_VTK[j]] = r;
                 }
-                push_checked(&l, &mut b, n_hex, CellKind::Hex, &vtk)?;
+                push_checked(&l, lines, &mut b, n_hex, CellKind::Hex, &vtk)?;
                 n_hex += 1;
             }
             other => {
@@ -438,24 +452,93 @@ mod tests {
     fn errors_name_the_line() {
         let cases: &[(&str, Format, &str)] = &[
             ("", Format::Tri, "t.tri:1: unexpected end of file"),
-            ("3\n0 0 0\n1 0 0\n", Format::Tri, "t.tri:4: unexpected end of file"),
-            ("3\n0 0 0\n1 0\n0 1 0\n", Format::Tri, "t.tri:3: vertex 1 has 2 values but the first vertex line (line 2) has 3"),
-            ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 3\n", Format::Tri, "t.tri:6: cell vertex 3 is out of range"),
-            ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2 4\n", Format::Tri, "t.tri:6: unexpected extra value '4'"),
-            ("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2\n0 1 2\n", Format::Tri, "t.tri:7: unexpected content after the 1 triangles"),
-            ("2 0\n0 0 0\n1 0 0\n", Format::Ts, "t.ts:2: expected the field value after x y z"),
-            ("1 0\n0 0 NaN 1\n", Format::Ts, "t.ts:2: vertex 0: coordinate 2 is not finite"),
-            ("4 1\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 1 2 2\n", Format::Ts, "t.ts:6: cell 0: vertex 2 appears more than once"),
-            ("65 1 0\n0\n", Format::Sierp, "t.sierp:1: simplex dimension 65 is above"),
-            ("2 3 1\n0 0\n1 0\n0 1\n3 0 1\n", Format::Sierp, "t.sierp:5: expected cell vertex, found the end of the line"),
-            ("2 3 1\n0 0\n1 0\n0 1\nx 0 1 2\n", Format::Sierp, "t.sierp:5: expected the vertex count (ignored)"),
+            (
+                "3\n0 0 0\n1 0 0\n",
+                Format::Tri,
+                "t.tri:4: unexpected end of file",
+            ),
+            (
+                "3\n0 0 0\n1 0\n0 1 0\n",
+                Format::Tri,
+                "t.tri:3: vertex 1 has 2 values but the first vertex line (line 2) has 3",
+            ),
+            (
+                "3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 3\n",
+                Format::Tri,
+                "t.tri:6: cell vertex 3 is out of range",
+            ),
+            (
+                "3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2 4\n",
+                Format::Tri,
+                "t.tri:6: unexpected extra value '4'",
+            ),
+            (
+                "3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2\n0 1 2\n",
+                Format::Tri,
+                "t.tri:7: unexpected content after the 1 triangles",
+            ),
+            (
+                "2 0\n0 0 0\n1 0 0\n",
+                Format::Ts,
+                "t.ts:2: expected the field value after x y z",
+            ),
+            (
+                "1 0\n0 0 NaN 1\n",
+                Format::Ts,
+                "t.ts:2: vertex 0: coordinate 2 is not finite",
+            ),
+            (
+                "4 1\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 1 2 2\n",
+                Format::Ts,
+                "t.ts:6: cell 0: vertex 2 appears more than once",
+            ),
+            (
+                "65 1 0\n0\n",
+                Format::Sierp,
+                "t.sierp:1: simplex dimension 65 is above",
+            ),
+            (
+                "2 3 1\n0 0\n1 0\n0 1\n3 0 1\n",
+                Format::Sierp,
+                "t.sierp:5: expected cell vertex, found the end of the line",
+            ),
+            (
+                "2 3 1\n0 0\n1 0\n0 1\nx 0 1 2\n",
+                Format::Sierp,
+                "t.sierp:5: expected the vertex count (ignored)",
+            ),
             ("", Format::Hex, "t.hex:1: the file is empty"),
             ("# only a comment\n", Format::Hex, "the file is empty"),
-            ("v 0 0 0\nq 1\n", Format::Hex, "t.hex:2: expected a line 'v x y z' or 'h i_0 .. i_7', found 'q'"),
-            ("v 0 0 0\nh 1 1 1 1 1 1 1 0\n", Format::Hex, "t.hex:2: cell vertex 0 is out of range"),
-            ("v 0 0 0\nv 1 0 0\nh 1 2 1 2 1 2 1 2\n", Format::Hex, "t.hex:3: cell 0: vertex"),
-            ("v 0 0 0\nv 1 0 0 2\n", Format::Hex, "t.hex:2: unexpected extra value '2'"),
-            ("3\n0 0 0\n", Format::Spx, "spx is not a Stellar reference format"),
+            (
+                "v 0 0 0\nq 1\n",
+                Format::Hex,
+                "t.hex:2: expected a line 'v x y z' or 'h i_0 .. i_7', found 'q'",
+            ),
+            (
+                "v 0 0 0\nh 1 1 1 1 1 1 1 0\n",
+                Format::Hex,
+                "t.hex:2: cell vertex 0 is out of range",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nh 1 2 1 2 1 2 1 2\n",
+                Format::Hex,
+                "t.hex:3: cell 0: vertex",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0 2\n",
+                Format::Hex,
+                "t.hex:2: unexpected extra value '2'",
+            ),
+            (
+                "3\n0 0 0\n",
+                Format::Spx,
+                "spx is not a Stellar reference format",
+            ),
+            (
+                "4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3\n0 1 2\n0 2 3\n2 1 0\n",
+                Format::Tri,
+                "t.tri:9: cell 2 has the same vertices as cell 0",
+            ),
         ];
         for (text, f, want) in cases {
             let e = err(text, *f);
