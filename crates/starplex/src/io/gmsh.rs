@@ -274,12 +274,7 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
                     match w.next_word()? {
                         Some(x) if x == end.as_bytes() => break,
                         Some(_) => {}
-                        None => return Err(w.err_at(
-                            w.line(),
-                            format!(
-                                "unexpected end of file: expected '{end}' (the file is truncated)"
-                            ),
-                        )),
+                        None => return Err(w.eof(&format!("'{end}'"))),
                     }
                 }
             }
@@ -391,6 +386,7 @@ fn read_nodes_41(
 ) -> Result<(), IoError> {
     let n_blocks = w.u64("the number of node blocks")?;
     let n_nodes = w.u64("the number of nodes")?;
+    let head = w.line();
     w.u64("the smallest node tag")?;
     w.u64("the largest node tag")?;
     let mut block_tags: Vec<(u64, u64)> = Vec::new();
@@ -419,10 +415,13 @@ fn read_nodes_41(
         }
     }
     if tags.n as u64 != n_nodes {
-        return Err(w.err(format!(
-            "$Nodes declares {n_nodes} nodes, its blocks hold {}",
-            tags.n
-        )));
+        return Err(w.err_at(
+            head,
+            format!(
+                "$Nodes declares {n_nodes} nodes, its blocks hold {}",
+                tags.n
+            ),
+        ));
     }
     Ok(())
 }
@@ -450,6 +449,7 @@ fn read_elements_41(
 ) -> Result<(), IoError> {
     let n_blocks = w.u64("the number of element blocks")?;
     let n_elems = w.u64("the number of elements")?;
+    let head = w.line();
     w.u64("the smallest element tag")?;
     w.u64("the largest element tag")?;
     let mut seen: u64 = 0;
@@ -471,9 +471,10 @@ fn read_elements_41(
         }
     }
     if seen != n_elems {
-        return Err(w.err(format!(
-            "$Elements declares {n_elems} elements, its blocks hold {seen}"
-        )));
+        return Err(w.err_at(
+            head,
+            format!("$Elements declares {n_elems} elements, its blocks hold {seen}"),
+        ));
     }
     Ok(())
 }

@@ -127,10 +127,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut n_cells: u64 = 0;
     loop {
         let Some(kw) = w.next_word()? else {
-            return Err(w.err_at(
-                w.line(),
-                "unexpected end of file: expected a keyword or 'End' (the file is truncated)",
-            ));
+            return Err(w.eof("a keyword or 'End'"));
         };
         let kw = String::from_utf8_lossy(&kw[..kw.len().min(60)]).into_owned();
         let kw_line = w.line();

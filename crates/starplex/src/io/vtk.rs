@@ -173,7 +173,7 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
             b"SCALARS" => {
                 w.expect("the scalars' name")?;
                 w.expect("the scalars' type")?;
-                // optional component count, then optional LOOKUP_TABLE name
+                // an optional component count, then LOOKUP_TABLE name (required)
                 let mut comps = 1;
                 match w.next_word()?.map(|t| t.to_vec()) {
                     Some(t) if t.eq_ignore_ascii_case(b"LOOKUP_TABLE") => {
@@ -186,14 +186,10 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
                                 lossy(&t)
                             ))
                         })?;
-                        match w.next_word()? {
-                            Some(t) if t.eq_ignore_ascii_case(b"LOOKUP_TABLE") => {
-                                w.expect("the lookup table name")?;
-                            }
-                            _ => w.unread(),
-                        }
+                        w.keyword("LOOKUP_TABLE")?;
+                        w.expect("the lookup table name")?;
                     }
-                    None => w.unread(),
+                    None => return Err(w.err("unexpected end of file: expected LOOKUP_TABLE")),
                 }
                 n.saturating_mul(comps)
             }
