@@ -50,9 +50,21 @@ use crate::complex::{check_cell, BuildOptions, ComplexBuilder, IndexedComplex};
 
 /// gmsh prism node `PRISM_PERM[i]` is VTK wedge node `i` (an involution: the same map converts
 /// back).
+///
+/// ```
+/// let gmsh_prism = [10, 11, 12, 13, 14, 15];
+/// let vtk: Vec<u32> = starplex::io::gmsh::PRISM_PERM.iter().map(|&i| gmsh_prism[i]).collect();
+/// assert_eq!(vtk, [10, 12, 11, 13, 15, 14]);
+/// ```
 pub const PRISM_PERM: [usize; 6] = [0, 2, 1, 3, 5, 4];
 
 /// The gmsh element type of a kind (`None` for kinds gmsh has no first-order element for here).
+///
+/// ```
+/// use starplex::{cell::CellKind, io::gmsh};
+/// assert_eq!(gmsh::gmsh_type(CellKind::Hex), Some(5));
+/// assert_eq!(gmsh::gmsh_type(CellKind::Simplex(5)), None);
+/// ```
 pub fn gmsh_type(kind: CellKind) -> Option<u32> {
     Some(match kind {
         CellKind::Simplex(0) => 15,
@@ -68,6 +80,12 @@ pub fn gmsh_type(kind: CellKind) -> Option<u32> {
 }
 
 /// The kind of a gmsh element type starplex reads.
+///
+/// ```
+/// use starplex::{cell::CellKind, io::gmsh};
+/// assert_eq!(gmsh::kind_of_gmsh_type(6), Some(CellKind::Prism));
+/// assert_eq!(gmsh::kind_of_gmsh_type(11), None); // 10-node tetrahedron
+/// ```
 pub fn kind_of_gmsh_type(t: u64) -> Option<CellKind> {
     Some(match t {
         15 => CellKind::Simplex(0),

@@ -34,6 +34,12 @@ use crate::cell::CellKind;
 use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
 
 /// The VTK cell type of a kind (`None` for kinds legacy VTK has no linear cell for).
+///
+/// ```
+/// use starplex::{cell::CellKind, io::vtk};
+/// assert_eq!(vtk::vtk_type(CellKind::Prism), Some(13));
+/// assert_eq!(vtk::vtk_type(CellKind::Simplex(4)), None);
+/// ```
 pub fn vtk_type(kind: CellKind) -> Option<u8> {
     Some(match kind {
         CellKind::Simplex(0) => 1,
@@ -49,6 +55,12 @@ pub fn vtk_type(kind: CellKind) -> Option<u8> {
 }
 
 /// The kind of a VTK cell type starplex reads (`Simplex(0)` for VTK_VERTEX).
+///
+/// ```
+/// use starplex::{cell::CellKind, io::vtk};
+/// assert_eq!(vtk::kind_of_vtk_type(14), Some(CellKind::Pyramid));
+/// assert_eq!(vtk::kind_of_vtk_type(7), None); // polygon
+/// ```
 pub fn kind_of_vtk_type(t: u64) -> Option<CellKind> {
     Some(match t {
         1 => CellKind::Simplex(0),
@@ -506,7 +518,6 @@ fn read_offsets_layout(
     if prev != 0 {
         return Err(w.err(format!("the first offset is {prev}, expected 0")));
     }
-    let mut lines = Vec::new();
     for i in 1..n_off {
         let o = w.u64("an offset")?;
         if o < prev || o - prev > 64 {
@@ -521,7 +532,6 @@ fn read_offsets_layout(
         }
         prev = o;
         ends.push(o);
-        lines.push(w.line());
     }
     if prev != n_conn {
         return Err(w.err(format!(
@@ -532,12 +542,15 @@ fn read_offsets_layout(
     w.expect("the connectivity's data type")?;
     let mut start = 0usize;
     for (i, &end) in ends.iter().enumerate() {
-        let line = w.line();
+        let mut line = 0;
         while (conn.len() as u64) < end {
             conn.push(w.index("point index", 0, nv)?);
+            if line == 0 {
+                line = w.line();
+            }
         }
         check_cell(i as u64, &conn[start..], nv)
-            .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line.max(lines[i]))))?;
+            .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line.max(1))))?;
         start = conn.len();
     }
     Ok(())
