@@ -15,6 +15,9 @@ internally, converts them from/to VTK's wedge order in its VTK reader/writer
 ([0, 2, 1, 3, 5, 4]), and reads gmsh and Medit prisms as they are written. starplex writes VTK
 order to .vtk and .mesh and gmsh order to .msh, so the expected meshio wedge is the starplex prism
 permuted for .vtk and .msh and unchanged for .mesh.
+
+When the gmsh Python module is installed, the written .msh is also opened by gmsh itself and the
+number of elements it finds inverted is reported (informational).
 """
 import argparse
 import json
@@ -60,6 +63,31 @@ def meshio_cells(m):
     return {t: np.concatenate(v) for t, v in out.items()}
 
 
+def gmsh_inverted(path):
+    """Per element type, how many elements gmsh itself finds inverted (minSJ < 0) in `path`, or
+    None when the gmsh module is not installed. Informational: it says whether the cells handed
+    to the writer had gmsh's orientation (for the datasets' .spx, whose prisms are stored in
+    gmsh's order rather than VTK's, every prism shows up here)."""
+    try:
+        import gmsh
+    except ImportError:
+        return None
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.open(path)
+        out = {}
+        types, etags, _ = gmsh.model.mesh.getElements()
+        for t, e in zip(types, etags):
+            name, dim = gmsh.model.mesh.getElementProperties(t)[:2]
+            if dim == 3 and len(e):
+                q = np.asarray(gmsh.model.mesh.getElementQualities(e, "minSJ"))
+                out[name] = int((q < 0).sum())
+        return out
+    finally:
+        gmsh.finalize()
+
+
 def check(name, spx, binary, workdir):
     pts, cells = read_spx(spx)
     results = []
@@ -94,6 +122,8 @@ def check(name, spx, binary, workdir):
             per_type[f"unexpected {t}"] = {"n": int(len(g))}
             ok = False
         rec["cells"] = per_type
+        if ext == "msh":
+            rec["gmsh_negative_jacobians"] = gmsh_inverted(out)
         rec["ok"] = bool(ok)
         results.append(rec)
     return results

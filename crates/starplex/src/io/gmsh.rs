@@ -20,8 +20,8 @@
 //! other one, VTK's faces outward), so prisms are read as `[0, 2, 1, 3, 5, 4]` of the gmsh nodes
 //! and written back the same way, as gmsh itself does when it exports VTK.
 //!
-//! Write: version 4.1 ascii, one node block, one element block per run of one kind, no
-//! `$Entities`. Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are
+//! Write: version 4.1 ascii, one geometric entity per dimension in `$Entities`, one node block,
+//! one element block per run of one kind. Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are
 //! written as nodes, which this reader then drops.
 //!
 //! ```
@@ -546,6 +546,60 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     let nv = k.n_vertices();
     let node_dim = k.dim().unwrap_or(0);
     writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
+    // One geometric entity (tag 1) per dimension in use, spanning the bounding box: gmsh itself
+    // needs every node and element block to name a declared entity.
+    let mut present = [false; 4];
+    if nv > 0 {
+        present[node_dim] = true;
+    }
+    for b in k.blocks() {
+        present[b.kind.dim()] = true;
+    }
+    let mut lo = [0.0f64; 3];
+    let mut hi = [0.0f64; 3];
+    for (i, p) in k.coords().chunks_exact(d).enumerate() {
+        for a in 0..d {
+            if i == 0 || p[a] < lo[a] {
+                lo[a] = p[a];
+            }
+            if i == 0 || p[a] > hi[a] {
+                hi[a] = p[a];
+            }
+        }
+    }
+    writeln!(w, "$Entities")?;
+    let n = |x: bool| x as u8;
+    writeln!(
+        w,
+        "{} {} {} {}",
+        n(present[0]),
+        n(present[1]),
+        n(present[2]),
+        n(present[3])
+    )?;
+    let boxed = |w: &mut dyn Write| -> std::io::Result<()> {
+        for x in lo.iter().chain(hi.iter()) {
+            write_f64(w, *x)?;
+            w.write_all(b" ")?;
+        }
+        Ok(())
+    };
+    if present[0] {
+        w.write_all(b"1 ")?;
+        for x in lo {
+            write_f64(w, x)?;
+            w.write_all(b" ")?;
+        }
+        w.write_all(b"0\n")?;
+    }
+    for &here in &present[1..] {
+        if here {
+            w.write_all(b"1 ")?;
+            boxed(w)?;
+            w.write_all(b"0 0\n")?;
+        }
+    }
+    writeln!(w, "$EndEntities")?;
     writeln!(w, "$Nodes")?;
     if nv == 0 {
         writeln!(w, "0 0 0 0")?;
@@ -573,9 +627,9 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     let ne = k.n_cells();
     writeln!(w, "{} {ne} {} {ne}", k.blocks().len(), ne.min(1))?;
     let mut line = String::with_capacity(128);
-    for (bi, b) in k.blocks().iter().enumerate() {
+    for b in k.blocks() {
         let t = gmsh_type(b.kind).unwrap_or(0);
-        writeln!(w, "{} {} {t} {}", b.kind.dim(), bi + 1, b.len())?;
+        writeln!(w, "{} 1 {t} {}", b.kind.dim(), b.len())?;
         for i in 0..b.len() {
             use std::fmt::Write as _;
             line.clear();
