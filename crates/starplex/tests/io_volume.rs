@@ -474,6 +474,22 @@ fn gmsh_22_and_41_with_sparse_tags_read_alike() {
         .any(|n| n.contains("dropped 2 elements that are faces")));
 }
 
+/// A large tag seen first (stored sparsely), then enough small tags for the dense table to grow
+/// past it: every tag must still be found.
+#[test]
+fn gmsh_tags_stay_found_when_the_dense_table_grows() {
+    let n = 6000u64;
+    let mut t = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n");
+    t += &format!("{n}\n5000 0 0 5000\n");
+    for i in (1..=n).filter(|&i| i != 5000) {
+        t += &format!("{i} 0 0 {i}\n");
+    }
+    t += "$EndNodes\n$Elements\n1\n1 1 2 0 1 5000 3\n$EndElements\n";
+    let r = read_bytes(Format::Gmsh, t.as_bytes()).unwrap();
+    assert_eq!(r.complex.n_vertices(), 2);
+    assert_eq!(r.complex.coords(), &[0.0, 0.0, 5000.0, 0.0, 0.0, 3.0]);
+}
+
 /// gmsh's prism has its triangle 0-1-2 facing the other one; VTK's faces outward. A gmsh prism
 /// with positive gmsh volume must come out with positive VTK orientation.
 #[test]

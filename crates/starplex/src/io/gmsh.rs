@@ -155,8 +155,8 @@ impl TagMap {
     fn get(&self, tag: u64) -> Option<u32> {
         match self.dense.get(tag as usize) {
             Some(&id) if id != u32::MAX => Some(id),
-            Some(_) => None,
-            None => self.sparse.get(&tag).copied(),
+            // a tag stored sparsely before the dense part grew past it
+            _ => self.sparse.get(&tag).copied(),
         }
     }
 }
