@@ -209,6 +209,12 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             notes.push(format!("skipped the Medit section '{name}' ({n} entries)"));
             continue;
         }
+        if kw.starts_with(|c: char| c.is_ascii_digit() || c == '-' || c == '+' || c == '.') {
+            return Err(w.err_at(
+                kw_line,
+                format!("found the number '{kw}' where a keyword was expected (a section holds more entries than its count says)"),
+            ));
+        }
         return Err(w.err_at(
             kw_line,
             format!(

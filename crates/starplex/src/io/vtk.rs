@@ -409,6 +409,15 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 w.unread();
                 skip_metadata(&mut w)?;
             }
+            _ if word
+                .first()
+                .is_some_and(|c| c.is_ascii_digit() || b"-+.".contains(c)) =>
+            {
+                return Err(w.err(format!(
+                    "found the number '{}' where a keyword was expected (a section holds more values than its count says)",
+                    lossy(&word)
+                )))
+            }
             _ => {
                 return Err(w.err(format!(
                     "unknown keyword '{}' in an UNSTRUCTURED_GRID dataset",
