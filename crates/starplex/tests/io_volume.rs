@@ -413,6 +413,7 @@ fn random_complexes_round_trip() {
 fn vtk_5_layout_with_data_sections_reads_like_the_classic_one() {
     let v5 = "# vtk DataFile Version 5.1\nmeshio-like\nASCII\nDATASET UNSTRUCTURED_GRID\n\
               POINTS 5 double\n0.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0 1.0 1.0 1.0\n\
+              METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 1.73\n\n\
               CELLS 4 8\nOFFSETS vtktypeint64\n0\n4\n7\n8\nCONNECTIVITY vtktypeint64\n\
               0\n1\n2\n3\n1\n2\n4\n4\nCELL_TYPES 3\n10\n5\n1\n\
               POINT_DATA 5\nSCALARS h double 1\nLOOKUP_TABLE default\n1 2 3 4 5\n\
