@@ -20,8 +20,8 @@
 //! other one, VTK's faces outward), so prisms are read as `[0, 2, 1, 3, 5, 4]` of the gmsh nodes
 //! and written back the same way, as gmsh itself does when it exports VTK.
 //!
-//! Write: version 4.1 ascii, one node block, one element block per run of one kind, no
-//! `$Entities`. Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are
+//! Write: version 4.1 ascii, one geometric entity per dimension in `$Entities`, one node block,
+//! one element block per run of one kind. Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are
 //! written as nodes, which this reader then drops.
 //!
 //! ```
@@ -50,9 +50,21 @@ use crate::complex::{check_cell, BuildOptions, ComplexBuilder, IndexedComplex};
 
 /// gmsh prism node `PRISM_PERM[i]` is VTK wedge node `i` (an involution: the same map converts
 /// back).
+///
+/// ```
+/// let gmsh_prism = [10, 11, 12, 13, 14, 15];
+/// let vtk: Vec<u32> = starplex::io::gmsh::PRISM_PERM.iter().map(|&i| gmsh_prism[i]).collect();
+/// assert_eq!(vtk, [10, 12, 11, 13, 15, 14]);
+/// ```
 pub const PRISM_PERM: [usize; 6] = [0, 2, 1, 3, 5, 4];
 
 /// The gmsh element type of a kind (`None` for kinds gmsh has no first-order element for here).
+///
+/// ```
+/// use starplex::{cell::CellKind, io::gmsh};
+/// assert_eq!(gmsh::gmsh_type(CellKind::Hex), Some(5));
+/// assert_eq!(gmsh::gmsh_type(CellKind::Simplex(5)), None);
+/// ```
 pub fn gmsh_type(kind: CellKind) -> Option<u32> {
     Some(match kind {
         CellKind::Simplex(0) => 15,
@@ -68,6 +80,12 @@ pub fn gmsh_type(kind: CellKind) -> Option<u32> {
 }
 
 /// The kind of a gmsh element type starplex reads.
+///
+/// ```
+/// use starplex::{cell::CellKind, io::gmsh};
+/// assert_eq!(gmsh::kind_of_gmsh_type(6), Some(CellKind::Prism));
+/// assert_eq!(gmsh::kind_of_gmsh_type(11), None); // 10-node tetrahedron
+/// ```
 pub fn kind_of_gmsh_type(t: u64) -> Option<CellKind> {
     Some(match t {
         15 => CellKind::Simplex(0),
@@ -137,8 +155,8 @@ impl TagMap {
     fn get(&self, tag: u64) -> Option<u32> {
         match self.dense.get(tag as usize) {
             Some(&id) if id != u32::MAX => Some(id),
-            Some(_) => None,
-            None => self.sparse.get(&tag).copied(),
+            // a tag stored sparsely before the dense part grew past it
+            _ => self.sparse.get(&tag).copied(),
         }
     }
 }
@@ -274,12 +292,7 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
                     match w.next_word()? {
                         Some(x) if x == end.as_bytes() => break,
                         Some(_) => {}
-                        None => return Err(w.err_at(
-                            w.line(),
-                            format!(
-                                "unexpected end of file: expected '{end}' (the file is truncated)"
-                            ),
-                        )),
+                        None => return Err(w.eof(&format!("'{end}'"))),
                     }
                 }
             }
@@ -391,6 +404,7 @@ fn read_nodes_41(
 ) -> Result<(), IoError> {
     let n_blocks = w.u64("the number of node blocks")?;
     let n_nodes = w.u64("the number of nodes")?;
+    let head = w.line();
     w.u64("the smallest node tag")?;
     w.u64("the largest node tag")?;
     let mut block_tags: Vec<(u64, u64)> = Vec::new();
@@ -419,10 +433,13 @@ fn read_nodes_41(
         }
     }
     if tags.n as u64 != n_nodes {
-        return Err(w.err(format!(
-            "$Nodes declares {n_nodes} nodes, its blocks hold {}",
-            tags.n
-        )));
+        return Err(w.err_at(
+            head,
+            format!(
+                "$Nodes declares {n_nodes} nodes, its blocks hold {}",
+                tags.n
+            ),
+        ));
     }
     Ok(())
 }
@@ -450,6 +467,7 @@ fn read_elements_41(
 ) -> Result<(), IoError> {
     let n_blocks = w.u64("the number of element blocks")?;
     let n_elems = w.u64("the number of elements")?;
+    let head = w.line();
     w.u64("the smallest element tag")?;
     w.u64("the largest element tag")?;
     let mut seen: u64 = 0;
@@ -471,9 +489,10 @@ fn read_elements_41(
         }
     }
     if seen != n_elems {
-        return Err(w.err(format!(
-            "$Elements declares {n_elems} elements, its blocks hold {seen}"
-        )));
+        return Err(w.err_at(
+            head,
+            format!("$Elements declares {n_elems} elements, its blocks hold {seen}"),
+        ));
     }
     Ok(())
 }
@@ -527,6 +546,60 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     let nv = k.n_vertices();
     let node_dim = k.dim().unwrap_or(0);
     writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
+    // One geometric entity (tag 1) per dimension in use, spanning the bounding box: gmsh itself
+    // needs every node and element block to name a declared entity.
+    let mut present = [false; 4];
+    if nv > 0 {
+        present[node_dim] = true;
+    }
+    for b in k.blocks() {
+        present[b.kind.dim()] = true;
+    }
+    let mut lo = [0.0f64; 3];
+    let mut hi = [0.0f64; 3];
+    for (i, p) in k.coords().chunks_exact(d).enumerate() {
+        for a in 0..d {
+            if i == 0 || p[a] < lo[a] {
+                lo[a] = p[a];
+            }
+            if i == 0 || p[a] > hi[a] {
+                hi[a] = p[a];
+            }
+        }
+    }
+    writeln!(w, "$Entities")?;
+    let n = |x: bool| x as u8;
+    writeln!(
+        w,
+        "{} {} {} {}",
+        n(present[0]),
+        n(present[1]),
+        n(present[2]),
+        n(present[3])
+    )?;
+    let boxed = |w: &mut dyn Write| -> std::io::Result<()> {
+        for x in lo.iter().chain(hi.iter()) {
+            write_f64(w, *x)?;
+            w.write_all(b" ")?;
+        }
+        Ok(())
+    };
+    if present[0] {
+        w.write_all(b"1 ")?;
+        for x in lo {
+            write_f64(w, x)?;
+            w.write_all(b" ")?;
+        }
+        w.write_all(b"0\n")?;
+    }
+    for &here in &present[1..] {
+        if here {
+            w.write_all(b"1 ")?;
+            boxed(w)?;
+            w.write_all(b"0 0\n")?;
+        }
+    }
+    writeln!(w, "$EndEntities")?;
     writeln!(w, "$Nodes")?;
     if nv == 0 {
         writeln!(w, "0 0 0 0")?;
@@ -554,9 +627,9 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     let ne = k.n_cells();
     writeln!(w, "{} {ne} {} {ne}", k.blocks().len(), ne.min(1))?;
     let mut line = String::with_capacity(128);
-    for (bi, b) in k.blocks().iter().enumerate() {
+    for b in k.blocks() {
         let t = gmsh_type(b.kind).unwrap_or(0);
-        writeln!(w, "{} {} {t} {}", b.kind.dim(), bi + 1, b.len())?;
+        writeln!(w, "{} 1 {t} {}", b.kind.dim(), b.len())?;
         for i in 0..b.len() {
             use std::fmt::Write as _;
             line.clear();

@@ -127,10 +127,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut n_cells: u64 = 0;
     loop {
         let Some(kw) = w.next_word()? else {
-            return Err(w.err_at(
-                w.line(),
-                "unexpected end of file: expected a keyword or 'End' (the file is truncated)",
-            ));
+            return Err(w.eof("a keyword or 'End'"));
         };
         let kw = String::from_utf8_lossy(&kw[..kw.len().min(60)]).into_owned();
         let kw_line = w.line();
@@ -211,6 +208,12 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             }
             notes.push(format!("skipped the Medit section '{name}' ({n} entries)"));
             continue;
+        }
+        if kw.starts_with(|c: char| c.is_ascii_digit() || c == '-' || c == '+' || c == '.') {
+            return Err(w.err_at(
+                kw_line,
+                format!("found the number '{kw}' where a keyword was expected (a section holds more entries than its count says)"),
+            ));
         }
         return Err(w.err_at(
             kw_line,

@@ -34,6 +34,12 @@ use crate::cell::CellKind;
 use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
 
 /// The VTK cell type of a kind (`None` for kinds legacy VTK has no linear cell for).
+///
+/// ```
+/// use starplex::{cell::CellKind, io::vtk};
+/// assert_eq!(vtk::vtk_type(CellKind::Prism), Some(13));
+/// assert_eq!(vtk::vtk_type(CellKind::Simplex(4)), None);
+/// ```
 pub fn vtk_type(kind: CellKind) -> Option<u8> {
     Some(match kind {
         CellKind::Simplex(0) => 1,
@@ -49,6 +55,12 @@ pub fn vtk_type(kind: CellKind) -> Option<u8> {
 }
 
 /// The kind of a VTK cell type starplex reads (`Simplex(0)` for VTK_VERTEX).
+///
+/// ```
+/// use starplex::{cell::CellKind, io::vtk};
+/// assert_eq!(vtk::kind_of_vtk_type(14), Some(CellKind::Pyramid));
+/// assert_eq!(vtk::kind_of_vtk_type(7), None); // polygon
+/// ```
 pub fn kind_of_vtk_type(t: u64) -> Option<CellKind> {
     Some(match t {
         1 => CellKind::Simplex(0),
@@ -173,7 +185,7 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
             b"SCALARS" => {
                 w.expect("the scalars' name")?;
                 w.expect("the scalars' type")?;
-                // optional component count, then optional LOOKUP_TABLE name
+                // an optional component count, then LOOKUP_TABLE name (required)
                 let mut comps = 1;
                 match w.next_word()?.map(|t| t.to_vec()) {
                     Some(t) if t.eq_ignore_ascii_case(b"LOOKUP_TABLE") => {
@@ -186,14 +198,10 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
                                 lossy(&t)
                             ))
                         })?;
-                        match w.next_word()? {
-                            Some(t) if t.eq_ignore_ascii_case(b"LOOKUP_TABLE") => {
-                                w.expect("the lookup table name")?;
-                            }
-                            _ => w.unread(),
-                        }
+                        w.keyword("LOOKUP_TABLE")?;
+                        w.expect("the lookup table name")?;
                     }
-                    None => w.unread(),
+                    None => return Err(w.err("unexpected end of file: expected LOOKUP_TABLE")),
                 }
                 n.saturating_mul(comps)
             }
@@ -401,6 +409,15 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 w.unread();
                 skip_metadata(&mut w)?;
             }
+            _ if word
+                .first()
+                .is_some_and(|c| c.is_ascii_digit() || b"-+.".contains(c)) =>
+            {
+                return Err(w.err(format!(
+                    "found the number '{}' where a keyword was expected (a section holds more values than its count says)",
+                    lossy(&word)
+                )))
+            }
             _ => {
                 return Err(w.err(format!(
                     "unknown keyword '{}' in an UNSTRUCTURED_GRID dataset",
@@ -510,7 +527,6 @@ fn read_offsets_layout(
     if prev != 0 {
         return Err(w.err(format!("the first offset is {prev}, expected 0")));
     }
-    let mut lines = Vec::new();
     for i in 1..n_off {
         let o = w.u64("an offset")?;
         if o < prev || o - prev > 64 {
@@ -525,7 +541,6 @@ fn read_offsets_layout(
         }
         prev = o;
         ends.push(o);
-        lines.push(w.line());
     }
     if prev != n_conn {
         return Err(w.err(format!(
@@ -536,12 +551,15 @@ fn read_offsets_layout(
     w.expect("the connectivity's data type")?;
     let mut start = 0usize;
     for (i, &end) in ends.iter().enumerate() {
-        let line = w.line();
+        let mut line = 0;
         while (conn.len() as u64) < end {
             conn.push(w.index("point index", 0, nv)?);
+            if line == 0 {
+                line = w.line();
+            }
         }
         check_cell(i as u64, &conn[start..], nv)
-            .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line.max(lines[i]))))?;
+            .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line.max(1))))?;
         start = conn.len();
     }
     Ok(())

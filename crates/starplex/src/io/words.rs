@@ -180,7 +180,8 @@ impl<'p, R: BufRead> Words<'p, R> {
         }
     }
 
-    fn eof(&self, what: &str) -> IoError {
+    /// The error "unexpected end of file: expected `what`" at the read position.
+    pub fn eof(&self, what: &str) -> IoError {
         self.err_at(
             self.line,
             format!(
