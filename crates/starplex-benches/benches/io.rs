@@ -3,7 +3,8 @@
 //!
 //! Input: with `STARPLEX_DATA` set, the first of `medium/tri_armadillo_x16`, `small/tri_polygon_mesh`
 //! that exists (its `.spx`, and `.off` beside it); otherwise a generated triangulated grid of about
-//! 50 MB of `.spx` text in the temporary directory. The `.spb` is written from the `.spx` complex.
+//! 50 MB of `.spx` text in the temporary directory; `STARPLEX_BENCH_SPX=path.spx` picks a file.
+//! The `.spb` is written from the `.spx` complex (once, cached in the temporary directory).
 //!
 //! ```text
 //! cargo bench -p starplex-benches --bench io -- --measurement-time 5
@@ -71,6 +72,19 @@ fn write_off(path: &Path, k: &IndexedComplex) {
 fn inputs() -> (PathBuf, Option<PathBuf>, PathBuf) {
     let dir = std::env::temp_dir().join("starplex-bench-io");
     std::fs::create_dir_all(&dir).unwrap();
+    if let Ok(spx) = std::env::var("STARPLEX_BENCH_SPX") {
+        let spx = PathBuf::from(spx);
+        let off = spx.with_extension("off");
+        let spb = dir.join(format!(
+            "{}.spb",
+            spx.file_stem().unwrap().to_string_lossy()
+        ));
+        if !spb.exists() {
+            let k = io::read(&spx, &ReadOptions::default()).unwrap().complex;
+            io::write(&spb, &k, Some(Format::Binary)).unwrap();
+        }
+        return (spx, off.exists().then_some(off), spb);
+    }
     if let Ok(data) = std::env::var("STARPLEX_DATA") {
         for rel in [
             "medium/tri_armadillo_x16/tri_armadillo_x16",

@@ -485,6 +485,10 @@ fn map_file(file: &std::fs::File) -> std::io::Result<memmap2::Mmap> {
 /// Reads a `.spb` file by memory-mapping it: coordinates and cell arrays stay in the map
 /// ([`Buf::Mapped`]), nothing is copied.
 ///
+/// `opts` is not used: a `.spb` holds a complex that was checked when it was written, so the
+/// maximality/duplicate checks (and their drop options) are not run again; vertex indices and
+/// coordinates are always checked.
+///
 /// ```
 /// use starplex::io::{binary, ReadOptions};
 /// use starplex::complex::{ComplexBuilder, BuildOptions};
