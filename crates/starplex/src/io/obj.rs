@@ -81,11 +81,12 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         match key {
             b"v" => {
                 let mut p = [0.0; 3];
-                for (axis, x) in p.iter_mut().enumerate() {
-                    *x = t.f64(&format!(
-                        "coordinate {axis} of vertex {}",
-                        b.n_vertices() + 1
-                    ))?;
+                for (x, what) in
+                    p.iter_mut()
+                        .zip(["the x coordinate", "the y coordinate", "the z coordinate"])
+                {
+                    // no format! per token: the line number locates the vertex
+                    *x = t.f64(what)?;
                 }
                 b.push_vertex(&p)
                     .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
