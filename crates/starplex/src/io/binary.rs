@@ -525,7 +525,10 @@ pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
         file.take(HEADER_LEN as u64)
             .read_to_end(&mut head)
             .map_err(|e| IoError::new(path, e))?;
-        return Err(read_header(&head, path).expect_err("shorter than the header"));
+        return Err(match read_header(&head, path) {
+            Err(e) => e,
+            Ok(_) => IoError::parse(path, Some(Location::Byte(len)), "truncated .spb header"),
+        });
     }
     let map = map_file(&file).map_err(|e| IoError::new(path, e))?;
     #[cfg(unix)]
