@@ -375,6 +375,41 @@ pub fn check_cell(cell: u64, vertices: &[u32], n_vertices: usize) -> Result<(), 
     Ok(())
 }
 
+/// True when every index of `verts` is below `nv` and the cells of `n` vertices have no
+/// repeated vertex (what [`check_cell`] checks, for a whole block, without early exits).
+fn block_is_valid(verts: &[u32], n: usize, nv: usize) -> bool {
+    fn distinct<const N: usize>(verts: &[u32]) -> bool {
+        let mut bad = false;
+        for c in verts.chunks_exact(N) {
+            for i in 1..N {
+                for j in 0..i {
+                    bad |= c[i] == c[j];
+                }
+            }
+        }
+        !bad
+    }
+    if verts.is_empty() {
+        return true;
+    }
+    let max = verts.iter().fold(0u32, |m, &v| m.max(v));
+    if max as usize >= nv {
+        return false;
+    }
+    match n {
+        1 => true,
+        2 => distinct::<2>(verts),
+        3 => distinct::<3>(verts),
+        4 => distinct::<4>(verts),
+        5 => distinct::<5>(verts),
+        6 => distinct::<6>(verts),
+        8 => distinct::<8>(verts),
+        _ => verts
+            .chunks_exact(n)
+            .all(|c| (1..n).all(|i| !c[..i].contains(&c[i]))),
+    }
+}
+
 impl IndexedComplex {
     /// Assembles a complex from parts already checked elsewhere (the binary reader checks
     /// indices itself); cell ids follow the block order.
@@ -429,8 +464,13 @@ impl IndexedComplex {
                 first: first as u32,
                 vertices: v,
             };
-            for i in 0..b.len() {
-                check_cell(first + i as u64, b.cell(i), nv)?;
+            // Fast branch-free check of the whole block; the per-cell check only runs to name
+            // the first offending cell.
+            let verts: &[u32] = &b.vertices;
+            if !block_is_valid(verts, n, nv) {
+                for (i, c) in verts.chunks_exact(n).enumerate() {
+                    check_cell(first + i as u64, c, nv)?;
+                }
             }
             first += b.len() as u64;
             if first >= u32::MAX as u64 {
@@ -844,6 +884,29 @@ mod tests {
         assert_eq!(k.cell(CellId(0)).vertices, &[2, 0, 1]);
         assert_eq!(k.cell(CellId(1)).vertices, &[3, 4, 5]);
         assert_eq!(k.n_isolated_vertices(), 2);
+    }
+
+    #[test]
+    fn block_fast_check_agrees_with_check_cell() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        for n in 1..=10usize {
+            for _ in 0..300 {
+                let nv = 1 + next(40) as usize;
+                let cells = next(6) as usize;
+                let verts: Vec<u32> = (0..n * cells).map(|_| next(nv as u64 + 1) as u32).collect();
+                let slow = verts
+                    .chunks_exact(n)
+                    .enumerate()
+                    .all(|(i, c)| check_cell(i as u64, c, nv).is_ok());
+                assert_eq!(block_is_valid(&verts, n, nv), slow, "{n} {nv} {verts:?}");
+            }
+        }
     }
 
     #[test]

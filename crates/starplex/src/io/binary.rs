@@ -61,17 +61,54 @@ use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
 use crate::complex::{IndexedComplex, MAX_AMBIENT_DIM};
 
 /// The first 8 bytes of every `.spb` file.
+///
+/// ```
+/// assert_eq!(&starplex::io::binary::MAGIC, b"STARPLX\0");
+/// ```
 pub const MAGIC: [u8; 8] = *b"STARPLX\0";
 /// The format version this code writes and reads.
+///
+/// ```
+/// assert_eq!(starplex::io::binary::VERSION, 1);
+/// ```
 pub const VERSION: u32 = 1;
 /// Written as a little-endian u32; reads back as this value only on a little-endian reading.
+///
+/// ```
+/// assert_eq!(starplex::io::binary::ENDIAN_TAG.to_le_bytes(), [4, 3, 2, 1]);
+/// ```
 pub const ENDIAN_TAG: u32 = 0x0102_0304;
 /// Size of the fixed header in bytes.
+///
+/// ```
+/// assert_eq!(starplex::io::binary::HEADER_LEN, 64);
+/// ```
 pub const HEADER_LEN: usize = 64;
 /// Size of one block-table entry in bytes.
+///
+/// ```
+/// assert_eq!(starplex::io::binary::BLOCK_ENTRY_LEN, 32);
+/// ```
 pub const BLOCK_ENTRY_LEN: usize = 32;
 
 /// The parsed header of a `.spb` file (what [`read_header`] returns).
+///
+/// ```
+/// use starplex::io::binary;
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let mut bytes = Vec::new();
+/// binary::write(&mut bytes, &k).unwrap();
+/// let h = binary::read_header(&bytes, "t.spb".as_ref()).unwrap();
+/// assert_eq!((h.ambient_dim, h.n_vertices, h.n_cells), (2, 3, 1));
+/// assert_eq!(h.blocks, vec![(CellKind::Simplex(2), 1, 64 + 32 + 48)]);
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SpbHeader {
     /// Coordinates per vertex.
@@ -448,6 +485,27 @@ fn map_file(file: &std::fs::File) -> std::io::Result<memmap2::Mmap> {
 /// Reads a `.spb` file by memory-mapping it: coordinates and cell arrays stay in the map
 /// ([`Buf::Mapped`]), nothing is copied.
 ///
+/// `opts` is not used: a `.spb` holds a complex that was checked when it was written, so the
+/// maximality/duplicate checks (and their drop options) are not run again; vertex indices and
+/// coordinates are always checked.
+///
+/// ```
+/// use starplex::io::{binary, ReadOptions};
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// let mut b = ComplexBuilder::new(3).unwrap();
+/// b.push_vertex(&[1.0, 2.0, 3.0]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let path = std::env::temp_dir().join(format!("starplex-doc-spb-read-{}.spb", std::process::id()));
+/// let mut bytes = Vec::new();
+/// binary::write(&mut bytes, &k).unwrap();
+/// std::fs::write(&path, &bytes).unwrap();
+/// let r = binary::read(&path, &ReadOptions::default()).unwrap();
+/// assert_eq!(r.complex.point(starplex::ids::VertexId(0)), &[1.0, 2.0, 3.0]);
+/// std::fs::write(&path, &bytes[..70]).unwrap(); // truncated
+/// assert!(binary::read(&path, &ReadOptions::default()).is_err());
+/// std::fs::remove_file(&path).ok();
+/// ```
+///
 /// # Errors
 /// A big-endian host, OS errors, a malformed header (see [`read_header`]), and the checks of
 /// [`IndexedComplex::from_parts`] (indices in range and not repeated, finite coordinates).
@@ -467,7 +525,10 @@ pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
         file.take(HEADER_LEN as u64)
             .read_to_end(&mut head)
             .map_err(|e| IoError::new(path, e))?;
-        return Err(read_header(&head, path).expect_err("shorter than the header"));
+        return Err(match read_header(&head, path) {
+            Err(e) => e,
+            Ok(_) => IoError::parse(path, Some(Location::Byte(len)), "truncated .spb header"),
+        });
     }
     let map = map_file(&file).map_err(|e| IoError::new(path, e))?;
     #[cfg(unix)]

@@ -39,6 +39,14 @@ use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
 
 /// Reads an OBJ file.
 ///
+/// ```
+/// use starplex::io::{obj, ReadOptions};
+/// let p = std::env::temp_dir().join(format!("starplex-doc-obj-{}.obj", std::process::id()));
+/// std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+/// assert_eq!(obj::read(&p, &ReadOptions::default()).unwrap().complex.n_cells(), 1);
+/// std::fs::remove_file(&p).ok();
+/// ```
+///
 /// # Errors
 /// See [`read_from`].
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
@@ -47,6 +55,13 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
 }
 
 /// Reads OBJ text from any buffered reader; `path` names it in errors.
+///
+/// ```
+/// use starplex::io::{obj, ReadOptions};
+/// let e = obj::read_from(&b"v 0 0 0\nf 1 2 3\n"[..], "m.obj".as_ref(), &ReadOptions::default())
+///     .unwrap_err();
+/// assert!(e.to_string().starts_with("m.obj:2: vertex index 2 is out of range"), "{e}");
+/// ```
 ///
 /// # Errors
 /// Malformed or non-finite coordinates, malformed corner indices, index 0, indices of vertices
@@ -66,11 +81,12 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         match key {
             b"v" => {
                 let mut p = [0.0; 3];
-                for (axis, x) in p.iter_mut().enumerate() {
-                    *x = t.f64(format_args!(
-                        "coordinate {axis} of vertex {}",
-                        b.n_vertices() + 1
-                    ))?;
+                for (x, what) in
+                    p.iter_mut()
+                        .zip(["the x coordinate", "the y coordinate", "the z coordinate"])
+                {
+                    // no format! per token: the line number locates the vertex
+                    *x = t.f64(what)?;
                 }
                 b.push_vertex(&p)
                     .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
@@ -196,6 +212,21 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
 }
 
 /// Writes `k` as OBJ: `v` lines, then 1-based `f` lines.
+///
+/// ```
+/// use starplex::io::obj;
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(3).unwrap();
+/// for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.5, 0.0]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let mut out = Vec::new();
+/// obj::write(&mut out, &k).unwrap();
+/// assert!(String::from_utf8(out).unwrap().ends_with("v 0 1.5 0\nf 1 2 3\n"));
+/// ```
 ///
 /// # Errors
 /// [`IoErrorKind::CannotWrite`] for cells other than triangles and quads or an ambient dimension

@@ -42,6 +42,11 @@ use crate::cell::CellKind;
 use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
 
 /// PLY data encodings starplex writes.
+///
+/// ```
+/// assert_eq!(starplex::io::ply::PlyEncoding::default(),
+///            starplex::io::ply::PlyEncoding::BinaryLittleEndian);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum PlyEncoding {
     /// `format ascii 1.0`: readable, larger.
@@ -254,6 +259,17 @@ fn ply_err(path: &Path, e: ParseError, fallback: Location) -> IoError {
 
 /// Reads a PLY file.
 ///
+/// ```
+/// use starplex::io::{ply, ReadOptions};
+/// let p = std::env::temp_dir().join(format!("starplex-doc-ply-{}.ply", std::process::id()));
+/// std::fs::write(&p, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n\
+///                     property float y\nelement face 1\nproperty list uchar int vertex_indices\n\
+///                     end_header\n0 0\n1 0\n0 1\n3 0 1 2\n").unwrap();
+/// let r = ply::read(&p, &ReadOptions::default()).unwrap();
+/// assert_eq!((r.complex.ambient_dim(), r.complex.n_cells()), (2, 1));
+/// std::fs::remove_file(&p).ok();
+/// ```
+///
 /// # Errors
 /// See [`read_from`].
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
@@ -269,6 +285,16 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
 
 /// Reads PLY from a buffered reader of `len` bytes (the size is used to refuse declared counts
 /// the data cannot hold); `path` names it in errors.
+///
+/// ```
+/// use starplex::io::{ply, ReadOptions};
+/// // a header that declares 10^12 vertices is refused before anything is allocated
+/// let text = "ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\n\
+///             property float y\nend_header\n0 0\n";
+/// let e = ply::read_from(text.as_bytes(), text.len() as u64, "big.ply".as_ref(),
+///                        &ReadOptions::default()).unwrap_err();
+/// assert!(e.to_string().starts_with("big.ply:6: element 'vertex' declares 1000000000000 records"));
+/// ```
 ///
 /// # Errors
 /// A malformed header, a header without a `vertex` element or without `x`/`y`, declared counts
@@ -577,6 +603,22 @@ pub(crate) fn check_surface(k: &IndexedComplex, format: Format) -> Result<(), Io
 }
 
 /// Writes `k` as binary little-endian PLY.
+///
+/// ```
+/// use starplex::io::{ply, ReadOptions};
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(3).unwrap();
+/// for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.1, 0.7, 0.3]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let mut out = Vec::new();
+/// ply::write(&mut out, &k).unwrap();
+/// let back = ply::read_from(&out[..], out.len() as u64, "m.ply".as_ref(), &ReadOptions::default());
+/// assert_eq!(back.unwrap().complex, k);
+/// ```
 ///
 /// # Errors
 /// See [`write_with`].

@@ -83,6 +83,23 @@ impl Seek for Patched {
 
 /// Reads an STL file (ascii or binary).
 ///
+/// ```
+/// use starplex::io::{stl, ReadOptions};
+/// // a binary STL with two facets sharing an edge
+/// let mut b = vec![0u8; 80];
+/// b.extend_from_slice(&2u32.to_le_bytes());
+/// for t in [[[0f32, 0., 0.], [1., 0., 0.], [0., 1., 0.]], [[1., 0., 0.], [1., 1., 0.], [0., 1., 0.]]] {
+///     b.extend_from_slice(&[0u8; 12]);
+///     for v in t { for x in v { b.extend_from_slice(&x.to_le_bytes()); } }
+///     b.extend_from_slice(&[0u8; 2]);
+/// }
+/// let p = std::env::temp_dir().join(format!("starplex-doc-stlb-{}.stl", std::process::id()));
+/// std::fs::write(&p, &b).unwrap();
+/// let k = stl::read(&p, &ReadOptions::default()).unwrap().complex;
+/// assert_eq!((k.n_vertices(), k.n_cells()), (4, 2));
+/// std::fs::remove_file(&p).ok();
+/// ```
+///
 /// # Errors
 /// OS errors; a binary file shorter than its facet count says; malformed ascii (with the facet
 /// index); non-finite coordinates; degenerate facets (unless dropped, see the module docs);
