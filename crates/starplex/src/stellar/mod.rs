@@ -28,6 +28,7 @@ use crate::complex::IndexedComplex;
 use crate::ids::{CellId, LeafId, NodeId, VertexId};
 
 mod build;
+pub mod iastar;
 pub mod relations;
 mod save;
 pub mod sre;

@@ -62,11 +62,11 @@ impl FaceList {
 pub(crate) struct FaceKeys {
     w: usize,
     flat: Vec<u32>,
-    payload: Vec<u32>,
-    small: Vec<(u128, u32)>,
+    payload: Vec<u64>,
+    small: Vec<(u128, u64)>,
     order: Vec<u32>,
     key: Vec<u32>,
-    pays: Vec<u32>,
+    pays: Vec<u64>,
 }
 
 const PAD: u32 = u32::MAX;
@@ -80,7 +80,7 @@ impl FaceKeys {
     }
     /// Pushes a sorted key (at most `w` ids).
     #[inline]
-    pub fn push(&mut self, key: &[u32], payload: u32) {
+    pub fn push(&mut self, key: &[u32], payload: u64) {
         debug_assert!(key.len() <= self.w);
         if self.w <= 4 {
             let mut x: u128 = 0;
@@ -96,7 +96,7 @@ impl FaceKeys {
         }
     }
     /// Calls `f(key, payloads)` for every distinct key, in key order.
-    pub fn for_each_group(&mut self, mut f: impl FnMut(&[u32], &[u32])) {
+    pub fn for_each_group(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
         if self.w <= 4 {
             self.small.sort_unstable();
             let mut i = 0;
@@ -503,7 +503,7 @@ impl StellarTree {
                             let m = *key.iter().min().expect("faces have vertices");
                             if view.owns(m) {
                                 key.sort_unstable();
-                                keys.push(key, c);
+                                keys.push(key, c as u64);
                             }
                         });
                     }
@@ -646,6 +646,17 @@ impl StellarTree {
         &self,
         f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
     ) -> Vec<R> {
+        self.par_facet_groups_where(1, false, f)
+    }
+
+    /// Facet groups of the cells of dimension >= `min_dim`; with `local`, every facet with a
+    /// vertex in the leaf (the local IA* rule) instead of the facets the leaf owns.
+    pub(crate) fn par_facet_groups_where<R: Send>(
+        &self,
+        min_dim: usize,
+        local_rule: bool,
+        f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
+    ) -> Vec<R> {
         let w = 1 + self
             .kinds()
             .iter()
@@ -675,20 +686,26 @@ impl StellarTree {
                     for &c in &e.cells {
                         let (kind, vs) = self.cells.get(c);
                         let d = kind.dim();
-                        if d == 0 {
+                        if d == 0 || d < min_dim {
                             continue;
                         }
+                        let mut j = 0u64;
                         kind.for_each_oriented_facet(|local, sign| {
+                            j += 1;
                             key.clear();
                             key.extend(local.iter().map(|&i| vs[i as usize]));
-                            let m = *key.iter().min().expect("facets have vertices");
-                            if !view.owns(m) {
+                            let keep = if local_rule {
+                                key.iter().any(|&v| view.owns(v))
+                            } else {
+                                view.owns(*key.iter().min().expect("facets have vertices"))
+                            };
+                            if !keep {
                                 return;
                             }
                             let s = sign * listed_sign(key, !kind.is_simplex() && key.len() >= 3);
                             key.sort_unstable();
                             key.insert(0, d as u32);
-                            keys.push(key, pack(c, s));
+                            keys.push(key, pack(c, j - 1, s));
                         });
                     }
                     f(&view, keys)
@@ -698,18 +715,22 @@ impl StellarTree {
     }
 }
 
+/// Payload of a facet record: tree cell id, facet index in the cell, induced sign.
 #[inline]
-pub(crate) fn pack(c: u32, sign: i8) -> u32 {
-    if sign < 0 {
-        c | (1 << 31)
-    } else {
-        c
-    }
+pub(crate) fn pack(c: u32, j: u64, sign: i8) -> u64 {
+    c as u64 | (j << 32) | if sign < 0 { 1 << 63 } else { 0 }
 }
 
+/// (tree cell, induced sign) of a facet payload.
 #[inline]
-pub(crate) fn unpack(x: u32) -> (u32, i8) {
-    (x & !(1 << 31), if x >> 31 == 1 { -1 } else { 1 })
+pub(crate) fn unpack(x: u64) -> (u32, i8) {
+    (x as u32, if x >> 63 == 1 { -1 } else { 1 })
+}
+
+/// Facet index of a facet payload.
+#[inline]
+pub(crate) fn unpack_facet(x: u64) -> u32 {
+    ((x >> 32) & 0x7fff_ffff) as u32
 }
 
 /// Orientation of a listed facet relative to its sorted order: the parity of the sorting
