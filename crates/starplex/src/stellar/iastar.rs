@@ -407,7 +407,17 @@ impl StellarTree {
     ) -> Vec<u32> {
         let star = view.vt_tree(v);
         let mut reps: Vec<u32> = Vec::new();
-        let mut seen: FxHashSet<u32> = FxHashSet::default();
+        // seen[i]: star[i] visited (neighbours through facets containing v are in the star)
+        let mut seen = vec![false; star.len()];
+        let mark = |seen: &mut Vec<bool>, c: u32| -> bool {
+            match star.binary_search(&c) {
+                Ok(i) if !seen[i] => {
+                    seen[i] = true;
+                    true
+                }
+                _ => false,
+            }
+        };
         // visit the star in input-id order so the representative is the smallest input id
         let mut order: Vec<u32> = star.to_vec();
         order.sort_unstable_by_key(|&c| self.c_orig[c as usize]);
@@ -420,7 +430,7 @@ impl StellarTree {
                 }
                 continue;
             }
-            if !seen.insert(c) {
+            if !mark(&mut seen, c) {
                 continue;
             }
             reps.push(self.c_orig[c as usize]);
@@ -435,11 +445,11 @@ impl StellarTree {
                     }
                     if x & NM != 0 {
                         for &u in &nm_cells[(x & !NM) as usize] {
-                            if seen.insert(u) {
+                            if mark(&mut seen, u) {
                                 stack.push(u);
                             }
                         }
-                    } else if seen.insert(x) {
+                    } else if mark(&mut seen, x) {
                         stack.push(x);
                     }
                 }
@@ -496,7 +506,7 @@ impl StellarTree {
                 continue;
             }
             let mut j = 0u64;
-            kind.for_each_oriented_facet(|local, _| {
+            super::relations::oriented_facets_of(kind, |local, _| {
                 j += 1;
                 key.clear();
                 key.extend(local.iter().map(|&i| vs[i as usize]));
@@ -523,7 +533,7 @@ impl StellarTree {
                 continue;
             }
             let mut j = 0usize;
-            kind.for_each_oriented_facet(|local, _| {
+            super::relations::oriented_facets_of(kind, |local, _| {
                 if local.iter().any(|&x| view.owns(vs[x as usize])) {
                     adj[off[i] as usize + j] = NONE;
                 }
