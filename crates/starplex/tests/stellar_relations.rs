@@ -368,8 +368,8 @@ fn check(k: &IndexedComplex, kv: u32, threads: usize, split: SplitMode) {
         }
         let adj = t.top_adjacency();
         let want = bf_adjacency(k);
-        for c in 0..k.n_cells() {
-            assert_eq!(adj.row(c), &want[c][..], "adjacency of cell {c}");
+        for (c, w) in want.iter().enumerate() {
+            assert_eq!(adj.row(c), &w[..], "adjacency of cell {c}");
         }
         // validation
         let r = t.validate();

@@ -205,11 +205,7 @@ pub(super) fn build(
         (kinds, off, verts)
     };
     let (uniform, stride) = if mixed || nc == 0 {
-        if nc == 0 {
-            (255u8, 0u32)
-        } else {
-            (255, 0)
-        }
+        (255u8, 0u32)
     } else {
         let kind = k.blocks()[0].kind;
         (kind_code(kind), kind.n_vertices() as u32)

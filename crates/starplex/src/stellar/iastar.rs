@@ -189,11 +189,7 @@ impl IaStar {
                     continue;
                 }
                 match decode(x) {
-                    Adjacent::Top(u) => {
-                        if seen.insert(u.0) {
-                            stack.push(u.0);
-                        }
-                    }
+                    Adjacent::Top(u) if seen.insert(u.0) => stack.push(u.0),
                     Adjacent::NmFace(f) => {
                         for &u in self.nm_face_cells(f) {
                             if seen.insert(u) {

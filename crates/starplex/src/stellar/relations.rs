@@ -807,7 +807,7 @@ pub(crate) fn listed_sign(key: &[u32], polygon: bool) -> i8 {
             }
         }
     }
-    if inv % 2 == 0 {
+    if inv.is_multiple_of(2) {
         1
     } else {
         -1
