@@ -98,8 +98,8 @@ fn check(k: &IndexedComplex, kv: u32) {
                     let mut all = others.clone();
                     all.push(c.id.0);
                     all.sort();
-                    assert_eq!(ia.nm_face_cells(nf), &all[..]);
-                    assert_eq!(ia.nm_face_vertices(nf), &f[..]);
+                    assert_eq!(ia.nm_face_cells(nf), all);
+                    assert_eq!(&ia.nm_face_vertices(nf), f);
                 }
                 (n, a) => panic!("cell {i} facet {j}: {n} others, got {a:?}"),
             }
@@ -153,14 +153,14 @@ fn check(k: &IndexedComplex, kv: u32) {
     // local IA*: stars of the leaf's own vertices, and the slots it computed agree
     for l in 0..t.n_leaves() {
         let loc = t.local_iastar(LeafId(l as u32));
-        for &v in loc.vertices() {
+        for v in loc.vertices() {
             assert_eq!(loc.star(VertexId(v)), ia.star(VertexId(v)));
             assert_eq!(
                 loc.vertex_representatives(VertexId(v)).len(),
                 ia.vertex_representatives(VertexId(v)).len()
             );
         }
-        for &c in loc.cells() {
+        for c in loc.cells() {
             for j in 0..loc.n_slots(CellId(c)) {
                 match (loc.adjacent(CellId(c), j), ia.adjacent(CellId(c), j)) {
                     (Adjacent::NotComputed, _) => {}

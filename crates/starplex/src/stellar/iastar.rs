@@ -27,8 +27,8 @@
 //! let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
 //! let ia = t.iastar();
 //! assert_eq!(ia.adjacent(CellId(0), 2), Adjacent::NmFace(0)); // facet 2 = edge 01
-//! assert_eq!(ia.nm_face_cells(0), &[0, 1, 2]);
-//! assert_eq!(ia.vertex_representatives(VertexId(0)), &[0]);
+//! assert_eq!(ia.nm_face_cells(0), vec![0, 1, 2]);
+//! assert_eq!(ia.vertex_representatives(VertexId(0)), vec![0]);
 //! assert_eq!(ia.storage_refs(), 26); // the spec's anchor for the book
 //! ```
 use rayon::prelude::*;
@@ -70,64 +70,81 @@ fn decode(x: u32) -> Adjacent {
     }
 }
 
-/// An IA* data structure (input numbering). For a local IA*, the cells are those of one leaf
-/// and the vertex lists those of the leaf's vertices.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct IaStar {
-    n_vertices: usize,
-    /// Cells covered (input ids, sorted); all cells for the global IA*.
-    cells: Vec<u32>,
-    kinds: Vec<CellKind>,
-    /// R_{k,0}: vertices of cell `cells[i]` in `cell_verts.row(i)`.
-    cell_verts: Csr,
-    /// R_{k,k} slots of cell `cells[i]` (empty for dimension < 2).
-    adj: Csr,
-    /// Non-manifold facets: their top cells (input ids, sorted).
+/// An IA* data structure over the tree's complex, stored in tree numbering and answering in
+/// input numbering. For a local IA*, the cells are those of one leaf and the vertex lists
+/// those of the leaf's vertices.
+#[derive(Clone, Debug)]
+pub struct IaStar<'t> {
+    tree: &'t StellarTree,
+    /// Covered tree cells (sorted) for a local IA*; `None`: all.
+    cells: Option<Vec<u32>>,
+    /// R_{k,k} slots of the covered cells, in covered order (tree ids | NM tag | NONE).
+    adj_off: Vec<u32>,
+    adj: Vec<u32>,
+    /// Non-manifold facets: their top cells (tree ids) and vertices (tree ids).
     nm_cells: Csr,
-    /// Non-manifold facets: their vertices (input ids, sorted).
     nm_verts: Csr,
-    /// Vertices covered (input ids, sorted); all vertices for the global IA*.
-    vertices: Vec<u32>,
-    /// R_{0,1} + R*_{0,k}: top edges and cluster representatives of `vertices[i]`.
+    /// Covered tree vertices.
+    v_range: (u32, u32),
+    /// R_{0,1} + R*_{0,k} of the covered vertices (tree cell ids), rows in tree order.
     reps: Csr,
-    global: bool,
 }
 
-impl IaStar {
+impl<'t> IaStar<'t> {
     fn cell_pos(&self, c: CellId) -> Option<usize> {
-        if self.global {
-            (c.index() < self.cells.len()).then_some(c.index())
-        } else {
-            self.cells.binary_search(&c.0).ok()
+        let t = *self.tree.c_new.get(c.index())?;
+        match &self.cells {
+            None => Some(t as usize),
+            Some(cs) => cs.binary_search(&t).ok(),
+        }
+    }
+    fn tree_cell_pos(&self, t: u32) -> Option<usize> {
+        match &self.cells {
+            None => Some(t as usize),
+            Some(cs) => cs.binary_search(&t).ok(),
         }
     }
     fn vertex_pos(&self, v: VertexId) -> Option<usize> {
-        if self.global {
-            (v.index() < self.vertices.len()).then_some(v.index())
-        } else {
-            self.vertices.binary_search(&v.0).ok()
-        }
+        let tv = *self.tree.v_new.get(v.index())?;
+        (tv >= self.v_range.0 && tv < self.v_range.1).then(|| (tv - self.v_range.0) as usize)
+    }
+    fn to_input_sorted(&self, cells: &[u32]) -> Vec<u32> {
+        let mut v: Vec<u32> = cells
+            .iter()
+            .map(|&c| self.tree.c_orig[c as usize])
+            .collect();
+        v.sort_unstable();
+        v
     }
     /// Cells covered (input ids, sorted).
-    pub fn cells(&self) -> &[u32] {
-        &self.cells
+    pub fn cells(&self) -> Vec<u32> {
+        match &self.cells {
+            None => (0..self.tree.n_top_cells() as u32).collect(),
+            Some(cs) => self.to_input_sorted(cs),
+        }
     }
     /// Vertices covered (input ids, sorted).
-    pub fn vertices(&self) -> &[u32] {
-        &self.vertices
+    pub fn vertices(&self) -> Vec<u32> {
+        let mut v: Vec<u32> = (self.v_range.0..self.v_range.1)
+            .map(|t| self.tree.v_orig[t as usize])
+            .collect();
+        v.sort_unstable();
+        v
     }
     /// Number of adjacency slots of a covered cell (its facet count for dimension >= 2).
     pub fn n_slots(&self, c: CellId) -> usize {
-        self.cell_pos(c).map_or(0, |i| self.adj.degree(i))
+        self.cell_pos(c)
+            .map_or(0, |i| (self.adj_off[i + 1] - self.adj_off[i]) as usize)
     }
     /// What lies across facet `j` of cell `c` (`None` for an uncovered cell or bad slot).
     pub fn adjacent(&self, c: CellId, j: usize) -> Adjacent {
-        match self.cell_pos(c) {
-            Some(i) => self
-                .adj
-                .row(i)
-                .get(j)
-                .map_or(Adjacent::None, |&x| decode(x)),
+        let Some(i) = self.cell_pos(c) else {
+            return Adjacent::None;
+        };
+        let row = &self.adj[self.adj_off[i] as usize..self.adj_off[i + 1] as usize];
+        match row.get(j).map(|&x| decode(x)) {
+            Some(Adjacent::Top(u)) => Adjacent::Top(CellId(self.tree.c_orig[u.index()])),
+            Some(a) => a,
             None => Adjacent::None,
         }
     }
@@ -136,62 +153,74 @@ impl IaStar {
         self.nm_cells.n_rows()
     }
     /// Top cells of non-manifold facet `f` (input ids, sorted).
-    pub fn nm_face_cells(&self, f: u32) -> &[u32] {
-        self.nm_cells.row(f as usize)
+    pub fn nm_face_cells(&self, f: u32) -> Vec<u32> {
+        self.to_input_sorted(self.nm_cells.row(f as usize))
     }
     /// Vertices of non-manifold facet `f` (input ids, sorted).
-    pub fn nm_face_vertices(&self, f: u32) -> &[u32] {
-        self.nm_verts.row(f as usize)
+    pub fn nm_face_vertices(&self, f: u32) -> Vec<u32> {
+        let mut v: Vec<u32> = self
+            .nm_verts
+            .row(f as usize)
+            .iter()
+            .map(|&w| self.tree.v_orig[w as usize])
+            .collect();
+        v.sort_unstable();
+        v
     }
     /// R_{0,1}(v) plus one top k-cell per k-cluster (k >= 2), sorted input ids.
-    pub fn vertex_representatives(&self, v: VertexId) -> &[u32] {
-        self.vertex_pos(v).map_or(&[], |i| self.reps.row(i))
+    pub fn vertex_representatives(&self, v: VertexId) -> Vec<u32> {
+        self.vertex_pos(v)
+            .map_or(Vec::new(), |i| self.to_input_sorted(self.reps.row(i)))
     }
     /// References stored (the spec's paper-faithful count): R_{k,0} + R_{k,k} slots + the
     /// non-manifold facet lists + R_{0,1} and cluster representatives.
     pub fn storage_refs(&self) -> u64 {
-        (self.cell_verts.n_refs() + self.adj.n_refs() + self.nm_cells.n_refs() + self.reps.n_refs())
-            as u64
+        let cell_refs = match &self.cells {
+            None => self.tree.cells.verts.len(),
+            Some(cs) => cs.iter().map(|&c| self.tree.cells.verts(c).len()).sum(),
+        };
+        (cell_refs + self.adj.len() + self.nm_cells.n_refs() + self.reps.n_refs()) as u64
     }
-    /// Bytes of the arrays.
+    /// Bytes of the arrays this structure adds to the tree.
     pub fn bytes(&self) -> usize {
-        4 * (self.cells.len() + self.vertices.len())
-            + self.cell_verts.bytes()
-            + self.adj.bytes()
+        4 * (self.cells.as_ref().map_or(0, |c| c.len()) + self.adj_off.len() + self.adj.len())
             + self.nm_cells.bytes()
             + self.nm_verts.bytes()
             + self.reps.bytes()
-            + 2 * self.kinds.len()
     }
 
     /// Expands the clusters of `v` through the adjacency slots: the top cells incident to `v`
     /// (needs the cells of the whole star to be covered, true for the global IA* and for the
     /// leaf's own vertices in a local one).
     pub fn star(&self, v: VertexId) -> Vec<CellId> {
+        let Some(i) = self.vertex_pos(v) else {
+            return Vec::new();
+        };
+        let tv = self.v_range.0 + i as u32;
         let mut seen: FxHashSet<u32> = FxHashSet::default();
         let mut stack: Vec<u32> = Vec::new();
-        for &r in self.vertex_representatives(v) {
+        for &r in self.reps.row(i) {
             if seen.insert(r) {
                 stack.push(r);
             }
         }
         while let Some(c) = stack.pop() {
-            let Some(i) = self.cell_pos(CellId(c)) else {
+            let Some(pi) = self.tree_cell_pos(c) else {
                 continue;
             };
-            let kind = self.kinds[i];
-            let vs = self.cell_verts.row(i);
-            let Some(p) = vs.iter().position(|&w| w == v.0) else {
+            let (kind, vs) = self.tree.cells.get(c);
+            let Some(p) = vs.iter().position(|&w| w == tv) else {
                 continue;
             };
-            for (j, &x) in self.adj.row(i).iter().enumerate() {
+            let row = &self.adj[self.adj_off[pi] as usize..self.adj_off[pi + 1] as usize];
+            for (j, &x) in row.iter().enumerate() {
                 if !facet_contains(kind, j, p) {
                     continue;
                 }
                 match decode(x) {
                     Adjacent::Top(u) if seen.insert(u.0) => stack.push(u.0),
                     Adjacent::NmFace(f) => {
-                        for &u in self.nm_face_cells(f) {
+                        for &u in self.nm_cells.row(f as usize) {
                             if seen.insert(u) {
                                 stack.push(u);
                             }
@@ -201,30 +230,36 @@ impl IaStar {
                 }
             }
         }
-        let mut out: Vec<CellId> = seen.into_iter().map(CellId).collect();
+        let mut out: Vec<CellId> = seen
+            .into_iter()
+            .map(|c| CellId(self.tree.c_orig[c as usize]))
+            .collect();
         out.sort_unstable();
         out
     }
 }
 
-impl TopCells for IaStar {
+impl TopCells for IaStar<'_> {
     fn n_vertices(&self) -> usize {
-        self.n_vertices
+        self.tree.n_vertices()
     }
     fn n_top_cells(&self) -> usize {
-        self.cells.len()
+        self.cells
+            .as_ref()
+            .map_or(self.tree.n_top_cells(), |c| c.len())
     }
     fn top_cell_kind(&self, c: CellId) -> CellKind {
-        self.kinds[self.cell_pos(c).expect("a covered cell")]
+        self.tree.cells.get(self.tree.c_new[c.index()]).0
     }
     fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
-        if let Some(i) = self.cell_pos(c) {
-            out.extend(self.cell_verts.row(i).iter().map(|&v| VertexId(v)));
+        if self.cell_pos(c).is_some() {
+            let (_, vs) = self.tree.cells.get(self.tree.c_new[c.index()]);
+            out.extend(vs.iter().map(|&v| VertexId(self.tree.v_orig[v as usize])));
         }
     }
 }
 
-impl VertexStar for IaStar {
+impl VertexStar for IaStar<'_> {
     fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
         *out = self.star(v);
     }
@@ -288,20 +323,22 @@ impl StellarTree {
     /// The global IA*, built leaf by leaf in parallel: each facet is examined once, in the leaf
     /// owning its smallest vertex; the cluster representatives of each vertex are found in its
     /// leaf. Same result for any number of threads.
-    pub fn iastar(&self) -> IaStar {
+    pub fn iastar(&self) -> IaStar<'_> {
         let nc = self.n_top_cells();
         let pieces: Vec<Pieces> =
             self.par_facet_groups_where(2, false, |_, keys| group_pieces(keys));
-        // slot offsets in tree numbering
         let mut off = vec![0u32; nc + 1];
         for c in 0..nc {
             off[c + 1] = off[c] + n_slots(self.cells.get(c as u32).0) as u32;
         }
         let mut adj = vec![NONE; off[nc] as usize];
-        let mut nm_cells: Vec<Vec<u32>> = Vec::new();
-        let mut nm_verts: Vec<Vec<u32>> = Vec::new();
+        let mut nm_cells = Csr {
+            offsets: vec![0],
+            targets: Vec::new(),
+        };
+        let mut nm_verts = nm_cells.clone();
         for p in pieces {
-            let base = nm_cells.len() as u32;
+            let base = nm_cells.n_rows() as u32;
             for (c, j, x) in p.slots {
                 let x = if x != NONE && x & NM != 0 {
                     ((x & !NM) + base) | NM
@@ -310,101 +347,65 @@ impl StellarTree {
                 };
                 adj[(off[c as usize] + j) as usize] = x;
             }
-            nm_cells.extend(p.nm_cells);
-            nm_verts.extend(p.nm_verts);
-        }
-        // representatives, leaf by leaf
-        let per_leaf: Vec<Vec<Vec<u32>>> = self.par_map_leaves(|view| {
-            view.tree_vertices()
-                .map(|v| {
-                    self.representatives(
-                        view,
-                        v,
-                        &|c: u32| &adj[off[c as usize] as usize..off[c as usize + 1] as usize],
-                        &nm_cells,
-                    )
-                })
-                .collect()
-        });
-        // convert to input numbering
-        let c_orig = &self.c_orig;
-        let to_in = |x: u32| -> u32 {
-            if x == NONE || x & NM != 0 {
-                x
-            } else {
-                c_orig[x as usize]
+            for (cs, vs) in p.nm_cells.iter().zip(&p.nm_verts) {
+                nm_cells.targets.extend_from_slice(cs);
+                nm_cells.offsets.push(nm_cells.targets.len() as u32);
+                nm_verts.targets.extend_from_slice(vs);
+                nm_verts.offsets.push(nm_verts.targets.len() as u32);
             }
+        }
+        // representatives, leaf by leaf; rows come out in tree vertex order
+        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
+            let mut lens = Vec::with_capacity(view.tree_vertices().len());
+            let mut data = Vec::new();
+            let slots = |c: u32| &adj[off[c as usize] as usize..off[c as usize + 1] as usize];
+            let mut sc = RepScratch::default();
+            for v in view.tree_vertices() {
+                let s = data.len();
+                self.representatives(view, v, &slots, &nm_cells, &mut sc, &mut data);
+                lens.push((data.len() - s) as u32);
+            }
+            (lens, data)
+        });
+        let mut reps = Csr {
+            offsets: Vec::with_capacity(self.n_vertices() + 1),
+            targets: Vec::new(),
         };
-        let kinds: Vec<CellKind> = (0..nc).map(|c| self.cells.get(self.c_new[c]).0).collect();
-        let cell_verts = Csr::from_fn(nc, |emit| {
-            for c in 0..nc {
-                for &v in self.cells.verts(self.c_new[c]) {
-                    emit(c as u32, self.v_orig[v as usize]);
-                }
+        reps.offsets.push(0);
+        for (lens, data) in per_leaf {
+            for l in lens {
+                let last = *reps.offsets.last().expect("non-empty");
+                reps.offsets.push(last + l);
             }
-        });
-        let adj_in = Csr::from_fn(nc, |emit| {
-            for c in 0..nc {
-                let t = self.c_new[c] as usize;
-                for &x in &adj[off[t] as usize..off[t + 1] as usize] {
-                    emit(c as u32, to_in(x));
-                }
-            }
-        });
-        let nm_cells_in = Csr::from_fn(nm_cells.len(), |emit| {
-            for (f, cs) in nm_cells.iter().enumerate() {
-                let mut v: Vec<u32> = cs.iter().map(|&c| c_orig[c as usize]).collect();
-                v.sort_unstable();
-                v.into_iter().for_each(|c| emit(f as u32, c));
-            }
-        });
-        let nm_verts_in = Csr::from_fn(nm_verts.len(), |emit| {
-            for (f, vs) in nm_verts.iter().enumerate() {
-                let mut v: Vec<u32> = vs.iter().map(|&w| self.v_orig[w as usize]).collect();
-                v.sort_unstable();
-                v.into_iter().for_each(|w| emit(f as u32, w));
-            }
-        });
-        let nv = self.n_vertices();
-        let mut rows: Vec<&Vec<u32>> = vec![&EMPTY; nv];
-        let mut tv = 0usize;
-        for leaf in &per_leaf {
-            for r in leaf {
-                rows[self.v_orig[tv] as usize] = r;
-                tv += 1;
-            }
+            reps.targets.extend_from_slice(&data);
         }
-        let reps = Csr::from_fn(nv, |emit| {
-            for (v, r) in rows.iter().enumerate() {
-                r.iter().for_each(|&c| emit(v as u32, c));
-            }
-        });
         IaStar {
-            n_vertices: nv,
-            cells: (0..nc as u32).collect(),
-            kinds,
-            cell_verts,
-            adj: adj_in,
-            nm_cells: nm_cells_in,
-            nm_verts: nm_verts_in,
-            vertices: (0..nv as u32).collect(),
+            tree: self,
+            cells: None,
+            adj_off: off,
+            adj,
+            nm_cells,
+            nm_verts,
+            v_range: (0, self.n_vertices() as u32),
             reps,
-            global: true,
         }
     }
 
-    /// Top edges and cluster representatives of tree vertex `v` (input ids, sorted).
+    /// Appends the top edges and cluster representatives of tree vertex `v` (tree cell ids;
+    /// each cluster represented by its smallest input id).
     fn representatives<'s>(
         &self,
         view: &LeafView<'_>,
         v: u32,
         slots_of: &dyn Fn(u32) -> &'s [u32],
-        nm_cells: &[Vec<u32>],
-    ) -> Vec<u32> {
+        nm_cells: &Csr,
+        sc: &mut RepScratch,
+        out: &mut Vec<u32>,
+    ) {
         let star = view.vt_tree(v);
-        let mut reps: Vec<u32> = Vec::new();
         // seen[i]: star[i] visited (neighbours through facets containing v are in the star)
-        let mut seen = vec![false; star.len()];
+        sc.seen.clear();
+        sc.seen.resize(star.len(), false);
         let mark = |seen: &mut Vec<bool>, c: u32| -> bool {
             match star.binary_search(&c) {
                 Ok(i) if !seen[i] => {
@@ -414,45 +415,43 @@ impl StellarTree {
                 _ => false,
             }
         };
-        // visit the star in input-id order so the representative is the smallest input id
-        let mut order: Vec<u32> = star.to_vec();
-        order.sort_unstable_by_key(|&c| self.c_orig[c as usize]);
-        let mut stack = Vec::new();
-        for &c in &order {
+        sc.order.clear();
+        sc.order.extend_from_slice(star);
+        sc.order.sort_unstable_by_key(|&c| self.c_orig[c as usize]);
+        sc.stack.clear();
+        for oi in 0..sc.order.len() {
+            let c = sc.order[oi];
             let kind = self.cells.get(c).0;
             if kind.dim() < 2 {
                 if kind.dim() == 1 {
-                    reps.push(self.c_orig[c as usize]);
+                    out.push(c);
                 }
                 continue;
             }
-            if !mark(&mut seen, c) {
+            if !mark(&mut sc.seen, c) {
                 continue;
             }
-            reps.push(self.c_orig[c as usize]);
-            stack.push(c);
-            while let Some(a) = stack.pop() {
+            out.push(c);
+            sc.stack.push(c);
+            while let Some(a) = sc.stack.pop() {
                 let (ka, vs) = self.cells.get(a);
                 let p = vs.iter().position(|&w| w == v).expect("in the star");
-                let slots = slots_of(a);
-                for (j, &x) in slots.iter().enumerate() {
+                for (j, &x) in slots_of(a).iter().enumerate() {
                     if x == NONE || x == NOT_LOCAL || !facet_contains(ka, j, p) {
                         continue;
                     }
                     if x & NM != 0 {
-                        for &u in &nm_cells[(x & !NM) as usize] {
-                            if mark(&mut seen, u) {
-                                stack.push(u);
+                        for &u in nm_cells.row((x & !NM) as usize) {
+                            if mark(&mut sc.seen, u) {
+                                sc.stack.push(u);
                             }
                         }
-                    } else if mark(&mut seen, x) {
-                        stack.push(x);
+                    } else if mark(&mut sc.seen, x) {
+                        sc.stack.push(x);
                     }
                 }
             }
         }
-        reps.sort_unstable();
-        reps
     }
 
     /// The local IA* of one leaf: its top cells with the adjacencies across facets that have
@@ -473,10 +472,10 @@ impl StellarTree {
     /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
     /// let l = t.leaf_of_vertex(VertexId(1)).unwrap();
     /// let ia = t.local_iastar(l);
-    /// assert_eq!(ia.vertices(), &[1]);
+    /// assert_eq!(ia.vertices(), vec![1]);
     /// assert_eq!(ia.star(VertexId(1)).len(), 2);
     /// ```
-    pub fn local_iastar(&self, l: LeafId) -> IaStar {
+    pub fn local_iastar(&self, l: LeafId) -> IaStar<'_> {
         let mut e = ExpandedLeaf::default();
         self.expand_leaf_into(l, &mut e);
         let view = LeafView { tree: self, e: &e };
@@ -514,7 +513,6 @@ impl StellarTree {
             });
         }
         let p = group_pieces(&mut keys);
-        // local cell positions
         let ncl = e.cells.len();
         let pos = |c: u32| e.cells.binary_search(&c).expect("a leaf cell");
         let mut off = vec![0u32; ncl + 1];
@@ -522,7 +520,7 @@ impl StellarTree {
             off[i + 1] = off[i] + n_slots(self.cells.get(c).0) as u32;
         }
         let mut adj = vec![NOT_LOCAL; off[ncl] as usize];
-        // facets with a leaf vertex and a single cell: NONE
+        // facets with a leaf vertex: NONE unless paired below
         for (i, &c) in e.cells.iter().enumerate() {
             let (kind, vs) = self.cells.get(c);
             if kind.dim() < 2 {
@@ -539,90 +537,46 @@ impl StellarTree {
         for &(c, j, x) in &p.slots {
             adj[(off[pos(c)] + j) as usize] = x;
         }
-        // representatives with the local adjacency
+        let mut nm_cells = Csr {
+            offsets: vec![0],
+            targets: Vec::new(),
+        };
+        let mut nm_verts = nm_cells.clone();
+        for (cs, vs) in p.nm_cells.iter().zip(&p.nm_verts) {
+            nm_cells.targets.extend_from_slice(cs);
+            nm_cells.offsets.push(nm_cells.targets.len() as u32);
+            nm_verts.targets.extend_from_slice(vs);
+            nm_verts.offsets.push(nm_verts.targets.len() as u32);
+        }
         let slots_of = |c: u32| -> &[u32] {
             let i = pos(c);
             &adj[off[i] as usize..off[i + 1] as usize]
         };
-        let reps_t: Vec<Vec<u32>> = view
-            .tree_vertices()
-            .map(|v| self.representatives(&view, v, &slots_of, &p.nm_cells))
-            .collect();
-        // input numbering, cells sorted by input id
-        let mut cells_in: Vec<(u32, usize)> = e
-            .cells
-            .iter()
-            .enumerate()
-            .map(|(i, &c)| (self.c_orig[c as usize], i))
-            .collect();
-        cells_in.sort_unstable();
-        let to_in = |x: u32| -> u32 {
-            if x == NONE || x == NOT_LOCAL || x & NM != 0 {
-                x
-            } else {
-                self.c_orig[x as usize]
-            }
+        let mut reps = Csr {
+            offsets: vec![0],
+            targets: Vec::new(),
         };
-        let kinds = cells_in
-            .iter()
-            .map(|&(_, i)| self.cells.get(e.cells[i]).0)
-            .collect();
-        let cell_verts = Csr::from_fn(ncl, |emit| {
-            for (r, &(_, i)) in cells_in.iter().enumerate() {
-                for &v in self.cells.verts(e.cells[i]) {
-                    emit(r as u32, self.v_orig[v as usize]);
-                }
-            }
-        });
-        let adj_in = Csr::from_fn(ncl, |emit| {
-            for (r, &(_, i)) in cells_in.iter().enumerate() {
-                for &x in &adj[off[i] as usize..off[i + 1] as usize] {
-                    emit(r as u32, to_in(x));
-                }
-            }
-        });
-        let nm_cells_in = Csr::from_fn(p.nm_cells.len(), |emit| {
-            for (f, cs) in p.nm_cells.iter().enumerate() {
-                let mut v: Vec<u32> = cs.iter().map(|&c| self.c_orig[c as usize]).collect();
-                v.sort_unstable();
-                v.into_iter().for_each(|c| emit(f as u32, c));
-            }
-        });
-        let nm_verts_in = Csr::from_fn(p.nm_verts.len(), |emit| {
-            for (f, vs) in p.nm_verts.iter().enumerate() {
-                let mut v: Vec<u32> = vs.iter().map(|&w| self.v_orig[w as usize]).collect();
-                v.sort_unstable();
-                v.into_iter().for_each(|w| emit(f as u32, w));
-            }
-        });
-        let mut verts_in: Vec<(u32, usize)> = view
-            .tree_vertices()
-            .enumerate()
-            .map(|(i, v)| (self.v_orig[v as usize], i))
-            .collect();
-        verts_in.sort_unstable();
-        let reps = Csr::from_fn(verts_in.len(), |emit| {
-            for (r, &(_, i)) in verts_in.iter().enumerate() {
-                reps_t[i].iter().for_each(|&c| emit(r as u32, c));
-            }
-        });
+        let mut sc = RepScratch::default();
+        for v in view.tree_vertices() {
+            self.representatives(&view, v, &slots_of, &nm_cells, &mut sc, &mut reps.targets);
+            reps.offsets.push(reps.targets.len() as u32);
+        }
+        let cells = std::mem::take(&mut e.cells);
         IaStar {
-            n_vertices: self.n_vertices(),
-            cells: cells_in.iter().map(|x| x.0).collect(),
-            kinds,
-            cell_verts,
-            adj: adj_in,
-            nm_cells: nm_cells_in,
-            nm_verts: nm_verts_in,
-            vertices: verts_in.iter().map(|x| x.0).collect(),
+            tree: self,
+            cells: Some(cells),
+            adj_off: off,
+            adj,
+            nm_cells,
+            nm_verts,
+            v_range: (e.v_start, e.v_end),
             reps,
-            global: false,
         }
     }
 
     /// Builds the local IA* of every leaf in parallel and returns the total of their
     /// reference counts (the local approach: each is discarded after use by `f`).
-    pub fn par_local_iastar<R: Send>(&self, f: impl Fn(&IaStar) -> R + Sync + Send) -> Vec<R> {
+    pub fn par_local_iastar<R: Send>(&self, f: impl Fn(&IaStar<'_>) -> R + Sync + Send) -> Vec<R> {
         (0..self.n_leaves() as u32)
             .into_par_iter()
             .map(|l| f(&self.local_iastar(LeafId(l))))
@@ -630,4 +584,9 @@ impl StellarTree {
     }
 }
 
-static EMPTY: Vec<u32> = Vec::new();
+#[derive(Default)]
+struct RepScratch {
+    seen: Vec<bool>,
+    order: Vec<u32>,
+    stack: Vec<u32>,
+}

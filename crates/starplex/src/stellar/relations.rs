@@ -64,6 +64,8 @@ pub(crate) struct FaceKeys {
     flat: Vec<u32>,
     payload: Vec<u64>,
     small: Vec<(u128, u64)>,
+    tiny: Vec<(u64, u64)>,
+    prefix: Option<u32>,
     order: Vec<u32>,
     key: Vec<u32>,
     pays: Vec<u64>,
@@ -74,15 +76,26 @@ const PAD: u32 = u32::MAX;
 impl FaceKeys {
     pub fn clear(&mut self, w: usize) {
         self.w = w;
+        self.prefix = None;
         self.flat.clear();
         self.payload.clear();
         self.small.clear();
+        self.tiny.clear();
+    }
+    /// Every key pushed shares this leading entry, which is not stored but is reported by
+    /// [`for_each_group`](Self::for_each_group).
+    pub fn set_prefix(&mut self, p: Option<u32>) {
+        self.prefix = p;
     }
     /// Pushes a sorted key (at most `w` ids).
     #[inline]
     pub fn push(&mut self, key: &[u32], payload: u64) {
         debug_assert!(key.len() <= self.w);
-        if self.w <= 4 {
+        if self.w <= 2 {
+            let a = key.first().copied().unwrap_or(PAD) as u64;
+            let b = key.get(1).copied().unwrap_or(PAD) as u64;
+            self.tiny.push(((a << 32) | b, payload));
+        } else if self.w <= 4 {
             let mut x: u128 = 0;
             for i in 0..4 {
                 x = (x << 32) | key.get(i).copied().unwrap_or(PAD) as u128;
@@ -97,7 +110,28 @@ impl FaceKeys {
     }
     /// Calls `f(key, payloads)` for every distinct key, in key order.
     pub fn for_each_group(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
-        if self.w <= 4 {
+        if self.w <= 2 {
+            self.tiny.sort_unstable();
+            let mut i = 0;
+            while i < self.tiny.len() {
+                let k = self.tiny[i].0;
+                let mut j = i;
+                self.pays.clear();
+                while j < self.tiny.len() && self.tiny[j].0 == k {
+                    self.pays.push(self.tiny[j].1);
+                    j += 1;
+                }
+                self.key.clear();
+                self.key.extend(self.prefix);
+                for x in [(k >> 32) as u32, k as u32] {
+                    if x != PAD {
+                        self.key.push(x);
+                    }
+                }
+                f(&self.key, &self.pays);
+                i = j;
+            }
+        } else if self.w <= 4 {
             self.small.sort_unstable();
             let mut i = 0;
             while i < self.small.len() {
@@ -109,6 +143,7 @@ impl FaceKeys {
                     j += 1;
                 }
                 self.key.clear();
+                self.key.extend(self.prefix);
                 for s in (0..4).rev() {
                     let x = (k >> (32 * s)) as u32;
                     if x != PAD {
@@ -145,6 +180,7 @@ impl FaceKeys {
                     j += 1;
                 }
                 self.key.clear();
+                self.key.extend(self.prefix);
                 self.key.extend(ka.iter().copied().filter(|&x| x != PAD));
                 f(&self.key, &self.pays);
                 i = j;
@@ -713,8 +749,8 @@ impl StellarTree {
         local_rule: bool,
         f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
     ) -> Vec<R> {
-        let w = 1 + self
-            .kinds()
+        let kinds = self.kinds();
+        let fw = kinds
             .iter()
             .map(|&k| {
                 if k.dim() >= 1 {
@@ -725,6 +761,10 @@ impl StellarTree {
             })
             .max()
             .unwrap_or(0);
+        // one dimension: the dimension prefix of the keys is implicit
+        let dims: std::collections::BTreeSet<usize> = kinds.iter().map(|k| k.dim()).collect();
+        let uniform_dim = (dims.len() == 1).then(|| *dims.first().expect("one") as u32);
+        let w = if uniform_dim.is_some() { fw } else { fw + 1 };
         (0..self.n_leaves() as u32)
             .into_par_iter()
             .map_init(
@@ -738,6 +778,7 @@ impl StellarTree {
                 |(e, keys, key), l| {
                     self.expand_leaf_cells(LeafId(l), e);
                     keys.clear(w);
+                    keys.set_prefix(uniform_dim);
                     let view = LeafView { tree: self, e };
                     for &c in &e.cells {
                         let (kind, vs) = self.cells.get(c);
@@ -760,7 +801,9 @@ impl StellarTree {
                             }
                             let s = sign * listed_sign(key, !kind.is_simplex() && key.len() >= 3);
                             key.sort_unstable();
-                            key.insert(0, d as u32);
+                            if uniform_dim.is_none() {
+                                key.insert(0, d as u32);
+                            }
                             keys.push(key, pack(c, j - 1, s));
                         });
                     }
