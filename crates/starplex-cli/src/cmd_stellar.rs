@@ -44,6 +44,21 @@ pub fn cpu_seconds() -> Option<f64> {
     Some((ut + st) / 100.0)
 }
 
+/// (VmRSS, VmHWM) of this process in bytes, from /proc (`None` elsewhere).
+fn rss() -> Option<(u64, u64)> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let get = |key: &str| -> Option<u64> {
+        let l = s.lines().find(|l| l.starts_with(key))?;
+        Some(l.split_whitespace().nth(1)?.parse::<u64>().ok()? * 1024)
+    };
+    Some((get("VmRSS:")?, get("VmHWM:")?))
+}
+
+/// Resets the peak-RSS counter (Linux `clear_refs` 5); false when unsupported.
+fn reset_peak() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
 pub fn split_mode(s: &str) -> Result<SplitMode, CliError> {
     match s {
         "auto" => Ok(SplitMode::Auto),
@@ -144,6 +159,8 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     let r = common::load(ctx, &a.input)?;
     let read_s = t0.elapsed().as_secs_f64();
     let k = r.complex;
+    let rss_loaded = rss().map(|r| r.0);
+    let peak_reset = reset_peak();
     let c0 = cpu_seconds();
     let (t, build_s) = with_threads(a.threads, || {
         let t1 = Instant::now();
@@ -165,6 +182,7 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     });
     if a.bench {
         let mut cpu = serde_json::Map::new();
+        let vt_mem: std::sync::Mutex<Option<(u64, u64)>> = std::sync::Mutex::new(None);
         let mut phase = |name: &str, f: &mut dyn FnMut()| -> f64 {
             let c = cpu_seconds();
             let t1 = Instant::now();
@@ -187,6 +205,9 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
                     sum.fetch_add(cells.len() as u64, std::sync::atomic::Ordering::Relaxed);
                 });
             });
+            if let (true, Some(base), Some((_, hwm))) = (peak_reset, rss_loaded, rss()) {
+                *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) = Some((base, hwm));
+            }
             let faces_s = phase("p_faces_s", &mut || {
                 for p in 1..t.dim().unwrap_or(0) {
                     std::hint::black_box(t.count_p_faces(p).ok());
@@ -201,7 +222,22 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
             (vt_local_s, vt_s, faces_s, validate_s, ia_s)
         })?;
         timings["vt_local_s"] = json!(vt_local_s);
+        if let (true, Some(base), Some((_, hwm))) = (peak_reset, rss_loaded, rss()) {
+            timings["memory"] = json!({
+                "complex_bytes": k.bytes(),
+                "rss_after_load": base,
+                "peak_rss_build_and_queries": hwm,
+                "extra_over_loaded": hwm.saturating_sub(base),
+                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / k.bytes().max(1) as f64,
+            });
+        }
         timings["iastar_global_s"] = json!(ia_s);
+        if let Some((base, hwm)) = *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) {
+            timings["memory_build_and_vt"] = json!({
+                "extra_over_loaded": hwm.saturating_sub(base),
+                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / k.bytes().max(1) as f64,
+            });
+        }
         timings["cpu"] = Value::Object(cpu);
         timings["vt_all_s"] = json!(vt_s);
         timings["p_faces_s"] = json!(faces_s);
