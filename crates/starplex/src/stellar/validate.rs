@@ -462,11 +462,19 @@ impl StellarTree {
                 };
                 let e1 = vs[local[(p + 1) % n] as usize];
                 let e2 = vs[local[(p + n - 1) % n] as usize];
-                let mut key = [u32::MAX; 4];
-                for (k, &l) in local.iter().enumerate() {
-                    key[k] = vs[l as usize];
+                // the face's other vertices (it contains v), sorted, packed in a u128
+                let mut other = [u32::MAX; 3];
+                let mut m = 0;
+                for &l in local {
+                    let x = vs[l as usize];
+                    if x != v {
+                        other[m] = x;
+                        m += 1;
+                    }
                 }
-                key[..n].sort_unstable();
+                other[..m].sort_unstable();
+                let key =
+                    ((other[0] as u128) << 64) | ((other[1] as u128) << 32) | other[2] as u128;
                 s.faces.push((key, i as u32, e1, e2));
             });
         }
@@ -683,7 +691,7 @@ fn find(p: &mut [u32], mut x: u32) -> u32 {
 #[derive(Default)]
 struct Scratch {
     ew: Vec<(u32, u32)>,
-    faces: Vec<([u32; 4], u32, u32, u32)>,
+    faces: Vec<(u128, u32, u32, u32)>,
     wpairs: Vec<(u32, u32, u32)>,
     bedges: Vec<(u32, u32)>,
     parent: Vec<u32>,
