@@ -322,6 +322,20 @@ impl StellarTree {
 
     /// R_{0,top} of every vertex: row `v` (input id) holds the input ids of the top cells
     /// incident to `v`, sorted. Computed leaf by leaf in parallel.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.vt_all().row(2), &[0, 1]);
+    /// ```
     pub fn vt_all(&self) -> Csr {
         let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
             let mut lens = Vec::with_capacity(view.tree_vertices().len());
@@ -337,6 +351,22 @@ impl StellarTree {
 
     /// Visits R_{0,top} of every vertex, leaf by leaf in parallel: `f(v, cells)` with input
     /// ids, cells sorted. Nothing global is materialised.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let total = std::sync::atomic::AtomicUsize::new(0);
+    /// t.par_for_each_vt(|_, cells| { total.fetch_add(cells.len(), std::sync::atomic::Ordering::Relaxed); });
+    /// assert_eq!(total.into_inner(), 6);
+    /// ```
     pub fn par_for_each_vt(&self, f: impl Fn(VertexId, &[CellId]) + Sync + Send) {
         self.par_map_leaves(|view| {
             let mut row: Vec<CellId> = Vec::with_capacity(64);
@@ -355,6 +385,20 @@ impl StellarTree {
 
     /// R_{0,0} of every vertex: row `v` holds the input ids of the vertices joined to `v` by an
     /// edge (of a top cell's face table), sorted.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.vv_all().row(1), &[0, 2, 3]);
+    /// ```
     pub fn vv_all(&self) -> Csr {
         let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
             let mut lens = Vec::new();
@@ -409,6 +453,21 @@ impl StellarTree {
     ///
     /// # Errors
     /// A vertex out of range.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.vt_of(&[VertexId(3)]).unwrap(), vec![vec![CellId(1)]]);
+    /// assert!(t.vt_of(&[VertexId(9)]).is_err());
+    /// ```
     pub fn vt_of(&self, vs: &[VertexId]) -> Result<Vec<Vec<CellId>>, StellarError> {
         let mut out = vec![Vec::new(); vs.len()];
         self.for_given_vertices(vs, |view, tv, i| {
@@ -427,6 +486,20 @@ impl StellarTree {
     ///
     /// # Errors
     /// A vertex out of range.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.vv_of(&[VertexId(3)]).unwrap(), vec![vec![VertexId(1), VertexId(2)]]);
+    /// ```
     pub fn vv_of(&self, vs: &[VertexId]) -> Result<Vec<Vec<VertexId>>, StellarError> {
         let mut out = vec![Vec::new(); vs.len()];
         let mut row = Vec::new();
@@ -443,6 +516,21 @@ impl StellarTree {
     /// # Errors
     /// A vertex out of range (the outer error); per vertex, a non-simplicial star or a link
     /// over the budget.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let l = t.links_of(&[VertexId(0)]).unwrap();
+    /// assert_eq!(l[0].as_ref().unwrap().maximal_simplices, vec![vec![1, 2]]);
+    /// ```
     pub fn links_of(
         &self,
         vs: &[VertexId],
@@ -459,6 +547,21 @@ impl StellarTree {
 
     /// Link f-vectors of every vertex, leaf by leaf in parallel; entry `v` (input id) is the
     /// f-vector or why it could not be computed.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let f = t.link_f_vectors_all(1_000_000);
+    /// assert_eq!(f[1].as_ref().unwrap(), &vec![3, 2]);
+    /// ```
     pub fn link_f_vectors_all(&self, budget: u128) -> Vec<Result<Vec<u64>, LinkError>> {
         let per_leaf: Vec<Vec<Result<Vec<u64>, LinkError>>> = self.par_map_leaves(|view| {
             view.tree_vertices()
@@ -531,6 +634,20 @@ impl StellarTree {
     }
 
     /// Upper bound of (cell, p-face) pairs visited by [`p_faces`](Self::p_faces).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.face_visits(1), 6);
+    /// ```
     pub fn face_visits(&self, p: usize) -> u128 {
         if self.cells.uniform != 255 {
             return super::code_kind(self.cells.uniform)
@@ -623,6 +740,22 @@ impl StellarTree {
     ///
     /// # Errors
     /// Over the budget (e.g. the 20-faces of 40-simplices).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let e = t.p_faces(1).unwrap();
+    /// assert_eq!(e.len(), 5);
+    /// assert_eq!(e.n_cofaces.iter().filter(|&&n| n == 2).count(), 1);
+    /// ```
     pub fn p_faces(&self, p: usize) -> Result<FaceList, StellarError> {
         self.p_faces_with_budget(p, FACE_BUDGET)
     }
@@ -631,6 +764,20 @@ impl StellarTree {
     ///
     /// # Errors
     /// Over the budget.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert!(t.p_faces_with_budget(1, 3).is_err());
+    /// ```
     pub fn p_faces_with_budget(&self, p: usize, budget: u128) -> Result<FaceList, StellarError> {
         self.check_budget(p, budget)?;
         let per_leaf: Vec<(Vec<u32>, Vec<u32>, Vec<u32>)> = self.par_face_groups(p, |_, keys| {
@@ -667,6 +814,20 @@ impl StellarTree {
     ///
     /// # Errors
     /// Over the budget [`FACE_BUDGET`].
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.count_p_faces(2).unwrap(), 2);
+    /// ```
     pub fn count_p_faces(&self, p: usize) -> Result<u64, StellarError> {
         self.check_budget(p, FACE_BUDGET)?;
         Ok(self
@@ -682,6 +843,20 @@ impl StellarTree {
     /// Adjacency of top cells across (k-1)-faces (R_{k,k}, k = the cell's dimension >= 1):
     /// row `c` (input id) holds the input ids of the other top k-cells sharing a facet with
     /// `c`, sorted; non-manifold facets (in three or more cells) connect all their cells.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.top_adjacency().row(1), &[0]);
+    /// ```
     pub fn top_adjacency(&self) -> Csr {
         let pairs = self.facet_pairs();
         let n = self.n_top_cells();
