@@ -65,6 +65,10 @@ pub(crate) struct FaceKeys {
     payload: Vec<u64>,
     small: Vec<(u128, u64)>,
     tiny: Vec<(u64, u64)>,
+    tiny_tmp: Vec<(u64, u64)>,
+    small_tmp: Vec<(u128, u64)>,
+    counts: Vec<u32>,
+    buckets: Option<(u32, u32)>,
     prefix: Option<u32>,
     order: Vec<u32>,
     key: Vec<u32>,
@@ -77,6 +81,7 @@ impl FaceKeys {
     pub fn clear(&mut self, w: usize) {
         self.w = w;
         self.prefix = None;
+        self.buckets = None;
         self.flat.clear();
         self.payload.clear();
         self.small.clear();
@@ -86,6 +91,11 @@ impl FaceKeys {
     /// [`for_each_group`](Self::for_each_group).
     pub fn set_prefix(&mut self, p: Option<u32>) {
         self.prefix = p;
+    }
+    /// Every stored key starts with a vertex in `lo..hi` (the leaf's own range): grouping
+    /// then buckets by that vertex before sorting each small bucket (same order as a sort).
+    pub fn set_buckets(&mut self, r: Option<(u32, u32)>) {
+        self.buckets = r;
     }
     /// Pushes a sorted key (at most `w` ids).
     #[inline]
@@ -111,7 +121,17 @@ impl FaceKeys {
     /// Calls `f(key, payloads)` for every distinct key, in key order.
     pub fn for_each_group(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
         if self.w <= 2 {
-            self.tiny.sort_unstable();
+            match self.buckets {
+                Some((lo, hi)) => bucket_sort(
+                    &mut self.tiny,
+                    &mut self.tiny_tmp,
+                    &mut self.counts,
+                    lo,
+                    hi,
+                    |x| (x.0 >> 32) as u32,
+                ),
+                None => self.tiny.sort_unstable(),
+            }
             let mut i = 0;
             while i < self.tiny.len() {
                 let k = self.tiny[i].0;
@@ -132,7 +152,17 @@ impl FaceKeys {
                 i = j;
             }
         } else if self.w <= 4 {
-            self.small.sort_unstable();
+            match self.buckets {
+                Some((lo, hi)) => bucket_sort(
+                    &mut self.small,
+                    &mut self.small_tmp,
+                    &mut self.counts,
+                    lo,
+                    hi,
+                    |x| (x.0 >> 96) as u32,
+                ),
+                None => self.small.sort_unstable(),
+            }
             let mut i = 0;
             while i < self.small.len() {
                 let k = self.small[i].0;
@@ -187,6 +217,53 @@ impl FaceKeys {
             }
         }
     }
+}
+
+/// Sorts `v` by bucketing on `first(x)` (which must lie in `lo..hi`, else it falls back to a
+/// plain sort) and sorting each bucket; `T`'s order must start with `first`.
+fn bucket_sort<T: Copy + Ord>(
+    v: &mut Vec<T>,
+    tmp: &mut Vec<T>,
+    counts: &mut Vec<u32>,
+    lo: u32,
+    hi: u32,
+    first: impl Fn(&T) -> u32,
+) {
+    let n = hi.saturating_sub(lo) as usize;
+    if v.len() < 64 || n == 0 {
+        v.sort_unstable();
+        return;
+    }
+    counts.clear();
+    counts.resize(n + 1, 0);
+    for x in v.iter() {
+        let b = first(x);
+        if b < lo || b >= hi {
+            v.sort_unstable();
+            return;
+        }
+        counts[(b - lo) as usize + 1] += 1;
+    }
+    for i in 0..n {
+        counts[i + 1] += counts[i];
+    }
+    tmp.clear();
+    tmp.resize(v.len(), v[0]);
+    for x in v.iter() {
+        let b = (first(x) - lo) as usize;
+        tmp[counts[b] as usize] = *x;
+        counts[b] += 1;
+    }
+    // counts[b] is now the end of bucket b
+    let mut start = 0usize;
+    for b in 0..n {
+        let end = counts[b] as usize;
+        if end - start > 1 {
+            tmp[start..end].sort_unstable();
+        }
+        start = end;
+    }
+    std::mem::swap(v, tmp);
 }
 
 /// [`CellKind::for_each_face`] without a heap allocation per call.
@@ -700,6 +777,7 @@ impl StellarTree {
                 |(e, keys, key), l| {
                     self.expand_leaf_cells(LeafId(l), e);
                     keys.clear(w);
+                    keys.set_buckets(Some((e.v_start, e.v_end)));
                     let view = LeafView { tree: self, e };
                     for &c in &e.cells {
                         let (kind, vs) = self.cells.get(c);
@@ -954,6 +1032,9 @@ impl StellarTree {
                     self.expand_leaf_cells(LeafId(l), e);
                     keys.clear(w);
                     keys.set_prefix(uniform_dim);
+                    if uniform_dim.is_some() && !local_rule {
+                        keys.set_buckets(Some((e.v_start, e.v_end)));
+                    }
                     let view = LeafView { tree: self, e };
                     for &c in &e.cells {
                         let (kind, vs) = self.cells.get(c);
@@ -1081,5 +1162,42 @@ impl VertexAdjacency for StellarTree {
         }
         out.sort_unstable();
         out.dedup();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bucket_sort_equals_sort() {
+        let mut x: u64 = 12345;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for n in [0usize, 1, 63, 64, 500, 3000] {
+            let v: Vec<(u64, u64)> = (0..n)
+                .map(|_| {
+                    let a = 100 + next() % 50;
+                    ((a << 32) | (next() % 7), next() % 5)
+                })
+                .collect();
+            let mut want = v.clone();
+            want.sort_unstable();
+            let (mut got, mut tmp, mut counts) = (v.clone(), Vec::new(), Vec::new());
+            bucket_sort(&mut got, &mut tmp, &mut counts, 100, 150, |x| {
+                (x.0 >> 32) as u32
+            });
+            assert_eq!(got, want);
+            // out-of-range keys fall back to a plain sort
+            let mut got = v.clone();
+            bucket_sort(&mut got, &mut tmp, &mut counts, 120, 130, |x| {
+                (x.0 >> 32) as u32
+            });
+            assert_eq!(got, want);
+        }
     }
 }
