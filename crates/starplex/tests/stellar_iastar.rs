@@ -114,6 +114,7 @@ fn check(k: &IndexedComplex, kv: u32) {
             .map(|c| c.id.0)
             .collect();
         // clusters by plain flooding
+        let mut clusters: Vec<Vec<u32>> = Vec::new();
         let mut seen = BTreeSet::new();
         for s in star.iter().filter(|c| c.kind.dim() >= 2) {
             if seen.contains(&s.id.0) {
@@ -137,14 +138,21 @@ fn check(k: &IndexedComplex, kv: u32) {
                     }
                 }
             }
-            want.push(*cluster.iter().min().unwrap());
+            clusters.push(cluster);
         }
-        want.sort();
-        assert_eq!(
-            ia.vertex_representatives(VertexId(v)),
-            &want[..],
-            "reps of {v}"
-        );
+        // all top edges, and exactly one representative in each cluster
+        let got = ia.vertex_representatives(VertexId(v));
+        assert_eq!(got.len(), want.len() + clusters.len(), "reps of {v}");
+        for e in &want {
+            assert!(got.contains(e));
+        }
+        for cl in &clusters {
+            assert_eq!(
+                cl.iter().filter(|c| got.contains(c)).count(),
+                1,
+                "reps of {v}"
+            );
+        }
         let vt: Vec<CellId> = star.iter().map(|c| c.id).collect();
         let mut got = Vec::new();
         ia.vertex_top_cells(VertexId(v), &mut got);

@@ -7,7 +7,7 @@
 //!   non-manifold facet (three or more top k-cells) whose full list is stored;
 //! * R_{0,1} of every vertex (all its top edges) and R*_{0,k} for k >= 2: one top k-cell per
 //!   k-cluster (top k-cells around the vertex connected through facets containing it), the
-//!   representative being the cluster's smallest input id.
+//!   representative being the cluster's first cell in tree order (deterministic).
 //!
 //! This module defines its own layout; the standalone IA* (in `tds`) may differ.
 //!
@@ -392,7 +392,7 @@ impl StellarTree {
     }
 
     /// Appends the top edges and cluster representatives of tree vertex `v` (tree cell ids;
-    /// each cluster represented by its smallest input id).
+    /// each cluster represented by its smallest tree id).
     fn representatives<'s>(
         &self,
         view: &LeafView<'_>,
@@ -415,12 +415,8 @@ impl StellarTree {
                 _ => false,
             }
         };
-        sc.order.clear();
-        sc.order.extend_from_slice(star);
-        sc.order.sort_unstable_by_key(|&c| self.c_orig[c as usize]);
         sc.stack.clear();
-        for oi in 0..sc.order.len() {
-            let c = sc.order[oi];
+        for &c in star {
             let kind = self.cells.get(c).0;
             if kind.dim() < 2 {
                 if kind.dim() == 1 {
@@ -587,6 +583,5 @@ impl StellarTree {
 #[derive(Default)]
 struct RepScratch {
     seen: Vec<bool>,
-    order: Vec<u32>,
     stack: Vec<u32>,
 }
