@@ -256,8 +256,8 @@ fn bucket_sort<T: Copy + Ord>(
     }
     // counts[b] is now the end of bucket b
     let mut start = 0usize;
-    for b in 0..n {
-        let end = counts[b] as usize;
+    for &end in &counts[..n] {
+        let end = end as usize;
         if end - start > 1 {
             tmp[start..end].sort_unstable();
         }
