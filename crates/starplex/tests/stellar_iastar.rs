@@ -108,7 +108,7 @@ fn check(k: &IndexedComplex, kv: u32) {
     // representatives: all top edges, one per k-cluster (its smallest id)
     for v in 0..k.n_vertices() as u32 {
         let star: Vec<_> = cells.iter().filter(|c| c.vertices.contains(&v)).collect();
-        let mut want: Vec<u32> = star
+        let want: Vec<u32> = star
             .iter()
             .filter(|c| c.kind.dim() == 1)
             .map(|c| c.id.0)
