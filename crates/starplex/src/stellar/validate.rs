@@ -455,6 +455,23 @@ impl StellarTree {
             if kind.dim() != 3 {
                 continue;
             }
+            if kind.is_simplex() {
+                // a tetrahedron: the faces containing v are v plus two of the other three
+                let mut o = [0u32; 3];
+                let mut m = 0;
+                for &x in vs {
+                    if x != v {
+                        o[m] = x;
+                        m += 1;
+                    }
+                }
+                o.sort_unstable();
+                for (x, y) in [(o[0], o[1]), (o[0], o[2]), (o[1], o[2])] {
+                    let key = ((x as u128) << 64) | ((y as u128) << 32) | u32::MAX as u128;
+                    s.faces.push((key, i as u32, x, y));
+                }
+                continue;
+            }
             super::relations::faces_of(kind, 2, |local| {
                 let n = local.len();
                 let Some(p) = local.iter().position(|&l| vs[l as usize] == v) else {
