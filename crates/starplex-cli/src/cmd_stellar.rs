@@ -33,6 +33,32 @@ pub struct StellarArgs {
     pub json: bool,
 }
 
+/// CPU seconds used by this process so far (user + system, from /proc; `None` elsewhere).
+/// Less sensitive than wall time to other processes sharing the machine.
+pub fn cpu_seconds() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let rest = &s[s.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ut: f64 = f.get(11)?.parse().ok()?;
+    let st: f64 = f.get(12)?.parse().ok()?;
+    Some((ut + st) / 100.0)
+}
+
+/// (VmRSS, VmHWM) of this process in bytes, from /proc (`None` elsewhere).
+fn rss() -> Option<(u64, u64)> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let get = |key: &str| -> Option<u64> {
+        let l = s.lines().find(|l| l.starts_with(key))?;
+        Some(l.split_whitespace().nth(1)?.parse::<u64>().ok()? * 1024)
+    };
+    Some((get("VmRSS:")?, get("VmHWM:")?))
+}
+
+/// Resets the peak-RSS counter (Linux `clear_refs` 5); false when unsupported.
+fn reset_peak() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
 pub fn split_mode(s: &str) -> Result<SplitMode, CliError> {
     match s {
         "auto" => Ok(SplitMode::Auto),
@@ -133,11 +159,15 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     let r = common::load(ctx, &a.input)?;
     let read_s = t0.elapsed().as_secs_f64();
     let k = r.complex;
+    let rss_loaded = rss().map(|r| r.0);
+    let peak_reset = reset_peak();
+    let c0 = cpu_seconds();
     let (t, build_s) = with_threads(a.threads, || {
         let t1 = Instant::now();
         let t = build_tree(ctx, &k, a.kv, &a.split);
         (t, t1.elapsed().as_secs_f64())
     })?;
+    let build_cpu = c0.and_then(|c| Some(cpu_seconds()? - c));
     let t = t?;
     let s = t.stats();
     let bt = t.timings();
@@ -148,26 +178,67 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
         "vertex_reindex_s": bt.vertex_reindex_s,
         "cell_reindex_s": bt.cell_reindex_s,
         "leaf_lists_s": bt.leaf_lists_s,
+        "build_cpu_s": build_cpu,
     });
     if a.bench {
-        let (vt_s, faces_s, validate_s) = with_threads(a.threads, || {
+        let mut cpu = serde_json::Map::new();
+        let vt_mem: std::sync::Mutex<Option<(u64, u64)>> = std::sync::Mutex::new(None);
+        let mut phase = |name: &str, f: &mut dyn FnMut()| -> f64 {
+            let c = cpu_seconds();
             let t1 = Instant::now();
-            let sum = std::sync::atomic::AtomicU64::new(0);
-            t.par_for_each_vt(|_, cells| {
-                sum.fetch_add(cells.len() as u64, std::sync::atomic::Ordering::Relaxed);
-            });
-            let vt_s = t1.elapsed().as_secs_f64();
-            let t2 = Instant::now();
-            let d = t.dim().unwrap_or(0);
-            let mut faces = Vec::new();
-            for p in 1..d {
-                faces.push(t.count_p_faces(p).ok());
+            f();
+            let wall = t1.elapsed().as_secs_f64();
+            if let (Some(a), Some(b)) = (c, cpu_seconds()) {
+                cpu.insert(name.to_string(), json!(b - a));
             }
-            let faces_s = t2.elapsed().as_secs_f64();
-            let t3 = Instant::now();
-            let _ = t.validate();
-            (vt_s, faces_s, t3.elapsed().as_secs_f64())
+            wall
+        };
+        let (vt_local_s, vt_s, faces_s, validate_s, ia_s) = with_threads(a.threads, || {
+            let vt_local_s = phase("vt_local_s", &mut || {
+                // the reference's VT: expand every leaf (local VT in tree numbering)
+                let n: Vec<usize> = t.par_map_leaves(|l| l.e.vt.len());
+                std::hint::black_box(n);
+            });
+            let vt_s = phase("vt_all_s", &mut || {
+                let sum = std::sync::atomic::AtomicU64::new(0);
+                t.par_for_each_vt(|_, cells| {
+                    sum.fetch_add(cells.len() as u64, std::sync::atomic::Ordering::Relaxed);
+                });
+            });
+            if let (true, Some(base), Some((_, hwm))) = (peak_reset, rss_loaded, rss()) {
+                *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) = Some((base, hwm));
+            }
+            let faces_s = phase("p_faces_s", &mut || {
+                for p in 1..t.dim().unwrap_or(0) {
+                    std::hint::black_box(t.count_p_faces(p).ok());
+                }
+            });
+            let validate_s = phase("validate_s", &mut || {
+                std::hint::black_box(t.validate());
+            });
+            let ia_s = phase("iastar_global_s", &mut || {
+                std::hint::black_box(t.iastar().storage_refs());
+            });
+            (vt_local_s, vt_s, faces_s, validate_s, ia_s)
         })?;
+        timings["vt_local_s"] = json!(vt_local_s);
+        if let (true, Some(base), Some((_, hwm))) = (peak_reset, rss_loaded, rss()) {
+            timings["memory"] = json!({
+                "complex_bytes": k.bytes(),
+                "rss_after_load": base,
+                "peak_rss_build_and_queries": hwm,
+                "extra_over_loaded": hwm.saturating_sub(base),
+                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / k.bytes().max(1) as f64,
+            });
+        }
+        timings["iastar_global_s"] = json!(ia_s);
+        if let Some((base, hwm)) = *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) {
+            timings["memory_build_and_vt"] = json!({
+                "extra_over_loaded": hwm.saturating_sub(base),
+                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / k.bytes().max(1) as f64,
+            });
+        }
+        timings["cpu"] = Value::Object(cpu);
         timings["vt_all_s"] = json!(vt_s);
         timings["p_faces_s"] = json!(faces_s);
         timings["validate_s"] = json!(validate_s);
@@ -198,13 +269,29 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
             bt.cell_reindex_s,
             bt.leaf_lists_s
         );
-        for key in ["vt_all_s", "p_faces_s", "validate_s", "save_s"] {
+        if let Some(c) = build_cpu {
+            println!(
+                "  build cpu           {c:.3} s ({:.3} us per top cell)",
+                per(c)
+            );
+        }
+        for key in [
+            "vt_local_s",
+            "vt_all_s",
+            "p_faces_s",
+            "validate_s",
+            "iastar_global_s",
+            "save_s",
+        ] {
             if let Some(x) = timings[key].as_f64() {
+                let c = timings["cpu"][key].as_f64();
                 println!(
-                    "  {:<19} {:.3} s ({:.3} us per top cell)",
+                    "  {:<19} {:.3} s ({:.3} us per top cell){}",
                     key.trim_end_matches("_s"),
                     x,
-                    per(x)
+                    per(x),
+                    c.map(|c| format!(", cpu {c:.3} s ({:.3} us)", per(c)))
+                        .unwrap_or_default()
                 );
             }
         }

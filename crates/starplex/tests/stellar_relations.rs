@@ -368,8 +368,8 @@ fn check(k: &IndexedComplex, kv: u32, threads: usize, split: SplitMode) {
         }
         let adj = t.top_adjacency();
         let want = bf_adjacency(k);
-        for c in 0..k.n_cells() {
-            assert_eq!(adj.row(c), &want[c][..], "adjacency of cell {c}");
+        for (c, w) in want.iter().enumerate() {
+            assert_eq!(adj.row(c), &w[..], "adjacency of cell {c}");
         }
         // validation
         let r = t.validate();
@@ -555,4 +555,54 @@ fn degenerate_inputs() {
     assert!(t.p_faces(20).is_err());
     assert_eq!(t.vt_all().row(3), &[0]);
     assert_eq!(t.p_faces(1).unwrap().len(), 820);
+}
+
+#[test]
+fn cached_visit_equals_plain_visit() {
+    let mut b = ComplexBuilder::new(2).unwrap();
+    let n = 30u32;
+    for i in 0..n {
+        for j in 0..n {
+            b.push_vertex(&[i as f64, j as f64]).unwrap();
+        }
+    }
+    for i in 0..n - 1 {
+        for j in 0..n - 1 {
+            let a = i * n + j;
+            b.push_cell(CellKind::Quad, &[a, a + 1, a + n + 1, a + n])
+                .unwrap();
+        }
+    }
+    let k = b.build(&BuildOptions::default()).unwrap().0;
+    let t = StellarTree::build(
+        &k,
+        &StellarOptions {
+            kv: Some(16),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let plain: Vec<Vec<usize>> =
+        t.par_map_leaves(|l| l.tree_vertices().map(|v| l.vt_tree(v).len()).collect());
+    for cap in [0usize, 1, 4] {
+        // each leaf also looks at its successor through the cache
+        let cached: Vec<(Vec<usize>, usize)> = t.par_map_leaves_cached(cap, |l, cache| {
+            let next = (l.leaf().0 + 1) % t.n_leaves() as u32;
+            let e = cache.get(&t, LeafId(next));
+            (
+                l.tree_vertices().map(|v| l.vt_tree(v).len()).collect(),
+                e.cells.len(),
+            )
+        });
+        for (i, (rows, next_cells)) in cached.iter().enumerate() {
+            assert_eq!(rows, &plain[i]);
+            let next = (i + 1) % t.n_leaves();
+            assert_eq!(*next_cells, t.expand_leaf(LeafId(next as u32)).cells.len());
+        }
+    }
+    let mut cache = starplex::stellar::LeafCache::new(2);
+    for l in [0u32, 1, 0, 1, 2, 0] {
+        cache.get(&t, LeafId(l));
+    }
+    assert_eq!((cache.hits(), cache.misses()), (2, 4));
 }

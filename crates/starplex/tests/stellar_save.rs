@@ -38,6 +38,9 @@ fn round_trip_and_damaged_files() {
         assert_eq!(u.cell_to_input(), t.cell_to_input());
         assert_eq!(u.stats(), t.stats());
         assert_eq!(u.validate(), t.validate());
+        if kv != 7 {
+            continue;
+        }
         // every truncation and a sweep of single-byte corruptions: an error or a tree, no panic
         let bytes = std::fs::read(&p).unwrap();
         let bad = dir.join("bad.stl");

@@ -170,74 +170,36 @@ pub(super) fn build(
 
     // ---- 3. top-cell reindexing by region tuples
     let t2 = Instant::now();
-    // gather input cells into a flat (kind, verts) view in input order, verts in tree numbering
+    // input cells are read from the complex (input numbering) and mapped through v_new
     let mixed = k.blocks().len() > 1 && k.blocks().iter().any(|b| b.kind != k.blocks()[0].kind);
-    let (in_kinds, in_off, in_verts) = {
-        let mut verts = vec![0u32; k.n_refs()];
-        let mut kinds: Vec<u8> = Vec::new();
-        let mut off: Vec<u32> = Vec::new();
-        if mixed {
-            kinds.reserve(nc);
-            off.reserve(nc + 1);
-            off.push(0);
-        }
-        let mut pos = 0usize;
-        for b in k.blocks() {
-            let src = &b.vertices[..];
-            let dst = &mut verts[pos..pos + src.len()];
-            dst.par_chunks_mut(65_536)
-                .zip(src.par_chunks(65_536))
-                .for_each(|(d, s)| {
-                    for (x, &y) in d.iter_mut().zip(s) {
-                        *x = v_new[y as usize];
-                    }
-                });
-            if mixed {
-                let m = b.kind.n_vertices() as u32;
-                for _ in 0..b.len() {
-                    kinds.push(kind_code(b.kind));
-                    let last = *off.last().unwrap_or(&0);
-                    off.push(last + m);
-                }
-            }
-            pos += src.len();
-        }
-        (kinds, off, verts)
-    };
+    if k.n_refs() >= u32::MAX as usize {
+        return Err(StellarError::TooLarge {
+            what: "vertex references".into(),
+            estimate: k.n_refs() as u128,
+            budget: u32::MAX as u128 - 1,
+        });
+    }
     let (uniform, stride) = if mixed || nc == 0 {
-        if nc == 0 {
-            (255u8, 0u32)
-        } else {
-            (255, 0)
-        }
+        (255u8, 0u32)
     } else {
         let kind = k.blocks()[0].kind;
         (kind_code(kind), kind.n_vertices() as u32)
     };
-    let input = CellStore {
-        uniform,
-        stride,
-        kinds: in_kinds,
-        offsets: in_off,
-        verts: in_verts,
-        n: nc as u32,
+    let in_cell = |c: u32| {
+        let r = k.cell(crate::ids::CellId(c));
+        (r.kind, r.vertices)
     };
-    if input.uniform == 255
-        && nc > 0
-        && input.offsets.last().copied().unwrap_or(0) as usize != k.n_refs()
-    {
-        return Err(StellarError::TooLarge {
-            what: "vertex references".into(),
-            estimate: k.n_refs() as u128,
-            budget: u32::MAX as u128,
-        });
-    }
     // home leaf of every input cell = leaf of its smallest tree vertex
     let home: Vec<u32> = (0..nc as u32)
         .into_par_iter()
         .with_min_len(4096)
         .map(|c| {
-            let m = *input.verts(c).iter().min().expect("cells have vertices");
+            let m = in_cell(c)
+                .1
+                .iter()
+                .map(|&v| v_new[v as usize])
+                .min()
+                .expect("cells have vertices");
             leaf_of[m as usize]
         })
         .collect();
@@ -276,9 +238,9 @@ pub(super) fn build(
                 scratch.clear();
                 keyed.clear();
                 for &c in part.iter() {
-                    let (kind, vs) = input.get(c);
+                    let (kind, vs) = in_cell(c);
                     let s = scratch.len();
-                    scratch.extend(vs.iter().map(|&v| leaf_of[v as usize]));
+                    scratch.extend(vs.iter().map(|&v| leaf_of[v_new[v as usize] as usize]));
                     scratch[s..].sort_unstable();
                     let mut w = s;
                     for r in s..scratch.len() {
@@ -308,28 +270,37 @@ pub(super) fn build(
         c_new[old as usize] = new as u32;
     }
     // reindexed cell store
-    let cells = if input.uniform != 255 {
-        let s = input.stride as usize;
-        let mut verts = vec![0u32; input.verts.len()];
+    let cells = if uniform != 255 {
+        let st = stride as usize;
+        let mut verts = vec![0u32; k.n_refs()];
         verts
-            .par_chunks_mut(s * 4096)
+            .par_chunks_mut(st * 4096)
             .enumerate()
             .for_each(|(ci, ch)| {
                 let base = ci * 4096;
-                for (i, dst) in ch.chunks_exact_mut(s).enumerate() {
-                    dst.copy_from_slice(input.verts(c_orig[base + i]));
+                for (i, dst) in ch.chunks_exact_mut(st).enumerate() {
+                    for (x, &y) in dst.iter_mut().zip(in_cell(c_orig[base + i]).1) {
+                        *x = v_new[y as usize];
+                    }
                 }
             });
-        CellStore { verts, ..input }
+        CellStore {
+            uniform,
+            stride,
+            kinds: Vec::new(),
+            offsets: Vec::new(),
+            verts,
+            n: nc as u32,
+        }
     } else {
         let mut kinds = Vec::with_capacity(nc);
         let mut offsets = Vec::with_capacity(nc + 1);
-        let mut verts = Vec::with_capacity(input.verts.len());
+        let mut verts = Vec::with_capacity(k.n_refs());
         offsets.push(0u32);
         for &old in &c_orig {
-            let (kind, vs) = input.get(old);
+            let (kind, vs) = in_cell(old);
             kinds.push(kind_code(kind));
-            verts.extend_from_slice(vs);
+            verts.extend(vs.iter().map(|&v| v_new[v as usize]));
             offsets.push(verts.len() as u32);
         }
         CellStore {

@@ -28,6 +28,7 @@ use crate::complex::IndexedComplex;
 use crate::ids::{CellId, LeafId, NodeId, VertexId};
 
 mod build;
+pub mod iastar;
 pub mod relations;
 mod save;
 pub mod sre;
@@ -257,6 +258,31 @@ impl StellarTree {
     }
 
     /// Number of vertices.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::{StellarTree, StellarOptions, SplitMode};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(2), ..Default::default() }).unwrap();
+    /// assert_eq!((t.n_vertices(), t.n_top_cells(), t.kv()), (4, 2, 2));
+    /// assert_eq!(t.split(), SplitMode::Regular);
+    /// assert_eq!(t.dim(), Some(2));
+    /// assert!(t.n_nodes() > t.n_leaves());
+    /// // the permutations are inverse to each other
+    /// for v in 0..4 {
+    ///     assert_eq!(t.vertex_to_input()[t.vertex_from_input()[v] as usize] as usize, v);
+    /// }
+    /// let l = t.leaf_of_vertex(VertexId(3)).unwrap();
+    /// assert!(t.leaf_vertices(l).contains(&t.vertex_from_input()[3]));
+    /// let (kind, vs) = t.input_cell(CellId(1));
+    /// assert_eq!((kind, vs), (CellKind::Simplex(2), vec![VertexId(1), VertexId(3), VertexId(2)]));
+    /// ```
     pub fn n_vertices(&self) -> usize {
         self.v_orig.len()
     }

@@ -62,11 +62,17 @@ impl FaceList {
 pub(crate) struct FaceKeys {
     w: usize,
     flat: Vec<u32>,
-    payload: Vec<u32>,
-    small: Vec<(u128, u32)>,
+    payload: Vec<u64>,
+    small: Vec<(u128, u64)>,
+    tiny: Vec<(u64, u64)>,
+    tiny_tmp: Vec<(u64, u64)>,
+    small_tmp: Vec<(u128, u64)>,
+    counts: Vec<u32>,
+    buckets: Option<(u32, u32)>,
+    prefix: Option<u32>,
     order: Vec<u32>,
     key: Vec<u32>,
-    pays: Vec<u32>,
+    pays: Vec<u64>,
 }
 
 const PAD: u32 = u32::MAX;
@@ -74,15 +80,32 @@ const PAD: u32 = u32::MAX;
 impl FaceKeys {
     pub fn clear(&mut self, w: usize) {
         self.w = w;
+        self.prefix = None;
+        self.buckets = None;
         self.flat.clear();
         self.payload.clear();
         self.small.clear();
+        self.tiny.clear();
+    }
+    /// Every key pushed shares this leading entry, which is not stored but is reported by
+    /// [`for_each_group`](Self::for_each_group).
+    pub fn set_prefix(&mut self, p: Option<u32>) {
+        self.prefix = p;
+    }
+    /// Every stored key starts with a vertex in `lo..hi` (the leaf's own range): grouping
+    /// then buckets by that vertex before sorting each small bucket (same order as a sort).
+    pub fn set_buckets(&mut self, r: Option<(u32, u32)>) {
+        self.buckets = r;
     }
     /// Pushes a sorted key (at most `w` ids).
     #[inline]
-    pub fn push(&mut self, key: &[u32], payload: u32) {
+    pub fn push(&mut self, key: &[u32], payload: u64) {
         debug_assert!(key.len() <= self.w);
-        if self.w <= 4 {
+        if self.w <= 2 {
+            let a = key.first().copied().unwrap_or(PAD) as u64;
+            let b = key.get(1).copied().unwrap_or(PAD) as u64;
+            self.tiny.push(((a << 32) | b, payload));
+        } else if self.w <= 4 {
             let mut x: u128 = 0;
             for i in 0..4 {
                 x = (x << 32) | key.get(i).copied().unwrap_or(PAD) as u128;
@@ -96,9 +119,50 @@ impl FaceKeys {
         }
     }
     /// Calls `f(key, payloads)` for every distinct key, in key order.
-    pub fn for_each_group(&mut self, mut f: impl FnMut(&[u32], &[u32])) {
-        if self.w <= 4 {
-            self.small.sort_unstable();
+    pub fn for_each_group(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
+        if self.w <= 2 {
+            match self.buckets {
+                Some((lo, hi)) => bucket_sort(
+                    &mut self.tiny,
+                    &mut self.tiny_tmp,
+                    &mut self.counts,
+                    lo,
+                    hi,
+                    |x| (x.0 >> 32) as u32,
+                ),
+                None => self.tiny.sort_unstable(),
+            }
+            let mut i = 0;
+            while i < self.tiny.len() {
+                let k = self.tiny[i].0;
+                let mut j = i;
+                self.pays.clear();
+                while j < self.tiny.len() && self.tiny[j].0 == k {
+                    self.pays.push(self.tiny[j].1);
+                    j += 1;
+                }
+                self.key.clear();
+                self.key.extend(self.prefix);
+                for x in [(k >> 32) as u32, k as u32] {
+                    if x != PAD {
+                        self.key.push(x);
+                    }
+                }
+                f(&self.key, &self.pays);
+                i = j;
+            }
+        } else if self.w <= 4 {
+            match self.buckets {
+                Some((lo, hi)) => bucket_sort(
+                    &mut self.small,
+                    &mut self.small_tmp,
+                    &mut self.counts,
+                    lo,
+                    hi,
+                    |x| (x.0 >> 96) as u32,
+                ),
+                None => self.small.sort_unstable(),
+            }
             let mut i = 0;
             while i < self.small.len() {
                 let k = self.small[i].0;
@@ -109,6 +173,7 @@ impl FaceKeys {
                     j += 1;
                 }
                 self.key.clear();
+                self.key.extend(self.prefix);
                 for s in (0..4).rev() {
                     let x = (k >> (32 * s)) as u32;
                     if x != PAD {
@@ -145,11 +210,115 @@ impl FaceKeys {
                     j += 1;
                 }
                 self.key.clear();
+                self.key.extend(self.prefix);
                 self.key.extend(ka.iter().copied().filter(|&x| x != PAD));
                 f(&self.key, &self.pays);
                 i = j;
             }
         }
+    }
+}
+
+/// Sorts `v` by bucketing on `first(x)` (which must lie in `lo..hi`, else it falls back to a
+/// plain sort) and sorting each bucket; `T`'s order must start with `first`.
+fn bucket_sort<T: Copy + Ord>(
+    v: &mut Vec<T>,
+    tmp: &mut Vec<T>,
+    counts: &mut Vec<u32>,
+    lo: u32,
+    hi: u32,
+    first: impl Fn(&T) -> u32,
+) {
+    let n = hi.saturating_sub(lo) as usize;
+    if v.len() < 64 || n == 0 {
+        v.sort_unstable();
+        return;
+    }
+    counts.clear();
+    counts.resize(n + 1, 0);
+    for x in v.iter() {
+        let b = first(x);
+        if b < lo || b >= hi {
+            v.sort_unstable();
+            return;
+        }
+        counts[(b - lo) as usize + 1] += 1;
+    }
+    for i in 0..n {
+        counts[i + 1] += counts[i];
+    }
+    tmp.clear();
+    tmp.resize(v.len(), v[0]);
+    for x in v.iter() {
+        let b = (first(x) - lo) as usize;
+        tmp[counts[b] as usize] = *x;
+        counts[b] += 1;
+    }
+    // counts[b] is now the end of bucket b
+    let mut start = 0usize;
+    for &end in &counts[..n] {
+        let end = end as usize;
+        if end - start > 1 {
+            tmp[start..end].sort_unstable();
+        }
+        start = end;
+    }
+    std::mem::swap(v, tmp);
+}
+
+/// [`CellKind::for_each_face`] without a heap allocation per call.
+#[inline]
+pub(crate) fn faces_of(kind: CellKind, p: usize, mut f: impl FnMut(&[u8])) {
+    match kind {
+        CellKind::Simplex(d) => {
+            let n = d as usize + 1;
+            if p + 1 > n {
+                return;
+            }
+            let mut idx = [0u8; 66];
+            for (i, x) in idx.iter_mut().enumerate().take(p + 1) {
+                *x = i as u8;
+            }
+            loop {
+                f(&idx[..=p]);
+                let mut i = p as isize;
+                while i >= 0 && idx[i as usize] as usize == n - (p + 1) + i as usize {
+                    i -= 1;
+                }
+                if i < 0 {
+                    return;
+                }
+                let i = i as usize;
+                idx[i] += 1;
+                for j in i + 1..=p {
+                    idx[j] = idx[j - 1] + 1;
+                }
+            }
+        }
+        _ => kind.for_each_face(p, f),
+    }
+}
+
+/// [`CellKind::for_each_oriented_facet`] without a heap allocation per call.
+#[inline]
+pub(crate) fn oriented_facets_of(kind: CellKind, mut f: impl FnMut(&[u8], i8)) {
+    match kind {
+        CellKind::Simplex(0) => {}
+        CellKind::Simplex(d) => {
+            let n = d as usize + 1;
+            let mut buf = [0u8; 66];
+            for i in 0..n {
+                let mut m = 0;
+                for j in 0..n {
+                    if j != i {
+                        buf[m] = j as u8;
+                        m += 1;
+                    }
+                }
+                f(&buf[..n - 1], if i % 2 == 0 { 1 } else { -1 });
+            }
+        }
+        _ => kind.for_each_oriented_facet(f),
     }
 }
 
@@ -230,6 +399,20 @@ impl StellarTree {
 
     /// R_{0,top} of every vertex: row `v` (input id) holds the input ids of the top cells
     /// incident to `v`, sorted. Computed leaf by leaf in parallel.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.vt_all().row(2), &[0, 1]);
+    /// ```
     pub fn vt_all(&self) -> Csr {
         let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
             let mut lens = Vec::with_capacity(view.tree_vertices().len());
@@ -245,6 +428,22 @@ impl StellarTree {
 
     /// Visits R_{0,top} of every vertex, leaf by leaf in parallel: `f(v, cells)` with input
     /// ids, cells sorted. Nothing global is materialised.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let total = std::sync::atomic::AtomicUsize::new(0);
+    /// t.par_for_each_vt(|_, cells| { total.fetch_add(cells.len(), std::sync::atomic::Ordering::Relaxed); });
+    /// assert_eq!(total.into_inner(), 6);
+    /// ```
     pub fn par_for_each_vt(&self, f: impl Fn(VertexId, &[CellId]) + Sync + Send) {
         self.par_map_leaves(|view| {
             let mut row: Vec<CellId> = Vec::with_capacity(64);
@@ -263,6 +462,20 @@ impl StellarTree {
 
     /// R_{0,0} of every vertex: row `v` holds the input ids of the vertices joined to `v` by an
     /// edge (of a top cell's face table), sorted.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.vv_all().row(1), &[0, 2, 3]);
+    /// ```
     pub fn vv_all(&self) -> Csr {
         let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
             let mut lens = Vec::new();
@@ -317,6 +530,21 @@ impl StellarTree {
     ///
     /// # Errors
     /// A vertex out of range.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.vt_of(&[VertexId(3)]).unwrap(), vec![vec![CellId(1)]]);
+    /// assert!(t.vt_of(&[VertexId(9)]).is_err());
+    /// ```
     pub fn vt_of(&self, vs: &[VertexId]) -> Result<Vec<Vec<CellId>>, StellarError> {
         let mut out = vec![Vec::new(); vs.len()];
         self.for_given_vertices(vs, |view, tv, i| {
@@ -335,6 +563,20 @@ impl StellarTree {
     ///
     /// # Errors
     /// A vertex out of range.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.vv_of(&[VertexId(3)]).unwrap(), vec![vec![VertexId(1), VertexId(2)]]);
+    /// ```
     pub fn vv_of(&self, vs: &[VertexId]) -> Result<Vec<Vec<VertexId>>, StellarError> {
         let mut out = vec![Vec::new(); vs.len()];
         let mut row = Vec::new();
@@ -351,6 +593,21 @@ impl StellarTree {
     /// # Errors
     /// A vertex out of range (the outer error); per vertex, a non-simplicial star or a link
     /// over the budget.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let l = t.links_of(&[VertexId(0)]).unwrap();
+    /// assert_eq!(l[0].as_ref().unwrap().maximal_simplices, vec![vec![1, 2]]);
+    /// ```
     pub fn links_of(
         &self,
         vs: &[VertexId],
@@ -367,6 +624,21 @@ impl StellarTree {
 
     /// Link f-vectors of every vertex, leaf by leaf in parallel; entry `v` (input id) is the
     /// f-vector or why it could not be computed.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let f = t.link_f_vectors_all(1_000_000);
+    /// assert_eq!(f[1].as_ref().unwrap(), &vec![3, 2]);
+    /// ```
     pub fn link_f_vectors_all(&self, budget: u128) -> Vec<Result<Vec<u64>, LinkError>> {
         let per_leaf: Vec<Vec<Result<Vec<u64>, LinkError>>> = self.par_map_leaves(|view| {
             view.tree_vertices()
@@ -439,6 +711,20 @@ impl StellarTree {
     }
 
     /// Upper bound of (cell, p-face) pairs visited by [`p_faces`](Self::p_faces).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.face_visits(1), 6);
+    /// ```
     pub fn face_visits(&self, p: usize) -> u128 {
         if self.cells.uniform != 255 {
             return super::code_kind(self.cells.uniform)
@@ -491,19 +777,20 @@ impl StellarTree {
                 |(e, keys, key), l| {
                     self.expand_leaf_cells(LeafId(l), e);
                     keys.clear(w);
+                    keys.set_buckets(Some((e.v_start, e.v_end)));
                     let view = LeafView { tree: self, e };
                     for &c in &e.cells {
                         let (kind, vs) = self.cells.get(c);
                         if kind.dim() < p {
                             continue;
                         }
-                        kind.for_each_face(p, |local| {
+                        faces_of(kind, p, |local| {
                             key.clear();
                             key.extend(local.iter().map(|&i| vs[i as usize]));
                             let m = *key.iter().min().expect("faces have vertices");
                             if view.owns(m) {
                                 key.sort_unstable();
-                                keys.push(key, c);
+                                keys.push(key, c as u64);
                             }
                         });
                     }
@@ -531,6 +818,22 @@ impl StellarTree {
     ///
     /// # Errors
     /// Over the budget (e.g. the 20-faces of 40-simplices).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let e = t.p_faces(1).unwrap();
+    /// assert_eq!(e.len(), 5);
+    /// assert_eq!(e.n_cofaces.iter().filter(|&&n| n == 2).count(), 1);
+    /// ```
     pub fn p_faces(&self, p: usize) -> Result<FaceList, StellarError> {
         self.p_faces_with_budget(p, FACE_BUDGET)
     }
@@ -539,6 +842,20 @@ impl StellarTree {
     ///
     /// # Errors
     /// Over the budget.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert!(t.p_faces_with_budget(1, 3).is_err());
+    /// ```
     pub fn p_faces_with_budget(&self, p: usize, budget: u128) -> Result<FaceList, StellarError> {
         self.check_budget(p, budget)?;
         let per_leaf: Vec<(Vec<u32>, Vec<u32>, Vec<u32>)> = self.par_face_groups(p, |_, keys| {
@@ -575,6 +892,20 @@ impl StellarTree {
     ///
     /// # Errors
     /// Over the budget [`FACE_BUDGET`].
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.count_p_faces(2).unwrap(), 2);
+    /// ```
     pub fn count_p_faces(&self, p: usize) -> Result<u64, StellarError> {
         self.check_budget(p, FACE_BUDGET)?;
         Ok(self
@@ -590,6 +921,20 @@ impl StellarTree {
     /// Adjacency of top cells across (k-1)-faces (R_{k,k}, k = the cell's dimension >= 1):
     /// row `c` (input id) holds the input ids of the other top k-cells sharing a facet with
     /// `c`, sorted; non-manifold facets (in three or more cells) connect all their cells.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.top_adjacency().row(1), &[0]);
+    /// ```
     pub fn top_adjacency(&self) -> Csr {
         let pairs = self.facet_pairs();
         let n = self.n_top_cells();
@@ -646,8 +991,19 @@ impl StellarTree {
         &self,
         f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
     ) -> Vec<R> {
-        let w = 1 + self
-            .kinds()
+        self.par_facet_groups_where(1, false, f)
+    }
+
+    /// Facet groups of the cells of dimension >= `min_dim`; with `local`, every facet with a
+    /// vertex in the leaf (the local IA* rule) instead of the facets the leaf owns.
+    pub(crate) fn par_facet_groups_where<R: Send>(
+        &self,
+        min_dim: usize,
+        local_rule: bool,
+        f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
+    ) -> Vec<R> {
+        let kinds = self.kinds();
+        let fw = kinds
             .iter()
             .map(|&k| {
                 if k.dim() >= 1 {
@@ -658,6 +1014,10 @@ impl StellarTree {
             })
             .max()
             .unwrap_or(0);
+        // one dimension: the dimension prefix of the keys is implicit
+        let dims: std::collections::BTreeSet<usize> = kinds.iter().map(|k| k.dim()).collect();
+        let uniform_dim = (dims.len() == 1).then(|| *dims.first().expect("one") as u32);
+        let w = if uniform_dim.is_some() { fw } else { fw + 1 };
         (0..self.n_leaves() as u32)
             .into_par_iter()
             .map_init(
@@ -671,24 +1031,36 @@ impl StellarTree {
                 |(e, keys, key), l| {
                     self.expand_leaf_cells(LeafId(l), e);
                     keys.clear(w);
+                    keys.set_prefix(uniform_dim);
+                    if uniform_dim.is_some() && !local_rule {
+                        keys.set_buckets(Some((e.v_start, e.v_end)));
+                    }
                     let view = LeafView { tree: self, e };
                     for &c in &e.cells {
                         let (kind, vs) = self.cells.get(c);
                         let d = kind.dim();
-                        if d == 0 {
+                        if d == 0 || d < min_dim {
                             continue;
                         }
-                        kind.for_each_oriented_facet(|local, sign| {
+                        let mut j = 0u64;
+                        oriented_facets_of(kind, |local, sign| {
+                            j += 1;
                             key.clear();
                             key.extend(local.iter().map(|&i| vs[i as usize]));
-                            let m = *key.iter().min().expect("facets have vertices");
-                            if !view.owns(m) {
+                            let keep = if local_rule {
+                                key.iter().any(|&v| view.owns(v))
+                            } else {
+                                view.owns(*key.iter().min().expect("facets have vertices"))
+                            };
+                            if !keep {
                                 return;
                             }
                             let s = sign * listed_sign(key, !kind.is_simplex() && key.len() >= 3);
                             key.sort_unstable();
-                            key.insert(0, d as u32);
-                            keys.push(key, pack(c, s));
+                            if uniform_dim.is_none() {
+                                key.insert(0, d as u32);
+                            }
+                            keys.push(key, pack(c, j - 1, s));
                         });
                     }
                     f(&view, keys)
@@ -698,18 +1070,22 @@ impl StellarTree {
     }
 }
 
+/// Payload of a facet record: tree cell id, facet index in the cell, induced sign.
 #[inline]
-pub(crate) fn pack(c: u32, sign: i8) -> u32 {
-    if sign < 0 {
-        c | (1 << 31)
-    } else {
-        c
-    }
+pub(crate) fn pack(c: u32, j: u64, sign: i8) -> u64 {
+    c as u64 | (j << 32) | if sign < 0 { 1 << 63 } else { 0 }
 }
 
+/// (tree cell, induced sign) of a facet payload.
 #[inline]
-pub(crate) fn unpack(x: u32) -> (u32, i8) {
-    (x & !(1 << 31), if x >> 31 == 1 { -1 } else { 1 })
+pub(crate) fn unpack(x: u64) -> (u32, i8) {
+    (x as u32, if x >> 63 == 1 { -1 } else { 1 })
+}
+
+/// Facet index of a facet payload.
+#[inline]
+pub(crate) fn unpack_facet(x: u64) -> u32 {
+    ((x >> 32) & 0x7fff_ffff) as u32
 }
 
 /// Orientation of a listed facet relative to its sorted order: the parity of the sorting
@@ -730,7 +1106,7 @@ pub(crate) fn listed_sign(key: &[u32], polygon: bool) -> i8 {
             }
         }
     }
-    if inv % 2 == 0 {
+    if inv.is_multiple_of(2) {
         1
     } else {
         -1
@@ -786,5 +1162,42 @@ impl VertexAdjacency for StellarTree {
         }
         out.sort_unstable();
         out.dedup();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bucket_sort_equals_sort() {
+        let mut x: u64 = 12345;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for n in [0usize, 1, 63, 64, 500, 3000] {
+            let v: Vec<(u64, u64)> = (0..n)
+                .map(|_| {
+                    let a = 100 + next() % 50;
+                    ((a << 32) | (next() % 7), next() % 5)
+                })
+                .collect();
+            let mut want = v.clone();
+            want.sort_unstable();
+            let (mut got, mut tmp, mut counts) = (v.clone(), Vec::new(), Vec::new());
+            bucket_sort(&mut got, &mut tmp, &mut counts, 100, 150, |x| {
+                (x.0 >> 32) as u32
+            });
+            assert_eq!(got, want);
+            // out-of-range keys fall back to a plain sort
+            let mut got = v.clone();
+            bucket_sort(&mut got, &mut tmp, &mut counts, 120, 130, |x| {
+                (x.0 >> 32) as u32
+            });
+            assert_eq!(got, want);
+        }
     }
 }

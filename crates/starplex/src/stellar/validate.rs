@@ -318,15 +318,18 @@ impl StellarTree {
     ) -> (Vec<u32>, Vec<u32>, Vec<[u32; 2]>, Vec<[u32; 2]>) {
         let mut out = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut s = Scratch::default();
+        let mut edges = Vec::new();
+        let mut groups = Vec::new();
         for v in view.tree_vertices() {
             let star = view.vt_tree(v);
-            let (vs, edges) = self.star_tests(v, star, d, &mut s);
+            edges.clear();
+            let vs = self.star_tests(v, star, d, &mut s, &mut groups, &mut edges);
             match vs {
                 Manifoldness::Manifold => {}
                 Manifoldness::NonManifold => out.0.push(v),
                 Manifoldness::Unknown => out.1.push(v),
             }
-            for (w, st) in edges {
+            for &(w, st) in &edges {
                 match st {
                     Manifoldness::Manifold => {}
                     Manifoldness::NonManifold => out.2.push([v, w]),
@@ -344,11 +347,12 @@ impl StellarTree {
         star: &[u32],
         d: usize,
         s: &mut Scratch,
-    ) -> (Manifoldness, Vec<(u32, Manifoldness)>) {
+        edge_groups: &mut Vec<(u32, usize, usize)>,
+        edges_out: &mut Vec<(u32, Manifoldness)>,
+    ) -> Manifoldness {
         use Manifoldness::*;
-        let mut edges_out: Vec<(u32, Manifoldness)> = Vec::new();
         if star.is_empty() {
-            return (if d == 0 { Manifold } else { NonManifold }, edges_out);
+            return if d == 0 { Manifold } else { NonManifold };
         }
         // edges at v: (w, local cell index)
         s.ew.clear();
@@ -361,7 +365,7 @@ impl StellarTree {
         let v_mixed = star.iter().any(|&c| self.cells.get(c).0.dim() != d);
         // per edge: cells containing it
         let mut i = 0;
-        let mut edge_groups: Vec<(u32, usize, usize)> = Vec::new();
+        edge_groups.clear();
         while i < s.ew.len() {
             let w = s.ew[i].0;
             let mut j = i;
@@ -377,9 +381,9 @@ impl StellarTree {
                 .any(|&(_, ci)| self.cells.get(star[ci as usize]).0.dim() != d)
         };
         match d {
-            0 => (Manifold, edges_out),
+            0 => Manifold,
             1 => {
-                for &(w, a, b) in &edge_groups {
+                for &(w, a, b) in edge_groups.iter() {
                     if w > v {
                         // an edge of a 1-complex: a top edge, manifold (its link is empty)
                         let st = if edge_mixed(s, a, b) {
@@ -391,12 +395,18 @@ impl StellarTree {
                     }
                 }
                 let ok = !v_mixed && star.len() <= 2;
-                (if ok { Manifold } else { NonManifold }, edges_out)
+                if ok {
+                    Manifold
+                } else {
+                    NonManifold
+                }
             }
             2 => {
-                let mut uf = UnionFind::new(star.len());
+                s.parent.clear();
+                s.parent.extend(0..star.len() as u32);
+                let mut sets = star.len();
                 let mut bad = v_mixed;
-                for &(w, a, b) in &edge_groups {
+                for &(w, a, b) in edge_groups.iter() {
                     let n2 = s.ew[a..b]
                         .iter()
                         .filter(|&&(_, ci)| self.cells.get(star[ci as usize]).0.dim() == 2)
@@ -404,17 +414,26 @@ impl StellarTree {
                     let e_bad = n2 > 2 || edge_mixed(s, a, b);
                     bad |= e_bad;
                     for k in a + 1..b {
-                        uf.union(s.ew[a].1, s.ew[k].1);
+                        let x = find(&mut s.parent, s.ew[a].1);
+                        let y = find(&mut s.parent, s.ew[k].1);
+                        if x != y {
+                            s.parent[x as usize] = y;
+                            sets -= 1;
+                        }
                     }
                     if w > v {
                         edges_out.push((w, if e_bad { NonManifold } else { Manifold }));
                     }
                 }
-                let ok = !bad && uf.n_sets() == 1;
-                (if ok { Manifold } else { NonManifold }, edges_out)
+                let ok = !bad && sets == 1;
+                if ok {
+                    Manifold
+                } else {
+                    NonManifold
+                }
             }
-            3 => self.star_tests_3(v, star, &edge_groups, v_mixed, s, edges_out),
-            _ => self.star_tests_high(v, star, d, &edge_groups, v_mixed, s, edges_out),
+            3 => self.star_tests_3(v, star, edge_groups, v_mixed, s, edges_out),
+            _ => self.star_tests_high(v, star, d, edge_groups, v_mixed, s, edges_out),
         }
     }
 
@@ -426,8 +445,8 @@ impl StellarTree {
         edge_groups: &[(u32, usize, usize)],
         v_mixed: bool,
         s: &mut Scratch,
-        mut edges_out: Vec<(u32, Manifoldness)>,
-    ) -> (Manifoldness, Vec<(u32, Manifoldness)>) {
+        edges_out: &mut Vec<(u32, Manifoldness)>,
+    ) -> Manifoldness {
         use Manifoldness::*;
         // 2-faces containing v of the 3-cells: (sorted key, cell index, e1, e2)
         s.faces.clear();
@@ -436,30 +455,57 @@ impl StellarTree {
             if kind.dim() != 3 {
                 continue;
             }
-            kind.for_each_face(2, |local| {
+            if kind.is_simplex() {
+                // a tetrahedron: the faces containing v are v plus two of the other three
+                let mut o = [0u32; 3];
+                let mut m = 0;
+                for &x in vs {
+                    if x != v {
+                        o[m] = x;
+                        m += 1;
+                    }
+                }
+                o.sort_unstable();
+                for (x, y) in [(o[0], o[1]), (o[0], o[2]), (o[1], o[2])] {
+                    let key = ((x as u128) << 64) | ((y as u128) << 32) | u32::MAX as u128;
+                    s.faces.push((key, i as u32, x, y));
+                }
+                continue;
+            }
+            super::relations::faces_of(kind, 2, |local| {
                 let n = local.len();
                 let Some(p) = local.iter().position(|&l| vs[l as usize] == v) else {
                     return;
                 };
                 let e1 = vs[local[(p + 1) % n] as usize];
                 let e2 = vs[local[(p + n - 1) % n] as usize];
-                let mut key = [u32::MAX; 4];
-                for (k, &l) in local.iter().enumerate() {
-                    key[k] = vs[l as usize];
+                // the face's other vertices (it contains v), sorted, packed in a u128
+                let mut other = [u32::MAX; 3];
+                let mut m = 0;
+                for &l in local {
+                    let x = vs[l as usize];
+                    if x != v {
+                        other[m] = x;
+                        m += 1;
+                    }
                 }
-                key[..n].sort_unstable();
+                other[..m].sort_unstable();
+                let key =
+                    ((other[0] as u128) << 64) | ((other[1] as u128) << 32) | other[2] as u128;
                 s.faces.push((key, i as u32, e1, e2));
             });
         }
         s.faces.sort_unstable();
         // group faces
         let mut bad = v_mixed;
-        let mut uf = UnionFind::new(star.len());
+        s.parent.clear();
+        s.parent.extend(0..star.len() as u32);
+        let mut sets = star.len();
         let mut n_faces = 0i64;
         // (w, cell a, cell b) for interior faces; boundary link edges (e1, e2)
         s.wpairs.clear();
         s.bedges.clear();
-        let mut face_bad_w: Vec<u32> = Vec::new();
+        s.face_bad_w.clear();
         let mut i = 0;
         while i < s.faces.len() {
             let mut j = i;
@@ -472,33 +518,39 @@ impl StellarTree {
                 1 => s.bedges.push((e1, e2)),
                 2 => {
                     let (a, b) = (s.faces[i].1, s.faces[i + 1].1);
-                    uf.union(a, b);
+                    let x = find(&mut s.parent, a);
+                    let y = find(&mut s.parent, b);
+                    if x != y {
+                        s.parent[x as usize] = y;
+                        sets -= 1;
+                    }
                     s.wpairs.push((e1, a, b));
                     s.wpairs.push((e2, a, b));
                 }
                 _ => {
                     bad = true;
-                    face_bad_w.push(e1);
-                    face_bad_w.push(e2);
+                    s.face_bad_w.push(e1);
+                    s.face_bad_w.push(e2);
                 }
             }
             i = j;
         }
         s.wpairs.sort_unstable();
-        face_bad_w.sort_unstable();
+        s.face_bad_w.sort_unstable();
         // per edge vw: cells containing it form one cluster through faces containing vw
-        let mut local_uf: Vec<u32> = vec![0; star.len()];
+        s.local_uf.clear();
+        s.local_uf.resize(star.len(), 0);
         let mut p = 0usize;
         let n_edges = edge_groups.len() as i64;
         for &(w, a, b) in edge_groups {
             let mut e_bad = s.ew[a..b]
                 .iter()
                 .any(|&(_, ci)| self.cells.get(star[ci as usize]).0.dim() != 3)
-                || face_bad_w.binary_search(&w).is_ok();
+                || s.face_bad_w.binary_search(&w).is_ok();
             if !e_bad {
                 for k in a..b {
                     let ci = s.ew[k].1;
-                    local_uf[ci as usize] = ci;
+                    s.local_uf[ci as usize] = ci;
                 }
                 while p < s.wpairs.len() && s.wpairs[p].0 < w {
                     p += 1;
@@ -506,16 +558,16 @@ impl StellarTree {
                 let mut q = p;
                 while q < s.wpairs.len() && s.wpairs[q].0 == w {
                     let (x, y) = (s.wpairs[q].1, s.wpairs[q].2);
-                    let rx = find(&mut local_uf, x);
-                    let ry = find(&mut local_uf, y);
+                    let rx = find(&mut s.local_uf, x);
+                    let ry = find(&mut s.local_uf, y);
                     if rx != ry {
-                        local_uf[rx as usize] = ry;
+                        s.local_uf[rx as usize] = ry;
                     }
                     q += 1;
                 }
-                let r0 = find(&mut local_uf, s.ew[a].1);
+                let r0 = find(&mut s.local_uf, s.ew[a].1);
                 for k in a + 1..b {
-                    if find(&mut local_uf, s.ew[k].1) != r0 {
+                    if find(&mut s.local_uf, s.ew[k].1) != r0 {
                         e_bad = true;
                         break;
                     }
@@ -526,8 +578,8 @@ impl StellarTree {
                 edges_out.push((w, if e_bad { NonManifold } else { Manifold }));
             }
         }
-        if bad || uf.n_sets() != 1 {
-            return (NonManifold, edges_out);
+        if bad || sets != 1 {
+            return NonManifold;
         }
         // Euler characteristic of the link: E - F + C
         let chi = n_edges - n_faces + star.len() as i64;
@@ -546,7 +598,11 @@ impl StellarTree {
             }
             chi == 1 && buf.n_sets() == 1
         };
-        (if ok { Manifold } else { NonManifold }, edges_out)
+        if ok {
+            Manifold
+        } else {
+            NonManifold
+        }
     }
 
     /// d >= 4 (the top d-cells are simplices): combinatorial obstructions or Unknown.
@@ -559,8 +615,8 @@ impl StellarTree {
         edge_groups: &[(u32, usize, usize)],
         v_mixed: bool,
         s: &mut Scratch,
-        mut edges_out: Vec<(u32, Manifoldness)>,
-    ) -> (Manifoldness, Vec<(u32, Manifoldness)>) {
+        edges_out: &mut Vec<(u32, Manifoldness)>,
+    ) -> Manifoldness {
         use Manifoldness::*;
         // facets containing v of the d-cells: (sorted facet, cell index)
         let mut facets: Vec<(Vec<u32>, u32)> = Vec::new();
@@ -632,8 +688,11 @@ impl StellarTree {
         }
         let all: Vec<u32> = (0..star.len() as u32).collect();
         let bad = v_mixed || over || any_bad_edge || clusters(&|_: &[u32]| true, &all) > 1;
-        let _ = s;
-        (if bad { NonManifold } else { Unknown }, edges_out)
+        if bad {
+            NonManifold
+        } else {
+            Unknown
+        }
     }
 }
 
@@ -649,7 +708,10 @@ fn find(p: &mut [u32], mut x: u32) -> u32 {
 #[derive(Default)]
 struct Scratch {
     ew: Vec<(u32, u32)>,
-    faces: Vec<([u32; 4], u32, u32, u32)>,
+    faces: Vec<(u128, u32, u32, u32)>,
     wpairs: Vec<(u32, u32, u32)>,
     bedges: Vec<(u32, u32)>,
+    parent: Vec<u32>,
+    local_uf: Vec<u32>,
+    face_bad_w: Vec<u32>,
 }

@@ -1,0 +1,587 @@
+//! IA* generated from a Stellar tree, globally ([`StellarTree::iastar`]) or for one leaf
+//! ([`StellarTree::local_iastar`]), following the spec (`ia-star-is-ghosts.md` §2):
+//!
+//! * R_{k,0} of every top cell (its vertices);
+//! * R_{k,k} for every top k-cell with k >= 2: one slot per facet (facet j of a simplex omits its
+//!   j-th vertex; CP cells follow their facet tables): no neighbour, the other top k-cell, or a
+//!   non-manifold facet (three or more top k-cells) whose full list is stored;
+//! * R_{0,1} of every vertex (all its top edges) and R*_{0,k} for k >= 2: one top k-cell per
+//!   k-cluster (top k-cells around the vertex connected through facets containing it), the
+//!   representative being the cluster's first cell in tree order (deterministic).
+//!
+//! This module defines its own layout; the standalone IA* (in `tds`) may differ.
+//!
+//! ```
+//! # use starplex::complex::{ComplexBuilder, BuildOptions};
+//! # use starplex::cell::CellKind;
+//! use starplex::stellar::{StellarTree, StellarOptions};
+//! use starplex::stellar::iastar::Adjacent;
+//! use starplex::ids::{CellId, VertexId};
+//! // the "book": three triangles on edge 01
+//! let mut b = ComplexBuilder::new(3).unwrap();
+//! for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]] {
+//!     b.push_vertex(&p).unwrap();
+//! }
+//! for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+//! let ia = t.iastar();
+//! assert_eq!(ia.adjacent(CellId(0), 2), Adjacent::NmFace(0)); // facet 2 = edge 01
+//! assert_eq!(ia.nm_face_cells(0), vec![0, 1, 2]);
+//! assert_eq!(ia.vertex_representatives(VertexId(0)), vec![0]);
+//! assert_eq!(ia.storage_refs(), 26); // the spec's anchor for the book
+//! ```
+use rayon::prelude::*;
+use rustc_hash::FxHashSet;
+
+use super::relations::{unpack, unpack_facet, FaceKeys};
+use super::{ExpandedLeaf, LeafView, StellarTree};
+use crate::cell::CellKind;
+use crate::csr::Csr;
+use crate::ids::{CellId, LeafId, VertexId};
+use crate::topo::{TopCells, VertexStar};
+
+/// Slot value: no adjacent top cell across this facet.
+const NONE: u32 = u32::MAX;
+/// Slot value (local IA* only): the facet has no vertex in the leaf, not computed.
+const NOT_LOCAL: u32 = u32::MAX - 1;
+/// Tag of a non-manifold facet reference.
+const NM: u32 = 1 << 31;
+
+/// What lies across one facet of a top cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Adjacent {
+    /// No other top cell of the same dimension.
+    None,
+    /// Exactly one other top cell (input id).
+    Top(CellId),
+    /// A non-manifold facet (three or more top cells); its id in [`IaStar::nm_face_cells`].
+    NmFace(u32),
+    /// Local IA* only: the facet has no vertex in the leaf, so it was not examined.
+    NotComputed,
+}
+
+fn decode(x: u32) -> Adjacent {
+    match x {
+        NONE => Adjacent::None,
+        NOT_LOCAL => Adjacent::NotComputed,
+        x if x & NM != 0 => Adjacent::NmFace(x & !NM),
+        x => Adjacent::Top(CellId(x)),
+    }
+}
+
+/// An IA* data structure over the tree's complex, stored in tree numbering and answering in
+/// input numbering. For a local IA*, the cells are those of one leaf and the vertex lists
+/// those of the leaf's vertices.
+#[derive(Clone, Debug)]
+pub struct IaStar<'t> {
+    tree: &'t StellarTree,
+    /// Covered tree cells (sorted) for a local IA*; `None`: all.
+    cells: Option<Vec<u32>>,
+    /// R_{k,k} slots of the covered cells, in covered order (tree ids | NM tag | NONE).
+    adj_off: Vec<u32>,
+    adj: Vec<u32>,
+    /// Non-manifold facets: their top cells (tree ids) and vertices (tree ids).
+    nm_cells: Csr,
+    nm_verts: Csr,
+    /// Covered tree vertices.
+    v_range: (u32, u32),
+    /// R_{0,1} + R*_{0,k} of the covered vertices (tree cell ids), rows in tree order.
+    reps: Csr,
+}
+
+impl<'t> IaStar<'t> {
+    fn cell_pos(&self, c: CellId) -> Option<usize> {
+        let t = *self.tree.c_new.get(c.index())?;
+        match &self.cells {
+            None => Some(t as usize),
+            Some(cs) => cs.binary_search(&t).ok(),
+        }
+    }
+    fn tree_cell_pos(&self, t: u32) -> Option<usize> {
+        match &self.cells {
+            None => Some(t as usize),
+            Some(cs) => cs.binary_search(&t).ok(),
+        }
+    }
+    fn vertex_pos(&self, v: VertexId) -> Option<usize> {
+        let tv = *self.tree.v_new.get(v.index())?;
+        (tv >= self.v_range.0 && tv < self.v_range.1).then(|| (tv - self.v_range.0) as usize)
+    }
+    fn to_input_sorted(&self, cells: &[u32]) -> Vec<u32> {
+        let mut v: Vec<u32> = cells
+            .iter()
+            .map(|&c| self.tree.c_orig[c as usize])
+            .collect();
+        v.sort_unstable();
+        v
+    }
+    /// Cells covered (input ids, sorted).
+    pub fn cells(&self) -> Vec<u32> {
+        match &self.cells {
+            None => (0..self.tree.n_top_cells() as u32).collect(),
+            Some(cs) => self.to_input_sorted(cs),
+        }
+    }
+    /// Vertices covered (input ids, sorted).
+    pub fn vertices(&self) -> Vec<u32> {
+        let mut v: Vec<u32> = (self.v_range.0..self.v_range.1)
+            .map(|t| self.tree.v_orig[t as usize])
+            .collect();
+        v.sort_unstable();
+        v
+    }
+    /// Number of adjacency slots of a covered cell (its facet count for dimension >= 2).
+    pub fn n_slots(&self, c: CellId) -> usize {
+        self.cell_pos(c)
+            .map_or(0, |i| (self.adj_off[i + 1] - self.adj_off[i]) as usize)
+    }
+    /// What lies across facet `j` of cell `c` (`None` for an uncovered cell or bad slot).
+    pub fn adjacent(&self, c: CellId, j: usize) -> Adjacent {
+        let Some(i) = self.cell_pos(c) else {
+            return Adjacent::None;
+        };
+        let row = &self.adj[self.adj_off[i] as usize..self.adj_off[i + 1] as usize];
+        match row.get(j).map(|&x| decode(x)) {
+            Some(Adjacent::Top(u)) => Adjacent::Top(CellId(self.tree.c_orig[u.index()])),
+            Some(a) => a,
+            None => Adjacent::None,
+        }
+    }
+    /// Number of non-manifold facets.
+    pub fn n_nm_faces(&self) -> usize {
+        self.nm_cells.n_rows()
+    }
+    /// Top cells of non-manifold facet `f` (input ids, sorted).
+    pub fn nm_face_cells(&self, f: u32) -> Vec<u32> {
+        self.to_input_sorted(self.nm_cells.row(f as usize))
+    }
+    /// Vertices of non-manifold facet `f` (input ids, sorted).
+    pub fn nm_face_vertices(&self, f: u32) -> Vec<u32> {
+        let mut v: Vec<u32> = self
+            .nm_verts
+            .row(f as usize)
+            .iter()
+            .map(|&w| self.tree.v_orig[w as usize])
+            .collect();
+        v.sort_unstable();
+        v
+    }
+    /// R_{0,1}(v) plus one top k-cell per k-cluster (k >= 2), sorted input ids.
+    pub fn vertex_representatives(&self, v: VertexId) -> Vec<u32> {
+        self.vertex_pos(v)
+            .map_or(Vec::new(), |i| self.to_input_sorted(self.reps.row(i)))
+    }
+    /// References stored (the spec's paper-faithful count): R_{k,0} + R_{k,k} slots + the
+    /// non-manifold facet lists + R_{0,1} and cluster representatives.
+    pub fn storage_refs(&self) -> u64 {
+        let cell_refs = match &self.cells {
+            None => self.tree.cells.verts.len(),
+            Some(cs) => cs.iter().map(|&c| self.tree.cells.verts(c).len()).sum(),
+        };
+        (cell_refs + self.adj.len() + self.nm_cells.n_refs() + self.reps.n_refs()) as u64
+    }
+    /// Bytes of the arrays this structure adds to the tree.
+    pub fn bytes(&self) -> usize {
+        4 * (self.cells.as_ref().map_or(0, |c| c.len()) + self.adj_off.len() + self.adj.len())
+            + self.nm_cells.bytes()
+            + self.nm_verts.bytes()
+            + self.reps.bytes()
+    }
+
+    /// Expands the clusters of `v` through the adjacency slots: the top cells incident to `v`
+    /// (needs the cells of the whole star to be covered, true for the global IA* and for the
+    /// leaf's own vertices in a local one).
+    pub fn star(&self, v: VertexId) -> Vec<CellId> {
+        let Some(i) = self.vertex_pos(v) else {
+            return Vec::new();
+        };
+        let tv = self.v_range.0 + i as u32;
+        let mut seen: FxHashSet<u32> = FxHashSet::default();
+        let mut stack: Vec<u32> = Vec::new();
+        for &r in self.reps.row(i) {
+            if seen.insert(r) {
+                stack.push(r);
+            }
+        }
+        while let Some(c) = stack.pop() {
+            let Some(pi) = self.tree_cell_pos(c) else {
+                continue;
+            };
+            let (kind, vs) = self.tree.cells.get(c);
+            let Some(p) = vs.iter().position(|&w| w == tv) else {
+                continue;
+            };
+            let row = &self.adj[self.adj_off[pi] as usize..self.adj_off[pi + 1] as usize];
+            for (j, &x) in row.iter().enumerate() {
+                if !facet_contains(kind, j, p) {
+                    continue;
+                }
+                match decode(x) {
+                    Adjacent::Top(u) if seen.insert(u.0) => stack.push(u.0),
+                    Adjacent::NmFace(f) => {
+                        for &u in self.nm_cells.row(f as usize) {
+                            if seen.insert(u) {
+                                stack.push(u);
+                            }
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+        let mut out: Vec<CellId> = seen
+            .into_iter()
+            .map(|c| CellId(self.tree.c_orig[c as usize]))
+            .collect();
+        out.sort_unstable();
+        out
+    }
+}
+
+impl TopCells for IaStar<'_> {
+    fn n_vertices(&self) -> usize {
+        self.tree.n_vertices()
+    }
+    fn n_top_cells(&self) -> usize {
+        self.cells
+            .as_ref()
+            .map_or(self.tree.n_top_cells(), |c| c.len())
+    }
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        self.tree.cells.get(self.tree.c_new[c.index()]).0
+    }
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        if self.cell_pos(c).is_some() {
+            let (_, vs) = self.tree.cells.get(self.tree.c_new[c.index()]);
+            out.extend(vs.iter().map(|&v| VertexId(self.tree.v_orig[v as usize])));
+        }
+    }
+}
+
+impl VertexStar for IaStar<'_> {
+    fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
+        *out = self.star(v);
+    }
+}
+
+/// Whether facet `j` of a cell of `kind` contains local vertex position `p`.
+fn facet_contains(kind: CellKind, j: usize, p: usize) -> bool {
+    if kind.is_simplex() {
+        return j != p;
+    }
+    kind.cp_faces(kind.dim() - 1)
+        .and_then(|t| t.get(j))
+        .is_some_and(|f| f.contains(&(p as u8)))
+}
+
+fn n_slots(kind: CellKind) -> usize {
+    if kind.dim() >= 2 {
+        kind.n_faces(kind.dim() - 1) as usize
+    } else {
+        0
+    }
+}
+
+/// Per-leaf pieces of an IA*, in tree numbering.
+struct Pieces {
+    /// (tree cell, facet, value) with value = tree cell | local nm index | NM.
+    slots: Vec<(u32, u32, u32)>,
+    nm_cells: Vec<Vec<u32>>,
+    nm_verts: Vec<Vec<u32>>,
+}
+
+fn group_pieces(keys: &mut FaceKeys) -> Pieces {
+    let mut p = Pieces {
+        slots: Vec::new(),
+        nm_cells: Vec::new(),
+        nm_verts: Vec::new(),
+    };
+    keys.for_each_group(|key, pays| match pays.len() {
+        1 => {}
+        2 => {
+            let (a, b) = (unpack(pays[0]).0, unpack(pays[1]).0);
+            p.slots.push((a, unpack_facet(pays[0]), b));
+            p.slots.push((b, unpack_facet(pays[1]), a));
+        }
+        _ => {
+            let id = p.nm_cells.len() as u32 | NM;
+            let mut cs: Vec<u32> = pays.iter().map(|&x| unpack(x).0).collect();
+            for &x in pays {
+                p.slots.push((unpack(x).0, unpack_facet(x), id));
+            }
+            cs.sort_unstable();
+            cs.dedup();
+            p.nm_cells.push(cs);
+            p.nm_verts.push(key[1..].to_vec());
+        }
+    });
+    p
+}
+
+impl StellarTree {
+    /// The global IA*, built leaf by leaf in parallel: each facet is examined once, in the leaf
+    /// owning its smallest vertex; the cluster representatives of each vertex are found in its
+    /// leaf. Same result for any number of threads.
+    pub fn iastar(&self) -> IaStar<'_> {
+        let nc = self.n_top_cells();
+        let pieces: Vec<Pieces> =
+            self.par_facet_groups_where(2, false, |_, keys| group_pieces(keys));
+        let mut off = vec![0u32; nc + 1];
+        for c in 0..nc {
+            off[c + 1] = off[c] + n_slots(self.cells.get(c as u32).0) as u32;
+        }
+        let mut adj = vec![NONE; off[nc] as usize];
+        let mut nm_cells = Csr {
+            offsets: vec![0],
+            targets: Vec::new(),
+        };
+        let mut nm_verts = nm_cells.clone();
+        for p in pieces {
+            let base = nm_cells.n_rows() as u32;
+            for (c, j, x) in p.slots {
+                let x = if x != NONE && x & NM != 0 {
+                    ((x & !NM) + base) | NM
+                } else {
+                    x
+                };
+                adj[(off[c as usize] + j) as usize] = x;
+            }
+            for (cs, vs) in p.nm_cells.iter().zip(&p.nm_verts) {
+                nm_cells.targets.extend_from_slice(cs);
+                nm_cells.offsets.push(nm_cells.targets.len() as u32);
+                nm_verts.targets.extend_from_slice(vs);
+                nm_verts.offsets.push(nm_verts.targets.len() as u32);
+            }
+        }
+        // representatives, leaf by leaf; rows come out in tree vertex order
+        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
+            let mut lens = Vec::with_capacity(view.tree_vertices().len());
+            let mut data = Vec::new();
+            let slots = |c: u32| &adj[off[c as usize] as usize..off[c as usize + 1] as usize];
+            let mut sc = RepScratch::default();
+            for v in view.tree_vertices() {
+                let s = data.len();
+                self.representatives(view, v, &slots, &nm_cells, &mut sc, &mut data);
+                lens.push((data.len() - s) as u32);
+            }
+            (lens, data)
+        });
+        let mut reps = Csr {
+            offsets: Vec::with_capacity(self.n_vertices() + 1),
+            targets: Vec::new(),
+        };
+        reps.offsets.push(0);
+        for (lens, data) in per_leaf {
+            for l in lens {
+                let last = *reps.offsets.last().expect("non-empty");
+                reps.offsets.push(last + l);
+            }
+            reps.targets.extend_from_slice(&data);
+        }
+        IaStar {
+            tree: self,
+            cells: None,
+            adj_off: off,
+            adj,
+            nm_cells,
+            nm_verts,
+            v_range: (0, self.n_vertices() as u32),
+            reps,
+        }
+    }
+
+    /// Appends the top edges and cluster representatives of tree vertex `v` (tree cell ids;
+    /// each cluster represented by its smallest tree id).
+    fn representatives<'s>(
+        &self,
+        view: &LeafView<'_>,
+        v: u32,
+        slots_of: &dyn Fn(u32) -> &'s [u32],
+        nm_cells: &Csr,
+        sc: &mut RepScratch,
+        out: &mut Vec<u32>,
+    ) {
+        let star = view.vt_tree(v);
+        // seen[i]: star[i] visited (neighbours through facets containing v are in the star)
+        sc.seen.clear();
+        sc.seen.resize(star.len(), false);
+        let mark = |seen: &mut Vec<bool>, c: u32| -> bool {
+            match star.binary_search(&c) {
+                Ok(i) if !seen[i] => {
+                    seen[i] = true;
+                    true
+                }
+                _ => false,
+            }
+        };
+        sc.stack.clear();
+        for &c in star {
+            let kind = self.cells.get(c).0;
+            if kind.dim() < 2 {
+                if kind.dim() == 1 {
+                    out.push(c);
+                }
+                continue;
+            }
+            if !mark(&mut sc.seen, c) {
+                continue;
+            }
+            out.push(c);
+            sc.stack.push(c);
+            while let Some(a) = sc.stack.pop() {
+                let (ka, vs) = self.cells.get(a);
+                let p = vs.iter().position(|&w| w == v).expect("in the star");
+                for (j, &x) in slots_of(a).iter().enumerate() {
+                    if x == NONE || x == NOT_LOCAL || !facet_contains(ka, j, p) {
+                        continue;
+                    }
+                    if x & NM != 0 {
+                        for &u in nm_cells.row((x & !NM) as usize) {
+                            if mark(&mut sc.seen, u) {
+                                sc.stack.push(u);
+                            }
+                        }
+                    } else if mark(&mut sc.seen, x) {
+                        sc.stack.push(x);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The local IA* of one leaf: its top cells with the adjacencies across facets that have
+    /// a vertex in the leaf (other slots are [`Adjacent::NotComputed`]), the non-manifold
+    /// facets among those, and the representatives of the leaf's vertices.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::stellar::{StellarTree, StellarOptions};
+    /// use starplex::ids::{LeafId, VertexId};
+    /// use starplex::topo::VertexStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let l = t.leaf_of_vertex(VertexId(1)).unwrap();
+    /// let ia = t.local_iastar(l);
+    /// assert_eq!(ia.vertices(), vec![1]);
+    /// assert_eq!(ia.star(VertexId(1)).len(), 2);
+    /// ```
+    pub fn local_iastar(&self, l: LeafId) -> IaStar<'_> {
+        let mut e = ExpandedLeaf::default();
+        self.expand_leaf_into(l, &mut e);
+        let view = LeafView { tree: self, e: &e };
+        let mut keys = FaceKeys::default();
+        let w = 1 + self
+            .kinds()
+            .iter()
+            .map(|&k| {
+                if k.dim() >= 1 {
+                    super::relations::face_width(k, k.dim() - 1)
+                } else {
+                    0
+                }
+            })
+            .max()
+            .unwrap_or(0);
+        keys.clear(w);
+        let mut key = Vec::new();
+        for &c in &e.cells {
+            let (kind, vs) = self.cells.get(c);
+            let d = kind.dim();
+            if d < 2 {
+                continue;
+            }
+            let mut j = 0u64;
+            super::relations::oriented_facets_of(kind, |local, _| {
+                j += 1;
+                key.clear();
+                key.extend(local.iter().map(|&i| vs[i as usize]));
+                if key.iter().any(|&x| view.owns(x)) {
+                    key.sort_unstable();
+                    key.insert(0, d as u32);
+                    keys.push(&key, super::relations::pack(c, j - 1, 1));
+                }
+            });
+        }
+        let p = group_pieces(&mut keys);
+        let ncl = e.cells.len();
+        let pos = |c: u32| e.cells.binary_search(&c).expect("a leaf cell");
+        let mut off = vec![0u32; ncl + 1];
+        for (i, &c) in e.cells.iter().enumerate() {
+            off[i + 1] = off[i] + n_slots(self.cells.get(c).0) as u32;
+        }
+        let mut adj = vec![NOT_LOCAL; off[ncl] as usize];
+        // facets with a leaf vertex: NONE unless paired below
+        for (i, &c) in e.cells.iter().enumerate() {
+            let (kind, vs) = self.cells.get(c);
+            if kind.dim() < 2 {
+                continue;
+            }
+            let mut j = 0usize;
+            super::relations::oriented_facets_of(kind, |local, _| {
+                if local.iter().any(|&x| view.owns(vs[x as usize])) {
+                    adj[off[i] as usize + j] = NONE;
+                }
+                j += 1;
+            });
+        }
+        for &(c, j, x) in &p.slots {
+            adj[(off[pos(c)] + j) as usize] = x;
+        }
+        let mut nm_cells = Csr {
+            offsets: vec![0],
+            targets: Vec::new(),
+        };
+        let mut nm_verts = nm_cells.clone();
+        for (cs, vs) in p.nm_cells.iter().zip(&p.nm_verts) {
+            nm_cells.targets.extend_from_slice(cs);
+            nm_cells.offsets.push(nm_cells.targets.len() as u32);
+            nm_verts.targets.extend_from_slice(vs);
+            nm_verts.offsets.push(nm_verts.targets.len() as u32);
+        }
+        let slots_of = |c: u32| -> &[u32] {
+            let i = pos(c);
+            &adj[off[i] as usize..off[i + 1] as usize]
+        };
+        let mut reps = Csr {
+            offsets: vec![0],
+            targets: Vec::new(),
+        };
+        let mut sc = RepScratch::default();
+        for v in view.tree_vertices() {
+            self.representatives(&view, v, &slots_of, &nm_cells, &mut sc, &mut reps.targets);
+            reps.offsets.push(reps.targets.len() as u32);
+        }
+        let cells = std::mem::take(&mut e.cells);
+        IaStar {
+            tree: self,
+            cells: Some(cells),
+            adj_off: off,
+            adj,
+            nm_cells,
+            nm_verts,
+            v_range: (e.v_start, e.v_end),
+            reps,
+        }
+    }
+
+    /// Builds the local IA* of every leaf in parallel and returns the total of their
+    /// reference counts (the local approach: each is discarded after use by `f`).
+    pub fn par_local_iastar<R: Send>(&self, f: impl Fn(&IaStar<'_>) -> R + Sync + Send) -> Vec<R> {
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map(|l| f(&self.local_iastar(LeafId(l))))
+            .collect()
+    }
+}
+
+#[derive(Default)]
+struct RepScratch {
+    seen: Vec<bool>,
+    stack: Vec<u32>,
+}

@@ -1,0 +1,235 @@
+//! IA* generated from the Stellar tree (global and local) against a brute-force model on
+//! random complexes, and the spec's storage anchors.
+use std::collections::BTreeSet;
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngSeed, TestRunner};
+use starplex::cell::CellKind;
+use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
+use starplex::ids::{CellId, LeafId, VertexId};
+use starplex::stellar::iastar::Adjacent;
+use starplex::stellar::{StellarOptions, StellarTree};
+use starplex::topo::VertexStar;
+
+const KINDS: [CellKind; 9] = [
+    CellKind::Simplex(1),
+    CellKind::Simplex(2),
+    CellKind::Simplex(2),
+    CellKind::Simplex(3),
+    CellKind::Simplex(4),
+    CellKind::Quad,
+    CellKind::Pyramid,
+    CellKind::Prism,
+    CellKind::Hex,
+];
+
+fn make(ambient: usize, points: &[Vec<i32>], cells: &[(u8, Vec<u32>)]) -> IndexedComplex {
+    let mut b = ComplexBuilder::new(ambient).unwrap();
+    for p in points {
+        b.push_vertex(&p.iter().map(|&x| x as f64).collect::<Vec<_>>())
+            .unwrap();
+    }
+    for (k, vs) in cells {
+        let kind = KINDS[*k as usize % KINDS.len()];
+        let mut d: Vec<u32> = Vec::new();
+        for &v in vs {
+            if !d.contains(&v) {
+                d.push(v);
+            }
+        }
+        if d.len() >= kind.n_vertices() {
+            b.push_cell(kind, &d[..kind.n_vertices()]).unwrap();
+        }
+    }
+    b.build(&BuildOptions {
+        drop_face_cells: true,
+        drop_duplicates: true,
+        ..Default::default()
+    })
+    .unwrap()
+    .0
+}
+
+fn facet_sets(kind: CellKind, vs: &[u32]) -> Vec<Vec<u32>> {
+    let mut out = Vec::new();
+    kind.for_each_oriented_facet(|l, _| {
+        let mut f: Vec<u32> = l.iter().map(|&i| vs[i as usize]).collect();
+        f.sort();
+        out.push(f);
+    });
+    out
+}
+
+fn check(k: &IndexedComplex, kv: u32) {
+    let t = StellarTree::build(
+        k,
+        &StellarOptions {
+            kv: Some(kv),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let ia = t.iastar();
+    let cells: Vec<_> = k.cells().collect();
+    let facets: Vec<Vec<Vec<u32>>> = cells
+        .iter()
+        .map(|c| {
+            if c.kind.dim() >= 2 {
+                facet_sets(c.kind, c.vertices)
+            } else {
+                vec![]
+            }
+        })
+        .collect();
+    for c in &cells {
+        let i = c.id.index();
+        assert_eq!(ia.n_slots(c.id), facets[i].len());
+        for (j, f) in facets[i].iter().enumerate() {
+            let others: Vec<u32> = cells
+                .iter()
+                .filter(|o| o.id != c.id && o.kind.dim() == c.kind.dim())
+                .filter(|o| facets[o.id.index()].contains(f))
+                .map(|o| o.id.0)
+                .collect();
+            match (others.len(), ia.adjacent(c.id, j)) {
+                (0, Adjacent::None) => {}
+                (1, Adjacent::Top(u)) => assert_eq!(u.0, others[0]),
+                (n, Adjacent::NmFace(nf)) if n >= 2 => {
+                    let mut all = others.clone();
+                    all.push(c.id.0);
+                    all.sort();
+                    assert_eq!(ia.nm_face_cells(nf), all);
+                    assert_eq!(&ia.nm_face_vertices(nf), f);
+                }
+                (n, a) => panic!("cell {i} facet {j}: {n} others, got {a:?}"),
+            }
+        }
+    }
+    // representatives: all top edges, one per k-cluster (its smallest id)
+    for v in 0..k.n_vertices() as u32 {
+        let star: Vec<_> = cells.iter().filter(|c| c.vertices.contains(&v)).collect();
+        let want: Vec<u32> = star
+            .iter()
+            .filter(|c| c.kind.dim() == 1)
+            .map(|c| c.id.0)
+            .collect();
+        // clusters by plain flooding
+        let mut clusters: Vec<Vec<u32>> = Vec::new();
+        let mut seen = BTreeSet::new();
+        for s in star.iter().filter(|c| c.kind.dim() >= 2) {
+            if seen.contains(&s.id.0) {
+                continue;
+            }
+            let mut cluster = vec![s.id.0];
+            seen.insert(s.id.0);
+            let mut st = vec![s.id.index()];
+            while let Some(a) = st.pop() {
+                for o in star.iter().filter(|o| o.kind.dim() == cells[a].kind.dim()) {
+                    if seen.contains(&o.id.0) {
+                        continue;
+                    }
+                    let shared = facets[a]
+                        .iter()
+                        .any(|f| f.contains(&v) && facets[o.id.index()].contains(f));
+                    if shared {
+                        seen.insert(o.id.0);
+                        cluster.push(o.id.0);
+                        st.push(o.id.index());
+                    }
+                }
+            }
+            clusters.push(cluster);
+        }
+        // all top edges, and exactly one representative in each cluster
+        let got = ia.vertex_representatives(VertexId(v));
+        assert_eq!(got.len(), want.len() + clusters.len(), "reps of {v}");
+        for e in &want {
+            assert!(got.contains(e));
+        }
+        for cl in &clusters {
+            assert_eq!(
+                cl.iter().filter(|c| got.contains(c)).count(),
+                1,
+                "reps of {v}"
+            );
+        }
+        let vt: Vec<CellId> = star.iter().map(|c| c.id).collect();
+        let mut got = Vec::new();
+        ia.vertex_top_cells(VertexId(v), &mut got);
+        assert_eq!(got, vt, "IA* star of {v}");
+    }
+    // local IA*: stars of the leaf's own vertices, and the slots it computed agree
+    for l in 0..t.n_leaves() {
+        let loc = t.local_iastar(LeafId(l as u32));
+        for v in loc.vertices() {
+            assert_eq!(loc.star(VertexId(v)), ia.star(VertexId(v)));
+            assert_eq!(
+                loc.vertex_representatives(VertexId(v)).len(),
+                ia.vertex_representatives(VertexId(v)).len()
+            );
+        }
+        for c in loc.cells() {
+            for j in 0..loc.n_slots(CellId(c)) {
+                match (loc.adjacent(CellId(c), j), ia.adjacent(CellId(c), j)) {
+                    (Adjacent::NotComputed, _) => {}
+                    (Adjacent::NmFace(a), Adjacent::NmFace(b)) => {
+                        assert_eq!(loc.nm_face_cells(a), ia.nm_face_cells(b))
+                    }
+                    (a, b) => assert_eq!(a, b),
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn iastar_equals_brute_force() {
+    let strat = (1usize..=3, 1usize..30).prop_flat_map(|(amb, nv)| {
+        (
+            Just(amb),
+            proptest::collection::vec(proptest::collection::vec(0i32..4, amb), nv),
+            proptest::collection::vec(
+                (0u8..9, proptest::collection::vec(0u32..nv as u32, 8)),
+                0..25,
+            ),
+        )
+    });
+    let mut runner = TestRunner::new(Config {
+        cases: 64,
+        rng_seed: RngSeed::Fixed(7),
+        failure_persistence: None,
+        ..Config::default()
+    });
+    runner
+        .run(&strat, |(amb, pts, cells)| {
+            let k = make(amb, &pts, &cells);
+            for kv in [1, 5, 0] {
+                check(&k, kv);
+            }
+            Ok(())
+        })
+        .unwrap();
+}
+
+#[test]
+fn storage_anchors_of_the_spec() {
+    let pts: Vec<Vec<i32>> = (0..7).map(|i| vec![i, i * i % 5, i % 3]).collect();
+    let anchor = |cells: &[(u8, Vec<u32>)], want: u64| {
+        let k = make(3, &pts, cells);
+        let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+        assert_eq!(t.iastar().storage_refs(), want, "{cells:?}");
+    };
+    let (tri, tet, edge) = (1u8, 3u8, 0u8);
+    anchor(&[(tet, vec![0, 1, 2, 3])], 12);
+    anchor(&[(tri, vec![0, 1, 2]), (tri, vec![0, 3, 4])], 18);
+    anchor(
+        &[
+            (tri, vec![0, 1, 2]),
+            (tri, vec![0, 1, 3]),
+            (tri, vec![0, 1, 4]),
+        ],
+        26,
+    );
+    anchor(&[(tet, vec![0, 1, 2, 3]), (tet, vec![0, 1, 4, 5])], 24);
+    anchor(&[(tri, vec![0, 1, 2]), (edge, vec![2, 3])], 13);
+}
