@@ -6,8 +6,10 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod cmd_bench;
+mod cmd_compare;
 mod cmd_convert;
 mod cmd_info;
+mod cmd_query;
 mod common;
 
 /// Topology of meshes and complexes.
@@ -27,6 +29,10 @@ enum Command {
     Info(cmd_info::InfoArgs),
     /// Convert between formats (by extension, or --format / --to).
     Convert(cmd_convert::ConvertArgs),
+    /// Query one data structure through the shared interface (VT, VV, link, star, ...).
+    Query(cmd_query::QueryArgs),
+    /// Build every data structure and compare storage and query times.
+    Compare(cmd_compare::CompareArgs),
     /// Timings of one data structure (single thread): `bench simplex-tree FILE`.
     Bench(cmd_bench::BenchArgs),
     /// The main job on the bundled sample (what `cargo run --release` does without arguments).
@@ -45,6 +51,8 @@ fn main() -> ExitCode {
         Some(Command::Info(a)) => cmd_info::run(&ctx, &a),
         Some(Command::Convert(a)) => cmd_convert::run(&ctx, &a),
         Some(Command::Bench(a)) => cmd_bench::run(&ctx, &a),
+        Some(Command::Query(a)) => cmd_query::run(&ctx, &a),
+        Some(Command::Compare(a)) => cmd_compare::run(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
