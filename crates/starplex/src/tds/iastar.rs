@@ -85,8 +85,32 @@ struct Block {
     first: u32,
     /// Index of the block's first top among the tops of its dimension.
     dim_offset: u32,
-    verts: Vec<u32>,
-    adj: Vec<u32>,
+    /// Number of tops in the block.
+    len: u32,
+    /// Per top: its k+1 vertices, then (k ≥ 2) its k+1 adjacency slots — one cache line per
+    /// tetrahedron.
+    data: Vec<u32>,
+}
+
+impl Block {
+    #[inline]
+    fn stride(&self) -> usize {
+        if self.dim >= 2 {
+            2 * (self.dim + 1)
+        } else {
+            self.dim + 1
+        }
+    }
+    fn n_verts(&self) -> usize {
+        self.len as usize * (self.dim + 1)
+    }
+    fn n_slots(&self) -> usize {
+        if self.dim >= 2 {
+            self.n_verts()
+        } else {
+            0
+        }
+    }
 }
 
 /// The IA* data structure. See the [module docs](self).
@@ -121,16 +145,23 @@ impl IaStar {
                 return Err(IaStarError::NotSimplicial(b.first, b.kind.type_name()));
             }
             let dim = b.kind.dim();
+            let n = dim + 1;
+            let data = if dim >= 2 {
+                let mut d = Vec::with_capacity(2 * b.vertices.len());
+                for c in b.vertices.chunks_exact(n) {
+                    d.extend_from_slice(c);
+                    d.extend(std::iter::repeat_n(NONE, n));
+                }
+                d
+            } else {
+                b.vertices.to_vec()
+            };
             blocks.push(Block {
                 dim,
                 first: b.first,
                 dim_offset: t[dim] as u32,
-                verts: b.vertices.to_vec(),
-                adj: if dim >= 2 {
-                    vec![NONE; b.vertices.len()]
-                } else {
-                    Vec::new()
-                },
+                len: b.len() as u32,
+                data,
             });
             t[dim] += b.len() as u64;
         }
@@ -167,13 +198,10 @@ impl IaStar {
     fn top(&self, c: u32) -> (usize, &[u32], &[u32]) {
         let b = self.block_of(c);
         let n = b.dim + 1;
+        let st = b.stride();
         let i = (c - b.first) as usize;
-        let adj = if b.adj.is_empty() {
-            &[][..]
-        } else {
-            &b.adj[i * n..(i + 1) * n]
-        };
-        (b.dim, &b.verts[i * n..(i + 1) * n], adj)
+        let rec = &b.data[i * st..(i + 1) * st];
+        (b.dim, &rec[..n], &rec[n..])
     }
 
     /// Calls `f` with every top reached from `c` through a facet containing `v`.
@@ -366,10 +394,10 @@ impl IaStar {
         let b = self
             .blocks
             .iter()
-            .filter(|b| b.dim == m && b.dim_offset <= i)
-            .last()?;
+            .rev()
+            .find(|b| b.dim == m && b.dim_offset <= i)?;
         let local = i - b.dim_offset;
-        ((local as usize) < b.verts.len() / (m + 1)).then(|| CellId(b.first + local))
+        (local < b.len).then(|| CellId(b.first + local))
     }
 
     fn vt_into(&self, v: u32, out: &mut Vec<CellId>) {
@@ -420,20 +448,29 @@ impl IaStar {
 /// non-manifold face lists.
 fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
     let n = d + 1;
-    // sorted copy of every top's vertices and global ids, in dimension order
-    let mut sorted: Vec<u32> = Vec::new();
-    let mut ids: Vec<u32> = Vec::new();
-    for b in blocks.iter().filter(|b| b.dim == d) {
-        for (i, c) in b.verts.chunks_exact(n).enumerate() {
-            let s0 = sorted.len();
-            sorted.extend_from_slice(c);
-            sorted[s0..].sort_unstable();
-            ids.push(b.first + i as u32);
+    // sorted copy of every top's vertices, the input position of each sorted entry, and
+    // where each top lives (block, local), in dimension order
+    let nt: usize = blocks
+        .iter()
+        .filter(|b| b.dim == d)
+        .map(|b| b.len as usize)
+        .sum();
+    let mut sorted: Vec<u32> = Vec::with_capacity(nt * n);
+    let mut perm: Vec<u8> = Vec::with_capacity(nt * n);
+    let mut where_: Vec<(u32, u32)> = Vec::new(); // (first dim-local index, block index)
+    let mut pairs: Vec<(u32, u8)> = Vec::with_capacity(n);
+    for (bi, b) in blocks.iter().enumerate().filter(|(_, b)| b.dim == d) {
+        where_.push(((sorted.len() / n) as u32, bi as u32));
+        let st = b.stride();
+        for rec in b.data.chunks_exact(st) {
+            pairs.clear();
+            pairs.extend(rec[..n].iter().enumerate().map(|(j, &v)| (v, j as u8)));
+            pairs.sort_unstable();
+            sorted.extend(pairs.iter().map(|p| p.0));
+            perm.extend(pairs.iter().map(|p| p.1));
         }
     }
-    let nt = ids.len();
-    // slot (li, jj) where jj is the position in the *sorted* tuple of the removed vertex.
-    // bucket by the facet's smallest vertex: sorted[0] unless jj == 0, then sorted[1].
+    // bucket the slots (li, jj) by the facet's smallest vertex
     let min_of = |slot: usize| -> u32 {
         let (li, jj) = (slot / n, slot % n);
         sorted[li * n + usize::from(jj == 0)]
@@ -452,7 +489,8 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
         order[pos[m] as usize] = slot as u32;
         pos[m] += 1;
     }
-    // facet key without its first vertex, packed when it fits
+    drop(pos);
+    // the facet without its smallest vertex
     let facet = |slot: u32, out: &mut [u32]| {
         let (li, jj) = (slot as usize / n, slot as usize % n);
         let t = &sorted[li * n..(li + 1) * n];
@@ -464,49 +502,82 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
             }
         }
     };
-    let mut nm_pairs: Vec<u32> = Vec::new(); // flat: tops of each nm face
+    let single = where_.len() == 1;
+    let locate = |li: usize| -> (usize, usize) {
+        if single {
+            return (where_[0].1 as usize, li);
+        }
+        let k = where_.partition_point(|w| w.0 as usize <= li) - 1;
+        (where_[k].1 as usize, li - where_[k].0 as usize)
+    };
+    let ids: Vec<u32> = (0..nt)
+        .map(|li| {
+            let (bi, local) = locate(li);
+            blocks[bi].first + local as u32
+        })
+        .collect();
+    let set_slot = |blocks: &mut [Block], slot: u32, val: u32| {
+        let li = slot as usize / n;
+        let j = perm[slot as usize] as usize;
+        let (bi, local) = locate(li);
+        blocks[bi].data[local * 2 * n + n + j] = val;
+    };
+    let mut nm_tops: Vec<u32> = Vec::new();
     let mut nm_offsets: Vec<u32> = vec![0];
-    // global id -> (block index, local)
-    let locate = |blocks: &[Block], c: u32| -> (usize, usize) {
-        let bi = blocks.partition_point(|b| b.first <= c) - 1;
-        (bi, (c - blocks[bi].first) as usize)
-    };
-    let set_slot = |blocks: &mut [Block], slot: u32, val: u32, ids: &[u32], sorted: &[u32]| {
-        let (li, jj) = (slot as usize / n, slot as usize % n);
-        let c = ids[li];
-        let removed = sorted[li * n + jj];
-        let (bi, local) = locate(blocks, c);
-        let b = &mut blocks[bi];
-        let verts = &b.verts[local * n..(local + 1) * n];
-        let j = verts
-            .iter()
-            .position(|&x| x == removed)
-            .expect("vertex of its top");
-        b.adj[local * n + j] = val;
-    };
     let mut ka = vec![0u32; n];
     let mut kb = vec![0u32; n];
     let mut keyed: Vec<(u64, u32)> = Vec::new();
+    let mut group = |blocks: &mut [Block], g: &[u32]| match g.len() {
+        1 => {}
+        2 => {
+            let (c1, c2) = (ids[g[0] as usize / n], ids[g[1] as usize / n]);
+            set_slot(blocks, g[0], c2);
+            set_slot(blocks, g[1], c1);
+        }
+        _ => {
+            let f = (nm_offsets.len() - 1) as u32;
+            let start = nm_tops.len();
+            for &s in g {
+                nm_tops.push(ids[s as usize / n]);
+                set_slot(blocks, s, NM_BIT | f);
+            }
+            nm_tops[start..].sort_unstable();
+            nm_offsets.push(nm_tops.len() as u32);
+        }
+    };
+    let mut gbuf: Vec<u32> = Vec::new();
     for v in 0..nv {
         let bucket = &mut order[counts[v] as usize..counts[v + 1] as usize];
         if bucket.len() < 2 {
             continue;
         }
         if d <= 3 {
-            // the facet minus its min vertex has d-1 ≤ 2 vertices: pack into u64
+            // the facet minus its min vertex has d-1 ≤ 2 vertices: a u64 key
             keyed.clear();
             for &s in bucket.iter() {
-                facet(s, &mut ka[..d]);
+                let (li, jj) = (s as usize / n, s as usize % n);
+                let t = &sorted[li * n..(li + 1) * n];
                 let key = if d == 2 {
-                    ka[1] as u64
+                    t[if jj == 2 { 1 } else { 2 }] as u64
                 } else {
+                    facet(s, &mut ka[..d]);
                     ((ka[1] as u64) << 32) | ka[2] as u64
                 };
                 keyed.push((key, s));
             }
             keyed.sort_unstable();
-            for (dst, &(_, s)) in bucket.iter_mut().zip(keyed.iter()) {
-                *dst = s;
+            let mut i = 0;
+            while i < keyed.len() {
+                let mut j = i + 1;
+                while j < keyed.len() && keyed[j].0 == keyed[i].0 {
+                    j += 1;
+                }
+                if j - i >= 2 {
+                    gbuf.clear();
+                    gbuf.extend(keyed[i..j].iter().map(|x| x.1));
+                    group(blocks, &gbuf);
+                }
+                i = j;
             }
         } else {
             bucket.sort_unstable_by(|&a, &b| {
@@ -514,43 +585,29 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
                 facet(b, &mut kb[..d]);
                 ka[..d].cmp(&kb[..d])
             });
-        }
-        let mut i = 0;
-        while i < bucket.len() {
-            facet(bucket[i], &mut ka[..d]);
-            let mut j = i + 1;
-            while j < bucket.len() {
-                facet(bucket[j], &mut kb[..d]);
-                if ka[..d] != kb[..d] {
-                    break;
-                }
-                j += 1;
-            }
-            match j - i {
-                1 => {}
-                2 => {
-                    let (s1, s2) = (bucket[i], bucket[i + 1]);
-                    let (c1, c2) = (ids[s1 as usize / n], ids[s2 as usize / n]);
-                    set_slot(blocks, s1, c2, &ids, &sorted);
-                    set_slot(blocks, s2, c1, &ids, &sorted);
-                }
-                _ => {
-                    let f = (nm_offsets.len() - 1) as u32;
-                    let start = nm_pairs.len();
-                    for &s in &bucket[i..j] {
-                        nm_pairs.push(ids[s as usize / n]);
-                        set_slot(blocks, s, NM_BIT | f, &ids, &sorted);
+            let mut i = 0;
+            while i < bucket.len() {
+                facet(bucket[i], &mut ka[..d]);
+                let mut j = i + 1;
+                while j < bucket.len() {
+                    facet(bucket[j], &mut kb[..d]);
+                    if ka[..d] != kb[..d] {
+                        break;
                     }
-                    nm_pairs[start..].sort_unstable();
-                    nm_offsets.push(nm_pairs.len() as u32);
+                    j += 1;
                 }
+                if j - i >= 2 {
+                    gbuf.clear();
+                    gbuf.extend_from_slice(&bucket[i..j]);
+                    group(blocks, &gbuf);
+                }
+                i = j;
             }
-            i = j;
         }
     }
     Csr {
         offsets: nm_offsets,
-        targets: nm_pairs,
+        targets: nm_tops,
     }
 }
 
@@ -597,8 +654,8 @@ impl VertexAdjacency for IaStar {
 impl Storage for IaStar {
     /// The spec's formula: Σ_{k≥1}(k+1)t_k + Σ_{k≥2}(k+1)t_k + Σ |NM lists| + 2t_1 + Σ_v Σ_k κ_k(v).
     fn refs(&self) -> u64 {
-        let verts: u64 = self.blocks.iter().map(|b| b.verts.len() as u64).sum();
-        let adj: u64 = self.blocks.iter().map(|b| b.adj.len() as u64).sum();
+        let verts: u64 = self.blocks.iter().map(|b| b.n_verts() as u64).sum();
+        let adj: u64 = self.blocks.iter().map(|b| b.n_slots() as u64).sum();
         let nm: u64 = self.nm.iter().map(|c| c.n_refs() as u64).sum();
         verts + adj + nm + self.vrefs.n_refs() as u64
     }
@@ -606,7 +663,7 @@ impl Storage for IaStar {
         let blocks: usize = self
             .blocks
             .iter()
-            .map(|b| 4 * (b.verts.len() + b.adj.len()) + std::mem::size_of::<Block>())
+            .map(|b| 4 * b.data.len() + std::mem::size_of::<Block>())
             .sum();
         let nm: usize = self.nm.iter().map(|c| c.bytes()).sum();
         (blocks + nm + self.vrefs.bytes()) as u64
