@@ -228,32 +228,73 @@ impl IaStar {
 
     fn cluster_representatives(&self, vt: &Csr) -> Csr {
         let nv = self.n_vertices as usize;
-        let mut stamp = vec![u32::MAX; self.n_cells as usize];
         let mut offsets = Vec::with_capacity(nv + 1);
-        let mut targets = Vec::new();
+        let mut targets = Vec::with_capacity(nv + 2 * self.n_tops(1) as usize);
         let mut queue: Vec<u32> = Vec::new();
+        // per row: visited marks, and a local copy of the records (the copy loop issues
+        // independent loads, so their cache misses overlap; the search then runs in cache)
+        let mut mark: Vec<bool> = Vec::new();
+        let mut loc: Vec<u32> = Vec::new();
+        let mut start: Vec<u32> = Vec::new();
+        let mut dims: Vec<u8> = Vec::new();
         offsets.push(0u32);
         for v in 0..nv as u32 {
-            for &c in vt.row(v as usize) {
-                let (dim, _, _) = self.top(c);
-                if dim <= 1 {
+            let row = vt.row(v as usize);
+            mark.clear();
+            mark.resize(row.len(), false);
+            loc.clear();
+            start.clear();
+            dims.clear();
+            for &c in row {
+                let (dim, verts, adj) = self.top(c);
+                start.push(loc.len() as u32);
+                dims.push(dim as u8);
+                if dim >= 2 {
+                    loc.extend_from_slice(verts);
+                    loc.extend_from_slice(adj);
+                }
+            }
+            for (ri, &c) in row.iter().enumerate() {
+                if dims[ri] <= 1 {
                     targets.push(c);
                     continue;
                 }
-                if stamp[c as usize] == v {
+                if mark[ri] {
                     continue;
                 }
                 targets.push(c);
-                stamp[c as usize] = v;
+                mark[ri] = true;
                 queue.clear();
-                queue.push(c);
+                queue.push(ri as u32);
                 while let Some(x) = queue.pop() {
-                    self.for_each_neighbour_at(x, v, |u| {
-                        if stamp[u as usize] != v {
-                            stamp[u as usize] = v;
-                            queue.push(u);
+                    let n = dims[x as usize] as usize + 1;
+                    let s0 = start[x as usize] as usize;
+                    let (verts, adj) = (&loc[s0..s0 + n], &loc[s0 + n..s0 + 2 * n]);
+                    let mut visit = |u: u32| {
+                        let ui = row
+                            .binary_search(&u)
+                            .expect("a neighbour through a facet at v contains v");
+                        if !mark[ui] {
+                            mark[ui] = true;
+                            queue.push(ui as u32);
                         }
-                    });
+                    };
+                    for j in 0..n {
+                        if verts[j] == v {
+                            continue;
+                        }
+                        match decode(adj[j]) {
+                            Adj::None => {}
+                            Adj::Top(u) => visit(u.0),
+                            Adj::NmFace(f) => {
+                                for &u in self.nm[n - 1].row(f as usize) {
+                                    if u != row[x as usize] {
+                                        visit(u);
+                                    }
+                                }
+                            }
+                        }
+                    }
                 }
             }
             offsets.push(targets.len() as u32);
@@ -470,7 +511,8 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
             perm.extend(pairs.iter().map(|p| p.1));
         }
     }
-    // bucket the slots (li, jj) by the facet's smallest vertex
+    // bucket the slots (li, jj) by the facet's smallest vertex; for d ≤ 3 the rest of the
+    // facet packs into a u64 key, computed in one sequential pass
     let min_of = |slot: usize| -> u32 {
         let (li, jj) = (slot / n, slot % n);
         sorted[li * n + usize::from(jj == 0)]
@@ -483,11 +525,33 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
         counts[i + 1] += counts[i];
     }
     let mut pos = counts.clone();
-    let mut order = vec![0u32; nt * n];
-    for slot in 0..nt * n {
-        let m = min_of(slot) as usize;
-        order[pos[m] as usize] = slot as u32;
-        pos[m] += 1;
+    let packed = d <= 3;
+    let mut order = vec![0u32; if packed { 0 } else { nt * n }];
+    let mut recs: Vec<(u64, u32)> = vec![(0, 0); if packed { nt * n } else { 0 }];
+    for li in 0..nt {
+        let t = &sorted[li * n..(li + 1) * n];
+        for jj in 0..n {
+            let slot = li * n + jj;
+            let m = t[usize::from(jj == 0)] as usize;
+            if packed {
+                let key = if d == 2 {
+                    t[if jj == 2 { 1 } else { 2 }] as u64
+                } else {
+                    // facet = t without jj; drop its first (min) entry
+                    let (a, b) = match jj {
+                        0 => (t[2], t[3]),
+                        1 => (t[2], t[3]),
+                        2 => (t[1], t[3]),
+                        _ => (t[1], t[2]),
+                    };
+                    ((a as u64) << 32) | b as u64
+                };
+                recs[pos[m] as usize] = (key, slot as u32);
+            } else {
+                order[pos[m] as usize] = slot as u32;
+            }
+            pos[m] += 1;
+        }
     }
     drop(pos);
     // the facet without its smallest vertex
@@ -526,7 +590,6 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
     let mut nm_offsets: Vec<u32> = vec![0];
     let mut ka = vec![0u32; n];
     let mut kb = vec![0u32; n];
-    let mut keyed: Vec<(u64, u32)> = Vec::new();
     let mut group = |blocks: &mut [Block], g: &[u32]| match g.len() {
         1 => {}
         2 => {
@@ -547,24 +610,11 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
     };
     let mut gbuf: Vec<u32> = Vec::new();
     for v in 0..nv {
-        let bucket = &mut order[counts[v] as usize..counts[v + 1] as usize];
-        if bucket.len() < 2 {
+        if counts[v + 1] - counts[v] < 2 {
             continue;
         }
-        if d <= 3 {
-            // the facet minus its min vertex has d-1 ≤ 2 vertices: a u64 key
-            keyed.clear();
-            for &s in bucket.iter() {
-                let (li, jj) = (s as usize / n, s as usize % n);
-                let t = &sorted[li * n..(li + 1) * n];
-                let key = if d == 2 {
-                    t[if jj == 2 { 1 } else { 2 }] as u64
-                } else {
-                    facet(s, &mut ka[..d]);
-                    ((ka[1] as u64) << 32) | ka[2] as u64
-                };
-                keyed.push((key, s));
-            }
+        if packed {
+            let keyed = &mut recs[counts[v] as usize..counts[v + 1] as usize];
             keyed.sort_unstable();
             let mut i = 0;
             while i < keyed.len() {
@@ -580,6 +630,7 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
                 i = j;
             }
         } else {
+            let bucket = &mut order[counts[v] as usize..counts[v + 1] as usize];
             bucket.sort_unstable_by(|&a, &b| {
                 facet(a, &mut ka[..d]);
                 facet(b, &mut kb[..d]);
