@@ -221,6 +221,8 @@ fn check_structure<S: Queries + ?Sized>(name: &str, s: &S, m: &Model, sorted_top
         }
     }
     assert!(s.star(&[VertexId(m.nv as u32 + 5)]).is_err());
+    assert!(generic::closure(s, &[VertexId(m.nv as u32 + 5)]).is_err());
+    assert!(generic::link(s, &[VertexId(0), VertexId(0)]).is_err());
     assert!(s.refs() > 0 || m.tops.is_empty());
     assert!(s.bytes() > 0 || m.tops.is_empty());
 }

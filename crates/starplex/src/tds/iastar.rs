@@ -442,46 +442,40 @@ impl IaStar {
     }
 
     fn vt_into(&self, v: u32, out: &mut Vec<CellId>) {
+        // breadth-first over each cluster, using `out` itself as the queue
         out.clear();
-        let reps = self.vrefs.row(v as usize);
         let mut seen: FxHashSet<u32> = FxHashSet::default();
-        let mut queue: Vec<u32> = Vec::new();
-        let mut cells: Vec<u32> = Vec::new();
-        for &r in reps {
+        for &r in self.vrefs.row(v as usize) {
             if self.top(r).0 <= 1 {
-                cells.push(r);
+                out.push(CellId(r));
                 continue;
             }
-            // small stars: linear membership; large ones: a hash set
-            let start = cells.len();
-            cells.push(r);
-            queue.clear();
-            queue.push(r);
-            while let Some(x) = queue.pop() {
+            let start = out.len();
+            out.push(CellId(r));
+            let mut head = start;
+            while head < out.len() {
+                let x = out[head].0;
+                head += 1;
                 self.for_each_neighbour_at(x, v, |u| {
-                    let found = if cells.len() - start < 48 {
-                        cells[start..].contains(&u)
+                    let found = if out.len() - start <= 48 {
+                        out[start..].contains(&CellId(u))
                     } else {
                         if seen.is_empty() {
-                            seen.extend(cells[start..].iter().copied());
+                            seen.extend(out[start..].iter().map(|c| c.0));
                         }
                         !seen.insert(u)
                     };
                     if !found {
-                        if cells.len() - start < 48 {
-                            cells.push(u);
-                        } else {
-                            cells.push(u);
+                        out.push(CellId(u));
+                        if !seen.is_empty() {
                             seen.insert(u);
                         }
-                        queue.push(u);
                     }
                 });
             }
             seen.clear();
         }
-        cells.sort_unstable();
-        out.extend(cells.into_iter().map(CellId));
+        out.sort_unstable();
     }
 }
 
