@@ -147,10 +147,11 @@ impl IaStar {
             let dim = b.kind.dim();
             let n = dim + 1;
             let data = if dim >= 2 {
-                let mut d = Vec::with_capacity(2 * b.vertices.len());
-                for c in b.vertices.chunks_exact(n) {
-                    d.extend_from_slice(c);
-                    d.extend(std::iter::repeat_n(NONE, n));
+                let mut d = vec![NONE; 2 * b.vertices.len()];
+                for (rec, c) in d.chunks_exact_mut(2 * n).zip(b.vertices.chunks_exact(n)) {
+                    for (x, &y) in rec.iter_mut().zip(c) {
+                        *x = y;
+                    }
                 }
                 d
             } else {
@@ -250,8 +251,9 @@ impl IaStar {
                 start.push(loc.len() as u32);
                 dims.push(dim as u8);
                 if dim >= 2 {
-                    loc.extend_from_slice(verts);
-                    loc.extend_from_slice(adj);
+                    for &x in verts.iter().chain(adj) {
+                        loc.push(x);
+                    }
                 }
             }
             for (ri, &c) in row.iter().enumerate() {
@@ -499,10 +501,21 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
         let st = b.stride();
         for rec in b.data.chunks_exact(st) {
             pairs.clear();
-            pairs.extend(rec[..n].iter().enumerate().map(|(j, &v)| (v, j as u8)));
-            pairs.sort_unstable();
-            sorted.extend(pairs.iter().map(|p| p.0));
-            perm.extend(pairs.iter().map(|p| p.1));
+            for (j, &v) in rec[..n].iter().enumerate() {
+                pairs.push((v, j as u8));
+            }
+            // insertion sort: n is small
+            for i in 1..pairs.len() {
+                let mut j = i;
+                while j > 0 && pairs[j - 1].0 > pairs[j].0 {
+                    pairs.swap(j - 1, j);
+                    j -= 1;
+                }
+            }
+            for p in &pairs {
+                sorted.push(p.0);
+                perm.push(p.1);
+            }
         }
     }
     // bucket the slots (li, jj) by the facet's smallest vertex; for d ≤ 3 the rest of the
