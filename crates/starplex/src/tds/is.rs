@@ -20,7 +20,7 @@
 //! let is = Is::new(&k, u32::MAX as u128).unwrap();
 //! assert_eq!(is.refs(), 80); // the spec's worked anchor
 //! assert_eq!(is.n_clusters(&[VertexId(0), VertexId(1)]).unwrap(), 2);
-//! assert_eq!(is.star(&[VertexId(0)]).unwrap().len(), 1 + 5 + 7 + 2);
+//! assert_eq!(is.star(&[VertexId(0)]).unwrap().len(), 1 + 5 + 6 + 2);
 //! ```
 use rustc_hash::FxHashSet;
 
