@@ -165,13 +165,21 @@ pub fn vertex_object(s: &dyn Queries, v: VertexId) -> Result<serde_json::Value, 
         }
     }
     maximal.sort();
-    let link = generic::link(s, &[v]).map_err(qerr)?;
+    // links are defined for simplicial stars; a CP star leaves the link fields null
+    let link_f = match generic::link(s, &[v]) {
+        Ok(l) => serde_json::json!(l.f_vector()),
+        Err(QueryError::NotSimplicial(_)) => serde_json::Value::Null,
+        Err(e) => return Err(qerr(e)),
+    };
+    if link_f.is_null() {
+        maximal.clear();
+    }
     Ok(serde_json::json!({
         "vertex": v.0,
         "incident_top_cells": cells.iter().map(|c| c.0).collect::<Vec<_>>(),
         "vv": vv.iter().map(|w| w.0).collect::<Vec<_>>(),
-        "link_f_vector": link.f_vector(),
-        "link_maximal_simplices": maximal,
+        "link_f_vector": link_f,
+        "link_maximal_simplices": if link_f.is_null() { serde_json::Value::Null } else { serde_json::json!(maximal) },
     }))
 }
 
