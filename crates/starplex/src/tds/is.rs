@@ -92,9 +92,10 @@ impl Is {
         Ok(Is { x, pcob })
     }
 
-    /// The shared part (simplices and boundaries).
-    pub fn explicit(&self) -> &Explicit {
-        &self.x
+    /// Bytes of the auxiliary index (sorted vertex tuples, top-cell map), not counted in
+    /// [`Storage::bytes`].
+    pub fn aux_bytes(&self) -> u64 {
+        self.x.aux_bytes()
     }
 
     /// c(σ): the number of connected components of the link of `s` (0 for a top).
