@@ -688,6 +688,48 @@ impl VertexStar for IaStar {
     fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
         self.vt_into(v.0, out);
     }
+
+    /// Walks the clusters of `s[0]` and stops at the first top containing `s`.
+    fn star_has_top_containing(&self, s: &[VertexId]) -> Option<bool> {
+        Some(self.has_top_containing(s))
+    }
+}
+
+impl IaStar {
+    fn has_top_containing(&self, s: &[VertexId]) -> bool {
+        let v = s[0].0;
+        let has = |c: u32| {
+            let verts = self.top(c).1;
+            s.iter().all(|x| verts.contains(&x.0))
+        };
+        let mut cells: Vec<u32> = Vec::new();
+        for &r in self.vrefs.row(v as usize) {
+            if has(r) {
+                return true;
+            }
+            if self.top(r).0 <= 1 {
+                continue;
+            }
+            cells.clear();
+            cells.push(r);
+            let mut head = 0;
+            let mut found = false;
+            while head < cells.len() && !found {
+                let x = cells[head];
+                head += 1;
+                self.for_each_neighbour_at(x, v, |u| {
+                    if !found && !cells.contains(&u) {
+                        found = has(u);
+                        cells.push(u);
+                    }
+                });
+            }
+            if found {
+                return true;
+            }
+        }
+        false
+    }
 }
 
 impl VertexAdjacency for IaStar {

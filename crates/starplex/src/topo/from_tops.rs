@@ -232,8 +232,14 @@ pub fn boundary<S: TopCells + VertexStar + ?Sized>(
 ) -> Result<(), QueryError> {
     let s = sorted_simplex(s)?;
     out.clear();
-    let mut cells = Vec::new();
-    top_star(st, &s, &mut cells)?;
+    let simplicial_member = s.len() >= 2
+        && s.iter().all(|v| v.index() < st.n_vertices())
+        && st.star_has_top_containing(&s) == Some(true);
+    if !simplicial_member {
+        // vertices, CP cells, and the error for a non-simplex
+        let mut cells = Vec::new();
+        top_star(st, &s, &mut cells)?;
+    }
     boundary_of_sorted(&s, q, budget, out)
 }
 

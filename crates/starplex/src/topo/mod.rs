@@ -111,6 +111,14 @@ pub trait TopCells {
 pub trait VertexStar {
     /// Replaces `out` with the top cells incident to `v`, sorted by id.
     fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>);
+
+    /// A fast membership answer: `Some(true)` when some top cell incident to `s[0]` contains
+    /// the sorted simplex `s` (at least two vertices), `Some(false)` when none does, `None`
+    /// when the structure has no faster way than scanning VT(s[0]) (the default).
+    fn star_has_top_containing(&self, s: &[VertexId]) -> Option<bool> {
+        let _ = s;
+        None
+    }
 }
 
 /// R_{0,0}: vertices joined to a vertex by an edge (an edge of a top cell's face table; the
