@@ -17,6 +17,8 @@ pub struct BenchArgs {
 pub enum BenchWhat {
     /// Simplex tree: build time, bytes per simplex, star of every vertex (with label lists).
     SimplexTree(SimplexTreeBenchArgs),
+    /// IA*: build time per top cell, storage.
+    IaStar(SimplexTreeBenchArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -34,6 +36,7 @@ pub struct SimplexTreeBenchArgs {
 pub fn run(ctx: &Ctx, a: &BenchArgs) -> Result<(), CliError> {
     match &a.what {
         BenchWhat::SimplexTree(b) => simplex_tree(ctx, b),
+        BenchWhat::IaStar(b) => ia_star(ctx, b),
     }
 }
 
@@ -110,6 +113,46 @@ fn simplex_tree(ctx: &Ctx, a: &SimplexTreeBenchArgs) -> Result<(), CliError> {
             st.bytes() as f64 / n
         );
         println!("  star of every vertex  {star_all_s:.3} s  ({total} simplices in all stars)");
+    }
+    Ok(())
+}
+
+fn ia_star(ctx: &Ctx, a: &SimplexTreeBenchArgs) -> Result<(), CliError> {
+    use starplex::tds::iastar::IaStar;
+    use starplex::topo::Storage;
+    let k = common::load(ctx, &a.input)?.complex;
+    let mut times = Vec::new();
+    let mut ia = None;
+    for _ in 0..a.reps.max(1) {
+        drop(ia.take());
+        let t = Instant::now();
+        let s = IaStar::new(&k).map_err(|e| CliError::Input(e.to_string(), None))?;
+        times.push(t.elapsed().as_secs_f64());
+        ia = Some(s);
+    }
+    let ia = ia.expect("at least one build");
+    let build_s = median(times);
+    let us_per_top = 1e6 * build_s / k.n_cells().max(1) as f64;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::json!({
+                "structure": "ia-star",
+                "input": a.input.file.display().to_string(),
+                "top_cells": k.n_cells(),
+                "build_s": build_s,
+                "us_per_top": us_per_top,
+                "refs": ia.refs(),
+                "bytes": ia.bytes(),
+            })
+        );
+    } else {
+        println!(
+            "IA* of {}: built in {build_s:.3} s ({us_per_top:.3} us per top cell), {} refs, {} bytes",
+            a.input.file.display(),
+            ia.refs(),
+            ia.bytes()
+        );
     }
     Ok(())
 }

@@ -6,10 +6,12 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod cmd_bench;
+mod cmd_compare;
 mod cmd_convert;
 mod cmd_info;
 mod cmd_stellar;
 mod cmd_validate;
+mod cmd_query;
 mod common;
 
 /// Topology of meshes and complexes.
@@ -34,6 +36,10 @@ enum Command {
     /// Topological validation: components, purity, pseudo-manifoldness, boundary,
     /// non-manifold vertices and edges, orientability.
     Validate(cmd_validate::ValidateArgs),
+    /// Query one data structure through the shared interface (VT, VV, link, star, ...).
+    Query(cmd_query::QueryArgs),
+    /// Build every data structure and compare storage and query times.
+    Compare(cmd_compare::CompareArgs),
     /// Timings of one data structure (single thread): `bench simplex-tree FILE`.
     Bench(cmd_bench::BenchArgs),
     /// The main job on the bundled sample (what `cargo run --release` does without arguments).
@@ -54,6 +60,8 @@ fn main() -> ExitCode {
         Some(Command::Stellar(a)) => cmd_stellar::run(&ctx, &a),
         Some(Command::Validate(a)) => cmd_validate::run(&ctx, &a),
         Some(Command::Bench(a)) => cmd_bench::run(&ctx, &a),
+        Some(Command::Query(a)) => cmd_query::run(&ctx, &a),
+        Some(Command::Compare(a)) => cmd_compare::run(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

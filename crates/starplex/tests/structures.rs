@@ -221,6 +221,8 @@ fn check_structure<S: Queries + ?Sized>(name: &str, s: &S, m: &Model, sorted_top
         }
     }
     assert!(s.star(&[VertexId(m.nv as u32 + 5)]).is_err());
+    assert!(generic::closure(s, &[VertexId(m.nv as u32 + 5)]).is_err());
+    assert!(generic::link(s, &[VertexId(0), VertexId(0)]).is_err());
     assert!(s.refs() > 0 || m.tops.is_empty());
     assert!(s.bytes() > 0 || m.tops.is_empty());
 }
@@ -429,7 +431,8 @@ fn is_formula(m: &Model) -> u64 {
 #[test]
 fn storage_matches_the_spec_anchors_and_formulas() {
     // (fixture, IA*, IS, IG) from the spec's table §6.1
-    let anchors: [(&[&[u32]], usize, u64, u64, u64); 5] = [
+    type Anchor<'a> = (&'a [&'a [u32]], usize, u64, u64, u64);
+    let anchors: [Anchor; 5] = [
         (&[&[0, 1, 2, 3]], 4, 12, 42, 56),
         (&[&[0, 1, 2], &[0, 3, 4]], 5, 18, 30, 36),
         (&[&[0, 1, 2], &[0, 1, 3], &[0, 1, 4]], 5, 26, 37, 46),
@@ -542,7 +545,8 @@ fn ghosts_are_canonical_and_answer_relations() {
 #[test]
 fn non_manifold_singularities_on_the_fixtures() {
     let v = |x: u32| VertexId(x);
-    let cases: Vec<(&str, IndexedComplex, Vec<u32>, Vec<[u32; 2]>)> = vec![
+    type Case = (&'static str, IndexedComplex, Vec<u32>, Vec<[u32; 2]>);
+    let cases: Vec<Case> = vec![
         ("tetrahedron", complex(4, &[&[0, 1, 2, 3]]), vec![], vec![]),
         (
             "bow-tie",

@@ -43,13 +43,13 @@ pub fn components<S: TopCells + ?Sized>(s: &S) -> Components {
     let mut label = vec![u32::MAX; n];
     let mut root_label = vec![u32::MAX; n];
     let mut next = 0u32;
-    for v in 0..n {
+    for (v, l) in label.iter_mut().enumerate() {
         let r = uf.find(v as u32) as usize;
         if root_label[r] == u32::MAX {
             root_label[r] = next;
             next += 1;
         }
-        label[v] = root_label[r];
+        *l = root_label[r];
     }
     Components {
         n_components: next as usize,

@@ -85,8 +85,32 @@ struct Block {
     first: u32,
     /// Index of the block's first top among the tops of its dimension.
     dim_offset: u32,
-    verts: Vec<u32>,
-    adj: Vec<u32>,
+    /// Number of tops in the block.
+    len: u32,
+    /// Per top: its k+1 vertices, then (k ≥ 2) its k+1 adjacency slots — one cache line per
+    /// tetrahedron.
+    data: Vec<u32>,
+}
+
+impl Block {
+    #[inline]
+    fn stride(&self) -> usize {
+        if self.dim >= 2 {
+            2 * (self.dim + 1)
+        } else {
+            self.dim + 1
+        }
+    }
+    fn n_verts(&self) -> usize {
+        self.len as usize * (self.dim + 1)
+    }
+    fn n_slots(&self) -> usize {
+        if self.dim >= 2 {
+            self.n_verts()
+        } else {
+            0
+        }
+    }
 }
 
 /// The IA* data structure. See the [module docs](self).
@@ -121,16 +145,24 @@ impl IaStar {
                 return Err(IaStarError::NotSimplicial(b.first, b.kind.type_name()));
             }
             let dim = b.kind.dim();
+            let n = dim + 1;
+            let data = if dim >= 2 {
+                let mut d = vec![NONE; 2 * b.vertices.len()];
+                for (rec, c) in d.chunks_exact_mut(2 * n).zip(b.vertices.chunks_exact(n)) {
+                    for (x, &y) in rec.iter_mut().zip(c) {
+                        *x = y;
+                    }
+                }
+                d
+            } else {
+                b.vertices.to_vec()
+            };
             blocks.push(Block {
                 dim,
                 first: b.first,
                 dim_offset: t[dim] as u32,
-                verts: b.vertices.to_vec(),
-                adj: if dim >= 2 {
-                    vec![NONE; b.vertices.len()]
-                } else {
-                    Vec::new()
-                },
+                len: b.len() as u32,
+                data,
             });
             t[dim] += b.len() as u64;
         }
@@ -167,13 +199,10 @@ impl IaStar {
     fn top(&self, c: u32) -> (usize, &[u32], &[u32]) {
         let b = self.block_of(c);
         let n = b.dim + 1;
+        let st = b.stride();
         let i = (c - b.first) as usize;
-        let adj = if b.adj.is_empty() {
-            &[][..]
-        } else {
-            &b.adj[i * n..(i + 1) * n]
-        };
-        (b.dim, &b.verts[i * n..(i + 1) * n], adj)
+        let rec = &b.data[i * st..(i + 1) * st];
+        (b.dim, &rec[..n], &rec[n..])
     }
 
     /// Calls `f` with every top reached from `c` through a facet containing `v`.
@@ -200,32 +229,74 @@ impl IaStar {
 
     fn cluster_representatives(&self, vt: &Csr) -> Csr {
         let nv = self.n_vertices as usize;
-        let mut stamp = vec![u32::MAX; self.n_cells as usize];
         let mut offsets = Vec::with_capacity(nv + 1);
-        let mut targets = Vec::new();
+        let mut targets = Vec::with_capacity(nv + 2 * self.n_tops(1) as usize);
         let mut queue: Vec<u32> = Vec::new();
+        // per row: visited marks, and a local copy of the records (the copy loop issues
+        // independent loads, so their cache misses overlap; the search then runs in cache)
+        let mut mark: Vec<bool> = Vec::new();
+        let mut loc: Vec<u32> = Vec::new();
+        let mut start: Vec<u32> = Vec::new();
+        let mut dims: Vec<u8> = Vec::new();
         offsets.push(0u32);
         for v in 0..nv as u32 {
-            for &c in vt.row(v as usize) {
-                let (dim, _, _) = self.top(c);
-                if dim <= 1 {
+            let row = vt.row(v as usize);
+            mark.clear();
+            mark.resize(row.len(), false);
+            loc.clear();
+            start.clear();
+            dims.clear();
+            for &c in row {
+                let (dim, verts, adj) = self.top(c);
+                start.push(loc.len() as u32);
+                dims.push(dim as u8);
+                if dim >= 2 {
+                    for &x in verts.iter().chain(adj) {
+                        loc.push(x);
+                    }
+                }
+            }
+            for (ri, &c) in row.iter().enumerate() {
+                if dims[ri] <= 1 {
                     targets.push(c);
                     continue;
                 }
-                if stamp[c as usize] == v {
+                if mark[ri] {
                     continue;
                 }
                 targets.push(c);
-                stamp[c as usize] = v;
+                mark[ri] = true;
                 queue.clear();
-                queue.push(c);
+                queue.push(ri as u32);
                 while let Some(x) = queue.pop() {
-                    self.for_each_neighbour_at(x, v, |u| {
-                        if stamp[u as usize] != v {
-                            stamp[u as usize] = v;
-                            queue.push(u);
+                    let n = dims[x as usize] as usize + 1;
+                    let s0 = start[x as usize] as usize;
+                    let (verts, adj) = (&loc[s0..s0 + n], &loc[s0 + n..s0 + 2 * n]);
+                    let mut visit = |u: u32| {
+                        let ui = row
+                            .binary_search(&u)
+                            .expect("a neighbour through a facet at v contains v");
+                        if !mark[ui] {
+                            mark[ui] = true;
+                            queue.push(ui as u32);
                         }
-                    });
+                    };
+                    for j in 0..n {
+                        if verts[j] == v {
+                            continue;
+                        }
+                        match decode(adj[j]) {
+                            Adj::None => {}
+                            Adj::Top(u) => visit(u.0),
+                            Adj::NmFace(f) => {
+                                for &u in self.nm[n - 1].row(f as usize) {
+                                    if u != row[x as usize] {
+                                        visit(u);
+                                    }
+                                }
+                            }
+                        }
+                    }
                 }
             }
             offsets.push(targets.len() as u32);
@@ -366,53 +437,47 @@ impl IaStar {
         let b = self
             .blocks
             .iter()
-            .filter(|b| b.dim == m && b.dim_offset <= i)
-            .last()?;
+            .rev()
+            .find(|b| b.dim == m && b.dim_offset <= i)?;
         let local = i - b.dim_offset;
-        ((local as usize) < b.verts.len() / (m + 1)).then(|| CellId(b.first + local))
+        (local < b.len).then(|| CellId(b.first + local))
     }
 
     fn vt_into(&self, v: u32, out: &mut Vec<CellId>) {
+        // breadth-first over each cluster, using `out` itself as the queue
         out.clear();
-        let reps = self.vrefs.row(v as usize);
         let mut seen: FxHashSet<u32> = FxHashSet::default();
-        let mut queue: Vec<u32> = Vec::new();
-        let mut cells: Vec<u32> = Vec::new();
-        for &r in reps {
+        for &r in self.vrefs.row(v as usize) {
             if self.top(r).0 <= 1 {
-                cells.push(r);
+                out.push(CellId(r));
                 continue;
             }
-            // small stars: linear membership; large ones: a hash set
-            let start = cells.len();
-            cells.push(r);
-            queue.clear();
-            queue.push(r);
-            while let Some(x) = queue.pop() {
+            let start = out.len();
+            out.push(CellId(r));
+            let mut head = start;
+            while head < out.len() {
+                let x = out[head].0;
+                head += 1;
                 self.for_each_neighbour_at(x, v, |u| {
-                    let found = if cells.len() - start < 48 {
-                        cells[start..].contains(&u)
+                    let found = if out.len() - start <= 48 {
+                        out[start..].contains(&CellId(u))
                     } else {
                         if seen.is_empty() {
-                            seen.extend(cells[start..].iter().copied());
+                            seen.extend(out[start..].iter().map(|c| c.0));
                         }
                         !seen.insert(u)
                     };
                     if !found {
-                        if cells.len() - start < 48 {
-                            cells.push(u);
-                        } else {
-                            cells.push(u);
+                        out.push(CellId(u));
+                        if !seen.is_empty() {
                             seen.insert(u);
                         }
-                        queue.push(u);
                     }
                 });
             }
             seen.clear();
         }
-        cells.sort_unstable();
-        out.extend(cells.into_iter().map(CellId));
+        out.sort_unstable();
     }
 }
 
@@ -420,20 +485,41 @@ impl IaStar {
 /// non-manifold face lists.
 fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
     let n = d + 1;
-    // sorted copy of every top's vertices and global ids, in dimension order
-    let mut sorted: Vec<u32> = Vec::new();
-    let mut ids: Vec<u32> = Vec::new();
-    for b in blocks.iter().filter(|b| b.dim == d) {
-        for (i, c) in b.verts.chunks_exact(n).enumerate() {
-            let s0 = sorted.len();
-            sorted.extend_from_slice(c);
-            sorted[s0..].sort_unstable();
-            ids.push(b.first + i as u32);
+    // sorted copy of every top's vertices, the input position of each sorted entry, and
+    // where each top lives (block, local), in dimension order
+    let nt: usize = blocks
+        .iter()
+        .filter(|b| b.dim == d)
+        .map(|b| b.len as usize)
+        .sum();
+    let mut sorted: Vec<u32> = Vec::with_capacity(nt * n);
+    let mut perm: Vec<u8> = Vec::with_capacity(nt * n);
+    let mut where_: Vec<(u32, u32)> = Vec::new(); // (first dim-local index, block index)
+    let mut pairs: Vec<(u32, u8)> = Vec::with_capacity(n);
+    for (bi, b) in blocks.iter().enumerate().filter(|(_, b)| b.dim == d) {
+        where_.push(((sorted.len() / n) as u32, bi as u32));
+        let st = b.stride();
+        for rec in b.data.chunks_exact(st) {
+            pairs.clear();
+            for (j, &v) in rec[..n].iter().enumerate() {
+                pairs.push((v, j as u8));
+            }
+            // insertion sort: n is small
+            for i in 1..pairs.len() {
+                let mut j = i;
+                while j > 0 && pairs[j - 1].0 > pairs[j].0 {
+                    pairs.swap(j - 1, j);
+                    j -= 1;
+                }
+            }
+            for p in &pairs {
+                sorted.push(p.0);
+                perm.push(p.1);
+            }
         }
     }
-    let nt = ids.len();
-    // slot (li, jj) where jj is the position in the *sorted* tuple of the removed vertex.
-    // bucket by the facet's smallest vertex: sorted[0] unless jj == 0, then sorted[1].
+    // bucket the slots (li, jj) by the facet's smallest vertex; for d ≤ 3 the rest of the
+    // facet packs into a u64 key, computed in one sequential pass
     let min_of = |slot: usize| -> u32 {
         let (li, jj) = (slot / n, slot % n);
         sorted[li * n + usize::from(jj == 0)]
@@ -446,13 +532,36 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
         counts[i + 1] += counts[i];
     }
     let mut pos = counts.clone();
-    let mut order = vec![0u32; nt * n];
-    for slot in 0..nt * n {
-        let m = min_of(slot) as usize;
-        order[pos[m] as usize] = slot as u32;
-        pos[m] += 1;
+    let packed = d <= 3;
+    let mut order = vec![0u32; if packed { 0 } else { nt * n }];
+    let mut recs: Vec<(u64, u32)> = vec![(0, 0); if packed { nt * n } else { 0 }];
+    for li in 0..nt {
+        let t = &sorted[li * n..(li + 1) * n];
+        for jj in 0..n {
+            let slot = li * n + jj;
+            let m = t[usize::from(jj == 0)] as usize;
+            if packed {
+                let key = if d == 2 {
+                    t[if jj == 2 { 1 } else { 2 }] as u64
+                } else {
+                    // facet = t without jj; drop its first (min) entry
+                    let (a, b) = match jj {
+                        0 => (t[2], t[3]),
+                        1 => (t[2], t[3]),
+                        2 => (t[1], t[3]),
+                        _ => (t[1], t[2]),
+                    };
+                    ((a as u64) << 32) | b as u64
+                };
+                recs[pos[m] as usize] = (key, slot as u32);
+            } else {
+                order[pos[m] as usize] = slot as u32;
+            }
+            pos[m] += 1;
+        }
     }
-    // facet key without its first vertex, packed when it fits
+    drop(pos);
+    // the facet without its smallest vertex
     let facet = |slot: u32, out: &mut [u32]| {
         let (li, jj) = (slot as usize / n, slot as usize % n);
         let t = &sorted[li * n..(li + 1) * n];
@@ -464,93 +573,99 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
             }
         }
     };
-    let mut nm_pairs: Vec<u32> = Vec::new(); // flat: tops of each nm face
+    let single = where_.len() == 1;
+    let locate = |li: usize| -> (usize, usize) {
+        if single {
+            return (where_[0].1 as usize, li);
+        }
+        let k = where_.partition_point(|w| w.0 as usize <= li) - 1;
+        (where_[k].1 as usize, li - where_[k].0 as usize)
+    };
+    let ids: Vec<u32> = (0..nt)
+        .map(|li| {
+            let (bi, local) = locate(li);
+            blocks[bi].first + local as u32
+        })
+        .collect();
+    let set_slot = |blocks: &mut [Block], slot: u32, val: u32| {
+        let li = slot as usize / n;
+        let j = perm[slot as usize] as usize;
+        let (bi, local) = locate(li);
+        blocks[bi].data[local * 2 * n + n + j] = val;
+    };
+    let mut nm_tops: Vec<u32> = Vec::new();
     let mut nm_offsets: Vec<u32> = vec![0];
-    // global id -> (block index, local)
-    let locate = |blocks: &[Block], c: u32| -> (usize, usize) {
-        let bi = blocks.partition_point(|b| b.first <= c) - 1;
-        (bi, (c - blocks[bi].first) as usize)
-    };
-    let set_slot = |blocks: &mut [Block], slot: u32, val: u32, ids: &[u32], sorted: &[u32]| {
-        let (li, jj) = (slot as usize / n, slot as usize % n);
-        let c = ids[li];
-        let removed = sorted[li * n + jj];
-        let (bi, local) = locate(blocks, c);
-        let b = &mut blocks[bi];
-        let verts = &b.verts[local * n..(local + 1) * n];
-        let j = verts
-            .iter()
-            .position(|&x| x == removed)
-            .expect("vertex of its top");
-        b.adj[local * n + j] = val;
-    };
     let mut ka = vec![0u32; n];
     let mut kb = vec![0u32; n];
-    let mut keyed: Vec<(u64, u32)> = Vec::new();
+    let mut group = |blocks: &mut [Block], g: &[u32]| match g.len() {
+        1 => {}
+        2 => {
+            let (c1, c2) = (ids[g[0] as usize / n], ids[g[1] as usize / n]);
+            set_slot(blocks, g[0], c2);
+            set_slot(blocks, g[1], c1);
+        }
+        _ => {
+            let f = (nm_offsets.len() - 1) as u32;
+            let start = nm_tops.len();
+            for &s in g {
+                nm_tops.push(ids[s as usize / n]);
+                set_slot(blocks, s, NM_BIT | f);
+            }
+            nm_tops[start..].sort_unstable();
+            nm_offsets.push(nm_tops.len() as u32);
+        }
+    };
+    let mut gbuf: Vec<u32> = Vec::new();
     for v in 0..nv {
-        let bucket = &mut order[counts[v] as usize..counts[v + 1] as usize];
-        if bucket.len() < 2 {
+        if counts[v + 1] - counts[v] < 2 {
             continue;
         }
-        if d <= 3 {
-            // the facet minus its min vertex has d-1 ≤ 2 vertices: pack into u64
-            keyed.clear();
-            for &s in bucket.iter() {
-                facet(s, &mut ka[..d]);
-                let key = if d == 2 {
-                    ka[1] as u64
-                } else {
-                    ((ka[1] as u64) << 32) | ka[2] as u64
-                };
-                keyed.push((key, s));
-            }
+        if packed {
+            let keyed = &mut recs[counts[v] as usize..counts[v + 1] as usize];
             keyed.sort_unstable();
-            for (dst, &(_, s)) in bucket.iter_mut().zip(keyed.iter()) {
-                *dst = s;
+            let mut i = 0;
+            while i < keyed.len() {
+                let mut j = i + 1;
+                while j < keyed.len() && keyed[j].0 == keyed[i].0 {
+                    j += 1;
+                }
+                if j - i >= 2 {
+                    gbuf.clear();
+                    gbuf.extend(keyed[i..j].iter().map(|x| x.1));
+                    group(blocks, &gbuf);
+                }
+                i = j;
             }
         } else {
+            let bucket = &mut order[counts[v] as usize..counts[v + 1] as usize];
             bucket.sort_unstable_by(|&a, &b| {
                 facet(a, &mut ka[..d]);
                 facet(b, &mut kb[..d]);
                 ka[..d].cmp(&kb[..d])
             });
-        }
-        let mut i = 0;
-        while i < bucket.len() {
-            facet(bucket[i], &mut ka[..d]);
-            let mut j = i + 1;
-            while j < bucket.len() {
-                facet(bucket[j], &mut kb[..d]);
-                if ka[..d] != kb[..d] {
-                    break;
-                }
-                j += 1;
-            }
-            match j - i {
-                1 => {}
-                2 => {
-                    let (s1, s2) = (bucket[i], bucket[i + 1]);
-                    let (c1, c2) = (ids[s1 as usize / n], ids[s2 as usize / n]);
-                    set_slot(blocks, s1, c2, &ids, &sorted);
-                    set_slot(blocks, s2, c1, &ids, &sorted);
-                }
-                _ => {
-                    let f = (nm_offsets.len() - 1) as u32;
-                    let start = nm_pairs.len();
-                    for &s in &bucket[i..j] {
-                        nm_pairs.push(ids[s as usize / n]);
-                        set_slot(blocks, s, NM_BIT | f, &ids, &sorted);
+            let mut i = 0;
+            while i < bucket.len() {
+                facet(bucket[i], &mut ka[..d]);
+                let mut j = i + 1;
+                while j < bucket.len() {
+                    facet(bucket[j], &mut kb[..d]);
+                    if ka[..d] != kb[..d] {
+                        break;
                     }
-                    nm_pairs[start..].sort_unstable();
-                    nm_offsets.push(nm_pairs.len() as u32);
+                    j += 1;
                 }
+                if j - i >= 2 {
+                    gbuf.clear();
+                    gbuf.extend_from_slice(&bucket[i..j]);
+                    group(blocks, &gbuf);
+                }
+                i = j;
             }
-            i = j;
         }
     }
     Csr {
         offsets: nm_offsets,
-        targets: nm_pairs,
+        targets: nm_tops,
     }
 }
 
@@ -572,6 +687,48 @@ impl TopCells for IaStar {
 impl VertexStar for IaStar {
     fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
         self.vt_into(v.0, out);
+    }
+
+    /// Walks the clusters of `s[0]` and stops at the first top containing `s`.
+    fn star_has_top_containing(&self, s: &[VertexId]) -> Option<bool> {
+        Some(self.has_top_containing(s))
+    }
+}
+
+impl IaStar {
+    fn has_top_containing(&self, s: &[VertexId]) -> bool {
+        let v = s[0].0;
+        let has = |c: u32| {
+            let verts = self.top(c).1;
+            s.iter().all(|x| verts.contains(&x.0))
+        };
+        let mut cells: Vec<u32> = Vec::new();
+        for &r in self.vrefs.row(v as usize) {
+            if has(r) {
+                return true;
+            }
+            if self.top(r).0 <= 1 {
+                continue;
+            }
+            cells.clear();
+            cells.push(r);
+            let mut head = 0;
+            let mut found = false;
+            while head < cells.len() && !found {
+                let x = cells[head];
+                head += 1;
+                self.for_each_neighbour_at(x, v, |u| {
+                    if !found && !cells.contains(&u) {
+                        found = has(u);
+                        cells.push(u);
+                    }
+                });
+            }
+            if found {
+                return true;
+            }
+        }
+        false
     }
 }
 
@@ -597,8 +754,8 @@ impl VertexAdjacency for IaStar {
 impl Storage for IaStar {
     /// The spec's formula: Σ_{k≥1}(k+1)t_k + Σ_{k≥2}(k+1)t_k + Σ |NM lists| + 2t_1 + Σ_v Σ_k κ_k(v).
     fn refs(&self) -> u64 {
-        let verts: u64 = self.blocks.iter().map(|b| b.verts.len() as u64).sum();
-        let adj: u64 = self.blocks.iter().map(|b| b.adj.len() as u64).sum();
+        let verts: u64 = self.blocks.iter().map(|b| b.n_verts() as u64).sum();
+        let adj: u64 = self.blocks.iter().map(|b| b.n_slots() as u64).sum();
         let nm: u64 = self.nm.iter().map(|c| c.n_refs() as u64).sum();
         verts + adj + nm + self.vrefs.n_refs() as u64
     }
@@ -606,7 +763,7 @@ impl Storage for IaStar {
         let blocks: usize = self
             .blocks
             .iter()
-            .map(|b| 4 * (b.verts.len() + b.adj.len()) + std::mem::size_of::<Block>())
+            .map(|b| 4 * b.data.len() + std::mem::size_of::<Block>())
             .sum();
         let nm: usize = self.nm.iter().map(|c| c.bytes()).sum();
         (blocks + nm + self.vrefs.bytes()) as u64

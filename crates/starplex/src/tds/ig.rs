@@ -2,7 +2,7 @@
 //! R_{p,p-1} and its full immediate co-boundary R_{p,p+1}. Storage 2·Σ_{p≥1}(p+1)n_p references
 //! (spec §6). Simplex ids: p-simplices are numbered level by level in lexicographic order of
 //! their sorted vertices; the sorted vertex tuples are kept as an auxiliary index (lookups by
-//! vertices), reported apart from the references ([`Explicit::aux_bytes`]).
+//! vertices), reported apart from the references ([`IncidenceGraph::aux_bytes`]).
 //!
 //! ```
 //! use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -33,7 +33,7 @@ use crate::topo::{
 
 /// All simplices with their boundaries: the part shared by the incidence graph and IS.
 #[derive(Clone, Debug)]
-pub struct Explicit {
+pub(crate) struct Explicit {
     pub(crate) n_vertices: u32,
     /// `verts[p]`: sorted tuples of the p-simplices, flat (stride p+1), lexicographic.
     pub(crate) verts: Vec<Vec<u32>>,
@@ -51,7 +51,7 @@ impl Explicit {
     ///
     /// # Errors
     /// A CP cell; more than `limit` simplices.
-    pub fn new(k: &IndexedComplex, limit: u128) -> Result<Explicit, BuildError> {
+    pub(crate) fn new(k: &IndexedComplex, limit: u128) -> Result<Explicit, BuildError> {
         let l = all_simplices(k, limit.min(u32::MAX as u128))?;
         let nv = k.n_vertices();
         let Levels0 {
@@ -147,22 +147,22 @@ impl Explicit {
     }
 
     /// Number of levels (dimension + 1).
-    pub fn depth(&self) -> usize {
+    pub(crate) fn depth(&self) -> usize {
         self.verts.len()
     }
 
     /// Number of p-simplices.
-    pub fn n_at(&self, p: usize) -> usize {
+    pub(crate) fn n_at(&self, p: usize) -> usize {
         self.verts.get(p).map_or(0, |v| v.len() / (p + 1))
     }
 
     /// Sorted vertices of (p, i).
-    pub fn tuple(&self, p: usize, i: u32) -> &[u32] {
+    pub(crate) fn tuple(&self, p: usize, i: u32) -> &[u32] {
         &self.verts[p][i as usize * (p + 1)..(i as usize + 1) * (p + 1)]
     }
 
     /// The facets (indices at level p-1) of (p, i).
-    pub fn facets(&self, p: usize, i: u32) -> &[u32] {
+    pub(crate) fn facets(&self, p: usize, i: u32) -> &[u32] {
         if p == 0 {
             return &[];
         }
@@ -170,7 +170,7 @@ impl Explicit {
     }
 
     /// Index at level |s|-1 of the sorted simplex `s`.
-    pub fn find(&self, s: &[u32]) -> Option<u32> {
+    pub(crate) fn find(&self, s: &[u32]) -> Option<u32> {
         let p = s.len().checked_sub(1)?;
         if p >= self.verts.len() {
             return None;
@@ -190,7 +190,7 @@ impl Explicit {
     }
 
     /// Sorted, validated simplex and its index.
-    pub fn locate(&self, s: &[VertexId]) -> Result<(Vec<u32>, u32), QueryError> {
+    pub(crate) fn locate(&self, s: &[VertexId]) -> Result<(Vec<u32>, u32), QueryError> {
         let s = sorted_simplex(s)?;
         let raw: Vec<u32> = s.iter().map(|v| v.0).collect();
         match self.find(&raw) {
@@ -201,7 +201,7 @@ impl Explicit {
 
     /// The inverse of the boundary: for each level p < dim, the full co-boundary (CSR of
     /// (p+1)-simplices) and, for each entry, the position of the p-simplex in the coface.
-    pub fn coboundaries(&self) -> Vec<(Csr, Vec<u8>)> {
+    pub(crate) fn coboundaries(&self) -> Vec<(Csr, Vec<u8>)> {
         let mut out = Vec::with_capacity(self.depth());
         for p in 0..self.depth().saturating_sub(1) {
             let n_p = self.n_at(p);
@@ -224,18 +224,18 @@ impl Explicit {
     }
 
     /// Boundary references Σ_{p≥1}(p+1)n_p.
-    pub fn boundary_refs(&self) -> u64 {
+    pub(crate) fn boundary_refs(&self) -> u64 {
         self.bnd.iter().map(|b| b.len() as u64).sum()
     }
 
     /// Bytes of the boundary arrays.
-    pub fn boundary_bytes(&self) -> u64 {
+    pub(crate) fn boundary_bytes(&self) -> u64 {
         4 * self.boundary_refs()
     }
 
     /// Bytes of the auxiliary index (sorted vertex tuples, top-cell map), not counted as
     /// references.
-    pub fn aux_bytes(&self) -> u64 {
+    pub(crate) fn aux_bytes(&self) -> u64 {
         let v: usize = self.verts.iter().map(|v| 4 * v.len()).sum();
         let t: usize = self.top_at.iter().map(|t| 8 * t.len()).sum();
         (v + t + 4 * self.cell_node.len()) as u64
@@ -247,7 +247,7 @@ impl Explicit {
     }
 
     /// Whether (p, i) is a top, and its cell id.
-    pub fn top_cell(&self, p: usize, i: u32) -> Option<CellId> {
+    pub(crate) fn top_cell(&self, p: usize, i: u32) -> Option<CellId> {
         let t = &self.top_at[p];
         t.binary_search_by_key(&i, |x| x.0)
             .ok()
@@ -255,18 +255,18 @@ impl Explicit {
     }
 
     /// Global id of (p, i).
-    pub fn global(&self, p: usize, i: u32) -> SimplexId {
+    pub(crate) fn global(&self, p: usize, i: u32) -> SimplexId {
         SimplexId(self.level_offset[p] + i)
     }
 
     /// (p, i) of a global id.
-    pub fn split(&self, s: SimplexId) -> (usize, u32) {
+    pub(crate) fn split(&self, s: SimplexId) -> (usize, u32) {
         let p = self.level_offset.partition_point(|&o| o <= s.0) - 1;
         (p, s.0 - self.level_offset[p])
     }
 
     /// The q-faces of (p, i) by descending boundary arcs with deduplication, as indices.
-    pub fn descend(&self, p: usize, i: u32, q: usize) -> Vec<u32> {
+    pub(crate) fn descend(&self, p: usize, i: u32, q: usize) -> Vec<u32> {
         let mut cur = vec![i];
         let mut level = p;
         while level > q {
@@ -283,7 +283,7 @@ impl Explicit {
     }
 
     /// Flat sorted tuples of a list of (p, indices).
-    pub fn tuples_of(&self, p: usize, ids: &[u32], out: &mut Vec<VertexId>) {
+    pub(crate) fn tuples_of(&self, p: usize, ids: &[u32], out: &mut Vec<VertexId>) {
         out.clear();
         for &i in ids {
             out.extend(self.tuple(p, i).iter().map(|&v| VertexId(v)));
@@ -486,9 +486,10 @@ impl IncidenceGraph {
         Ok(IncidenceGraph { x, cob })
     }
 
-    /// The shared part (simplices and boundaries).
-    pub fn explicit(&self) -> &Explicit {
-        &self.x
+    /// Bytes of the auxiliary index (sorted vertex tuples, top-cell map), not counted in
+    /// [`Storage::bytes`].
+    pub fn aux_bytes(&self) -> u64 {
+        self.x.aux_bytes()
     }
 
     /// St(σ) as (level, index) by breadth-first ascent through full co-boundaries.

@@ -20,7 +20,7 @@
 //! let is = Is::new(&k, u32::MAX as u128).unwrap();
 //! assert_eq!(is.refs(), 80); // the spec's worked anchor
 //! assert_eq!(is.n_clusters(&[VertexId(0), VertexId(1)]).unwrap(), 2);
-//! assert_eq!(is.star(&[VertexId(0)]).unwrap().len(), 1 + 5 + 7 + 2);
+//! assert_eq!(is.star(&[VertexId(0)]).unwrap().len(), 1 + 5 + 6 + 2);
 //! ```
 use rustc_hash::FxHashSet;
 
@@ -92,9 +92,10 @@ impl Is {
         Ok(Is { x, pcob })
     }
 
-    /// The shared part (simplices and boundaries).
-    pub fn explicit(&self) -> &Explicit {
-        &self.x
+    /// Bytes of the auxiliary index (sorted vertex tuples, top-cell map), not counted in
+    /// [`Storage::bytes`].
+    pub fn aux_bytes(&self) -> u64 {
+        self.x.aux_bytes()
     }
 
     /// c(σ): the number of connected components of the link of `s` (0 for a top).

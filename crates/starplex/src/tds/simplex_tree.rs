@@ -335,13 +335,9 @@ impl SimplexTree {
         }
         let mut level_offset = Vec::with_capacity(depth + 1);
         let mut acc = 0u32;
-        for d in 0..depth {
+        for (d, l) in labels.iter().enumerate() {
             level_offset.push(acc);
-            acc += if d == 0 {
-                nv as u32
-            } else {
-                labels[d].len() as u32
-            };
+            acc += if d == 0 { nv as u32 } else { l.len() as u32 };
         }
         level_offset.push(acc);
         let mut st = SimplexTree {

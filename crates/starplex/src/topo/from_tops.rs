@@ -232,8 +232,14 @@ pub fn boundary<S: TopCells + VertexStar + ?Sized>(
 ) -> Result<(), QueryError> {
     let s = sorted_simplex(s)?;
     out.clear();
-    let mut cells = Vec::new();
-    top_star(st, &s, &mut cells)?;
+    let simplicial_member = s.len() >= 2
+        && s.iter().all(|v| v.index() < st.n_vertices())
+        && st.star_has_top_containing(&s) == Some(true);
+    if !simplicial_member {
+        // vertices, CP cells, and the error for a non-simplex
+        let mut cells = Vec::new();
+        top_star(st, &s, &mut cells)?;
+    }
     boundary_of_sorted(&s, q, budget, out)
 }
 
@@ -355,6 +361,7 @@ pub fn for_each_simplex<S: TopCells + VertexStar + ?Sized>(
     let mut tv = Vec::new();
     let mut local: Vec<VertexId> = Vec::new();
     let mut buf = Vec::new();
+    let mut upper: Vec<VertexId> = Vec::new();
     for v in 0..st.n_vertices() {
         let v = VertexId(v as u32);
         st.vertex_top_cells(v, &mut cells);
@@ -362,8 +369,11 @@ pub fn for_each_simplex<S: TopCells + VertexStar + ?Sized>(
         for &c in &cells {
             tv.clear();
             st.top_cell_vertices(c, &mut tv);
-            let upper: Vec<VertexId> = tv.iter().copied().filter(|&w| w > v).collect();
-            let mut upper = upper;
+            upper.clear();
+            upper.extend(tv.iter().copied().filter(|&w| w > v));
+            if upper.len() < p {
+                continue;
+            }
             upper.sort_unstable();
             for_each_subset(&upper, p, &mut buf, &mut |sub| {
                 local.push(v);

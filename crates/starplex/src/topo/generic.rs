@@ -29,6 +29,8 @@ pub fn closure<S: Boundary + ?Sized>(st: &S, s: &[VertexId]) -> Result<SimplexSe
     let s = sorted_simplex(s)?;
     let mut set = SimplexSet::default();
     let mut out = Vec::new();
+    // validates `s` (for a vertex the answer is empty)
+    st.boundary(&s, 0, &mut out)?;
     for q in 0..s.len() - 1 {
         st.boundary(&s, q, &mut out)?;
         set.levels.push(out.clone());

@@ -28,12 +28,17 @@
 //! [`crate::algo::nonmanifold`].
 //!
 //! Which structure implements which trait (✓ native, g = through the generic top-star helpers
-//! of [`from_tops`], – = not implemented):
+//! of [`from_tops`], – = not implemented). Structures that store every simplex (simplex tree,
+//! incidence graph, IS) refuse to build, with an estimate, when the complex has more simplices
+//! than their limit (a 40-simplex has 2^41 - 1 faces); the others answer top-cell queries in
+//! any dimension and refuse face enumerations over [`DEFAULT_BUDGET`] with
+//! [`QueryError::TooLarge`]. The simplex tree, incidence graph and IS keep no orientation:
+//! their [`TopCells::top_cell_vertices`] are sorted.
 //!
 //! | structure | TopCells | VertexStar | VertexAdjacency | TopStar | Counts | SimplexVertices | Boundary | Coboundary | Adjacency | Star | Levels | Storage |
 //! |---|---|---|---|---|---|---|---|---|---|---|---|---|
 //! | [`naive::VtIndex`] (baseline) | ✓ | ✓ | ✓ | g | g | – | g | g | g | g | g | ✓ |
-//! | [`IaStar`](crate::tds::iastar::IaStar) | ✓ | ✓ | g | g | g | – | g | g | g | g | g | ✓ |
+//! | [`IaStar`](crate::tds::iastar::IaStar) | ✓ | ✓ | ✓ | g | g | – | g | g | g | g | g | ✓ |
 //! | [`SimplexTree`](crate::tds::simplex_tree::SimplexTree) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
 //! | [`IncidenceGraph`](crate::tds::ig::IncidenceGraph) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
 //! | [`Is`](crate::tds::is::Is) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
@@ -106,6 +111,14 @@ pub trait TopCells {
 pub trait VertexStar {
     /// Replaces `out` with the top cells incident to `v`, sorted by id.
     fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>);
+
+    /// A fast membership answer: `Some(true)` when some top cell incident to `s[0]` contains
+    /// the sorted simplex `s` (at least two vertices), `Some(false)` when none does, `None`
+    /// when the structure has no faster way than scanning VT(s[0]) (the default).
+    fn star_has_top_containing(&self, s: &[VertexId]) -> Option<bool> {
+        let _ = s;
+        None
+    }
 }
 
 /// R_{0,0}: vertices joined to a vertex by an edge (an edge of a top cell's face table; the

@@ -56,6 +56,16 @@ impl VertexStar for VtIndex<'_> {
         out.clear();
         out.extend(self.vt.row(v.index()).iter().map(|&c| CellId(c)));
     }
+
+    fn star_has_top_containing(&self, s: &[VertexId]) -> Option<bool> {
+        if !self.complex.is_simplicial() {
+            return None;
+        }
+        Some(self.vt.row(s[0].index()).iter().any(|&c| {
+            let cell = self.complex.cell(CellId(c));
+            s.iter().all(|v| cell.vertices.contains(&v.0))
+        }))
+    }
 }
 
 impl VertexAdjacency for VtIndex<'_> {

@@ -1,0 +1,365 @@
+//! `starplex query FILE --structure S --relation R [--vertex ID ...] [--all]`: one query
+//! interface over every data structure. Written once against the `topo` traits: adding a
+//! structure is one arm of [`build`].
+use std::time::Instant;
+
+use rayon::prelude::*;
+use starplex::complex::IndexedComplex;
+use starplex::ids::{CellId, VertexId};
+use starplex::tds::iastar::IaStar;
+use starplex::tds::ig::IncidenceGraph;
+use starplex::tds::is::Is;
+use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions};
+use starplex::topo::{generic, naive::VtIndex, Queries, QueryError};
+
+use crate::common::{self, CliError, Ctx, InputArgs};
+
+/// The data structures.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StructureKind {
+    /// Incidence graph: all simplices, full boundary and co-boundary.
+    Ig,
+    /// IS: all simplices, boundary, one coface per link component.
+    Is,
+    /// IA*: top simplices, adjacencies, one top per cluster per vertex.
+    IaStar,
+    /// Simplex tree (with label lists).
+    SimplexTree,
+    /// The indexed complex with its vertex → top cells relation (baseline).
+    Vt,
+    /// Stellar tree (not in this build yet).
+    Stellar,
+    /// Hasse complex (not in this build yet).
+    Hasse,
+}
+
+impl StructureKind {
+    /// The structures `compare` builds.
+    pub const AVAILABLE: [StructureKind; 5] = [
+        StructureKind::Vt,
+        StructureKind::IaStar,
+        StructureKind::SimplexTree,
+        StructureKind::Ig,
+        StructureKind::Is,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            StructureKind::Ig => "ig",
+            StructureKind::Is => "is",
+            StructureKind::IaStar => "ia-star",
+            StructureKind::SimplexTree => "simplex-tree",
+            StructureKind::Vt => "vt",
+            StructureKind::Stellar => "stellar",
+            StructureKind::Hasse => "hasse",
+        }
+    }
+}
+
+/// The relations.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RelationKind {
+    /// Top cells incident to a vertex.
+    Vt,
+    /// Vertices adjacent to a vertex.
+    Vv,
+    /// Link of a vertex.
+    Link,
+    /// Star of a vertex.
+    Star,
+    /// p-faces: the co-boundaries R_{0,q} of a vertex; with --all every p-simplex.
+    Pfaces,
+    /// Adjacency: R_{0,0} of a vertex; with --all R_{k,k} of every top k-simplex.
+    Adj,
+    /// The IA* relations extracted through the interface: adjacent tops across each facet.
+    IaStar,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct QueryArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+    /// Data structure.
+    #[arg(long, value_enum, default_value = "ia-star")]
+    pub structure: StructureKind,
+    /// Relation.
+    #[arg(long, value_enum, default_value = "vt")]
+    pub relation: RelationKind,
+    /// Stellar tree bucket threshold k_V (used by the Stellar tree only).
+    #[arg(long)]
+    pub kv: Option<usize>,
+    /// Vertices to query (input ids).
+    #[arg(long, num_args = 1..)]
+    pub vertex: Vec<u32>,
+    /// The batched query over the whole complex (sizes and time).
+    #[arg(long)]
+    pub all: bool,
+    /// Worker threads for --all.
+    #[arg(long, default_value_t = 1)]
+    pub threads: usize,
+    /// JSON output.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// A built structure.
+pub type Built<'a> = Box<dyn Queries + Sync + 'a>;
+
+/// Builds structure `s` on `k`; the one place that knows the structures.
+pub fn build(k: &IndexedComplex, s: StructureKind) -> Result<Built<'_>, CliError> {
+    let limit = 1u128 << 31;
+    let err = |e: String| CliError::Input(e, None);
+    Ok(match s {
+        StructureKind::Vt => Box::new(VtIndex::new(k)),
+        StructureKind::IaStar => Box::new(IaStar::new(k).map_err(|e| err(e.to_string()))?),
+        StructureKind::SimplexTree => Box::new(
+            SimplexTree::new(
+                k,
+                &SimplexTreeOptions {
+                    label_lists: true,
+                    max_simplices: limit,
+                },
+            )
+            .map_err(|e| err(e.to_string()))?,
+        ),
+        StructureKind::Ig => {
+            Box::new(IncidenceGraph::new(k, limit).map_err(|e| err(e.to_string()))?)
+        }
+        StructureKind::Is => Box::new(Is::new(k, limit).map_err(|e| err(e.to_string()))?),
+        StructureKind::Stellar | StructureKind::Hasse => {
+            return Err(CliError::Input(
+                format!("--structure {}: not available in this build yet", s.name()),
+                Some("use ig, is, ia-star, simplex-tree or vt".into()),
+            ))
+        }
+    })
+}
+
+fn qerr(e: QueryError) -> CliError {
+    CliError::Other(e.to_string())
+}
+
+/// The oracle-format answer for one vertex.
+pub fn vertex_object(s: &dyn Queries, v: VertexId) -> Result<serde_json::Value, CliError> {
+    if v.index() >= s.n_vertices() {
+        return Err(CliError::Input(
+            format!(
+                "vertex {v} out of range (the complex has {} vertices)",
+                s.n_vertices()
+            ),
+            None,
+        ));
+    }
+    let mut cells = Vec::new();
+    s.vertex_top_cells(v, &mut cells);
+    let mut vv = Vec::new();
+    s.vertex_neighbours(v, &mut vv);
+    let mut maximal: Vec<Vec<u32>> = Vec::new();
+    let mut buf = Vec::new();
+    for &c in &cells {
+        buf.clear();
+        s.top_cell_vertices(c, &mut buf);
+        let mut m: Vec<u32> = buf.iter().map(|w| w.0).filter(|&w| w != v.0).collect();
+        m.sort_unstable();
+        if !m.is_empty() {
+            maximal.push(m);
+        }
+    }
+    maximal.sort();
+    // links are defined for simplicial stars; a CP star leaves the link fields null
+    let link_f = match generic::link(s, &[v]) {
+        Ok(l) => serde_json::json!(l.f_vector()),
+        Err(QueryError::NotSimplicial(_)) => serde_json::Value::Null,
+        Err(e) => return Err(qerr(e)),
+    };
+    if link_f.is_null() {
+        maximal.clear();
+    }
+    Ok(serde_json::json!({
+        "vertex": v.0,
+        "incident_top_cells": cells.iter().map(|c| c.0).collect::<Vec<_>>(),
+        "vv": vv.iter().map(|w| w.0).collect::<Vec<_>>(),
+        "link_f_vector": link_f,
+        "link_maximal_simplices": if link_f.is_null() { serde_json::Value::Null } else { serde_json::json!(maximal) },
+    }))
+}
+
+/// The size of one vertex's (or top's, for adj/ia-star) answer.
+pub fn answer_size(
+    s: &dyn Queries,
+    r: RelationKind,
+    i: u32,
+    cells: &mut Vec<CellId>,
+    verts: &mut Vec<VertexId>,
+) -> Result<u64, QueryError> {
+    let v = VertexId(i);
+    Ok(match r {
+        RelationKind::Vt => {
+            s.vertex_top_cells(v, cells);
+            cells.len() as u64
+        }
+        RelationKind::Vv => {
+            s.vertex_neighbours(v, verts);
+            verts.len() as u64
+        }
+        RelationKind::Link => generic::link(s, &[v])?.len() as u64,
+        RelationKind::Star => s.star(&[v])?.len() as u64,
+        RelationKind::Pfaces => {
+            let mut n = 0u64;
+            s.for_each_simplex(i as usize, &mut |_| n += 1)?;
+            n
+        }
+        RelationKind::Adj => {
+            let mut tv = Vec::new();
+            s.top_cell_vertices(CellId(i), &mut tv);
+            s.adjacent(&tv, verts)?;
+            (verts.len() / tv.len()) as u64
+        }
+        RelationKind::IaStar => {
+            let mut tv = Vec::new();
+            s.top_cell_vertices(CellId(i), &mut tv);
+            let k = tv.len();
+            let mut n = 0u64;
+            if k >= 3 {
+                let mut facet = Vec::with_capacity(k - 1);
+                for j in 0..k {
+                    facet.clear();
+                    facet.extend(
+                        tv.iter()
+                            .enumerate()
+                            .filter(|&(x, _)| x != j)
+                            .map(|(_, &w)| w),
+                    );
+                    s.top_star(&facet, cells)?;
+                    n += cells
+                        .iter()
+                        .filter(|&&c| c.0 != i && s.top_cell_kind(c).dim() + 1 == k)
+                        .count() as u64;
+                }
+            }
+            n
+        }
+    })
+}
+
+/// The batched query: every vertex (vt, vv, link, star), every top (adj, ia-star), every level
+/// (pfaces). Returns (items, total answer size, seconds).
+pub fn run_all(
+    s: &(dyn Queries + Sync),
+    r: RelationKind,
+    threads: usize,
+) -> Result<(u64, u64, f64), CliError> {
+    let n = match r {
+        RelationKind::Adj | RelationKind::IaStar => s.n_top_cells(),
+        RelationKind::Pfaces => s.f_vector().map_err(qerr)?.len(),
+        _ => s.n_vertices(),
+    } as u32;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.max(1))
+        .build()
+        .map_err(|e| CliError::Other(e.to_string()))?;
+    let t = Instant::now();
+    let total: Result<u64, QueryError> = pool.install(|| {
+        (0..n)
+            .into_par_iter()
+            .with_min_len(1024)
+            .map_init(
+                || (Vec::new(), Vec::new()),
+                |(c, v), i| answer_size(s, r, i, c, v),
+            )
+            .try_reduce(|| 0, |a, b| Ok(a + b))
+    });
+    let secs = t.elapsed().as_secs_f64();
+    Ok((n as u64, total.map_err(qerr)?, secs))
+}
+
+pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
+    if a.kv.is_some() && a.structure != StructureKind::Stellar && !ctx.quiet {
+        eprintln!("note: --kv is used by the Stellar tree only");
+    }
+    if a.vertex.is_empty() && !a.all {
+        return Err(CliError::Input(
+            "nothing to query".into(),
+            Some("pass --vertex ID ... or --all".into()),
+        ));
+    }
+    let k = common::load(ctx, &a.input)?.complex;
+    let t = Instant::now();
+    let s = build(&k, a.structure)?;
+    let build_s = t.elapsed().as_secs_f64();
+    if !a.vertex.is_empty() {
+        let mut objs = Vec::new();
+        for &v in &a.vertex {
+            let mut o = vertex_object(s.as_ref(), VertexId(v))?;
+            let (mut cells, mut verts) = (Vec::new(), Vec::new());
+            match a.relation {
+                RelationKind::Star => {
+                    let st = s.star(&[VertexId(v)]).map_err(qerr)?;
+                    o["star_f_vector"] = serde_json::json!(st.f_vector());
+                }
+                RelationKind::Pfaces => {
+                    let mut co = Vec::new();
+                    for q in 1..s.f_vector().map_err(qerr)?.len() {
+                        s.coboundary(&[VertexId(v)], q, &mut verts).map_err(qerr)?;
+                        co.push(verts.len() / (q + 1));
+                    }
+                    o["coboundary_sizes"] = serde_json::json!(co);
+                }
+                RelationKind::Adj => {
+                    s.adjacent(&[VertexId(v)], &mut verts).map_err(qerr)?;
+                    o["adjacent"] =
+                        serde_json::json!(verts.iter().map(|w| w.0).collect::<Vec<_>>());
+                }
+                RelationKind::IaStar => {
+                    s.vertex_top_cells(VertexId(v), &mut cells);
+                    o["n_incident_top_cells"] = serde_json::json!(cells.len());
+                }
+                _ => {}
+            }
+            objs.push(o);
+        }
+        if a.json {
+            println!("{}", serde_json::Value::Array(objs));
+        } else {
+            for o in &objs {
+                let key = match a.relation {
+                    RelationKind::Vt | RelationKind::IaStar => "incident_top_cells",
+                    RelationKind::Vv => "vv",
+                    RelationKind::Link => "link_maximal_simplices",
+                    RelationKind::Star => "star_f_vector",
+                    RelationKind::Pfaces => "coboundary_sizes",
+                    RelationKind::Adj => "adjacent",
+                };
+                println!("vertex {}: {} = {}", o["vertex"], key, o[key]);
+                if a.relation == RelationKind::Link {
+                    println!("  link f-vector = {}", o["link_f_vector"]);
+                }
+            }
+        }
+    }
+    if a.all {
+        let (items, total, secs) = run_all(s.as_ref(), a.relation, a.threads)?;
+        if a.json {
+            println!(
+                "{}",
+                serde_json::json!({
+                    "structure": a.structure.name(),
+                    "relation": format!("{:?}", a.relation).to_lowercase(),
+                    "build_s": build_s,
+                    "items": items,
+                    "total_size": total,
+                    "query_s": secs,
+                    "threads": a.threads,
+                })
+            );
+        } else {
+            println!(
+                "{} on {}: built in {build_s:.3} s; {:?} over {items} items: {total} results in {secs:.3} s ({} thread(s))",
+                a.structure.name(),
+                a.input.file.display(),
+                a.relation,
+                a.threads
+            );
+        }
+    }
+    Ok(())
+}
