@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod cmd_bench_hasse;
 mod cmd_convert;
 mod cmd_info;
 mod common;
@@ -26,6 +27,8 @@ enum Command {
     Info(cmd_info::InfoArgs),
     /// Convert between formats (by extension, or --format / --to).
     Convert(cmd_convert::ConvertArgs),
+    /// TEMPORARY (to be nested as `bench hasse`): benchmark the CASC Hasse complex on FILE.
+    BenchHasse(cmd_bench_hasse::BenchHasseArgs),
     /// The main job on the bundled sample (what `cargo run --release` does without arguments).
     Demo {
         /// A file to use instead of the bundled sample.
@@ -41,6 +44,7 @@ fn main() -> ExitCode {
         Some(Command::Demo { file }) => common::demo(&ctx, file),
         Some(Command::Info(a)) => cmd_info::run(&ctx, &a),
         Some(Command::Convert(a)) => cmd_convert::run(&ctx, &a),
+        Some(Command::BenchHasse(a)) => cmd_bench_hasse::run(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -6,7 +6,7 @@ mod common_data;
 
 use std::path::PathBuf;
 
-use starplex::hasse::{Hasse, KeepFirst, Merge, Node};
+use starplex::hasse::{Hasse, KeepFirst, Merge};
 use starplex::ids::VertexId;
 use starplex::io::{self, ReadOptions};
 
@@ -113,8 +113,7 @@ fn elephant_oracle_and_1000_collapses() {
     let mut x = 42u64;
     let (mut done, mut refused) = (0, 0);
     while done < 1000 {
-        let ne = h.n_simplices(1) as u64;
-        let e = Node::new(1, ((lcg(&mut x) % ne) as u32).into());
+        let e = h.pick(1, lcg(&mut x)).unwrap();
         if h.can_collapse(e).is_err() {
             refused += 1;
             continue;
@@ -280,8 +279,7 @@ fn tetrahedral_edits_2_3_and_3_2_flips_splits_collapse() {
     let mut x = 7u64;
     let mut done = 0;
     while done < 50 {
-        let ne = h.n_simplices(1) as u64;
-        let e = Node::new(1, ((lcg(&mut x) % ne) as u32).into());
+        let e = h.pick(1, lcg(&mut x)).unwrap();
         if h.can_collapse(e).is_ok() {
             h.collapse(e, &mut KeepFirst).unwrap();
             done += 1;
@@ -317,4 +315,51 @@ fn conversions_round_trip_and_dot() {
     let dot = s.to_dot(&Default::default()).unwrap();
     assert_eq!(dot.matches(" -> ").count(), 3 + 6 + 3);
     assert!(h.to_dot(&Default::default()).is_err());
+}
+
+fn simplices<L: starplex::hasse::Levels>(h: &Hasse<L>) -> Vec<Vec<u32>> {
+    let mut v: Vec<Vec<u32>> = h.nodes().map(|n| h.vertices(n).iter().map(|x| x.0).collect()).collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn bulk_build_equals_cell_by_cell_insertion() {
+    for name in ["tri_holes", "tet_elephant", "vr_kitten_s", "sierp5_xs", "tri_polygon_mesh"] {
+        let Some((k, oracle)) = load(name) else { continue };
+        let Ok(bulk) = Hasse::<()>::from_indexed(&k) else {
+            continue;
+        };
+        bulk.check().unwrap();
+        let mut inc: Hasse = Hasse::new();
+        for c in k.cells() {
+            let vs: Vec<VertexId> = c.vertices.iter().map(|&x| VertexId(x)).collect();
+            inc.insert(&vs).unwrap();
+        }
+        assert_eq!(simplices(&bulk), simplices(&inc), "{name}");
+        if let Ok(fv) = serde_json::from_value::<Vec<usize>>(oracle["f_vector"].clone()) {
+            assert_eq!(bulk.f_vector(), fv, "{name}");
+        }
+        // links agree with the incremental build
+        for v in bulk.level(0).step_by(97) {
+            let lab = bulk.vertices(v)[0];
+            let w = inc.vertex(lab).unwrap();
+            assert_eq!(bulk.set_to_vertex_lists(&bulk.link(v)), inc.set_to_vertex_lists(&inc.link(w)));
+        }
+    }
+    // mixed dimensions: a triangle, a dangling edge, an isolated vertex, an edge of the triangle
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    let mut b = ComplexBuilder::new(2).unwrap();
+    for i in 0..6 {
+        b.push_vertex(&[i as f64, 0.0]).unwrap();
+    }
+    b.push_cell(CellKind::Simplex(2), &[2, 0, 1]).unwrap();
+    b.push_cell(CellKind::Simplex(1), &[3, 2]).unwrap();
+    b.push_cell(CellKind::Simplex(0), &[5]).unwrap();
+    let (k, _) = b.build(&BuildOptions::default()).unwrap();
+    let h: Hasse = Hasse::from_indexed(&k).unwrap();
+    h.check().unwrap();
+    assert_eq!(h.f_vector(), vec![5, 4, 1]);
+    assert_eq!(h.maximal_simplices().len(), 3);
 }

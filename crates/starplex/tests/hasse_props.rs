@@ -145,7 +145,7 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
     let mut h = H::new();
     let mut m = Model::new();
     let mut max_label: Option<u32> = None;
-    for o in ops {
+    for (step, o) in ops.into_iter().enumerate() {
         match o {
             Op::Insert(s) => {
                 let vs: Vec<VertexId> = s.iter().map(|&x| VertexId(x)).collect();
@@ -179,7 +179,7 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
                 if ne == 0 {
                     continue;
                 }
-                let e = Node::new(1, ((i % ne) as u32).into());
+                let e = h.pick(1, i as u64).unwrap();
                 let s = sorted_vs(&h, e);
                 let la = model_link(&m, &s[..1]);
                 let lb = model_link(&m, &s[1..]);
@@ -250,6 +250,12 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
             }
         }
         compare(&h, &m)?;
+        if step % 4 == 3 {
+            // dense renumbering keeps every simplex and its data
+            h.compact();
+            prop_assert_eq!(h.len(), (0..h.dim().map_or(0, |d| d + 1)).map(|k| h.n_slots(k)).sum::<usize>());
+            compare(&h, &m)?;
+        }
         // copies are independent
         let c = h.clone();
         prop_assert!(c.is_valid());

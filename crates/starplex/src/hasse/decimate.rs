@@ -88,7 +88,7 @@ impl<L: Levels> Hasse<L> {
         match p {
             None => self.fresh_label().ok_or(HasseError::NoFreeLabel),
             Some(p) => {
-                if self.root.contains_key(&p.0) && !self.vertices(s).contains(&p) {
+                if self.root.contains(p.0) && !self.vertices(s).contains(&p) {
                     Err(HasseError::LabelInUse(p))
                 } else {
                     Ok(p)
@@ -264,7 +264,7 @@ impl<L: Levels> Hasse<L> {
             let id = self.insert_sorted(&g.new);
             L::commit_pop(&mut self.data, &mut staged, d, id as usize);
         }
-        if self.root.contains_key(&p.0) {
+        if self.root.contains(p.0) {
             Ok(p)
         } else {
             // s was isolated from everything: only happens for an empty image, impossible

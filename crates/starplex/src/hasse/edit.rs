@@ -317,9 +317,12 @@ impl<L: Levels> Hasse<L> {
         L: At<0>,
         <L as At<0>>::Data: Position,
     {
-        let n = self.n_simplices(0);
+        let n = self.n_slots(0);
         let fixed: Vec<bool> = (0..n)
-            .map(|i| fix_boundary && self.is_boundary_vertex(Node::new(0, (i as u32).into())))
+            .map(|i| {
+                let v = Node::new(0, (i as u32).into());
+                !self.contains(v) || (fix_boundary && self.is_boundary_vertex(v))
+            })
             .collect();
         for _ in 0..iterations {
             let col = self.level_data::<0>();

@@ -44,8 +44,10 @@ pub trait Levels: Sized + 'static {
     const N_LEVELS: usize;
     /// Appends a default value at level `dim`.
     fn push_default(cols: &mut Self::Columns, dim: usize);
-    /// Removes the value at `i` of level `dim`, moving the last one into its place.
-    fn swap_remove(cols: &mut Self::Columns, dim: usize, i: usize);
+    /// Resets the value at `i` of level `dim` to the default (a removed or reused slot).
+    fn reset(cols: &mut Self::Columns, dim: usize, i: usize);
+    /// Keeps the values of level `dim` whose `keep` flag is set, in order (compaction).
+    fn retain(cols: &mut Self::Columns, dim: usize, keep: &[bool]);
     /// Reserves room for `n` more values at level `dim`.
     fn reserve(cols: &mut Self::Columns, dim: usize, n: usize);
     /// Bytes used by level `dim`'s column (capacity).
@@ -166,7 +168,8 @@ impl Levels for () {
     #[inline]
     fn push_default(_: &mut (), _: usize) {}
     #[inline]
-    fn swap_remove(_: &mut (), _: usize, _: usize) {}
+    fn reset(_: &mut (), _: usize, _: usize) {}
+    fn retain(_: &mut (), _: usize, _: &[bool]) {}
     #[inline]
     fn reserve(_: &mut (), _: usize, _: usize) {}
     fn bytes(_: &(), _: usize) -> usize {
@@ -209,9 +212,21 @@ macro_rules! impl_levels {
                 }
             }
             #[inline]
-            fn swap_remove(cols: &mut Self::Columns, dim: usize, i: usize) {
+            fn reset(cols: &mut Self::Columns, dim: usize, i: usize) {
                 match dim {
-                    $($K => { cols.$K.swap_remove(i); })+
+                    $($K => cols.$K[i] = $T::default(),)+
+                    _ => {}
+                }
+            }
+            fn retain(cols: &mut Self::Columns, dim: usize, keep: &[bool]) {
+                match dim {
+                    $($K => {
+                        let mut i = 0;
+                        cols.$K.retain(|_| {
+                            i += 1;
+                            keep[i - 1]
+                        });
+                    })+
                     _ => {}
                 }
             }

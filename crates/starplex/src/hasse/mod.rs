@@ -51,6 +51,7 @@
 //! ```
 
 mod arena;
+mod bulk;
 mod complex;
 mod convert;
 mod decimate;

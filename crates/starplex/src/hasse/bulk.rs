@@ -1,0 +1,132 @@
+//! Bulk construction from a list of simplices (dimension at most 3): instead of inserting cells
+//! one by one (random access into the vertex lookup and the up lists), every level is built
+//! from the one above by one sort of its facets. Nodes come out in lexicographic order and
+//! every up list in one exactly-sized block, laid out in node order.
+use super::complex::Hasse;
+use super::levels::Levels;
+
+/// Packs a sorted tuple of at most 4 labels, first label most significant.
+#[inline]
+fn pack(vs: &[u32]) -> u128 {
+    let mut k = 0u128;
+    for (i, &v) in vs.iter().enumerate() {
+        k |= (v as u128) << (32 * (3 - i));
+    }
+    k
+}
+
+#[inline]
+fn unpack(k: u128, n: usize, out: &mut [u32; 4]) {
+    for (i, o) in out.iter_mut().enumerate().take(n) {
+        *o = (k >> (32 * (3 - i))) as u32;
+    }
+}
+
+const NO_PARENT: u32 = u32::MAX;
+
+impl<L: Levels> Hasse<L> {
+    /// Builds an empty complex's levels from sorted, non-degenerate simplices given per
+    /// dimension (flat arrays, `k + 1` labels per `k`-simplex, `k <= 3`).
+    pub(crate) fn bulk_build(&mut self, cells: &[Vec<u32>]) {
+        debug_assert!(self.is_empty() && cells.len() <= 4);
+        let Some(d) = (0..cells.len()).rev().find(|&k| !cells[k].is_empty()) else {
+            return;
+        };
+        self.ensure_level(d);
+        // top level: unique tuples
+        let mut keys: Vec<u128> = cells[d].chunks_exact(d + 1).map(pack).collect();
+        keys.sort_unstable();
+        keys.dedup();
+        let mut buf = [0u32; 4];
+        {
+            let l = &mut self.levels[d];
+            l.verts.reserve_exact(keys.len() * (d + 1));
+            for &k in &keys {
+                unpack(k, d + 1, &mut buf);
+                l.verts.extend_from_slice(&buf[..d + 1]);
+            }
+            if d > 0 {
+                l.down = vec![0; l.verts.len()];
+            }
+            l.up.hdr.reserve_exact(keys.len());
+            for _ in 0..keys.len() {
+                l.up.push_node(0);
+            }
+            for _ in 0..keys.len() {
+                L::push_default(&mut self.data, d);
+            }
+        }
+        drop(keys);
+        let mut recs: Vec<(u128, u32, u32)> = Vec::new();
+        let mut ups: Vec<[u32; 2]> = Vec::new();
+        for k in (1..=d).rev() {
+            // facets of level k, plus the input cells of dimension k - 1
+            recs.clear();
+            let n = self.levels[k].slots();
+            recs.reserve(n * (k + 1) + cells[k - 1].len() / k);
+            {
+                let l = &self.levels[k];
+                let mut f = [0u32; 4];
+                for i in 0..n as u32 {
+                    let vs = l.verts(i);
+                    for j in 0..=k {
+                        let mut m = 0;
+                        for (t, &x) in vs.iter().enumerate() {
+                            if t != j {
+                                f[m] = x;
+                                m += 1;
+                            }
+                        }
+                        recs.push((pack(&f[..k]), i, j as u32));
+                    }
+                }
+            }
+            for c in cells[k - 1].chunks_exact(k) {
+                recs.push((pack(c), NO_PARENT, 0));
+            }
+            recs.sort_unstable_by_key(|r| r.0);
+            // groups become the nodes of level k - 1
+            let (lo, hi) = self.levels.split_at_mut(k);
+            let below = &mut lo[k - 1];
+            let above = &mut hi[0];
+            let mut g = 0;
+            while g < recs.len() {
+                let key = recs[g].0;
+                let mut e = g;
+                ups.clear();
+                while e < recs.len() && recs[e].0 == key {
+                    let (_, p, pos) = recs[e];
+                    if p != NO_PARENT {
+                        let w = above.verts[p as usize * (k + 1) + pos as usize];
+                        ups.push([w, p]);
+                    }
+                    e += 1;
+                }
+                let id = below.slots() as u32;
+                unpack(key, k, &mut buf);
+                below.verts.extend_from_slice(&buf[..k]);
+                if k > 1 {
+                    below.down.extend_from_slice(&[0; 4][..k]);
+                }
+                below.up.push_node(ups.len() as u32);
+                ups.sort_unstable();
+                for u in &ups {
+                    below.up.insert(id, u[0], u[1]);
+                }
+                for r in &recs[g..e] {
+                    if r.1 != NO_PARENT {
+                        above.down[r.1 as usize * (k + 1) + r.2 as usize] = id;
+                    }
+                }
+                L::push_default(&mut self.data, k - 1);
+                g = e;
+            }
+        }
+        let l0 = &self.levels[0];
+        self.root.reserve_dense(l0.verts.last().map_or(0, |&m| m as usize + 1).min(2 * l0.verts.len() + 4096));
+        for (i, &lab) in l0.verts.iter().enumerate() {
+            self.root.insert(lab, i as u32);
+        }
+        self.max_label = l0.verts.last().copied();
+    }
+}
