@@ -57,6 +57,11 @@ impl UpArena {
         self.reserve_node(n, cap);
     }
 
+    /// Reserves room for `n` more pairs.
+    pub(crate) fn reserve_slots(&mut self, n: usize) {
+        self.slots.reserve_exact(n);
+    }
+
     /// Gives an empty live node room for `cap` pairs (rounded up to a power of two).
     pub(crate) fn reserve_node(&mut self, node: u32, cap: u32) {
         if cap == 0 {

@@ -89,6 +89,27 @@ impl<L: Levels> Hasse<L> {
             let (lo, hi) = self.levels.split_at_mut(k);
             let below = &mut lo[k - 1];
             let above = &mut hi[0];
+            // count the groups and the arena slots their up lists need (power-of-two blocks)
+            let (mut groups, mut slots, mut run) = (0usize, 0usize, 0u32);
+            for (i, r) in recs.iter().enumerate() {
+                if r.1 != NO_PARENT {
+                    run += 1;
+                }
+                if i + 1 == recs.len() || recs[i + 1].0 != r.0 {
+                    groups += 1;
+                    if run > 0 {
+                        slots += run.next_power_of_two().max(2) as usize;
+                    }
+                    run = 0;
+                }
+            }
+            below.verts.reserve_exact(groups * k);
+            if k > 1 {
+                below.down.reserve_exact(groups * k);
+            }
+            below.up.hdr.reserve_exact(groups);
+            below.up.reserve_slots(slots);
+            L::reserve(&mut self.data, k - 1, groups);
             let mut g = 0;
             while g < recs.len() {
                 let key = recs[g].0;

@@ -230,6 +230,18 @@ impl<L: Levels> Hasse<L> {
         }
         let p = self.check_label(s, p)?;
         let groups = self.raw_plan(s, p);
+        // when p is a vertex of s, a simplex that meets s in p alone is its own image: it stays
+        // in place (same id) and only its data is replaced by the merged value
+        let kept: Vec<Option<u32>> = groups
+            .iter()
+            .map(|g| {
+                let d = g.new.len() - 1;
+                g.old
+                    .iter()
+                    .find(|&&(k, i)| k == d && self.levels[k].verts(i) == &g.new[..])
+                    .map(|&(_, i)| i)
+            })
+            .collect();
         // stage the merged data, per group, from the old simplices of the new one's dimension
         let mut staged = L::Columns::default();
         let mut old_buf: Vec<(&[VertexId], u32)> = Vec::new();
@@ -252,16 +264,21 @@ impl<L: Levels> Hasse<L> {
         L::reverse_all(&mut staged);
         // remove the neighbourhood
         let mut nb: Vec<Vec<u32>> = vec![Vec::new(); self.levels.len()];
-        for g in &groups {
+        for (g, kp) in groups.iter().zip(&kept) {
             for &(k, i) in &g.old {
-                nb[k].push(i);
+                if Some(i) != *kp || k != g.new.len() - 1 {
+                    nb[k].push(i);
+                }
             }
         }
         self.remove_upward_closed(nb);
-        // insert the images
-        for g in &groups {
+        // insert the images (or update the kept ones)
+        for (g, kp) in groups.iter().zip(&kept) {
             let d = g.new.len() - 1;
-            let id = self.insert_sorted(&g.new);
+            let id = match kp {
+                Some(i) => *i,
+                None => self.insert_sorted(&g.new),
+            };
             L::commit_pop(&mut self.data, &mut staged, d, id as usize);
         }
         if self.root.contains(p.0) {
