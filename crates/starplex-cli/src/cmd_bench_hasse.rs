@@ -98,14 +98,17 @@ pub fn run(ctx: &Ctx, a: &BenchHasseArgs) -> Result<(), CliError> {
     let c = cpu_s();
     while times.len() < a.collapses && h.n_simplices(1) > 0 && attempts < 20 * a.collapses + 100 {
         attempts += 1;
-        x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         let Some(e) = h.pick(1, x >> 33) else { break };
         let t = Instant::now();
         if h.can_collapse(e).is_err() {
             refused += 1;
             continue;
         }
-        h.collapse(e, &mut Mid).map_err(|e| CliError::Other(e.to_string()))?;
+        h.collapse(e, &mut Mid)
+            .map_err(|e| CliError::Other(e.to_string()))?;
         times.push(t.elapsed().as_secs_f64() * 1e6);
     }
     let collapse_cpu_s = cpu_since(c);
@@ -143,8 +146,14 @@ pub fn run(ctx: &Ctx, a: &BenchHasseArgs) -> Result<(), CliError> {
         println!("  simplices          {n_simplices}");
         println!("  insert all         {:.4} s", insert_s);
         println!("  bytes per simplex  {:.1}", bytes_per_simplex);
-        println!("  star of every vertex {:.4} s ({star_total} simplices)", star_all_s);
-        println!("  link of every vertex {:.4} s ({link_total} simplices)", link_all_s);
+        println!(
+            "  star of every vertex {:.4} s ({star_total} simplices)",
+            star_all_s
+        );
+        println!(
+            "  link of every vertex {:.4} s ({link_total} simplices)",
+            link_all_s
+        );
         println!(
             "  edge collapse      {:.2} us median over {} ({} refused by the link condition), valid: {}",
             median,

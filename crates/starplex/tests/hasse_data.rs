@@ -26,7 +26,10 @@ fn datasets() -> PathBuf {
 fn load(name: &str) -> Option<(starplex::complex::IndexedComplex, serde_json::Value)> {
     let p: PathBuf = datasets().join("small").join(format!("{name}.spx"));
     let o = datasets().join("oracle").join(format!("{name}.json"));
-    let (Ok(k), Ok(text)) = (io::read(&p, &ReadOptions::default()), std::fs::read_to_string(o)) else {
+    let (Ok(k), Ok(text)) = (
+        io::read(&p, &ReadOptions::default()),
+        std::fs::read_to_string(o),
+    ) else {
         eprintln!("dataset {name} not found; skipped");
         return None;
     };
@@ -37,14 +40,16 @@ fn load(name: &str) -> Option<(starplex::complex::IndexedComplex, serde_json::Va
 fn betti_z2<L: starplex::hasse::Levels>(h: &Hasse<L>) -> Vec<usize> {
     let d = h.dim().unwrap_or(0);
     let mut ranks = vec![0usize; d + 2];
-    for k in 1..=d {
+    for (k, rank_k) in ranks.iter_mut().enumerate().take(d + 1).skip(1) {
         let mut pivot_of: std::collections::HashMap<u32, Vec<u32>> = Default::default();
         let mut rank = 0;
         for s in h.level(k) {
             let mut col: Vec<u32> = h.down(s).map(|f| f.id.0).collect();
             col.sort_unstable();
             while let Some(&low) = col.last() {
-                let Some(other) = pivot_of.get(&low) else { break };
+                let Some(other) = pivot_of.get(&low) else {
+                    break;
+                };
                 // col ^= other
                 let mut r = Vec::with_capacity(col.len() + other.len());
                 let (mut i, mut j) = (0, 0);
@@ -67,9 +72,11 @@ fn betti_z2<L: starplex::hasse::Levels>(h: &Hasse<L>) -> Vec<usize> {
                 rank += 1;
             }
         }
-        ranks[k] = rank;
+        *rank_k = rank;
     }
-    (0..=d).map(|k| h.n_simplices(k) - ranks[k] - ranks[k + 1]).collect()
+    (0..=d)
+        .map(|k| h.n_simplices(k) - ranks[k] - ranks[k + 1])
+        .collect()
 }
 
 /// Midpoint of the merged vertices' positions; nothing elsewhere.
@@ -90,13 +97,17 @@ impl<const K: usize> Merge<K, ()> for Mid {
 }
 
 fn lcg(x: &mut u64) -> u64 {
-    *x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    *x = x
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
     *x >> 33
 }
 
 #[test]
 fn elephant_oracle_and_1000_collapses() {
-    let Some((k, oracle)) = load("tri_elephant") else { return };
+    let Some((k, oracle)) = load("tri_elephant") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3], (), ())> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
     h.check().unwrap();
@@ -105,7 +116,9 @@ fn elephant_oracle_and_1000_collapses() {
     let betti: Vec<usize> = serde_json::from_value(oracle["betti_z2"].clone()).unwrap();
     assert_eq!(betti_z2(&h), betti);
     for q in oracle["vertex_queries"].as_array().unwrap() {
-        let v = h.vertex(VertexId(q["vertex"].as_u64().unwrap() as u32)).unwrap();
+        let v = h
+            .vertex(VertexId(q["vertex"].as_u64().unwrap() as u32))
+            .unwrap();
         let want: Vec<Vec<u32>> = serde_json::from_value(q["link_simplices"].clone()).unwrap();
         assert_eq!(h.set_to_vertex_lists(&h.link(v)), want);
     }
@@ -146,13 +159,24 @@ fn elephant_oracle_and_1000_collapses() {
 
 #[test]
 fn holes_components_boundary_orientation() {
-    let Some((k, oracle)) = load("tri_holes") else { return };
+    let Some((k, oracle)) = load("tri_holes") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
-    assert_eq!(h.n_components() as u64, oracle["n_connected_components"].as_u64().unwrap());
-    assert_eq!(h.euler_characteristic(), oracle["euler_characteristic"].as_i64().unwrap());
+    assert_eq!(
+        h.n_components() as u64,
+        oracle["n_connected_components"].as_u64().unwrap()
+    );
+    assert_eq!(
+        h.euler_characteristic(),
+        oracle["euler_characteristic"].as_i64().unwrap()
+    );
     let n_boundary = h.level(1).filter(|&e| h.up(e).len() == 1).count();
-    assert_eq!(n_boundary as u64, oracle["n_boundary_faces"].as_u64().unwrap());
+    assert_eq!(
+        n_boundary as u64,
+        oracle["n_boundary_faces"].as_u64().unwrap()
+    );
     let init = h.input_signs(&k);
     assert!(init.iter().all(|&s| s != 0));
     let o = h.orient(Some(&init));
@@ -169,7 +193,9 @@ fn holes_components_boundary_orientation() {
 
 #[test]
 fn elephant_orientation_volume_and_geometry() {
-    let Some((k, _)) = load("tri_elephant") else { return };
+    let Some((k, _)) = load("tri_elephant") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
     let init = h.input_signs(&k);
@@ -179,10 +205,14 @@ fn elephant_orientation_volume_and_geometry() {
     // the signed volume with the file's winding, computed directly
     let mut direct = 0.0;
     for c in k.cells() {
-        let p: Vec<[f64; 3]> = c.vertices.iter().map(|&v| {
-            let q = k.point(VertexId(v));
-            [q[0], q[1], q[2]]
-        }).collect();
+        let p: Vec<[f64; 3]> = c
+            .vertices
+            .iter()
+            .map(|&v| {
+                let q = k.point(VertexId(v));
+                [q[0], q[1], q[2]]
+            })
+            .collect();
         let cr = [
             p[1][1] * p[2][2] - p[1][2] * p[2][1],
             p[1][2] * p[2][0] - p[1][0] * p[2][2],
@@ -218,7 +248,9 @@ fn elephant_orientation_volume_and_geometry() {
 
 #[test]
 fn triangle_edits_flip_split_smooth() {
-    let Some((k, _)) = load("tri_elephant") else { return };
+    let Some((k, _)) = load("tri_elephant") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
     let chi = h.euler_characteristic();
@@ -253,14 +285,19 @@ fn triangle_edits_flip_split_smooth() {
 
 #[test]
 fn tetrahedral_edits_2_3_and_3_2_flips_splits_collapse() {
-    let Some((k, _)) = load("tet_elephant") else { return };
+    let Some((k, _)) = load("tet_elephant") else {
+        return;
+    };
     let mut h: Hasse = Hasse::from_indexed(&k).unwrap();
     let fv = h.f_vector();
     let chi = h.euler_characteristic();
     let o = h.orient(None);
     assert!(o.orientable && o.pseudo_manifold && o.components == 1);
     // 2-3 flip on an interior face, then 3-2 back
-    let f = h.level(2).find(|&f| h.can_flip(f).is_ok()).expect("a flippable face");
+    let f = h
+        .level(2)
+        .find(|&f| h.can_flip(f).is_ok())
+        .expect("a flippable face");
     let fvs = h.vertices(f).to_vec();
     let e = h.flip(f).unwrap();
     assert_eq!(e.dim, 1);
@@ -292,7 +329,9 @@ fn tetrahedral_edits_2_3_and_3_2_flips_splits_collapse() {
 
 #[test]
 fn conversions_round_trip_and_dot() {
-    let Some((k, _)) = load("tri_holes") else { return };
+    let Some((k, _)) = load("tri_holes") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
     let o = h.orient(Some(&h.input_signs(&k)));
@@ -318,15 +357,26 @@ fn conversions_round_trip_and_dot() {
 }
 
 fn simplices<L: starplex::hasse::Levels>(h: &Hasse<L>) -> Vec<Vec<u32>> {
-    let mut v: Vec<Vec<u32>> = h.nodes().map(|n| h.vertices(n).iter().map(|x| x.0).collect()).collect();
+    let mut v: Vec<Vec<u32>> = h
+        .nodes()
+        .map(|n| h.vertices(n).iter().map(|x| x.0).collect())
+        .collect();
     v.sort();
     v
 }
 
 #[test]
 fn bulk_build_equals_cell_by_cell_insertion() {
-    for name in ["tri_holes", "tet_elephant", "vr_kitten_s", "sierp5_xs", "tri_polygon_mesh"] {
-        let Some((k, oracle)) = load(name) else { continue };
+    for name in [
+        "tri_holes",
+        "tet_elephant",
+        "vr_kitten_s",
+        "sierp5_xs",
+        "tri_polygon_mesh",
+    ] {
+        let Some((k, oracle)) = load(name) else {
+            continue;
+        };
         let Ok(bulk) = Hasse::<()>::from_indexed(&k) else {
             continue;
         };
@@ -344,7 +394,10 @@ fn bulk_build_equals_cell_by_cell_insertion() {
         for v in bulk.level(0).step_by(97) {
             let lab = bulk.vertices(v)[0];
             let w = inc.vertex(lab).unwrap();
-            assert_eq!(bulk.set_to_vertex_lists(&bulk.link(v)), inc.set_to_vertex_lists(&inc.link(w)));
+            assert_eq!(
+                bulk.set_to_vertex_lists(&bulk.link(v)),
+                inc.set_to_vertex_lists(&inc.link(w))
+            );
         }
     }
     // mixed dimensions: a triangle, a dangling edge, an isolated vertex, an edge of the triangle

@@ -184,7 +184,9 @@ mod tests {
         let mut model: Vec<Vec<[u32; 2]>> = vec![vec![]; 3];
         let mut x = 12345u64;
         for step in 0..3000u32 {
-            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let node = ((x >> 33) % 3) as u32;
             let key = ((x >> 40) % 40) as u32;
             let m = &mut model[node as usize];

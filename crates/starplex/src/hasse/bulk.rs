@@ -144,7 +144,12 @@ impl<L: Levels> Hasse<L> {
             }
         }
         let l0 = &self.levels[0];
-        self.root.reserve_dense(l0.verts.last().map_or(0, |&m| m as usize + 1).min(2 * l0.verts.len() + 4096));
+        self.root.reserve_dense(
+            l0.verts
+                .last()
+                .map_or(0, |&m| m as usize + 1)
+                .min(2 * l0.verts.len() + 4096),
+        );
         for (i, &lab) in l0.verts.iter().enumerate() {
             self.root.insert(lab, i as u32);
         }

@@ -55,7 +55,10 @@ impl Level {
         &self.down[i * self.k1..(i + 1) * self.k1]
     }
     fn bytes(&self) -> usize {
-        self.verts.capacity() * 4 + self.down.capacity() * 4 + self.up.bytes() + self.free.capacity() * 4
+        self.verts.capacity() * 4
+            + self.down.capacity() * 4
+            + self.up.bytes()
+            + self.free.capacity() * 4
     }
 }
 
@@ -191,7 +194,9 @@ impl<L: Levels> Default for Hasse<L> {
 
 impl<L: Levels> std::fmt::Debug for Hasse<L> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Hasse").field("f_vector", &self.f_vector()).finish()
+        f.debug_struct("Hasse")
+            .field("f_vector", &self.f_vector())
+            .finish()
     }
 }
 
@@ -232,7 +237,9 @@ impl<L: Levels> Hasse<L> {
     /// assert_eq!(h.dim(), Some(1));
     /// ```
     pub fn dim(&self) -> Option<usize> {
-        (0..self.levels.len()).rev().find(|&k| self.levels[k].len() > 0)
+        (0..self.levels.len())
+            .rev()
+            .find(|&k| self.levels[k].len() > 0)
     }
 
     /// Number of `k`-simplices.
@@ -338,8 +345,7 @@ impl<L: Levels> Hasse<L> {
     /// assert!(h.topology_bytes() > 0);
     /// ```
     pub fn topology_bytes(&self) -> usize {
-        self.levels.iter().map(|l| l.bytes()).sum::<usize>()
-            + self.root.bytes()
+        self.levels.iter().map(|l| l.bytes()).sum::<usize>() + self.root.bytes()
     }
 
     /// Bytes used by user data (column capacities); zero for levels without data.
@@ -756,7 +762,12 @@ impl<L: Levels> Hasse<L> {
         let mut buf: Verts = SmallVec::with_capacity(k);
         for i in 0..=k {
             buf.clear();
-            buf.extend(s.iter().enumerate().filter(|&(j, _)| j != i).map(|(_, &x)| x));
+            buf.extend(
+                s.iter()
+                    .enumerate()
+                    .filter(|&(j, _)| j != i)
+                    .map(|(_, &x)| x),
+            );
             downs.push(self.insert_sorted(&buf));
         }
         let id = self.new_slot(k, s, &downs, 0);
@@ -846,7 +857,11 @@ impl<L: Levels> Hasse<L> {
                 if kp {
                     verts.extend_from_slice(&l.verts[i * k1..(i + 1) * k1]);
                     if k > 0 {
-                        down.extend(l.down[i * k1..(i + 1) * k1].iter().map(|&f| maps[k - 1][f as usize]));
+                        down.extend(
+                            l.down[i * k1..(i + 1) * k1]
+                                .iter()
+                                .map(|&f| maps[k - 1][f as usize]),
+                        );
                     }
                 }
             }
@@ -877,13 +892,21 @@ impl<L: Levels> Hasse<L> {
             let l = &hi[0];
             for i in 0..l.verts.len() / (k + 1) {
                 for j in 0..=k {
-                    lo[k - 1].up.insert(l.down[i * (k + 1) + j], l.verts[i * (k + 1) + j], i as u32);
+                    lo[k - 1].up.insert(
+                        l.down[i * (k + 1) + j],
+                        l.verts[i * (k + 1) + j],
+                        i as u32,
+                    );
                 }
             }
         }
         let mut root = VertexIndex::default();
         if let Some(l) = self.levels.first() {
-            root.reserve_dense(self.max_label.map_or(0, |m| m as usize + 1).min(2 * l.verts.len() + 4096));
+            root.reserve_dense(
+                self.max_label
+                    .map_or(0, |m| m as usize + 1)
+                    .min(2 * l.verts.len() + 4096),
+            );
             for (i, &lab) in l.verts.iter().enumerate() {
                 root.insert(lab, i as u32);
             }
@@ -992,15 +1015,20 @@ impl<L: Levels> Hasse<L> {
                 dead += l.up.is_dead(i) as usize;
             }
             if dead != l.free.len() || l.free.iter().any(|&f| l.alive(f)) {
-                return bad(Node::new(k as u32, SimplexId(0)), "free list differs from the removed slots".into());
+                return bad(
+                    Node::new(k as u32, SimplexId(0)),
+                    "free list differs from the removed slots".into(),
+                );
             }
         }
         if self.root.len() != self.n_simplices(0) {
-            return bad(Node::new(0, SimplexId(0)), "vertex lookup size differs".into());
+            return bad(
+                Node::new(0, SimplexId(0)),
+                "vertex lookup size differs".into(),
+            );
         }
         let mut n_up = vec![0usize; self.levels.len()];
-        for k in 0..self.levels.len() {
-            let l = &self.levels[k];
+        for (k, l) in self.levels.iter().enumerate() {
             if l.verts.len() != l.slots() * (k + 1) || (k > 0 && l.down.len() != l.verts.len()) {
                 return bad(Node::new(k as u32, SimplexId(0)), "array lengths".into());
             }
@@ -1062,7 +1090,10 @@ impl<L: Levels> Hasse<L> {
         }
         for k in 1..self.levels.len() {
             if n_up[k - 1] != self.levels[k].len() * (k + 1) {
-                return bad(Node::new(k as u32, SimplexId(0)), "incidence counts differ".into());
+                return bad(
+                    Node::new(k as u32, SimplexId(0)),
+                    "incidence counts differ".into(),
+                );
             }
         }
         Ok(())

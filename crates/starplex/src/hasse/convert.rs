@@ -181,7 +181,10 @@ impl<L: Levels> Hasse<L> {
         for n in self.maximal_simplices() {
             let mut vs: Vec<u32> = self.vertices(n).iter().map(|v| index[&v.0]).collect();
             if let Some(o) = orientation {
-                if o.dim == n.dim as usize && o.signs.get(n.id.index()) == Some(&-1) && vs.len() >= 2 {
+                if o.dim == n.dim as usize
+                    && o.signs.get(n.id.index()) == Some(&-1)
+                    && vs.len() >= 2
+                {
                     vs.swap(0, 1);
                 }
             }

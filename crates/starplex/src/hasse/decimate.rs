@@ -149,7 +149,11 @@ impl<L: Levels> Hasse<L> {
     /// let plan = h.plan_decimate(e, None).unwrap();
     /// assert_eq!(plan.to_string(), "{0} {1} {0,1} -> {3}\n{0,2} {1,2} {0,1,2} -> {2,3}\n");
     /// ```
-    pub fn plan_decimate(&self, s: Node, p: Option<VertexId>) -> Result<DecimationPlan, HasseError> {
+    pub fn plan_decimate(
+        &self,
+        s: Node,
+        p: Option<VertexId>,
+    ) -> Result<DecimationPlan, HasseError> {
         if !self.contains(s) {
             return Err(HasseError::NotANode(s));
         }
@@ -202,7 +206,11 @@ impl<L: Levels> Hasse<L> {
     /// assert_eq!(*h.data::<0>(v.id), 2.0);
     /// assert_eq!(h.f_vector(), vec![2, 1]);
     /// ```
-    pub fn decimate<C: MergeAll<L>>(&mut self, s: Node, merge: &mut C) -> Result<VertexId, HasseError> {
+    pub fn decimate<C: MergeAll<L>>(
+        &mut self,
+        s: Node,
+        merge: &mut C,
+    ) -> Result<VertexId, HasseError> {
         self.decimate_into(s, None, merge)
     }
 
@@ -324,9 +332,9 @@ impl<L: Levels> Hasse<L> {
         let (Some(a), Some(b)) = (self.vertex(vs[0]), self.vertex(vs[1])) else {
             return false;
         };
-        self.link_ids_into(a, &mut bufs.a);
-        self.link_ids_into(b, &mut bufs.b);
-        self.link_ids_into(e, &mut bufs.ab);
+        self.link_ids_into(a, &mut bufs.a, &mut bufs.scratch);
+        self.link_ids_into(b, &mut bufs.b, &mut bufs.scratch);
+        self.link_ids_into(e, &mut bufs.ab, &mut bufs.scratch);
         let n = bufs.a.len().max(bufs.b.len()).max(bufs.ab.len());
         for k in 0..n {
             let get = |v: &mut Vec<Vec<SimplexId>>| -> SmallVec<[SimplexId; 32]> {
@@ -363,4 +371,10 @@ pub(crate) struct LinkBufs {
     a: Vec<Vec<SimplexId>>,
     b: Vec<Vec<SimplexId>>,
     ab: Vec<Vec<SimplexId>>,
+    scratch: super::sets::Frontier,
+}
+
+thread_local! {
+    /// Buffers of the link check, reused across calls on one thread.
+    pub(crate) static LINK_BUFS: std::cell::RefCell<LinkBufs> = std::cell::RefCell::new(LinkBufs::default());
 }

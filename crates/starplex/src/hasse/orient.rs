@@ -223,7 +223,10 @@ impl<L: Levels> Hasse<L> {
                 continue;
             }
             components += 1;
-            let s0 = initial.and_then(|x| x.get(seed).copied()).filter(|&x| x != 0).unwrap_or(1);
+            let s0 = initial
+                .and_then(|x| x.get(seed).copied())
+                .filter(|&x| x != 0)
+                .unwrap_or(1);
             signs[seed] = s0;
             q.push_back(seed as u32);
             while let Some(t) = q.pop_front() {

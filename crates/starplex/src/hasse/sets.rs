@@ -344,6 +344,9 @@ impl<T> SimplexMap<T> {
     }
 }
 
+/// Two frontiers of a breadth-first walk: (node, largest added vertex).
+pub(crate) type Frontier = (Vec<(u32, u32)>, Vec<(u32, u32)>);
+
 impl<L: Levels> Hasse<L> {
     /// The vertex tuples of a set, by dimension then lexicographically.
     ///
@@ -414,12 +417,7 @@ impl<L: Levels> Hasse<L> {
         for k in (1..set.levels.len()).rev() {
             let mut add: Vec<SimplexId> = Vec::new();
             for &i in &set.levels[k] {
-                add.extend(
-                    self.levels[k]
-                        .downs(i.0)
-                        .iter()
-                        .map(|&f| SimplexId(f)),
-                );
+                add.extend(self.levels[k].downs(i.0).iter().map(|&f| SimplexId(f)));
             }
             let l = &mut set.levels[k - 1];
             l.extend(add);
@@ -438,24 +436,30 @@ impl<L: Levels> Hasse<L> {
     /// ```
     pub fn link(&self, s: Node) -> SimplexSet {
         let mut out = Vec::new();
-        self.link_ids_into(s, &mut out);
+        self.link_ids_into(s, &mut out, &mut Default::default());
         SimplexSet::from_levels(out)
     }
 
     /// The link as unsorted ids per level into a reused buffer (each link simplex once).
-    pub(crate) fn link_ids_into(&self, s: Node, out: &mut Vec<Vec<SimplexId>>) {
+    pub(crate) fn link_ids_into(
+        &self,
+        s: Node,
+        out: &mut Vec<Vec<SimplexId>>,
+        scratch: &mut Frontier,
+    ) {
         for l in out.iter_mut() {
             l.clear();
         }
         let k = s.dim as usize;
         let sv: smallvec::SmallVec<[u32; 8]> = self.levels[k].verts(s.id.0).into();
-        let mut cur: Vec<(u32, u32)> = vec![(s.id.0, 0)];
-        let mut next: Vec<(u32, u32)> = Vec::new();
+        let (cur, next) = scratch;
+        cur.clear();
+        cur.push((s.id.0, 0));
         let mut j = k;
         let mut first = true;
         while !cur.is_empty() && j + 1 < self.levels.len() {
             next.clear();
-            for &(t, m) in &cur {
+            for &(t, m) in cur.iter() {
                 for p in self.levels[j].up.get(t) {
                     if first || p[0] > m {
                         next.push((p[1], p[0]));
@@ -468,7 +472,7 @@ impl<L: Levels> Hasse<L> {
             if out.len() <= ld {
                 out.resize(ld + 1, Vec::new());
             }
-            for &(t, _) in &next {
+            for &(t, _) in next.iter() {
                 // go down from t removing the vertices of s
                 let mut cur_id = t;
                 let mut d = j;
@@ -481,7 +485,7 @@ impl<L: Levels> Hasse<L> {
                 }
                 out[ld].push(SimplexId(cur_id));
             }
-            std::mem::swap(&mut cur, &mut next);
+            std::mem::swap(cur, next);
         }
     }
 
