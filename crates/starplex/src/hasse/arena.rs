@@ -57,6 +57,20 @@ impl UpArena {
         self.reserve_node(n, cap);
     }
 
+    /// Appends a node whose up list is `pairs` (sorted by key).
+    pub(crate) fn push_node_with(&mut self, pairs: &[UpPair]) {
+        self.hdr.push([0, 0]);
+        let n = (self.hdr.len() - 1) as u32;
+        let l = pairs.len() as u32;
+        if l == 0 {
+            return;
+        }
+        let c = l.next_power_of_two().max(2);
+        let s = self.alloc(c);
+        self.slots[s as usize..(s + l) as usize].copy_from_slice(pairs);
+        self.hdr[n as usize] = [s, l | (c.trailing_zeros() << LEN_BITS)];
+    }
+
     /// Reserves room for `n` more pairs.
     pub(crate) fn reserve_slots(&mut self, n: usize) {
         self.slots.reserve_exact(n);

@@ -5,21 +5,29 @@
 use super::complex::Hasse;
 use super::levels::Levels;
 
-/// Packs a sorted tuple of at most 4 labels, first label most significant.
+/// A sorted tuple of at most 4 labels packed in two words, first label most significant (so
+/// keys compare like the tuples; 8-byte alignment keeps a record at 24 bytes).
+type Key = (u64, u64);
+
 #[inline]
-fn pack(vs: &[u32]) -> u128 {
-    let mut k = 0u128;
-    for (i, &v) in vs.iter().enumerate() {
-        k |= (v as u128) << (32 * (3 - i));
-    }
-    k
+fn pack(vs: &[u32]) -> Key {
+    let mut w = [0u32; 4];
+    w[..vs.len()].copy_from_slice(vs);
+    (
+        ((w[0] as u64) << 32) | w[1] as u64,
+        ((w[2] as u64) << 32) | w[3] as u64,
+    )
 }
 
 #[inline]
-fn unpack(k: u128, n: usize, out: &mut [u32; 4]) {
-    for (i, o) in out.iter_mut().enumerate().take(n) {
-        *o = (k >> (32 * (3 - i))) as u32;
-    }
+fn unpack(k: Key, n: usize, out: &mut [u32; 4]) {
+    let w = [
+        (k.0 >> 32) as u32,
+        k.0 as u32,
+        (k.1 >> 32) as u32,
+        k.1 as u32,
+    ];
+    out[..n].copy_from_slice(&w[..n]);
 }
 
 const NO_PARENT: u32 = u32::MAX;
@@ -34,7 +42,7 @@ impl<L: Levels> Hasse<L> {
         };
         self.ensure_level(d);
         // top level: unique tuples
-        let mut keys: Vec<u128> = cells[d].chunks_exact(d + 1).map(pack).collect();
+        let mut keys: Vec<Key> = cells[d].chunks_exact(d + 1).map(pack).collect();
         keys.sort_unstable();
         keys.dedup();
         let mut buf = [0u32; 4];
@@ -57,7 +65,7 @@ impl<L: Levels> Hasse<L> {
             }
         }
         drop(keys);
-        let mut recs: Vec<(u128, u32, u32)> = Vec::new();
+        let mut recs: Vec<(Key, u32, u32)> = Vec::new();
         let mut ups: Vec<[u32; 2]> = Vec::new();
         for k in (1..=d).rev() {
             // facets of level k, plus the input cells of dimension k - 1
@@ -129,11 +137,8 @@ impl<L: Levels> Hasse<L> {
                 if k > 1 {
                     below.down.extend_from_slice(&[0; 4][..k]);
                 }
-                below.up.push_node(ups.len() as u32);
                 ups.sort_unstable();
-                for u in &ups {
-                    below.up.insert(id, u[0], u[1]);
-                }
+                below.up.push_node_with(&ups);
                 for r in &recs[g..e] {
                     if r.1 != NO_PARENT {
                         above.down[r.1 as usize * (k + 1) + r.2 as usize] = id;

@@ -64,7 +64,7 @@ pub use complex::{Hasse, MAX_INSERT_VERTICES};
 pub use convert::DotOptions;
 pub use decimate::{DecimationGroup, DecimationPlan};
 pub use edit::{EditError, Position};
-pub use levels::{At, DefaultData, KeepFirst, Levels, Merge, MergeAll};
+pub use levels::{At, DefaultData, KeepFirst, Levels, Merge, MergeAll, Visit, VisitAll};
 pub use orient::{Orientation, SurfaceGeometry};
 pub use sets::{SimplexMap, SimplexSet};
 

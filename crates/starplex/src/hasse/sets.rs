@@ -636,6 +636,55 @@ impl<L: Levels> Hasse<L> {
         }
     }
 
+    /// Breadth-first traversal up from `s` with a typed visitor: each node reaches the
+    /// [`Visit<K, T>`](super::Visit) of its level with its data, the level chosen by one `match`
+    /// on the dimension, the data typed at compile time.
+    ///
+    /// ```
+    /// use starplex::hasse::{Hasse, Node, Visit};
+    /// struct Tally { weight: f64, triangles: Vec<u8> }
+    /// impl Visit<0, f64> for Tally {
+    ///     fn visit(&mut self, _: Node, w: &f64) -> bool { self.weight += w; true }
+    /// }
+    /// impl Visit<1, ()> for Tally {
+    ///     fn visit(&mut self, _: Node, _: &()) -> bool { true }
+    /// }
+    /// impl Visit<2, u8> for Tally {
+    ///     fn visit(&mut self, _: Node, c: &u8) -> bool { self.triangles.push(*c); true }
+    /// }
+    /// let mut h: Hasse<(f64, (), u8)> = Hasse::new();
+    /// let t = h.insert_with::<2>(&[0.into(), 1.into(), 2.into()], 7).unwrap();
+    /// *h.data_mut::<0>(h.vertex(0.into()).unwrap().id) = 1.5;
+    /// let mut v = Tally { weight: 0.0, triangles: vec![] };
+    /// h.visit_typed_bfs_up(h.vertex(0.into()).unwrap(), &mut v);
+    /// assert_eq!((v.weight, v.triangles), (1.5, vec![7]));
+    /// let mut v = Tally { weight: 0.0, triangles: vec![] };
+    /// h.visit_typed_bfs_down(t, &mut v);
+    /// assert_eq!(v.weight, 1.5);
+    /// ```
+    pub fn visit_typed_bfs_up<V: super::VisitAll<L>>(&self, s: Node, v: &mut V) {
+        self.visit_bfs_up(s, |n| v.visit_node(&self.data, n));
+    }
+
+    /// Breadth-first traversal down from `s` with a typed visitor (see
+    /// [`visit_typed_bfs_up`](Self::visit_typed_bfs_up)).
+    ///
+    /// ```
+    /// use starplex::hasse::{Hasse, Node, Visit};
+    /// struct Verts(usize);
+    /// impl Visit<0, u32> for Verts {
+    ///     fn visit(&mut self, _: Node, _: &u32) -> bool { self.0 += 1; true }
+    /// }
+    /// let mut h: Hasse<(u32,)> = Hasse::new();
+    /// let t = h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
+    /// let mut v = Verts(0);
+    /// h.visit_typed_bfs_down(t, &mut v);
+    /// assert_eq!(v.0, 3);
+    /// ```
+    pub fn visit_typed_bfs_down<V: super::VisitAll<L>>(&self, s: Node, v: &mut V) {
+        self.visit_bfs_down(s, |n| v.visit_node(&self.data, n));
+    }
+
     /// Breadth-first traversal down from `s` (s included), each face visited once.
     ///
     /// ```
