@@ -64,23 +64,66 @@ impl std::fmt::Display for DecimationPlan {
 struct RawGroup {
     new: Verts,
     /// (dimension, id) of every old simplex, sorted by dimension then vertices.
-    old: Vec<(usize, u32)>,
+    old: SmallVec<[(usize, u32); 4]>,
 }
 
 impl<L: Levels> Hasse<L> {
-    /// `St(Cl(s))` as ids per level.
-    pub(crate) fn neighbourhood_ids(&self, s: Node) -> Vec<Vec<u32>> {
-        let cl = self.closure(s);
-        let mut out: Vec<Vec<u32>> = vec![Vec::new(); self.levels.len()];
-        for f in cl.iter() {
-            for (k, l) in self.star_ids(f).into_iter().enumerate() {
-                out[k].extend(l);
+    /// `St(Cl(s))` as sorted, distinct `(dimension, id)` pairs.
+    pub(crate) fn neighbourhood_ids(&self, s: Node) -> Vec<(usize, u32)> {
+        // Cl(s): breadth-first down, deduplicated per level
+        let mut cl: Vec<(usize, u32)> = vec![(s.dim as usize, s.id.0)];
+        let mut lo = 0;
+        while lo < cl.len() {
+            let hi = cl.len();
+            let k = cl[lo].0;
+            if k == 0 {
+                break;
+            }
+            for j in lo..hi {
+                let (k, i) = cl[j];
+                for &f in self.levels[k].downs(i) {
+                    cl.push((k - 1, f));
+                }
+            }
+            cl[hi..].sort_unstable();
+            let mut w = hi;
+            for r in hi..cl.len() {
+                if w == hi || cl[w - 1] != cl[r] {
+                    cl[w] = cl[r];
+                    w += 1;
+                }
+            }
+            cl.truncate(w);
+            lo = hi;
+        }
+        // St of each face: cofaces reached only from their canonical parent (no duplicates
+        // within one star)
+        let mut out: Vec<(usize, u32)> = Vec::new();
+        let mut cur: Vec<(u32, u32)> = Vec::new();
+        let mut next: Vec<(u32, u32)> = Vec::new();
+        for &(k, i) in &cl {
+            out.push((k, i));
+            cur.clear();
+            cur.push((i, 0));
+            let mut j = k;
+            let mut first = true;
+            while !cur.is_empty() && j + 1 < self.levels.len() {
+                next.clear();
+                for &(t, m) in &cur {
+                    for p in self.levels[j].up.get(t) {
+                        if first || p[0] > m {
+                            next.push((p[1], p[0]));
+                        }
+                    }
+                }
+                first = false;
+                j += 1;
+                out.extend(next.iter().map(|x| (j, x.0)));
+                std::mem::swap(&mut cur, &mut next);
             }
         }
-        for l in &mut out {
-            l.sort_unstable();
-            l.dedup();
-        }
+        out.sort_unstable();
+        out.dedup();
         out
     }
 
@@ -100,9 +143,9 @@ impl<L: Levels> Hasse<L> {
     fn raw_plan(&self, s: Node, p: VertexId) -> Vec<RawGroup> {
         let sv = self.vertices(s).to_vec();
         let nb = self.neighbourhood_ids(s);
-        let mut items: Vec<(Verts, usize, u32)> = Vec::new();
-        for (k, ids) in nb.iter().enumerate() {
-            for &i in ids {
+        let mut items: Vec<(Verts, usize, u32)> = Vec::with_capacity(nb.len());
+        for &(k, i) in &nb {
+            {
                 let f = self.levels[k].verts(i);
                 let mut phi: Verts = f
                     .iter()
@@ -126,10 +169,11 @@ impl<L: Levels> Hasse<L> {
         for (phi, k, i) in items {
             match groups.last_mut() {
                 Some(g) if g.new == phi => g.old.push((k, i)),
-                _ => groups.push(RawGroup {
-                    new: phi,
-                    old: vec![(k, i)],
-                }),
+                _ => {
+                    let mut old = SmallVec::new();
+                    old.push((k, i));
+                    groups.push(RawGroup { new: phi, old })
+                }
             }
         }
         groups
