@@ -32,6 +32,47 @@ fn unpack(k: Key, n: usize, out: &mut [u32; 4]) {
 
 const NO_PARENT: u32 = u32::MAX;
 
+type Rec = (Key, u32, u32);
+
+/// Label `i` of a packed key.
+#[inline]
+fn label(k: Key, i: usize) -> u32 {
+    match i {
+        0 => (k.0 >> 32) as u32,
+        1 => k.0 as u32,
+        2 => (k.1 >> 32) as u32,
+        _ => k.1 as u32,
+    }
+}
+
+/// Sorts records by key: a least-significant-label-first counting sort (one pass per label)
+/// when labels are small, a comparison sort otherwise. Stable order is not needed.
+fn sort_recs(recs: &mut Vec<Rec>, k: usize, max_label: u32, tmp: &mut Vec<Rec>) {
+    let buckets = max_label as usize + 1;
+    if buckets > 4 * recs.len() + 4096 {
+        recs.sort_unstable_by_key(|r| r.0);
+        return;
+    }
+    let mut count = vec![0u32; buckets + 1];
+    tmp.clear();
+    tmp.resize(recs.len(), ((0, 0), 0, 0));
+    for pos in (0..k).rev() {
+        count.iter_mut().for_each(|c| *c = 0);
+        for r in recs.iter() {
+            count[label(r.0, pos) as usize + 1] += 1;
+        }
+        for b in 1..count.len() {
+            count[b] += count[b - 1];
+        }
+        for r in recs.iter() {
+            let b = label(r.0, pos) as usize;
+            tmp[count[b] as usize] = *r;
+            count[b] += 1;
+        }
+        std::mem::swap(recs, tmp);
+    }
+}
+
 impl<L: Levels> Hasse<L> {
     /// Builds an empty complex's levels from sorted, non-degenerate simplices given per
     /// dimension (flat arrays, `k + 1` labels per `k`-simplex, `k <= 3`).
@@ -65,7 +106,14 @@ impl<L: Levels> Hasse<L> {
             }
         }
         drop(keys);
-        let mut recs: Vec<(Key, u32, u32)> = Vec::new();
+        let max_label = cells
+            .iter()
+            .flat_map(|c| c.iter())
+            .copied()
+            .max()
+            .unwrap_or(0);
+        let mut recs: Vec<Rec> = Vec::new();
+        let mut tmp: Vec<Rec> = Vec::new();
         let mut ups: Vec<[u32; 2]> = Vec::new();
         for k in (1..=d).rev() {
             // facets of level k, plus the input cells of dimension k - 1
@@ -92,7 +140,7 @@ impl<L: Levels> Hasse<L> {
             for c in cells[k - 1].chunks_exact(k) {
                 recs.push((pack(c), NO_PARENT, 0));
             }
-            recs.sort_unstable_by_key(|r| r.0);
+            sort_recs(&mut recs, k, max_label, &mut tmp);
             // groups become the nodes of level k - 1
             let (lo, hi) = self.levels.split_at_mut(k);
             let below = &mut lo[k - 1];
