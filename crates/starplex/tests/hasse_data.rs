@@ -416,3 +416,59 @@ fn bulk_build_equals_cell_by_cell_insertion() {
     assert_eq!(h.f_vector(), vec![5, 4, 1]);
     assert_eq!(h.maximal_simplices().len(), 3);
 }
+
+/// A triangulated torus: an `n × m` grid with wrap-around, two triangles per square.
+fn torus(n: u32, m: u32) -> Hasse {
+    let mut h = Hasse::new();
+    let id = |i: u32, j: u32| VertexId((i % n) * m + (j % m));
+    for i in 0..n {
+        for j in 0..m {
+            h.insert(&[id(i, j), id(i + 1, j), id(i + 1, j + 1)])
+                .unwrap();
+            h.insert(&[id(i, j), id(i + 1, j + 1), id(i, j + 1)])
+                .unwrap();
+        }
+    }
+    h
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: 24,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x70_2u64),
+        failure_persistence: None,
+        ..proptest::prelude::ProptestConfig::default()
+    })]
+
+    /// On a torus, link-checked collapses and flips keep the Euler characteristic and the Z/2
+    /// Betti numbers; the link condition refuses exactly the collapses that would change them
+    /// (checked by collapsing a copy anyway).
+    #[test]
+    fn torus_collapses_and_flips_keep_z2_betti(picks in proptest::collection::vec((0u64..1_000_000, proptest::bool::ANY), 1..60)) {
+        let mut h = torus(6, 5);
+        let betti = betti_z2(&h);
+        proptest::prop_assert_eq!(&betti, &vec![1, 2, 1]);
+        for (r, flip) in picks {
+            let e = h.pick(1, r).unwrap();
+            if flip {
+                if h.can_flip(e).is_ok() {
+                    h.flip(e).unwrap();
+                }
+            } else if h.can_collapse(e).is_ok() {
+                h.collapse(e, &mut KeepFirst).unwrap();
+            } else {
+                let mut c = h.clone();
+                c.collapse(e, &mut KeepFirst).unwrap();
+                c.check().unwrap();
+                // a refused collapse would have changed the topology (or made a non-manifold)
+                let o = c.orient(None);
+                proptest::prop_assert!(betti_z2(&c) != betti || !o.pseudo_manifold || c.euler_characteristic() != 0);
+                continue;
+            }
+            h.check().unwrap();
+            proptest::prop_assert_eq!(h.euler_characteristic(), 0);
+            proptest::prop_assert_eq!(&betti_z2(&h), &betti);
+            proptest::prop_assert!(h.orient(None).pseudo_manifold);
+        }
+    }
+}
