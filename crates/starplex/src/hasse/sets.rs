@@ -9,7 +9,8 @@ use crate::ids::{SimplexId, VertexId};
 
 /// A set of simplices of one complex, kept per dimension as sorted id lists (like CASC's
 /// `SimplexSet`, one set per level). Ids are those of the complex when the set was made:
-/// removing simplices from the complex renumbers ids, so rebuild sets after a removal.
+/// ids stay valid while the complex is edited, except that the slot of a removed simplex is
+/// reused by a later insertion and [`Hasse::compact`] renumbers everything.
 ///
 /// ```
 /// use starplex::hasse::{Hasse, SimplexSet};
