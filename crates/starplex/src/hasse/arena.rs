@@ -67,7 +67,12 @@ impl UpArena {
         }
         let c = l.next_power_of_two().max(2);
         let s = self.alloc(c);
-        self.slots[s as usize..(s + l) as usize].copy_from_slice(pairs);
+        for (d, p) in self.slots[s as usize..(s + l) as usize]
+            .iter_mut()
+            .zip(pairs)
+        {
+            *d = *p;
+        }
         self.hdr[n as usize] = [s, l | (c.trailing_zeros() << LEN_BITS)];
     }
 

@@ -181,9 +181,13 @@ impl<L: Levels> Hasse<L> {
                 }
                 let id = below.slots() as u32;
                 unpack(key, k, &mut buf);
-                below.verts.extend_from_slice(&buf[..k]);
+                for &x in &buf[..k] {
+                    below.verts.push(x);
+                }
                 if k > 1 {
-                    below.down.extend_from_slice(&[0; 4][..k]);
+                    for _ in 0..k {
+                        below.down.push(0);
+                    }
                 }
                 ups.sort_unstable();
                 below.up.push_node_with(&ups);

@@ -85,7 +85,10 @@ impl<L: Levels> Hasse<L> {
                 });
             }
             if top <= 3 {
-                per_dim[d].extend_from_slice(&buf);
+                let out = &mut per_dim[d];
+                for &x in &buf {
+                    out.push(x);
+                }
             } else {
                 h.insert_sorted(&buf);
             }
