@@ -472,3 +472,75 @@ proptest::proptest! {
         }
     }
 }
+
+fn tet_volume(h: &Hasse<([f64; 3],)>, vs: &[VertexId]) -> f64 {
+    let p: Vec<[f64; 3]> = vs
+        .iter()
+        .map(|&v| *h.data::<0>(h.vertex(v).unwrap().id))
+        .collect();
+    let a = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
+    let b = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
+    let c = [p[3][0] - p[0][0], p[3][1] - p[0][1], p[3][2] - p[0][2]];
+    (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+        + a[2] * (b[0] * c[1] - b[1] * c[0]))
+        .abs()
+        / 6.0
+}
+
+/// Sum of the volumes of the top simplices around `s` (its star's tetrahedra).
+fn star_volume(h: &Hasse<([f64; 3],)>, vs: &[VertexId]) -> (f64, f64) {
+    let n = h.find(vs).unwrap();
+    let st = h.star(n);
+    let vols: Vec<f64> = st
+        .level(3)
+        .iter()
+        .map(|&t| tet_volume(h, h.vertices(starplex::hasse::Node::new(3, t))))
+        .collect();
+    (
+        vols.iter().sum(),
+        vols.iter().cloned().fold(f64::INFINITY, f64::min),
+    )
+}
+
+#[test]
+fn tet_flips_checked_by_exact_orientation_preserve_volume() {
+    let Some((k, _)) = load("tet_elephant") else {
+        return;
+    };
+    let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
+    h.set_positions_from(&k);
+    let faces: Vec<Vec<VertexId>> = h
+        .level(2)
+        .filter(|&f| h.can_flip(f).is_ok())
+        .take(300)
+        .map(|f| h.vertices(f).to_vec())
+        .collect();
+    let (mut ok, mut refused) = (0, 0);
+    for f in faces {
+        let n = h.find(&f).unwrap();
+        let geometric = h.can_flip_geometric(n).is_ok();
+        let (before, _) = star_volume(&h, &f);
+        let mut c = h.clone();
+        let e = c.flip(n).unwrap();
+        let ev = c.vertices(e).to_vec();
+        let (after, smallest) = star_volume(&c, &ev);
+        let same = (after - before).abs() <= 1e-9 * before.max(1e-300);
+        if geometric {
+            ok += 1;
+            assert!(
+                same && smallest > 0.0,
+                "accepted flip of {f:?} changes the volume"
+            );
+            // and the 3-2 flip back is accepted too
+            c.can_flip_geometric(e).unwrap();
+        } else {
+            refused += 1;
+            assert!(
+                !same || smallest <= 1e-9 * before,
+                "refused flip of {f:?} keeps the volume: {before} {after} {smallest} {:?}",
+                h.can_flip_geometric(n)
+            );
+        }
+    }
+    assert!(ok > 0 && refused > 0, "{ok} accepted, {refused} refused");
+}

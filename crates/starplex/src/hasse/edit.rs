@@ -7,8 +7,8 @@
 //! * stellar splits (`can_split` / `split`): edge split, face split, cell split;
 //! * Laplacian smoothing of vertex positions stored as level-0 data.
 //!
-//! The flips are topological: they do not look at positions (a flip that folds the embedding
-//! is allowed; test orientations before flipping when that matters).
+//! The flips are topological: they do not look at positions. `can_flip_geometric` adds an exact
+//! test (robust `orient2d` / `orient3d`) for planar triangle meshes and tetrahedral meshes.
 use super::complex::Hasse;
 use super::decimate::{LinkBufs, LINK_BUFS};
 use super::levels::{At, Levels, MergeAll};

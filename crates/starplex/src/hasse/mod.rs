@@ -73,6 +73,7 @@ mod complex;
 mod convert;
 mod decimate;
 mod edit;
+mod geom;
 pub mod levels;
 mod orient;
 mod sets;
