@@ -148,6 +148,10 @@ impl VertexIndex {
 /// removing a simplex frees its slot (its data is reset), a later insertion reuses it.
 /// [`compact`](Hasse::compact) renumbers densely (data columns follow).
 ///
+/// Methods taking vertex labels check them and never panic. Methods taking a [`Node`] expect a
+/// node of this complex (see [`contains`](Hasse::contains)); an id out of range panics, a
+/// removed slot gives unspecified (but memory-safe) answers.
+///
 /// ```
 /// use starplex::hasse::Hasse;
 /// use starplex::ids::VertexId;
