@@ -76,6 +76,11 @@ impl UpArena {
         self.hdr[n as usize] = [s, l | (c.trailing_zeros() << LEN_BITS)];
     }
 
+    /// Reserves 1/16 more pairs than in use (at least 64).
+    pub(crate) fn reserve_headroom(&mut self) {
+        self.slots.reserve_exact(self.slots.len() / 16 + 64);
+    }
+
     /// Reserves room for `n` more pairs.
     pub(crate) fn reserve_slots(&mut self, n: usize) {
         self.slots.reserve_exact(n);

@@ -200,6 +200,11 @@ impl<L: Levels> Hasse<L> {
                 g = e;
             }
         }
+        // a little headroom in every arena, so the first local edits after a bulk build do not
+        // reallocate (and copy) a whole arena
+        for l in &mut self.levels {
+            l.up.reserve_headroom();
+        }
         let l0 = &self.levels[0];
         self.root.reserve_dense(
             l0.verts
