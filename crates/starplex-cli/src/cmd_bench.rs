@@ -19,6 +19,8 @@ pub enum BenchWhat {
     SimplexTree(SimplexTreeBenchArgs),
     /// IA*: build time per top cell, storage.
     IaStar(SimplexTreeBenchArgs),
+    /// CASC Hasse complex: insert, bytes per simplex, star/link of every vertex, 1000 collapses.
+    Hasse(crate::cmd_bench_hasse::BenchHasseArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -37,6 +39,7 @@ pub fn run(ctx: &Ctx, a: &BenchArgs) -> Result<(), CliError> {
     match &a.what {
         BenchWhat::SimplexTree(b) => simplex_tree(ctx, b),
         BenchWhat::IaStar(b) => ia_star(ctx, b),
+        BenchWhat::Hasse(b) => crate::cmd_bench_hasse::run(ctx, b),
     }
 }
 

@@ -7,6 +7,7 @@ use clap::{Parser, Subcommand};
 
 mod cmd_bench;
 mod cmd_compare;
+mod cmd_bench_hasse;
 mod cmd_convert;
 mod cmd_info;
 mod cmd_stellar;

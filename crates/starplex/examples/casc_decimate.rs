@@ -9,7 +9,14 @@ use starplex::hasse::{Hasse, KeepFirst};
 use starplex::ids::VertexId;
 
 /// The six triangles of the example.
-pub const TRIANGLES: [[u32; 3]; 6] = [[0, 1, 3], [0, 3, 5], [1, 3, 4], [3, 4, 5], [1, 2, 4], [2, 4, 5]];
+pub const TRIANGLES: [[u32; 3]; 6] = [
+    [0, 1, 3],
+    [0, 3, 5],
+    [1, 3, 4],
+    [3, 4, 5],
+    [1, 2, 4],
+    [2, 4, 5],
+];
 
 /// The report printed by `main`.
 pub fn report() -> String {

@@ -7,7 +7,14 @@ use starplex::hasse::Hasse;
 use starplex::ids::VertexId;
 
 /// The six triangles of the example.
-pub const TRIANGLES: [[u32; 3]; 6] = [[0, 1, 3], [0, 3, 5], [1, 3, 4], [3, 4, 5], [1, 2, 4], [2, 4, 5]];
+pub const TRIANGLES: [[u32; 3]; 6] = [
+    [0, 1, 3],
+    [0, 3, 5],
+    [1, 3, 4],
+    [3, 4, 5],
+    [1, 2, 4],
+    [2, 4, 5],
+];
 
 /// The example complex.
 pub fn example() -> Hasse {
@@ -32,7 +39,10 @@ pub fn report() -> String {
     s += &format!("Link({{4}}) = {}\n", h.format_set(&b));
     s += &format!("Link({{3,4}}) = {}\n", h.format_set(&ab));
     s += &format!("Link({{3}}) ∩ Link({{4}}) = {}\n", h.format_set(&both));
-    s += &format!("link condition holds: {}\n", both == ab && h.can_collapse(e).is_ok());
+    s += &format!(
+        "link condition holds: {}\n",
+        both == ab && h.can_collapse(e).is_ok()
+    );
     s
 }
 

@@ -6,7 +6,7 @@ mod common_data;
 
 use std::path::PathBuf;
 
-use starplex::hasse::{Hasse, KeepFirst, Merge, Node};
+use starplex::hasse::{Hasse, KeepFirst, Merge};
 use starplex::ids::VertexId;
 use starplex::io::{self, ReadOptions};
 
@@ -26,7 +26,10 @@ fn datasets() -> PathBuf {
 fn load(name: &str) -> Option<(starplex::complex::IndexedComplex, serde_json::Value)> {
     let p: PathBuf = datasets().join("small").join(format!("{name}.spx"));
     let o = datasets().join("oracle").join(format!("{name}.json"));
-    let (Ok(k), Ok(text)) = (io::read(&p, &ReadOptions::default()), std::fs::read_to_string(o)) else {
+    let (Ok(k), Ok(text)) = (
+        io::read(&p, &ReadOptions::default()),
+        std::fs::read_to_string(o),
+    ) else {
         eprintln!("dataset {name} not found; skipped");
         return None;
     };
@@ -37,14 +40,16 @@ fn load(name: &str) -> Option<(starplex::complex::IndexedComplex, serde_json::Va
 fn betti_z2<L: starplex::hasse::Levels>(h: &Hasse<L>) -> Vec<usize> {
     let d = h.dim().unwrap_or(0);
     let mut ranks = vec![0usize; d + 2];
-    for k in 1..=d {
+    for (k, rank_k) in ranks.iter_mut().enumerate().take(d + 1).skip(1) {
         let mut pivot_of: std::collections::HashMap<u32, Vec<u32>> = Default::default();
         let mut rank = 0;
         for s in h.level(k) {
             let mut col: Vec<u32> = h.down(s).map(|f| f.id.0).collect();
             col.sort_unstable();
             while let Some(&low) = col.last() {
-                let Some(other) = pivot_of.get(&low) else { break };
+                let Some(other) = pivot_of.get(&low) else {
+                    break;
+                };
                 // col ^= other
                 let mut r = Vec::with_capacity(col.len() + other.len());
                 let (mut i, mut j) = (0, 0);
@@ -67,9 +72,11 @@ fn betti_z2<L: starplex::hasse::Levels>(h: &Hasse<L>) -> Vec<usize> {
                 rank += 1;
             }
         }
-        ranks[k] = rank;
+        *rank_k = rank;
     }
-    (0..=d).map(|k| h.n_simplices(k) - ranks[k] - ranks[k + 1]).collect()
+    (0..=d)
+        .map(|k| h.n_simplices(k) - ranks[k] - ranks[k + 1])
+        .collect()
 }
 
 /// Midpoint of the merged vertices' positions; nothing elsewhere.
@@ -90,13 +97,17 @@ impl<const K: usize> Merge<K, ()> for Mid {
 }
 
 fn lcg(x: &mut u64) -> u64 {
-    *x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    *x = x
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
     *x >> 33
 }
 
 #[test]
 fn elephant_oracle_and_1000_collapses() {
-    let Some((k, oracle)) = load("tri_elephant") else { return };
+    let Some((k, oracle)) = load("tri_elephant") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3], (), ())> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
     h.check().unwrap();
@@ -105,7 +116,9 @@ fn elephant_oracle_and_1000_collapses() {
     let betti: Vec<usize> = serde_json::from_value(oracle["betti_z2"].clone()).unwrap();
     assert_eq!(betti_z2(&h), betti);
     for q in oracle["vertex_queries"].as_array().unwrap() {
-        let v = h.vertex(VertexId(q["vertex"].as_u64().unwrap() as u32)).unwrap();
+        let v = h
+            .vertex(VertexId(q["vertex"].as_u64().unwrap() as u32))
+            .unwrap();
         let want: Vec<Vec<u32>> = serde_json::from_value(q["link_simplices"].clone()).unwrap();
         assert_eq!(h.set_to_vertex_lists(&h.link(v)), want);
     }
@@ -113,8 +126,7 @@ fn elephant_oracle_and_1000_collapses() {
     let mut x = 42u64;
     let (mut done, mut refused) = (0, 0);
     while done < 1000 {
-        let ne = h.n_simplices(1) as u64;
-        let e = Node::new(1, ((lcg(&mut x) % ne) as u32).into());
+        let e = h.pick(1, lcg(&mut x)).unwrap();
         if h.can_collapse(e).is_err() {
             refused += 1;
             continue;
@@ -147,13 +159,24 @@ fn elephant_oracle_and_1000_collapses() {
 
 #[test]
 fn holes_components_boundary_orientation() {
-    let Some((k, oracle)) = load("tri_holes") else { return };
+    let Some((k, oracle)) = load("tri_holes") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
-    assert_eq!(h.n_components() as u64, oracle["n_connected_components"].as_u64().unwrap());
-    assert_eq!(h.euler_characteristic(), oracle["euler_characteristic"].as_i64().unwrap());
+    assert_eq!(
+        h.n_components() as u64,
+        oracle["n_connected_components"].as_u64().unwrap()
+    );
+    assert_eq!(
+        h.euler_characteristic(),
+        oracle["euler_characteristic"].as_i64().unwrap()
+    );
     let n_boundary = h.level(1).filter(|&e| h.up(e).len() == 1).count();
-    assert_eq!(n_boundary as u64, oracle["n_boundary_faces"].as_u64().unwrap());
+    assert_eq!(
+        n_boundary as u64,
+        oracle["n_boundary_faces"].as_u64().unwrap()
+    );
     let init = h.input_signs(&k);
     assert!(init.iter().all(|&s| s != 0));
     let o = h.orient(Some(&init));
@@ -170,7 +193,9 @@ fn holes_components_boundary_orientation() {
 
 #[test]
 fn elephant_orientation_volume_and_geometry() {
-    let Some((k, _)) = load("tri_elephant") else { return };
+    let Some((k, _)) = load("tri_elephant") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
     let init = h.input_signs(&k);
@@ -180,10 +205,14 @@ fn elephant_orientation_volume_and_geometry() {
     // the signed volume with the file's winding, computed directly
     let mut direct = 0.0;
     for c in k.cells() {
-        let p: Vec<[f64; 3]> = c.vertices.iter().map(|&v| {
-            let q = k.point(VertexId(v));
-            [q[0], q[1], q[2]]
-        }).collect();
+        let p: Vec<[f64; 3]> = c
+            .vertices
+            .iter()
+            .map(|&v| {
+                let q = k.point(VertexId(v));
+                [q[0], q[1], q[2]]
+            })
+            .collect();
         let cr = [
             p[1][1] * p[2][2] - p[1][2] * p[2][1],
             p[1][2] * p[2][0] - p[1][0] * p[2][2],
@@ -219,7 +248,9 @@ fn elephant_orientation_volume_and_geometry() {
 
 #[test]
 fn triangle_edits_flip_split_smooth() {
-    let Some((k, _)) = load("tri_elephant") else { return };
+    let Some((k, _)) = load("tri_elephant") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
     let chi = h.euler_characteristic();
@@ -254,14 +285,19 @@ fn triangle_edits_flip_split_smooth() {
 
 #[test]
 fn tetrahedral_edits_2_3_and_3_2_flips_splits_collapse() {
-    let Some((k, _)) = load("tet_elephant") else { return };
+    let Some((k, _)) = load("tet_elephant") else {
+        return;
+    };
     let mut h: Hasse = Hasse::from_indexed(&k).unwrap();
     let fv = h.f_vector();
     let chi = h.euler_characteristic();
     let o = h.orient(None);
     assert!(o.orientable && o.pseudo_manifold && o.components == 1);
     // 2-3 flip on an interior face, then 3-2 back
-    let f = h.level(2).find(|&f| h.can_flip(f).is_ok()).expect("a flippable face");
+    let f = h
+        .level(2)
+        .find(|&f| h.can_flip(f).is_ok())
+        .expect("a flippable face");
     let fvs = h.vertices(f).to_vec();
     let e = h.flip(f).unwrap();
     assert_eq!(e.dim, 1);
@@ -280,8 +316,7 @@ fn tetrahedral_edits_2_3_and_3_2_flips_splits_collapse() {
     let mut x = 7u64;
     let mut done = 0;
     while done < 50 {
-        let ne = h.n_simplices(1) as u64;
-        let e = Node::new(1, ((lcg(&mut x) % ne) as u32).into());
+        let e = h.pick(1, lcg(&mut x)).unwrap();
         if h.can_collapse(e).is_ok() {
             h.collapse(e, &mut KeepFirst).unwrap();
             done += 1;
@@ -294,7 +329,9 @@ fn tetrahedral_edits_2_3_and_3_2_flips_splits_collapse() {
 
 #[test]
 fn conversions_round_trip_and_dot() {
-    let Some((k, _)) = load("tri_holes") else { return };
+    let Some((k, _)) = load("tri_holes") else {
+        return;
+    };
     let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
     h.set_positions_from(&k);
     let o = h.orient(Some(&h.input_signs(&k)));
@@ -317,4 +354,193 @@ fn conversions_round_trip_and_dot() {
     let dot = s.to_dot(&Default::default()).unwrap();
     assert_eq!(dot.matches(" -> ").count(), 3 + 6 + 3);
     assert!(h.to_dot(&Default::default()).is_err());
+}
+
+fn simplices<L: starplex::hasse::Levels>(h: &Hasse<L>) -> Vec<Vec<u32>> {
+    let mut v: Vec<Vec<u32>> = h
+        .nodes()
+        .map(|n| h.vertices(n).iter().map(|x| x.0).collect())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn bulk_build_equals_cell_by_cell_insertion() {
+    for name in [
+        "tri_holes",
+        "tet_elephant",
+        "vr_kitten_s",
+        "sierp5_xs",
+        "tri_polygon_mesh",
+    ] {
+        let Some((k, oracle)) = load(name) else {
+            continue;
+        };
+        let Ok(bulk) = Hasse::<()>::from_indexed(&k) else {
+            continue;
+        };
+        bulk.check().unwrap();
+        let mut inc: Hasse = Hasse::new();
+        for c in k.cells() {
+            let vs: Vec<VertexId> = c.vertices.iter().map(|&x| VertexId(x)).collect();
+            inc.insert(&vs).unwrap();
+        }
+        assert_eq!(simplices(&bulk), simplices(&inc), "{name}");
+        if let Ok(fv) = serde_json::from_value::<Vec<usize>>(oracle["f_vector"].clone()) {
+            assert_eq!(bulk.f_vector(), fv, "{name}");
+        }
+        // links agree with the incremental build
+        for v in bulk.level(0).step_by(97) {
+            let lab = bulk.vertices(v)[0];
+            let w = inc.vertex(lab).unwrap();
+            assert_eq!(
+                bulk.set_to_vertex_lists(&bulk.link(v)),
+                inc.set_to_vertex_lists(&inc.link(w))
+            );
+        }
+    }
+    // mixed dimensions: a triangle, a dangling edge, an isolated vertex, an edge of the triangle
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    let mut b = ComplexBuilder::new(2).unwrap();
+    for i in 0..6 {
+        b.push_vertex(&[i as f64, 0.0]).unwrap();
+    }
+    b.push_cell(CellKind::Simplex(2), &[2, 0, 1]).unwrap();
+    b.push_cell(CellKind::Simplex(1), &[3, 2]).unwrap();
+    b.push_cell(CellKind::Simplex(0), &[5]).unwrap();
+    let (k, _) = b.build(&BuildOptions::default()).unwrap();
+    let h: Hasse = Hasse::from_indexed(&k).unwrap();
+    h.check().unwrap();
+    assert_eq!(h.f_vector(), vec![5, 4, 1]);
+    assert_eq!(h.maximal_simplices().len(), 3);
+}
+
+/// A triangulated torus: an `n × m` grid with wrap-around, two triangles per square.
+fn torus(n: u32, m: u32) -> Hasse {
+    let mut h = Hasse::new();
+    let id = |i: u32, j: u32| VertexId((i % n) * m + (j % m));
+    for i in 0..n {
+        for j in 0..m {
+            h.insert(&[id(i, j), id(i + 1, j), id(i + 1, j + 1)])
+                .unwrap();
+            h.insert(&[id(i, j), id(i + 1, j + 1), id(i, j + 1)])
+                .unwrap();
+        }
+    }
+    h
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: 24,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x702),
+        failure_persistence: None,
+        ..proptest::prelude::ProptestConfig::default()
+    })]
+
+    /// On a torus, link-checked collapses and flips keep the Euler characteristic and the Z/2
+    /// Betti numbers; the link condition refuses exactly the collapses that would change them
+    /// (checked by collapsing a copy anyway).
+    #[test]
+    fn torus_collapses_and_flips_keep_z2_betti(picks in proptest::collection::vec((0u64..1_000_000, proptest::bool::ANY), 1..60)) {
+        let mut h = torus(6, 5);
+        let betti = betti_z2(&h);
+        proptest::prop_assert_eq!(&betti, &vec![1, 2, 1]);
+        for (r, flip) in picks {
+            let e = h.pick(1, r).unwrap();
+            if flip {
+                if h.can_flip(e).is_ok() {
+                    h.flip(e).unwrap();
+                }
+            } else if h.can_collapse(e).is_ok() {
+                h.collapse(e, &mut KeepFirst).unwrap();
+            } else {
+                let mut c = h.clone();
+                c.collapse(e, &mut KeepFirst).unwrap();
+                c.check().unwrap();
+                // a refused collapse would have changed the topology (or made a non-manifold)
+                let o = c.orient(None);
+                proptest::prop_assert!(betti_z2(&c) != betti || !o.pseudo_manifold || c.euler_characteristic() != 0);
+                continue;
+            }
+            h.check().unwrap();
+            proptest::prop_assert_eq!(h.euler_characteristic(), 0);
+            proptest::prop_assert_eq!(&betti_z2(&h), &betti);
+            proptest::prop_assert!(h.orient(None).pseudo_manifold);
+        }
+    }
+}
+
+fn tet_volume(h: &Hasse<([f64; 3],)>, vs: &[VertexId]) -> f64 {
+    let p: Vec<[f64; 3]> = vs
+        .iter()
+        .map(|&v| *h.data::<0>(h.vertex(v).unwrap().id))
+        .collect();
+    let a = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
+    let b = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
+    let c = [p[3][0] - p[0][0], p[3][1] - p[0][1], p[3][2] - p[0][2]];
+    (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+        + a[2] * (b[0] * c[1] - b[1] * c[0]))
+        .abs()
+        / 6.0
+}
+
+/// Sum of the volumes of the top simplices around `s` (its star's tetrahedra).
+fn star_volume(h: &Hasse<([f64; 3],)>, vs: &[VertexId]) -> (f64, f64) {
+    let n = h.find(vs).unwrap();
+    let st = h.star(n);
+    let vols: Vec<f64> = st
+        .level(3)
+        .iter()
+        .map(|&t| tet_volume(h, h.vertices(starplex::hasse::Node::new(3, t))))
+        .collect();
+    (
+        vols.iter().sum(),
+        vols.iter().cloned().fold(f64::INFINITY, f64::min),
+    )
+}
+
+#[test]
+fn tet_flips_checked_by_exact_orientation_preserve_volume() {
+    let Some((k, _)) = load("tet_elephant") else {
+        return;
+    };
+    let mut h: Hasse<([f64; 3],)> = Hasse::from_indexed(&k).unwrap();
+    h.set_positions_from(&k);
+    let faces: Vec<Vec<VertexId>> = h
+        .level(2)
+        .filter(|&f| h.can_flip(f).is_ok())
+        .take(300)
+        .map(|f| h.vertices(f).to_vec())
+        .collect();
+    let (mut ok, mut refused) = (0, 0);
+    for f in faces {
+        let n = h.find(&f).unwrap();
+        let geometric = h.can_flip_geometric(n).is_ok();
+        let (before, _) = star_volume(&h, &f);
+        let mut c = h.clone();
+        let e = c.flip(n).unwrap();
+        let ev = c.vertices(e).to_vec();
+        let (after, smallest) = star_volume(&c, &ev);
+        let same = (after - before).abs() <= 1e-9 * before.max(1e-300);
+        if geometric {
+            ok += 1;
+            assert!(
+                same && smallest > 0.0,
+                "accepted flip of {f:?} changes the volume"
+            );
+            // and the 3-2 flip back is accepted too
+            c.can_flip_geometric(e).unwrap();
+        } else {
+            refused += 1;
+            assert!(
+                !same || smallest <= 1e-9 * before,
+                "refused flip of {f:?} keeps the volume: {before} {after} {smallest} {:?}",
+                h.can_flip_geometric(n)
+            );
+        }
+    }
+    assert!(ok > 0 && refused > 0, "{ok} accepted, {refused} refused");
 }

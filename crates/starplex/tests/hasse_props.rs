@@ -18,7 +18,8 @@ impl<const K: usize> Merge<K, u32> for Sum {
 }
 
 fn tag(vs: &[u32]) -> u32 {
-    vs.iter().fold(7u32, |a, &x| a.wrapping_mul(31).wrapping_add(x + 1))
+    vs.iter()
+        .fold(7u32, |a, &x| a.wrapping_mul(31).wrapping_add(x + 1))
 }
 
 fn set_data(h: &mut H, n: Node, x: u32) {
@@ -46,7 +47,13 @@ fn get_data(h: &H, n: Node) -> u32 {
 fn subsets(s: &[u32]) -> Vec<Vec<u32>> {
     let mut out = Vec::new();
     for m in 1u32..(1 << s.len()) {
-        out.push(s.iter().enumerate().filter(|(i, _)| m >> i & 1 == 1).map(|(_, &x)| x).collect());
+        out.push(
+            s.iter()
+                .enumerate()
+                .filter(|(i, _)| m >> i & 1 == 1)
+                .map(|(_, &x)| x)
+                .collect(),
+        );
     }
     out
 }
@@ -74,7 +81,11 @@ fn model_link(m: &Model, s: &[u32]) -> BTreeSet<Vec<u32>> {
 
 fn model_decimate(m: &mut Model, s: &[u32], p: u32) {
     let mut groups: BTreeMap<Vec<u32>, Vec<(Vec<u32>, u32)>> = BTreeMap::new();
-    let nb: Vec<Vec<u32>> = m.keys().filter(|k| k.iter().any(|x| s.contains(x))).cloned().collect();
+    let nb: Vec<Vec<u32>> = m
+        .keys()
+        .filter(|k| k.iter().any(|x| s.contains(x)))
+        .cloned()
+        .collect();
     for f in nb {
         let d = m.remove(&f).unwrap();
         let mut phi: Vec<u32> = f.iter().copied().filter(|x| !s.contains(x)).collect();
@@ -99,9 +110,15 @@ fn compare(h: &H, m: &Model) -> Result<(), TestCaseError> {
     if let Err(e) = h.check() {
         return Err(TestCaseError::fail(format!("invalid: {e}")));
     }
-    let got: Model = h.nodes().map(|n| (sorted_vs(h, n), get_data(h, n))).collect();
+    let got: Model = h
+        .nodes()
+        .map(|n| (sorted_vs(h, n), get_data(h, n)))
+        .collect();
     prop_assert_eq!(&got, m);
-    let chi: i64 = m.keys().map(|k| if k.len() % 2 == 1 { 1 } else { -1 }).sum();
+    let chi: i64 = m
+        .keys()
+        .map(|k| if k.len() % 2 == 1 { 1 } else { -1 })
+        .sum();
     prop_assert_eq!(h.euler_characteristic(), chi);
     Ok(())
 }
@@ -135,7 +152,8 @@ fn pick(h: &H, i: usize) -> Option<Node> {
     h.nodes().nth(i % n)
 }
 
-static DONE: [std::sync::atomic::AtomicUsize; 6] = [const { std::sync::atomic::AtomicUsize::new(0) }; 6];
+static DONE: [std::sync::atomic::AtomicUsize; 6] =
+    [const { std::sync::atomic::AtomicUsize::new(0) }; 6];
 
 fn count(i: usize) {
     DONE[i].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -145,7 +163,7 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
     let mut h = H::new();
     let mut m = Model::new();
     let mut max_label: Option<u32> = None;
-    for o in ops {
+    for (step, o) in ops.into_iter().enumerate() {
         match o {
             Op::Insert(s) => {
                 let vs: Vec<VertexId> = s.iter().map(|&x| VertexId(x)).collect();
@@ -179,7 +197,7 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
                 if ne == 0 {
                     continue;
                 }
-                let e = Node::new(1, ((i % ne) as u32).into());
+                let e = h.pick(1, i as u64).unwrap();
                 let s = sorted_vs(&h, e);
                 let la = model_link(&m, &s[..1]);
                 let lb = model_link(&m, &s[1..]);
@@ -201,9 +219,7 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
                     let lk = model_link(&m, &s);
                     let t: BTreeSet<u32> = lk.iter().flatten().copied().collect();
                     let t: Vec<u32> = t.into_iter().collect();
-                    let ok = t.len() >= 2
-                        && !m.contains_key(&t)
-                        && lk.len() == (1 << t.len()) - 2;
+                    let ok = t.len() >= 2 && !m.contains_key(&t) && lk.len() == (1 << t.len()) - 2;
                     let r = h.can_flip(n);
                     prop_assert_eq!(r.is_ok(), ok, "{:?} {:?}", s, r);
                     if ok {
@@ -211,7 +227,12 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
                         count(3);
                         model_remove_star(&mut m, &s);
                         for j in 0..s.len() {
-                            let mut nv: Vec<u32> = s.iter().enumerate().filter(|&(k, _)| k != j).map(|(_, &x)| x).collect();
+                            let mut nv: Vec<u32> = s
+                                .iter()
+                                .enumerate()
+                                .filter(|&(k, _)| k != j)
+                                .map(|(_, &x)| x)
+                                .collect();
                             nv.extend(&t);
                             nv.sort();
                             model_insert(&mut m, &nv);
@@ -228,7 +249,9 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
                     let s = sorted_vs(&h, n);
                     let tops: Vec<Vec<u32>> = m
                         .keys()
-                        .filter(|k| is_sub(&s, k) && !m.keys().any(|k2| k2.len() > k.len() && is_sub(k, k2)))
+                        .filter(|k| {
+                            is_sub(&s, k) && !m.keys().any(|k2| k2.len() > k.len() && is_sub(k, k2))
+                        })
                         .cloned()
                         .collect();
                     let p = h.split(n).unwrap();
@@ -239,9 +262,15 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
                     model_remove_star(&mut m, &s);
                     for tau in tops {
                         for j in 0..s.len() {
-                            let mut nv: Vec<u32> = tau.iter().copied().filter(|x| !s.contains(x)).collect();
+                            let mut nv: Vec<u32> =
+                                tau.iter().copied().filter(|x| !s.contains(x)).collect();
                             nv.push(want);
-                            nv.extend(s.iter().enumerate().filter(|&(k, _)| k != j).map(|(_, &x)| x));
+                            nv.extend(
+                                s.iter()
+                                    .enumerate()
+                                    .filter(|&(k, _)| k != j)
+                                    .map(|(_, &x)| x),
+                            );
                             nv.sort();
                             model_insert(&mut m, &nv);
                         }
@@ -250,6 +279,17 @@ fn run(ops: Vec<Op>) -> Result<(), TestCaseError> {
             }
         }
         compare(&h, &m)?;
+        if step % 4 == 3 {
+            // dense renumbering keeps every simplex and its data
+            h.compact();
+            prop_assert_eq!(
+                h.len(),
+                (0..h.dim().map_or(0, |d| d + 1))
+                    .map(|k| h.n_slots(k))
+                    .sum::<usize>()
+            );
+            compare(&h, &m)?;
+        }
         // copies are independent
         let c = h.clone();
         prop_assert!(c.is_valid());
@@ -274,16 +314,27 @@ proptest! {
 #[test]
 fn every_edit_kind_is_exercised() {
     random_edit_sequences_match_the_model();
-    let n: Vec<usize> = DONE.iter().map(|x| x.load(std::sync::atomic::Ordering::Relaxed)).collect();
-    eprintln!("removes {}, decimations {}, flips {}, splits {}, collapses {}", n[1], n[2], n[3], n[4], n[5]);
+    let n: Vec<usize> = DONE
+        .iter()
+        .map(|x| x.load(std::sync::atomic::Ordering::Relaxed))
+        .collect();
+    eprintln!(
+        "removes {}, decimations {}, flips {}, splits {}, collapses {}",
+        n[1], n[2], n[3], n[4], n[5]
+    );
     assert!(n[1..].iter().all(|&x| x >= 10), "{n:?}");
 }
 
 #[test]
 fn degenerate_simplex_refused() {
     let mut h = H::new();
-    let e = h.insert(&[VertexId(1), VertexId(2), VertexId(2)]).unwrap_err();
-    assert_eq!(e.to_string(), "simplex [1, 2, 2]: vertex 2 appears more than once (degenerate)");
+    let e = h
+        .insert(&[VertexId(1), VertexId(2), VertexId(2)])
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "simplex [1, 2, 2]: vertex 2 appears more than once (degenerate)"
+    );
     assert!(h.is_empty());
     assert!(h.find(&[VertexId(1), VertexId(1)]).is_none());
 }
@@ -318,5 +369,8 @@ fn levels_without_data_cost_nothing() {
     assert_eq!(b.data_bytes(), 0);
     assert!(c.data_bytes() >= 3 * 8);
     assert_eq!(a.topology_bytes(), b.topology_bytes());
-    assert_eq!(std::mem::size_of::<<((), (), ()) as starplex::hasse::Levels>::Columns>(), 3 * 24);
+    assert_eq!(
+        std::mem::size_of::<<((), (), ()) as starplex::hasse::Levels>::Columns>(),
+        3 * 24
+    );
 }

@@ -1,29 +1,31 @@
 //! Compact storage of the up (coface) lists of one level: every node owns a block of
 //! `(key, coface)` pairs in a shared arena, sorted by key (the vertex added). Block capacities
-//! are powers of two (at least 2), a function of the length, so a node's header is only
-//! `(start, len)`: 8 bytes. Freed blocks are reused per size class.
+//! are powers of two (at least 2); a node's header is 8 bytes (start, length and capacity
+//! class). Freed blocks are reused per size class.
 
 /// One coface reference: the vertex added and the coface's id in the next level.
 pub(crate) type UpPair = [u32; 2];
 
+/// Header start of a removed node (its slot is free for reuse).
+pub(crate) const DEAD: u32 = u32::MAX;
+const LEN_BITS: u32 = 27;
+const LEN_MASK: u32 = (1 << LEN_BITS) - 1;
+
 #[inline]
-fn cap_of(len: u32) -> u32 {
-    if len == 0 {
+fn cap_of_class(c: u32) -> u32 {
+    if c == 0 {
         0
     } else {
-        len.next_power_of_two().max(2)
+        1 << c
     }
 }
 
-#[inline]
-fn class_of(cap: u32) -> usize {
-    cap.trailing_zeros() as usize
-}
-
-/// The arena of one level.
+/// The arena of one level. A node's header is `[start, len | class << 27]` with capacity
+/// `2^class` (class 0: no block). Blocks grow by doubling and shrink by half when a quarter
+/// full, so alternating inserts and removals never thrash.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct UpArena {
-    /// Per node: start of its block and its length.
+    /// Per node: start of its block (or [`DEAD`]) and its length with the capacity class.
     pub(crate) hdr: Vec<[u32; 2]>,
     slots: Vec<UpPair>,
     free: Vec<Vec<u32>>,
@@ -39,23 +41,81 @@ impl UpArena {
     /// Slots in use (for statistics).
     #[cfg(test)]
     pub(crate) fn n_pairs(&self) -> usize {
-        self.hdr.iter().map(|h| h[1] as usize).sum()
+        (0..self.hdr.len() as u32).map(|i| self.get(i).len()).sum()
     }
 
-    pub(crate) fn push_node(&mut self) {
+    #[inline]
+    fn parts(&self, node: u32) -> (u32, u32, u32) {
+        let [s, x] = self.hdr[node as usize];
+        (s, x & LEN_MASK, x >> LEN_BITS)
+    }
+
+    /// Appends a node with an empty list and room for `cap` pairs.
+    pub(crate) fn push_node(&mut self, cap: u32) {
         self.hdr.push([0, 0]);
+        let n = (self.hdr.len() - 1) as u32;
+        self.reserve_node(n, cap);
+    }
+
+    /// Appends a node whose up list is `pairs` (sorted by key).
+    pub(crate) fn push_node_with(&mut self, pairs: &[UpPair]) {
+        self.hdr.push([0, 0]);
+        let n = (self.hdr.len() - 1) as u32;
+        let l = pairs.len() as u32;
+        if l == 0 {
+            return;
+        }
+        let c = l.next_power_of_two().max(2);
+        let s = self.alloc(c);
+        for (d, p) in self.slots[s as usize..(s + l) as usize]
+            .iter_mut()
+            .zip(pairs)
+        {
+            *d = *p;
+        }
+        self.hdr[n as usize] = [s, l | (c.trailing_zeros() << LEN_BITS)];
+    }
+
+    /// Reserves 1/16 more pairs than in use (at least 64).
+    pub(crate) fn reserve_headroom(&mut self) {
+        self.slots.reserve_exact(self.slots.len() / 16 + 64);
+    }
+
+    /// Reserves room for `n` more pairs.
+    pub(crate) fn reserve_slots(&mut self, n: usize) {
+        self.slots.reserve_exact(n);
+    }
+
+    /// Gives an empty live node room for `cap` pairs (rounded up to a power of two).
+    pub(crate) fn reserve_node(&mut self, node: u32, cap: u32) {
+        if cap == 0 {
+            self.hdr[node as usize] = [0, 0];
+            return;
+        }
+        let c = cap.next_power_of_two().max(2);
+        let s = self.alloc(c);
+        self.hdr[node as usize] = [s, c.trailing_zeros() << LEN_BITS];
+    }
+
+    #[inline]
+    pub(crate) fn is_dead(&self, node: u32) -> bool {
+        self.hdr[node as usize][0] == DEAD
+    }
+
+    /// Marks a node removed, releasing its block.
+    pub(crate) fn kill(&mut self, node: u32) {
+        let (s, _, c) = self.parts(node);
+        self.release(s, cap_of_class(c));
+        self.hdr[node as usize] = [DEAD, 0];
     }
 
     #[inline]
     pub(crate) fn get(&self, node: u32) -> &[UpPair] {
-        let [s, l] = self.hdr[node as usize];
+        let (s, l, _) = self.parts(node);
+        if l == 0 {
+            return &[];
+        }
         &self.slots[s as usize..(s + l) as usize]
-    }
-
-    #[inline]
-    fn get_mut(&mut self, node: u32) -> &mut [UpPair] {
-        let [s, l] = self.hdr[node as usize];
-        &mut self.slots[s as usize..(s + l) as usize]
     }
 
     #[inline]
@@ -69,7 +129,7 @@ impl UpArena {
     }
 
     fn alloc(&mut self, cap: u32) -> u32 {
-        let c = class_of(cap);
+        let c = cap.trailing_zeros() as usize;
         if let Some(s) = self.free.get_mut(c).and_then(|f| f.pop()) {
             return s;
         }
@@ -79,76 +139,59 @@ impl UpArena {
     }
 
     fn release(&mut self, start: u32, cap: u32) {
-        if cap == 0 {
+        if cap == 0 || start == DEAD {
             return;
         }
-        let c = class_of(cap);
+        let c = cap.trailing_zeros() as usize;
         if self.free.len() <= c {
             self.free.resize(c + 1, Vec::new());
         }
         self.free[c].push(start);
     }
 
+    fn move_block(&mut self, node: u32, new_cap: u32) {
+        let (s, l, c) = self.parts(node);
+        let ns = self.alloc(new_cap);
+        self.slots
+            .copy_within(s as usize..(s + l) as usize, ns as usize);
+        self.release(s, cap_of_class(c));
+        self.hdr[node as usize] = [ns, l | (new_cap.trailing_zeros() << LEN_BITS)];
+    }
+
     /// Inserts `(key, id)` keeping the block sorted; the key must be absent.
     pub(crate) fn insert(&mut self, node: u32, key: u32, id: u32) {
-        let [s, l] = self.hdr[node as usize];
-        let (oc, nc) = (cap_of(l), cap_of(l + 1));
-        let mut s = s;
-        if oc != nc {
-            let ns = self.alloc(nc);
-            self.slots
-                .copy_within(s as usize..(s + l) as usize, ns as usize);
-            self.release(s, oc);
-            s = ns;
+        let (_, l, c) = self.parts(node);
+        let cap = cap_of_class(c);
+        if l == cap {
+            self.move_block(node, (cap * 2).max(2));
         }
+        let (s, l, c) = self.parts(node);
         let block = &mut self.slots[s as usize..(s + l + 1) as usize];
         let pos = block[..l as usize].partition_point(|p| p[0] < key);
         debug_assert!(pos == l as usize || block[pos][0] != key);
         block.copy_within(pos..l as usize, pos + 1);
         block[pos] = [key, id];
-        self.hdr[node as usize] = [s, l + 1];
+        self.hdr[node as usize] = [s, (l + 1) | (c << LEN_BITS)];
     }
 
     /// Removes the pair with `key`; returns whether it was there.
     pub(crate) fn remove(&mut self, node: u32, key: u32) -> bool {
-        let [s, l] = self.hdr[node as usize];
+        let (s, l, c) = self.parts(node);
         let block = &mut self.slots[s as usize..(s + l) as usize];
         let Some(pos) = block.iter().position(|p| p[0] == key) else {
             return false;
         };
         block.copy_within(pos + 1.., pos);
-        let (oc, nc) = (cap_of(l), cap_of(l - 1));
-        if oc != nc {
-            if nc == 0 {
-                self.release(s, oc);
-                self.hdr[node as usize] = [0, 0];
-                return true;
-            }
-            let ns = self.alloc(nc);
-            self.slots
-                .copy_within(s as usize..(s + l - 1) as usize, ns as usize);
-            self.release(s, oc);
-            self.hdr[node as usize] = [ns, l - 1];
-        } else {
-            self.hdr[node as usize] = [s, l - 1];
+        let l = l - 1;
+        self.hdr[node as usize] = [s, l | (c << LEN_BITS)];
+        let cap = cap_of_class(c);
+        if l == 0 {
+            self.release(s, cap);
+            self.hdr[node as usize] = [0, 0];
+        } else if cap > 2 && l <= cap / 4 {
+            self.move_block(node, cap / 2);
         }
         true
-    }
-
-    /// Re-points the pair with `key` to `id`.
-    pub(crate) fn set(&mut self, node: u32, key: u32, id: u32) {
-        if let Some(p) = self.get_mut(node).iter_mut().find(|p| p[0] == key) {
-            p[1] = id;
-        } else {
-            debug_assert!(false, "up pair {key} missing at node {node}");
-        }
-    }
-
-    /// Frees the block of `node` and moves the last node's header into its place.
-    pub(crate) fn swap_remove_node(&mut self, node: u32) {
-        let [s, l] = self.hdr[node as usize];
-        self.release(s, cap_of(l));
-        self.hdr.swap_remove(node as usize);
     }
 }
 
@@ -159,13 +202,15 @@ mod tests {
     #[test]
     fn insert_remove_keeps_sorted_blocks() {
         let mut a = UpArena::default();
-        for _ in 0..3 {
-            a.push_node();
+        for i in 0..3 {
+            a.push_node(i);
         }
         let mut model: Vec<Vec<[u32; 2]>> = vec![vec![]; 3];
         let mut x = 12345u64;
         for step in 0..3000u32 {
-            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let node = ((x >> 33) % 3) as u32;
             let key = ((x >> 40) % 40) as u32;
             let m = &mut model[node as usize];

@@ -22,12 +22,24 @@ pub(crate) struct Level {
     pub(crate) verts: Vec<u32>,
     pub(crate) down: Vec<u32>,
     pub(crate) up: UpArena,
+    /// Slots of removed nodes, reused by the next insertions.
+    pub(crate) free: Vec<u32>,
 }
 
 impl Level {
+    /// Number of slots (live and removed).
+    #[inline]
+    pub(crate) fn slots(&self) -> usize {
+        self.up.hdr.len()
+    }
+    /// Number of live nodes.
     #[inline]
     pub(crate) fn len(&self) -> usize {
-        self.up.hdr.len()
+        self.up.hdr.len() - self.free.len()
+    }
+    #[inline]
+    pub(crate) fn alive(&self, i: u32) -> bool {
+        (i as usize) < self.slots() && !self.up.is_dead(i)
     }
     #[inline]
     pub(crate) fn verts(&self, i: u32) -> &[u32] {
@@ -43,7 +55,88 @@ impl Level {
         &self.down[i * self.k1..(i + 1) * self.k1]
     }
     fn bytes(&self) -> usize {
-        self.verts.capacity() * 4 + self.down.capacity() * 4 + self.up.bytes()
+        self.verts.capacity() * 4
+            + self.down.capacity() * 4
+            + self.up.bytes()
+            + self.free.capacity() * 4
+    }
+}
+
+const NONE: u32 = u32::MAX;
+
+/// Vertex label → vertex node: a dense table for labels up to a few times the number of
+/// vertices, a hash map for the rest (so a huge label costs no memory).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct VertexIndex {
+    dense: Vec<u32>,
+    sparse: FxHashMap<u32, u32>,
+    len: usize,
+}
+
+impl VertexIndex {
+    #[inline]
+    pub(crate) fn get(&self, label: u32) -> Option<u32> {
+        match self.dense.get(label as usize) {
+            Some(&x) => (x != NONE).then_some(x),
+            None => self.sparse.get(&label).copied(),
+        }
+    }
+    pub(crate) fn insert(&mut self, label: u32, id: u32) {
+        let l = label as usize;
+        if l >= self.dense.len() && l < 2 * self.len + 4096 {
+            // absorb sparse entries that now fall inside the dense table
+            let new_len = (l + 1).max(self.dense.len() * 3 / 2);
+            self.dense.resize(new_len, NONE);
+            let moved: Vec<(u32, u32)> = self
+                .sparse
+                .iter()
+                .filter(|(&k, _)| (k as usize) < new_len)
+                .map(|(&k, &v)| (k, v))
+                .collect();
+            for (k, v) in moved {
+                self.sparse.remove(&k);
+                self.dense[k as usize] = v;
+            }
+        }
+        let old = if l < self.dense.len() {
+            std::mem::replace(&mut self.dense[l], id)
+        } else {
+            self.sparse.insert(label, id).unwrap_or(NONE)
+        };
+        if old == NONE {
+            self.len += 1;
+        }
+    }
+    pub(crate) fn remove(&mut self, label: u32) {
+        let l = label as usize;
+        let old = if l < self.dense.len() {
+            std::mem::replace(&mut self.dense[l], NONE)
+        } else {
+            self.sparse.remove(&label).unwrap_or(NONE)
+        };
+        if old != NONE {
+            self.len -= 1;
+        }
+    }
+    #[inline]
+    pub(crate) fn contains(&self, label: u32) -> bool {
+        self.get(label).is_some()
+    }
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+    /// Makes room for labels `0..n` in the dense table.
+    pub(crate) fn reserve_dense(&mut self, n: usize) {
+        if self.dense.len() < n {
+            self.dense.resize(n, NONE);
+        }
+    }
+    fn bytes(&self) -> usize {
+        self.dense.capacity() * 4 + self.sparse.capacity() * 9
+    }
+    fn shrink_to_fit(&mut self) {
+        self.dense.shrink_to_fit();
+        self.sparse.shrink_to_fit();
     }
 }
 
@@ -51,8 +144,13 @@ impl Level {
 /// `<L as At<K>>::Data` on every `K`-simplex (see [`levels`](super::levels)).
 ///
 /// Vertices are labelled by [`VertexId`] (any `u32`); a simplex is found by its vertex labels.
-/// Node ids ([`Node::id`]) are dense per dimension: removing a simplex moves the last simplex of
-/// its dimension into the freed slot (with its data), so ids held across a removal may change.
+/// Node ids ([`Node::id`]) are slots per dimension and stay stable while the complex is edited:
+/// removing a simplex frees its slot (its data is reset), a later insertion reuses it.
+/// [`compact`](Hasse::compact) renumbers densely (data columns follow).
+///
+/// Methods taking vertex labels check them and never panic. Methods taking a [`Node`] expect a
+/// node of this complex (see [`contains`](Hasse::contains)); an id out of range panics, a
+/// removed slot gives unspecified (but memory-safe) answers.
 ///
 /// ```
 /// use starplex::hasse::Hasse;
@@ -68,7 +166,7 @@ impl Level {
 /// ```
 pub struct Hasse<L: Levels = ()> {
     pub(crate) levels: Vec<Level>,
-    pub(crate) root: FxHashMap<u32, u32>,
+    pub(crate) root: VertexIndex,
     pub(crate) data: L::Columns,
     pub(crate) max_label: Option<u32>,
 }
@@ -91,7 +189,7 @@ impl<L: Levels> Default for Hasse<L> {
     fn default() -> Self {
         Hasse {
             levels: Vec::new(),
-            root: FxHashMap::default(),
+            root: VertexIndex::default(),
             data: L::Columns::default(),
             max_label: None,
         }
@@ -100,7 +198,9 @@ impl<L: Levels> Default for Hasse<L> {
 
 impl<L: Levels> std::fmt::Debug for Hasse<L> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Hasse").field("f_vector", &self.f_vector()).finish()
+        f.debug_struct("Hasse")
+            .field("f_vector", &self.f_vector())
+            .finish()
     }
 }
 
@@ -141,7 +241,9 @@ impl<L: Levels> Hasse<L> {
     /// assert_eq!(h.dim(), Some(1));
     /// ```
     pub fn dim(&self) -> Option<usize> {
-        (0..self.levels.len()).rev().find(|&k| self.levels[k].len() > 0)
+        (0..self.levels.len())
+            .rev()
+            .find(|&k| self.levels[k].len() > 0)
     }
 
     /// Number of `k`-simplices.
@@ -154,6 +256,42 @@ impl<L: Levels> Hasse<L> {
     /// ```
     pub fn n_simplices(&self, k: usize) -> usize {
         self.levels.get(k).map_or(0, |l| l.len())
+    }
+
+    /// Number of slots of dimension `k` (live simplices plus freed slots): ids are below it,
+    /// and the data columns have this length.
+    ///
+    /// ```
+    /// let mut h: starplex::hasse::Hasse = starplex::hasse::Hasse::new();
+    /// h.insert(&[0.into(), 1.into()]).unwrap();
+    /// h.remove_vertices(&[0.into()]).unwrap();
+    /// assert_eq!((h.n_simplices(0), h.n_slots(0)), (1, 2));
+    /// ```
+    pub fn n_slots(&self, k: usize) -> usize {
+        self.levels.get(k).map_or(0, |l| l.slots())
+    }
+
+    /// The first live `k`-simplex at or after slot `r mod n_slots(k)` (wrapping): a cheap way to
+    /// sample simplices at random.
+    ///
+    /// ```
+    /// let mut h: starplex::hasse::Hasse = starplex::hasse::Hasse::new();
+    /// h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
+    /// assert_eq!(h.pick(1, 1_000_001).unwrap().dim, 1);
+    /// assert!(h.pick(2, 5).is_some());
+    /// assert!(h.pick(3, 0).is_none());
+    /// ```
+    pub fn pick(&self, k: usize, r: u64) -> Option<Node> {
+        let l = self.levels.get(k)?;
+        let n = l.slots();
+        if l.len() == 0 {
+            return None;
+        }
+        let start = (r % n as u64) as usize;
+        (0..n)
+            .map(|j| ((start + j) % n) as u32)
+            .find(|&i| !l.up.is_dead(i))
+            .map(|i| Node::new(k as u32, SimplexId(i)))
     }
 
     /// Number of simplices of every dimension.
@@ -211,8 +349,7 @@ impl<L: Levels> Hasse<L> {
     /// assert!(h.topology_bytes() > 0);
     /// ```
     pub fn topology_bytes(&self) -> usize {
-        self.levels.iter().map(|l| l.bytes()).sum::<usize>()
-            + self.root.capacity() * 9
+        self.levels.iter().map(|l| l.bytes()).sum::<usize>() + self.root.bytes()
     }
 
     /// Bytes used by user data (column capacities); zero for levels without data.
@@ -283,9 +420,11 @@ impl<L: Levels> Hasse<L> {
     /// h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
     /// assert_eq!(h.level(1).count(), 3);
     /// ```
-    pub fn level(&self, k: usize) -> impl ExactSizeIterator<Item = Node> + '_ {
-        let n = self.n_simplices(k) as u32;
-        (0..n).map(move |i| Node::new(k as u32, SimplexId(i)))
+    pub fn level(&self, k: usize) -> impl Iterator<Item = Node> + '_ {
+        let n = self.n_slots(k) as u32;
+        (0..n)
+            .filter(move |&i| !self.levels[k].up.is_dead(i))
+            .map(move |i| Node::new(k as u32, SimplexId(i)))
     }
 
     /// Every simplex, by increasing dimension.
@@ -337,7 +476,7 @@ impl<L: Levels> Hasse<L> {
         &mut L::column_mut(&mut self.data)[id.index()]
     }
 
-    /// All data of level `K`, indexed by simplex id.
+    /// All data of level `K`, indexed by simplex id (freed slots hold default values).
     ///
     /// ```
     /// let mut h: starplex::hasse::Hasse<((), i32)> = starplex::hasse::Hasse::new();
@@ -378,14 +517,12 @@ impl<L: Levels> Hasse<L> {
     /// ```
     #[inline]
     pub fn vertex(&self, v: VertexId) -> Option<Node> {
-        self.root
-            .get(&v.0)
-            .map(|&i| Node::new(0, SimplexId(i)))
+        self.root.get(v.0).map(|i| Node::new(0, SimplexId(i)))
     }
 
     #[inline]
     pub(crate) fn find_sorted(&self, vs: &[u32]) -> Option<u32> {
-        let mut cur = *self.root.get(vs.first()?)?;
+        let mut cur = self.root.get(*vs.first()?)?;
         for (j, &v) in vs[1..].iter().enumerate() {
             cur = self.levels[j].up.find(cur, v)?;
         }
@@ -538,7 +675,9 @@ impl<L: Levels> Hasse<L> {
     /// assert!(!h.contains(Node::new(0, 1.into())));
     /// ```
     pub fn contains(&self, s: Node) -> bool {
-        s.id.index() < self.n_simplices(s.dim as usize)
+        self.levels
+            .get(s.dim as usize)
+            .is_some_and(|l| l.alive(s.id.0))
     }
 
     // ----- insertion (Alg. 1) ---------------------------------------------------------------
@@ -618,47 +757,61 @@ impl<L: Levels> Hasse<L> {
         let k = s.len() - 1;
         self.ensure_level(k);
         if k == 0 {
-            let id = self.levels[0].len() as u32;
-            let l = &mut self.levels[0];
-            l.verts.push(s[0]);
-            l.up.push_node();
+            let id = self.new_slot(0, s, &[], 0);
             self.root.insert(s[0], id);
             self.max_label = Some(self.max_label.map_or(s[0], |m| m.max(s[0])));
-            L::push_default(&mut self.data, 0);
             return id;
         }
         let mut downs: SmallVec<[u32; 8]> = SmallVec::with_capacity(k + 1);
         let mut buf: Verts = SmallVec::with_capacity(k);
         for i in 0..=k {
             buf.clear();
-            buf.extend(s.iter().enumerate().filter(|&(j, _)| j != i).map(|(_, &x)| x));
+            buf.extend(
+                s.iter()
+                    .enumerate()
+                    .filter(|&(j, _)| j != i)
+                    .map(|(_, &x)| x),
+            );
             downs.push(self.insert_sorted(&buf));
         }
-        let id = self.levels[k].len() as u32;
-        {
-            let l = &mut self.levels[k];
-            l.verts.extend_from_slice(s);
-            l.down.extend_from_slice(&downs);
-            l.up.push_node();
-        }
+        let id = self.new_slot(k, s, &downs, 0);
         let below = &mut self.levels[k - 1].up;
         for i in 0..=k {
             below.insert(downs[i], s[i], id);
         }
-        L::push_default(&mut self.data, k);
         id
+    }
+
+    /// A slot for a new node (a freed one when there is one) with default data.
+    pub(crate) fn new_slot(&mut self, k: usize, s: &[u32], downs: &[u32], up_cap: u32) -> u32 {
+        let l = &mut self.levels[k];
+        if let Some(id) = l.free.pop() {
+            let a = id as usize * (k + 1);
+            l.verts[a..a + k + 1].copy_from_slice(s);
+            if k > 0 {
+                l.down[a..a + k + 1].copy_from_slice(downs);
+            }
+            l.up.reserve_node(id, up_cap);
+            L::reset(&mut self.data, k, id as usize);
+            id
+        } else {
+            let id = l.slots() as u32;
+            l.verts.extend_from_slice(s);
+            l.down.extend_from_slice(downs);
+            l.up.push_node(up_cap);
+            L::push_default(&mut self.data, k);
+            id
+        }
     }
 
     // ----- removal ---------------------------------------------------------------------------
 
-    /// Removes one node that has no cofaces, renumbering the last node of its level into its
-    /// slot (faces' up lists, cofaces' downs, root map and data all follow).
+    /// Removes one node that has no cofaces: detaches it from its faces and frees its slot.
     pub(crate) fn remove_leaf_node(&mut self, k: usize, n: u32) {
         debug_assert!(self.levels[k].up.get(n).is_empty());
-        // detach from faces
         if k == 0 {
             let lab = self.levels[0].verts(n)[0];
-            self.root.remove(&lab);
+            self.root.remove(lab);
         } else {
             let (lo, hi) = self.levels.split_at_mut(k);
             let l = &hi[0];
@@ -668,59 +821,108 @@ impl<L: Levels> Hasse<L> {
                 lo[k - 1].up.remove(ds[i], vs[i]);
             }
         }
-        let last = (self.levels[k].len() - 1) as u32;
-        let k1 = k + 1;
-        {
-            let l = &mut self.levels[k];
-            if n != last {
-                let (a, b) = (n as usize * k1, last as usize * k1);
-                l.verts.copy_within(b..b + k1, a);
-                if k > 0 {
-                    l.down.copy_within(b..b + k1, a);
-                }
-            }
-            l.verts.truncate(last as usize * k1);
-            if k > 0 {
-                l.down.truncate(last as usize * k1);
-            }
-            l.up.swap_remove_node(n);
-        }
-        L::swap_remove(&mut self.data, k, n as usize);
-        if n == last {
-            return;
-        }
-        // re-point references to the moved node `last` -> `n`
-        if k == 0 {
-            let lab = self.levels[0].verts(n)[0];
-            self.root.insert(lab, n);
-        } else {
-            let (lo, hi) = self.levels.split_at_mut(k);
-            let l = &hi[0];
-            let vs = l.verts(n);
-            let ds = l.downs(n);
-            for i in 0..=k {
-                lo[k - 1].up.set(ds[i], vs[i], n);
-            }
-        }
-        if k + 1 < self.levels.len() {
-            let (lo, hi) = self.levels.split_at_mut(k + 1);
-            let l = &lo[k];
-            let above = &mut hi[0];
-            for p in l.up.get(n) {
-                let c = p[1] as usize;
-                let cv = &above.verts[c * (k + 2)..(c + 1) * (k + 2)];
-                let pos = cv.iter().position(|&x| x == p[0]).unwrap_or(0);
-                above.down[c * (k + 2) + pos] = n;
-            }
-        }
+        let l = &mut self.levels[k];
+        l.up.kill(n);
+        l.free.push(n);
+        L::reset(&mut self.data, k, n as usize);
     }
 
-    /// Removes a set of nodes closed under cofaces (a union of stars), given per level; ids are
-    /// those before the removal.
+    /// Renumbers every level densely (ids `0..n_simplices(k)` in the old order), dropping freed
+    /// slots; data columns, incidences and the vertex lookup follow. Invalidates held ids.
+    ///
+    /// ```
+    /// let mut h: starplex::hasse::Hasse<(u32,)> = starplex::hasse::Hasse::new();
+    /// h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
+    /// *h.data_mut::<0>(h.vertex(2.into()).unwrap().id) = 9;
+    /// h.remove_vertices(&[0.into()]).unwrap();
+    /// h.compact();
+    /// assert_eq!(h.n_slots(0), 2);
+    /// assert_eq!(*h.data::<0>(h.vertex(2.into()).unwrap().id), 9);
+    /// assert!(h.is_valid());
+    /// ```
+    pub fn compact(&mut self) {
+        let nl = self.levels.len();
+        let mut maps: Vec<Vec<u32>> = Vec::with_capacity(nl);
+        for k in 0..nl {
+            let l = &self.levels[k];
+            let keep: Vec<bool> = (0..l.slots() as u32).map(|i| !l.up.is_dead(i)).collect();
+            let mut map = vec![NONE; keep.len()];
+            let mut next = 0u32;
+            for (i, &kp) in keep.iter().enumerate() {
+                if kp {
+                    map[i] = next;
+                    next += 1;
+                }
+            }
+            let k1 = k + 1;
+            let mut verts = Vec::with_capacity(next as usize * k1);
+            let mut down = Vec::with_capacity(if k > 0 { next as usize * k1 } else { 0 });
+            for (i, &kp) in keep.iter().enumerate() {
+                if kp {
+                    verts.extend_from_slice(&l.verts[i * k1..(i + 1) * k1]);
+                    if k > 0 {
+                        down.extend(
+                            l.down[i * k1..(i + 1) * k1]
+                                .iter()
+                                .map(|&f| maps[k - 1][f as usize]),
+                        );
+                    }
+                }
+            }
+            L::retain(&mut self.data, k, &keep);
+            let l = &mut self.levels[k];
+            l.verts = verts;
+            l.down = down;
+            l.free = Vec::new();
+            maps.push(map);
+        }
+        // rebuild the up lists with exact capacities
+        for k in 0..nl {
+            let n = self.levels[k].verts.len() / (k + 1);
+            let mut deg = vec![0u32; n];
+            if k + 1 < nl {
+                for &f in &self.levels[k + 1].down {
+                    deg[f as usize] += 1;
+                }
+            }
+            let mut up = super::arena::UpArena::default();
+            for d in deg {
+                up.push_node(d);
+            }
+            self.levels[k].up = up;
+        }
+        for k in 1..nl {
+            let (lo, hi) = self.levels.split_at_mut(k);
+            let l = &hi[0];
+            for i in 0..l.verts.len() / (k + 1) {
+                for j in 0..=k {
+                    lo[k - 1].up.insert(
+                        l.down[i * (k + 1) + j],
+                        l.verts[i * (k + 1) + j],
+                        i as u32,
+                    );
+                }
+            }
+        }
+        let mut root = VertexIndex::default();
+        if let Some(l) = self.levels.first() {
+            root.reserve_dense(
+                self.max_label
+                    .map_or(0, |m| m as usize + 1)
+                    .min(2 * l.verts.len() + 4096),
+            );
+            for (i, &lab) in l.verts.iter().enumerate() {
+                root.insert(lab, i as u32);
+            }
+        }
+        self.root = root;
+    }
+
+    /// Removes a set of nodes closed under cofaces (a union of stars), given per level.
     pub(crate) fn remove_upward_closed(&mut self, mut per_level: Vec<Vec<u32>>) {
         for k in (0..per_level.len()).rev() {
             let ids = &mut per_level[k];
-            ids.sort_unstable_by(|a, b| b.cmp(a));
+            ids.sort_unstable();
             ids.dedup();
             for &n in ids.iter() {
                 self.remove_leaf_node(k, n);
@@ -811,29 +1013,46 @@ impl<L: Levels> Hasse<L> {
     /// ```
     pub fn check(&self) -> Result<(), HasseError> {
         let bad = |s: Node, what: String| Err(HasseError::Invalid { node: s, what });
+        for (k, l) in self.levels.iter().enumerate() {
+            let mut dead = 0;
+            for i in 0..l.slots() as u32 {
+                dead += l.up.is_dead(i) as usize;
+            }
+            if dead != l.free.len() || l.free.iter().any(|&f| l.alive(f)) {
+                return bad(
+                    Node::new(k as u32, SimplexId(0)),
+                    "free list differs from the removed slots".into(),
+                );
+            }
+        }
         if self.root.len() != self.n_simplices(0) {
-            return bad(Node::new(0, SimplexId(0)), "vertex lookup size differs".into());
+            return bad(
+                Node::new(0, SimplexId(0)),
+                "vertex lookup size differs".into(),
+            );
         }
         let mut n_up = vec![0usize; self.levels.len()];
-        for k in 0..self.levels.len() {
-            let l = &self.levels[k];
-            if l.verts.len() != l.len() * (k + 1) || (k > 0 && l.down.len() != l.verts.len()) {
+        for (k, l) in self.levels.iter().enumerate() {
+            if l.verts.len() != l.slots() * (k + 1) || (k > 0 && l.down.len() != l.verts.len()) {
                 return bad(Node::new(k as u32, SimplexId(0)), "array lengths".into());
             }
-            for i in 0..l.len() as u32 {
+            for i in 0..l.slots() as u32 {
+                if l.up.is_dead(i) {
+                    continue;
+                }
                 let s = Node::new(k as u32, SimplexId(i));
                 let vs = l.verts(i);
                 if vs.windows(2).any(|w| w[0] >= w[1]) {
                     return bad(s, "vertices not sorted and distinct".into());
                 }
                 if k == 0 {
-                    if self.root.get(&vs[0]) != Some(&i) {
+                    if self.root.get(vs[0]) != Some(i) {
                         return bad(s, "vertex lookup wrong".into());
                     }
                 } else {
                     for (pos, &f) in l.downs(i).iter().enumerate() {
                         let fl = &self.levels[k - 1];
-                        if f as usize >= fl.len() {
+                        if !fl.alive(f) {
                             return bad(s, format!("face {pos} out of range"));
                         }
                         let fv = fl.verts(f);
@@ -860,7 +1079,7 @@ impl<L: Levels> Hasse<L> {
                     let Some(al) = self.levels.get(k + 1) else {
                         return bad(s, "up incidence above the top level".into());
                     };
-                    if p[1] as usize >= al.len() {
+                    if !al.alive(p[1]) {
                         return bad(s, "up incidence out of range".into());
                     }
                     let cv = al.verts(p[1]);
@@ -875,7 +1094,10 @@ impl<L: Levels> Hasse<L> {
         }
         for k in 1..self.levels.len() {
             if n_up[k - 1] != self.levels[k].len() * (k + 1) {
-                return bad(Node::new(k as u32, SimplexId(0)), "incidence counts differ".into());
+                return bad(
+                    Node::new(k as u32, SimplexId(0)),
+                    "incidence counts differ".into(),
+                );
             }
         }
         Ok(())

@@ -36,7 +36,10 @@ impl Default for DotOptions {
 
 impl<L: Levels> Hasse<L> {
     /// Builds the complex of an indexed complex's simplicial cells (vertex labels = vertex ids
-    /// of `k`; vertices used by no cell are not inserted); data gets default values.
+    /// of `k`; vertices used by no cell are not inserted); data gets default values. Complexes
+    /// of dimension at most 3 are built level by level by sorting facets (nodes in
+    /// lexicographic order, up lists in exactly-sized contiguous blocks); higher dimensions are
+    /// inserted cell by cell (Alg. 1).
     ///
     /// # Errors
     /// [`HasseError::NotSimplicial`] for a quad, prism, ...; the errors of
@@ -56,11 +59,13 @@ impl<L: Levels> Hasse<L> {
     pub fn from_indexed(k: &IndexedComplex) -> Result<Self, HasseError> {
         let mut h = Self::new();
         let mut buf: Vec<u32> = Vec::new();
-        for b in k.blocks() {
-            let CellKind::Simplex(d) = b.kind else {
+        let top = k.dim().unwrap_or(0);
+        let mut per_dim: Vec<Vec<u32>> = vec![Vec::new(); top.min(3) + 1];
+        for (cid, c) in k.cells().enumerate() {
+            let CellKind::Simplex(d) = c.kind else {
                 return Err(HasseError::NotSimplicial {
-                    cell: 0,
-                    kind: format!("{:?}", b.kind),
+                    cell: cid as u64,
+                    kind: format!("{:?}", c.kind),
                 });
             };
             let d = d as usize;
@@ -70,19 +75,26 @@ impl<L: Levels> Hasse<L> {
                     estimate: (1u128 << (d + 1).min(127)) - 1,
                 });
             }
-            h.ensure_level(d);
-            for i in 0..b.len() {
-                buf.clear();
-                buf.extend_from_slice(b.cell(i));
-                buf.sort_unstable();
-                if let Some(w) = buf.windows(2).find(|w| w[0] == w[1]) {
-                    return Err(HasseError::Degenerate {
-                        vertices: b.cell(i).iter().map(|&x| VertexId(x)).collect(),
-                        repeated: VertexId(w[0]),
-                    });
+            buf.clear();
+            buf.extend_from_slice(c.vertices);
+            buf.sort_unstable();
+            if let Some(w) = buf.windows(2).find(|w| w[0] == w[1]) {
+                return Err(HasseError::Degenerate {
+                    vertices: c.vertices.iter().map(|&x| VertexId(x)).collect(),
+                    repeated: VertexId(w[0]),
+                });
+            }
+            if top <= 3 {
+                let out = &mut per_dim[d];
+                for &x in &buf {
+                    out.push(x);
                 }
+            } else {
                 h.insert_sorted(&buf);
             }
+        }
+        if top <= 3 {
+            h.bulk_build(&per_dim);
         }
         h.shrink_to_fit();
         Ok(h)
@@ -107,16 +119,16 @@ impl<L: Levels> Hasse<L> {
         L: At<0>,
         <L as At<0>>::Data: Position,
     {
-        let n = self.n_simplices(0);
-        for i in 0..n {
-            let lab = self.levels[0].verts(i as u32)[0];
+        let ids: Vec<u32> = self.level(0).map(|v| v.id.0).collect();
+        for i in ids {
+            let lab = self.levels[0].verts(i)[0];
             if (lab as usize) < k.n_vertices() {
                 let c = k.point(VertexId(lab));
                 let mut p = [0.0; 3];
                 for (j, x) in c.iter().take(3).enumerate() {
                     p[j] = *x;
                 }
-                self.level_data_mut::<0>()[i].set_position(p);
+                self.level_data_mut::<0>()[i as usize].set_position(p);
             }
         }
     }
@@ -155,8 +167,9 @@ impl<L: Levels> Hasse<L> {
         orientation: Option<&Orientation>,
     ) -> Result<(IndexedComplex, Vec<VertexId>), HasseError> {
         let mut b = ComplexBuilder::new(ambient_dim)?;
-        let mut order: Vec<(u32, u32)> = (0..self.n_simplices(0) as u32)
-            .map(|i| (self.levels[0].verts(i)[0], i))
+        let mut order: Vec<(u32, u32)> = self
+            .level(0)
+            .map(|v| (self.levels[0].verts(v.id.0)[0], v.id.0))
             .collect();
         order.sort_unstable();
         let mut index = rustc_hash::FxHashMap::default();
@@ -171,7 +184,10 @@ impl<L: Levels> Hasse<L> {
         for n in self.maximal_simplices() {
             let mut vs: Vec<u32> = self.vertices(n).iter().map(|v| index[&v.0]).collect();
             if let Some(o) = orientation {
-                if o.dim == n.dim as usize && o.signs.get(n.id.index()) == Some(&-1) && vs.len() >= 2 {
+                if o.dim == n.dim as usize
+                    && o.signs.get(n.id.index()) == Some(&-1)
+                    && vs.len() >= 2
+                {
                     vs.swap(0, 1);
                 }
             }

@@ -64,23 +64,66 @@ impl std::fmt::Display for DecimationPlan {
 struct RawGroup {
     new: Verts,
     /// (dimension, id) of every old simplex, sorted by dimension then vertices.
-    old: Vec<(usize, u32)>,
+    old: SmallVec<[(usize, u32); 4]>,
 }
 
 impl<L: Levels> Hasse<L> {
-    /// `St(Cl(s))` as ids per level.
-    pub(crate) fn neighbourhood_ids(&self, s: Node) -> Vec<Vec<u32>> {
-        let cl = self.closure(s);
-        let mut out: Vec<Vec<u32>> = vec![Vec::new(); self.levels.len()];
-        for f in cl.iter() {
-            for (k, l) in self.star_ids(f).into_iter().enumerate() {
-                out[k].extend(l);
+    /// `St(Cl(s))` as sorted, distinct `(dimension, id)` pairs.
+    pub(crate) fn neighbourhood_ids(&self, s: Node) -> Vec<(usize, u32)> {
+        // Cl(s): breadth-first down, deduplicated per level
+        let mut cl: Vec<(usize, u32)> = vec![(s.dim as usize, s.id.0)];
+        let mut lo = 0;
+        while lo < cl.len() {
+            let hi = cl.len();
+            let k = cl[lo].0;
+            if k == 0 {
+                break;
+            }
+            for j in lo..hi {
+                let (k, i) = cl[j];
+                for &f in self.levels[k].downs(i) {
+                    cl.push((k - 1, f));
+                }
+            }
+            cl[hi..].sort_unstable();
+            let mut w = hi;
+            for r in hi..cl.len() {
+                if w == hi || cl[w - 1] != cl[r] {
+                    cl[w] = cl[r];
+                    w += 1;
+                }
+            }
+            cl.truncate(w);
+            lo = hi;
+        }
+        // St of each face: cofaces reached only from their canonical parent (no duplicates
+        // within one star)
+        let mut out: Vec<(usize, u32)> = Vec::new();
+        let mut cur: Vec<(u32, u32)> = Vec::new();
+        let mut next: Vec<(u32, u32)> = Vec::new();
+        for &(k, i) in &cl {
+            out.push((k, i));
+            cur.clear();
+            cur.push((i, 0));
+            let mut j = k;
+            let mut first = true;
+            while !cur.is_empty() && j + 1 < self.levels.len() {
+                next.clear();
+                for &(t, m) in &cur {
+                    for p in self.levels[j].up.get(t) {
+                        if first || p[0] > m {
+                            next.push((p[1], p[0]));
+                        }
+                    }
+                }
+                first = false;
+                j += 1;
+                out.extend(next.iter().map(|x| (j, x.0)));
+                std::mem::swap(&mut cur, &mut next);
             }
         }
-        for l in &mut out {
-            l.sort_unstable();
-            l.dedup();
-        }
+        out.sort_unstable();
+        out.dedup();
         out
     }
 
@@ -88,7 +131,7 @@ impl<L: Levels> Hasse<L> {
         match p {
             None => self.fresh_label().ok_or(HasseError::NoFreeLabel),
             Some(p) => {
-                if self.root.contains_key(&p.0) && !self.vertices(s).contains(&p) {
+                if self.root.contains(p.0) && !self.vertices(s).contains(&p) {
                     Err(HasseError::LabelInUse(p))
                 } else {
                     Ok(p)
@@ -100,9 +143,9 @@ impl<L: Levels> Hasse<L> {
     fn raw_plan(&self, s: Node, p: VertexId) -> Vec<RawGroup> {
         let sv = self.vertices(s).to_vec();
         let nb = self.neighbourhood_ids(s);
-        let mut items: Vec<(Verts, usize, u32)> = Vec::new();
-        for (k, ids) in nb.iter().enumerate() {
-            for &i in ids {
+        let mut items: Vec<(Verts, usize, u32)> = Vec::with_capacity(nb.len());
+        for &(k, i) in &nb {
+            {
                 let f = self.levels[k].verts(i);
                 let mut phi: Verts = f
                     .iter()
@@ -126,10 +169,11 @@ impl<L: Levels> Hasse<L> {
         for (phi, k, i) in items {
             match groups.last_mut() {
                 Some(g) if g.new == phi => g.old.push((k, i)),
-                _ => groups.push(RawGroup {
-                    new: phi,
-                    old: vec![(k, i)],
-                }),
+                _ => {
+                    let mut old = SmallVec::new();
+                    old.push((k, i));
+                    groups.push(RawGroup { new: phi, old })
+                }
             }
         }
         groups
@@ -149,7 +193,11 @@ impl<L: Levels> Hasse<L> {
     /// let plan = h.plan_decimate(e, None).unwrap();
     /// assert_eq!(plan.to_string(), "{0} {1} {0,1} -> {3}\n{0,2} {1,2} {0,1,2} -> {2,3}\n");
     /// ```
-    pub fn plan_decimate(&self, s: Node, p: Option<VertexId>) -> Result<DecimationPlan, HasseError> {
+    pub fn plan_decimate(
+        &self,
+        s: Node,
+        p: Option<VertexId>,
+    ) -> Result<DecimationPlan, HasseError> {
         if !self.contains(s) {
             return Err(HasseError::NotANode(s));
         }
@@ -202,7 +250,11 @@ impl<L: Levels> Hasse<L> {
     /// assert_eq!(*h.data::<0>(v.id), 2.0);
     /// assert_eq!(h.f_vector(), vec![2, 1]);
     /// ```
-    pub fn decimate<C: MergeAll<L>>(&mut self, s: Node, merge: &mut C) -> Result<VertexId, HasseError> {
+    pub fn decimate<C: MergeAll<L>>(
+        &mut self,
+        s: Node,
+        merge: &mut C,
+    ) -> Result<VertexId, HasseError> {
         self.decimate_into(s, None, merge)
     }
 
@@ -230,6 +282,18 @@ impl<L: Levels> Hasse<L> {
         }
         let p = self.check_label(s, p)?;
         let groups = self.raw_plan(s, p);
+        // when p is a vertex of s, a simplex that meets s in p alone is its own image: it stays
+        // in place (same id) and only its data is replaced by the merged value
+        let kept: Vec<Option<u32>> = groups
+            .iter()
+            .map(|g| {
+                let d = g.new.len() - 1;
+                g.old
+                    .iter()
+                    .find(|&&(k, i)| k == d && self.levels[k].verts(i) == &g.new[..])
+                    .map(|&(_, i)| i)
+            })
+            .collect();
         // stage the merged data, per group, from the old simplices of the new one's dimension
         let mut staged = L::Columns::default();
         let mut old_buf: Vec<(&[VertexId], u32)> = Vec::new();
@@ -252,19 +316,24 @@ impl<L: Levels> Hasse<L> {
         L::reverse_all(&mut staged);
         // remove the neighbourhood
         let mut nb: Vec<Vec<u32>> = vec![Vec::new(); self.levels.len()];
-        for g in &groups {
+        for (g, kp) in groups.iter().zip(&kept) {
             for &(k, i) in &g.old {
-                nb[k].push(i);
+                if Some(i) != *kp || k != g.new.len() - 1 {
+                    nb[k].push(i);
+                }
             }
         }
         self.remove_upward_closed(nb);
-        // insert the images
-        for g in &groups {
+        // insert the images (or update the kept ones)
+        for (g, kp) in groups.iter().zip(&kept) {
             let d = g.new.len() - 1;
-            let id = self.insert_sorted(&g.new);
+            let id = match kp {
+                Some(i) => *i,
+                None => self.insert_sorted(&g.new),
+            };
             L::commit_pop(&mut self.data, &mut staged, d, id as usize);
         }
-        if self.root.contains_key(&p.0) {
+        if self.root.contains(p.0) {
             Ok(p)
         } else {
             // s was isolated from everything: only happens for an empty image, impossible
@@ -307,9 +376,9 @@ impl<L: Levels> Hasse<L> {
         let (Some(a), Some(b)) = (self.vertex(vs[0]), self.vertex(vs[1])) else {
             return false;
         };
-        self.link_ids_into(a, &mut bufs.a);
-        self.link_ids_into(b, &mut bufs.b);
-        self.link_ids_into(e, &mut bufs.ab);
+        self.link_ids_into(a, &mut bufs.a, &mut bufs.scratch);
+        self.link_ids_into(b, &mut bufs.b, &mut bufs.scratch);
+        self.link_ids_into(e, &mut bufs.ab, &mut bufs.scratch);
         let n = bufs.a.len().max(bufs.b.len()).max(bufs.ab.len());
         for k in 0..n {
             let get = |v: &mut Vec<Vec<SimplexId>>| -> SmallVec<[SimplexId; 32]> {
@@ -346,4 +415,10 @@ pub(crate) struct LinkBufs {
     a: Vec<Vec<SimplexId>>,
     b: Vec<Vec<SimplexId>>,
     ab: Vec<Vec<SimplexId>>,
+    scratch: super::sets::Frontier,
+}
+
+thread_local! {
+    /// Buffers of the link check, reused across calls on one thread.
+    pub(crate) static LINK_BUFS: std::cell::RefCell<LinkBufs> = std::cell::RefCell::new(LinkBufs::default());
 }

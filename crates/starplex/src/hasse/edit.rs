@@ -7,10 +7,10 @@
 //! * stellar splits (`can_split` / `split`): edge split, face split, cell split;
 //! * Laplacian smoothing of vertex positions stored as level-0 data.
 //!
-//! The flips are topological: they do not look at positions (a flip that folds the embedding
-//! is allowed; test orientations before flipping when that matters).
+//! The flips are topological: they do not look at positions. `can_flip_geometric` adds an exact
+//! test (robust `orient2d` / `orient3d`) for planar triangle meshes and tetrahedral meshes.
 use super::complex::Hasse;
-use super::decimate::LinkBufs;
+use super::decimate::{LinkBufs, LINK_BUFS};
 use super::levels::{At, Levels, MergeAll};
 use super::{HasseError, Node};
 use crate::ids::VertexId;
@@ -96,8 +96,11 @@ impl<L: Levels> Hasse<L> {
         if e.dim != 1 || !self.contains(e) {
             return Err(EditError::NotAnEdge(e));
         }
-        let mut bufs = LinkBufs::default();
-        if self.link_condition_holds(e, &mut bufs) {
+        let holds = LINK_BUFS.with(|b| match b.try_borrow_mut() {
+            Ok(mut bufs) => self.link_condition_holds(e, &mut bufs),
+            Err(_) => self.link_condition_holds(e, &mut LinkBufs::default()),
+        });
+        if holds {
             Ok(())
         } else {
             let extra = self.link_condition_violations(e).map_or(0, |s| s.len());
@@ -125,7 +128,11 @@ impl<L: Levels> Hasse<L> {
     /// assert_eq!(h.collapse(e, &mut KeepFirst).unwrap().0, 1);
     /// assert_eq!(h.f_vector(), vec![3, 2]);
     /// ```
-    pub fn collapse<C: MergeAll<L>>(&mut self, e: Node, merge: &mut C) -> Result<VertexId, EditError> {
+    pub fn collapse<C: MergeAll<L>>(
+        &mut self,
+        e: Node,
+        merge: &mut C,
+    ) -> Result<VertexId, EditError> {
         if e.dim != 1 || !self.contains(e) {
             return Err(EditError::NotAnEdge(e));
         }
@@ -168,7 +175,7 @@ impl<L: Levels> Hasse<L> {
             return Err(refuse("its link is too large".into()));
         }
         let want = (1usize << t.len()) - 2;
-        if lk.len() != want || lk.level(t.len() - 1).len() > 0 {
+        if lk.len() != want || !lk.level(t.len() - 1).is_empty() {
             return Err(refuse(format!(
                 "its link is not the boundary of the simplex {:?}",
                 t.iter().map(|v| v.0).collect::<Vec<_>>()
@@ -271,7 +278,12 @@ impl<L: Levels> Hasse<L> {
             for i in 0..sv.len() {
                 let mut n: Vec<VertexId> = rest.clone();
                 n.push(p);
-                n.extend(sv.iter().enumerate().filter(|&(j, _)| j != i).map(|(_, &v)| v));
+                n.extend(
+                    sv.iter()
+                        .enumerate()
+                        .filter(|&(j, _)| j != i)
+                        .map(|(_, &v)| v),
+                );
                 self.insert(&n)?;
             }
         }
@@ -317,9 +329,12 @@ impl<L: Levels> Hasse<L> {
         L: At<0>,
         <L as At<0>>::Data: Position,
     {
-        let n = self.n_simplices(0);
+        let n = self.n_slots(0);
         let fixed: Vec<bool> = (0..n)
-            .map(|i| fix_boundary && self.is_boundary_vertex(Node::new(0, (i as u32).into())))
+            .map(|i| {
+                let v = Node::new(0, (i as u32).into());
+                !self.contains(v) || (fix_boundary && self.is_boundary_vertex(v))
+            })
             .collect();
         for _ in 0..iterations {
             let col = self.level_data::<0>();

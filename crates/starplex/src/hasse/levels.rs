@@ -27,6 +27,7 @@
 //! assert_eq!(h.data::<2>(t.id), &-1);
 //! assert_eq!(h.data::<0>(v.id), &[2.5, 0.0, 0.0]);
 //! ```
+use super::Node;
 use crate::ids::VertexId;
 
 /// Column storage of a level list: moves data along with the structural edits of the complex.
@@ -44,8 +45,10 @@ pub trait Levels: Sized + 'static {
     const N_LEVELS: usize;
     /// Appends a default value at level `dim`.
     fn push_default(cols: &mut Self::Columns, dim: usize);
-    /// Removes the value at `i` of level `dim`, moving the last one into its place.
-    fn swap_remove(cols: &mut Self::Columns, dim: usize, i: usize);
+    /// Resets the value at `i` of level `dim` to the default (a removed or reused slot).
+    fn reset(cols: &mut Self::Columns, dim: usize, i: usize);
+    /// Keeps the values of level `dim` whose `keep` flag is set, in order (compaction).
+    fn retain(cols: &mut Self::Columns, dim: usize, keep: &[bool]);
     /// Reserves room for `n` more values at level `dim`.
     fn reserve(cols: &mut Self::Columns, dim: usize, n: usize);
     /// Bytes used by level `dim`'s column (capacity).
@@ -160,13 +163,63 @@ pub trait MergeAll<L: Levels> {
     );
 }
 
+/// A typed visitor for level `K` holding `T` (see [`Hasse::visit_typed_bfs_up`]): receives each
+/// visited `K`-simplex with its data; returns `false` to stop expanding from it.
+///
+/// [`Hasse::visit_typed_bfs_up`]: super::Hasse::visit_typed_bfs_up
+///
+/// ```
+/// use starplex::hasse::{Node, Visit};
+/// struct Sum(f64);
+/// impl Visit<0, f64> for Sum {
+///     fn visit(&mut self, _: Node, x: &f64) -> bool { self.0 += x; true }
+/// }
+/// let mut s = Sum(0.0);
+/// assert!(Visit::<0, f64>::visit(&mut s, Node::new(0, 0.into()), &2.0));
+/// assert_eq!(s.0, 2.0);
+/// ```
+pub trait Visit<const K: usize, T> {
+    /// Called on a `K`-simplex and its data.
+    fn visit(&mut self, s: Node, data: &T) -> bool;
+}
+
+/// A visitor for every level of `L` (blanket-implemented for types implementing
+/// [`Visit<K, T>`] for each level): the dimension of a node selects, by one `match`, the
+/// statically typed method; nodes of dimensions without a declared type are passed over (and
+/// expanded).
+///
+/// ```
+/// use starplex::hasse::{Levels, Node, Visit, VisitAll};
+/// struct Count(usize);
+/// impl Visit<0, u8> for Count {
+///     fn visit(&mut self, _: Node, _: &u8) -> bool { self.0 += 1; true }
+/// }
+/// let mut cols = <(u8,) as Levels>::Columns::default();
+/// <(u8,) as Levels>::push_default(&mut cols, 0);
+/// let mut c = Count(0);
+/// assert!(VisitAll::<(u8,)>::visit_node(&mut c, &cols, Node::new(0, 0.into())));
+/// assert!(VisitAll::<(u8,)>::visit_node(&mut c, &cols, Node::new(1, 0.into())));
+/// assert_eq!(c.0, 1);
+/// ```
+pub trait VisitAll<L: Levels> {
+    /// Dispatches `s` to the visitor of its level.
+    fn visit_node(&mut self, cols: &L::Columns, s: Node) -> bool;
+}
+
+impl<V> VisitAll<()> for V {
+    fn visit_node(&mut self, _: &(), _: Node) -> bool {
+        true
+    }
+}
+
 impl Levels for () {
     type Columns = ();
     const N_LEVELS: usize = 0;
     #[inline]
     fn push_default(_: &mut (), _: usize) {}
     #[inline]
-    fn swap_remove(_: &mut (), _: usize, _: usize) {}
+    fn reset(_: &mut (), _: usize, _: usize) {}
+    fn retain(_: &mut (), _: usize, _: &[bool]) {}
     #[inline]
     fn reserve(_: &mut (), _: usize, _: usize) {}
     fn bytes(_: &(), _: usize) -> usize {
@@ -209,9 +262,21 @@ macro_rules! impl_levels {
                 }
             }
             #[inline]
-            fn swap_remove(cols: &mut Self::Columns, dim: usize, i: usize) {
+            fn reset(cols: &mut Self::Columns, dim: usize, i: usize) {
                 match dim {
-                    $($K => { cols.$K.swap_remove(i); })+
+                    $($K => cols.$K[i] = $T::default(),)+
+                    _ => {}
+                }
+            }
+            fn retain(cols: &mut Self::Columns, dim: usize, keep: &[bool]) {
+                match dim {
+                    $($K => {
+                        let mut i = 0;
+                        cols.$K.retain(|_| {
+                            i += 1;
+                            keep[i - 1]
+                        });
+                    })+
                     _ => {}
                 }
             }
@@ -262,6 +327,19 @@ macro_rules! impl_levels {
                         staged.$K.push(x);
                     })+
                     _ => {}
+                }
+            }
+        }
+
+        impl<VV, $($T: Default + 'static),+> VisitAll<($($T,)+)> for VV
+        where
+            VV: $(Visit<$K, $T> +)+
+        {
+            #[inline]
+            fn visit_node(&mut self, cols: &<($($T,)+) as Levels>::Columns, s: Node) -> bool {
+                match s.dim as usize {
+                    $($K => <VV as Visit<$K, $T>>::visit(self, s, &cols.$K[s.id.index()]),)+
+                    _ => true,
                 }
             }
         }

@@ -23,13 +23,30 @@
 //! guarded by branded keys; the tuple gives the same flexibility per level with plain generics.
 //! Several values per level are a struct (or tuple) as that level's type.
 //!
+//! Visitors get the same treatment: [`Hasse::visit_typed_bfs_up`] hands each node to the
+//! [`Visit<K, T>`] of its level with its typed data (dispatch by one `match` per node).
+//!
 //! # Memory layout
 //! Nodes live per dimension in flat arrays: `k + 1` sorted vertex labels and `k + 1` face ids
-//! per `k`-simplex (face `i` = the simplex without vertex `i`), plus an 8-byte header into a
-//! per-level arena of `(vertex added, coface id)` pairs, sorted by key, in power-of-two blocks
-//! reused through free lists. The vertex lookup is a hash map label → vertex node; every other
-//! lookup walks up: `find({a,b,c}) = up(up(vertex(a), b), c)`. A triangle mesh costs about
-//! 45 bytes per simplex with all incidences (see `starplex bench-hasse`).
+//! per `k`-simplex (face `i` = the simplex without vertex `i`, i.e. down keyed by the vertex
+//! removed), plus an 8-byte header into a per-level arena of `(vertex added, coface id)` pairs,
+//! sorted by key, in power-of-two blocks reused through free lists. The vertex lookup is a dense
+//! table (a hash map only for labels far above the vertex count); every other lookup walks up:
+//! `find({a,b,c}) = up(up(vertex(a), b), c)`, a scan of a few pairs per step (binary search past
+//! 8). No per-node heap allocation. A triangle mesh built from a file costs about 44 bytes per
+//! simplex with all up and down incidences (`starplex bench-hasse FILE`).
+//!
+//! Ids are slots: removing a simplex frees its slot (kept on a free list and reused by the next
+//! insertion), so ids of other simplices never change during edits; [`Hasse::compact`]
+//! renumbers densely. Complexes of dimension at most 3 read from an
+//! [`IndexedComplex`](crate::complex::IndexedComplex) are built level by level by sorting
+//! facets (counting sort on the labels), which lays nodes out in lexicographic order.
+//!
+//! # Errata of the CASC paper found while reproducing it
+//! * Section 5.1 prints `Link({3})` without `{0}`; `{0,1}` and `{0,5}` are in the link, so `{0}`
+//!   is too (`examples/casc_link.rs`).
+//! * Table 1, row 3 maps `{3,4,5} {3,5} {4,5}` to `{5,6}` (printed `{3,6}`); row 7 visits
+//!   `{2,4}`, which maps to `{2,6}` (`examples/casc_decimate.rs`).
 //!
 //! ```
 //! use starplex::hasse::{Hasse, KeepFirst};
@@ -51,10 +68,12 @@
 //! ```
 
 mod arena;
+mod bulk;
 mod complex;
 mod convert;
 mod decimate;
 mod edit;
+mod geom;
 pub mod levels;
 mod orient;
 mod sets;
@@ -63,7 +82,7 @@ pub use complex::{Hasse, MAX_INSERT_VERTICES};
 pub use convert::DotOptions;
 pub use decimate::{DecimationGroup, DecimationPlan};
 pub use edit::{EditError, Position};
-pub use levels::{At, DefaultData, KeepFirst, Levels, Merge, MergeAll};
+pub use levels::{At, DefaultData, KeepFirst, Levels, Merge, MergeAll, Visit, VisitAll};
 pub use orient::{Orientation, SurfaceGeometry};
 pub use sets::{SimplexMap, SimplexSet};
 

@@ -31,7 +31,7 @@ use crate::ids::{SimplexId, VertexId};
 pub struct Orientation {
     /// Dimension of the simplices oriented.
     pub dim: usize,
-    /// One sign per top simplex, by id.
+    /// One sign per top simplex, by id (0 at freed slots).
     pub signs: Vec<i8>,
     /// True when no conflict was found (every face shared by two top simplices gets opposite
     /// induced orientations).
@@ -173,7 +173,7 @@ impl<L: Levels> Hasse<L> {
         let Some(d) = self.dim() else {
             return Vec::new();
         };
-        let mut s = vec![0i8; self.n_simplices(d)];
+        let mut s = vec![0i8; self.n_slots(d)];
         for c in k.cells() {
             if c.kind.is_simplex() && c.kind.dim() == d {
                 let vs: Vec<VertexId> = c.vertices.iter().map(|&x| VertexId(x)).collect();
@@ -208,22 +208,25 @@ impl<L: Levels> Hasse<L> {
                 components: 0,
             };
         };
-        let n = self.n_simplices(d);
+        let n = self.n_slots(d);
         let mut signs = vec![0i8; n];
         let mut orientable = true;
         // pure: every lower simplex has a coface
-        let mut pseudo = (0..d).all(|k| (0..self.n_simplices(k) as u32).all(|i| !self.levels[k].up.get(i).is_empty()));
+        let mut pseudo = (0..d).all(|k| self.level(k).all(|s| self.up(s).len() > 0));
         if d > 0 {
-            pseudo &= (0..self.n_simplices(d - 1) as u32).all(|i| self.levels[d - 1].up.get(i).len() <= 2);
+            pseudo &= self.level(d - 1).all(|s| self.up(s).len() <= 2);
         }
         let mut components = 0;
         let mut q = VecDeque::new();
         for seed in 0..n {
-            if signs[seed] != 0 {
+            if signs[seed] != 0 || self.levels[d].up.is_dead(seed as u32) {
                 continue;
             }
             components += 1;
-            let s0 = initial.and_then(|x| x.get(seed).copied()).filter(|&x| x != 0).unwrap_or(1);
+            let s0 = initial
+                .and_then(|x| x.get(seed).copied())
+                .filter(|&x| x != 0)
+                .unwrap_or(1);
             signs[seed] = s0;
             q.push_back(seed as u32);
             while let Some(t) = q.pop_front() {
@@ -274,13 +277,13 @@ impl<L: Levels> Hasse<L> {
     /// assert_eq!(h.n_components(), 2);
     /// ```
     pub fn n_components(&self) -> usize {
-        let n = self.n_simplices(0);
+        let n = self.n_slots(0);
         let mut uf = UnionFind::new(n);
-        for i in 0..self.n_simplices(1) as u32 {
-            let d = self.levels[1].downs(i);
+        for e in self.level(1) {
+            let d = self.levels[1].downs(e.id.0);
             uf.union(d[0], d[1]);
         }
-        uf.n_sets()
+        uf.n_sets() - (n - self.n_simplices(0))
     }
 
     fn pos(&self, v: u32) -> [f64; 3]
@@ -298,7 +301,7 @@ impl<L: Levels> Hasse<L> {
         <L as At<0>>::Data: Position,
     {
         let vs = self.levels[2].verts(t);
-        let r = |x: u32| self.pos(self.root[&x]);
+        let r = |x: u32| self.pos(self.root.get(x).unwrap_or(0));
         [r(vs[0]), r(vs[1]), r(vs[2])]
     }
 
@@ -346,8 +349,8 @@ impl<L: Levels> Hasse<L> {
     {
         let mut area = 0.0;
         let mut vol = 0.0;
-        if o.dim == 2 && self.n_simplices(2) == o.signs.len() {
-            for t in 0..self.n_simplices(2) as u32 {
+        if o.dim == 2 && self.n_slots(2) == o.signs.len() {
+            for t in self.level(2).map(|t| t.id.0) {
                 let [a, b, c] = self.tri_points(t);
                 let n = cross(sub(b, a), sub(c, a));
                 area += 0.5 * dot(n, n).sqrt();
@@ -420,8 +423,8 @@ impl<L: Levels> Hasse<L> {
             let others: Vec<u32> = vs.iter().copied().filter(|&x| x != lab).collect();
             let sign = o.signs.get(t as usize).copied().unwrap_or(1) as f64
                 * if i % 2 == 0 { 1.0 } else { -1.0 };
-            let ej = sub(self.pos(self.root[&others[0]]), pv);
-            let ek = sub(self.pos(self.root[&others[1]]), pv);
+            let ej = sub(self.pos(self.root.get(others[0]).unwrap_or(0)), pv);
+            let ek = sub(self.pos(self.root.get(others[1]).unwrap_or(0)), pv);
             for r in 0..3 {
                 for c in 0..3 {
                     b[r][c] += sign * 0.5 * (ej[r] * ek[c] - ek[r] * ej[c]);

@@ -9,7 +9,8 @@ use crate::ids::{SimplexId, VertexId};
 
 /// A set of simplices of one complex, kept per dimension as sorted id lists (like CASC's
 /// `SimplexSet`, one set per level). Ids are those of the complex when the set was made:
-/// removing simplices from the complex renumbers ids, so rebuild sets after a removal.
+/// ids stay valid while the complex is edited, except that the slot of a removed simplex is
+/// reused by a later insertion and [`Hasse::compact`] renumbers everything.
 ///
 /// ```
 /// use starplex::hasse::{Hasse, SimplexSet};
@@ -344,6 +345,9 @@ impl<T> SimplexMap<T> {
     }
 }
 
+/// Two frontiers of a breadth-first walk: (node, largest added vertex).
+pub(crate) type Frontier = (Vec<(u32, u32)>, Vec<(u32, u32)>);
+
 impl<L: Levels> Hasse<L> {
     /// The vertex tuples of a set, by dimension then lexicographically.
     ///
@@ -414,12 +418,7 @@ impl<L: Levels> Hasse<L> {
         for k in (1..set.levels.len()).rev() {
             let mut add: Vec<SimplexId> = Vec::new();
             for &i in &set.levels[k] {
-                add.extend(
-                    self.levels[k]
-                        .downs(i.0)
-                        .iter()
-                        .map(|&f| SimplexId(f)),
-                );
+                add.extend(self.levels[k].downs(i.0).iter().map(|&f| SimplexId(f)));
             }
             let l = &mut set.levels[k - 1];
             l.extend(add);
@@ -438,24 +437,30 @@ impl<L: Levels> Hasse<L> {
     /// ```
     pub fn link(&self, s: Node) -> SimplexSet {
         let mut out = Vec::new();
-        self.link_ids_into(s, &mut out);
+        self.link_ids_into(s, &mut out, &mut Default::default());
         SimplexSet::from_levels(out)
     }
 
     /// The link as unsorted ids per level into a reused buffer (each link simplex once).
-    pub(crate) fn link_ids_into(&self, s: Node, out: &mut Vec<Vec<SimplexId>>) {
+    pub(crate) fn link_ids_into(
+        &self,
+        s: Node,
+        out: &mut Vec<Vec<SimplexId>>,
+        scratch: &mut Frontier,
+    ) {
         for l in out.iter_mut() {
             l.clear();
         }
         let k = s.dim as usize;
         let sv: smallvec::SmallVec<[u32; 8]> = self.levels[k].verts(s.id.0).into();
-        let mut cur: Vec<(u32, u32)> = vec![(s.id.0, 0)];
-        let mut next: Vec<(u32, u32)> = Vec::new();
+        let (cur, next) = scratch;
+        cur.clear();
+        cur.push((s.id.0, 0));
         let mut j = k;
         let mut first = true;
         while !cur.is_empty() && j + 1 < self.levels.len() {
             next.clear();
-            for &(t, m) in &cur {
+            for &(t, m) in cur.iter() {
                 for p in self.levels[j].up.get(t) {
                     if first || p[0] > m {
                         next.push((p[1], p[0]));
@@ -468,7 +473,7 @@ impl<L: Levels> Hasse<L> {
             if out.len() <= ld {
                 out.resize(ld + 1, Vec::new());
             }
-            for &(t, _) in &next {
+            for &(t, _) in next.iter() {
                 // go down from t removing the vertices of s
                 let mut cur_id = t;
                 let mut d = j;
@@ -481,7 +486,7 @@ impl<L: Levels> Hasse<L> {
                 }
                 out[ld].push(SimplexId(cur_id));
             }
-            std::mem::swap(&mut cur, &mut next);
+            std::mem::swap(cur, next);
         }
     }
 
@@ -630,6 +635,55 @@ impl<L: Levels> Hasse<L> {
                 }
             }
         }
+    }
+
+    /// Breadth-first traversal up from `s` with a typed visitor: each node reaches the
+    /// [`Visit<K, T>`](super::Visit) of its level with its data, the level chosen by one `match`
+    /// on the dimension, the data typed at compile time.
+    ///
+    /// ```
+    /// use starplex::hasse::{Hasse, Node, Visit};
+    /// struct Tally { weight: f64, triangles: Vec<u8> }
+    /// impl Visit<0, f64> for Tally {
+    ///     fn visit(&mut self, _: Node, w: &f64) -> bool { self.weight += w; true }
+    /// }
+    /// impl Visit<1, ()> for Tally {
+    ///     fn visit(&mut self, _: Node, _: &()) -> bool { true }
+    /// }
+    /// impl Visit<2, u8> for Tally {
+    ///     fn visit(&mut self, _: Node, c: &u8) -> bool { self.triangles.push(*c); true }
+    /// }
+    /// let mut h: Hasse<(f64, (), u8)> = Hasse::new();
+    /// let t = h.insert_with::<2>(&[0.into(), 1.into(), 2.into()], 7).unwrap();
+    /// *h.data_mut::<0>(h.vertex(0.into()).unwrap().id) = 1.5;
+    /// let mut v = Tally { weight: 0.0, triangles: vec![] };
+    /// h.visit_typed_bfs_up(h.vertex(0.into()).unwrap(), &mut v);
+    /// assert_eq!((v.weight, v.triangles), (1.5, vec![7]));
+    /// let mut v = Tally { weight: 0.0, triangles: vec![] };
+    /// h.visit_typed_bfs_down(t, &mut v);
+    /// assert_eq!(v.weight, 1.5);
+    /// ```
+    pub fn visit_typed_bfs_up<V: super::VisitAll<L>>(&self, s: Node, v: &mut V) {
+        self.visit_bfs_up(s, |n| v.visit_node(&self.data, n));
+    }
+
+    /// Breadth-first traversal down from `s` with a typed visitor (see
+    /// [`visit_typed_bfs_up`](Self::visit_typed_bfs_up)).
+    ///
+    /// ```
+    /// use starplex::hasse::{Hasse, Node, Visit};
+    /// struct Verts(usize);
+    /// impl Visit<0, u32> for Verts {
+    ///     fn visit(&mut self, _: Node, _: &u32) -> bool { self.0 += 1; true }
+    /// }
+    /// let mut h: Hasse<(u32,)> = Hasse::new();
+    /// let t = h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
+    /// let mut v = Verts(0);
+    /// h.visit_typed_bfs_down(t, &mut v);
+    /// assert_eq!(v.0, 3);
+    /// ```
+    pub fn visit_typed_bfs_down<V: super::VisitAll<L>>(&self, s: Node, v: &mut V) {
+        self.visit_bfs_down(s, |n| v.visit_node(&self.data, n));
     }
 
     /// Breadth-first traversal down from `s` (s included), each face visited once.
