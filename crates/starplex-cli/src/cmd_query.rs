@@ -35,12 +35,13 @@ pub enum StructureKind {
 
 impl StructureKind {
     /// The structures `compare` builds.
-    pub const AVAILABLE: [StructureKind; 5] = [
+    pub const AVAILABLE: [StructureKind; 6] = [
         StructureKind::Vt,
         StructureKind::IaStar,
         StructureKind::SimplexTree,
         StructureKind::Ig,
         StructureKind::Is,
+        StructureKind::Stellar,
     ];
     pub fn name(self) -> &'static str {
         match self {
@@ -106,6 +107,15 @@ pub type Built<'a> = Box<dyn Queries + Sync + 'a>;
 
 /// Builds structure `s` on `k`; the one place that knows the structures.
 pub fn build(k: &IndexedComplex, s: StructureKind) -> Result<Built<'_>, CliError> {
+    build_with(k, s, None)
+}
+
+/// Builds structure `s` on `k`, with the Stellar tree's bucketing threshold `kv` when given.
+pub fn build_with(
+    k: &IndexedComplex,
+    s: StructureKind,
+    kv: Option<usize>,
+) -> Result<Built<'_>, CliError> {
     let limit = 1u128 << 31;
     let err = |e: String| CliError::Input(e, None);
     Ok(match s {
@@ -125,10 +135,19 @@ pub fn build(k: &IndexedComplex, s: StructureKind) -> Result<Built<'_>, CliError
             Box::new(IncidenceGraph::new(k, limit).map_err(|e| err(e.to_string()))?)
         }
         StructureKind::Is => Box::new(Is::new(k, limit).map_err(|e| err(e.to_string()))?),
-        StructureKind::Stellar | StructureKind::Hasse => {
+        StructureKind::Stellar => {
+            let opts = starplex::stellar::StellarOptions {
+                kv: kv.map(|x| x.min(u32::MAX as usize) as u32),
+                ..Default::default()
+            };
+            Box::new(
+                starplex::stellar::StellarTree::build(k, &opts).map_err(|e| err(e.to_string()))?,
+            )
+        }
+        StructureKind::Hasse => {
             return Err(CliError::Input(
                 format!("--structure {}: not available in this build yet", s.name()),
-                Some("use ig, is, ia-star, simplex-tree or vt".into()),
+                Some("use ig, is, ia-star, simplex-tree, stellar or vt".into()),
             ))
         }
     })
@@ -284,7 +303,7 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
     }
     let k = common::load(ctx, &a.input)?.complex;
     let t = Instant::now();
-    let s = build(&k, a.structure)?;
+    let s = build_with(&k, a.structure, a.kv)?;
     let build_s = t.elapsed().as_secs_f64();
     if !a.vertex.is_empty() {
         let mut objs = Vec::new();

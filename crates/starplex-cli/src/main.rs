@@ -6,13 +6,13 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod cmd_bench;
-mod cmd_compare;
 mod cmd_bench_hasse;
+mod cmd_compare;
 mod cmd_convert;
 mod cmd_info;
+mod cmd_query;
 mod cmd_stellar;
 mod cmd_validate;
-mod cmd_query;
 mod common;
 
 /// Topology of meshes and complexes.

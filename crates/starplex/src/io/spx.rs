@@ -105,7 +105,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             }
         };
         verts.clear();
-        for j in 0..k {
+        for _ in 0..k {
             verts.push(t.index(format_args!("cell {i}: vertex index"), 0, nv)?);
         }
         t.end()?;

@@ -29,6 +29,7 @@ use crate::ids::{CellId, LeafId, NodeId, VertexId};
 
 mod build;
 pub mod iastar;
+pub mod queries;
 pub mod relations;
 mod save;
 pub mod sre;
