@@ -3,8 +3,16 @@
 use std::path::Path;
 use std::process::Command;
 
+/// `$STARPLEX_SHARED/datasets`, else `shared/datasets` beside the checkout or an ancestor.
 fn shared() -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/datasets")
+    if let Ok(s) = std::env::var("STARPLEX_SHARED") {
+        return Path::new(&s).join("datasets");
+    }
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    here.ancestors()
+        .map(|a| a.join("shared/datasets"))
+        .find(|d| d.join("oracle").is_dir())
+        .unwrap_or_else(|| here.join("../../../shared/datasets"))
 }
 
 #[test]

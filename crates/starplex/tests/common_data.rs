@@ -2,9 +2,27 @@
 #![allow(dead_code)]
 use std::path::{Path, PathBuf};
 
-/// `../shared/datasets` beside the repository.
+/// The shared datasets: `$STARPLEX_SHARED/datasets` when set, else `shared/datasets` beside the
+/// repository or any of its ancestors (a checkout beside `shared/`, as CI has it, or a git
+/// worktree deeper down).
 pub fn datasets_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/datasets")
+    if let Ok(s) = std::env::var("STARPLEX_SHARED") {
+        return Path::new(&s).join("datasets");
+    }
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for a in here.ancestors() {
+        let d = a.join("shared/datasets");
+        if d.join("oracle").is_dir() {
+            return d;
+        }
+    }
+    here.join("../../../shared/datasets")
+}
+
+/// True under CI (`CI=true`), where the shared datasets are always beside the checkout and their
+/// absence is a failure; elsewhere tests that need them skip with a printed reason.
+pub fn data_required() -> bool {
+    std::env::var("CI").is_ok_and(|v| v == "true")
 }
 
 /// Every small dataset we can find: `(name, path to .spx, oracle JSON)`. Looks in

@@ -10,16 +10,8 @@ use starplex::hasse::{Hasse, KeepFirst, Merge};
 use starplex::ids::VertexId;
 use starplex::io::{self, ReadOptions};
 
-/// `shared/datasets` beside an ancestor of the crate (works from the main checkout and from
-/// worktrees one level deeper).
+/// The shared datasets (see `common_data::datasets_dir`).
 fn datasets() -> PathBuf {
-    let here = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    for a in here.ancestors() {
-        let d = a.join("shared/datasets");
-        if d.join("oracle").is_dir() {
-            return d;
-        }
-    }
     common_data::datasets_dir()
 }
 
@@ -30,7 +22,12 @@ fn load(name: &str) -> Option<(starplex::complex::IndexedComplex, serde_json::Va
         io::read(&p, &ReadOptions::default()),
         std::fs::read_to_string(o),
     ) else {
-        eprintln!("dataset {name} not found; skipped");
+        assert!(
+            !common_data::data_required(),
+            "dataset {name} not found at {} (required under CI)",
+            p.display()
+        );
+        eprintln!("SKIPPED: dataset {name} not found at {}", p.display());
         return None;
     };
     Some((k.complex, serde_json::from_str(&text).unwrap()))

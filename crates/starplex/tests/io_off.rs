@@ -5,6 +5,7 @@
 //! Files under `../shared/datasets/small/` are used when present; files that only exist under
 //! `$STARPLEX_DATA/small/<name>/` are used when `STARPLEX_DATA` is set and skipped (with a printed
 //! reason) otherwise.
+mod common_data;
 use std::path::{Path, PathBuf};
 
 use proptest::prelude::*;
@@ -14,7 +15,7 @@ use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 use starplex::io::{self, off, Format, PolygonMode, ReadOptions};
 
 fn shared_small() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/datasets/small")
+    common_data::datasets_dir().join("small")
 }
 
 /// The dataset file `file` (e.g. `tri_elephant.off`): from the shared datasets, else from

@@ -18,14 +18,13 @@ fn u64s(v: &Value) -> Vec<u64> {
 
 /// The small datasets via `common_data`; when that finds none (a git worktree sits one level
 /// deeper than the shared directory it expects), the oracles are looked up in
-/// `$STARPLEX_SHARED/datasets/oracle` (default `/work/shared`).
+/// `common_data::datasets_dir()/oracle` for the datasets under `$STARPLEX_DATA`.
 fn datasets() -> Vec<(String, std::path::PathBuf, Value)> {
     let sets = common_data::small_datasets();
     if !sets.is_empty() {
         return sets;
     }
-    let shared = std::env::var("STARPLEX_SHARED").unwrap_or_else(|_| "/work/shared".into());
-    let oracle = std::path::Path::new(&shared).join("datasets/oracle");
+    let oracle = common_data::datasets_dir().join("oracle");
     let mut out = Vec::new();
     let Ok(d) = std::env::var("STARPLEX_DATA") else {
         return out;
@@ -51,6 +50,13 @@ fn datasets() -> Vec<(String, std::path::PathBuf, Value)> {
 #[test]
 fn stellar_matches_the_oracles() {
     let sets = datasets();
+    if sets.is_empty() && !common_data::data_required() {
+        eprintln!(
+            "SKIPPED: no small datasets at {}",
+            common_data::datasets_dir().display()
+        );
+        return;
+    }
     assert!(sets.len() >= 9, "small datasets not found ({})", sets.len());
     for (name, path, o) in sets {
         let k = io::read(&path, &ReadOptions::default()).unwrap().complex;
