@@ -78,8 +78,13 @@ fn every_structure_answers_the_oracle_vertex_queries() {
             checked += 1;
         }
     }
+    if checked == 0 && std::env::var("CI").map_or(true, |v| v != "true") {
+        eprintln!("SKIPPED: no small datasets at {}", shared().display());
+        return;
+    }
+    // 6 structures on 4 simplicial sets, 2 on the quad mesh
     assert!(
-        checked >= 15,
+        checked == 26,
         "expected the small datasets in ../shared/datasets/small"
     );
 }
