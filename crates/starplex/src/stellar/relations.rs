@@ -22,7 +22,6 @@
 //! assert_eq!(t.top_adjacency().row(0), &[1]);
 //! ```
 use rayon::prelude::*;
-use rustc_hash::FxHashSet;
 
 use super::{LeafView, StellarError, StellarTree};
 use crate::cell::CellKind;
@@ -664,7 +663,6 @@ impl StellarTree {
     ) -> Result<VertexLink, LinkError> {
         let vin = self.v_orig[tv as usize];
         let mut maximal: Vec<Vec<u32>> = Vec::new();
-        let mut estimate: u128 = 0;
         for &c in view.vt_tree(tv) {
             let (kind, vs) = view.cell(c);
             if !kind.is_simplex() {
@@ -676,38 +674,9 @@ impl StellarTree {
                 .map(|&w| self.v_orig[w as usize])
                 .collect();
             m.sort_unstable();
-            estimate = estimate.saturating_add((1u128 << m.len().min(127)) - 1);
             maximal.push(m);
         }
-        if estimate > budget {
-            return Err(LinkError::TooLarge {
-                vertex: vin,
-                estimate,
-                budget,
-            });
-        }
-        maximal.sort();
-        maximal.dedup();
-        let dim = maximal.iter().map(|m| m.len()).max().unwrap_or(0);
-        let mut f_vector = vec![0u64; dim];
-        let mut seen: FxHashSet<Vec<u32>> = FxHashSet::default();
-        for m in &maximal {
-            let n = m.len();
-            for mask in 1u64..(1u64 << n) {
-                let face: Vec<u32> = (0..n)
-                    .filter(|i| mask >> i & 1 == 1)
-                    .map(|i| m[i])
-                    .collect();
-                let k = face.len() - 1;
-                if seen.insert(face) {
-                    f_vector[k] += 1;
-                }
-            }
-        }
-        Ok(VertexLink {
-            maximal_simplices: maximal,
-            f_vector,
-        })
+        crate::topo::link::link_from_maximal(vin, maximal, budget)
     }
 
     /// Upper bound of (cell, p-face) pairs visited by [`p_faces`](Self::p_faces).

@@ -73,7 +73,6 @@ pub fn vertex_link_with_budget<S: TopCells + VertexStar + ?Sized>(
     s.vertex_top_cells(v, &mut cells);
     let mut maximal: Vec<Vec<u32>> = Vec::with_capacity(cells.len());
     let mut buf = Vec::new();
-    let mut estimate: u128 = 0;
     for &c in &cells {
         if !s.top_cell_kind(c).is_simplex() {
             return Err(LinkError::NotSimplicial(v.0));
@@ -82,12 +81,37 @@ pub fn vertex_link_with_budget<S: TopCells + VertexStar + ?Sized>(
         s.top_cell_vertices(c, &mut buf);
         let mut m: Vec<u32> = buf.iter().map(|w| w.0).filter(|&w| w != v.0).collect();
         m.sort_unstable();
-        estimate = estimate.saturating_add((1u128 << m.len().min(127)) - 1);
         maximal.push(m);
     }
+    link_from_maximal(v.0, maximal, budget)
+}
+
+/// The link of vertex `vertex` given its top simplices with the vertex removed (each sorted):
+/// sorts and deduplicates them and counts the distinct faces of each dimension, refusing when
+/// more than `budget` faces would be enumerated. Shared by every structure that finds the top
+/// simplices around a vertex its own way.
+///
+/// ```
+/// use starplex::topo::link::link_from_maximal;
+/// let l = link_from_maximal(0, vec![vec![2, 3], vec![1, 2]], 1000).unwrap();
+/// assert_eq!(l.maximal_simplices, vec![vec![1, 2], vec![2, 3]]);
+/// assert_eq!(l.f_vector, vec![3, 2]);
+/// assert!(link_from_maximal(0, vec![(1..60).collect()], 1000).is_err());
+/// ```
+///
+/// # Errors
+/// [`LinkError::TooLarge`] over the budget.
+pub fn link_from_maximal(
+    vertex: u32,
+    mut maximal: Vec<Vec<u32>>,
+    budget: u128,
+) -> Result<VertexLink, LinkError> {
+    let estimate = maximal.iter().fold(0u128, |a, m| {
+        a.saturating_add((1u128 << m.len().min(127)) - 1)
+    });
     if estimate > budget {
         return Err(LinkError::TooLarge {
-            vertex: v.0,
+            vertex,
             estimate,
             budget,
         });
