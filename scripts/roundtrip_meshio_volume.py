@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Independent check of starplex's Medit, legacy VTK and gmsh writers: convert datasets' .spx files
+"""Independent check of starplex's Medit, legacy VTK and gmsh (4.1 and 2.2) writers: convert datasets' .spx files
 with the starplex CLI and read the outputs back with meshio, comparing points and cells per type.
 
 Usage (from the repository root, after `cargo build -p starplex-cli`):
@@ -91,10 +91,11 @@ def gmsh_inverted(path):
 def check(name, spx, binary, workdir):
     pts, cells = read_spx(spx)
     results = []
-    for ext in ["mesh", "vtk", "msh"]:
-        out = os.path.join(workdir, f"{name}.{ext}")
-        p = subprocess.run([binary, "convert", spx, out], capture_output=True, text=True)
-        rec = {"dataset": name, "format": ext}
+    for fmt in ["mesh", "vtk", "msh", "msh22"]:
+        ext = "msh" if fmt == "msh22" else fmt
+        out = os.path.join(workdir, f"{name}.{fmt}.{ext}")
+        p = subprocess.run([binary, "convert", spx, out, "--to", fmt], capture_output=True, text=True)
+        rec = {"dataset": name, "format": fmt}
         if p.returncode != 0:
             rec.update(ok=False, error=f"starplex convert failed: {p.stderr.strip()}")
             results.append(rec)

@@ -50,7 +50,20 @@ enum Command {
     },
 }
 
+/// Restores the default SIGPIPE action, so `starplex info big.off | head` ends quietly when the
+/// reader closes the pipe, as other Unix tools do (Rust ignores SIGPIPE by default, which turns a
+/// closed pipe into a panic inside `println!`).
+fn default_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called once at the start of `main`, before any other thread exists; SIG_DFL is a
+    // valid action for SIGPIPE.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    default_sigpipe();
     let cli = Cli::parse();
     let ctx = common::Ctx { quiet: cli.quiet };
     let result = match cli.command {

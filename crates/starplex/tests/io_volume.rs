@@ -43,7 +43,7 @@ fn unit_cube() -> Vec<&'static [f64]> {
 
 /// Named fixtures: `(name, complex, formats that hold it exactly)`.
 fn fixtures() -> Vec<(&'static str, IndexedComplex, Vec<Format>)> {
-    let all = vec![Format::Medit, Format::Vtk, Format::Gmsh];
+    let all = vec![Format::Medit, Format::Vtk, Format::Gmsh, Format::Gmsh22];
     let c = unit_cube();
     let mut v = vec![
         (
@@ -98,7 +98,7 @@ fn fixtures() -> Vec<(&'static str, IndexedComplex, Vec<Format>)> {
                     (TET, &[0, 8, 9, 11]),
                 ],
             ),
-            vec![Format::Vtk, Format::Gmsh],
+            vec![Format::Vtk, Format::Gmsh, Format::Gmsh22],
         ),
         (
             "quads in the plane",
@@ -159,6 +159,7 @@ fn write_to_vec(f: Format, k: &IndexedComplex) -> Result<Vec<u8>, IoErrorKind> {
         Format::Medit => medit::write(&mut out, k)?,
         Format::Vtk => vtk::write(&mut out, k)?,
         Format::Gmsh => gmsh::write(&mut out, k)?,
+        Format::Gmsh22 => gmsh::write_22(&mut out, k)?,
         _ => unreachable!(),
     }
     Ok(out)
@@ -174,7 +175,7 @@ fn read_bytes(f: Format, data: &[u8]) -> Result<ReadResult, io::IoError> {
     match f {
         Format::Medit => medit::read_from(data, p, &o),
         Format::Vtk => vtk::read_from(data, p, &o),
-        Format::Gmsh => gmsh::read_from(data, p, &o),
+        Format::Gmsh | Format::Gmsh22 => gmsh::read_from(data, p, &o),
         _ => unreachable!(),
     }
 }
@@ -209,7 +210,7 @@ fn what_each_format_changes_is_what_the_docs_say() {
         &[&[0.0, 0.0], &[1.0, 0.0], &[1.0, 1.0], &[0.0, 1.0]],
         &[(CellKind::Quad, &[0, 1, 2, 3])],
     );
-    for f in [Format::Vtk, Format::Gmsh] {
+    for f in [Format::Vtk, Format::Gmsh, Format::Gmsh22] {
         let r = round_trip(f, &planar);
         assert_eq!(r.complex.ambient_dim(), 3);
         assert_eq!(
@@ -275,7 +276,7 @@ fn writers_refuse_what_the_format_cannot_hold() {
     let p1: Vec<&[f64]> = vec![&[0.0], &[1.0]];
     let ambient1 = complex(1, &p1, &[(LINE, &[0, 1])]);
     let vertex_cell = complex(1, &p1, &[(CellKind::Simplex(0), &[0])]);
-    for f in [Format::Medit, Format::Vtk, Format::Gmsh] {
+    for f in [Format::Medit, Format::Vtk, Format::Gmsh, Format::Gmsh22] {
         for k in [&four_simplex, &ambient4] {
             match write_to_vec(f, k) {
                 Err(IoErrorKind::CannotWrite { format, .. }) => assert_eq!(format, f),
@@ -299,6 +300,26 @@ fn writers_refuse_what_the_format_cannot_hold() {
     let e = io::write(&target, &four_simplex, None).unwrap_err();
     assert!(e.to_string().contains("cannot hold"), "{e}");
     assert!(!target.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn msh22_through_the_dispatcher_writes_version_2_2_and_reads_back() {
+    let c = unit_cube();
+    let k = complex(3, &c[..8], &[(CellKind::Hex, &[0, 1, 2, 3, 4, 5, 6, 7])]);
+    let dir = std::env::temp_dir().join(format!("starplex-msh22-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let target = dir.join("cube.msh");
+    io::write(&target, &k, Format::from_name("msh22")).unwrap();
+    let text = std::fs::read_to_string(&target).unwrap();
+    assert!(text.starts_with("$MeshFormat\n2.2 0 8\n"), "{text}");
+    let back = io::read(&target, &ReadOptions::default()).unwrap();
+    assert_eq!(back.complex, k);
+    assert_eq!(back.format, Format::Gmsh);
+    io::write(&target, &k, None).unwrap();
+    assert!(std::fs::read_to_string(&target)
+        .unwrap()
+        .starts_with("$MeshFormat\n4.1 0 8\n"));
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -401,6 +422,8 @@ fn random_complexes_round_trip() {
         assert_eq!(vt.complex, k, "seed {seed} vtk");
         let g = round_trip(Format::Gmsh, &k);
         assert_eq!(g.complex, without_unused(&k), "seed {seed} gmsh");
+        let g2 = round_trip(Format::Gmsh22, &k);
+        assert_eq!(g2.complex, g.complex, "seed {seed} gmsh 2.2");
         let m = round_trip(Format::Medit, &k).complex;
         assert_eq!(m.coords(), k.coords(), "seed {seed} medit");
         assert_eq!(by_kind(&m), by_kind(&k), "seed {seed} medit");

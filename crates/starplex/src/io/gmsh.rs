@@ -20,9 +20,11 @@
 //! other one, VTK's faces outward), so prisms are read as `[0, 2, 1, 3, 5, 4]` of the gmsh nodes
 //! and written back the same way, as gmsh itself does when it exports VTK.
 //!
-//! Write: version 4.1 ascii, one geometric entity per dimension in `$Entities`, one node block,
-//! one element block per run of one kind. Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are
-//! written as nodes, which this reader then drops.
+//! Write: [`write`] writes version 4.1 ascii, one geometric entity per dimension in `$Entities`,
+//! one node block, one element block per run of one kind; [`write_22`] writes version 2.2 ascii
+//! (format name `msh22` on the command line: `starplex convert in.spx out.msh --to msh22`).
+//! Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are written as
+//! nodes, which this reader then drops.
 //!
 //! ```
 //! use starplex::io::{gmsh, ReadOptions};
@@ -528,21 +530,8 @@ fn read_elements_22(
 /// [`IoErrorKind::CannotWrite`] for an ambient dimension above 3 or simplices of dimension 4 and
 /// more; OS errors of the writer.
 pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check_writable(k, Format::Gmsh)?;
     let d = k.ambient_dim();
-    if d > 3 {
-        return Err(IoErrorKind::CannotWrite {
-            format: Format::Gmsh,
-            reason: format!("gmsh nodes have 3 coordinates, the complex has {d}"),
-        });
-    }
-    for b in k.blocks() {
-        if gmsh_type(b.kind).is_none() {
-            return Err(IoErrorKind::CannotWrite {
-                format: Format::Gmsh,
-                reason: format!("gmsh has no first-order element for {} cells", b.kind),
-            });
-        }
-    }
     let nv = k.n_vertices();
     let node_dim = k.dim().unwrap_or(0);
     writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
@@ -634,17 +623,100 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
             use std::fmt::Write as _;
             line.clear();
             let _ = write!(line, "{}", b.first as usize + i + 1);
-            let c = b.cell(i);
-            if b.kind == CellKind::Prism {
-                for &j in &PRISM_PERM {
-                    let _ = write!(line, " {}", c[j] + 1);
-                }
-            } else {
-                for v in c {
-                    let _ = write!(line, " {}", v + 1);
-                }
-            }
-            line.push('\n');
+            push_nodes(&mut line, b.kind, b.cell(i));
+            w.write_all(line.as_bytes())?;
+        }
+    }
+    writeln!(w, "$EndElements")?;
+    Ok(())
+}
+
+/// Refuses what gmsh cannot hold: more than 3 coordinates, simplices of dimension 4 and more.
+fn check_writable(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
+    let d = k.ambient_dim();
+    if d > 3 {
+        return Err(IoErrorKind::CannotWrite {
+            format,
+            reason: format!("gmsh nodes have 3 coordinates, the complex has {d}"),
+        });
+    }
+    for b in k.blocks() {
+        if gmsh_type(b.kind).is_none() {
+            return Err(IoErrorKind::CannotWrite {
+                format,
+                reason: format!("gmsh has no first-order element for {} cells", b.kind),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Appends ` n1 n2 ...` (1-based node tags, prisms in gmsh's order) and a newline to `line`.
+fn push_nodes(line: &mut String, kind: CellKind, c: &[u32]) {
+    use std::fmt::Write as _;
+    if kind == CellKind::Prism {
+        for &j in &PRISM_PERM {
+            let _ = write!(line, " {}", c[j] + 1);
+        }
+    } else {
+        for v in c {
+            let _ = write!(line, " {}", v + 1);
+        }
+    }
+    line.push('\n');
+}
+
+/// Writes `k` as gmsh 2.2 ascii (the version older tools and meshio's default read): one
+/// `$Nodes` entry per vertex, one `$Elements` entry per cell with two tags (physical group 0,
+/// elementary entity 1 + the cell's dimension). Same node numbering, prism order and padding as
+/// [`write`].
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::{BuildOptions, ComplexBuilder};
+/// use starplex::io::{gmsh, ReadOptions};
+/// let mut b = ComplexBuilder::new(3).unwrap();
+/// for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let mut out = Vec::new();
+/// gmsh::write_22(&mut out, &k).unwrap();
+/// assert!(out.starts_with(b"$MeshFormat\n2.2 0 8\n"));
+/// let back = gmsh::read_from(&out[..], "t.msh".as_ref(), &ReadOptions::default()).unwrap();
+/// assert_eq!(back.complex, k);
+/// ```
+///
+/// # Errors
+/// As [`write`].
+pub fn write_22(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check_writable(k, Format::Gmsh22)?;
+    let d = k.ambient_dim();
+    writeln!(w, "$MeshFormat\n2.2 0 8\n$EndMeshFormat")?;
+    writeln!(w, "$Nodes\n{}", k.n_vertices())?;
+    for (i, p) in k.coords().chunks_exact(d.max(1)).enumerate() {
+        write!(w, "{}", i + 1)?;
+        for &x in p {
+            w.write_all(b" ")?;
+            write_f64(w, x)?;
+        }
+        for _ in d..3 {
+            w.write_all(b" 0")?;
+        }
+        w.write_all(b"\n")?;
+    }
+    writeln!(w, "$EndNodes")?;
+    writeln!(w, "$Elements\n{}", k.n_cells())?;
+    let mut line = String::with_capacity(128);
+    for b in k.blocks() {
+        let t = gmsh_type(b.kind).unwrap_or(0);
+        let entity = 1 + b.kind.dim();
+        for i in 0..b.len() {
+            use std::fmt::Write as _;
+            line.clear();
+            let _ = write!(line, "{} {t} 2 0 {entity}", b.first as usize + i + 1);
+            push_nodes(&mut line, b.kind, b.cell(i));
             w.write_all(line.as_bytes())?;
         }
     }

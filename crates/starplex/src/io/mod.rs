@@ -59,8 +59,10 @@ pub enum Format {
     Medit,
     /// `.vtk` (legacy unstructured grid, ascii).
     Vtk,
-    /// `.msh` (gmsh 2.2 and 4.1 ascii).
+    /// `.msh` (gmsh 2.2 and 4.1 ascii; written as 4.1).
     Gmsh,
+    /// `.msh` written as gmsh 2.2 ascii (named `msh22` or `gmsh22`; reads as [`Format::Gmsh`]).
+    Gmsh22,
     /// `.tri` (Stellar reference: triangles).
     Tri,
     /// `.ts` (Stellar reference: tetrahedra).
@@ -73,7 +75,7 @@ pub enum Format {
 
 impl Format {
     /// Every format.
-    pub const ALL: [Format; 13] = [
+    pub const ALL: [Format; 14] = [
         Format::Spx,
         Format::Binary,
         Format::Off,
@@ -83,6 +85,7 @@ impl Format {
         Format::Medit,
         Format::Vtk,
         Format::Gmsh,
+        Format::Gmsh22,
         Format::Tri,
         Format::Ts,
         Format::Sierp,
@@ -106,7 +109,8 @@ impl Format {
             "stl" => Format::Stl,
             "mesh" | "medit" => Format::Medit,
             "vtk" => Format::Vtk,
-            "msh" | "gmsh" => Format::Gmsh,
+            "msh" | "gmsh" | "msh4" | "msh41" | "gmsh4" | "gmsh41" => Format::Gmsh,
+            "msh2" | "msh22" | "gmsh2" | "gmsh22" => Format::Gmsh22,
             "tri" => Format::Tri,
             "ts" => Format::Ts,
             "sierp" => Format::Sierp,
@@ -126,7 +130,7 @@ impl Format {
             Format::Stl => "stl",
             Format::Medit => "mesh",
             Format::Vtk => "vtk",
-            Format::Gmsh => "msh",
+            Format::Gmsh | Format::Gmsh22 => "msh",
             Format::Tri => "tri",
             Format::Ts => "ts",
             Format::Sierp => "sierp",
@@ -145,7 +149,10 @@ impl Format {
 
 impl fmt::Display for Format {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.extension())
+        match self {
+            Format::Gmsh22 => f.write_str("msh22"),
+            _ => f.write_str(self.extension()),
+        }
     }
 }
 
@@ -171,7 +178,7 @@ pub enum IoErrorKind {
     #[error("{0}")]
     Complex(#[from] ComplexError),
     /// The extension names no known format.
-    #[error("unknown format for '{0}': use one of spx spb off ply obj stl mesh vtk msh tri ts sierp hex, or --format")]
+    #[error("unknown format for '{0}': use one of spx spb off ply obj stl mesh vtk msh tri ts sierp hex, or --format (msh22 writes gmsh 2.2)")]
     UnknownFormat(String),
     /// The format cannot hold this complex (e.g. tetrahedra in PLY).
     #[error("{format} cannot hold this complex: {reason}")]
@@ -296,7 +303,7 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
         Format::Stl => stl::read(path, opts),
         Format::Medit => medit::read(path, opts),
         Format::Vtk => vtk::read(path, opts),
-        Format::Gmsh => gmsh::read(path, opts),
+        Format::Gmsh | Format::Gmsh22 => gmsh::read(path, opts),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             stellar_ref::read(path, format, opts)
         }
@@ -328,6 +335,7 @@ pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> R
         Format::Medit => atomic_write(path, |w| medit::write(w, complex)),
         Format::Vtk => atomic_write(path, |w| vtk::write(w, complex)),
         Format::Gmsh => atomic_write(path, |w| gmsh::write(w, complex)),
+        Format::Gmsh22 => atomic_write(path, |w| gmsh::write_22(w, complex)),
         Format::Stl | Format::Tri | Format::Ts | Format::Sierp | Format::Hex => Err(IoError::new(
             path,
             IoErrorKind::CannotWrite {
