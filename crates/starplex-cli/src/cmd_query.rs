@@ -27,20 +27,21 @@ pub enum StructureKind {
     SimplexTree,
     /// The indexed complex with its vertex → top cells relation (baseline).
     Vt,
-    /// Stellar tree (not in this build yet).
+    /// Stellar tree (leaf-by-leaf spatial index; --kv sets its bucketing threshold).
     Stellar,
-    /// Hasse complex (not in this build yet).
+    /// CASC Hasse diagram: every simplex with its up and down incidences.
     Hasse,
 }
 
 impl StructureKind {
     /// The structures `compare` builds.
-    pub const AVAILABLE: [StructureKind; 6] = [
+    pub const AVAILABLE: [StructureKind; 7] = [
         StructureKind::Vt,
         StructureKind::IaStar,
         StructureKind::SimplexTree,
         StructureKind::Ig,
         StructureKind::Is,
+        StructureKind::Hasse,
         StructureKind::Stellar,
     ];
     pub fn name(self) -> &'static str {
@@ -145,10 +146,7 @@ pub fn build_with(
             )
         }
         StructureKind::Hasse => {
-            return Err(CliError::Input(
-                format!("--structure {}: not available in this build yet", s.name()),
-                Some("use ig, is, ia-star, simplex-tree, stellar or vt".into()),
-            ))
+            Box::new(starplex::hasse::HasseQueries::new(k, limit).map_err(|e| err(e.to_string()))?)
         }
     })
 }

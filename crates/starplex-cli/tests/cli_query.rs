@@ -34,7 +34,15 @@ fn every_structure_answers_the_oracle_vertex_queries() {
         let queries = o["vertex_queries"].as_array().unwrap();
         let simplicial = queries[0].get("link_f_vector").is_some();
         let structures: &[&str] = if simplicial {
-            &["vt", "ia-star", "simplex-tree", "ig", "is", "stellar"]
+            &[
+                "vt",
+                "ia-star",
+                "simplex-tree",
+                "ig",
+                "is",
+                "hasse",
+                "stellar",
+            ]
         } else {
             &["vt", "stellar"] // the standalone IA* holds simplicial complexes only
         };
@@ -82,9 +90,9 @@ fn every_structure_answers_the_oracle_vertex_queries() {
         eprintln!("SKIPPED: no small datasets at {}", shared().display());
         return;
     }
-    // 6 structures on 4 simplicial sets, 2 on the quad mesh
+    // 7 structures on 4 simplicial sets, 2 on the quad mesh
     assert!(
-        checked == 26,
+        checked == 30,
         "expected the small datasets in ../shared/datasets/small"
     );
 }

@@ -1,5 +1,6 @@
 //! ONE test suite over every structure (VtIndex baseline, IA*, simplex tree with and without
-//! label lists, incidence graph, IS): every relation is compared with a brute-force model
+//! label lists, incidence graph, IS, the CASC Hasse diagram, the Stellar tree for several k_V):
+//! every relation is compared with a brute-force model
 //! (all simplices enumerated from the tops) on named fixtures and on seeded random complexes,
 //! and with the dataset oracles (vertex queries, f-vector, Euler characteristic).
 mod common_data;
@@ -11,7 +12,9 @@ use starplex::algo::components::components;
 use starplex::algo::nonmanifold::{singularities, Manifoldness};
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
+use starplex::hasse::HasseQueries;
 use starplex::ids::{CellId, VertexId};
+use starplex::stellar::{StellarOptions, StellarTree};
 use starplex::tds::iastar::IaStar;
 use starplex::tds::ig::IncidenceGraph;
 use starplex::tds::is::Is;
@@ -263,6 +266,23 @@ fn check_all(name: &str, k: &IndexedComplex) {
         &m,
         true,
     );
+    check_structure(
+        &format!("{name}/hasse"),
+        &HasseQueries::new(k, 1 << 30).unwrap(),
+        &m,
+        true,
+    );
+    for kv in [Some(1), Some(10), Some(0)] {
+        let t = StellarTree::build(
+            k,
+            &StellarOptions {
+                kv,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        check_structure(&format!("{name}/stellar(kv={kv:?})"), &t, &m, false);
+    }
 }
 
 fn complex(nv: usize, cells: &[&[u32]]) -> IndexedComplex {
@@ -347,6 +367,12 @@ fn a_40_simplex_answers_top_cell_queries_and_refuses_the_rest() {
     too_large(SimplexTree::new(&k, &SimplexTreeOptions::default()).map(|_| ()));
     too_large(IncidenceGraph::new(&k, u32::MAX as u128).map(|_| ()));
     too_large(Is::new(&k, u32::MAX as u128).map(|_| ()));
+    assert!(matches!(
+        HasseQueries::new(&k, u32::MAX as u128),
+        Err(starplex::hasse::HasseError::TooManyFaces { estimate, .. }) if estimate >= 1 << 41
+    ));
+    let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+    check_tops("stellar", &t);
 }
 
 // ------------------------------------------------------------------------------------------
@@ -670,14 +696,16 @@ proptest! {
             // components agree across structures
             let c0 = components(&VtIndex::new(&k));
             prop_assert_eq!(components(&IaStar::new(&k).unwrap()), c0.clone());
-            prop_assert_eq!(components(&Is::new(&k, 1 << 20).unwrap()), c0);
+            prop_assert_eq!(components(&Is::new(&k, 1 << 20).unwrap()), c0.clone());
+            prop_assert_eq!(components(&HasseQueries::new(&k, 1 << 20).unwrap()), c0);
             // non-manifold detection agrees across structures
             let r0 = singularities(&VtIndex::new(&k)).unwrap();
             prop_assert_eq!(singularities(&IaStar::new(&k).unwrap()).unwrap(), r0.clone());
             prop_assert_eq!(
                 singularities(&SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap()).unwrap(),
-                r0
+                r0.clone()
             );
+            prop_assert_eq!(singularities(&HasseQueries::new(&k, 1 << 20).unwrap()).unwrap(), r0);
         }
     }
 }
@@ -788,6 +816,9 @@ fn every_structure_matches_the_oracles_on_the_small_datasets() {
         check_oracle(&name, "ig", &IncidenceGraph::new(&k, 1 << 30).unwrap(), &o);
         let is = Is::new(&k, 1 << 30).unwrap();
         check_oracle(&name, "is", &is, &o);
+        check_oracle(&name, "hasse", &HasseQueries::new(&k, 1 << 30).unwrap(), &o);
+        let stellar = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+        check_oracle(&name, "stellar", &stellar, &o);
         if let Some(nmv) = o.get("n_non_manifold_vertices").and_then(|x| x.as_u64()) {
             for (sname, r) in [
                 ("ia*", singularities(&ia).unwrap()),

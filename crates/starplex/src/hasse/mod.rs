@@ -76,6 +76,7 @@ mod edit;
 mod geom;
 pub mod levels;
 mod orient;
+mod queries;
 mod sets;
 
 pub use complex::{Hasse, MAX_INSERT_VERTICES};
@@ -84,6 +85,7 @@ pub use decimate::{DecimationGroup, DecimationPlan};
 pub use edit::{EditError, Position};
 pub use levels::{At, DefaultData, KeepFirst, Levels, Merge, MergeAll, Visit, VisitAll};
 pub use orient::{Orientation, SurfaceGeometry};
+pub use queries::HasseQueries;
 pub use sets::{SimplexMap, SimplexSet};
 
 use crate::ids::{SimplexId, VertexId};

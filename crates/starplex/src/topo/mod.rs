@@ -29,10 +29,10 @@
 //!
 //! Which structure implements which trait (✓ native, g = through the generic top-star helpers
 //! of [`from_tops`], – = not implemented). Structures that store every simplex (simplex tree,
-//! incidence graph, IS) refuse to build, with an estimate, when the complex has more simplices
+//! incidence graph, IS, Hasse) refuse to build, with an estimate, when the complex has more simplices
 //! than their limit (a 40-simplex has 2^41 - 1 faces); the others answer top-cell queries in
 //! any dimension and refuse face enumerations over [`DEFAULT_BUDGET`] with
-//! [`QueryError::TooLarge`]. The simplex tree, incidence graph and IS keep no orientation:
+//! [`QueryError::TooLarge`]. The simplex tree, incidence graph, IS and Hasse keep no orientation:
 //! their [`TopCells::top_cell_vertices`] are sorted.
 //!
 //! | structure | TopCells | VertexStar | VertexAdjacency | TopStar | Counts | SimplexVertices | Boundary | Coboundary | Adjacency | Star | Levels | Storage |
@@ -42,6 +42,8 @@
 //! | [`SimplexTree`](crate::tds::simplex_tree::SimplexTree) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
 //! | [`IncidenceGraph`](crate::tds::ig::IncidenceGraph) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
 //! | [`Is`](crate::tds::is::Is) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
+//! | [`HasseQueries`](crate::hasse::HasseQueries) (CASC) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
+//! | [`StellarTree`](crate::stellar::StellarTree) | ✓ | ✓ | ✓ | g | g | – | g | g | g | g | g | ✓ |
 //!
 //! ```
 //! use starplex::complex::{ComplexBuilder, BuildOptions};
