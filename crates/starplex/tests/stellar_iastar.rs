@@ -1,5 +1,7 @@
 //! IA* generated from the Stellar tree (global and local) against a brute-force model on
 //! random complexes, and the spec's storage anchors.
+mod common_data;
+
 use std::collections::BTreeSet;
 
 use proptest::prelude::*;
@@ -232,4 +234,113 @@ fn storage_anchors_of_the_spec() {
     );
     anchor(&[(tet, vec![0, 1, 2, 3]), (tet, vec![0, 1, 4, 5])], 24);
     anchor(&[(tri, vec![0, 1, 2]), (edge, vec![2, 3])], 13);
+}
+
+/// The IA* generated from the tree and the IA* built directly (`tds::iastar`) are the same
+/// structure: the same slot per facet (none, the same neighbour, or a non-manifold facet with
+/// the same cells and vertices), the same non-manifold facets, the same representatives (all
+/// top edges and the smallest input id of each cluster) and the same reference count.
+fn same_as_direct(k: &IndexedComplex, kv: u32) {
+    use starplex::tds::iastar::{Adj, IaStar as Direct};
+    let t = StellarTree::build(
+        k,
+        &StellarOptions {
+            kv: Some(kv),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let tree = t.iastar();
+    let direct = Direct::new(k).unwrap();
+    for c in k.cells() {
+        let slots = direct.adjacency(c.id);
+        assert_eq!(tree.n_slots(c.id), slots.len(), "cell {}", c.id.0);
+        for (j, a) in slots.iter().enumerate() {
+            match (tree.adjacent(c.id, j), *a) {
+                (Adjacent::None, Adj::None) => {}
+                (Adjacent::Top(x), Adj::Top(y)) => assert_eq!(x, y),
+                (Adjacent::NmFace(x), Adj::NmFace(y)) => {
+                    let dim = c.kind.dim();
+                    assert_eq!(tree.nm_face_cells(x), direct.nm_face_tops(dim, y));
+                    let vs: Vec<u32> = direct
+                        .nm_face_vertices(dim, y)
+                        .iter()
+                        .map(|v| v.0)
+                        .collect();
+                    assert_eq!(tree.nm_face_vertices(x), vs);
+                }
+                (x, y) => panic!("cell {} facet {j}: tree {x:?}, direct {y:?}", c.id.0),
+            }
+        }
+    }
+    let nm: usize = (0..=k.dim().unwrap_or(0))
+        .map(|d| direct.n_nm_faces(d))
+        .sum();
+    assert_eq!(tree.n_nm_faces(), nm);
+    for v in 0..k.n_vertices() as u32 {
+        assert_eq!(
+            tree.vertex_representatives(VertexId(v)),
+            direct.vertex_references(VertexId(v)),
+            "representatives of {v}"
+        );
+    }
+    assert_eq!(
+        tree.storage_refs(),
+        starplex::topo::Storage::refs(&direct),
+        "references"
+    );
+}
+
+#[test]
+fn tree_iastar_is_the_direct_iastar() {
+    let strat = (1usize..=3, 1usize..30).prop_flat_map(|(amb, nv)| {
+        (
+            Just(amb),
+            proptest::collection::vec(proptest::collection::vec(0i32..4, amb), nv),
+            proptest::collection::vec(
+                // simplices only: the direct IA* holds simplicial complexes
+                (
+                    prop_oneof![Just(0u8), Just(1), Just(3), Just(4)],
+                    proptest::collection::vec(0u32..nv as u32, 8),
+                ),
+                0..25,
+            ),
+        )
+    });
+    let mut runner = TestRunner::new(Config {
+        cases: 96,
+        rng_seed: RngSeed::Fixed(11),
+        failure_persistence: None,
+        ..Config::default()
+    });
+    runner
+        .run(&strat, |(amb, pts, cells)| {
+            let k = make(amb, &pts, &cells);
+            for kv in [1, 5, 0] {
+                same_as_direct(&k, kv);
+            }
+            Ok(())
+        })
+        .unwrap();
+}
+
+#[test]
+fn tree_iastar_is_the_direct_iastar_on_the_small_datasets() {
+    let mut n = 0;
+    for (name, path, _) in common_data::small_datasets() {
+        let k = starplex::io::read(&path, &Default::default())
+            .unwrap()
+            .complex;
+        if !k.is_simplicial() || k.n_cells() > 40_000 {
+            continue;
+        }
+        eprintln!("{name}");
+        same_as_direct(&k, starplex::stellar::default_kv(&k));
+        n += 1;
+    }
+    if n == 0 && !common_data::data_required() {
+        eprintln!("SKIPPED: no small datasets found (see tests/common_data.rs)");
+        return;
+    }
+    assert!(n >= 5, "only {n} simplicial datasets");
 }

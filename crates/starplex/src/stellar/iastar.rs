@@ -7,9 +7,12 @@
 //!   non-manifold facet (three or more top k-cells) whose full list is stored;
 //! * R_{0,1} of every vertex (all its top edges) and R*_{0,k} for k >= 2: one top k-cell per
 //!   k-cluster (top k-cells around the vertex connected through facets containing it), the
-//!   representative being the cluster's first cell in tree order (deterministic).
+//!   representative being the cluster's smallest input id.
 //!
-//! This module defines its own layout; the standalone IA* (in `tds`) may differ.
+//! The layout differs from the standalone IA* ([`crate::tds::iastar`]) but the content is the
+//! same: the same slot per facet, the same non-manifold facets, the same representatives and
+//! the same reference count (checked by `tests/stellar_iastar.rs` on random complexes and the
+//! datasets).
 //!
 //! ```
 //! # use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -392,7 +395,7 @@ impl StellarTree {
     }
 
     /// Appends the top edges and cluster representatives of tree vertex `v` (tree cell ids;
-    /// each cluster represented by its smallest tree id).
+    /// each cluster represented by its cell of smallest input id).
     fn representatives<'s>(
         &self,
         view: &LeafView<'_>,
@@ -427,9 +430,13 @@ impl StellarTree {
             if !mark(&mut sc.seen, c) {
                 continue;
             }
-            out.push(c);
+            // the cluster's representative: its smallest input id, as the direct IA* picks
+            let mut best = c;
             sc.stack.push(c);
             while let Some(a) = sc.stack.pop() {
+                if self.c_orig[a as usize] < self.c_orig[best as usize] {
+                    best = a;
+                }
                 let (ka, vs) = self.cells.get(a);
                 let p = vs.iter().position(|&w| w == v).expect("in the star");
                 for (j, &x) in slots_of(a).iter().enumerate() {
@@ -447,6 +454,7 @@ impl StellarTree {
                     }
                 }
             }
+            out.push(best);
         }
     }
 
