@@ -9,6 +9,7 @@ mod cmd_bench;
 mod cmd_bench_hasse;
 mod cmd_compare;
 mod cmd_convert;
+mod cmd_generate;
 mod cmd_info;
 mod cmd_query;
 mod cmd_stellar;
@@ -39,6 +40,8 @@ enum Command {
     Validate(cmd_validate::ValidateArgs),
     /// Query one data structure through the shared interface (VT, VV, link, star, ...).
     Query(cmd_query::QueryArgs),
+    /// Generate a complex (the Freudenthal triangulation of a grid) for tests and scale runs.
+    Generate(cmd_generate::GenerateArgs),
     /// Build every data structure and compare storage and query times.
     Compare(cmd_compare::CompareArgs),
     /// Timings of one data structure (single thread): `bench simplex-tree FILE`.
@@ -76,6 +79,7 @@ fn main() -> ExitCode {
         Some(Command::Bench(a)) => cmd_bench::run(&ctx, &a),
         Some(Command::Query(a)) => cmd_query::run(&ctx, &a),
         Some(Command::Compare(a)) => cmd_compare::run(&ctx, &a),
+        Some(Command::Generate(a)) => cmd_generate::run(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -31,6 +31,7 @@ pub mod buf;
 pub mod cell;
 pub mod complex;
 pub mod csr;
+pub mod gen;
 pub mod hasse;
 pub mod ids;
 pub mod io;
