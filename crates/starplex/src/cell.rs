@@ -21,9 +21,23 @@
 use std::fmt;
 
 /// Largest simplex dimension a cell may have (a 64-simplex has 65 vertices).
+///
+/// ```
+/// use starplex::cell::{CellKind, MAX_SIMPLEX_DIM};
+/// assert_eq!(CellKind::simplex(MAX_SIMPLEX_DIM).unwrap().n_vertices(), 65);
+/// assert!(CellKind::simplex(MAX_SIMPLEX_DIM + 1).is_none());
+/// ```
 pub const MAX_SIMPLEX_DIM: usize = 64;
 
 /// The kind of a top cell.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// let prism = CellKind::Prism;
+/// assert_eq!((prism.dim(), prism.n_vertices()), (3, 6));
+/// assert_eq!(prism.n_faces(2), 5); // 2 triangles + 3 quads
+/// assert!(CellKind::Simplex(2) < CellKind::Quad);
+/// ```
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
 pub enum CellKind {
     /// A simplex of the given dimension (0 = vertex, 1 = edge, 2 = triangle, 3 = tetrahedron ...).
@@ -39,6 +53,13 @@ pub enum CellKind {
 }
 
 /// Why a cell kind could not be made.
+///
+/// ```
+/// use starplex::cell::{CellKind, CellKindError};
+/// assert_eq!(CellKind::from_spx("cube", 8), Err(CellKindError::UnknownType("cube".into())));
+/// let err = CellKind::from_spx("tri", 4).unwrap_err();
+/// assert_eq!(err.to_string(), "a tri has 3 vertices, not 4");
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum CellKindError {
     /// Simplex dimension above [`MAX_SIMPLEX_DIM`].
@@ -125,11 +146,25 @@ const ALL: [u8; 8] = [0, 1, 2, 3, 4, 5, 6, 7];
 
 impl CellKind {
     /// A simplex of dimension `dim`, or `None` above [`MAX_SIMPLEX_DIM`].
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// assert_eq!(CellKind::simplex(3), Some(CellKind::Simplex(3)));
+    /// assert_eq!(CellKind::simplex(65), None);
+    /// ```
     pub fn simplex(dim: usize) -> Option<CellKind> {
         (dim <= MAX_SIMPLEX_DIM).then_some(CellKind::Simplex(dim as u8))
     }
 
     /// The kind named by a `.spx` type and vertex count (`line 2`, `tri 3`, `simplex 6`, ...).
+    ///
+    /// ```
+    /// use starplex::cell::{CellKind, CellKindError};
+    /// assert_eq!(CellKind::from_spx("tet", 4), Ok(CellKind::Simplex(3)));
+    /// assert_eq!(CellKind::from_spx("simplex", 6), Ok(CellKind::Simplex(5)));
+    /// assert_eq!(CellKind::from_spx("simplex", 70), Err(CellKindError::DimensionTooHigh(69)));
+    /// assert!(CellKind::from_spx("hex", 6).is_err());
+    /// ```
     ///
     /// # Errors
     /// Unknown names, counts that do not fit the name, simplices above the maximum dimension.
@@ -169,6 +204,13 @@ impl CellKind {
 
     /// The kind named as in the oracle files and `starplex info --json`: `vertex`, `line`, `tri`,
     /// `tet`, `simplex_k` (k = dimension, k >= 4), `quad`, `pyramid`, `prism`, `hex`.
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// assert_eq!(CellKind::from_type_name("pyramid"), Some(CellKind::Pyramid));
+    /// assert_eq!(CellKind::from_type_name("simplex_5"), Some(CellKind::Simplex(5)));
+    /// assert_eq!(CellKind::from_type_name("octahedron"), None);
+    /// ```
     pub fn from_type_name(name: &str) -> Option<CellKind> {
         Some(match name {
             "vertex" => CellKind::Simplex(0),
@@ -187,6 +229,15 @@ impl CellKind {
     }
 
     /// Name used in JSON output and the oracles (see [`CellKind::from_type_name`]).
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// assert_eq!(CellKind::Simplex(0).type_name(), "vertex");
+    /// assert_eq!(CellKind::Simplex(4).type_name(), "simplex_4");
+    /// for k in [CellKind::Simplex(7), CellKind::Hex, CellKind::Simplex(2)] {
+    ///     assert_eq!(CellKind::from_type_name(&k.type_name()), Some(k));
+    /// }
+    /// ```
     pub fn type_name(self) -> String {
         match self {
             CellKind::Simplex(0) => "vertex".into(),
@@ -202,6 +253,14 @@ impl CellKind {
     }
 
     /// Name used in `.spx` files (`simplex` for dimension 0 and >= 4).
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// assert_eq!(CellKind::Simplex(2).spx_name(), "tri");
+    /// assert_eq!(CellKind::Simplex(4).spx_name(), "simplex");
+    /// let k = CellKind::Simplex(4);
+    /// assert_eq!(CellKind::from_spx(k.spx_name(), k.n_vertices()), Ok(k));
+    /// ```
     pub fn spx_name(self) -> &'static str {
         match self {
             CellKind::Simplex(1) => "line",
@@ -216,6 +275,13 @@ impl CellKind {
     }
 
     /// Number of vertices.
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// assert_eq!(CellKind::Simplex(3).n_vertices(), 4);
+    /// assert_eq!(CellKind::Pyramid.n_vertices(), 5);
+    /// assert_eq!(CellKind::Hex.n_vertices(), 8);
+    /// ```
     #[inline]
     pub fn n_vertices(self) -> usize {
         match self {
@@ -228,6 +294,13 @@ impl CellKind {
     }
 
     /// Dimension of the cell.
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// assert_eq!(CellKind::Simplex(0).dim(), 0);
+    /// assert_eq!(CellKind::Quad.dim(), 2);
+    /// assert_eq!(CellKind::Pyramid.dim(), 3);
+    /// ```
     #[inline]
     pub fn dim(self) -> usize {
         match self {
@@ -238,6 +311,12 @@ impl CellKind {
     }
 
     /// True for simplices.
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// assert!(CellKind::Simplex(1).is_simplex());
+    /// assert!(!CellKind::Quad.is_simplex());
+    /// ```
     #[inline]
     pub fn is_simplex(self) -> bool {
         matches!(self, CellKind::Simplex(_))
@@ -245,6 +324,15 @@ impl CellKind {
 
     /// The face table of a CP cell for dimension `k` (`None` for simplices, whose faces are all
     /// subsets and are generated, and for `k` above the cell's dimension).
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// let quads = CellKind::Quad.cp_faces(1).unwrap();
+    /// assert_eq!(quads, &[&[0u8, 1][..], &[1, 2], &[2, 3], &[3, 0]][..]);
+    /// assert_eq!(CellKind::Hex.cp_faces(2).unwrap().len(), 6);
+    /// assert!(CellKind::Simplex(3).cp_faces(1).is_none());
+    /// assert!(CellKind::Quad.cp_faces(3).is_none());
+    /// ```
     pub fn cp_faces(self, k: usize) -> Option<&'static [&'static [u8]]> {
         let n = self.n_vertices();
         let table: &'static [&'static [u8]] = match (self, k) {
@@ -268,6 +356,14 @@ impl CellKind {
 
     /// Number of `k`-faces (the cell itself for `k == dim`; 0 above). Saturates at `u128::MAX`
     /// never: a 64-simplex has at most 2^65 faces, which fits.
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// let tet = CellKind::Simplex(3);
+    /// assert_eq!((0..=3).map(|k| tet.n_faces(k)).collect::<Vec<_>>(), [4, 6, 4, 1]);
+    /// assert_eq!(tet.n_faces(4), 0);
+    /// assert_eq!(CellKind::Pyramid.n_faces(1), 8);
+    /// ```
     pub fn n_faces(self, k: usize) -> u128 {
         match self {
             CellKind::Simplex(d) => binomial(d as u64 + 1, k as u64 + 1),
@@ -278,6 +374,16 @@ impl CellKind {
     /// Calls `f` with the local vertex positions of every `k`-face, in a fixed order (for
     /// simplices: lexicographic subsets; for CP cells: the VTK tables). Facets of CP cells come
     /// in outward orientation; faces of simplices in increasing local order.
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// let mut edges = Vec::new();
+    /// CellKind::Simplex(2).for_each_face(1, |f| edges.push(f.to_vec()));
+    /// assert_eq!(edges, [[0, 1], [0, 2], [1, 2]]);
+    /// let mut quads = 0;
+    /// CellKind::Prism.for_each_face(2, |f| quads += (f.len() == 4) as usize);
+    /// assert_eq!(quads, 3);
+    /// ```
     pub fn for_each_face(self, k: usize, mut f: impl FnMut(&[u8])) {
         match self {
             CellKind::Simplex(d) => {
@@ -315,6 +421,16 @@ impl CellKind {
     /// where `sign` is +1 or -1 relative to the listed vertex order (for simplices, facet `i`
     /// omits vertex `i` and has sign (-1)^i, the boundary operator; for CP cells the table
     /// order is already outward and the sign is +1).
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// let mut facets = Vec::new();
+    /// CellKind::Simplex(2).for_each_oriented_facet(|f, s| facets.push((f.to_vec(), s)));
+    /// assert_eq!(facets, [(vec![1, 2], 1), (vec![0, 2], -1), (vec![0, 1], 1)]);
+    /// let mut n = 0;
+    /// CellKind::Hex.for_each_oriented_facet(|f, s| { assert_eq!((f.len(), s), (4, 1)); n += 1; });
+    /// assert_eq!(n, 6);
+    /// ```
     pub fn for_each_oriented_facet(self, mut f: impl FnMut(&[u8], i8)) {
         match self {
             CellKind::Simplex(0) => {}
@@ -339,6 +455,15 @@ impl CellKind {
     /// vertices `cell` (any dimension, including the cell itself). For simplices this is the
     /// subset test; for CP cells the vertex set must be one of the table's faces (two diagonal
     /// corners of a quad are not an edge).
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// let quad = [10, 11, 12, 13];
+    /// assert!(CellKind::Quad.has_face(&quad, &[11, 12]));  // an edge
+    /// assert!(!CellKind::Quad.has_face(&quad, &[10, 12])); // a diagonal is not
+    /// assert!(CellKind::Simplex(2).has_face(&[10, 11, 12], &[10, 12]));
+    /// assert!(!CellKind::Quad.has_face(&quad, &[9]));
+    /// ```
     pub fn has_face(self, cell: &[u32], face: &[u32]) -> bool {
         debug_assert!(face.windows(2).all(|w| w[0] < w[1]));
         if face.len() > cell.len() || face.is_empty() {
