@@ -34,9 +34,29 @@ use crate::csr::Csr;
 use crate::ids::{CellId, VertexId};
 
 /// Largest supported ambient dimension.
+///
+/// ```
+/// use starplex::complex::{ComplexBuilder, ComplexError, MAX_AMBIENT_DIM};
+/// assert!(ComplexBuilder::new(MAX_AMBIENT_DIM).is_ok());
+/// assert_eq!(
+///     ComplexBuilder::new(MAX_AMBIENT_DIM + 1).unwrap_err(),
+///     ComplexError::BadAmbientDim(65)
+/// );
+/// ```
 pub const MAX_AMBIENT_DIM: usize = 64;
 
 /// What is wrong with a complex's input. Every variant names the offending ids.
+///
+/// ```
+/// use starplex::complex::{ComplexBuilder, ComplexError, BuildOptions};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// b.push_vertex(&[0.0, 0.0]).unwrap();
+/// b.push_vertex(&[1.0, 0.0]).unwrap();
+/// b.push_cell(CellKind::Simplex(1), &[0, 5]).unwrap();
+/// let err = b.build(&BuildOptions::default()).unwrap_err();
+/// assert_eq!(err, ComplexError::VertexOutOfRange { cell: 0, vertex: 5, n_vertices: 2 });
+/// ```
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ComplexError {
     /// A cell refers to a vertex that does not exist.
@@ -135,6 +155,23 @@ pub enum ComplexError {
 }
 
 /// A run of cells of one kind, in input order.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], [2.0, 0.0], [2.0, 1.0]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// b.push_cell(CellKind::Quad, &[1, 4, 5, 3]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let blocks = k.blocks();
+/// assert_eq!(blocks.len(), 2); // two triangles, then one quad
+/// assert_eq!((blocks[1].kind, blocks[1].first), (CellKind::Quad, 2));
+/// assert_eq!(&blocks[0].vertices[..], &[0, 1, 2, 1, 3, 2]);
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct CellBlock {
     /// Kind of every cell in the block.
@@ -147,14 +184,47 @@ pub struct CellBlock {
 
 impl CellBlock {
     /// Number of cells in the block.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in [0.0, 1.0, 2.0] { b.push_vertex(&[x]).unwrap(); }
+    /// b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// b.push_cell(CellKind::Simplex(1), &[1, 2]).unwrap();
+    /// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+    /// assert_eq!(k.blocks()[0].len(), 2);
+    /// ```
     pub fn len(&self) -> usize {
         self.vertices.len() / self.kind.n_vertices()
     }
     /// True when the block has no cells.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in [0.0, 1.0] { b.push_vertex(&[x]).unwrap(); }
+    /// b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+    /// // Blocks of a complex are never empty.
+    /// assert!(k.blocks().iter().all(|b| !b.is_empty()));
+    /// ```
     pub fn is_empty(&self) -> bool {
         self.vertices.is_empty()
     }
     /// Vertices of the `i`-th cell of the block.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in [0.0, 1.0, 2.0] { b.push_vertex(&[x]).unwrap(); }
+    /// b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// b.push_cell(CellKind::Simplex(1), &[2, 1]).unwrap();
+    /// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+    /// assert_eq!(k.blocks()[0].cell(1), &[2, 1]);
+    /// ```
     #[inline]
     pub fn cell(&self, i: usize) -> &[u32] {
         let n = self.kind.n_vertices();
@@ -163,6 +233,17 @@ impl CellBlock {
 }
 
 /// One top cell, borrowed from a complex.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::{cell::CellKind, ids::CellId};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// b.push_cell(CellKind::Quad, &[0, 1, 3, 2]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let c = k.cell(CellId(0));
+/// assert_eq!((c.id, c.kind, c.vertices), (CellId(0), CellKind::Quad, &[0u32, 1, 3, 2][..]));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CellRef<'a> {
     /// Its id.
@@ -174,6 +255,18 @@ pub struct CellRef<'a> {
 }
 
 /// Vertices with coordinates plus top cells: the input of every structure in starplex.
+///
+/// ```
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(3).unwrap();
+/// for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// assert_eq!((k.ambient_dim(), k.n_vertices(), k.n_cells(), k.dim()), (3, 4, 1, Some(3)));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct IndexedComplex {
     ambient_dim: usize,
@@ -183,6 +276,19 @@ pub struct IndexedComplex {
 }
 
 /// Options of [`ComplexBuilder::build`].
+///
+/// ```
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// for x in [0.0, 1.0, 2.0] { b.push_vertex(&[x]).unwrap(); }
+/// b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+/// b.push_cell(CellKind::Simplex(0), &[1]).unwrap(); // a face of the edge
+/// assert!(b.clone().build(&BuildOptions::default()).is_err());
+/// let opts = BuildOptions { drop_face_cells: true, ..Default::default() };
+/// let (k, report) = b.build(&opts).unwrap();
+/// assert_eq!((k.n_cells(), report.dropped_face_cells), (1, 1));
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct BuildOptions {
     /// Drop top cells that are faces of other top cells instead of failing (the dropped count is
@@ -196,6 +302,19 @@ pub struct BuildOptions {
 }
 
 /// What [`ComplexBuilder::build`] changed.
+///
+/// ```
+/// use starplex::complex::{ComplexBuilder, BuildOptions, BuildReport};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// for x in [0.0, 1.0] { b.push_vertex(&[x]).unwrap(); }
+/// b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+/// b.push_cell(CellKind::Simplex(1), &[1, 0]).unwrap(); // the same edge again
+/// let opts = BuildOptions { drop_duplicates: true, ..Default::default() };
+/// let (k, report) = b.build(&opts).unwrap();
+/// assert_eq!(report, BuildReport { dropped_face_cells: 0, dropped_duplicates: 1 });
+/// assert_eq!(k.n_cells(), 1);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct BuildReport {
     /// Cells dropped for being a face of another cell.
@@ -205,6 +324,19 @@ pub struct BuildReport {
 }
 
 /// Accumulates vertices and cells, then checks them into an [`IndexedComplex`].
+///
+/// ```
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// let v: Vec<u32> = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+///     .iter()
+///     .map(|p| b.push_vertex(p).unwrap().0)
+///     .collect();
+/// b.push_cell(CellKind::Simplex(2), &v).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// assert_eq!((k.n_vertices(), k.n_cells()), (3, 1));
+/// ```
 #[derive(Clone, Debug)]
 pub struct ComplexBuilder {
     ambient_dim: usize,
@@ -215,6 +347,12 @@ pub struct ComplexBuilder {
 
 impl ComplexBuilder {
     /// A builder for points of `ambient_dim` coordinates.
+    ///
+    /// ```
+    /// use starplex::complex::{ComplexBuilder, ComplexError};
+    /// assert_eq!(ComplexBuilder::new(3).unwrap().ambient_dim(), 3);
+    /// assert_eq!(ComplexBuilder::new(0).unwrap_err(), ComplexError::BadAmbientDim(0));
+    /// ```
     ///
     /// # Errors
     /// `ambient_dim` outside 1..=64.
@@ -231,21 +369,53 @@ impl ComplexBuilder {
     }
 
     /// The ambient dimension.
+    ///
+    /// ```
+    /// use starplex::complex::ComplexBuilder;
+    /// let b = ComplexBuilder::new(2).unwrap();
+    /// assert_eq!(b.ambient_dim(), 2);
+    /// ```
     pub fn ambient_dim(&self) -> usize {
         self.ambient_dim
     }
 
     /// Vertices pushed so far.
+    ///
+    /// ```
+    /// use starplex::complex::ComplexBuilder;
+    /// let mut b = ComplexBuilder::new(2).unwrap();
+    /// assert_eq!(b.n_vertices(), 0);
+    /// b.push_vertex(&[0.5, 0.5]).unwrap();
+    /// assert_eq!(b.n_vertices(), 1);
+    /// ```
     pub fn n_vertices(&self) -> usize {
         self.coords.len() / self.ambient_dim
     }
 
     /// Cells pushed so far.
+    ///
+    /// ```
+    /// use starplex::{complex::ComplexBuilder, cell::CellKind};
+    /// let mut b = ComplexBuilder::new(2).unwrap();
+    /// b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
+    /// assert_eq!(b.n_cells(), 2);
+    /// ```
     pub fn n_cells(&self) -> u64 {
         self.n_cells
     }
 
     /// Adds a vertex and returns its id.
+    ///
+    /// ```
+    /// use starplex::complex::{ComplexBuilder, ComplexError};
+    /// use starplex::ids::VertexId;
+    /// let mut b = ComplexBuilder::new(2).unwrap();
+    /// assert_eq!(b.push_vertex(&[0.0, 0.0]), Ok(VertexId(0)));
+    /// assert_eq!(b.push_vertex(&[1.0, 2.0]), Ok(VertexId(1)));
+    /// assert!(matches!(b.push_vertex(&[1.0]), Err(ComplexError::WrongCoordinateCount { .. })));
+    /// assert!(matches!(b.push_vertex(&[f64::NAN, 0.0]), Err(ComplexError::NonFiniteCoordinate { .. })));
+    /// ```
     ///
     /// # Errors
     /// Wrong coordinate count, a non-finite coordinate, more than `u32::MAX` vertices.
@@ -280,6 +450,16 @@ impl ComplexBuilder {
     /// ranges and repeats are checked by [`build`](Self::build), which sees all vertices; a
     /// reader that knows the vertex count can call [`check_cell`] earlier to report a line.
     ///
+    /// ```
+    /// use starplex::complex::{ComplexBuilder, ComplexError};
+    /// use starplex::{cell::CellKind, ids::CellId};
+    /// let mut b = ComplexBuilder::new(3).unwrap();
+    /// assert_eq!(b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]), Ok(CellId(0)));
+    /// assert_eq!(b.push_cell(CellKind::Simplex(1), &[3, 4]), Ok(CellId(1)));
+    /// let err = b.push_cell(CellKind::Hex, &[0, 1, 2]).unwrap_err();
+    /// assert_eq!(err.to_string(), "cell 2: a hex needs 8 vertices, got 3");
+    /// ```
+    ///
     /// # Errors
     /// A vertex count that does not fit the kind, more than `u32::MAX` cells.
     pub fn push_cell(&mut self, kind: CellKind, vertices: &[u32]) -> Result<CellId, ComplexError> {
@@ -308,6 +488,20 @@ impl ComplexBuilder {
     }
 
     /// Checks everything and returns the complex.
+    ///
+    /// ```
+    /// use starplex::complex::{ComplexBuilder, BuildOptions, ComplexError};
+    /// use starplex::cell::CellKind;
+    /// let mut b = ComplexBuilder::new(1).unwrap();
+    /// for x in [0.0, 1.0, 2.0] { b.push_vertex(&[x]).unwrap(); }
+    /// b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// b.push_cell(CellKind::Simplex(1), &[1, 2]).unwrap();
+    /// let (k, report) = b.clone().build(&BuildOptions::default()).unwrap();
+    /// assert_eq!((k.n_cells(), report.dropped_duplicates), (2, 0));
+    /// b.push_cell(CellKind::Simplex(1), &[2, 1]).unwrap();
+    /// let err = b.build(&BuildOptions::default()).unwrap_err();
+    /// assert_eq!(err, ComplexError::DuplicateCell { cell: 2, first: 1 });
+    /// ```
     ///
     /// # Errors
     /// The first problem found, in cell order: an index out of range, a repeated vertex, a
@@ -414,6 +608,18 @@ impl IndexedComplex {
     /// Assembles a complex from parts already checked elsewhere (the binary reader checks
     /// indices itself); cell ids follow the block order.
     ///
+    /// ```
+    /// use starplex::complex::{IndexedComplex, ComplexError};
+    /// use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0]);
+    /// let tri = vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2]))];
+    /// let k = IndexedComplex::from_parts(2, coords.clone(), tri).unwrap();
+    /// assert_eq!((k.n_vertices(), k.n_cells()), (3, 1));
+    /// let bad = vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 3]))];
+    /// let err = IndexedComplex::from_parts(2, coords, bad).unwrap_err();
+    /// assert_eq!(err, ComplexError::VertexOutOfRange { cell: 0, vertex: 3, n_vertices: 3 });
+    /// ```
+    ///
     /// # Errors
     /// Wrong coordinate array length, out-of-range or repeated vertex indices, non-finite
     /// coordinates.
@@ -493,24 +699,60 @@ impl IndexedComplex {
     }
 
     /// Number of coordinates per vertex.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0]); // two points in 3D
+    /// let k = IndexedComplex::from_parts(3, coords, vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// assert_eq!(k.ambient_dim(), 3);
+    /// ```
     #[inline]
     pub fn ambient_dim(&self) -> usize {
         self.ambient_dim
     }
 
     /// Number of vertices (isolated ones included).
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// // Three points on a line, the last one in no cell.
+    /// let coords = Buf::from(vec![0.0, 1.0, 5.0]);
+    /// let k = IndexedComplex::from_parts(1, coords, vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// assert_eq!(k.n_vertices(), 3);
+    /// ```
     #[inline]
     pub fn n_vertices(&self) -> usize {
         self.coords.len() / self.ambient_dim
     }
 
     /// Number of top cells.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let edges = vec![
+    ///     (CellKind::Simplex(1), Buf::from(vec![0, 1, 1, 2])),
+    ///     (CellKind::Simplex(0), Buf::from(vec![3])),
+    /// ];
+    /// let k = IndexedComplex::from_parts(1, vec![0.0, 1.0, 2.0, 5.0].into(), edges).unwrap();
+    /// assert_eq!(k.n_cells(), 3);
+    /// ```
     #[inline]
     pub fn n_cells(&self) -> usize {
         self.n_cells as usize
     }
 
     /// Coordinates of vertex `v`.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind, ids::VertexId};
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 2.0]);
+    /// let k = IndexedComplex::from_parts(2, coords, vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// assert_eq!(k.point(VertexId(1)), &[1.0, 2.0]);
+    /// ```
     #[inline]
     pub fn point(&self, v: VertexId) -> &[f64] {
         let d = self.ambient_dim;
@@ -518,17 +760,46 @@ impl IndexedComplex {
     }
 
     /// All coordinates, `ambient_dim` per vertex.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 2.0]);
+    /// let k = IndexedComplex::from_parts(2, coords, vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// assert_eq!(k.coords(), &[0.0, 0.0, 1.0, 2.0]);
+    /// assert_eq!(k.coords().chunks(k.ambient_dim()).nth(1), Some(&[1.0, 2.0][..]));
+    /// ```
     #[inline]
     pub fn coords(&self) -> &[f64] {
         &self.coords
     }
 
     /// The coordinate buffer (owned or mapped).
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 2.0]);
+    /// let k = IndexedComplex::from_parts(2, coords, vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// assert!(!k.coords_buf().is_mapped()); // built in memory, not loaded from a mapped file
+    /// assert_eq!(&k.coords_buf()[..], k.coords());
+    /// ```
     pub fn coords_buf(&self) -> &Buf<f64> {
         &self.coords
     }
 
     /// Replaces the coordinates (same vertex count and ambient dimension).
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind, ids::VertexId};
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 2.0]);
+    /// let mut k = IndexedComplex::from_parts(2, coords, vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// k.set_coords(vec![10.0, 0.0, 11.0, 2.0]).unwrap();
+    /// assert_eq!(k.point(VertexId(0)), &[10.0, 0.0]);
+    /// assert!(k.set_coords(vec![1.0, 2.0]).is_err());       // wrong length
+    /// assert!(k.set_coords(vec![0.0, 0.0, 1.0, f64::INFINITY]).is_err());
+    /// ```
     ///
     /// # Errors
     /// A wrong length or a non-finite value.
@@ -552,12 +823,39 @@ impl IndexedComplex {
     }
 
     /// The blocks (runs of one kind) in cell-id order.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let blocks = vec![
+    ///     (CellKind::Simplex(2), Buf::from(vec![0, 1, 2])),
+    ///     (CellKind::Quad, Buf::from(vec![1, 4, 5, 3])),
+    /// ];
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 0.0, 2.0, 1.0]);
+    /// let k = IndexedComplex::from_parts(2, coords, blocks).unwrap();
+    /// let kinds: Vec<_> = k.blocks().iter().map(|b| (b.kind, b.first)).collect();
+    /// assert_eq!(kinds, [(CellKind::Simplex(2), 0), (CellKind::Quad, 1)]);
+    /// ```
     #[inline]
     pub fn blocks(&self) -> &[CellBlock] {
         &self.blocks
     }
 
     /// The top cell with id `c`.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind, ids::CellId};
+    /// # let blocks = vec![
+    /// #     (CellKind::Simplex(2), Buf::from(vec![0, 1, 2])),
+    /// #     (CellKind::Quad, Buf::from(vec![1, 4, 5, 3])),
+    /// # ];
+    /// # let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 0.0, 2.0, 1.0]);
+    /// // A triangle (cell 0), then a quad (cell 1).
+    /// let k = IndexedComplex::from_parts(2, coords, blocks).unwrap();
+    /// let c = k.cell(CellId(1));
+    /// assert_eq!((c.kind, c.vertices), (CellKind::Quad, &[1u32, 4, 5, 3][..]));
+    /// ```
     ///
     /// # Panics
     /// When `c` is out of range; see [`IndexedComplex::try_cell`].
@@ -567,6 +865,15 @@ impl IndexedComplex {
     }
 
     /// The top cell with id `c`, or `None` when out of range.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind, ids::CellId};
+    /// let coords = Buf::from(vec![0.0, 1.0]);
+    /// let k = IndexedComplex::from_parts(1, coords, vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// assert_eq!(k.try_cell(CellId(0)).unwrap().vertices, &[0, 1]);
+    /// assert!(k.try_cell(CellId(1)).is_none());
+    /// ```
     #[inline]
     pub fn try_cell(&self, c: CellId) -> Option<CellRef<'_>> {
         if c.0 >= self.n_cells {
@@ -585,6 +892,20 @@ impl IndexedComplex {
     }
 
     /// All top cells in id order.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// # let blocks = vec![
+    /// #     (CellKind::Simplex(2), Buf::from(vec![0, 1, 2])),
+    /// #     (CellKind::Quad, Buf::from(vec![1, 4, 5, 3])),
+    /// # ];
+    /// # let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 0.0, 2.0, 1.0]);
+    /// // A triangle (cell 0), then a quad (cell 1).
+    /// let k = IndexedComplex::from_parts(2, coords, blocks).unwrap();
+    /// let sizes: Vec<(u32, usize)> = k.cells().map(|c| (c.id.0, c.vertices.len())).collect();
+    /// assert_eq!(sizes, [(0, 3), (1, 4)]);
+    /// ```
     pub fn cells(&self) -> impl Iterator<Item = CellRef<'_>> + '_ {
         self.blocks.iter().flat_map(|b| {
             (0..b.len()).map(move |i| CellRef {
@@ -596,6 +917,18 @@ impl IndexedComplex {
     }
 
     /// Largest top-cell dimension (`Some(0)` for vertices only, `None` for an empty complex).
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let edge = vec![(CellKind::Simplex(1), Buf::from(vec![0, 1]))];
+    /// let k = IndexedComplex::from_parts(1, vec![0.0, 1.0].into(), edge).unwrap();
+    /// assert_eq!(k.dim(), Some(1));
+    /// let points = IndexedComplex::from_parts(1, vec![0.0, 1.0].into(), vec![]).unwrap();
+    /// assert_eq!(points.dim(), Some(0));
+    /// let empty = IndexedComplex::from_parts(1, Buf::default(), vec![]).unwrap();
+    /// assert_eq!(empty.dim(), None);
+    /// ```
     pub fn dim(&self) -> Option<usize> {
         let d = self.blocks.iter().map(|b| b.kind.dim()).max();
         match d {
@@ -606,16 +939,49 @@ impl IndexedComplex {
     }
 
     /// Total number of vertex references in the cells.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// # let blocks = vec![
+    /// #     (CellKind::Simplex(2), Buf::from(vec![0, 1, 2])),
+    /// #     (CellKind::Quad, Buf::from(vec![1, 4, 5, 3])),
+    /// # ];
+    /// # let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 0.0, 2.0, 1.0]);
+    /// // A triangle and a quad.
+    /// let k = IndexedComplex::from_parts(2, coords, blocks).unwrap();
+    /// assert_eq!(k.n_refs(), 3 + 4);
+    /// ```
     pub fn n_refs(&self) -> usize {
         self.blocks.iter().map(|b| b.vertices.len()).sum()
     }
 
     /// True when every cell is a simplex.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
+    /// let tri = vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2]))];
+    /// assert!(IndexedComplex::from_parts(2, coords.clone(), tri).unwrap().is_simplicial());
+    /// let quad = vec![(CellKind::Quad, Buf::from(vec![0, 1, 3, 2]))];
+    /// assert!(!IndexedComplex::from_parts(2, coords, quad).unwrap().is_simplicial());
+    /// ```
     pub fn is_simplicial(&self) -> bool {
         self.blocks.iter().all(|b| b.kind.is_simplex())
     }
 
     /// Bytes of the complex itself: coordinates plus cell vertex arrays.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0]);
+    /// let tri = vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2]))];
+    /// let k = IndexedComplex::from_parts(2, coords, tri).unwrap();
+    /// // 6 coordinates of 8 bytes and 3 vertex ids of 4 bytes, plus the block header.
+    /// assert!(k.bytes() >= 6 * 8 + 3 * 4);
+    /// ```
     pub fn bytes(&self) -> usize {
         8 * self.coords.len()
             + 4 * self.n_refs()
@@ -623,6 +989,16 @@ impl IndexedComplex {
     }
 
     /// For each vertex, whether any cell uses it.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 1.0, 2.0, 9.0]);
+    /// let edges = vec![(CellKind::Simplex(1), Buf::from(vec![0, 1, 1, 2]))];
+    /// let k = IndexedComplex::from_parts(1, coords, edges).unwrap();
+    /// let used = k.used_vertices();
+    /// assert_eq!(used.ones().collect::<Vec<_>>(), [0, 1, 2]); // vertex 3 is isolated
+    /// ```
     pub fn used_vertices(&self) -> fixedbitset::FixedBitSet {
         let mut used = fixedbitset::FixedBitSet::with_capacity(self.n_vertices());
         for b in &self.blocks {
@@ -634,11 +1010,32 @@ impl IndexedComplex {
     }
 
     /// Number of vertices in no cell.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 1.0, 2.0, 9.0]);
+    /// let edges = vec![(CellKind::Simplex(1), Buf::from(vec![0, 1, 1, 2]))];
+    /// let k = IndexedComplex::from_parts(1, coords, edges).unwrap();
+    /// assert_eq!(k.n_isolated_vertices(), 1);
+    /// ```
     pub fn n_isolated_vertices(&self) -> usize {
         self.n_vertices() - self.used_vertices().count_ones(..)
     }
 
     /// The relation vertex → incident top cells (R_{0,top}), cells sorted by id in each row.
+    ///
+    /// ```
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 1.0, 2.0, 9.0]);
+    /// let edges = vec![(CellKind::Simplex(1), Buf::from(vec![0, 1, 1, 2]))];
+    /// let k = IndexedComplex::from_parts(1, coords, edges).unwrap();
+    /// let vc = k.vertex_cells();
+    /// assert_eq!(vc.n_rows(), 4);
+    /// assert_eq!(vc.row(1), &[0, 1]); // vertex 1 is in both edges
+    /// assert!(vc.row(3).is_empty());
+    /// ```
     pub fn vertex_cells(&self) -> Csr {
         let nv = self.n_vertices();
         Csr::from_fn(nv, |emit| {
