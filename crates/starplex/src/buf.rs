@@ -14,6 +14,14 @@ use std::ops::Deref;
 use std::sync::Arc;
 
 /// Owned or memory-mapped array of plain-old-data values.
+///
+/// ```
+/// use starplex::buf::Buf;
+/// let b: Buf<f64> = Buf::Owned(vec![0.5, 1.5]);
+/// assert_eq!(b.iter().sum::<f64>(), 2.0); // reads like a slice
+/// assert!(!b.is_mapped());
+/// assert_eq!(b, Buf::from(vec![0.5, 1.5]));
+/// ```
 #[derive(Clone)]
 pub enum Buf<T: bytemuck::Pod> {
     /// An owned vector.
@@ -31,6 +39,13 @@ pub enum Buf<T: bytemuck::Pod> {
 
 impl<T: bytemuck::Pod> Buf<T> {
     /// The values, copied into an owned vector first when they are mapped.
+    ///
+    /// ```
+    /// use starplex::buf::Buf;
+    /// let mut b = Buf::from(vec![3u32, 1, 2]);
+    /// b.to_mut().sort();
+    /// assert_eq!(&b[..], &[1, 2, 3]);
+    /// ```
     pub fn to_mut(&mut self) -> &mut Vec<T> {
         if let Buf::Mapped { .. } = self {
             *self = Buf::Owned(self.deref().to_vec());
@@ -42,11 +57,23 @@ impl<T: bytemuck::Pod> Buf<T> {
     }
 
     /// True when the values live in a memory map.
+    ///
+    /// ```
+    /// use starplex::buf::Buf;
+    /// // Buffers built in memory are owned; the binary reader returns mapped ones.
+    /// assert!(!Buf::from(vec![1u32]).is_mapped());
+    /// ```
     pub fn is_mapped(&self) -> bool {
         matches!(self, Buf::Mapped { .. })
     }
 
     /// Takes the values out as a vector (copies when mapped).
+    ///
+    /// ```
+    /// use starplex::buf::Buf;
+    /// let b = Buf::from(vec![7u32, 8]);
+    /// assert_eq!(b.into_vec(), vec![7, 8]);
+    /// ```
     pub fn into_vec(self) -> Vec<T> {
         match self {
             Buf::Owned(v) => v,

@@ -19,16 +19,35 @@ macro_rules! id_type {
 
         impl $name {
             /// Wraps a raw index.
+            ///
+            /// ```
+            #[doc = concat!("use starplex::ids::", stringify!($name), ";")]
+            #[doc = concat!("let id = ", stringify!($name), "::new(5);")]
+            /// assert_eq!(id.0, 5);
+            /// assert_eq!(u32::from(id), 5);
+            /// ```
             #[inline]
             pub const fn new(i: u32) -> Self {
                 Self(i)
             }
             /// The index as `usize`, for indexing arrays.
+            ///
+            /// ```
+            #[doc = concat!("use starplex::ids::", stringify!($name), ";")]
+            /// let names = ["a", "b", "c"];
+            #[doc = concat!("assert_eq!(names[", stringify!($name), "(2).index()], \"c\");")]
+            /// ```
             #[inline]
             pub const fn index(self) -> usize {
                 self.0 as usize
             }
             /// Converts a `usize`, or `None` when it does not fit in 32 bits.
+            ///
+            /// ```
+            #[doc = concat!("use starplex::ids::", stringify!($name), ";")]
+            #[doc = concat!("assert_eq!(", stringify!($name), "::from_usize(7), Some(", stringify!($name), "(7)));")]
+            #[doc = concat!("assert_eq!(", stringify!($name), "::from_usize(1 << 32), None);")]
+            /// ```
             #[inline]
             pub fn from_usize(i: usize) -> Option<Self> {
                 u32::try_from(i).ok().map(Self)
