@@ -34,6 +34,22 @@ use crate::complex::IndexedComplex;
 use crate::csr::Csr;
 
 /// Options of [`info`].
+///
+/// ```
+/// use starplex::algo::info::{info, InfoOptions};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(1).unwrap();
+/// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the tetrahedron 0-1-2-3
+/// // A tiny budget skips the f-vector and reports the estimate instead.
+/// let s = info(&k, &InfoOptions { max_faces: 5, ..Default::default() });
+/// assert_eq!(s.f_vector, None);
+/// assert_eq!(s.f_vector_estimate, Some(10)); // 6 edges + 4 triangles
+/// assert_eq!(info(&k, &InfoOptions::default()).f_vector, Some(vec![4, 6, 4, 1]));
+/// ```
 #[derive(Clone)]
 pub struct InfoOptions {
     /// Largest number of (cell, face) pairs the f-vector pass may visit; above it the f-vector
@@ -61,6 +77,22 @@ impl std::fmt::Debug for InfoOptions {
 }
 
 /// The summary of a complex. Field names match the oracle JSON files.
+///
+/// ```
+/// use starplex::algo::info::{info, InfoOptions};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(1).unwrap();
+/// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the tetrahedron 0-1-2-3
+/// let s = info(&k, &InfoOptions::default());
+/// assert_eq!((s.n_vertices, s.dim, s.n_top_cells), (4, 3, 1));
+/// assert_eq!(s.top_cells.get("tet"), Some(&1));
+/// assert_eq!(s.bbox, Some((vec![0.0], vec![3.0])));
+/// assert!(s.pure);
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Info {
     /// Number of vertices.
@@ -97,6 +129,23 @@ pub struct Info {
 }
 
 /// Computes the summary of `k`.
+///
+/// ```
+/// use starplex::algo::info::{info, InfoOptions};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let s = info(&k, &InfoOptions::default());
+/// assert_eq!(s.f_vector, Some(vec![4, 5, 2]));
+/// assert_eq!(s.euler_characteristic, Some(1));
+/// assert_eq!(s.n_boundary_faces, Some(4));
+/// assert_eq!(s.n_faces_shared_by_more_than_2_top_cells, Some(0));
+/// ```
 pub fn info(k: &IndexedComplex, opts: &InfoOptions) -> Info {
     let nv = k.n_vertices();
     let n_isolated = k.n_isolated_vertices() as u64;
@@ -177,6 +226,20 @@ pub fn info(k: &IndexedComplex, opts: &InfoOptions) -> Info {
 }
 
 /// Upper bound of (cell, proper face of dimension >= 1) pairs: the work of the f-vector pass.
+///
+/// ```
+/// use starplex::algo::info::face_visits;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// // Each triangle has 3 edges (faces of dimension >= 1 below its own dimension).
+/// assert_eq!(face_visits(&k), 2 * 3);
+/// ```
 pub fn face_visits(k: &IndexedComplex) -> u128 {
     k.blocks()
         .iter()
@@ -190,6 +253,19 @@ pub fn face_visits(k: &IndexedComplex) -> u128 {
 }
 
 /// Connected components of the 1-skeleton, isolated vertices included.
+///
+/// ```
+/// use starplex::algo::info::components;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// assert_eq!(components(&k), 1);
+/// ```
 pub fn components(k: &IndexedComplex) -> usize {
     let mut uf = UnionFind::new(k.n_vertices());
     for c in k.cells() {

@@ -42,6 +42,14 @@ use crate::ids::{CellId, VertexId};
 use crate::topo::{QueryError, TopCells, VertexStar};
 
 /// The answer of a manifold test.
+///
+/// ```
+/// use starplex::algo::nonmanifold::{sphere_or_ball, Manifoldness};
+/// assert_eq!(sphere_or_ball(&[vec![0, 1], vec![1, 2]], 1), Manifoldness::Manifold); // a path
+/// // A 3-sphere link is not recognised: every necessary test passes, the answer is Unknown.
+/// let bd4: Vec<Vec<u32>> = (0..5u32).map(|i| (0..5).filter(|&j| j != i).collect()).collect();
+/// assert_eq!(sphere_or_ball(&bd4, 3), Manifoldness::Unknown);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Manifoldness {
     /// The link is a sphere or a ball of the right dimension.
@@ -53,6 +61,20 @@ pub enum Manifoldness {
 }
 
 /// The singular simplices of a complex, with ids (sorted).
+///
+/// ```
+/// use starplex::algo::nonmanifold::{singularities, Singularities};
+/// use starplex::topo::naive::VtIndex;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// assert_eq!(singularities(&VtIndex::new(&k)).unwrap(), Singularities::default());
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Singularities {
     /// Non-manifold vertices.
@@ -93,6 +115,16 @@ fn connected(maxes: &[Vec<u32>]) -> bool {
 
 /// Tests whether the pure complex with maximal simplices `maxes` (each of m+1 vertices, sorted,
 /// distinct) is an m-sphere or an m-ball.
+///
+/// ```
+/// use starplex::algo::nonmanifold::{sphere_or_ball, Manifoldness};
+/// let cycle = [vec![0, 1], vec![1, 2], vec![0, 2]];
+/// assert_eq!(sphere_or_ball(&cycle, 1), Manifoldness::Manifold);
+/// let claw = [vec![0, 1], vec![0, 2], vec![0, 3]]; // vertex 0 of degree 3
+/// assert_eq!(sphere_or_ball(&claw, 1), Manifoldness::NonManifold);
+/// assert_eq!(sphere_or_ball(&[vec![4], vec![7]], 0), Manifoldness::Manifold); // two points
+/// assert_eq!(sphere_or_ball(&[], -1), Manifoldness::Manifold); // the empty (-1)-sphere
+/// ```
 pub fn sphere_or_ball(maxes: &[Vec<u32>], m: isize) -> Manifoldness {
     use Manifoldness::*;
     if m < 0 {
@@ -218,6 +250,22 @@ fn sorted_tops<S: TopCells + VertexStar + ?Sized>(
 
 /// Manifoldness of a vertex.
 ///
+/// ```
+/// use starplex::algo::nonmanifold::{vertex_manifoldness, Manifoldness};
+/// use starplex::{ids::VertexId, topo::naive::VtIndex};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// assert_eq!(vertex_manifoldness(&idx, VertexId(1)).unwrap(), Manifoldness::Manifold);
+/// assert!(vertex_manifoldness(&idx, VertexId(9)).is_err());
+/// ```
+///
 /// # Errors
 /// A CP cell in its star; a vertex out of range.
 pub fn vertex_manifoldness<S: TopCells + VertexStar + ?Sized>(
@@ -234,6 +282,22 @@ pub fn vertex_manifoldness<S: TopCells + VertexStar + ?Sized>(
 }
 
 /// Manifoldness of the edge {u, w}.
+///
+/// ```
+/// use starplex::algo::nonmanifold::{edge_manifoldness, Manifoldness};
+/// use starplex::{ids::VertexId, topo::naive::VtIndex};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// for x in 0..5 { b.push_vertex(&[x as f64]).unwrap(); }
+/// for c in [2, 3, 4] { b.push_cell(CellKind::Simplex(2), &[0, 1, c]).unwrap(); }
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let idx = VtIndex::new(&k);
+/// // Three triangles on the edge 0-1: a "book" with three pages.
+/// assert_eq!(edge_manifoldness(&idx, VertexId(0), VertexId(1)).unwrap(), Manifoldness::NonManifold);
+/// assert_eq!(edge_manifoldness(&idx, VertexId(0), VertexId(2)).unwrap(), Manifoldness::Manifold);
+/// assert!(edge_manifoldness(&idx, VertexId(2), VertexId(3)).is_err()); // not an edge
+/// ```
 ///
 /// # Errors
 /// Not an edge of the complex; a CP cell in its star.
@@ -259,6 +323,20 @@ pub fn edge_manifoldness<S: TopCells + VertexStar + ?Sized>(
 
 /// Every non-manifold (and undecided) vertex and edge; each edge handled once from its
 /// smaller endpoint while that vertex's star is in hand.
+///
+/// ```
+/// use starplex::algo::nonmanifold::singularities;
+/// use starplex::{ids::VertexId, topo::naive::VtIndex};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// for x in 0..5 { b.push_vertex(&[x as f64]).unwrap(); }
+/// for c in [2, 3, 4] { b.push_cell(CellKind::Simplex(2), &[0, 1, c]).unwrap(); }
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let r = singularities(&VtIndex::new(&k)).unwrap();
+/// assert_eq!(r.non_manifold_edges, vec![[VertexId(0), VertexId(1)]]);
+/// assert_eq!(r.non_manifold_vertices, vec![VertexId(0), VertexId(1)]);
+/// ```
 ///
 /// # Errors
 /// A CP cell.

@@ -11,6 +11,16 @@
 //! ```
 
 /// Disjoint sets over `0..n`.
+///
+/// ```
+/// use starplex::algo::unionfind::UnionFind;
+/// let mut uf = UnionFind::new(5);
+/// for (a, b) in [(0, 1), (1, 2), (3, 4)] {
+///     uf.union(a, b);
+/// }
+/// assert_eq!(uf.n_sets(), 2);
+/// assert_eq!(uf.set_size(2), 3);
+/// ```
 #[derive(Clone, Debug)]
 pub struct UnionFind {
     parent: Vec<u32>,
@@ -20,6 +30,13 @@ pub struct UnionFind {
 
 impl UnionFind {
     /// `n` singletons.
+    ///
+    /// ```
+    /// use starplex::algo::unionfind::UnionFind;
+    /// let mut uf = UnionFind::new(3);
+    /// assert_eq!(uf.n_sets(), 3);
+    /// assert_eq!((uf.find(0), uf.find(1), uf.find(2)), (0, 1, 2));
+    /// ```
     pub fn new(n: usize) -> UnionFind {
         UnionFind {
             parent: (0..n as u32).collect(),
@@ -29,6 +46,14 @@ impl UnionFind {
     }
 
     /// The representative of `x`'s set.
+    ///
+    /// ```
+    /// use starplex::algo::unionfind::UnionFind;
+    /// let mut uf = UnionFind::new(3);
+    /// uf.union(2, 0);
+    /// assert_eq!(uf.find(0), uf.find(2));
+    /// assert_ne!(uf.find(1), uf.find(0));
+    /// ```
     #[inline]
     pub fn find(&mut self, mut x: u32) -> u32 {
         while self.parent[x as usize] != x {
@@ -40,6 +65,14 @@ impl UnionFind {
     }
 
     /// Merges the sets of `a` and `b`; true when they were different.
+    ///
+    /// ```
+    /// use starplex::algo::unionfind::UnionFind;
+    /// let mut uf = UnionFind::new(3);
+    /// assert!(uf.union(0, 1));
+    /// assert!(!uf.union(1, 0)); // already in one set
+    /// assert_eq!(uf.n_sets(), 2);
+    /// ```
     #[inline]
     pub fn union(&mut self, a: u32, b: u32) -> bool {
         let (mut a, mut b) = (self.find(a), self.find(b));
@@ -56,11 +89,29 @@ impl UnionFind {
     }
 
     /// Number of sets.
+    ///
+    /// ```
+    /// use starplex::algo::unionfind::UnionFind;
+    /// let mut uf = UnionFind::new(4);
+    /// uf.union(0, 1);
+    /// uf.union(2, 3);
+    /// uf.union(1, 3);
+    /// assert_eq!(uf.n_sets(), 1);
+    /// ```
     pub fn n_sets(&self) -> usize {
         self.sets
     }
 
     /// Size of `x`'s set.
+    ///
+    /// ```
+    /// use starplex::algo::unionfind::UnionFind;
+    /// let mut uf = UnionFind::new(4);
+    /// uf.union(0, 1);
+    /// uf.union(0, 2);
+    /// assert_eq!(uf.set_size(1), 3);
+    /// assert_eq!(uf.set_size(3), 1);
+    /// ```
     pub fn set_size(&mut self, x: u32) -> usize {
         let r = self.find(x);
         self.size[r as usize] as usize
