@@ -38,6 +38,24 @@ fn subset(small: &[VertexId], big: &[VertexId]) -> bool {
 /// St_T(s): the top cells containing `s`, sorted; for a vertex, its VT (possibly empty for an
 /// isolated vertex).
 ///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops};
+/// use starplex::ids::{CellId, VertexId};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// let mut cells = Vec::new();
+/// from_tops::top_star(&idx, &[VertexId(3)], &mut cells).unwrap();
+/// assert_eq!(cells, [CellId(1)]);
+/// assert!(from_tops::top_star(&idx, &[VertexId(0), VertexId(3)], &mut cells).is_err());
+/// ```
+///
 /// # Errors
 /// `s` is not a simplex of the complex.
 pub fn top_star<S: TopCells + VertexStar + ?Sized>(
@@ -94,6 +112,16 @@ fn star_tops<S: TopCells + VertexStar + ?Sized>(
 }
 
 /// Calls `f` with every `k`-subset of `items` (in lexicographic order of positions).
+///
+/// ```
+/// use starplex::topo::from_tops::for_each_subset;
+/// let mut pairs = Vec::new();
+/// for_each_subset(&['a', 'b', 'c'], 2, &mut Vec::new(), &mut |s| pairs.push(s.to_vec()));
+/// assert_eq!(pairs, [['a', 'b'], ['a', 'c'], ['b', 'c']]);
+/// let mut n = 0;
+/// for_each_subset(&[1, 2], 3, &mut Vec::new(), &mut |_| n += 1);
+/// assert_eq!(n, 0);
+/// ```
 pub fn for_each_subset<T: Copy>(items: &[T], k: usize, buf: &mut Vec<T>, f: &mut dyn FnMut(&[T])) {
     let n = items.len();
     if k > n {
@@ -145,6 +173,23 @@ fn too_large(what: String, estimate: u128, budget: u128) -> QueryError {
 
 /// St(s): every simplex containing `s`.
 ///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// let st = from_tops::star(&idx, &[VertexId(1), VertexId(2)], 1000).unwrap();
+/// assert_eq!(st.f_vector(), vec![0, 1, 2]); // the edge and its two triangles
+/// assert!(from_tops::star(&idx, &[VertexId(1)], 2).is_err()); // over a budget of 2
+/// ```
+///
 /// # Errors
 /// `s` not in the complex, a CP cell in the star, more than `budget` simplices.
 pub fn star<S: TopCells + VertexStar + ?Sized>(
@@ -181,6 +226,25 @@ pub fn star<S: TopCells + VertexStar + ?Sized>(
 }
 
 /// R_{p,q}, q > p: the q-simplices containing `s` (empty for q ≤ p).
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// let mut out = Vec::new();
+/// from_tops::coboundary(&idx, &[VertexId(3)], 2, 1000, &mut out).unwrap();
+/// assert_eq!(out, [VertexId(1), VertexId(2), VertexId(3)]);
+/// from_tops::coboundary(&idx, &[VertexId(3)], 0, 1000, &mut out).unwrap();
+/// assert!(out.is_empty()); // q <= p
+/// ```
 ///
 /// # Errors
 /// `s` not in the complex, a CP cell in the star, more than `budget` simplices.
@@ -221,6 +285,24 @@ pub fn coboundary<S: TopCells + VertexStar + ?Sized>(
 
 /// R_{p,q}, q < p: the q-faces of `s` (empty for q ≥ p).
 ///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// let mut out = Vec::new();
+/// from_tops::boundary(&idx, &[VertexId(3), VertexId(1)], 0, 1000, &mut out).unwrap();
+/// assert_eq!(out, [VertexId(1), VertexId(3)]);
+/// assert!(from_tops::boundary(&idx, &[VertexId(0), VertexId(3)], 0, 1000, &mut out).is_err());
+/// ```
+///
 /// # Errors
 /// `s` not in the complex; more than `budget` faces.
 pub fn boundary<S: TopCells + VertexStar + ?Sized>(
@@ -244,6 +326,16 @@ pub fn boundary<S: TopCells + VertexStar + ?Sized>(
 }
 
 /// The q-faces of a sorted simplex known to be in the complex.
+///
+/// ```
+/// use starplex::topo::from_tops::boundary_of_sorted;
+/// use starplex::ids::VertexId;
+/// let tri = [VertexId(4), VertexId(7), VertexId(9)];
+/// let mut out = Vec::new();
+/// boundary_of_sorted(&tri, 1, 1000, &mut out).unwrap();
+/// let edges: Vec<u32> = out.iter().map(|v| v.0).collect();
+/// assert_eq!(edges, [4, 7, 4, 9, 7, 9]);
+/// ```
 ///
 /// # Errors
 /// More than `budget` faces.
@@ -271,6 +363,25 @@ pub fn boundary_of_sorted(
 }
 
 /// R_{p,p}: simplices adjacent to `s` (p ≥ 1: sharing a facet; p = 0: sharing an edge).
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// let mut out = Vec::new();
+/// // Edges sharing a vertex with 0-1: p = 1 adjacency.
+/// from_tops::adjacent(&idx, &[VertexId(0), VertexId(1)], 1000, &mut out).unwrap();
+/// let flat: Vec<u32> = out.iter().map(|v| v.0).collect();
+/// assert_eq!(flat, [0, 2, 1, 2, 1, 3]);
+/// ```
 ///
 /// # Errors
 /// `s` not in the complex, a CP cell in the star, more than `budget` simplices.
@@ -317,6 +428,21 @@ pub fn adjacent<S: TopCells + VertexStar + ?Sized>(
 }
 
 /// An upper bound of the (top, p-face) pairs of the complex.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops::face_estimate};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// assert_eq!(face_estimate(&idx, 1), 6); // 3 edges per triangle, shared ones counted twice
+/// assert_eq!(face_estimate(&idx, 3), 0);
+/// ```
 pub fn face_estimate<S: TopCells + ?Sized>(st: &S, p: usize) -> u128 {
     let mut est: u128 = 0;
     for c in 0..st.n_top_cells() {
@@ -337,6 +463,23 @@ fn check_simplicial<S: TopCells + ?Sized>(st: &S, what: &str) -> Result<(), Quer
 
 /// Calls `f` once per p-simplex: vertex by vertex, each face emitted from its smallest vertex
 /// (sorted within one vertex). p = 0 lists every vertex, isolated ones included.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// let mut tris = Vec::new();
+/// from_tops::for_each_simplex(&idx, 2, 1000, &mut |t| tris.push([t[0].0, t[1].0, t[2].0])).unwrap();
+/// tris.sort();
+/// assert_eq!(tris, [[0, 1, 2], [1, 2, 3]]);
+/// ```
 ///
 /// # Errors
 /// A CP cell; more than `budget` (top, face) pairs.
@@ -389,6 +532,21 @@ pub fn for_each_simplex<S: TopCells + VertexStar + ?Sized>(
 }
 
 /// The f-vector by level iteration.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// assert_eq!(from_tops::f_vector(&idx, 1000).unwrap(), vec![4, 5, 2]);
+/// assert!(from_tops::f_vector(&idx, 3).is_err());
+/// ```
 ///
 /// # Errors
 /// A CP cell; more than `budget` (top, face) pairs in total.

@@ -23,6 +23,22 @@ use crate::ids::VertexId;
 
 /// The closure of `s`: `s` and all its faces.
 ///
+/// ```
+/// use starplex::topo::{naive::VtIndex, generic};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let cl = generic::closure(&VtIndex::new(&k), &[VertexId(3), VertexId(2), VertexId(1)]).unwrap();
+/// assert_eq!(cl.f_vector(), vec![3, 3, 1]);
+/// assert!(cl.contains(&[VertexId(2), VertexId(3)]));
+/// ```
+///
 /// # Errors
 /// `s` not in the complex; too many faces.
 pub fn closure<S: Boundary + ?Sized>(st: &S, s: &[VertexId]) -> Result<SimplexSet, QueryError> {
@@ -41,6 +57,21 @@ pub fn closure<S: Boundary + ?Sized>(st: &S, s: &[VertexId]) -> Result<SimplexSe
 }
 
 /// The link of `s`: {τ ∖ s : τ ∈ St(s), τ ≠ s}.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, generic};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let lk = generic::link(&VtIndex::new(&k), &[VertexId(1), VertexId(2)]).unwrap();
+/// assert_eq!(lk.level(0), &[VertexId(0), VertexId(3)]); // the opposite corners
+/// ```
 ///
 /// # Errors
 /// `s` not in the complex; a star over the budget.
@@ -63,6 +94,20 @@ pub fn link<S: Star + ?Sized>(st: &S, s: &[VertexId]) -> Result<SimplexSet, Quer
 
 /// The p-skeleton: every simplex of dimension ≤ p.
 ///
+/// ```
+/// use starplex::topo::{naive::VtIndex, generic};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let sk = generic::skeleton(&VtIndex::new(&k), 1).unwrap();
+/// assert_eq!(sk.f_vector(), vec![4, 5]);
+/// ```
+///
 /// # Errors
 /// Too many simplices.
 pub fn skeleton<S: Levels + ?Sized>(st: &S, p: usize) -> Result<SimplexSet, QueryError> {
@@ -77,6 +122,19 @@ pub fn skeleton<S: Levels + ?Sized>(st: &S, p: usize) -> Result<SimplexSet, Quer
 }
 
 /// χ = Σ (-1)^p f_p.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, generic};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// assert_eq!(generic::euler_characteristic(&VtIndex::new(&k)).unwrap(), 4 - 5 + 2);
+/// ```
 ///
 /// # Errors
 /// The f-vector is over the budget.

@@ -23,6 +23,21 @@ use super::{TopCells, VertexStar};
 use crate::ids::{CellId, VertexId};
 
 /// The link of a vertex.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, link::{vertex_link, VertexLink}};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let l = vertex_link(&VtIndex::new(&k), VertexId(1)).unwrap();
+/// assert_eq!(l, VertexLink { maximal_simplices: vec![vec![0, 2], vec![2, 3]], f_vector: vec![3, 2] });
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct VertexLink {
     /// Maximal simplices of the link, each sorted, the list sorted.
@@ -32,6 +47,17 @@ pub struct VertexLink {
 }
 
 /// Why a link could not be computed.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, link::{vertex_link, LinkError}};
+/// use starplex::{cell::CellKind, ids::VertexId};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// assert_eq!(vertex_link(&VtIndex::new(&k), VertexId(0)), Err(LinkError::NotSimplicial(0)));
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum LinkError {
     /// The star has a CP cell (links are defined here for simplicial stars only).
@@ -51,6 +77,22 @@ pub enum LinkError {
 
 /// The link of `v` with a face-count budget of 50 million.
 ///
+/// ```
+/// use starplex::topo::{naive::VtIndex, link::vertex_link};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let l = vertex_link(&VtIndex::new(&k), VertexId(3)).unwrap();
+/// assert_eq!(l.maximal_simplices, vec![vec![1, 2]]); // one edge
+/// assert_eq!(l.f_vector, vec![2, 1]);
+/// ```
+///
 /// # Errors
 /// See [`vertex_link_with_budget`].
 pub fn vertex_link<S: TopCells + VertexStar + ?Sized>(
@@ -61,6 +103,23 @@ pub fn vertex_link<S: TopCells + VertexStar + ?Sized>(
 }
 
 /// The link of `v`, refusing when more than `budget` faces would be enumerated.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, link::{vertex_link_with_budget, LinkError}};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// assert_eq!(vertex_link_with_budget(&idx, VertexId(1), 100).unwrap().f_vector, vec![3, 2]);
+/// let err = vertex_link_with_budget(&idx, VertexId(1), 2).unwrap_err();
+/// assert_eq!(err, LinkError::TooLarge { vertex: 1, estimate: 6, budget: 2 });
+/// ```
 ///
 /// # Errors
 /// A non-simplicial cell in the star; a link over the budget.

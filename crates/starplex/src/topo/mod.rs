@@ -74,9 +74,39 @@ pub mod link;
 pub mod naive;
 
 /// Default budget of simplices a query may enumerate before refusing with an estimate.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, Counts, QueryError, DEFAULT_BUDGET};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// // One 30-simplex: 2^31 - 1 faces, refused before enumerating any.
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// for x in 0..31 { b.push_vertex(&[x as f64]).unwrap(); }
+/// b.push_cell(CellKind::Simplex(30), &(0..31).collect::<Vec<u32>>()).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let err = VtIndex::new(&k).f_vector().unwrap_err();
+/// assert!(matches!(err, QueryError::TooLarge { budget: DEFAULT_BUDGET, .. }));
+/// ```
 pub const DEFAULT_BUDGET: u128 = 50_000_000;
 
 /// Why a query could not be answered.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, QueryError, TopStar};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let mut cells = Vec::new();
+/// let err = VtIndex::new(&k).top_star(&[VertexId(0), VertexId(3)], &mut cells).unwrap_err();
+/// assert_eq!(err, QueryError::NotInComplex(vec![0, 3]));
+/// assert_eq!(err.to_string(), "[0, 3] is not a simplex of the complex");
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum QueryError {
     /// The simplex is not in the complex (or has a vertex out of range, or a repeated vertex).
@@ -98,6 +128,25 @@ pub enum QueryError {
 }
 
 /// Counts and top-cell access.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, TopCells};
+/// use starplex::{cell::CellKind, ids::{CellId, VertexId}};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// assert_eq!((idx.n_vertices(), idx.n_top_cells()), (4, 2));
+/// assert_eq!(idx.top_cell_kind(CellId(1)), CellKind::Simplex(2));
+/// let mut vs = Vec::new();
+/// idx.top_cell_vertices(CellId(1), &mut vs);
+/// assert_eq!(vs, [VertexId(1), VertexId(3), VertexId(2)]); // input order
+/// ```
 pub trait TopCells {
     /// Number of vertices.
     fn n_vertices(&self) -> usize;
@@ -110,6 +159,26 @@ pub trait TopCells {
 }
 
 /// R_{0,top}: top cells incident to a vertex.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, VertexStar};
+/// use starplex::ids::{CellId, VertexId};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// let mut cells = Vec::new();
+/// idx.vertex_top_cells(VertexId(2), &mut cells);
+/// assert_eq!(cells, [CellId(0), CellId(1)]);
+/// idx.vertex_top_cells(VertexId(3), &mut cells);
+/// assert_eq!(cells, [CellId(1)]);
+/// assert_eq!(idx.star_has_top_containing(&[VertexId(0), VertexId(3)]), Some(false));
+/// ```
 pub trait VertexStar {
     /// Replaces `out` with the top cells incident to `v`, sorted by id.
     fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>);
@@ -125,12 +194,41 @@ pub trait VertexStar {
 
 /// R_{0,0}: vertices joined to a vertex by an edge (an edge of a top cell's face table; the
 /// diagonal of a quad is not an edge).
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, VertexAdjacency};
+/// use starplex::{cell::CellKind, ids::VertexId};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let mut vv = Vec::new();
+/// VtIndex::new(&k).vertex_neighbours(VertexId(0), &mut vv);
+/// assert_eq!(vv, [VertexId(1), VertexId(3)]); // not 2: the diagonal is not an edge
+/// ```
 pub trait VertexAdjacency {
     /// Replaces `out` with the neighbours of `v`, sorted.
     fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>);
 }
 
 /// St_T(σ): the top cells containing a simplex (any dimension).
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, TopStar};
+/// use starplex::ids::{CellId, VertexId};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let mut cells = Vec::new();
+/// VtIndex::new(&k).top_star(&[VertexId(2), VertexId(1)], &mut cells).unwrap();
+/// assert_eq!(cells, [CellId(0), CellId(1)]);
+/// ```
 pub trait TopStar {
     /// Replaces `out` with the top cells containing `s` (vertices in any order), sorted by id.
     ///
@@ -140,6 +238,19 @@ pub trait TopStar {
 }
 
 /// The f-vector.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, Counts};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// assert_eq!(VtIndex::new(&k).f_vector().unwrap(), vec![4, 5, 2]);
+/// ```
 pub trait Counts {
     /// Number of p-simplices for p = 0..=dim (vertices include isolated ones).
     ///
@@ -149,6 +260,27 @@ pub trait Counts {
 }
 
 /// Explicitly stored simplices: id ↔ vertices.
+///
+/// ```
+/// use starplex::topo::SimplexVertices;
+/// use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let st = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap();
+/// assert_eq!(st.n_simplices(), 4 + 5 + 2);
+/// let id = st.find_simplex(&[VertexId(2), VertexId(1)]).unwrap();
+/// let mut vs = Vec::new();
+/// st.simplex_vertices(id, &mut vs);
+/// assert_eq!(vs, [VertexId(1), VertexId(2)]);
+/// assert_eq!(st.find_simplex(&[VertexId(0), VertexId(3)]), None);
+/// ```
 pub trait SimplexVertices {
     /// Number of stored simplices.
     fn n_simplices(&self) -> usize;
@@ -159,6 +291,23 @@ pub trait SimplexVertices {
 }
 
 /// R_{p,q}, q < p: the q-faces of a p-simplex.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, Boundary};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+/// let mut out = Vec::new();
+/// VtIndex::new(&k).boundary(&v(&[2, 1, 0]), 1, &mut out).unwrap();
+/// assert_eq!(out, v(&[0, 1, 0, 2, 1, 2])); // three edges, stride 2
+/// ```
 pub trait Boundary {
     /// Replaces `out` with the q-faces of `s` (flat, stride q+1, sorted).
     ///
@@ -169,6 +318,26 @@ pub trait Boundary {
 }
 
 /// R_{p,q}, q > p: the q-simplices having a p-simplex as a face.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, Coboundary};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+/// let idx = VtIndex::new(&k);
+/// let mut out = Vec::new();
+/// idx.coboundary(&v(&[1]), 1, &mut out).unwrap();
+/// assert_eq!(out, v(&[0, 1, 1, 2, 1, 3])); // edges at vertex 1
+/// idx.coboundary(&v(&[1, 2]), 2, &mut out).unwrap();
+/// assert_eq!(out, v(&[0, 1, 2, 1, 2, 3])); // triangles on edge 1-2
+/// ```
 pub trait Coboundary {
     /// Replaces `out` with the q-cofaces of `s` (flat, stride q+1, sorted).
     ///
@@ -184,6 +353,26 @@ pub trait Coboundary {
 
 /// R_{p,p}: for p ≥ 1 the p-simplices sharing a (p-1)-face with σ; for p = 0 the vertices
 /// sharing an edge with σ.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, Adjacency};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+/// let idx = VtIndex::new(&k);
+/// let mut out = Vec::new();
+/// idx.adjacent(&v(&[0, 1, 2]), &mut out).unwrap();
+/// assert_eq!(out, v(&[1, 2, 3])); // shares the edge 1-2
+/// idx.adjacent(&v(&[0]), &mut out).unwrap();
+/// assert_eq!(out, v(&[1, 2]));
+/// ```
 pub trait Adjacency {
     /// Replaces `out` with the simplices adjacent to `s` (flat, stride p+1, sorted).
     ///
@@ -193,6 +382,23 @@ pub trait Adjacency {
 }
 
 /// St(σ): every simplex containing σ (σ included).
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, Star};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+/// let st = VtIndex::new(&k).star(&v(&[0])).unwrap();
+/// assert_eq!(st.f_vector(), vec![1, 2, 1]); // 0, 0-1, 0-2, 0-1-2
+/// assert!(st.contains(&v(&[0, 1, 2])));
+/// ```
 pub trait Star {
     /// The star of `s`.
     ///
@@ -202,6 +408,22 @@ pub trait Star {
 }
 
 /// Iteration by level.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, Levels};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let mut edges = Vec::new();
+/// VtIndex::new(&k).for_each_simplex(1, &mut |e| edges.push([e[0].0, e[1].0])).unwrap();
+/// edges.sort();
+/// assert_eq!(edges, [[0, 1], [0, 2], [1, 2], [1, 3], [2, 3]]);
+/// ```
 pub trait Levels {
     /// Calls `f` once per p-simplex (sorted vertices), in an order fixed by the structure.
     ///
@@ -211,6 +433,22 @@ pub trait Levels {
 }
 
 /// Size of a structure.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, Storage};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// // 6 vertex references in the triangles, 6 (vertex, triangle) pairs in VT.
+/// assert_eq!(idx.refs(), 12);
+/// assert!(idx.bytes() >= 4 * idx.refs());
+/// ```
 pub trait Storage {
     /// Topological references stored (the papers' unit; coordinates and auxiliary indexes are
     /// not counted).
@@ -221,6 +459,22 @@ pub trait Storage {
 }
 
 /// Every query of the interface: what the CLI needs of a structure.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, Queries};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// fn summary<Q: Queries>(q: &Q) -> (usize, Vec<u64>) {
+///     (q.n_top_cells(), q.f_vector().unwrap())
+/// }
+/// assert_eq!(summary(&VtIndex::new(&k)), (2, vec![4, 5, 2]));
+/// ```
 pub trait Queries:
     TopCells
     + VertexStar
@@ -273,6 +527,17 @@ pub struct SimplexSet {
 
 impl SimplexSet {
     /// Adds a simplex (sorted on insertion; call [`normalize`](Self::normalize) before comparing).
+    ///
+    /// ```
+    /// use starplex::topo::SimplexSet;
+    /// use starplex::ids::VertexId;
+    /// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+    /// let mut s = SimplexSet::default();
+    /// s.insert(&v(&[3, 1]));
+    /// assert_eq!(s.level(1), &v(&[1, 3])[..]); // stored sorted
+    /// s.insert(&[]); // the empty simplex is ignored
+    /// assert_eq!(s.len(), 1);
+    /// ```
     pub fn insert(&mut self, s: &[VertexId]) {
         if s.is_empty() {
             return;
@@ -286,6 +551,18 @@ impl SimplexSet {
         self.levels[p][start..].sort_unstable();
     }
     /// Sorts and deduplicates every level, drops trailing empty levels.
+    ///
+    /// ```
+    /// use starplex::topo::SimplexSet;
+    /// use starplex::ids::VertexId;
+    /// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+    /// let mut s = SimplexSet::default();
+    /// s.insert(&v(&[2, 3]));
+    /// s.insert(&v(&[1, 2]));
+    /// s.insert(&v(&[3, 2]));
+    /// s.normalize();
+    /// assert_eq!(s.level(1), &v(&[1, 2, 2, 3])[..]);
+    /// ```
     pub fn normalize(&mut self) {
         for (p, l) in self.levels.iter_mut().enumerate() {
             sort_flat(l, p + 1);
@@ -295,10 +572,31 @@ impl SimplexSet {
         }
     }
     /// The flat list of p-simplices.
+    ///
+    /// ```
+    /// use starplex::topo::SimplexSet;
+    /// use starplex::ids::VertexId;
+    /// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+    /// let mut s = SimplexSet::default();
+    /// s.insert(&v(&[0, 1, 2]));
+    /// assert_eq!(s.level(2), &v(&[0, 1, 2])[..]);
+    /// assert!(s.level(1).is_empty());
+    /// assert!(s.level(7).is_empty());
+    /// ```
     pub fn level(&self, p: usize) -> &[VertexId] {
         self.levels.get(p).map_or(&[], |l| l.as_slice())
     }
     /// Number of simplices.
+    ///
+    /// ```
+    /// use starplex::topo::SimplexSet;
+    /// use starplex::ids::VertexId;
+    /// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+    /// let mut s = SimplexSet::default();
+    /// s.insert(&v(&[0, 1, 2]));
+    /// s.insert(&v(&[4]));
+    /// assert_eq!(s.len(), 2);
+    /// ```
     pub fn len(&self) -> usize {
         self.levels
             .iter()
@@ -307,10 +605,30 @@ impl SimplexSet {
             .sum()
     }
     /// True when empty.
+    ///
+    /// ```
+    /// use starplex::topo::SimplexSet;
+    /// use starplex::ids::VertexId;
+    /// let mut s = SimplexSet::default();
+    /// assert!(s.is_empty());
+    /// s.insert(&[VertexId(4)]);
+    /// assert!(!s.is_empty());
+    /// ```
     pub fn is_empty(&self) -> bool {
         self.levels.iter().all(|l| l.is_empty())
     }
     /// Number of simplices per dimension.
+    ///
+    /// ```
+    /// use starplex::topo::SimplexSet;
+    /// use starplex::ids::VertexId;
+    /// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+    /// let mut s = SimplexSet::default();
+    /// for t in [&[0, 1][..], &[1, 2], &[0, 1, 2]] {
+    ///     s.insert(&v(t));
+    /// }
+    /// assert_eq!(s.f_vector(), vec![0, 2, 1]);
+    /// ```
     pub fn f_vector(&self) -> Vec<u64> {
         self.levels
             .iter()
@@ -319,6 +637,19 @@ impl SimplexSet {
             .collect()
     }
     /// Iterates over the simplices, by dimension then lexicographically.
+    ///
+    /// ```
+    /// use starplex::topo::SimplexSet;
+    /// use starplex::ids::VertexId;
+    /// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+    /// let mut s = SimplexSet::default();
+    /// s.insert(&v(&[1, 2]));
+    /// s.insert(&v(&[5]));
+    /// s.insert(&v(&[0, 1]));
+    /// s.normalize();
+    /// let all: Vec<Vec<u32>> = s.iter().map(|t| t.iter().map(|x| x.0).collect()).collect();
+    /// assert_eq!(all, [vec![5], vec![0, 1], vec![1, 2]]);
+    /// ```
     pub fn iter(&self) -> impl Iterator<Item = &[VertexId]> + '_ {
         self.levels
             .iter()
@@ -326,6 +657,19 @@ impl SimplexSet {
             .flat_map(|(p, l)| l.chunks_exact(p + 1))
     }
     /// Whether the (sorted) simplex is in the set (the set must be normalized).
+    ///
+    /// ```
+    /// use starplex::topo::SimplexSet;
+    /// use starplex::ids::VertexId;
+    /// # let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+    /// let mut s = SimplexSet::default();
+    /// s.insert(&v(&[0, 1]));
+    /// s.insert(&v(&[1, 2]));
+    /// s.normalize();
+    /// assert!(s.contains(&v(&[1, 2])));
+    /// assert!(!s.contains(&v(&[0, 2])));
+    /// assert!(!s.contains(&[]));
+    /// ```
     pub fn contains(&self, s: &[VertexId]) -> bool {
         if s.is_empty() {
             return false;

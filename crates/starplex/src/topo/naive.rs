@@ -19,6 +19,21 @@ use crate::csr::Csr;
 use crate::ids::{CellId, VertexId};
 
 /// An indexed complex with its vertex→top-cells relation.
+///
+/// ```
+/// use starplex::topo::naive::VtIndex;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// assert!(std::ptr::eq(idx.complex, &k));
+/// assert_eq!(idx.vt.row(2), &[0, 1]); // vertex 2 is in both triangles
+/// ```
 pub struct VtIndex<'a> {
     /// The complex.
     pub complex: &'a IndexedComplex,
@@ -28,6 +43,21 @@ pub struct VtIndex<'a> {
 
 impl<'a> VtIndex<'a> {
     /// Builds the relation (one pass over the cells).
+    ///
+    /// ```
+    /// use starplex::topo::{naive::VtIndex, Counts};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+    /// let idx = VtIndex::new(&k);
+    /// assert_eq!(idx.vt, k.vertex_cells());
+    /// assert_eq!(idx.f_vector().unwrap(), vec![4, 5, 2]);
+    /// ```
     pub fn new(complex: &'a IndexedComplex) -> Self {
         VtIndex {
             complex,
@@ -94,6 +124,17 @@ crate::impl_relations_from_tops!(VtIndex<'_>);
 
 /// Calls `f` with every vertex joined to `v` by an edge of the cell (`vertices` in the kind's
 /// order; `v` must be one of them).
+///
+/// ```
+/// use starplex::topo::naive::edge_neighbours;
+/// use starplex::cell::CellKind;
+/// let mut n = Vec::new();
+/// edge_neighbours(CellKind::Quad, &[10, 11, 12, 13], 10, |w| n.push(w));
+/// assert_eq!(n, [11, 13]); // 12 is across the diagonal
+/// n.clear();
+/// edge_neighbours(CellKind::Simplex(2), &[10, 11, 12], 10, |w| n.push(w));
+/// assert_eq!(n, [11, 12]);
+/// ```
 pub fn edge_neighbours(kind: CellKind, vertices: &[u32], v: u32, mut f: impl FnMut(u32)) {
     if kind.is_simplex() {
         vertices.iter().filter(|&&w| w != v).for_each(|&w| f(w));
