@@ -468,6 +468,26 @@ macro_rules! impl_explicit_common {
 pub(crate) use impl_explicit_common;
 
 /// The incidence graph. See the [module docs](self).
+///
+/// ```
+/// use starplex::tds::ig::IncidenceGraph;
+/// use starplex::topo::{Boundary, Storage};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+/// // Boundary and co-boundary references: 2 * (2 * 5 edges + 3 * 2 triangles).
+/// assert_eq!(ig.refs(), 32);
+/// let mut out = Vec::new();
+/// ig.boundary(&[VertexId(1), VertexId(3)], 0, &mut out).unwrap();
+/// assert_eq!(out, [VertexId(1), VertexId(3)]);
+/// ```
 #[derive(Clone, Debug)]
 pub struct IncidenceGraph {
     x: Explicit,
@@ -477,6 +497,21 @@ pub struct IncidenceGraph {
 
 impl IncidenceGraph {
     /// Builds every simplex with its boundary and co-boundary.
+    ///
+    /// ```
+    /// use starplex::tds::{ig::IncidenceGraph, simplex_tree::BuildError};
+    /// use starplex::topo::Counts;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the tetrahedron 0-1-2-3
+    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// assert_eq!(ig.f_vector().unwrap(), vec![4, 6, 4, 1]);
+    /// assert!(matches!(IncidenceGraph::new(&k, 10), Err(BuildError::TooLarge { .. })));
+    /// ```
     ///
     /// # Errors
     /// A CP cell; more than `limit` simplices (refused before allocating them).
@@ -488,6 +523,21 @@ impl IncidenceGraph {
 
     /// Bytes of the auxiliary index (sorted vertex tuples, top-cell map), not counted in
     /// [`Storage::bytes`].
+    ///
+    /// ```
+    /// use starplex::tds::ig::IncidenceGraph;
+    /// use starplex::topo::Storage;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the tetrahedron 0-1-2-3
+    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// assert!(ig.aux_bytes() > 0);
+    /// assert!(ig.bytes() >= 4 * ig.refs()); // aux_bytes is not part of bytes
+    /// ```
     pub fn aux_bytes(&self) -> u64 {
         self.x.aux_bytes()
     }

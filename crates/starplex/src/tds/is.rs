@@ -37,6 +37,23 @@ use crate::topo::{
 };
 
 /// The IS data structure. See the [module docs](self).
+///
+/// ```
+/// use starplex::tds::is::Is;
+/// use starplex::topo::{Counts, Star};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let is = Is::new(&k, 1000).unwrap();
+/// assert_eq!(is.f_vector().unwrap(), vec![4, 5, 2]);
+/// assert_eq!(is.star(&[VertexId(1)]).unwrap().f_vector(), vec![1, 3, 2]);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Is {
     x: Explicit,
@@ -46,6 +63,20 @@ pub struct Is {
 
 impl Is {
     /// Builds IS from an indexed simplicial complex (spec §1.2).
+    ///
+    /// ```
+    /// use starplex::tds::{is::Is, simplex_tree::BuildError};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+    /// assert!(Is::new(&k, 1000).is_ok());
+    /// assert!(matches!(Is::new(&k, 5), Err(BuildError::TooLarge { limit: 5, .. })));
+    /// ```
     ///
     /// # Errors
     /// A CP cell; more than `limit` simplices (refused before allocating them).
@@ -94,11 +125,43 @@ impl Is {
 
     /// Bytes of the auxiliary index (sorted vertex tuples, top-cell map), not counted in
     /// [`Storage::bytes`].
+    ///
+    /// ```
+    /// use starplex::tds::is::Is;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+    /// let is = Is::new(&k, 1000).unwrap();
+    /// // At least the sorted vertex tuples of the 5 edges and 2 triangles.
+    /// assert!(is.aux_bytes() >= 4 * (5 * 2 + 2 * 3));
+    /// ```
     pub fn aux_bytes(&self) -> u64 {
         self.x.aux_bytes()
     }
 
     /// c(σ): the number of connected components of the link of `s` (0 for a top).
+    ///
+    /// ```
+    /// use starplex::tds::is::Is;
+    /// use starplex::ids::VertexId;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// // A bow tie: the triangles 0-1-2 and 0-3-4 share only vertex 0.
+    /// let mut b = ComplexBuilder::new(1).unwrap();
+    /// for x in 0..5 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// b.push_cell(CellKind::Simplex(2), &[0, 3, 4]).unwrap();
+    /// let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let is = Is::new(&k, 1000).unwrap();
+    /// assert_eq!(is.n_clusters(&[VertexId(0)]).unwrap(), 2); // two link components
+    /// assert_eq!(is.n_clusters(&[VertexId(1)]).unwrap(), 1);
+    /// assert_eq!(is.n_clusters(&[VertexId(0), VertexId(1), VertexId(2)]).unwrap(), 0); // a top
+    /// ```
     ///
     /// # Errors
     /// `s` not in the complex.
@@ -109,6 +172,27 @@ impl Is {
     }
 
     /// The stored partial co-boundary R*_{p,p+1}(s) as sorted tuples (flat).
+    ///
+    /// ```
+    /// use starplex::tds::is::Is;
+    /// use starplex::topo::Coboundary;
+    /// use starplex::ids::VertexId;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+    /// let is = Is::new(&k, 1000).unwrap();
+    /// let mut part = Vec::new();
+    /// is.partial_coboundary(&[VertexId(1)], &mut part).unwrap();
+    /// assert_eq!(part.len() / 2, 1); // the link of vertex 1 is connected: one edge kept
+    /// let mut full = Vec::new();
+    /// is.coboundary(&[VertexId(1)], 1, &mut full).unwrap();
+    /// assert_eq!(full.len() / 2, 3);
+    /// ```
     ///
     /// # Errors
     /// `s` not in the complex.

@@ -42,6 +42,21 @@ use crate::topo::{
 };
 
 /// Options of [`SimplexTree::new`].
+///
+/// ```
+/// use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions, BuildError};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(1).unwrap();
+/// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the tetrahedron 0-1-2-3
+/// let opts = SimplexTreeOptions { max_simplices: 10, ..Default::default() };
+/// assert_eq!(SimplexTree::new(&k, &opts).unwrap_err(), BuildError::TooLarge { estimate: 19, limit: 10 });
+/// let opts = SimplexTreeOptions { label_lists: true, ..Default::default() };
+/// assert!(SimplexTree::new(&k, &opts).unwrap().has_label_lists());
+/// ```
 #[derive(Clone, Debug)]
 pub struct SimplexTreeOptions {
     /// Keep, per label, the list of nodes carrying it (output-sensitive stars and co-faces).
@@ -60,6 +75,18 @@ impl Default for SimplexTreeOptions {
 }
 
 /// Why a simplex tree could not be built.
+///
+/// ```
+/// use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions, BuildError};
+/// use starplex::cell::CellKind;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let err = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap_err();
+/// assert_eq!(err, BuildError::NotSimplicial(0, "quad".into()));
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum BuildError {
     /// A top cell that is not a simplex.
@@ -76,6 +103,20 @@ pub enum BuildError {
 }
 
 /// Upper bound of the number of simplices: vertices plus every face of every top.
+///
+/// ```
+/// use starplex::tds::simplex_tree::simplex_estimate;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// // 4 vertices + 7 faces (of any dimension) per triangle; shared faces are counted twice.
+/// assert_eq!(simplex_estimate(&k).unwrap(), 4 + 2 * 7);
+/// ```
 ///
 /// # Errors
 /// A CP cell.
@@ -285,6 +326,25 @@ pub(crate) fn child_starts(parent: &[u32], n_parents: usize) -> Vec<u32> {
 }
 
 /// The simplex tree. See the [module docs](self).
+///
+/// ```
+/// use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions};
+/// use starplex::topo::{Coboundary, Counts};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let st = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap();
+/// assert_eq!(st.f_vector().unwrap(), vec![4, 5, 2]);
+/// let mut tris = Vec::new();
+/// st.coboundary(&[VertexId(2), VertexId(1)], 2, &mut tris).unwrap();
+/// assert_eq!(tris.len() / 3, 2);
+/// ```
 #[derive(Clone, Debug)]
 pub struct SimplexTree {
     n_vertices: u32,
@@ -308,6 +368,19 @@ pub struct SimplexTree {
 
 impl SimplexTree {
     /// Builds the tree of every simplex of `k`.
+    ///
+    /// ```
+    /// use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the tetrahedron 0-1-2-3
+    /// let st = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap();
+    /// assert_eq!(st.n_nodes(), 15); // 4 + 6 + 4 + 1
+    /// ```
     ///
     /// # Errors
     /// A CP cell; more simplices than `opts.max_simplices` (refused before allocating).
@@ -378,11 +451,41 @@ impl SimplexTree {
     }
 
     /// Number of nodes (simplices, isolated vertices included).
+    ///
+    /// ```
+    /// use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+    /// let st = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap();
+    /// assert_eq!(st.n_nodes(), 4 + 5 + 2);
+    /// ```
     pub fn n_nodes(&self) -> usize {
         *self.level_offset.last().unwrap_or(&0) as usize
     }
 
     /// Whether the label lists are kept.
+    ///
+    /// ```
+    /// use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+    /// let plain = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap();
+    /// assert!(!plain.has_label_lists());
+    /// let opts = SimplexTreeOptions { label_lists: true, ..Default::default() };
+    /// assert!(SimplexTree::new(&k, &opts).unwrap().has_label_lists());
+    /// ```
     pub fn has_label_lists(&self) -> bool {
         self.label_nodes.is_some()
     }
