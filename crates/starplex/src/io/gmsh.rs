@@ -114,6 +114,17 @@ fn unsupported_type(t: u64) -> String {
 
 /// Reads a `.msh` file.
 ///
+/// ```
+/// use starplex::io::{gmsh, ReadOptions};
+/// let path = std::env::temp_dir().join(format!("starplex-doc-gmsh-read-{}.msh", std::process::id()));
+/// // gmsh 2.2: two nodes and a line element (type 1, two tags).
+/// std::fs::write(&path, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n\
+///                        $Elements\n1\n1 1 2 0 1 1 2\n$EndElements\n").unwrap();
+/// let r = gmsh::read(&path, &ReadOptions::default()).unwrap();
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!(r.complex.cells().next().unwrap().vertices, &[0, 1]);
+/// ```
+///
 /// # Errors
 /// See [`read_from`].
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
@@ -211,6 +222,13 @@ fn read_element_nodes(
 /// Reads gmsh ascii text from any buffered reader; `path` names it in errors. `opts.build` is
 /// not used: a gmsh file always has its boundary elements and point elements dropped (see the
 /// module docs).
+///
+/// ```
+/// use starplex::io::{gmsh, ReadOptions};
+/// let text = "$MeshFormat\n4.1 1 8\n$EndMeshFormat\n";
+/// let e = gmsh::read_from(text.as_bytes(), "m.msh".as_ref(), &ReadOptions::default()).unwrap_err();
+/// assert!(e.to_string().contains("binary .msh is not supported"), "{e}");
+/// ```
 ///
 /// # Errors
 /// A missing `$MeshFormat`, a binary file ("binary .msh is not supported; re-save as ascii"),
@@ -525,6 +543,21 @@ fn read_elements_22(
 }
 
 /// Writes `k` as gmsh 4.1 ascii.
+///
+/// ```
+/// use starplex::io::{gmsh, IoErrorKind, ReadOptions};
+/// # use starplex::complex::IndexedComplex;
+/// # use starplex::cell::CellKind;
+/// let k = IndexedComplex::from_parts(3, vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0].into(),
+///                                    vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let mut out = Vec::new();
+/// gmsh::write(&mut out, &k).unwrap();
+/// assert!(out.starts_with(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"));
+/// let back = gmsh::read_from(&out[..], "m.msh".as_ref(), &ReadOptions::default()).unwrap();
+/// assert_eq!(back.complex, k);
+/// let k4 = IndexedComplex::from_parts(4, vec![0.0; 4].into(), vec![]).unwrap();
+/// assert!(matches!(gmsh::write(&mut Vec::new(), &k4), Err(IoErrorKind::CannotWrite { .. })));
+/// ```
 ///
 /// # Errors
 /// [`IoErrorKind::CannotWrite`] for an ambient dimension above 3 or simplices of dimension 4 and

@@ -76,6 +76,16 @@ const SKIPPABLE: [(&str, usize, usize); 13] = [
 
 /// Reads a `.mesh` file.
 ///
+/// ```
+/// use starplex::io::{medit, ReadOptions};
+/// let path = std::env::temp_dir().join(format!("starplex-doc-medit-read-{}.mesh", std::process::id()));
+/// std::fs::write(&path, "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n\
+///                        Quadrilaterals\n1\n1 2 3 4 0\nEnd\n").unwrap();
+/// let r = medit::read(&path, &ReadOptions::default()).unwrap();
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!(r.complex.cells().next().unwrap().vertices, &[0, 1, 2, 3]); // 0-based
+/// ```
+///
 /// # Errors
 /// See [`read_from`].
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
@@ -94,6 +104,16 @@ fn count_at(w: &mut Words<'_, impl BufRead>, what: &str) -> Result<usize, IoErro
 }
 
 /// Reads Medit text from any buffered reader; `path` names it in errors.
+///
+/// ```
+/// use starplex::io::{medit, Location, ReadOptions};
+/// let text = "MeshVersionFormatted 2\nDimension 2\nVertices\n2\n0 0 0\n1 0 0\nEdges\n1\n1 3 0\nEnd\n";
+/// let e = medit::read_from(text.as_bytes(), "m.mesh".as_ref(), &ReadOptions::default()).unwrap_err();
+/// assert_eq!(e.location, Some(Location::Line(9))); // vertex 3 of a file with 2
+/// let ok = text.replace("1 3 0", "1 2 0");
+/// let r = medit::read_from(ok.as_bytes(), "m.mesh".as_ref(), &ReadOptions::default()).unwrap();
+/// assert_eq!(r.complex.n_cells(), 1);
+/// ```
 ///
 /// # Errors
 /// A missing `MeshVersionFormatted` header, a `Dimension` other than 2 or 3, malformed or
@@ -250,6 +270,22 @@ pub(crate) fn push_build_notes(notes: &mut Vec<String>, report: &BuildReport) {
 }
 
 /// Writes `k` as Medit `.mesh` (version 2, references 0).
+///
+/// ```
+/// use starplex::io::{medit, IoErrorKind};
+/// # use starplex::complex::IndexedComplex;
+/// # use starplex::cell::CellKind;
+/// let tri = IndexedComplex::from_parts(2, vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0].into(),
+///                                      vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let mut out = Vec::new();
+/// medit::write(&mut out, &tri).unwrap();
+/// let text = String::from_utf8(out).unwrap();
+/// assert!(text.contains("Triangles\n1\n1 2 3 0\n")); // 1-based, reference 0
+/// // Medit has no 4-simplices.
+/// let s4 = IndexedComplex::from_parts(3, vec![0.0; 15].into(),
+///                                     vec![(CellKind::Simplex(4), vec![0, 1, 2, 3, 4].into())]).unwrap();
+/// assert!(matches!(medit::write(&mut Vec::new(), &s4), Err(IoErrorKind::CannotWrite { .. })));
+/// ```
 ///
 /// # Errors
 /// [`IoErrorKind::CannotWrite`] for an ambient dimension other than 2 or 3, vertex cells (0-simplex

@@ -41,6 +41,15 @@ pub mod vtk;
 pub mod words;
 
 /// A file format starplex reads or writes.
+///
+/// ```
+/// use starplex::io::Format;
+/// use std::path::Path;
+/// assert_eq!(Format::from_path(Path::new("bunny.PLY")), Some(Format::Ply));
+/// assert_eq!(Format::from_name("msh22"), Some(Format::Gmsh22));
+/// assert_eq!(Format::Gmsh22.to_string(), "msh22");
+/// assert!(!Format::Stl.can_write());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Format {
     /// `.spx`, the starplex text format (FORMATS.md).
@@ -75,6 +84,13 @@ pub enum Format {
 
 impl Format {
     /// Every format.
+    ///
+    /// ```
+    /// use starplex::io::Format;
+    /// assert_eq!(Format::ALL.len(), 14);
+    /// let writable: Vec<String> = Format::ALL.iter().filter(|f| f.can_write()).map(|f| f.to_string()).collect();
+    /// assert_eq!(writable, ["spx", "spb", "off", "ply", "obj", "mesh", "vtk", "msh", "msh22"]);
+    /// ```
     pub const ALL: [Format; 14] = [
         Format::Spx,
         Format::Binary,
@@ -93,12 +109,29 @@ impl Format {
     ];
 
     /// The format named by a file's extension (case-insensitive).
+    ///
+    /// ```
+    /// use starplex::io::Format;
+    /// use std::path::Path;
+    /// assert_eq!(Format::from_path(Path::new("data/torus.OFF")), Some(Format::Off));
+    /// assert_eq!(Format::from_path(Path::new("cube.msh")), Some(Format::Gmsh));
+    /// assert_eq!(Format::from_path(Path::new("notes.txt")), None);
+    /// assert_eq!(Format::from_path(Path::new("Makefile")), None);
+    /// ```
     pub fn from_path(path: &Path) -> Option<Format> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         Format::from_name(&ext)
     }
 
     /// The format named `name` (an extension or a name such as `gmsh`, `medit`, `binary`).
+    ///
+    /// ```
+    /// use starplex::io::Format;
+    /// assert_eq!(Format::from_name("medit"), Some(Format::Medit));
+    /// assert_eq!(Format::from_name("COFF"), Some(Format::Off));
+    /// assert_eq!(Format::from_name("binary"), Some(Format::Binary));
+    /// assert_eq!(Format::from_name("xyz"), None);
+    /// ```
     pub fn from_name(name: &str) -> Option<Format> {
         Some(match name.to_ascii_lowercase().as_str() {
             "spx" => Format::Spx,
@@ -120,6 +153,15 @@ impl Format {
     }
 
     /// The usual extension.
+    ///
+    /// ```
+    /// use starplex::io::Format;
+    /// assert_eq!(Format::Medit.extension(), "mesh");
+    /// assert_eq!(Format::Gmsh22.extension(), "msh");
+    /// for f in Format::ALL.into_iter().filter(|&f| f != Format::Gmsh22) {
+    ///     assert_eq!(Format::from_name(f.extension()), Some(f));
+    /// }
+    /// ```
     pub fn extension(self) -> &'static str {
         match self {
             Format::Spx => "spx",
@@ -139,6 +181,12 @@ impl Format {
     }
 
     /// Whether starplex can write this format.
+    ///
+    /// ```
+    /// use starplex::io::Format;
+    /// assert!(Format::Vtk.can_write());
+    /// assert!(!Format::Hex.can_write()); // the Stellar reference formats are read only
+    /// ```
     pub fn can_write(self) -> bool {
         !matches!(
             self,
@@ -157,6 +205,13 @@ impl fmt::Display for Format {
 }
 
 /// Where in a file a problem is.
+///
+/// ```
+/// use starplex::io::{spx, Location, ReadOptions};
+/// let text = "SPX 1\n1 2 1\n0\n1\nline 2 0 x\n";
+/// let e = spx::read_from(text.as_bytes(), "m.spx".as_ref(), &ReadOptions::default()).unwrap_err();
+/// assert_eq!(e.location, Some(Location::Line(5)));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Location {
     /// 1-based line number (text formats).
@@ -166,6 +221,18 @@ pub enum Location {
 }
 
 /// What went wrong while reading or writing.
+///
+/// ```
+/// use starplex::io::{self, Format, IoErrorKind, ReadOptions};
+/// use std::path::Path;
+/// let e = io::read(Path::new("mesh.xyz"), &ReadOptions::default()).unwrap_err();
+/// assert!(matches!(e.kind, IoErrorKind::UnknownFormat(_)));
+/// let e = io::read(Path::new("/no/such/dir/mesh.off"), &ReadOptions::default()).unwrap_err();
+/// assert!(matches!(e.kind, IoErrorKind::Os(_)));
+/// # let k = starplex::complex::IndexedComplex::from_parts(1, vec![0.0].into(), vec![]).unwrap();
+/// let e = io::write(Path::new("out.stl"), &k, None).unwrap_err();
+/// assert!(matches!(e.kind, IoErrorKind::CannotWrite { format: Format::Stl, .. }));
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum IoErrorKind {
     /// The operating system refused (missing file, permissions, disk full).
@@ -191,6 +258,19 @@ pub enum IoErrorKind {
 }
 
 /// An error with the file and the place in it.
+///
+/// ```
+/// use starplex::io::{spx, IoErrorKind, Location, ReadOptions};
+/// let text = "SPX 1\n1 2 1\n0\n1\nline 2 0 7\n";
+/// let e = spx::read_from(text.as_bytes(), "m.spx".as_ref(), &ReadOptions::default()).unwrap_err();
+/// assert_eq!(e.path, std::path::Path::new("m.spx"));
+/// assert_eq!(e.location, Some(Location::Line(5)));
+/// assert!(matches!(e.kind, IoErrorKind::Parse(_)));
+/// assert_eq!(
+///     e.to_string(),
+///     "m.spx:5: cell 0: vertex index 7 is out of range: the file has 2 vertices, numbered from 0"
+/// );
+/// ```
 #[derive(Debug)]
 pub struct IoError {
     /// The file.
@@ -203,6 +283,14 @@ pub struct IoError {
 
 impl IoError {
     /// A parse error at `location`.
+    ///
+    /// ```
+    /// use starplex::io::{IoError, IoErrorKind, Location};
+    /// use std::path::Path;
+    /// let e = IoError::parse(Path::new("m.off"), Some(Location::Line(3)), "expected 3 coordinates");
+    /// assert!(matches!(e.kind, IoErrorKind::Parse(_)));
+    /// assert_eq!(e.to_string(), "m.off:3: expected 3 coordinates");
+    /// ```
     pub fn parse(path: &Path, location: Option<Location>, msg: impl Into<String>) -> IoError {
         IoError {
             path: path.to_path_buf(),
@@ -212,6 +300,16 @@ impl IoError {
     }
 
     /// An error of `kind` with no location.
+    ///
+    /// ```
+    /// use starplex::io::{IoError, IoErrorKind};
+    /// use starplex::complex::ComplexError;
+    /// use std::path::Path;
+    /// let e = IoError::new(Path::new("m.spx"), ComplexError::BadAmbientDim(0));
+    /// assert!(e.location.is_none());
+    /// assert!(matches!(e.kind, IoErrorKind::Complex(ComplexError::BadAmbientDim(0))));
+    /// assert_eq!(e.to_string(), "m.spx: ambient dimension 0 is outside 1..=64");
+    /// ```
     pub fn new(path: &Path, kind: impl Into<IoErrorKind>) -> IoError {
         IoError {
             path: path.to_path_buf(),
@@ -221,6 +319,14 @@ impl IoError {
     }
 
     /// Sets the location.
+    ///
+    /// ```
+    /// use starplex::io::{IoError, IoErrorKind, Location};
+    /// use std::path::Path;
+    /// let e = IoError::new(Path::new("m.spb"), IoErrorKind::Parse("truncated array".into()));
+    /// let e = e.at(Location::Byte(128));
+    /// assert_eq!(e.to_string(), "m.spb: byte 128: truncated array");
+    /// ```
     pub fn at(mut self, location: Location) -> IoError {
         self.location = Some(location);
         self
@@ -246,6 +352,18 @@ impl std::error::Error for IoError {
 }
 
 /// How polygon faces (more than 4 corners) of surface formats are read.
+///
+/// ```
+/// use starplex::io::{off, PolygonMode, ReadOptions};
+/// use starplex::cell::CellKind;
+/// let pentagon = "OFF\n5 1 0\n0 0 0\n1 0 0\n2 1 0\n1 2 0\n0 1 0\n5 0 1 2 3 4\n";
+/// let r = off::read_from(pentagon.as_bytes(), "p.off".as_ref(), &ReadOptions::default()).unwrap();
+/// assert_eq!(r.complex.n_cells(), 3); // a fan of triangles
+/// assert!(r.notes[0].starts_with("fan-triangulated 1 polygons"));
+/// let opts = ReadOptions { polygons: PolygonMode::Simplices, ..Default::default() };
+/// let r = off::read_from(pentagon.as_bytes(), "p.off".as_ref(), &opts).unwrap();
+/// assert_eq!(r.complex.cell(starplex::ids::CellId(0)).kind, CellKind::Simplex(4));
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum PolygonMode {
     /// Triangles stay triangles, quads become quad cells, larger polygons are fan-triangulated
@@ -258,6 +376,20 @@ pub enum PolygonMode {
 }
 
 /// Options of [`read`].
+///
+/// ```
+/// use starplex::io::{spx, ReadOptions};
+/// use starplex::complex::BuildOptions;
+/// let text = "SPX 1\n1 2 2\n0\n1\nline 2 0 1\nline 2 1 0\n"; // the same edge twice
+/// assert!(spx::read_from(text.as_bytes(), "m.spx".as_ref(), &ReadOptions::default()).is_err());
+/// let opts = ReadOptions {
+///     build: BuildOptions { drop_duplicates: true, ..Default::default() },
+///     ..Default::default()
+/// };
+/// let r = spx::read_from(text.as_bytes(), "m.spx".as_ref(), &opts).unwrap();
+/// assert_eq!(r.complex.n_cells(), 1);
+/// assert_eq!(r.notes, ["dropped 1 duplicate cells"]);
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct ReadOptions {
     /// Format to use instead of the extension's.
@@ -269,6 +401,18 @@ pub struct ReadOptions {
 }
 
 /// A complex read from a file, with what the reader had to change.
+///
+/// ```
+/// use starplex::io::{self, Format, ReadOptions};
+/// let path = std::env::temp_dir().join(format!("starplex-doc-readresult-{}.txt", std::process::id()));
+/// std::fs::write(&path, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+/// // A `.txt` extension names no format: say which one it is.
+/// let opts = ReadOptions { format: Some(Format::Off), ..Default::default() };
+/// let r = io::read(&path, &opts).unwrap();
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!((r.format, r.complex.n_cells()), (Format::Off, 1));
+/// assert!(r.notes.is_empty());
+/// ```
 #[derive(Clone, Debug)]
 pub struct ReadResult {
     /// The complex.
@@ -281,6 +425,16 @@ pub struct ReadResult {
 }
 
 /// Reads a complex, choosing the reader by `opts.format` or the extension.
+///
+/// ```
+/// use starplex::io::{self, Format, ReadOptions};
+/// let path = std::env::temp_dir().join(format!("starplex-doc-io-read-{}.mesh", std::process::id()));
+/// std::fs::write(&path, "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\nTriangles\n1\n1 2 3 0\nEnd\n").unwrap();
+/// let r = io::read(&path, &ReadOptions::default()).unwrap();
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!(r.format, Format::Medit); // from the extension
+/// assert_eq!((r.complex.ambient_dim(), r.complex.n_cells()), (2, 1));
+/// ```
 ///
 /// # Errors
 /// An [`IoError`] naming the file, the line or byte, and the problem.
@@ -313,6 +467,20 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
 }
 
 /// Writes `complex` in `format` (or the extension's). The file appears only when complete.
+///
+/// ```
+/// use starplex::io::{self, Format, ReadOptions};
+/// # use starplex::complex::IndexedComplex;
+/// # use starplex::cell::CellKind;
+/// let k = IndexedComplex::from_parts(2, vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0].into(),
+///                                    vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let path = std::env::temp_dir().join(format!("starplex-doc-io-write-{}.msh", std::process::id()));
+/// io::write(&path, &k, Some(Format::Gmsh22)).unwrap(); // gmsh 2.2 instead of 4.1
+/// assert!(std::fs::read_to_string(&path).unwrap().starts_with("$MeshFormat\n2.2"));
+/// let back = io::read(&path, &ReadOptions::default()).unwrap().complex;
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!(back.n_cells(), 1);
+/// ```
 ///
 /// # Errors
 /// Unknown or read-only formats, a complex the format cannot hold, operating-system errors.
@@ -351,7 +519,7 @@ pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> R
 ///
 /// # Errors
 /// What `f` returns (its path is replaced by `path`), or the OS error of create/flush/rename.
-pub fn atomic_write(
+pub(crate) fn atomic_write(
     path: &Path,
     f: impl FnOnce(&mut dyn std::io::Write) -> Result<(), IoErrorKind>,
 ) -> Result<(), IoError> {

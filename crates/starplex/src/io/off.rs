@@ -49,6 +49,17 @@ use crate::complex::{check_cell, ComplexBuilder, ComplexError, IndexedComplex, M
 
 /// Reads an OFF file.
 ///
+/// ```
+/// use starplex::io::{off, IoErrorKind, ReadOptions};
+/// let path = std::env::temp_dir().join(format!("starplex-doc-off-read-{}.off", std::process::id()));
+/// std::fs::write(&path, "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n").unwrap();
+/// let r = off::read(&path, &ReadOptions::default()).unwrap();
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!((r.complex.n_vertices(), r.complex.n_cells()), (4, 2));
+/// let e = off::read(&path, &ReadOptions::default()).unwrap_err(); // now missing
+/// assert!(matches!(e.kind, IoErrorKind::Os(_)));
+/// ```
+///
 /// # Errors
 /// See [`read_from`].
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
@@ -131,6 +142,17 @@ fn header_value(
 ///
 /// Nothing is allocated from a declared count: vectors grow with the lines actually read, so a
 /// file that announces 10^12 faces fails at its end instead of exhausting memory.
+///
+/// ```
+/// use starplex::io::{off, Location, ReadOptions};
+/// // 4D points in the Stellar reference's plain OFF: the dimension is read from the first vertex.
+/// let text = "OFF\n3 1 0\n0 0 0 0\n1 0 0 0\n0 1 0 0\n3 0 1 2\n";
+/// let r = off::read_from(text.as_bytes(), "m.off".as_ref(), &ReadOptions::default()).unwrap();
+/// assert_eq!(r.complex.ambient_dim(), 4);
+/// let bad = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n";
+/// let e = off::read_from(bad.as_bytes(), "m.off".as_ref(), &ReadOptions::default()).unwrap_err();
+/// assert_eq!(e.location, Some(Location::Line(6)));
+/// ```
 ///
 /// # Errors
 /// A missing or unknown header keyword, binary OFF, malformed or non-finite numbers, vertex lines

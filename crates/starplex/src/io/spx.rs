@@ -27,6 +27,16 @@ use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
 
 /// Reads a `.spx` file.
 ///
+/// ```
+/// use starplex::io::{spx, ReadOptions};
+/// use starplex::cell::CellKind;
+/// let path = std::env::temp_dir().join(format!("starplex-doc-spx-read-{}.spx", std::process::id()));
+/// std::fs::write(&path, "SPX 1\n# a lone edge\n1 2 1\n0\n1\nline 2 0 1\n").unwrap();
+/// let r = spx::read(&path, &ReadOptions::default()).unwrap();
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!(r.complex.blocks()[0].kind, CellKind::Simplex(1));
+/// ```
+///
 /// # Errors
 /// See [`read_from`].
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
@@ -35,6 +45,17 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
 }
 
 /// Reads `.spx` text from any buffered reader; `path` names it in errors.
+///
+/// ```
+/// use starplex::io::{spx, ReadOptions};
+/// use starplex::cell::CellKind;
+/// // A 4-simplex in 4D (type `simplex`, 5 vertices) and an unknown type.
+/// let text = "SPX 1\n4 5 1\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\nsimplex 5 0 1 2 3 4\n";
+/// let r = spx::read_from(text.as_bytes(), "m.spx".as_ref(), &ReadOptions::default()).unwrap();
+/// assert_eq!(r.complex.blocks()[0].kind, CellKind::Simplex(4));
+/// let bad = text.replace("simplex 5", "cube 5");
+/// assert!(spx::read_from(bad.as_bytes(), "m.spx".as_ref(), &ReadOptions::default()).is_err());
+/// ```
 ///
 /// # Errors
 /// A missing header, malformed or non-finite numbers, wrong token counts, unknown cell types,
@@ -142,6 +163,19 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
 }
 
 /// Writes `k` as `.spx`.
+///
+/// ```
+/// use starplex::io::spx;
+/// # use starplex::complex::IndexedComplex;
+/// # use starplex::cell::CellKind;
+/// let k = IndexedComplex::from_parts(2, vec![0.0, 0.0, 1.5, 0.0, 0.0, 1.0, 1.5, 1.0].into(),
+///                                    vec![(CellKind::Quad, vec![0, 1, 3, 2].into())]).unwrap();
+/// let mut out = Vec::new();
+/// spx::write(&mut out, &k).unwrap();
+/// let text = String::from_utf8(out).unwrap();
+/// let lines: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).collect();
+/// assert_eq!(lines, ["SPX 1", "2 4 1", "0 0", "1.5 0", "0 1", "1.5 1", "quad 4 0 1 3 2"]);
+/// ```
 ///
 /// # Errors
 /// OS errors of the writer.

@@ -42,10 +42,33 @@ use crate::complex::{check_cell, ComplexBuilder, IndexedComplex, MAX_AMBIENT_DIM
 
 /// The reference's `.hex` corner order in terms of VTK corners: reference corner `j` is VTK
 /// corner `HEX_REF_TO_VTK[j]`.
+///
+/// ```
+/// use starplex::io::stellar_ref::HEX_REF_TO_VTK;
+/// // A cube's corners listed in the reference's order...
+/// let reference = [0, 1, 7, 3, 5, 4, 2, 6];
+/// let mut vtk = [0; 8];
+/// for (j, &v) in reference.iter().enumerate() {
+///     vtk[HEX_REF_TO_VTK[j]] = v;
+/// }
+/// assert_eq!(vtk, [0, 1, 2, 3, 4, 5, 6, 7]); // ...are VTK's bottom 0-1-2-3, top 4-5-6-7
+/// ```
 pub const HEX_REF_TO_VTK: [usize; 8] = [0, 1, 7, 3, 5, 4, 2, 6];
 
 /// Reads a file of the reference format `format` (one of [`Format::Tri`], [`Format::Ts`],
 /// [`Format::Sierp`], [`Format::Hex`]).
+///
+/// ```
+/// use starplex::io::{stellar_ref, Format, ReadOptions};
+/// use starplex::cell::CellKind;
+/// let path = std::env::temp_dir().join(format!("starplex-doc-ts-read-{}.ts", std::process::id()));
+/// // .ts: "nV nT", vertices with a field value, 0-based tetrahedra.
+/// std::fs::write(&path, "4 1\n0 0 0 9.5\n1 0 0 9.5\n0 1 0 9.5\n0 0 1 9.5\n0 1 2 3\n").unwrap();
+/// let r = stellar_ref::read(&path, Format::Ts, &ReadOptions::default()).unwrap();
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!(r.complex.blocks()[0].kind, CellKind::Simplex(3));
+/// assert_eq!(r.complex.ambient_dim(), 3); // the field value is not a coordinate
+/// ```
 ///
 /// # Errors
 /// See [`read_from`].
@@ -60,6 +83,18 @@ pub fn read(path: &Path, format: Format, opts: &ReadOptions) -> Result<ReadResul
 }
 
 /// Reads reference-format text from any buffered reader; `path` names it in errors.
+///
+/// ```
+/// use starplex::io::{stellar_ref, Format, ReadOptions};
+/// use starplex::cell::CellKind;
+/// // .sierp: "dim nV nT", then cells "k v_0 .. v_dim" whose first value is ignored.
+/// let text = "1 3 2\n0 0\n1 0\n2 0\n99 0 1\n99 1 2\n";
+/// let r = stellar_ref::read_from(text.as_bytes(), "m.sierp".as_ref(), Format::Sierp,
+///                                &ReadOptions::default()).unwrap();
+/// assert_eq!((r.complex.n_cells(), r.complex.blocks()[0].kind), (2, CellKind::Simplex(1)));
+/// let e = stellar_ref::read_from(text.as_bytes(), "m.off".as_ref(), Format::Off, &ReadOptions::default());
+/// assert!(e.is_err()); // not one of the four reference formats
+/// ```
 ///
 /// # Errors
 /// A format that is not one of the four, missing or malformed counts, malformed or non-finite

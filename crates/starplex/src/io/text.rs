@@ -23,6 +23,17 @@ use std::path::Path;
 use super::{IoError, Location};
 
 /// A reader of lines with numbers, skipping blank lines and comments on request.
+///
+/// ```
+/// use starplex::io::text::LineReader;
+/// let data = b"3 # three\n\n1 2 3\n";
+/// let mut r = LineReader::new(&data[..], "mem.txt".as_ref(), Some(b'#'));
+/// let n = r.next_content_line().unwrap().unwrap().tokens().u64("a count").unwrap();
+/// assert_eq!(n, 3);
+/// let line = r.next_content_line().unwrap().unwrap();
+/// assert_eq!((line.no, line.bytes), (3, &b"1 2 3"[..])); // the blank line 2 is skipped
+/// assert!(r.next_content_line().unwrap().is_none());
+/// ```
 pub struct LineReader<'p, R: BufRead> {
     r: R,
     buf: Vec<u8>,
@@ -33,6 +44,15 @@ pub struct LineReader<'p, R: BufRead> {
 }
 
 /// One line of a file with its context.
+///
+/// ```
+/// use starplex::io::text::LineReader;
+/// let mut r = LineReader::new(&b"a\nb c\n"[..], "mem.txt".as_ref(), None);
+/// r.next_line().unwrap();
+/// let line = r.next_line().unwrap().unwrap();
+/// assert_eq!((line.bytes, line.no), (&b"b c"[..], 2));
+/// assert_eq!(line.path, std::path::Path::new("mem.txt"));
+/// ```
 #[derive(Clone, Copy)]
 pub struct Line<'a> {
     /// The line's bytes without the line terminator (and without a comment when stripped).
@@ -44,6 +64,17 @@ pub struct Line<'a> {
 }
 
 /// Whitespace-separated tokens of a line.
+///
+/// ```
+/// use starplex::io::text::LineReader;
+/// let mut r = LineReader::new(&b"tri 3  0 1\t2\n"[..], "mem.txt".as_ref(), None);
+/// let line = r.next_line().unwrap().unwrap();
+/// let mut t = line.tokens();
+/// assert_eq!(t.word("a type").unwrap(), b"tri");
+/// assert_eq!(t.count_rest(), 4);
+/// let v: Vec<u64> = (0..4).map(|_| t.u64("a value").unwrap()).collect();
+/// assert_eq!(v, [3, 0, 1, 2]);
+/// ```
 pub struct Tokens<'a> {
     s: &'a [u8],
     pos: usize,
@@ -58,6 +89,13 @@ fn is_space(b: u8) -> bool {
 
 impl<'p, R: BufRead> LineReader<'p, R> {
     /// Wraps `r`; `comment` is the byte that starts a comment (`#` for most formats).
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let r = LineReader::new(std::io::Cursor::new("x\n"), "in.txt".as_ref(), Some(b'%'));
+    /// assert_eq!(r.line_no(), 0);
+    /// assert_eq!(r.path(), std::path::Path::new("in.txt"));
+    /// ```
     pub fn new(r: R, path: &'p Path, comment: Option<u8>) -> Self {
         LineReader {
             r,
@@ -70,21 +108,50 @@ impl<'p, R: BufRead> LineReader<'p, R> {
     }
 
     /// The number of the last line read (0 before the first).
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"# header\n\nvalue\n"[..], "mem.txt".as_ref(), Some(b'#'));
+    /// r.next_content_line().unwrap();
+    /// assert_eq!(r.line_no(), 3); // comment and blank lines are counted
+    /// ```
     pub fn line_no(&self) -> u64 {
         self.no
     }
 
     /// Bytes consumed so far.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"ab\r\ncd\n"[..], "mem.txt".as_ref(), None);
+    /// r.next_line().unwrap();
+    /// assert_eq!(r.offset(), 4); // "ab\r\n"
+    /// ```
     pub fn offset(&self) -> u64 {
         self.offset
     }
 
     /// The file path.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// use std::path::Path;
+    /// let r = LineReader::new(&b""[..], Path::new("dir/mesh.off"), None);
+    /// assert_eq!(r.path(), Path::new("dir/mesh.off"));
+    /// ```
     pub fn path(&self) -> &'p Path {
         self.path
     }
 
     /// The next raw line (terminator and trailing `\r` removed), or `None` at the end.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"a # b\r\n\n"[..], "mem.txt".as_ref(), Some(b'#'));
+    /// assert_eq!(r.next_line().unwrap().unwrap().bytes, b"a # b"); // comments are kept
+    /// assert_eq!(r.next_line().unwrap().unwrap().bytes, b"");      // blank lines too
+    /// assert!(r.next_line().unwrap().is_none());
+    /// ```
     ///
     /// # Errors
     /// OS errors, or a line longer than 64 MiB (binary garbage).
@@ -112,6 +179,14 @@ impl<'p, R: BufRead> LineReader<'p, R> {
     }
 
     /// The next line with content: comments stripped, blank lines skipped.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"  # only a comment\n\t7 8  # tail\n"[..], "mem.txt".as_ref(), Some(b'#'));
+    /// let line = r.next_content_line().unwrap().unwrap();
+    /// assert_eq!((line.no, line.bytes), (2, &b"7 8"[..])); // trimmed, comment removed
+    /// assert!(r.next_content_line().unwrap().is_none());
+    /// ```
     ///
     /// # Errors
     /// As [`LineReader::next_line`].
@@ -152,6 +227,17 @@ impl<'p, R: BufRead> LineReader<'p, R> {
 
     /// The next content line, or an error saying the file ended while `what` was expected.
     ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"1\n"[..], "mem.txt".as_ref(), None);
+    /// assert_eq!(r.expect_line("the count").unwrap().bytes, b"1");
+    /// let e = r.expect_line("the vertices").err().unwrap();
+    /// assert_eq!(
+    ///     e.to_string(),
+    ///     "mem.txt:2: unexpected end of file: expected the vertices (the file is truncated or a count is wrong)"
+    /// );
+    /// ```
+    ///
     /// # Errors
     /// End of file, OS errors.
     pub fn expect_line(&mut self, what: impl std::fmt::Display) -> Result<Line<'_>, IoError> {
@@ -168,6 +254,14 @@ impl<'p, R: BufRead> LineReader<'p, R> {
     }
 
     /// An error at the current line.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"a\nb\n"[..], "mem.txt".as_ref(), None);
+    /// r.next_line().unwrap();
+    /// r.next_line().unwrap();
+    /// assert_eq!(r.err("too many lines").to_string(), "mem.txt:2: too many lines");
+    /// ```
     pub fn err(&self, msg: impl Into<String>) -> IoError {
         IoError::parse(self.path, Some(Location::Line(self.no.max(1))), msg)
     }
@@ -214,6 +308,15 @@ fn read_line_limited<R: BufRead>(
 
 impl<'a> Line<'a> {
     /// The line's tokens.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"4 5\n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// let mut t = line.tokens();
+    /// assert_eq!((t.u64("n").unwrap(), t.u64("m").unwrap()), (4, 5));
+    /// assert!(t.end().is_ok());
+    /// ```
     pub fn tokens(&self) -> Tokens<'a> {
         Tokens {
             s: self.bytes,
@@ -224,11 +327,26 @@ impl<'a> Line<'a> {
     }
 
     /// An error at this line.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"x\nSPX 9\n"[..], "mem.spx".as_ref(), None);
+    /// r.next_line().unwrap();
+    /// let line = r.next_line().unwrap().unwrap();
+    /// assert_eq!(line.err("unknown version").to_string(), "mem.spx:2: unknown version");
+    /// ```
     pub fn err(&self, msg: impl Into<String>) -> IoError {
         IoError::parse(self.path, Some(Location::Line(self.no)), msg)
     }
 
     /// The line as text (lossy), for messages.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"caf\xc3\xa9 \xff\n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// assert_eq!(line.text(), "café \u{fffd}"); // invalid UTF-8 shown as U+FFFD
+    /// ```
     pub fn text(&self) -> String {
         String::from_utf8_lossy(self.bytes).into_owned()
     }
@@ -236,6 +354,16 @@ impl<'a> Line<'a> {
 
 impl<'a> Tokens<'a> {
     /// The next token, if any.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b" a\tbc  \n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// let mut t = line.tokens();
+    /// assert_eq!(t.next_token(), Some(&b"a"[..]));
+    /// assert_eq!(t.next_token(), Some(&b"bc"[..]));
+    /// assert_eq!(t.next_token(), None);
+    /// ```
     #[inline]
     pub fn next_token(&mut self) -> Option<&'a [u8]> {
         let s = self.s;
@@ -256,6 +384,15 @@ impl<'a> Tokens<'a> {
     }
 
     /// An error at this line.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"\n\nquad 5\n"[..], "mem.txt".as_ref(), None);
+    /// let l = r.next_content_line().unwrap().unwrap(); // line 3
+    /// let mut t = l.tokens();
+    /// t.word("a type").unwrap();
+    /// assert_eq!(t.err("a quad has 4 vertices").to_string(), "mem.txt:3: a quad has 4 vertices");
+    /// ```
     pub fn err(&self, msg: impl Into<String>) -> IoError {
         IoError::parse(self.path, Some(Location::Line(self.no)), msg)
     }
@@ -271,6 +408,16 @@ impl<'a> Tokens<'a> {
 
     /// The next token as a word.
     ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"hex\n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// let mut t = line.tokens();
+    /// assert_eq!(t.word("a cell type").unwrap(), b"hex");
+    /// let e = t.word("a vertex count").unwrap_err();
+    /// assert_eq!(e.to_string(), "mem.txt:1: expected a vertex count, found the end of the line");
+    /// ```
+    ///
     /// # Errors
     /// A missing token.
     pub fn word(&mut self, what: impl std::fmt::Display) -> Result<&'a [u8], IoError> {
@@ -278,6 +425,16 @@ impl<'a> Tokens<'a> {
     }
 
     /// The next token as an unsigned integer.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"12 -3\n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// let mut t = line.tokens();
+    /// assert_eq!(t.u64("n").unwrap(), 12);
+    /// let e = t.u64("m").unwrap_err();
+    /// assert_eq!(e.to_string(), "mem.txt:1: expected m (an unsigned integer), found '-3'");
+    /// ```
     ///
     /// # Errors
     /// A missing or malformed token.
@@ -288,6 +445,15 @@ impl<'a> Tokens<'a> {
     }
 
     /// The next token as a signed integer.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"-3 +4 1.5\n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// let mut t = line.tokens();
+    /// assert_eq!((t.i64("a").unwrap(), t.i64("b").unwrap()), (-3, 4));
+    /// assert!(t.i64("c").is_err());
+    /// ```
     ///
     /// # Errors
     /// A missing or malformed token.
@@ -305,6 +471,18 @@ impl<'a> Tokens<'a> {
     }
 
     /// The next token as a vertex index below `n` (after subtracting `base`), as `u32`.
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"1 3 4\n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// let mut t = line.tokens();
+    /// // 1-based indices of a file with 3 vertices.
+    /// assert_eq!(t.index("vertex", 1, 3).unwrap(), 0);
+    /// assert_eq!(t.index("vertex", 1, 3).unwrap(), 2);
+    /// let e = t.index("vertex", 1, 3).unwrap_err();
+    /// assert_eq!(e.to_string(), "mem.txt:1: vertex 4 is out of range: the file has 3 vertices, numbered from 1");
+    /// ```
     ///
     /// # Errors
     /// A missing or malformed token, or an index out of range.
@@ -327,6 +505,15 @@ impl<'a> Tokens<'a> {
 
     /// The next token as a finite `f64`.
     ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"2.5e-1 inf\n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// let mut t = line.tokens();
+    /// assert_eq!(t.f64("x").unwrap(), 0.25);
+    /// assert_eq!(t.f64("y").unwrap_err().to_string(), "mem.txt:1: y is not finite (inf)");
+    /// ```
+    ///
     /// # Errors
     /// A missing token, a malformed number, NaN or infinity.
     #[inline]
@@ -341,6 +528,16 @@ impl<'a> Tokens<'a> {
 
     /// Succeeds when no token is left.
     ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"1 2\n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// let mut t = line.tokens();
+    /// t.u64("x").unwrap();
+    /// let e = t.end().unwrap_err();
+    /// assert_eq!(e.to_string(), "mem.txt:1: unexpected extra value '2' at the end of the line");
+    /// ```
+    ///
     /// # Errors
     /// Extra tokens.
     pub fn end(&mut self) -> Result<(), IoError> {
@@ -354,6 +551,17 @@ impl<'a> Tokens<'a> {
     }
 
     /// Number of tokens left (consumes nothing).
+    ///
+    /// ```
+    /// use starplex::io::text::LineReader;
+    /// let mut r = LineReader::new(&b"0.5 1 2\n"[..], "mem.txt".as_ref(), None);
+    /// let line = r.next_line().unwrap().unwrap();
+    /// let mut t = line.tokens();
+    /// assert_eq!(t.count_rest(), 3); // e.g. the ambient dimension from the first vertex line
+    /// t.f64("x").unwrap();
+    /// assert_eq!(t.count_rest(), 2);
+    /// assert_eq!(t.count_rest(), 2); // nothing consumed
+    /// ```
     pub fn count_rest(&self) -> usize {
         let mut t = Tokens {
             s: self.s,
@@ -370,6 +578,14 @@ impl<'a> Tokens<'a> {
 }
 
 /// Parses a decimal unsigned integer (no sign, no spaces), `None` on overflow or junk.
+///
+/// ```
+/// use starplex::io::text::parse_u64;
+/// assert_eq!(parse_u64(b"42"), Some(42));
+/// assert_eq!(parse_u64(b"18446744073709551616"), None); // u64::MAX + 1
+/// assert_eq!(parse_u64(b"+1"), None);
+/// assert_eq!(parse_u64(b"1e3"), None);
+/// ```
 #[inline]
 pub fn parse_u64(tok: &[u8]) -> Option<u64> {
     if tok.is_empty() || tok.len() > 20 {
@@ -388,12 +604,29 @@ pub fn parse_u64(tok: &[u8]) -> Option<u64> {
 
 /// Parses a floating-point number (decimal or scientific; `nan`/`inf` parse and are rejected by
 /// the callers that need finite values).
+///
+/// ```
+/// use starplex::io::text::parse_f64;
+/// assert_eq!(parse_f64(b"-1.5e2"), Some(-150.0));
+/// assert_eq!(parse_f64(b"1,5"), None);
+/// assert!(parse_f64(b"nan").unwrap().is_nan());
+/// ```
 #[inline]
 pub fn parse_f64(tok: &[u8]) -> Option<f64> {
     fast_float2::parse(tok).ok()
 }
 
 /// Writes `x` so that it reads back to the same `f64` (shortest round-trip form).
+///
+/// ```
+/// use starplex::io::text::{parse_f64, write_f64};
+/// let mut out = Vec::new();
+/// write_f64(&mut out, 3.0).unwrap();
+/// out.push(b' ');
+/// write_f64(&mut out, 0.1 + 0.2).unwrap();
+/// assert_eq!(out, b"3 0.30000000000000004");
+/// assert_eq!(parse_f64(&out[2..]), Some(0.1 + 0.2)); // reads back exactly
+/// ```
 pub fn write_f64(w: &mut dyn std::io::Write, x: f64) -> std::io::Result<()> {
     if x == x.trunc() && x.abs() < 1e15 {
         write!(w, "{}", x as i64)

@@ -101,6 +101,17 @@ fn vtk_type_name(t: u64) -> &'static str {
 
 /// Reads a `.vtk` file.
 ///
+/// ```
+/// use starplex::io::{vtk, ReadOptions};
+/// let path = std::env::temp_dir().join(format!("starplex-doc-vtk-read-{}.vtk", std::process::id()));
+/// std::fs::write(&path, "# vtk DataFile Version 4.2\nan edge\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+///                        POINTS 2 float\n0 0 0 1 0 0\nCELLS 1 3\n2 0 1\nCELL_TYPES 1\n3\n").unwrap();
+/// let r = vtk::read(&path, &ReadOptions::default()).unwrap();
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!(r.complex.ambient_dim(), 3); // VTK points always have 3 coordinates
+/// assert_eq!(r.complex.n_cells(), 1);
+/// ```
+///
 /// # Errors
 /// See [`read_from`].
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
@@ -264,6 +275,17 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
 }
 
 /// Reads legacy VTK text from any buffered reader; `path` names it in errors.
+///
+/// ```
+/// use starplex::io::{vtk, ReadOptions};
+/// // Cell type 7 (a polygon) is not read.
+/// let text = "# vtk DataFile Version 4.2\np\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+///             POINTS 3 double\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n7\n";
+/// let e = vtk::read_from(text.as_bytes(), "m.vtk".as_ref(), &ReadOptions::default()).unwrap_err();
+/// assert!(e.to_string().starts_with("m.vtk:10:"), "{e}");
+/// let tri = text.replace("CELL_TYPES 1\n7", "CELL_TYPES 1\n5");
+/// assert!(vtk::read_from(tri.as_bytes(), "m.vtk".as_ref(), &ReadOptions::default()).is_ok());
+/// ```
 ///
 /// # Errors
 /// A missing or malformed header, a binary file, a dataset other than `UNSTRUCTURED_GRID`,
@@ -566,6 +588,22 @@ fn read_offsets_layout(
 }
 
 /// Writes `k` as legacy VTK (version 4.2, ascii, classic layout).
+///
+/// ```
+/// use starplex::io::{vtk, IoErrorKind};
+/// # use starplex::complex::IndexedComplex;
+/// # use starplex::cell::CellKind;
+/// // A 2D edge: points are padded to 3 coordinates.
+/// let k = IndexedComplex::from_parts(2, vec![0.0, 0.0, 1.0, 2.0].into(),
+///                                    vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+/// let mut out = Vec::new();
+/// vtk::write(&mut out, &k).unwrap();
+/// let text = String::from_utf8(out).unwrap();
+/// assert!(text.starts_with("# vtk DataFile Version 4.2\n"));
+/// assert!(text.contains("1 2 0\n"));
+/// let k4 = IndexedComplex::from_parts(4, vec![0.0; 4].into(), vec![]).unwrap();
+/// assert!(matches!(vtk::write(&mut Vec::new(), &k4), Err(IoErrorKind::CannotWrite { .. })));
+/// ```
 ///
 /// # Errors
 /// [`IoErrorKind::CannotWrite`] for an ambient dimension above 3 or simplices of dimension 4 and

@@ -26,6 +26,14 @@ use super::text::{parse_f64, parse_u64};
 use super::{IoError, Location};
 
 /// Longest accepted word, in bytes.
+///
+/// ```
+/// use starplex::io::words::{Words, MAX_WORD};
+/// let garbage = vec![b'x'; MAX_WORD + 1];
+/// let mut w = Words::new(&garbage[..], "blob.vtk".as_ref(), None);
+/// let e = w.next_word().unwrap_err();
+/// assert_eq!(e.to_string(), format!("blob.vtk:1: a word longer than {MAX_WORD} bytes (is this a binary file?)"));
+/// ```
 pub const MAX_WORD: usize = 4096;
 
 #[inline]
@@ -34,6 +42,17 @@ fn is_ws(b: u8) -> bool {
 }
 
 /// Whitespace-separated words of a buffered reader, each with its line number.
+///
+/// ```
+/// use starplex::io::words::Words;
+/// // Line structure does not matter: words may be spread over lines in any way.
+/// let mut w = Words::new(&b"Triangles 2\n1 2 3   2\n3 4"[..], "mem.mesh".as_ref(), None);
+/// w.keyword("Triangles").unwrap();
+/// let n = w.u64("the triangle count").unwrap();
+/// let tris: Vec<u32> = (0..3 * n).map(|_| w.index("a vertex", 1, 4).unwrap()).collect();
+/// assert_eq!(tris, [0, 1, 2, 1, 2, 3]);
+/// assert_eq!(w.line(), 3);
+/// ```
 pub struct Words<'p, R: BufRead> {
     r: R,
     path: &'p Path,
@@ -50,6 +69,14 @@ pub struct Words<'p, R: BufRead> {
 impl<'p, R: BufRead> Words<'p, R> {
     /// Wraps `r`; `comment` starts a comment that runs to the end of the line (only at the start
     /// of a word).
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(std::io::Cursor::new("a % note\nb"), "in.txt".as_ref(), Some(b'%'));
+    /// assert_eq!(w.expect("a").unwrap(), b"a");
+    /// assert_eq!(w.expect("b").unwrap(), b"b"); // the comment was skipped
+    /// assert_eq!(w.line(), 2);
+    /// ```
     pub fn new(r: R, path: &'p Path, comment: Option<u8>) -> Self {
         Words {
             r,
@@ -65,11 +92,28 @@ impl<'p, R: BufRead> Words<'p, R> {
     }
 
     /// The file path.
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// use std::path::Path;
+    /// let w = Words::new(&b""[..], Path::new("dir/mesh.msh"), None);
+    /// assert_eq!(w.path(), Path::new("dir/mesh.msh"));
+    /// ```
     pub fn path(&self) -> &'p Path {
         self.path
     }
 
     /// Line of the last word read (the read position's line before the first word).
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"\n\n  a\nb"[..], "mem.txt".as_ref(), None);
+    /// assert_eq!(w.line(), 1);
+    /// w.next_word().unwrap();
+    /// assert_eq!(w.line(), 3);
+    /// w.next_word().unwrap();
+    /// assert_eq!(w.line(), 4);
+    /// ```
     pub fn line(&self) -> u64 {
         if self.word_line == 0 {
             self.line
@@ -79,16 +123,41 @@ impl<'p, R: BufRead> Words<'p, R> {
     }
 
     /// An error at the line of the last word.
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"Vertices\n-1\n"[..], "mem.mesh".as_ref(), None);
+    /// w.expect("a keyword").unwrap();
+    /// w.expect("a count").unwrap();
+    /// assert_eq!(w.err("a negative count").to_string(), "mem.mesh:2: a negative count");
+    /// ```
     pub fn err(&self, msg: impl Into<String>) -> IoError {
         IoError::parse(self.path, Some(Location::Line(self.line())), msg)
     }
 
     /// An error at line `line`.
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let w = Words::new(&b""[..], "mem.vtk".as_ref(), None);
+    /// assert_eq!(w.err_at(7, "bad header").to_string(), "mem.vtk:7: bad header");
+    /// assert_eq!(w.err_at(0, "empty").to_string(), "mem.vtk:1: empty"); // lines start at 1
+    /// ```
     pub fn err_at(&self, line: u64, msg: impl Into<String>) -> IoError {
         IoError::parse(self.path, Some(Location::Line(line.max(1))), msg)
     }
 
     /// Makes the next [`next_word`](Self::next_word) return the last word again.
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"POINT_DATA 4"[..], "mem.vtk".as_ref(), None);
+    /// let first = w.expect("a section").unwrap().to_vec();
+    /// assert_eq!(first, b"POINT_DATA");
+    /// w.unread(); // not ours: leave it for the next reader
+    /// assert_eq!(w.next_word().unwrap(), Some(&b"POINT_DATA"[..]));
+    /// assert_eq!(w.u64("a count").unwrap(), 4);
+    /// ```
     pub fn unread(&mut self) {
         self.pushed_back = true;
     }
@@ -158,6 +227,14 @@ impl<'p, R: BufRead> Words<'p, R> {
 
     /// The next word, or `None` at the end of the input.
     ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"a\tb\r\n"[..], "mem.txt".as_ref(), None);
+    /// assert_eq!(w.next_word().unwrap(), Some(&b"a"[..]));
+    /// assert_eq!(w.next_word().unwrap(), Some(&b"b"[..]));
+    /// assert_eq!(w.next_word().unwrap(), None);
+    /// ```
+    ///
     /// # Errors
     /// OS errors, a word longer than [`MAX_WORD`].
     pub fn next_word(&mut self) -> Result<Option<&[u8]>, IoError> {
@@ -170,6 +247,17 @@ impl<'p, R: BufRead> Words<'p, R> {
 
     /// The next word, or an error saying the file ended while `what` was expected.
     ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"End"[..], "mem.mesh".as_ref(), None);
+    /// assert_eq!(w.expect("'End'").unwrap(), b"End");
+    /// let e = w.expect("more").unwrap_err();
+    /// assert_eq!(
+    ///     e.to_string(),
+    ///     "mem.mesh:1: unexpected end of file: expected more (the file is truncated or a count is wrong)"
+    /// );
+    /// ```
+    ///
     /// # Errors
     /// End of input, OS errors.
     pub fn expect(&mut self, what: &str) -> Result<&[u8], IoError> {
@@ -181,6 +269,12 @@ impl<'p, R: BufRead> Words<'p, R> {
     }
 
     /// The error "unexpected end of file: expected `what`" at the read position.
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let w = Words::new(&b"1\n2\n"[..], "mem.txt".as_ref(), None);
+    /// assert!(w.eof("the cells").to_string().ends_with("expected the cells (the file is truncated or a count is wrong)"));
+    /// ```
     pub fn eof(&self, what: &str) -> IoError {
         self.err_at(
             self.line,
@@ -200,6 +294,14 @@ impl<'p, R: BufRead> Words<'p, R> {
 
     /// The next word as an unsigned integer.
     ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"7 x"[..], "mem.txt".as_ref(), None);
+    /// assert_eq!(w.u64("a count").unwrap(), 7);
+    /// let e = w.u64("a count").unwrap_err();
+    /// assert_eq!(e.to_string(), "mem.txt:1: expected a count (an unsigned integer), found 'x'");
+    /// ```
+    ///
     /// # Errors
     /// End of input, a malformed number.
     #[inline]
@@ -211,6 +313,14 @@ impl<'p, R: BufRead> Words<'p, R> {
     }
 
     /// The next word as a signed integer.
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"-12 +3 4.0"[..], "mem.txt".as_ref(), None);
+    /// assert_eq!(w.i64("a tag").unwrap(), -12);
+    /// assert_eq!(w.i64("a tag").unwrap(), 3);
+    /// assert!(w.i64("a tag").is_err());
+    /// ```
     ///
     /// # Errors
     /// End of input, a malformed number.
@@ -232,6 +342,14 @@ impl<'p, R: BufRead> Words<'p, R> {
 
     /// The next word as a finite `f64`.
     ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"1e-3 -0.5 inf"[..], "mem.txt".as_ref(), None);
+    /// assert_eq!(w.f64("x").unwrap(), 0.001);
+    /// assert_eq!(w.f64("y").unwrap(), -0.5);
+    /// assert_eq!(w.f64("z").unwrap_err().to_string(), "mem.txt:1: z is not finite (inf)");
+    /// ```
+    ///
     /// # Errors
     /// End of input, a malformed number, NaN or infinity.
     #[inline]
@@ -248,6 +366,16 @@ impl<'p, R: BufRead> Words<'p, R> {
 
     /// The next word as an index in `base..base + n`, returned 0-based.
     ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"1 3 0"[..], "mem.mesh".as_ref(), None);
+    /// // Medit indices are 1-based; the file has 3 vertices.
+    /// assert_eq!(w.index("a vertex", 1, 3).unwrap(), 0);
+    /// assert_eq!(w.index("a vertex", 1, 3).unwrap(), 2);
+    /// let e = w.index("a vertex", 1, 3).unwrap_err();
+    /// assert_eq!(e.to_string(), "mem.mesh:1: a vertex 0 is out of range: the file has 3 vertices (1-based)");
+    /// ```
+    ///
     /// # Errors
     /// End of input, a malformed number, an index out of range.
     #[inline]
@@ -263,6 +391,14 @@ impl<'p, R: BufRead> Words<'p, R> {
 
     /// The next word, which must equal `want` (ASCII case-insensitive).
     ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"$nodes $Elements"[..], "mem.msh".as_ref(), None);
+    /// assert!(w.keyword("$Nodes").is_ok()); // case-insensitive
+    /// let e = w.keyword("$EndNodes").unwrap_err();
+    /// assert_eq!(e.to_string(), "mem.msh:1: expected '$EndNodes', found '$Elements'");
+    /// ```
+    ///
     /// # Errors
     /// End of input or another word.
     pub fn keyword(&mut self, want: &str) -> Result<(), IoError> {
@@ -277,6 +413,15 @@ impl<'p, R: BufRead> Words<'p, R> {
 
     /// The rest of the current line (after the last word; the whole next line before any word),
     /// without the terminator, at most [`MAX_WORD`] bytes; the line terminator is consumed.
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"# vtk DataFile Version 4.2\r\nmy title\nASCII"[..], "mem.vtk".as_ref(), None);
+    /// assert_eq!(w.rest_of_line().unwrap(), b"# vtk DataFile Version 4.2");
+    /// assert_eq!(w.rest_of_line().unwrap(), b"my title");
+    /// assert_eq!(w.expect("the encoding").unwrap(), b"ASCII");
+    /// assert_eq!(w.line(), 3);
+    /// ```
     ///
     /// # Errors
     /// OS errors, a line longer than [`MAX_WORD`].
