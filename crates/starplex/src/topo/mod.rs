@@ -76,15 +76,16 @@ pub mod naive;
 /// Default budget of simplices a query may enumerate before refusing with an estimate.
 ///
 /// ```
-/// use starplex::topo::{naive::VtIndex, Counts, QueryError, DEFAULT_BUDGET};
+/// use starplex::topo::{naive::VtIndex, QueryError, Star, DEFAULT_BUDGET};
+/// use starplex::ids::VertexId;
 /// # use starplex::complex::{ComplexBuilder, BuildOptions};
 /// # use starplex::cell::CellKind;
-/// // One 30-simplex: 2^31 - 1 faces, refused before enumerating any.
+/// // One 30-simplex: the star of a vertex has 2^30 simplices, refused before enumerating any.
 /// let mut b = ComplexBuilder::new(1).unwrap();
 /// for x in 0..31 { b.push_vertex(&[x as f64]).unwrap(); }
 /// b.push_cell(CellKind::Simplex(30), &(0..31).collect::<Vec<u32>>()).unwrap();
 /// let k = b.build(&BuildOptions::default()).unwrap().0;
-/// let err = VtIndex::new(&k).f_vector().unwrap_err();
+/// let err = VtIndex::new(&k).star(&[VertexId(0)]).unwrap_err();
 /// assert!(matches!(err, QueryError::TooLarge { budget: DEFAULT_BUDGET, .. }));
 /// ```
 pub const DEFAULT_BUDGET: u128 = 50_000_000;
@@ -131,7 +132,7 @@ pub enum QueryError {
 ///
 /// ```
 /// use starplex::topo::{naive::VtIndex, TopCells};
-/// use starplex::{cell::CellKind, ids::{CellId, VertexId}};
+/// use starplex::ids::{CellId, VertexId};
 /// # use starplex::complex::{ComplexBuilder, BuildOptions};
 /// # use starplex::cell::CellKind;
 /// # let mut b = ComplexBuilder::new(2).unwrap();
@@ -142,7 +143,7 @@ pub enum QueryError {
 /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
 /// let idx = VtIndex::new(&k);
 /// assert_eq!((idx.n_vertices(), idx.n_top_cells()), (4, 2));
-/// assert_eq!(idx.top_cell_kind(CellId(1)), CellKind::Simplex(2));
+/// assert_eq!(idx.top_cell_kind(CellId(1)), starplex::cell::CellKind::Simplex(2));
 /// let mut vs = Vec::new();
 /// idx.top_cell_vertices(CellId(1), &mut vs);
 /// assert_eq!(vs, [VertexId(1), VertexId(3), VertexId(2)]); // input order
