@@ -1,42 +1,4 @@
-//! The CASC complex behind the shared query interface ([`crate::topo`]): [`HasseQueries`] wraps a
-//! [`Hasse`] built from an [`IndexedComplex`] and remembers which node is which top cell, so the
-//! Hasse diagram answers every relation of the Mangrove suite, natively, by walking its up and
-//! down incidences:
-//!
-//! * VT and St_T(σ): a breadth-first walk up from σ, keeping the nodes without cofaces;
-//! * VV: the up list of a vertex is keyed by the vertex added, so it *is* the neighbour list;
-//! * boundary R_{p,q}: down steps from the node; co-boundary R_{p,q} and the star: up steps;
-//! * adjacency R_{p,p}: down to each facet, then up to its other cofaces (Alg. 3 of CASC);
-//! * counts and levels: the per-dimension arrays.
-//!
-//! Like the other structures that store every simplex, it refuses to build (with an estimate)
-//! when the complex has more simplices than a limit, and holds simplices only. Top cells come
-//! back with sorted vertices (the Hasse diagram stores labels sorted, not the input's order).
-//!
-//! ```
-//! use starplex::cell::CellKind;
-//! use starplex::complex::{BuildOptions, ComplexBuilder};
-//! use starplex::hasse::HasseQueries;
-//! use starplex::ids::{CellId, VertexId};
-//! use starplex::topo::{Adjacency, VertexAdjacency, VertexStar};
-//! let mut b = ComplexBuilder::new(2).unwrap();
-//! for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], [5.0, 5.0]] {
-//!     b.push_vertex(&p).unwrap();
-//! }
-//! b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-//! b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-//! let k = b.build(&BuildOptions::default()).unwrap().0;
-//! let h = HasseQueries::new(&k, 1 << 20).unwrap();
-//! let mut vt = Vec::new();
-//! h.vertex_top_cells(VertexId(2), &mut vt);
-//! assert_eq!(vt, vec![CellId(0), CellId(1)]);
-//! let mut vv = Vec::new();
-//! h.vertex_neighbours(VertexId(4), &mut vv); // isolated vertex
-//! assert!(vv.is_empty());
-//! let mut adj = Vec::new();
-//! h.adjacent(&[VertexId(0), VertexId(1), VertexId(2)], &mut adj).unwrap();
-//! assert_eq!(adj, vec![VertexId(1), VertexId(2), VertexId(3)]);
-//! ```
+//! The CASC complex behind the shared query interface: see [`HasseQueries`].
 use super::{Hasse, HasseError, Node};
 use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
@@ -52,8 +14,45 @@ use crate::topo::{
 /// Marks a node that is not a top cell in [`HasseQueries`]'s node → cell table.
 const NOT_TOP: u32 = u32::MAX;
 
-/// A [`Hasse`] complex (no user data) answering the [`crate::topo`] traits. See the
-/// [module docs](self).
+/// The CASC complex behind the shared query interface ([`crate::topo`]): [`HasseQueries`] wraps a
+/// [`Hasse`] built from an [`IndexedComplex`] and remembers which node is which top cell, so the
+/// Hasse diagram answers every relation of the Mangrove suite, natively, by walking its up and
+/// down incidences:
+///
+/// * VT and St_T(σ): a breadth-first walk up from σ, keeping the nodes without cofaces;
+/// * VV: the up list of a vertex is keyed by the vertex added, so it *is* the neighbour list;
+/// * boundary R_{p,q}: down steps from the node; co-boundary R_{p,q} and the star: up steps;
+/// * adjacency R_{p,p}: down to each facet, then up to its other cofaces (Alg. 3 of CASC);
+/// * counts and levels: the per-dimension arrays.
+///
+/// Like the other structures that store every simplex, it refuses to build (with an estimate)
+/// when the complex has more simplices than a limit, and holds simplices only. Top cells come
+/// back with sorted vertices (the Hasse diagram stores labels sorted, not the input's order).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::{BuildOptions, ComplexBuilder};
+/// use starplex::hasse::HasseQueries;
+/// use starplex::ids::{CellId, VertexId};
+/// use starplex::topo::{Adjacency, VertexAdjacency, VertexStar};
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], [5.0, 5.0]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let h = HasseQueries::new(&k, 1 << 20).unwrap();
+/// let mut vt = Vec::new();
+/// h.vertex_top_cells(VertexId(2), &mut vt);
+/// assert_eq!(vt, vec![CellId(0), CellId(1)]);
+/// let mut vv = Vec::new();
+/// h.vertex_neighbours(VertexId(4), &mut vv); // isolated vertex
+/// assert!(vv.is_empty());
+/// let mut adj = Vec::new();
+/// h.adjacent(&[VertexId(0), VertexId(1), VertexId(2)], &mut adj).unwrap();
+/// assert_eq!(adj, vec![VertexId(1), VertexId(2), VertexId(3)]);
+/// ```
 #[derive(Clone, Debug)]
 pub struct HasseQueries {
     h: Hasse,

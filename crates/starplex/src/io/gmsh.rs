@@ -20,7 +20,7 @@
 //! other one, VTK's faces outward), so prisms are read as `[0, 2, 1, 3, 5, 4]` of the gmsh nodes
 //! and written back the same way, as gmsh itself does when it exports VTK.
 //!
-//! Write: [`write`] writes version 4.1 ascii, one geometric entity per dimension in `$Entities`,
+//! Write: [`write()`] writes version 4.1 ascii, one geometric entity per dimension in `$Entities`,
 //! one node block, one element block per run of one kind; [`write_22`] writes version 2.2 ascii
 //! (format name `msh22` on the command line: `starplex convert in.spx out.msh --to msh22`).
 //! Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are written as
@@ -702,7 +702,7 @@ fn push_nodes(line: &mut String, kind: CellKind, c: &[u32]) {
 /// Writes `k` as gmsh 2.2 ascii (the version older tools and meshio's default read): one
 /// `$Nodes` entry per vertex, one `$Elements` entry per cell with two tags (physical group 0,
 /// elementary entity 1 + the cell's dimension). Same node numbering, prism order and padding as
-/// [`write`].
+/// [`write()`].
 ///
 /// ```
 /// use starplex::cell::CellKind;
@@ -722,7 +722,7 @@ fn push_nodes(line: &mut String, kind: CellKind, c: &[u32]) {
 /// ```
 ///
 /// # Errors
-/// As [`write`].
+/// As [`write()`].
 pub fn write_22(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     check_writable(k, Format::Gmsh22)?;
     let d = k.ambient_dim();

@@ -186,7 +186,7 @@ pub trait VertexStar {
 
     /// A fast membership answer: `Some(true)` when some top cell incident to `s[0]` contains
     /// the sorted simplex `s` (at least two vertices), `Some(false)` when none does, `None`
-    /// when the structure has no faster way than scanning VT(s[0]) (the default).
+    /// when the structure has no faster way than scanning VT(`s[0]`) (the default).
     fn star_has_top_containing(&self, s: &[VertexId]) -> Option<bool> {
         let _ = s;
         None
