@@ -34,6 +34,7 @@ pub mod relations;
 mod save;
 pub mod sre;
 pub mod stats;
+mod tetlink;
 pub mod validate;
 pub mod visit;
 
