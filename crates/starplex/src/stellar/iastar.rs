@@ -397,26 +397,59 @@ impl StellarTree {
         &self,
         view: &LeafView<'_>,
         v: u32,
-        slots_of: &dyn Fn(u32) -> &'s [u32],
+        slots_of: &impl Fn(u32) -> &'s [u32],
         nm_cells: &Csr,
         sc: &mut RepScratch,
         out: &mut Vec<u32>,
     ) {
         let star = view.vt_tree(v);
-        // seen[i]: star[i] visited (neighbours through facets containing v are in the star)
-        sc.seen.clear();
-        sc.seen.resize(star.len(), false);
+        let RepScratch {
+            seen,
+            stack,
+            keys,
+            vals,
+        } = sc;
+        // star cell -> index in the star (open addressing; neighbours through facets
+        // containing v are in the star)
+        let cap = (2 * star.len()).next_power_of_two().max(16);
+        let shift = 32 - cap.trailing_zeros();
+        let mask = cap - 1;
+        if keys.len() < cap {
+            keys.resize(cap, NONE);
+            vals.resize(cap, 0);
+        }
+        let hash = |c: u32| (c.wrapping_mul(0x9E37_79B1) >> shift) as usize;
+        for (i, &c) in star.iter().enumerate() {
+            let mut h = hash(c);
+            while keys[h] != NONE {
+                h = (h + 1) & mask;
+            }
+            keys[h] = c;
+            vals[h] = i as u32;
+        }
+        seen.clear();
+        seen.resize(star.len(), false);
+        // marks `c` seen; true when it is in the star and was not seen before
         let mark = |seen: &mut Vec<bool>, c: u32| -> bool {
-            match star.binary_search(&c) {
-                Ok(i) if !seen[i] => {
+            let mut h = hash(c);
+            loop {
+                let k = keys[h];
+                if k == c {
+                    let i = vals[h] as usize;
+                    if seen[i] {
+                        return false;
+                    }
                     seen[i] = true;
-                    true
+                    return true;
                 }
-                _ => false,
+                if k == NONE {
+                    return false;
+                }
+                h = (h + 1) & mask;
             }
         };
-        sc.stack.clear();
-        for &c in star {
+        stack.clear();
+        for (i, &c) in star.iter().enumerate() {
             let kind = self.cells.get(c).0;
             if kind.dim() < 2 {
                 if kind.dim() == 1 {
@@ -424,29 +457,46 @@ impl StellarTree {
                 }
                 continue;
             }
-            if !mark(&mut sc.seen, c) {
+            if seen[i] {
                 continue;
             }
+            seen[i] = true;
             out.push(c);
-            sc.stack.push(c);
-            while let Some(a) = sc.stack.pop() {
+            stack.push(c);
+            while let Some(a) = stack.pop() {
                 let (ka, vs) = self.cells.get(a);
                 let p = vs.iter().position(|&w| w == v).expect("in the star");
+                let simplex = ka.is_simplex();
                 for (j, &x) in slots_of(a).iter().enumerate() {
-                    if x == NONE || x == NOT_LOCAL || !facet_contains(ka, j, p) {
+                    if x == NONE
+                        || x == NOT_LOCAL
+                        || if simplex {
+                            j == p
+                        } else {
+                            !facet_contains(ka, j, p)
+                        }
+                    {
                         continue;
                     }
                     if x & NM != 0 {
                         for &u in nm_cells.row((x & !NM) as usize) {
-                            if mark(&mut sc.seen, u) {
-                                sc.stack.push(u);
+                            if mark(seen, u) {
+                                stack.push(u);
                             }
                         }
-                    } else if mark(&mut sc.seen, x) {
-                        sc.stack.push(x);
+                    } else if mark(seen, x) {
+                        stack.push(x);
                     }
                 }
             }
+        }
+        // empty the table
+        for &c in star {
+            let mut h = hash(c);
+            while keys[h] != c {
+                h = (h + 1) & mask;
+            }
+            keys[h] = NONE;
         }
     }
 
@@ -584,4 +634,7 @@ impl StellarTree {
 struct RepScratch {
     seen: Vec<bool>,
     stack: Vec<u32>,
+    /// Hash table star cell -> star index (slots NONE when unused).
+    keys: Vec<u32>,
+    vals: Vec<u32>,
 }

@@ -265,6 +265,33 @@ fn bucket_sort<T: Copy + Ord>(
     std::mem::swap(v, tmp);
 }
 
+/// Reusable buffers of [`StellarTree::leaf_vt_rows`].
+#[derive(Default)]
+struct VtRows {
+    cells: Vec<u32>,
+    off: Vec<u32>,
+    rows: Vec<u32>,
+}
+
+/// Sorts a nearly sorted slice: insertion sort (O(n + inversions)) when short, else the
+/// library sort.
+#[inline]
+fn insertion_sort(v: &mut [u32]) {
+    if v.len() > 48 {
+        v.sort_unstable();
+        return;
+    }
+    for i in 1..v.len() {
+        let x = v[i];
+        let mut j = i;
+        while j > 0 && v[j - 1] > x {
+            v[j] = v[j - 1];
+            j -= 1;
+        }
+        v[j] = x;
+    }
+}
+
 /// [`CellKind::for_each_face`] without a heap allocation per call.
 #[inline]
 pub(crate) fn faces_of(kind: CellKind, p: usize, mut f: impl FnMut(&[u8])) {
@@ -381,18 +408,27 @@ impl StellarTree {
         Csr { offsets, targets }
     }
 
-    /// Calls `f(v, cells)` for every vertex of the leaf, cells = VT(v) in input ids, sorted.
-    fn leaf_vt_rows(view: &LeafView<'_>, mut f: impl FnMut(u32, &[u32])) {
-        let mut row: Vec<u32> = Vec::with_capacity(64);
-        for v in view.tree_vertices() {
-            row.clear();
-            row.extend(
-                view.vt_tree(v)
-                    .iter()
-                    .map(|&c| view.tree.c_orig[c as usize]),
-            );
-            row.sort_unstable();
-            f(v, &row);
+    /// Calls `f(v, cells)` for every tree vertex `v` of leaf `l`, cells = VT(v) in input ids,
+    /// sorted. The rows are bucketed straight in input ids (`buf` holds the decoded cells and
+    /// the rows); each is nearly sorted (a few increasing runs: cells are reindexed by leaf
+    /// tuple, input order inside), so an insertion sort finishes it.
+    fn leaf_vt_rows(&self, l: LeafId, buf: &mut VtRows, mut f: impl FnMut(u32, &[u32])) {
+        let r = self.leaf_vertices(l);
+        buf.cells.clear();
+        super::sre::decode(self.leaf_encoded_cells(l), &mut buf.cells);
+        let c_orig = &self.c_orig;
+        self.bucket_refs(
+            r.start,
+            r.end,
+            &buf.cells,
+            |c| c_orig[c as usize],
+            &mut buf.off,
+            &mut buf.rows,
+        );
+        for (i, v) in r.enumerate() {
+            let row = &mut buf.rows[buf.off[i] as usize..buf.off[i + 1] as usize];
+            insertion_sort(row);
+            f(v, row);
         }
     }
 
@@ -413,15 +449,18 @@ impl StellarTree {
     /// assert_eq!(t.vt_all().row(2), &[0, 1]);
     /// ```
     pub fn vt_all(&self) -> Csr {
-        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
-            let mut lens = Vec::with_capacity(view.tree_vertices().len());
-            let mut data = Vec::with_capacity(view.e.vt.len());
-            Self::leaf_vt_rows(view, |_, row| {
-                lens.push(row.len() as u32);
-                data.extend_from_slice(row);
-            });
-            (lens, data)
-        });
+        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(VtRows::default, |buf, l| {
+                let mut lens = Vec::with_capacity(self.leaf_vertices(LeafId(l)).len());
+                let mut data = Vec::new();
+                self.leaf_vt_rows(LeafId(l), buf, |_, row| {
+                    lens.push(row.len() as u32);
+                    data.extend_from_slice(row);
+                });
+                (lens, data)
+            })
+            .collect();
         self.gather_vertex_rows(per_leaf)
     }
 
@@ -444,19 +483,13 @@ impl StellarTree {
     /// assert_eq!(total.into_inner(), 6);
     /// ```
     pub fn par_for_each_vt(&self, f: impl Fn(VertexId, &[CellId]) + Sync + Send) {
-        self.par_map_leaves(|view| {
-            let mut row: Vec<CellId> = Vec::with_capacity(64);
-            for v in view.tree_vertices() {
-                row.clear();
-                row.extend(
-                    view.vt_tree(v)
-                        .iter()
-                        .map(|&c| CellId(view.tree.c_orig[c as usize])),
-                );
-                row.sort_unstable();
-                f(view.input_vertex(v), &row);
-            }
-        });
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .for_each_init(VtRows::default, |buf, l| {
+                self.leaf_vt_rows(LeafId(l), buf, |v, row| {
+                    f(VertexId(self.v_orig[v as usize]), bytemuck::cast_slice(row))
+                });
+            });
     }
 
     /// R_{0,0} of every vertex: row `v` holds the input ids of the vertices joined to `v` by an
@@ -1011,6 +1044,12 @@ impl StellarTree {
                         if d == 0 || d < min_dim {
                             continue;
                         }
+                        if uniform_dim.is_some() && kind.is_simplex() {
+                            simplex_facets(vs, local_rule, &view, key, |key, j, s| {
+                                keys.push(key, pack(c, j, s))
+                            });
+                            continue;
+                        }
                         let mut j = 0u64;
                         oriented_facets_of(kind, |local, sign| {
                             j += 1;
@@ -1036,6 +1075,60 @@ impl StellarTree {
                 },
             )
             .collect()
+    }
+}
+
+/// The facets of a simplex kept by [`StellarTree::par_facet_groups_where`]'s rule, each as
+/// `f(sorted vertices, facet index, induced sign relative to the sorted order)`: the vertices
+/// are sorted once, and the facet omitting the k-th smallest vertex (the j-th listed one) has
+/// sign (-1)^k times the parity of the sorting permutation.
+#[inline]
+fn simplex_facets(
+    vs: &[u32],
+    local_rule: bool,
+    view: &LeafView<'_>,
+    key: &mut Vec<u32>,
+    mut f: impl FnMut(&[u32], u64, i8),
+) {
+    let n = vs.len();
+    let mut sv = [0u32; 66];
+    let mut si = [0u8; 66];
+    if n > sv.len() || n < 2 {
+        return;
+    }
+    // insertion sort tracking listed positions; the swaps count the inversions
+    let mut swaps = 0usize;
+    for (i, &x) in vs.iter().enumerate() {
+        let mut p = i;
+        while p > 0 && sv[p - 1] > x {
+            sv[p] = sv[p - 1];
+            si[p] = si[p - 1];
+            p -= 1;
+            swaps += 1;
+        }
+        sv[p] = x;
+        si[p] = i as u8;
+    }
+    let parity: i8 = if swaps.is_multiple_of(2) { 1 } else { -1 };
+    let owned = if local_rule {
+        sv[..n].iter().filter(|&&x| view.owns(x)).count()
+    } else {
+        0
+    };
+    for k in 0..n {
+        let keep = if local_rule {
+            owned > view.owns(sv[k]) as usize
+        } else {
+            view.owns(if k == 0 { sv[1] } else { sv[0] })
+        };
+        if !keep {
+            continue;
+        }
+        key.clear();
+        key.extend_from_slice(&sv[..k]);
+        key.extend_from_slice(&sv[k + 1..n]);
+        let sign = if k % 2 == 0 { parity } else { -parity };
+        f(key, si[k] as u64, sign);
     }
 }
 
