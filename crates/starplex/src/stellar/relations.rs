@@ -63,6 +63,17 @@ pub(crate) struct FaceKeys {
     flat: Vec<u32>,
     payload: Vec<u64>,
     small: Vec<(u128, u64)>,
+    /// Keys of three vertices with buckets: (first vertex, the other two, payload).
+    mid: Vec<(u32, u64, u64)>,
+    mid_tmp: Vec<(u64, u64)>,
+    /// Unordered grouping: hash table (key, group + 1), group of each record, group sizes
+    /// (then cursors), first record of each group, table slot of each group.
+    ukeys: Vec<u64>,
+    uvals: Vec<u32>,
+    ugid: Vec<u32>,
+    ucount: Vec<u32>,
+    ufirst: Vec<u32>,
+    uslot: Vec<u32>,
     tiny: Vec<(u64, u64)>,
     tiny_tmp: Vec<(u64, u64)>,
     small_tmp: Vec<(u128, u64)>,
@@ -84,6 +95,7 @@ impl FaceKeys {
         self.flat.clear();
         self.payload.clear();
         self.small.clear();
+        self.mid.clear();
         self.tiny.clear();
     }
     /// Every key pushed shares this leading entry, which is not stored but is reported by
@@ -104,6 +116,11 @@ impl FaceKeys {
             let a = key.first().copied().unwrap_or(PAD) as u64;
             let b = key.get(1).copied().unwrap_or(PAD) as u64;
             self.tiny.push(((a << 32) | b, payload));
+        } else if self.w == 3 && self.buckets.is_some() {
+            let a = key.first().copied().unwrap_or(PAD);
+            let b = key.get(1).copied().unwrap_or(PAD) as u64;
+            let c = key.get(2).copied().unwrap_or(PAD) as u64;
+            self.mid.push((a, (b << 32) | c, payload));
         } else if self.w <= 4 {
             let mut x: u128 = 0;
             for i in 0..4 {
@@ -150,6 +167,8 @@ impl FaceKeys {
                 f(&self.key, &self.pays);
                 i = j;
             }
+        } else if self.w == 3 && self.buckets.is_some() {
+            self.mid_groups(&mut f);
         } else if self.w <= 4 {
             match self.buckets {
                 Some((lo, hi)) => bucket_sort(
@@ -214,6 +233,201 @@ impl FaceKeys {
                 f(&self.key, &self.pays);
                 i = j;
             }
+        }
+    }
+}
+
+impl FaceKeys {
+    /// Like [`for_each_group`](Self::for_each_group), but groups (and the payloads inside a
+    /// group) may come in any order that depends only on the pushes: for keys of three
+    /// vertices with buckets, each bucket is grouped with a small hash table instead of
+    /// sorted.
+    pub fn for_each_group_unordered(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
+        if !(self.w == 3 && self.buckets.is_some()) {
+            return self.for_each_group(f);
+        }
+        let (lo, hi) = self.buckets.expect("buckets");
+        let n = hi.saturating_sub(lo) as usize;
+        if n == 0 || !self.mid.iter().all(|x| x.0 >= lo && x.0 < hi) {
+            return self.mid_groups(&mut f);
+        }
+        let counts = &mut self.counts;
+        counts.clear();
+        counts.resize(n + 1, 0);
+        for x in &self.mid {
+            counts[(x.0 - lo) as usize + 1] += 1;
+        }
+        for i in 0..n {
+            counts[i + 1] += counts[i];
+        }
+        let tmp = &mut self.mid_tmp;
+        tmp.clear();
+        tmp.resize(self.mid.len(), (0, 0));
+        for x in &self.mid {
+            let b = (x.0 - lo) as usize;
+            tmp[counts[b] as usize] = (x.1, x.2);
+            counts[b] += 1;
+        }
+        let (hk, hv, gid, gcount, firsts_slot) = (
+            &mut self.ukeys,
+            &mut self.uvals,
+            &mut self.ugid,
+            &mut self.ucount,
+            &mut self.uslot,
+        );
+        let mut start = 0usize;
+        for (b, &end) in counts[..n].iter().enumerate() {
+            let end = end as usize;
+            let bucket = &tmp[start..end];
+            start = end;
+            let len = bucket.len();
+            if len == 0 {
+                continue;
+            }
+            // group ids in first-occurrence order
+            let cap = (2 * len).next_power_of_two().max(8);
+            let shift = 64 - cap.trailing_zeros();
+            let mask = cap - 1;
+            if hk.len() < cap {
+                hk.resize(cap, 0);
+                hv.resize(cap, 0);
+            }
+            gid.clear();
+            gcount.clear();
+            firsts_slot.clear();
+            for &(r, _) in bucket {
+                let mut h = (r.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> shift) as usize;
+                let g = loop {
+                    if hv[h] == 0 {
+                        hk[h] = r;
+                        hv[h] = gcount.len() as u32 + 1;
+                        gcount.push(0);
+                        firsts_slot.push(h as u32);
+                        break gcount.len() - 1;
+                    }
+                    if hk[h] == r {
+                        break hv[h] as usize - 1;
+                    }
+                    h = (h + 1) & mask;
+                };
+                gcount[g] += 1;
+                gid.push(g as u32);
+            }
+            // empty the table: the first record of each group found its slot
+            for &g in firsts_slot.iter() {
+                hv[g as usize] = 0;
+            }
+            // payloads by group (counting sort on the group id)
+            let ng = gcount.len();
+            let mut acc = 0u32;
+            for c in gcount.iter_mut() {
+                let x = *c;
+                *c = acc;
+                acc += x;
+            }
+            self.pays.clear();
+            self.pays.resize(len, 0);
+            let mut firsts = std::mem::take(&mut self.ufirst);
+            firsts.clear();
+            firsts.resize(ng, 0);
+            for (i, &(_, pay)) in bucket.iter().enumerate() {
+                let g = gid[i] as usize;
+                let pos = gcount[g] as usize;
+                self.pays[pos] = pay;
+                gcount[g] += 1;
+                if firsts[g] == 0 {
+                    firsts[g] = i as u32 + 1;
+                }
+            }
+            let mut s = 0usize;
+            for g in 0..ng {
+                let e = gcount[g] as usize;
+                let r = bucket[firsts[g] as usize - 1].0;
+                self.key.clear();
+                self.key.extend(self.prefix);
+                for x in [lo + b as u32, (r >> 32) as u32, r as u32] {
+                    if x != PAD {
+                        self.key.push(x);
+                    }
+                }
+                f(&self.key, &self.pays[s..e]);
+                s = e;
+            }
+            self.ufirst = firsts;
+        }
+    }
+
+    /// [`for_each_group`](Self::for_each_group) for keys of three vertices with buckets: a
+    /// counting sort by first vertex, then each bucket's 16-byte (other two, payload) records
+    /// sorted. Same order as sorting the whole keys.
+    fn mid_groups(&mut self, f: &mut impl FnMut(&[u32], &[u64])) {
+        let (lo, hi) = self.buckets.expect("buckets");
+        let n = hi.saturating_sub(lo) as usize;
+        let in_range = n > 0 && self.mid.iter().all(|x| x.0 >= lo && x.0 < hi);
+        let mut emit = |key: &mut Vec<u32>, pays: &[u64], prefix: Option<u32>, a: u32, r: u64| {
+            key.clear();
+            key.extend(prefix);
+            for x in [a, (r >> 32) as u32, r as u32] {
+                if x != PAD {
+                    key.push(x);
+                }
+            }
+            f(key, pays);
+        };
+        if !in_range {
+            self.mid.sort_unstable();
+            let mut i = 0;
+            while i < self.mid.len() {
+                let (a, r, _) = self.mid[i];
+                self.pays.clear();
+                let mut j = i;
+                while j < self.mid.len() && self.mid[j].0 == a && self.mid[j].1 == r {
+                    self.pays.push(self.mid[j].2);
+                    j += 1;
+                }
+                emit(&mut self.key, &self.pays, self.prefix, a, r);
+                i = j;
+            }
+            return;
+        }
+        let counts = &mut self.counts;
+        counts.clear();
+        counts.resize(n + 1, 0);
+        for x in &self.mid {
+            counts[(x.0 - lo) as usize + 1] += 1;
+        }
+        for i in 0..n {
+            counts[i + 1] += counts[i];
+        }
+        let tmp = &mut self.mid_tmp;
+        tmp.clear();
+        tmp.resize(self.mid.len(), (0, 0));
+        for x in &self.mid {
+            let b = (x.0 - lo) as usize;
+            tmp[counts[b] as usize] = (x.1, x.2);
+            counts[b] += 1;
+        }
+        // counts[b] is now the end of bucket b
+        let mut start = 0usize;
+        for (b, &end) in counts[..n].iter().enumerate() {
+            let end = end as usize;
+            let bucket = &mut tmp[start..end];
+            if bucket.len() > 1 {
+                bucket.sort_unstable();
+            }
+            let mut i = 0;
+            while i < bucket.len() {
+                let r = bucket[i].0;
+                self.pays.clear();
+                let mut j = i;
+                while j < bucket.len() && bucket[j].0 == r {
+                    self.pays.push(bucket[j].1);
+                    j += 1;
+                }
+                emit(&mut self.key, &self.pays, self.prefix, lo + b as u32, r);
+                i = j;
+            }
+            start = end;
         }
     }
 }
@@ -1044,8 +1258,8 @@ impl StellarTree {
                         if d == 0 || d < min_dim {
                             continue;
                         }
-                        if uniform_dim.is_some() && kind.is_simplex() {
-                            simplex_facets(vs, local_rule, &view, key, |key, j, s| {
+                        if uniform_dim.is_some() && kind.is_simplex() && vs.len() <= SIMPLEX_FAST {
+                            simplex_facets(vs, local_rule, &view, |key, j, s| {
                                 keys.push(key, pack(c, j, s))
                             });
                             continue;
@@ -1078,6 +1292,9 @@ impl StellarTree {
     }
 }
 
+/// Most vertices of a simplex whose facets take [`simplex_facets`].
+const SIMPLEX_FAST: usize = 8;
+
 /// The facets of a simplex kept by [`StellarTree::par_facet_groups_where`]'s rule, each as
 /// `f(sorted vertices, facet index, induced sign relative to the sorted order)`: the vertices
 /// are sorted once, and the facet omitting the k-th smallest vertex (the j-th listed one) has
@@ -1087,13 +1304,13 @@ fn simplex_facets(
     vs: &[u32],
     local_rule: bool,
     view: &LeafView<'_>,
-    key: &mut Vec<u32>,
     mut f: impl FnMut(&[u32], u64, i8),
 ) {
     let n = vs.len();
-    let mut sv = [0u32; 66];
-    let mut si = [0u8; 66];
-    if n > sv.len() || n < 2 {
+    let mut sv = [0u32; SIMPLEX_FAST];
+    let mut si = [0u8; SIMPLEX_FAST];
+    let mut fk = [0u32; SIMPLEX_FAST];
+    if !(2..=SIMPLEX_FAST).contains(&n) {
         return;
     }
     // insertion sort tracking listed positions; the swaps count the inversions
@@ -1124,11 +1341,15 @@ fn simplex_facets(
         if !keep {
             continue;
         }
-        key.clear();
-        key.extend_from_slice(&sv[..k]);
-        key.extend_from_slice(&sv[k + 1..n]);
+        let mut m = 0;
+        for (i, &x) in sv[..n].iter().enumerate() {
+            if i != k {
+                fk[m] = x;
+                m += 1;
+            }
+        }
         let sign = if k % 2 == 0 { parity } else { -parity };
-        f(key, si[k] as u64, sign);
+        f(&fk[..n - 1], si[k] as u64, sign);
     }
 }
 
