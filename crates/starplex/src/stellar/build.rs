@@ -148,24 +148,14 @@ pub(super) fn build(
     for (new, &old) in v_orig.iter().enumerate() {
         v_new[old as usize] = new as u32;
     }
-    // leaf of each tree vertex (temporary)
-    let mut leaf_of = vec![0u32; nv];
-    leaf_of
-        .par_chunks_mut(65_536)
-        .enumerate()
-        .for_each(|(ci, ch)| {
-            let base = (ci * 65_536) as u32;
-            let mut l = leaf_vstart
-                .partition_point(|&s| s <= base)
-                .saturating_sub(1);
-            for (i, x) in ch.iter_mut().enumerate() {
-                let v = base + i as u32;
-                while leaf_vstart[l + 1] <= v {
-                    l += 1;
-                }
-                *x = l as u32;
-            }
-        });
+    // leaf of each input vertex (temporary: dropped before the cell store is made, the
+    // tree-indexed `leaf_of` is made after it)
+    let mut leaf_in = vec![0u32; nv];
+    for l in 0..n_leaves {
+        for t in leaf_vstart[l]..leaf_vstart[l + 1] {
+            leaf_in[v_orig[t as usize] as usize] = l as u32;
+        }
+    }
     timings.vertex_reindex_s = t1.elapsed().as_secs_f64();
 
     // ---- 3. top-cell reindexing by region tuples
@@ -189,8 +179,6 @@ pub(super) fn build(
         let r = k.cell(crate::ids::CellId(c));
         (r.kind, r.vertices)
     };
-    // leaf of every input vertex (temporary, dropped before the cell store is made)
-    let leaf_in: Vec<u32> = v_new.par_iter().map(|&t| leaf_of[t as usize]).collect();
     // home leaf of every input cell = leaf of its smallest tree vertex = its smallest leaf
     // (leaves own increasing ranges of tree vertices)
     let home: Vec<u32> = (0..nc as u32)
@@ -360,6 +348,25 @@ pub(super) fn build(
 
     // ---- 4. SRE-compressed leaf lists: stream the cells in tree order (two passes)
     let t3 = Instant::now();
+    // leaf of each tree vertex (temporary)
+    let mut leaf_of = vec![0u32; nv];
+    leaf_of
+        .par_chunks_mut(65_536)
+        .enumerate()
+        .for_each(|(ci, ch)| {
+            let base = (ci * 65_536) as u32;
+            let mut l = leaf_vstart
+                .partition_point(|&s| s <= base)
+                .saturating_sub(1);
+            for (i, x) in ch.iter_mut().enumerate() {
+                let v = base + i as u32;
+                while leaf_vstart[l + 1] <= v {
+                    l += 1;
+                }
+                *x = l as u32;
+            }
+        });
+
     let (leaf_toff, leaf_tops) = leaf_lists(&cells, &leaf_of, n_leaves);
     timings.leaf_lists_s = t3.elapsed().as_secs_f64();
 
