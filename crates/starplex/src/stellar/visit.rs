@@ -101,28 +101,30 @@ impl StellarTree {
         let slot = |v: u32| v.wrapping_sub(vs).min(spill) as usize;
         off.clear();
         off.resize(nloc + 2, 0);
+        let offs = &mut off[..];
         let st = &self.cells;
         if st.uniform != 255 {
             let k = st.stride as usize;
             for &c in cells {
                 let i = c as usize * k;
                 for &v in &st.verts[i..i + k] {
-                    off[slot(v) + 1] += 1;
+                    offs[slot(v) + 1] += 1;
                 }
             }
         } else {
             for &c in cells {
                 for &v in st.verts(c) {
-                    off[slot(v) + 1] += 1;
+                    offs[slot(v) + 1] += 1;
                 }
             }
         }
         for i in 0..=nloc {
-            off[i + 1] += off[i];
+            offs[i + 1] += offs[i];
         }
-        let total = off[nloc] as usize;
+        let total = offs[nloc] as usize;
         rows.clear();
-        rows.resize(off[nloc + 1] as usize, 0);
+        rows.resize(offs[nloc + 1] as usize, 0);
+        let out = &mut rows[..];
         // fill using off as cursors (shifted), then restore
         if st.uniform != 255 {
             let k = st.stride as usize;
@@ -131,8 +133,8 @@ impl StellarTree {
                 let i = c as usize * k;
                 for &v in &st.verts[i..i + k] {
                     let s = slot(v);
-                    rows[off[s] as usize] = x;
-                    off[s] += 1;
+                    out[offs[s] as usize] = x;
+                    offs[s] += 1;
                 }
             }
         } else {
@@ -140,8 +142,8 @@ impl StellarTree {
                 let x = val(c);
                 for &v in st.verts(c) {
                     let s = slot(v);
-                    rows[off[s] as usize] = x;
-                    off[s] += 1;
+                    out[offs[s] as usize] = x;
+                    offs[s] += 1;
                 }
             }
         }
