@@ -148,24 +148,14 @@ pub(super) fn build(
     for (new, &old) in v_orig.iter().enumerate() {
         v_new[old as usize] = new as u32;
     }
-    // leaf of each tree vertex (temporary)
-    let mut leaf_of = vec![0u32; nv];
-    leaf_of
-        .par_chunks_mut(65_536)
-        .enumerate()
-        .for_each(|(ci, ch)| {
-            let base = (ci * 65_536) as u32;
-            let mut l = leaf_vstart
-                .partition_point(|&s| s <= base)
-                .saturating_sub(1);
-            for (i, x) in ch.iter_mut().enumerate() {
-                let v = base + i as u32;
-                while leaf_vstart[l + 1] <= v {
-                    l += 1;
-                }
-                *x = l as u32;
-            }
-        });
+    // leaf of each input vertex (temporary: dropped before the cell store is made, the
+    // tree-indexed `leaf_of` is made after it)
+    let mut leaf_in = vec![0u32; nv];
+    for l in 0..n_leaves {
+        for t in leaf_vstart[l]..leaf_vstart[l + 1] {
+            leaf_in[v_orig[t as usize] as usize] = l as u32;
+        }
+    }
     timings.vertex_reindex_s = t1.elapsed().as_secs_f64();
 
     // ---- 3. top-cell reindexing by region tuples
@@ -189,18 +179,18 @@ pub(super) fn build(
         let r = k.cell(crate::ids::CellId(c));
         (r.kind, r.vertices)
     };
-    // home leaf of every input cell = leaf of its smallest tree vertex
+    // home leaf of every input cell = leaf of its smallest tree vertex = its smallest leaf
+    // (leaves own increasing ranges of tree vertices)
     let home: Vec<u32> = (0..nc as u32)
         .into_par_iter()
         .with_min_len(4096)
         .map(|c| {
-            let m = in_cell(c)
+            in_cell(c)
                 .1
                 .iter()
-                .map(|&v| v_new[v as usize])
+                .map(|&v| leaf_in[v as usize])
                 .min()
-                .expect("cells have vertices");
-            leaf_of[m as usize]
+                .expect("cells have vertices")
         })
         .collect();
     let mut start = vec![0u32; n_leaves + 1];
@@ -230,9 +220,50 @@ pub(super) fn build(
             rest = b;
         }
         parts.par_iter_mut().for_each_init(
-            || (Vec::<u32>::new(), Vec::<(u32, u32, u32, u8)>::new()),
-            |(scratch, keyed), part| {
+            || {
+                (
+                    Vec::<u32>::new(),
+                    Vec::<(u32, u32, u32, u8)>::new(),
+                    Vec::<(u128, u64)>::new(),
+                )
+            },
+            |(scratch, keyed, packed), part| {
                 if part.len() < 2 {
+                    return;
+                }
+                if part.iter().all(|&c| in_cell(c).1.len() <= 4) {
+                    // the sorted distinct leaves of a cell packed in a u128, padded with 0:
+                    // every leaf after the first is >= 1, so the packed order is the order of
+                    // the tuples (a prefix first)
+                    packed.clear();
+                    for &c in part.iter() {
+                        let (kind, vs) = in_cell(c);
+                        let mut t = [0u32; 4];
+                        let mut m = 0;
+                        for &v in vs {
+                            let x = leaf_in[v as usize];
+                            // insertion into the sorted distinct prefix t[..m]
+                            let mut p = m;
+                            while p > 0 && t[p - 1] > x {
+                                p -= 1;
+                            }
+                            if p > 0 && t[p - 1] == x {
+                                continue;
+                            }
+                            t.copy_within(p..m, p + 1);
+                            t[p] = x;
+                            m += 1;
+                        }
+                        let key = ((t[0] as u128) << 96)
+                            | ((t[1] as u128) << 64)
+                            | ((t[2] as u128) << 32)
+                            | t[3] as u128;
+                        packed.push((key, ((kind_code(kind) as u64) << 32) | c as u64));
+                    }
+                    packed.sort_unstable();
+                    for (dst, k) in part.iter_mut().zip(packed.iter()) {
+                        *dst = k.1 as u32;
+                    }
                     return;
                 }
                 scratch.clear();
@@ -240,7 +271,7 @@ pub(super) fn build(
                 for &c in part.iter() {
                     let (kind, vs) = in_cell(c);
                     let s = scratch.len();
-                    scratch.extend(vs.iter().map(|&v| leaf_of[v_new[v as usize] as usize]));
+                    scratch.extend(vs.iter().map(|&v| leaf_in[v as usize]));
                     scratch[s..].sort_unstable();
                     let mut w = s;
                     for r in s..scratch.len() {
@@ -264,6 +295,7 @@ pub(super) fn build(
             },
         );
     }
+    drop(leaf_in);
     let c_orig = order;
     let mut c_new = vec![0u32; nc];
     for (new, &old) in c_orig.iter().enumerate() {
@@ -316,6 +348,25 @@ pub(super) fn build(
 
     // ---- 4. SRE-compressed leaf lists: stream the cells in tree order (two passes)
     let t3 = Instant::now();
+    // leaf of each tree vertex (temporary)
+    let mut leaf_of = vec![0u32; nv];
+    leaf_of
+        .par_chunks_mut(65_536)
+        .enumerate()
+        .for_each(|(ci, ch)| {
+            let base = (ci * 65_536) as u32;
+            let mut l = leaf_vstart
+                .partition_point(|&s| s <= base)
+                .saturating_sub(1);
+            for (i, x) in ch.iter_mut().enumerate() {
+                let v = base + i as u32;
+                while leaf_vstart[l + 1] <= v {
+                    l += 1;
+                }
+                *x = l as u32;
+            }
+        });
+
     let (leaf_toff, leaf_tops) = leaf_lists(&cells, &leaf_of, n_leaves);
     timings.leaf_lists_s = t3.elapsed().as_secs_f64();
 
@@ -345,20 +396,9 @@ fn leaf_lists(cells: &CellStore, leaf_of: &[u32], n_leaves: usize) -> (Vec<u32>,
     let mut run_len = vec![0u32; n_leaves];
     let mut cost = vec![0u32; n_leaves + 1];
     let mut buf: Vec<u32> = Vec::with_capacity(72);
-    let mut each_leaf = |c: u32, f: &mut dyn FnMut(u32)| {
-        buf.clear();
-        buf.extend(cells.verts(c).iter().map(|&v| leaf_of[v as usize]));
-        if buf.len() > 1 {
-            buf.sort_unstable();
-            buf.dedup();
-        }
-        for &l in buf.iter() {
-            f(l);
-        }
-    };
     // pass 1: sizes
     for c in 0..cells.n {
-        each_leaf(c, &mut |l| {
+        cell_leaves(cells, leaf_of, c, &mut buf, |l| {
             let l = l as usize;
             if run_start[l] != NONE && run_start[l] + run_len[l] == c {
                 run_len[l] += 1;
@@ -390,7 +430,7 @@ fn leaf_lists(cells: &CellStore, leaf_of: &[u32], n_leaves: usize) -> (Vec<u32>,
         cursor[l] += tmp.len() as u32;
     };
     for c in 0..cells.n {
-        each_leaf(c, &mut |l| {
+        cell_leaves(cells, leaf_of, c, &mut buf, |l| {
             let l = l as usize;
             if run_start[l] != NONE && run_start[l] + run_len[l] == c {
                 run_len[l] += 1;
@@ -410,6 +450,47 @@ fn leaf_lists(cells: &CellStore, leaf_of: &[u32], n_leaves: usize) -> (Vec<u32>,
     }
     debug_assert!((0..n_leaves).all(|l| cursor[l] == offsets[l + 1]));
     (offsets, out)
+}
+
+/// Calls `f` on the distinct leaves of cell `c`, increasing.
+#[inline]
+fn cell_leaves(
+    cells: &CellStore,
+    leaf_of: &[u32],
+    c: u32,
+    buf: &mut Vec<u32>,
+    mut f: impl FnMut(u32),
+) {
+    let vs = cells.verts(c);
+    if vs.len() <= 8 {
+        // insertion into a sorted distinct prefix
+        let mut t = [0u32; 8];
+        let mut m = 0;
+        for &v in vs {
+            let x = leaf_of[v as usize];
+            let mut p = m;
+            while p > 0 && t[p - 1] > x {
+                p -= 1;
+            }
+            if p > 0 && t[p - 1] == x {
+                continue;
+            }
+            t.copy_within(p..m, p + 1);
+            t[p] = x;
+            m += 1;
+        }
+        for &l in &t[..m] {
+            f(l);
+        }
+        return;
+    }
+    buf.clear();
+    buf.extend(vs.iter().map(|&v| leaf_of[v as usize]));
+    buf.sort_unstable();
+    buf.dedup();
+    for &l in buf.iter() {
+        f(l);
+    }
 }
 
 fn collect_leaves(t: &T, out: &mut Vec<u32>) {

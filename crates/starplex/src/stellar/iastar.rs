@@ -294,6 +294,39 @@ struct Pieces {
     nm_verts: Vec<Vec<u32>>,
 }
 
+/// [`group_pieces`] from groups in any order: the non-manifold facets are numbered in key
+/// order afterwards, so the result is the same.
+fn group_pieces_unordered(keys: &mut FaceKeys) -> Pieces {
+    let mut p = Pieces {
+        slots: Vec::new(),
+        nm_cells: Vec::new(),
+        nm_verts: Vec::new(),
+    };
+    let mut nm: Vec<(Vec<u32>, Vec<u64>)> = Vec::new();
+    keys.for_each_group_unordered(|key, pays| match pays.len() {
+        1 => {}
+        2 => {
+            let (a, b) = (unpack(pays[0]).0, unpack(pays[1]).0);
+            p.slots.push((a, unpack_facet(pays[0]), b));
+            p.slots.push((b, unpack_facet(pays[1]), a));
+        }
+        _ => nm.push((key.to_vec(), pays.to_vec())),
+    });
+    nm.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+    for (key, pays) in nm {
+        let id = p.nm_cells.len() as u32 | NM;
+        let mut cs: Vec<u32> = pays.iter().map(|&x| unpack(x).0).collect();
+        for &x in &pays {
+            p.slots.push((unpack(x).0, unpack_facet(x), id));
+        }
+        cs.sort_unstable();
+        cs.dedup();
+        p.nm_cells.push(cs);
+        p.nm_verts.push(key[1..].to_vec());
+    }
+    p
+}
+
 fn group_pieces(keys: &mut FaceKeys) -> Pieces {
     let mut p = Pieces {
         slots: Vec::new(),
@@ -329,7 +362,7 @@ impl StellarTree {
     pub fn iastar(&self) -> IaStar<'_> {
         let nc = self.n_top_cells();
         let pieces: Vec<Pieces> =
-            self.par_facet_groups_where(2, false, |_, keys| group_pieces(keys));
+            self.par_facet_groups_where(2, false, |_, keys| group_pieces_unordered(keys));
         let mut off = vec![0u32; nc + 1];
         for c in 0..nc {
             off[c + 1] = off[c] + n_slots(self.cells.get(c as u32).0) as u32;
@@ -357,19 +390,47 @@ impl StellarTree {
                 nm_verts.offsets.push(nm_verts.targets.len() as u32);
             }
         }
+        let stride = if self.cells.uniform != 255 {
+            n_slots(super::code_kind(self.cells.uniform))
+        } else {
+            0
+        };
         // representatives, leaf by leaf; rows come out in tree vertex order
-        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
-            let mut lens = Vec::with_capacity(view.tree_vertices().len());
-            let mut data = Vec::new();
-            let slots = |c: u32| &adj[off[c as usize] as usize..off[c as usize + 1] as usize];
-            let mut sc = RepScratch::default();
-            for v in view.tree_vertices() {
-                let s = data.len();
-                self.representatives(view, v, &slots, &nm_cells, &mut sc, &mut data);
-                lens.push((data.len() - s) as u32);
+        let slots = |c: u32| {
+            if stride > 0 {
+                // one kind: the slots of cell c start at c * stride
+                let s = c as usize * stride;
+                &adj[s..s + stride]
+            } else {
+                &adj[off[c as usize] as usize..off[c as usize + 1] as usize]
             }
-            (lens, data)
-        });
+        };
+        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(
+                || {
+                    // per worker: visit stamps over all cells (2 bytes per cell, zeroed
+                    // lazily by the allocator)
+                    let sc = RepScratch {
+                        stamps: vec![0; nc],
+                        ..Default::default()
+                    };
+                    (ExpandedLeaf::default(), sc)
+                },
+                |(e, sc), l| {
+                    self.expand_leaf_into(LeafId(l), e);
+                    let view = LeafView { tree: self, e };
+                    let mut lens = Vec::with_capacity(view.tree_vertices().len());
+                    let mut data = Vec::new();
+                    for v in view.tree_vertices() {
+                        let s = data.len();
+                        self.representatives(&view, v, &slots, &nm_cells, sc, &mut data);
+                        lens.push((data.len() - s) as u32);
+                    }
+                    (lens, data)
+                },
+            )
+            .collect();
         let mut reps = Csr {
             offsets: Vec::with_capacity(self.n_vertices() + 1),
             targets: Vec::new(),
@@ -400,25 +461,142 @@ impl StellarTree {
         &self,
         view: &LeafView<'_>,
         v: u32,
-        slots_of: &dyn Fn(u32) -> &'s [u32],
+        slots_of: &impl Fn(u32) -> &'s [u32],
         nm_cells: &Csr,
         sc: &mut RepScratch,
         out: &mut Vec<u32>,
     ) {
         let star = view.vt_tree(v);
-        // seen[i]: star[i] visited (neighbours through facets containing v are in the star)
-        sc.seen.clear();
-        sc.seen.resize(star.len(), false);
+        if !sc.stamps.is_empty() {
+            return self.representatives_stamped(v, star, slots_of, nm_cells, sc, out);
+        }
+        let RepScratch {
+            seen,
+            stack,
+            keys,
+            vals,
+            ..
+        } = sc;
+        // star cell -> index in the star (open addressing; neighbours through facets
+        // containing v are in the star)
+        let cap = (2 * star.len()).next_power_of_two().max(16);
+        let shift = 32 - cap.trailing_zeros();
+        let mask = cap - 1;
+        if keys.len() < cap {
+            keys.resize(cap, NONE);
+            vals.resize(cap, 0);
+        }
+        let hash = |c: u32| (c.wrapping_mul(0x9E37_79B1) >> shift) as usize;
+        for (i, &c) in star.iter().enumerate() {
+            let mut h = hash(c);
+            while keys[h] != NONE {
+                h = (h + 1) & mask;
+            }
+            keys[h] = c;
+            vals[h] = i as u32;
+        }
+        seen.clear();
+        seen.resize(star.len(), false);
+        // marks `c` seen; true when it is in the star and was not seen before
         let mark = |seen: &mut Vec<bool>, c: u32| -> bool {
-            match star.binary_search(&c) {
-                Ok(i) if !seen[i] => {
+            let mut h = hash(c);
+            loop {
+                let k = keys[h];
+                if k == c {
+                    let i = vals[h] as usize;
+                    if seen[i] {
+                        return false;
+                    }
                     seen[i] = true;
-                    true
+                    return true;
                 }
-                _ => false,
+                if k == NONE {
+                    return false;
+                }
+                h = (h + 1) & mask;
             }
         };
-        sc.stack.clear();
+        stack.clear();
+        for (i, &c) in star.iter().enumerate() {
+            let kind = self.cells.get(c).0;
+            if kind.dim() < 2 {
+                if kind.dim() == 1 {
+                    out.push(c);
+                }
+                continue;
+            }
+            if seen[i] {
+                continue;
+            }
+            seen[i] = true;
+            // the cluster's representative: its smallest input id, as the direct IA* picks
+            let mut best = c;
+            stack.push(c);
+            while let Some(a) = stack.pop() {
+                if self.c_orig[a as usize] < self.c_orig[best as usize] {
+                    best = a;
+                }
+                let (ka, vs) = self.cells.get(a);
+                let p = vs.iter().position(|&w| w == v).expect("in the star");
+                let simplex = ka.is_simplex();
+                for (j, &x) in slots_of(a).iter().enumerate() {
+                    if x == NONE
+                        || x == NOT_LOCAL
+                        || if simplex {
+                            j == p
+                        } else {
+                            !facet_contains(ka, j, p)
+                        }
+                    {
+                        continue;
+                    }
+                    if x & NM != 0 {
+                        for &u in nm_cells.row((x & !NM) as usize) {
+                            if mark(seen, u) {
+                                stack.push(u);
+                            }
+                        }
+                    } else if mark(seen, x) {
+                        stack.push(x);
+                    }
+                }
+            }
+            out.push(best);
+        }
+        // empty the table
+        for &c in star {
+            let mut h = hash(c);
+            while keys[h] != c {
+                h = (h + 1) & mask;
+            }
+            keys[h] = NONE;
+        }
+    }
+
+    /// [`representatives`](Self::representatives) with visit stamps over all cells (every
+    /// cell met through a facet containing `v` is in the star of `v`).
+    fn representatives_stamped<'s>(
+        &self,
+        v: u32,
+        star: &[u32],
+        slots_of: &impl Fn(u32) -> &'s [u32],
+        nm_cells: &Csr,
+        sc: &mut RepScratch,
+        out: &mut Vec<u32>,
+    ) {
+        let RepScratch {
+            stack,
+            stamps,
+            epoch,
+            ..
+        } = sc;
+        *epoch = epoch.wrapping_add(1);
+        if *epoch == 0 {
+            stamps.iter_mut().for_each(|x| *x = 0);
+            *epoch = 1;
+        }
+        let ep = *epoch;
+        stack.clear();
         for &c in star {
             let kind = self.cells.get(c).0;
             if kind.dim() < 2 {
@@ -427,30 +605,41 @@ impl StellarTree {
                 }
                 continue;
             }
-            if !mark(&mut sc.seen, c) {
+            if stamps[c as usize] == ep {
                 continue;
             }
+            stamps[c as usize] = ep;
             // the cluster's representative: its smallest input id, as the direct IA* picks
             let mut best = c;
-            sc.stack.push(c);
-            while let Some(a) = sc.stack.pop() {
+            stack.push(c);
+            while let Some(a) = stack.pop() {
                 if self.c_orig[a as usize] < self.c_orig[best as usize] {
                     best = a;
                 }
                 let (ka, vs) = self.cells.get(a);
                 let p = vs.iter().position(|&w| w == v).expect("in the star");
+                let simplex = ka.is_simplex();
                 for (j, &x) in slots_of(a).iter().enumerate() {
-                    if x == NONE || x == NOT_LOCAL || !facet_contains(ka, j, p) {
+                    if x == NONE
+                        || x == NOT_LOCAL
+                        || if simplex {
+                            j == p
+                        } else {
+                            !facet_contains(ka, j, p)
+                        }
+                    {
                         continue;
                     }
                     if x & NM != 0 {
                         for &u in nm_cells.row((x & !NM) as usize) {
-                            if mark(&mut sc.seen, u) {
-                                sc.stack.push(u);
+                            if stamps[u as usize] != ep {
+                                stamps[u as usize] = ep;
+                                stack.push(u);
                             }
                         }
-                    } else if mark(&mut sc.seen, x) {
-                        sc.stack.push(x);
+                    } else if stamps[x as usize] != ep {
+                        stamps[x as usize] = ep;
+                        stack.push(x);
                     }
                 }
             }
@@ -592,4 +781,10 @@ impl StellarTree {
 struct RepScratch {
     seen: Vec<bool>,
     stack: Vec<u32>,
+    /// Hash table star cell -> star index (slots NONE when unused).
+    keys: Vec<u32>,
+    vals: Vec<u32>,
+    /// Global IA*: a visit stamp per tree cell (empty: use the hash table), current stamp.
+    stamps: Vec<u16>,
+    epoch: u16,
 }

@@ -34,6 +34,7 @@ pub mod relations;
 mod save;
 pub mod sre;
 pub mod stats;
+mod tetlink;
 pub mod validate;
 pub mod visit;
 
@@ -188,7 +189,7 @@ pub(crate) struct CellStore {
 }
 
 impl CellStore {
-    #[inline]
+    #[inline(always)]
     pub fn get(&self, i: u32) -> (CellKind, &[u32]) {
         if self.uniform != 255 {
             let s = self.stride as usize;

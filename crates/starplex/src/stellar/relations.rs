@@ -63,6 +63,17 @@ pub(crate) struct FaceKeys {
     flat: Vec<u32>,
     payload: Vec<u64>,
     small: Vec<(u128, u64)>,
+    /// Keys of three vertices with buckets: (first vertex, the other two, payload).
+    mid: Vec<(u32, u64, u64)>,
+    mid_tmp: Vec<(u64, u64)>,
+    /// Unordered grouping: hash table (key, group + 1), group of each record, group sizes
+    /// (then cursors), first record of each group, table slot of each group.
+    ukeys: Vec<u64>,
+    uvals: Vec<u32>,
+    ugid: Vec<u32>,
+    ucount: Vec<u32>,
+    ufirst: Vec<u32>,
+    uslot: Vec<u32>,
     tiny: Vec<(u64, u64)>,
     tiny_tmp: Vec<(u64, u64)>,
     small_tmp: Vec<(u128, u64)>,
@@ -84,6 +95,7 @@ impl FaceKeys {
         self.flat.clear();
         self.payload.clear();
         self.small.clear();
+        self.mid.clear();
         self.tiny.clear();
     }
     /// Every key pushed shares this leading entry, which is not stored but is reported by
@@ -104,6 +116,11 @@ impl FaceKeys {
             let a = key.first().copied().unwrap_or(PAD) as u64;
             let b = key.get(1).copied().unwrap_or(PAD) as u64;
             self.tiny.push(((a << 32) | b, payload));
+        } else if self.w == 3 && self.buckets.is_some() {
+            let a = key.first().copied().unwrap_or(PAD);
+            let b = key.get(1).copied().unwrap_or(PAD) as u64;
+            let c = key.get(2).copied().unwrap_or(PAD) as u64;
+            self.mid.push((a, (b << 32) | c, payload));
         } else if self.w <= 4 {
             let mut x: u128 = 0;
             for i in 0..4 {
@@ -150,6 +167,8 @@ impl FaceKeys {
                 f(&self.key, &self.pays);
                 i = j;
             }
+        } else if self.w == 3 && self.buckets.is_some() {
+            self.mid_groups(&mut f);
         } else if self.w <= 4 {
             match self.buckets {
                 Some((lo, hi)) => bucket_sort(
@@ -218,6 +237,201 @@ impl FaceKeys {
     }
 }
 
+impl FaceKeys {
+    /// Like [`for_each_group`](Self::for_each_group), but groups (and the payloads inside a
+    /// group) may come in any order that depends only on the pushes: for keys of three
+    /// vertices with buckets, each bucket is grouped with a small hash table instead of
+    /// sorted.
+    pub fn for_each_group_unordered(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
+        if !(self.w == 3 && self.buckets.is_some()) {
+            return self.for_each_group(f);
+        }
+        let (lo, hi) = self.buckets.expect("buckets");
+        let n = hi.saturating_sub(lo) as usize;
+        if n == 0 || !self.mid.iter().all(|x| x.0 >= lo && x.0 < hi) {
+            return self.mid_groups(&mut f);
+        }
+        let counts = &mut self.counts;
+        counts.clear();
+        counts.resize(n + 1, 0);
+        for x in &self.mid {
+            counts[(x.0 - lo) as usize + 1] += 1;
+        }
+        for i in 0..n {
+            counts[i + 1] += counts[i];
+        }
+        let tmp = &mut self.mid_tmp;
+        tmp.clear();
+        tmp.resize(self.mid.len(), (0, 0));
+        for x in &self.mid {
+            let b = (x.0 - lo) as usize;
+            tmp[counts[b] as usize] = (x.1, x.2);
+            counts[b] += 1;
+        }
+        let (hk, hv, gid, gcount, firsts_slot) = (
+            &mut self.ukeys,
+            &mut self.uvals,
+            &mut self.ugid,
+            &mut self.ucount,
+            &mut self.uslot,
+        );
+        let mut start = 0usize;
+        for (b, &end) in counts[..n].iter().enumerate() {
+            let end = end as usize;
+            let bucket = &tmp[start..end];
+            start = end;
+            let len = bucket.len();
+            if len == 0 {
+                continue;
+            }
+            // group ids in first-occurrence order
+            let cap = (2 * len).next_power_of_two().max(8);
+            let shift = 64 - cap.trailing_zeros();
+            let mask = cap - 1;
+            if hk.len() < cap {
+                hk.resize(cap, 0);
+                hv.resize(cap, 0);
+            }
+            gid.clear();
+            gcount.clear();
+            firsts_slot.clear();
+            for &(r, _) in bucket {
+                let mut h = (r.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> shift) as usize;
+                let g = loop {
+                    if hv[h] == 0 {
+                        hk[h] = r;
+                        hv[h] = gcount.len() as u32 + 1;
+                        gcount.push(0);
+                        firsts_slot.push(h as u32);
+                        break gcount.len() - 1;
+                    }
+                    if hk[h] == r {
+                        break hv[h] as usize - 1;
+                    }
+                    h = (h + 1) & mask;
+                };
+                gcount[g] += 1;
+                gid.push(g as u32);
+            }
+            // empty the table: the first record of each group found its slot
+            for &g in firsts_slot.iter() {
+                hv[g as usize] = 0;
+            }
+            // payloads by group (counting sort on the group id)
+            let ng = gcount.len();
+            let mut acc = 0u32;
+            for c in gcount.iter_mut() {
+                let x = *c;
+                *c = acc;
+                acc += x;
+            }
+            self.pays.clear();
+            self.pays.resize(len, 0);
+            let mut firsts = std::mem::take(&mut self.ufirst);
+            firsts.clear();
+            firsts.resize(ng, 0);
+            for (i, &(_, pay)) in bucket.iter().enumerate() {
+                let g = gid[i] as usize;
+                let pos = gcount[g] as usize;
+                self.pays[pos] = pay;
+                gcount[g] += 1;
+                if firsts[g] == 0 {
+                    firsts[g] = i as u32 + 1;
+                }
+            }
+            let mut s = 0usize;
+            for g in 0..ng {
+                let e = gcount[g] as usize;
+                let r = bucket[firsts[g] as usize - 1].0;
+                self.key.clear();
+                self.key.extend(self.prefix);
+                for x in [lo + b as u32, (r >> 32) as u32, r as u32] {
+                    if x != PAD {
+                        self.key.push(x);
+                    }
+                }
+                f(&self.key, &self.pays[s..e]);
+                s = e;
+            }
+            self.ufirst = firsts;
+        }
+    }
+
+    /// [`for_each_group`](Self::for_each_group) for keys of three vertices with buckets: a
+    /// counting sort by first vertex, then each bucket's 16-byte (other two, payload) records
+    /// sorted. Same order as sorting the whole keys.
+    fn mid_groups(&mut self, f: &mut impl FnMut(&[u32], &[u64])) {
+        let (lo, hi) = self.buckets.expect("buckets");
+        let n = hi.saturating_sub(lo) as usize;
+        let in_range = n > 0 && self.mid.iter().all(|x| x.0 >= lo && x.0 < hi);
+        let mut emit = |key: &mut Vec<u32>, pays: &[u64], prefix: Option<u32>, a: u32, r: u64| {
+            key.clear();
+            key.extend(prefix);
+            for x in [a, (r >> 32) as u32, r as u32] {
+                if x != PAD {
+                    key.push(x);
+                }
+            }
+            f(key, pays);
+        };
+        if !in_range {
+            self.mid.sort_unstable();
+            let mut i = 0;
+            while i < self.mid.len() {
+                let (a, r, _) = self.mid[i];
+                self.pays.clear();
+                let mut j = i;
+                while j < self.mid.len() && self.mid[j].0 == a && self.mid[j].1 == r {
+                    self.pays.push(self.mid[j].2);
+                    j += 1;
+                }
+                emit(&mut self.key, &self.pays, self.prefix, a, r);
+                i = j;
+            }
+            return;
+        }
+        let counts = &mut self.counts;
+        counts.clear();
+        counts.resize(n + 1, 0);
+        for x in &self.mid {
+            counts[(x.0 - lo) as usize + 1] += 1;
+        }
+        for i in 0..n {
+            counts[i + 1] += counts[i];
+        }
+        let tmp = &mut self.mid_tmp;
+        tmp.clear();
+        tmp.resize(self.mid.len(), (0, 0));
+        for x in &self.mid {
+            let b = (x.0 - lo) as usize;
+            tmp[counts[b] as usize] = (x.1, x.2);
+            counts[b] += 1;
+        }
+        // counts[b] is now the end of bucket b
+        let mut start = 0usize;
+        for (b, &end) in counts[..n].iter().enumerate() {
+            let end = end as usize;
+            let bucket = &mut tmp[start..end];
+            if bucket.len() > 1 {
+                bucket.sort_unstable();
+            }
+            let mut i = 0;
+            while i < bucket.len() {
+                let r = bucket[i].0;
+                self.pays.clear();
+                let mut j = i;
+                while j < bucket.len() && bucket[j].0 == r {
+                    self.pays.push(bucket[j].1);
+                    j += 1;
+                }
+                emit(&mut self.key, &self.pays, self.prefix, lo + b as u32, r);
+                i = j;
+            }
+            start = end;
+        }
+    }
+}
+
 /// Sorts `v` by bucketing on `first(x)` (which must lie in `lo..hi`, else it falls back to a
 /// plain sort) and sorting each bucket; `T`'s order must start with `first`.
 fn bucket_sort<T: Copy + Ord>(
@@ -263,6 +477,33 @@ fn bucket_sort<T: Copy + Ord>(
         start = end;
     }
     std::mem::swap(v, tmp);
+}
+
+/// Reusable buffers of [`StellarTree::leaf_vt_rows`].
+#[derive(Default)]
+struct VtRows {
+    cells: Vec<u32>,
+    off: Vec<u32>,
+    rows: Vec<u32>,
+}
+
+/// Sorts a nearly sorted slice: insertion sort (O(n + inversions)) when short, else the
+/// library sort.
+#[inline]
+fn insertion_sort(v: &mut [u32]) {
+    if v.len() > 48 {
+        v.sort_unstable();
+        return;
+    }
+    for i in 1..v.len() {
+        let x = v[i];
+        let mut j = i;
+        while j > 0 && v[j - 1] > x {
+            v[j] = v[j - 1];
+            j -= 1;
+        }
+        v[j] = x;
+    }
 }
 
 /// [`CellKind::for_each_face`] without a heap allocation per call.
@@ -381,18 +622,27 @@ impl StellarTree {
         Csr { offsets, targets }
     }
 
-    /// Calls `f(v, cells)` for every vertex of the leaf, cells = VT(v) in input ids, sorted.
-    fn leaf_vt_rows(view: &LeafView<'_>, mut f: impl FnMut(u32, &[u32])) {
-        let mut row: Vec<u32> = Vec::with_capacity(64);
-        for v in view.tree_vertices() {
-            row.clear();
-            row.extend(
-                view.vt_tree(v)
-                    .iter()
-                    .map(|&c| view.tree.c_orig[c as usize]),
-            );
-            row.sort_unstable();
-            f(v, &row);
+    /// Calls `f(v, cells)` for every tree vertex `v` of leaf `l`, cells = VT(v) in input ids,
+    /// sorted. The rows are bucketed straight in input ids (`buf` holds the decoded cells and
+    /// the rows); each is nearly sorted (a few increasing runs: cells are reindexed by leaf
+    /// tuple, input order inside), so an insertion sort finishes it.
+    fn leaf_vt_rows(&self, l: LeafId, buf: &mut VtRows, mut f: impl FnMut(u32, &[u32])) {
+        let r = self.leaf_vertices(l);
+        buf.cells.clear();
+        super::sre::decode(self.leaf_encoded_cells(l), &mut buf.cells);
+        let c_orig = &self.c_orig;
+        self.bucket_refs(
+            r.start,
+            r.end,
+            &buf.cells,
+            |c| c_orig[c as usize],
+            &mut buf.off,
+            &mut buf.rows,
+        );
+        for (i, v) in r.enumerate() {
+            let row = &mut buf.rows[buf.off[i] as usize..buf.off[i + 1] as usize];
+            insertion_sort(row);
+            f(v, row);
         }
     }
 
@@ -413,15 +663,18 @@ impl StellarTree {
     /// assert_eq!(t.vt_all().row(2), &[0, 1]);
     /// ```
     pub fn vt_all(&self) -> Csr {
-        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = self.par_map_leaves(|view| {
-            let mut lens = Vec::with_capacity(view.tree_vertices().len());
-            let mut data = Vec::with_capacity(view.e.vt.len());
-            Self::leaf_vt_rows(view, |_, row| {
-                lens.push(row.len() as u32);
-                data.extend_from_slice(row);
-            });
-            (lens, data)
-        });
+        let per_leaf: Vec<(Vec<u32>, Vec<u32>)> = (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(VtRows::default, |buf, l| {
+                let mut lens = Vec::with_capacity(self.leaf_vertices(LeafId(l)).len());
+                let mut data = Vec::new();
+                self.leaf_vt_rows(LeafId(l), buf, |_, row| {
+                    lens.push(row.len() as u32);
+                    data.extend_from_slice(row);
+                });
+                (lens, data)
+            })
+            .collect();
         self.gather_vertex_rows(per_leaf)
     }
 
@@ -444,19 +697,13 @@ impl StellarTree {
     /// assert_eq!(total.into_inner(), 6);
     /// ```
     pub fn par_for_each_vt(&self, f: impl Fn(VertexId, &[CellId]) + Sync + Send) {
-        self.par_map_leaves(|view| {
-            let mut row: Vec<CellId> = Vec::with_capacity(64);
-            for v in view.tree_vertices() {
-                row.clear();
-                row.extend(
-                    view.vt_tree(v)
-                        .iter()
-                        .map(|&c| CellId(view.tree.c_orig[c as usize])),
-                );
-                row.sort_unstable();
-                f(view.input_vertex(v), &row);
-            }
-        });
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .for_each_init(VtRows::default, |buf, l| {
+                self.leaf_vt_rows(LeafId(l), buf, |v, row| {
+                    f(VertexId(self.v_orig[v as usize]), bytemuck::cast_slice(row))
+                });
+            });
     }
 
     /// R_{0,0} of every vertex: row `v` holds the input ids of the vertices joined to `v` by an
@@ -1011,6 +1258,12 @@ impl StellarTree {
                         if d == 0 || d < min_dim {
                             continue;
                         }
+                        if uniform_dim.is_some() && kind.is_simplex() && vs.len() <= SIMPLEX_FAST {
+                            simplex_facets(vs, local_rule, &view, |key, j, s| {
+                                keys.push(key, pack(c, j, s))
+                            });
+                            continue;
+                        }
                         let mut j = 0u64;
                         oriented_facets_of(kind, |local, sign| {
                             j += 1;
@@ -1036,6 +1289,67 @@ impl StellarTree {
                 },
             )
             .collect()
+    }
+}
+
+/// Most vertices of a simplex whose facets take [`simplex_facets`].
+const SIMPLEX_FAST: usize = 8;
+
+/// The facets of a simplex kept by [`StellarTree::par_facet_groups_where`]'s rule, each as
+/// `f(sorted vertices, facet index, induced sign relative to the sorted order)`: the vertices
+/// are sorted once, and the facet omitting the k-th smallest vertex (the j-th listed one) has
+/// sign (-1)^k times the parity of the sorting permutation.
+#[inline]
+fn simplex_facets(
+    vs: &[u32],
+    local_rule: bool,
+    view: &LeafView<'_>,
+    mut f: impl FnMut(&[u32], u64, i8),
+) {
+    let n = vs.len();
+    let mut sv = [0u32; SIMPLEX_FAST];
+    let mut si = [0u8; SIMPLEX_FAST];
+    let mut fk = [0u32; SIMPLEX_FAST];
+    if !(2..=SIMPLEX_FAST).contains(&n) {
+        return;
+    }
+    // insertion sort tracking listed positions; the swaps count the inversions
+    let mut swaps = 0usize;
+    for (i, &x) in vs.iter().enumerate() {
+        let mut p = i;
+        while p > 0 && sv[p - 1] > x {
+            sv[p] = sv[p - 1];
+            si[p] = si[p - 1];
+            p -= 1;
+            swaps += 1;
+        }
+        sv[p] = x;
+        si[p] = i as u8;
+    }
+    let parity: i8 = if swaps.is_multiple_of(2) { 1 } else { -1 };
+    let owned = if local_rule {
+        sv[..n].iter().filter(|&&x| view.owns(x)).count()
+    } else {
+        0
+    };
+    for k in 0..n {
+        let keep = if local_rule {
+            owned > view.owns(sv[k]) as usize
+        } else {
+            view.owns(if k == 0 { sv[1] } else { sv[0] })
+        };
+        if !keep {
+            continue;
+        }
+        let mut m = 0;
+        for (i, &x) in sv[..n].iter().enumerate() {
+            if i != k {
+                fk[m] = x;
+                m += 1;
+            }
+        }
+        let sign = if k % 2 == 0 { parity } else { -parity };
+        f(&fk[..n - 1], si[k] as u64, sign);
     }
 }
 

@@ -32,6 +32,7 @@
 //! assert_eq!(r.orientable, Some(true));
 //! ```
 use super::relations::unpack;
+use super::tetlink::TetScratch;
 use super::{LeafView, StellarTree};
 use crate::algo::unionfind::UnionFind;
 use crate::ids::{CellId, VertexId};
@@ -164,11 +165,10 @@ impl StellarTree {
                     if key[0] as usize != d {
                         return;
                     }
-                    let face: Vec<u32> = key[1..].to_vec();
                     match pays.len() {
-                        1 => o.0.push(face),
+                        1 => o.0.push(key[1..].to_vec()),
                         2 => {}
-                        _ => o.1.push(face),
+                        _ => o.1.push(key[1..].to_vec()),
                     }
                     for i in 0..pays.len() {
                         for j in i + 1..pays.len() {
@@ -180,7 +180,7 @@ impl StellarTree {
                 });
                 o
             });
-            let vertex_part = self.par_map_leaves(|view| self.leaf_manifold(view, d));
+            let vertex_part = self.par_map_leaves(|view| self.leaf_manifold(view, d, true));
             facet_part
                 .into_iter()
                 .zip(vertex_part)
@@ -315,6 +315,7 @@ impl StellarTree {
         &self,
         view: &LeafView<'_>,
         d: usize,
+        fast: bool,
     ) -> (Vec<u32>, Vec<u32>, Vec<[u32; 2]>, Vec<[u32; 2]>) {
         let mut out = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut s = Scratch::default();
@@ -323,7 +324,7 @@ impl StellarTree {
         for v in view.tree_vertices() {
             let star = view.vt_tree(v);
             edges.clear();
-            let vs = self.star_tests(v, star, d, &mut s, &mut groups, &mut edges);
+            let vs = self.star_tests(v, star, d, fast, &mut s, &mut groups, &mut edges);
             match vs {
                 Manifoldness::Manifold => {}
                 Manifoldness::NonManifold => out.0.push(v),
@@ -340,12 +341,15 @@ impl StellarTree {
         out
     }
 
-    /// Tests vertex `v` with star `star` (tree cells) and every edge `vw` with `w > v`.
+    /// Tests vertex `v` with star `star` (tree cells) and every edge `vw` with `w > v`; `fast`
+    /// allows the tetrahedral short cut.
+    #[allow(clippy::too_many_arguments)]
     fn star_tests(
         &self,
         v: u32,
         star: &[u32],
         d: usize,
+        fast: bool,
         s: &mut Scratch,
         edge_groups: &mut Vec<(u32, usize, usize)>,
         edges_out: &mut Vec<(u32, Manifoldness)>,
@@ -353,6 +357,11 @@ impl StellarTree {
         use Manifoldness::*;
         if star.is_empty() {
             return if d == 0 { Manifold } else { NonManifold };
+        }
+        if fast && d == 3 && self.all_tets(star) {
+            if let Some(r) = self.star_tests_tets(v, star, &mut s.tet, edges_out) {
+                return r;
+            }
         }
         // edges at v: (w, local cell index)
         s.ew.clear();
@@ -707,6 +716,7 @@ fn find(p: &mut [u32], mut x: u32) -> u32 {
 
 #[derive(Default)]
 struct Scratch {
+    tet: TetScratch,
     ew: Vec<(u32, u32)>,
     faces: Vec<(u128, u32, u32, u32)>,
     wpairs: Vec<(u32, u32, u32)>,
@@ -714,4 +724,140 @@ struct Scratch {
     parent: Vec<u32>,
     local_uf: Vec<u32>,
     face_bad_w: Vec<u32>,
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::cell::CellKind;
+    use crate::complex::{BuildOptions, ComplexBuilder};
+    use crate::stellar::{StellarOptions, StellarTree};
+
+    /// The tetrahedral short cut answers like the generic test, on random (mostly
+    /// non-manifold) sets of tetrahedra, grids with holes, and stars mixing tetrahedra and
+    /// triangles.
+    #[test]
+    fn tet_short_cut_equals_generic() {
+        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+        let mut next = |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        };
+        // non-manifold vertices, manifold vertices, non-manifold edges met
+        let mut seen_kinds = [0usize; 3];
+        for case in 0..300 {
+            let nv = 5 + next(10) as usize;
+            let mut b = ComplexBuilder::new(3).unwrap();
+            for i in 0..nv {
+                let f = i as f64;
+                b.push_vertex(&[f.sin(), (1.7 * f).cos(), (0.3 * f).sin()])
+                    .unwrap();
+            }
+            let mut seen = std::collections::HashSet::new();
+            let grid = case % 4 == 3;
+            if grid {
+                // a 3x3x3 block of cubes, six tetrahedra each (Kuhn), some removed
+                b = ComplexBuilder::new(3).unwrap();
+                let id = |i: usize, j: usize, k: usize| (i * 16 + j * 4 + k) as u32;
+                for i in 0..4 {
+                    for j in 0..4 {
+                        for k in 0..4 {
+                            b.push_vertex(&[i as f64, j as f64, k as f64]).unwrap();
+                        }
+                    }
+                }
+                let drop = 1 + next(8);
+                for i in 0..3 {
+                    for j in 0..3 {
+                        for k in 0..3 {
+                            for p in [
+                                [0, 1, 2],
+                                [0, 2, 1],
+                                [1, 0, 2],
+                                [1, 2, 0],
+                                [2, 0, 1],
+                                [2, 1, 0],
+                            ] {
+                                if next(drop + 1) == 0 {
+                                    continue;
+                                }
+                                let mut c = [i, j, k];
+                                let mut vs = vec![id(c[0], c[1], c[2])];
+                                for &a in &p {
+                                    c[a] += 1;
+                                    vs.push(id(c[0], c[1], c[2]));
+                                }
+                                b.push_cell(CellKind::Simplex(3), &vs).unwrap();
+                            }
+                        }
+                    }
+                }
+            }
+            let n_cells = if grid {
+                0
+            } else {
+                1 + next(3 * nv as u64) as usize
+            };
+            for _ in 0..n_cells {
+                let tri = case % 3 == 2 && next(4) == 0;
+                let k = if tri { 3 } else { 4 };
+                let mut c: Vec<u32> = Vec::new();
+                while c.len() < k {
+                    let v = next(nv as u64) as u32;
+                    if !c.contains(&v) {
+                        c.push(v);
+                    }
+                }
+                let mut key = c.clone();
+                key.sort_unstable();
+                // no duplicates, no triangle inside a tetrahedron
+                if !seen.insert(key) {
+                    continue;
+                }
+                let kind = if tri {
+                    CellKind::Simplex(2)
+                } else {
+                    CellKind::Simplex(3)
+                };
+                b.push_cell(kind, &c).unwrap();
+            }
+            let opts = BuildOptions {
+                drop_duplicates: true,
+                drop_face_cells: true,
+                ..Default::default()
+            };
+            let Ok((k, _)) = b.build(&opts) else {
+                continue;
+            };
+            for kv in [0, 2, 5] {
+                let t = StellarTree::build(
+                    &k,
+                    &StellarOptions {
+                        kv: Some(kv),
+                        ..Default::default()
+                    },
+                )
+                .unwrap();
+                let Some(d) = t.dim() else { continue };
+                let fast = t.par_map_leaves(|view| t.leaf_manifold(view, d, true));
+                let slow = t.par_map_leaves(|view| t.leaf_manifold(view, d, false));
+                type Leaf = (Vec<u32>, Vec<u32>, Vec<[u32; 2]>, Vec<[u32; 2]>);
+                let norm = |mut r: Vec<Leaf>| {
+                    for x in &mut r {
+                        x.2.sort_unstable();
+                        x.3.sort_unstable();
+                    }
+                    r
+                };
+                let slow = norm(slow);
+                let nm: usize = slow.iter().map(|x| x.0.len()).sum();
+                seen_kinds[0] += nm;
+                seen_kinds[1] += t.n_vertices() - nm;
+                seen_kinds[2] += slow.iter().map(|x| x.2.len()).sum::<usize>();
+                assert_eq!(norm(fast), slow, "case {case} kv {kv}");
+            }
+        }
+        assert!(seen_kinds.iter().all(|&n| n > 100), "{seen_kinds:?}");
+    }
 }

@@ -78,40 +78,81 @@ impl StellarTree {
         out.v_end = r.end;
         out.cells.clear();
         sre::decode(self.leaf_encoded_cells(l), &mut out.cells);
-        let nloc = (r.end - r.start) as usize;
-        out.vt_off.clear();
-        out.vt_off.resize(nloc + 1, 0);
-        let (vs, ve) = (r.start, r.end);
-        let mut total = 0usize;
-        for &c in &out.cells {
-            for &v in self.cells.verts(c) {
-                if v >= vs && v < ve {
-                    out.vt_off[(v - vs) as usize + 1] += 1;
-                    total += 1;
+        let cells = &out.cells;
+        self.bucket_refs(r.start, r.end, cells, |c| c, &mut out.vt_off, &mut out.vt);
+    }
+
+    /// Counting sort of the references of `cells` to the vertices `vs..ve` by vertex: row
+    /// `i` of (`off`, `rows`) holds `val(c)` for the cells `c` of `cells` (in their order) that
+    /// have vertex `vs + i`. Branch-free: references to other vertices go to a spill row
+    /// that is cut off at the end.
+    #[inline]
+    pub(crate) fn bucket_refs(
+        &self,
+        vs: u32,
+        ve: u32,
+        cells: &[u32],
+        val: impl Fn(u32) -> u32,
+        off: &mut Vec<u32>,
+        rows: &mut Vec<u32>,
+    ) {
+        let nloc = (ve - vs) as usize;
+        let spill = nloc as u32;
+        let slot = |v: u32| v.wrapping_sub(vs).min(spill) as usize;
+        off.clear();
+        off.resize(nloc + 2, 0);
+        let offs = &mut off[..];
+        let st = &self.cells;
+        if st.uniform != 255 {
+            let k = st.stride as usize;
+            for &c in cells {
+                let i = c as usize * k;
+                for &v in &st.verts[i..i + k] {
+                    offs[slot(v) + 1] += 1;
+                }
+            }
+        } else {
+            for &c in cells {
+                for &v in st.verts(c) {
+                    offs[slot(v) + 1] += 1;
                 }
             }
         }
-        for i in 0..nloc {
-            out.vt_off[i + 1] += out.vt_off[i];
+        for i in 0..=nloc {
+            offs[i + 1] += offs[i];
         }
-        out.vt.clear();
-        out.vt.resize(total, 0);
-        // fill using vt_off as cursors (shifted), then restore
-        for &c in &out.cells {
-            for &v in self.cells.verts(c) {
-                if v >= vs && v < ve {
-                    let i = (v - vs) as usize;
-                    out.vt[out.vt_off[i] as usize] = c;
-                    out.vt_off[i] += 1;
+        let total = offs[nloc] as usize;
+        rows.clear();
+        rows.resize(offs[nloc + 1] as usize, 0);
+        let out = &mut rows[..];
+        // fill using off as cursors (shifted), then restore
+        if st.uniform != 255 {
+            let k = st.stride as usize;
+            for &c in cells {
+                let x = val(c);
+                let i = c as usize * k;
+                for &v in &st.verts[i..i + k] {
+                    let s = slot(v);
+                    out[offs[s] as usize] = x;
+                    offs[s] += 1;
+                }
+            }
+        } else {
+            for &c in cells {
+                let x = val(c);
+                for &v in st.verts(c) {
+                    let s = slot(v);
+                    out[offs[s] as usize] = x;
+                    offs[s] += 1;
                 }
             }
         }
+        rows.truncate(total);
+        off.truncate(nloc + 1);
         for i in (1..=nloc).rev() {
-            out.vt_off[i] = out.vt_off[i - 1];
+            off[i] = off[i - 1];
         }
-        if nloc > 0 {
-            out.vt_off[0] = 0;
-        }
+        off[0] = 0;
     }
 
     /// Expands leaf `l` into a new [`ExpandedLeaf`].
