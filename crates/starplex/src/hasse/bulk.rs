@@ -223,7 +223,8 @@ impl<L: Levels> Hasse<L> {
                 below.down.reserve_exact(groups * k);
             }
             below.up.hdr.reserve_exact(groups);
-            below.up.reserve_slots(slots);
+            // with the headroom reserved below, so that it costs no copy
+            below.up.reserve_slots(slots + slots / 16 + 64);
             L::reserve(&mut self.data, k - 1, groups);
             for a in 0..nb {
                 let b = &recs[count[a] as usize..count[a + 1] as usize];
