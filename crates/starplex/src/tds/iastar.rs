@@ -528,9 +528,9 @@ mod low_dim {
     const COARSE_BITS: u32 = 10;
 
     /// A facet word: from the most significant end, the low bits of the facet's smallest vertex
-    /// (`low`), its other vertices (`vb` bits each), the top's dimension-local index (`lb`),
-    /// the input position of the vertex the facet omits (2 bits) and the top's place in the VT
-    /// row of each of the facet's vertices (`pb` bits each).
+    /// (`low`), its other vertices (`vb` bits each), the input position of the vertex the facet
+    /// omits (2 bits) and the top's place in the VT row of each of the facet's vertices (`pb`
+    /// bits each; the place in the smallest vertex's row names the top).
     pub(super) trait Word: Copy + Ord + Default {
         fn of(x: u128) -> Self;
         fn wide(self) -> u128;
@@ -565,16 +565,15 @@ mod low_dim {
     struct Layout {
         vb: u32,
         low: u32,
-        lb: u32,
         pb: u32,
     }
 
     impl Layout {
         /// Bits of a facet word of a top `D`-simplex.
         fn total(&self, d: u32) -> u32 {
-            self.low + (d - 1) * self.vb + self.lb + 2 + d * self.pb
+            self.low + (d - 1) * self.vb + 2 + d * self.pb
         }
-        /// Shift of the top's index and position.
+        /// Shift of the omitted vertex's position.
         #[inline]
         fn tsh(&self, d: usize) -> u32 {
             d as u32 * self.pb
@@ -582,7 +581,7 @@ mod low_dim {
         /// Shift of the facet's vertices after the smallest.
         #[inline]
         fn ksh(&self, d: usize) -> u32 {
-            self.tsh(d) + self.lb + 2
+            self.tsh(d) + 2
         }
         /// Shift of the smallest vertex's low bits.
         #[inline]
@@ -660,13 +659,11 @@ mod low_dim {
                 f[i + 1] += f[i];
             }
         }
-        let t2 = t.get(2).copied().unwrap_or(0);
         let t3 = t.get(3).copied().unwrap_or(0);
         let vb = bits(nv.saturating_sub(1) as u64);
         let lay = Layout {
             vb,
             low: vb.saturating_sub(COARSE_BITS),
-            lb: bits(t2.max(t3).saturating_sub(1)),
             pb: bits(maxdeg.saturating_sub(1) as u64),
         };
         let bits = lay.total(if t3 > 0 { 3 } else { 2 });
@@ -680,8 +677,8 @@ mod low_dim {
         }
     }
 
-    /// Global ids of the tops of one dimension: (first dimension-local index, first id) per
-    /// block of that dimension.
+    /// Dimension-local indices of the tops of one dimension: (first id, first dimension-local
+    /// index) per block of that dimension.
     struct DimIds(Vec<(u32, u32)>);
 
     impl DimIds {
@@ -690,19 +687,20 @@ mod low_dim {
                 blocks
                     .iter()
                     .filter(|b| b.dim == d)
-                    .map(|b| (b.dim_offset, b.first))
+                    .map(|b| (b.first, b.dim_offset))
                     .collect(),
             )
         }
+        /// The dimension-local index of top `c` (of this dimension).
         #[inline]
-        fn id(&self, li: u32) -> u32 {
+        fn local(&self, c: u32) -> usize {
             let i = if self.0.len() == 1 {
                 0
             } else {
-                self.0.partition_point(|a| a.0 <= li) - 1
+                self.0.partition_point(|a| a.0 <= c) - 1
             };
-            let (o, f) = self.0[i];
-            f + (li - o)
+            let (f, o) = self.0[i];
+            (o + (c - f)) as usize
         }
     }
 
@@ -754,6 +752,12 @@ mod low_dim {
                 *e += 1;
             }
         }
+    }
+
+    /// The VT relation: row offsets and targets (rows sorted by id).
+    struct Vt<'a> {
+        off: &'a [u32],
+        targets: &'a [u32],
     }
 
     /// Scratch of one dimension's facet grouping.
@@ -845,11 +849,10 @@ mod low_dim {
                     targets[p[0] as usize] = id;
                     *p = [p[0] + 1, p[1] + 1];
                 }
-                let li = blk.dim_offset + i as u32;
                 if d == 2 {
-                    emit::<W, 2>(&sv, &pm, &vp, li, lay, recs, cpos);
+                    emit::<W, 2>(&sv, &pm, &vp, lay, recs, cpos);
                 } else {
-                    emit::<W, 3>(&sv, &pm, &vp, li, lay, recs, cpos);
+                    emit::<W, 3>(&sv, &pm, &vp, lay, recs, cpos);
                 }
             }
         }
@@ -883,11 +886,15 @@ mod low_dim {
             };
             for (d, g) in groups.iter_mut().enumerate() {
                 if !recs[d].is_empty() {
+                    let vt = Vt {
+                        off: &vt_off,
+                        targets: &targets,
+                    };
                     g.chunk(
                         d + 2,
                         &mut recs[d],
                         &fcnt[d],
-                        &vt_off,
+                        &vt,
                         &mut cur,
                         &mut tmp,
                         &mut links,
@@ -976,7 +983,6 @@ mod low_dim {
         sv: &[u32; 4],
         pm: &[u8; 4],
         vp: &[u32; 4],
-        li: u32,
         lay: Layout,
         recs: &mut [W],
         cpos: &mut [u32],
@@ -999,7 +1005,7 @@ mod low_dim {
                 first = false;
                 places = (places << lay.pb) | vp[s] as u128;
             }
-            key = (((key << lay.lb) | li as u128) << 2) | pm[jj] as u128;
+            key = (key << 2) | pm[jj] as u128;
             let w = W::of((key << lay.tsh(D)) | places);
             let m = sv[usize::from(jj == 0)];
             let slot = &mut cpos[(m >> lay.low) as usize];
@@ -1034,7 +1040,7 @@ mod low_dim {
             d: usize,
             recs: &mut [W],
             fcnt: &[u32],
-            vt_off: &[u32],
+            vt: &Vt,
             cur: &mut Chunk,
             tmp: &mut Vec<W>,
             links: &mut Links,
@@ -1061,9 +1067,9 @@ mod low_dim {
                 let (a, b) = (fcnt[v] as usize - s, fcnt[v + 1] as usize - s);
                 if b - a >= 2 {
                     if d == 2 {
-                        self.bucket::<W, 2>(v as u32, &mut tmp[a..b], vt_off, cur, links);
+                        self.bucket::<W, 2>(v as u32, &mut tmp[a..b], vt, cur, links);
                     } else {
-                        self.bucket::<W, 3>(v as u32, &mut tmp[a..b], vt_off, cur, links);
+                        self.bucket::<W, 3>(v as u32, &mut tmp[a..b], vt, cur, links);
                     }
                 }
             }
@@ -1074,7 +1080,7 @@ mod low_dim {
             &mut self,
             m: u32,
             bucket: &mut [W],
-            vt_off: &[u32],
+            vt: &Vt,
             cur: &mut Chunk,
             links: &mut Links,
         ) {
@@ -1082,19 +1088,22 @@ mod low_dim {
             let (tsh, ksh) = (lay.tsh(D), lay.ksh(D));
             let n = D + 1;
             let vmask = (1u128 << lay.vb) - 1;
-            let lmask = (1u128 << lay.lb) - 1;
             let pmask = (1u128 << lay.pb) - 1;
-            let top = |x: W| {
-                let x = x.wide() >> tsh;
-                (((x >> 2) & lmask) as u32, (x & 3) as usize)
-            };
             let place =
                 |x: W, q: usize| ((x.wide() >> ((D - 1 - q) as u32 * lay.pb)) & pmask) as u32;
+            // a facet's top: its id (its place in the VT row of m) and the input position of
+            // the vertex the facet omits
+            let row = &vt.targets[vt.off[m as usize] as usize..];
+            let top = |x: W| (row[place(x, 0) as usize], ((x.wide() >> tsh) & 3) as usize);
             if bucket.len() == 2 {
                 // the common case: skip the sort
                 if bucket[1] < bucket[0] {
                     bucket.swap(0, 1);
                 }
+            } else if std::mem::size_of::<W>() > 8 && lay.msh(D) - tsh <= 64 {
+                // the smallest vertex is shared and the facet's other vertices fit in 64
+                // bits: sort by them (the order inside a group does not change the result)
+                bucket.sort_unstable_by_key(|w| (w.wide() >> tsh) as u64);
             } else {
                 bucket.sort_unstable();
             }
@@ -1116,27 +1125,27 @@ mod low_dim {
                     }
                     let g = &bucket[i..j];
                     if g.len() == 2 {
-                        let ((la, ja), (lb, jb)) = (top(g[0]), top(g[1]));
-                        self.adj[la as usize * n + ja] = self.ids.id(lb);
-                        self.adj[lb as usize * n + jb] = self.ids.id(la);
+                        let ((ca, ja), (cb, jb)) = (top(g[0]), top(g[1]));
+                        self.adj[self.ids.local(ca) * n + ja] = cb;
+                        self.adj[self.ids.local(cb) * n + jb] = ca;
                         for (q, &w) in f.iter().enumerate() {
                             let (x, y) = (place(g[0], q), place(g[1], q));
-                            cur.link(links, vt_off, lay.low, w, x, y, false);
+                            cur.link(links, vt.off, lay.low, w, x, y, false);
                         }
                     } else {
                         let fid = NM_BIT | (self.nm_offsets.len() - 1) as u32;
                         let s0 = self.nm_tops.len();
                         for &r in g {
-                            let (l, jr) = top(r);
-                            self.nm_tops.push(self.ids.id(l));
-                            self.adj[l as usize * n + jr] = fid;
+                            let (c, jr) = top(r);
+                            self.nm_tops.push(c);
+                            self.adj[self.ids.local(c) * n + jr] = fid;
                         }
                         self.nm_tops[s0..].sort_unstable();
                         self.nm_offsets.push(self.nm_tops.len() as u32);
                         for p in g.windows(2) {
                             for (q, &w) in f.iter().enumerate() {
                                 let (x, y) = (place(p[0], q), place(p[1], q));
-                                cur.link(links, vt_off, lay.low, w, x, y, true);
+                                cur.link(links, vt.off, lay.low, w, x, y, true);
                             }
                         }
                     }
