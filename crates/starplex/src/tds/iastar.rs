@@ -1669,4 +1669,30 @@ mod tests {
             }
         }
     }
+
+    /// The same on the medium meshes of `$STARPLEX_DATA` (slow in a debug build:
+    /// `cargo test --release -- --ignored`).
+    #[test]
+    #[ignore]
+    fn low_dim_build_equals_general_build_on_medium_meshes() {
+        let Ok(dir) = std::env::var("STARPLEX_DATA") else {
+            return;
+        };
+        for name in ["tri_armadillo_x16", "tet_armadillo_m"] {
+            let p = std::path::Path::new(&dir).join(format!("medium/{name}/{name}.spx"));
+            if !p.exists() {
+                continue;
+            }
+            let k = crate::io::read(&p, &Default::default()).unwrap().complex;
+            assert!(k.n_cells() > 500_000, "{name}");
+            let fast = IaStar::build(&k, false).unwrap();
+            let general = IaStar::build(&k, true).unwrap();
+            assert_eq!(fast.refs(), general.refs(), "{name}");
+            assert_eq!(fast.vrefs, general.vrefs, "{name}");
+            assert_eq!(fast.nm, general.nm, "{name}");
+            for (a, b) in fast.blocks.iter().zip(&general.blocks) {
+                assert!(a.data == b.data, "{name}");
+            }
+        }
+    }
 }
