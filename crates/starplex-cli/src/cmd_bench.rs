@@ -125,17 +125,24 @@ fn ia_star(ctx: &Ctx, a: &SimplexTreeBenchArgs) -> Result<(), CliError> {
     use starplex::topo::Storage;
     let k = common::load(ctx, &a.input)?.complex;
     let mut times = Vec::new();
+    let mut cpu_times = Vec::new();
     let mut ia = None;
     for _ in 0..a.reps.max(1) {
         drop(ia.take());
-        let t = Instant::now();
+        let (t, c) = (Instant::now(), crate::cmd_bench_hasse::cpu_s());
         let s = IaStar::new(&k).map_err(|e| CliError::Input(e.to_string(), None))?;
         times.push(t.elapsed().as_secs_f64());
+        if let (Some(c0), Some(c1)) = (c, crate::cmd_bench_hasse::cpu_s()) {
+            cpu_times.push(c1 - c0);
+        }
         ia = Some(s);
     }
     let ia = ia.expect("at least one build");
     let build_s = median(times);
     let us_per_top = 1e6 * build_s / k.n_cells().max(1) as f64;
+    // CPU time of the building thread: meaningful on a loaded machine
+    let build_cpu_s = (!cpu_times.is_empty()).then(|| median(cpu_times));
+    let us_per_top_cpu = build_cpu_s.map(|c| 1e6 * c / k.n_cells().max(1) as f64);
     if a.json {
         println!(
             "{}",
@@ -145,6 +152,8 @@ fn ia_star(ctx: &Ctx, a: &SimplexTreeBenchArgs) -> Result<(), CliError> {
                 "top_cells": k.n_cells(),
                 "build_s": build_s,
                 "us_per_top": us_per_top,
+                "build_cpu_s": build_cpu_s,
+                "us_per_top_cpu": us_per_top_cpu,
                 "refs": ia.refs(),
                 "bytes": ia.bytes(),
             })

@@ -22,6 +22,9 @@ pub struct BenchHasseArgs {
     /// Seed of the random edge choice.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// Builds to time (the median is reported; the first build alone with the default 1).
+    #[arg(long, default_value_t = 1)]
+    pub reps: usize,
 }
 
 /// Midpoint of the merged vertices; nothing on other levels.
@@ -44,7 +47,7 @@ impl<const K: usize> Merge<K, ()> for Mid {
 
 /// CPU time of this thread in seconds (Linux `/proc/thread-self/schedstat`), so numbers stay
 /// meaningful on a loaded machine; `None` elsewhere.
-fn cpu_s() -> Option<f64> {
+pub(crate) fn cpu_s() -> Option<f64> {
     let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
     let ns: u64 = s.split_whitespace().next()?.parse().ok()?;
     Some(ns as f64 * 1e-9)
@@ -62,10 +65,25 @@ pub fn run(ctx: &Ctx, a: &BenchHasseArgs) -> Result<(), CliError> {
     let r = common::load(ctx, &a.input)?;
     let k = &r.complex;
 
-    let (t, c) = (Instant::now(), cpu_s());
-    let h: Hasse = Hasse::from_indexed(k).map_err(hasse_err)?;
-    let insert_s = t.elapsed().as_secs_f64();
-    let insert_cpu_s = cpu_since(c);
+    let mut walls = Vec::new();
+    let mut cpus = Vec::new();
+    let mut built = None;
+    for _ in 0..a.reps.max(1) {
+        drop(built.take());
+        let c = cpu_s();
+        let t = Instant::now();
+        let h: Hasse = Hasse::from_indexed(k).map_err(hasse_err)?;
+        walls.push(t.elapsed().as_secs_f64());
+        cpus.extend(cpu_since(c));
+        built = Some(h);
+    }
+    let h = built.expect("at least one build");
+    let med = |mut v: Vec<f64>| {
+        v.sort_by(|a, b| a.total_cmp(b));
+        v.get(v.len() / 2).copied()
+    };
+    let insert_s = med(walls).unwrap_or(f64::NAN);
+    let insert_cpu_s = med(cpus);
     let n_simplices = h.len();
     let bytes = h.topology_bytes();
     let bytes_per_simplex = bytes as f64 / n_simplices.max(1) as f64;

@@ -76,6 +76,14 @@ impl UpArena {
         self.hdr[n as usize] = [s, l | (c.trailing_zeros() << LEN_BITS)];
     }
 
+    /// Replaces every key `x` by `f(x)` (`f` increasing, so blocks stay sorted; unused slots
+    /// are mapped too and must be valid arguments of `f`).
+    pub(crate) fn map_keys(&mut self, f: impl Fn(u32) -> u32) {
+        for p in &mut self.slots {
+            p[0] = f(p[0]);
+        }
+    }
+
     /// Reserves 1/16 more pairs than in use (at least 64).
     pub(crate) fn reserve_headroom(&mut self) {
         self.slots.reserve_exact(self.slots.len() / 16 + 64);

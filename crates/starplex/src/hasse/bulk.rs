@@ -1,75 +1,43 @@
 //! Bulk construction from a list of simplices (dimension at most 3): instead of inserting cells
 //! one by one (random access into the vertex lookup and the up lists), every level is built
-//! from the one above by one sort of its facets. Nodes come out in lexicographic order and
-//! every up list in one exactly-sized block, laid out in node order.
+//! from the one above by one counting sort of its facets on their first label, then a small
+//! sort per label. Nodes come out in lexicographic order and every up list in one
+//! exactly-sized block, laid out in node order.
 use super::complex::Hasse;
 use super::levels::Levels;
 
-/// A sorted tuple of at most 4 labels packed in two words, first label most significant (so
-/// keys compare like the tuples; 8-byte alignment keeps a record at 24 bytes).
-type Key = (u64, u64);
-
-#[inline]
-fn pack(vs: &[u32]) -> Key {
-    let mut w = [0u32; 4];
-    w[..vs.len()].copy_from_slice(vs);
-    (
-        ((w[0] as u64) << 32) | w[1] as u64,
-        ((w[2] as u64) << 32) | w[3] as u64,
-    )
-}
-
-#[inline]
-fn unpack(k: Key, n: usize, out: &mut [u32; 4]) {
-    let w = [
-        (k.0 >> 32) as u32,
-        k.0 as u32,
-        (k.1 >> 32) as u32,
-        k.1 as u32,
-    ];
-    out[..n].copy_from_slice(&w[..n]);
-}
-
 const NO_PARENT: u32 = u32::MAX;
 
-type Rec = (Key, u32, u32);
+/// A facet: its labels after the first (at most two, packed first label most significant),
+/// the parent node and the position of the label the facet omits (or [`NO_PARENT`] for an
+/// input cell). The first label is the counting-sort bucket.
+type Rec = (u64, u32, u32);
 
-/// Label `i` of a packed key.
+/// Labels after the first of a sorted tuple of at most 4 labels, packed 32 bits each, first
+/// most significant (so packed tuples compare like the tuples).
 #[inline]
-fn label(k: Key, i: usize) -> u32 {
-    match i {
-        0 => (k.0 >> 32) as u32,
-        1 => k.0 as u32,
-        2 => (k.1 >> 32) as u32,
-        _ => k.1 as u32,
+fn pack_rest(vs: &[u32]) -> u128 {
+    let mut x = 0u128;
+    for &v in &vs[1..] {
+        x = (x << 32) | v as u128;
+    }
+    x
+}
+
+/// Appends `first` then the `n - 1` labels packed in `rest`.
+#[inline]
+fn push_unpacked(out: &mut Vec<u32>, first: u32, rest: u128, n: usize) {
+    out.push(first);
+    for i in (0..n - 1).rev() {
+        out.push((rest >> (32 * i)) as u32);
     }
 }
 
-/// Sorts records by key: a least-significant-label-first counting sort (one pass per label)
-/// when labels are small, a comparison sort otherwise. Stable order is not needed.
-fn sort_recs(recs: &mut Vec<Rec>, k: usize, max_label: u32, tmp: &mut Vec<Rec>) {
-    let buckets = max_label as usize + 1;
-    if buckets > 4 * recs.len() + 4096 {
-        recs.sort_unstable_by_key(|r| r.0);
-        return;
-    }
-    let mut count = vec![0u32; buckets + 1];
-    tmp.clear();
-    tmp.resize(recs.len(), ((0, 0), 0, 0));
-    for pos in (0..k).rev() {
-        count.iter_mut().for_each(|c| *c = 0);
-        for r in recs.iter() {
-            count[label(r.0, pos) as usize + 1] += 1;
-        }
-        for b in 1..count.len() {
-            count[b] += count[b - 1];
-        }
-        for r in recs.iter() {
-            let b = label(r.0, pos) as usize;
-            tmp[count[b] as usize] = *r;
-            count[b] += 1;
-        }
-        std::mem::swap(recs, tmp);
+/// Counting-sort offsets: `count[l]..count[l + 1]` is bucket `l` once `count[l + 1]` holds the
+/// size of bucket `l` (the prefix sums are taken here).
+fn prefix(count: &mut [u32]) {
+    for b in 1..count.len() {
+        count[b] += count[b - 1];
     }
 }
 
@@ -81,129 +49,35 @@ impl<L: Levels> Hasse<L> {
         let Some(d) = (0..cells.len()).rev().find(|&k| !cells[k].is_empty()) else {
             return;
         };
-        self.ensure_level(d);
-        // top level: unique tuples
-        let mut keys: Vec<Key> = cells[d].chunks_exact(d + 1).map(pack).collect();
-        keys.sort_unstable();
-        keys.dedup();
-        let mut buf = [0u32; 4];
-        {
-            let l = &mut self.levels[d];
-            l.verts.reserve_exact(keys.len() * (d + 1));
-            for &k in &keys {
-                unpack(k, d + 1, &mut buf);
-                l.verts.extend_from_slice(&buf[..d + 1]);
-            }
-            if d > 0 {
-                l.down = vec![0; l.verts.len()];
-            }
-            l.up.hdr.reserve_exact(keys.len());
-            for _ in 0..keys.len() {
-                l.up.push_node(0);
-            }
-            for _ in 0..keys.len() {
-                L::push_default(&mut self.data, d);
-            }
-        }
-        drop(keys);
+        let total: usize = cells.iter().map(|c| c.len()).sum();
         let max_label = cells
             .iter()
             .flat_map(|c| c.iter())
             .copied()
             .max()
             .unwrap_or(0);
-        let mut recs: Vec<Rec> = Vec::new();
-        let mut tmp: Vec<Rec> = Vec::new();
-        let mut ups: Vec<[u32; 2]> = Vec::new();
-        for k in (1..=d).rev() {
-            // facets of level k, plus the input cells of dimension k - 1
-            recs.clear();
-            let n = self.levels[k].slots();
-            recs.reserve(n * (k + 1) + cells[k - 1].len() / k);
-            {
-                let l = &self.levels[k];
-                let mut f = [0u32; 4];
-                for i in 0..n as u32 {
-                    let vs = l.verts(i);
-                    for j in 0..=k {
-                        let mut m = 0;
-                        for (t, &x) in vs.iter().enumerate() {
-                            if t != j {
-                                f[m] = x;
-                                m += 1;
-                            }
-                        }
-                        recs.push((pack(&f[..k]), i, j as u32));
-                    }
+        if max_label as usize > 4 * total + 4096 {
+            // sparse labels: build on their ranks (same order), then label the nodes
+            let mut labels: Vec<u32> = cells.iter().flatten().copied().collect();
+            labels.sort_unstable();
+            labels.dedup();
+            let ranked: Vec<Vec<u32>> = cells
+                .iter()
+                .map(|c| {
+                    c.iter()
+                        .map(|&x| labels.partition_point(|&y| y < x) as u32)
+                        .collect()
+                })
+                .collect();
+            self.bulk_build_dense(&ranked, d, labels.len() as u32 - 1);
+            for l in &mut self.levels {
+                for x in &mut l.verts {
+                    *x = labels[*x as usize];
                 }
+                l.up.map_keys(|x| labels[x as usize]);
             }
-            for c in cells[k - 1].chunks_exact(k) {
-                recs.push((pack(c), NO_PARENT, 0));
-            }
-            sort_recs(&mut recs, k, max_label, &mut tmp);
-            // groups become the nodes of level k - 1
-            let (lo, hi) = self.levels.split_at_mut(k);
-            let below = &mut lo[k - 1];
-            let above = &mut hi[0];
-            // count the groups and the arena slots their up lists need (power-of-two blocks)
-            let (mut groups, mut slots, mut run) = (0usize, 0usize, 0u32);
-            for (i, r) in recs.iter().enumerate() {
-                if r.1 != NO_PARENT {
-                    run += 1;
-                }
-                if i + 1 == recs.len() || recs[i + 1].0 != r.0 {
-                    groups += 1;
-                    if run > 0 {
-                        slots += run.next_power_of_two().max(2) as usize;
-                    }
-                    run = 0;
-                }
-            }
-            below.verts.reserve_exact(groups * k);
-            if k > 1 {
-                below.down.reserve_exact(groups * k);
-            }
-            below.up.hdr.reserve_exact(groups);
-            below.up.reserve_slots(slots);
-            L::reserve(&mut self.data, k - 1, groups);
-            let mut g = 0;
-            while g < recs.len() {
-                let key = recs[g].0;
-                let mut e = g;
-                ups.clear();
-                while e < recs.len() && recs[e].0 == key {
-                    let (_, p, pos) = recs[e];
-                    if p != NO_PARENT {
-                        let w = above.verts[p as usize * (k + 1) + pos as usize];
-                        ups.push([w, p]);
-                    }
-                    e += 1;
-                }
-                let id = below.slots() as u32;
-                unpack(key, k, &mut buf);
-                for &x in &buf[..k] {
-                    below.verts.push(x);
-                }
-                if k > 1 {
-                    for _ in 0..k {
-                        below.down.push(0);
-                    }
-                }
-                ups.sort_unstable();
-                below.up.push_node_with(&ups);
-                for r in &recs[g..e] {
-                    if r.1 != NO_PARENT {
-                        above.down[r.1 as usize * (k + 1) + r.2 as usize] = id;
-                    }
-                }
-                L::push_default(&mut self.data, k - 1);
-                g = e;
-            }
-        }
-        // a little headroom in every arena, so the first local edits after a bulk build do not
-        // reallocate (and copy) a whole arena
-        for l in &mut self.levels {
-            l.up.reserve_headroom();
+        } else {
+            self.bulk_build_dense(cells, d, max_label);
         }
         let l0 = &self.levels[0];
         self.root.reserve_dense(
@@ -216,5 +90,260 @@ impl<L: Levels> Hasse<L> {
             self.root.insert(lab, i as u32);
         }
         self.max_label = l0.verts.last().copied();
+    }
+
+    /// [`bulk_build`](Self::bulk_build) with labels at most `max_label` (counting sorts over
+    /// `max_label + 1` buckets); `d` is the top dimension.
+    fn bulk_build_dense(&mut self, cells: &[Vec<u32>], d: usize, max_label: u32) {
+        self.ensure_level(d);
+        let nb = max_label as usize + 1;
+        let mut count = vec![0u32; nb + 1];
+        // top level: unique tuples, bucketed by first label, sorted in each bucket
+        {
+            let n = d + 1;
+            for c in cells[d].chunks_exact(n) {
+                count[c[0] as usize + 1] += 1;
+            }
+            prefix(&mut count);
+            let mut keys = vec![0u128; cells[d].len() / n];
+            let mut pos = count.clone();
+            for c in cells[d].chunks_exact(n) {
+                let p = &mut pos[c[0] as usize];
+                keys[*p as usize] = pack_rest(c);
+                *p += 1;
+            }
+            drop(pos);
+            let mut unique = 0usize;
+            for a in 0..nb {
+                let b = &mut keys[count[a] as usize..count[a + 1] as usize];
+                if b.len() > 1 {
+                    b.sort_unstable();
+                }
+                // duplicates are adjacent now
+                unique += b.len() - b.windows(2).filter(|w| w[0] == w[1]).count();
+            }
+            let l = &mut self.levels[d];
+            l.verts.reserve_exact(unique * n);
+            for a in 0..nb {
+                let b = &keys[count[a] as usize..count[a + 1] as usize];
+                for (i, &r) in b.iter().enumerate() {
+                    if i == 0 || b[i - 1] != r {
+                        push_unpacked(&mut l.verts, a as u32, r, n);
+                    }
+                }
+            }
+            if d > 0 {
+                l.down = vec![0; l.verts.len()];
+            }
+            l.up.hdr.reserve_exact(unique);
+            for _ in 0..unique {
+                l.up.push_node(0);
+            }
+            for _ in 0..unique {
+                L::push_default(&mut self.data, d);
+            }
+        }
+        let mut recs: Vec<Rec> = Vec::new();
+        let mut pos: Vec<u32> = Vec::new();
+        let mut ups: Vec<[u32; 2]> = Vec::new();
+        for k in (1..=d).rev() {
+            // facets of level k, plus the input cells of dimension k - 1, bucketed by their
+            // first label
+            let n = self.levels[k].slots();
+            let l = &self.levels[k];
+            count.iter_mut().for_each(|c| *c = 0);
+            for vs in l.verts.chunks_exact(k + 1) {
+                count[vs[1] as usize + 1] += 1; // the facet without vs[0]
+                count[vs[0] as usize + 1] += k as u32;
+            }
+            for c in cells[k - 1].chunks_exact(k) {
+                count[c[0] as usize + 1] += 1;
+            }
+            prefix(&mut count);
+            recs.clear();
+            recs.resize(count[nb] as usize, (0, 0, 0));
+            pos.clear();
+            pos.extend_from_slice(&count[..nb]);
+            let mut f = [0u32; 4];
+            for (i, vs) in l.verts.chunks_exact(k + 1).enumerate() {
+                for j in 0..=k {
+                    let mut m = 0;
+                    for (t, &x) in vs.iter().enumerate() {
+                        if t != j {
+                            f[m] = x;
+                            m += 1;
+                        }
+                    }
+                    let p = &mut pos[f[0] as usize];
+                    recs[*p as usize] = (pack_rest(&f[..k]) as u64, i as u32, j as u32);
+                    *p += 1;
+                }
+            }
+            debug_assert_eq!(n * (k + 1) + cells[k - 1].len() / k, recs.len());
+            for c in cells[k - 1].chunks_exact(k) {
+                let p = &mut pos[c[0] as usize];
+                recs[*p as usize] = (pack_rest(c) as u64, NO_PARENT, 0);
+                *p += 1;
+            }
+            // sort every bucket; count the groups and the arena slots their up lists need
+            // (power-of-two blocks)
+            let (mut groups, mut slots) = (0usize, 0usize);
+            for a in 0..nb {
+                let b = &mut recs[count[a] as usize..count[a + 1] as usize];
+                match b.len() {
+                    0 => continue,
+                    1 => {}
+                    2 => {
+                        if b[1].0 < b[0].0 {
+                            b.swap(0, 1);
+                        }
+                    }
+                    _ => b.sort_unstable_by_key(|r| r.0),
+                }
+                let mut run = 0u32;
+                for (i, r) in b.iter().enumerate() {
+                    if r.1 != NO_PARENT {
+                        run += 1;
+                    }
+                    if i + 1 == b.len() || b[i + 1].0 != r.0 {
+                        groups += 1;
+                        if run > 0 {
+                            slots += run.next_power_of_two().max(2) as usize;
+                        }
+                        run = 0;
+                    }
+                }
+            }
+            // groups become the nodes of level k - 1
+            let (lo, hi) = self.levels.split_at_mut(k);
+            let below = &mut lo[k - 1];
+            let above = &mut hi[0];
+            below.verts.reserve_exact(groups * k);
+            if k > 1 {
+                below.down.reserve_exact(groups * k);
+            }
+            below.up.hdr.reserve_exact(groups);
+            // with the headroom reserved below, so that it costs no copy
+            below.up.reserve_slots(slots + slots / 16 + 64);
+            L::reserve(&mut self.data, k - 1, groups);
+            for a in 0..nb {
+                let b = &recs[count[a] as usize..count[a + 1] as usize];
+                let mut g = 0;
+                while g < b.len() {
+                    let key = b[g].0;
+                    let mut e = g;
+                    ups.clear();
+                    while e < b.len() && b[e].0 == key {
+                        let (_, p, q) = b[e];
+                        if p != NO_PARENT {
+                            let w = above.verts[p as usize * (k + 1) + q as usize];
+                            ups.push([w, p]);
+                        }
+                        e += 1;
+                    }
+                    let id = below.slots() as u32;
+                    push_unpacked(&mut below.verts, a as u32, key as u128, k);
+                    if k > 1 {
+                        below.down.extend(std::iter::repeat_n(0, k));
+                    }
+                    if ups.len() == 2 {
+                        if ups[1] < ups[0] {
+                            ups.swap(0, 1);
+                        }
+                    } else {
+                        ups.sort_unstable();
+                    }
+                    below.up.push_node_with(&ups);
+                    for r in &b[g..e] {
+                        if r.1 != NO_PARENT {
+                            above.down[r.1 as usize * (k + 1) + r.2 as usize] = id;
+                        }
+                    }
+                    L::push_default(&mut self.data, k - 1);
+                    g = e;
+                }
+            }
+        }
+        // a little headroom in every arena, so the first local edits after a bulk build do not
+        // reallocate (and copy) a whole arena
+        for l in &mut self.levels {
+            l.up.reserve_headroom();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A node by labels: its labels, its faces' labels, its up list (key, coface's labels).
+    type NodeByLabels = (Vec<u32>, Vec<Vec<u32>>, Vec<(u32, Vec<u32>)>);
+
+    /// Every node, by labels (independent of node ids), per level.
+    fn by_labels(h: &Hasse) -> Vec<Vec<NodeByLabels>> {
+        let mut out = Vec::new();
+        for k in 0..h.levels.len() {
+            let l = &h.levels[k];
+            let mut level: Vec<_> = (0..l.slots() as u32)
+                .map(|i| {
+                    let downs = l
+                        .downs(i)
+                        .iter()
+                        .map(|&f| h.levels[k - 1].verts(f).to_vec())
+                        .collect();
+                    let ups =
+                        l.up.get(i)
+                            .iter()
+                            .map(|&[w, c]| (w, h.levels[k + 1].verts(c).to_vec()))
+                            .collect();
+                    (l.verts(i).to_vec(), downs, ups)
+                })
+                .collect();
+            level.sort();
+            out.push(level);
+        }
+        out
+    }
+
+    /// The bulk build equals cell-by-cell insertion, with nodes in lexicographic order, on
+    /// random mixed complexes of dimension ≤ 3 with dense and sparse labels.
+    #[test]
+    fn bulk_build_equals_insertion() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        };
+        for case in 0..300 {
+            let nv = 4 + next(30) as u32;
+            let scale = if case % 3 == 0 { 100_003 } else { 1 };
+            let mut cells: Vec<Vec<u32>> = vec![Vec::new(); 4];
+            let mut inc: Hasse = Hasse::new();
+            for _ in 0..1 + next(40) {
+                let len = 1 + next(4) as usize;
+                let mut c: Vec<u32> = Vec::new();
+                while c.len() < len {
+                    let v = next(nv as u64) as u32 * scale;
+                    if !c.contains(&v) {
+                        c.push(v);
+                    }
+                }
+                c.sort_unstable();
+                inc.insert_sorted(&c);
+                cells[len - 1].extend_from_slice(&c);
+            }
+            let mut bulk: Hasse = Hasse::new();
+            bulk.bulk_build(&cells);
+            assert_eq!(bulk.check(), Ok(()), "case {case}");
+            for l in &bulk.levels {
+                let v: Vec<&[u32]> = l.verts.chunks_exact(l.k1).collect();
+                assert!(v.windows(2).all(|w| w[0] < w[1]), "case {case}: order");
+            }
+            assert_eq!(bulk.f_vector(), inc.f_vector(), "case {case}");
+            assert_eq!(by_labels(&bulk), by_labels(&inc), "case {case}");
+            assert_eq!(bulk.max_label, inc.max_label, "case {case}");
+        }
     }
 }

@@ -134,6 +134,11 @@ impl IaStar {
     /// # Errors
     /// A CP cell; more than 2^31 - 1 top cells.
     pub fn new(k: &IndexedComplex) -> Result<IaStar, IaStarError> {
+        Self::build(k, false)
+    }
+
+    /// Builds IA*; `general` forces the path for any dimension (tests compare the two).
+    fn build(k: &IndexedComplex, general: bool) -> Result<IaStar, IaStarError> {
         if k.n_cells() >= NM_BIT as usize {
             return Err(IaStarError::TooManyCells(k.n_cells()));
         }
@@ -145,8 +150,34 @@ impl IaStar {
                 return Err(IaStarError::NotSimplicial(b.first, b.kind.type_name()));
             }
             let dim = b.kind.dim();
-            let n = dim + 1;
-            let data = if dim >= 2 {
+            blocks.push(Block {
+                dim,
+                first: b.first,
+                dim_offset: t[dim] as u32,
+                len: b.len() as u32,
+                data: Vec::new(),
+            });
+            t[dim] += b.len() as u64;
+        }
+        let nv = k.n_vertices();
+        let incidences: u64 = blocks.iter().map(|b| b.n_verts() as u64).sum();
+        let fast = !general && dmax <= 3 && incidences + incidences / 2 < u32::MAX as u64;
+        if let Some((nm, vrefs)) = fast
+            .then(|| low_dim::build(k, &mut blocks, &t, nv))
+            .flatten()
+        {
+            return Ok(IaStar {
+                n_vertices: nv as u32,
+                n_cells: k.n_cells() as u32,
+                blocks,
+                nm,
+                vrefs,
+                t,
+            });
+        }
+        for (blk, b) in blocks.iter_mut().zip(k.blocks()) {
+            let n = blk.dim + 1;
+            blk.data = if blk.dim >= 2 {
                 let mut d = vec![NONE; 2 * b.vertices.len()];
                 for (rec, c) in d.chunks_exact_mut(2 * n).zip(b.vertices.chunks_exact(n)) {
                     for (x, &y) in rec.iter_mut().zip(c) {
@@ -157,16 +188,7 @@ impl IaStar {
             } else {
                 b.vertices.to_vec()
             };
-            blocks.push(Block {
-                dim,
-                first: b.first,
-                dim_offset: t[dim] as u32,
-                len: b.len() as u32,
-                data,
-            });
-            t[dim] += b.len() as u64;
         }
-        let nv = k.n_vertices();
         let mut nm: Vec<Csr> = vec![Csr::default(); dmax + 1];
         for d in 2..=dmax {
             if t[d] > 0 {
@@ -478,6 +500,659 @@ impl IaStar {
             seen.clear();
         }
         out.sort_unstable();
+    }
+}
+
+/// Construction for complexes of dimension at most 3, in a few passes over flat arrays. The
+/// tops of real meshes come in no spatial order and the build is bound by memory traffic, so
+/// every pass reads its input in order, scattered writes go to a few hundred "coarse" buckets
+/// at once (vertices grouped by their high bits) or to small arrays, and a facet is one packed
+/// word:
+///
+/// 1. vertex degrees, and per vertex the number of facets whose smallest vertex it is;
+/// 2. the vertex → tops relation (VT, rows sorted by id) by counting sort, and every facet as
+///    one word (its vertices, its top, the omitted vertex's position, and its top's place in
+///    the VT row of each of its vertices) in the coarse bucket of its smallest vertex;
+/// 3. per coarse bucket (in cache): a counting sort by smallest vertex, then a small sort
+///    groups equal facets; their adjacency slots are written, and for each vertex w of the
+///    facet a *link* (two places in the VT row of w) joins the two tops in the star of w (the
+///    chain of tops for a non-manifold facet);
+/// 4. per coarse bucket of vertices, once its links are all known: a union-find over their VT
+///    rows; the roots (the smallest id of each cluster, top edges and top vertices alone) are
+///    the vertices' references;
+/// 5. the top records, in order.
+mod low_dim {
+    use super::{Block, Csr, IndexedComplex, NM_BIT, NONE};
+
+    /// Number of coarse buckets is at most `1 << COARSE_BITS`.
+    const COARSE_BITS: u32 = 10;
+
+    /// A facet word: from the most significant end, the low bits of the facet's smallest vertex
+    /// (`low`), its other vertices (`vb` bits each), the input position of the vertex the facet
+    /// omits (2 bits) and the top's place in the VT row of each of the facet's vertices (`pb`
+    /// bits each; the place in the smallest vertex's row names the top).
+    pub(super) trait Word: Copy + Ord + Default {
+        fn of(x: u128) -> Self;
+        fn wide(self) -> u128;
+    }
+    impl Word for u64 {
+        #[inline]
+        fn of(x: u128) -> Self {
+            x as u64
+        }
+        #[inline]
+        fn wide(self) -> u128 {
+            self as u128
+        }
+    }
+    impl Word for u128 {
+        #[inline]
+        fn of(x: u128) -> Self {
+            x
+        }
+        #[inline]
+        fn wide(self) -> u128 {
+            self
+        }
+    }
+
+    fn bits(x: u64) -> u32 {
+        (64 - x.leading_zeros()).max(1)
+    }
+
+    /// Bit layout of the facet words.
+    #[derive(Clone, Copy)]
+    struct Layout {
+        vb: u32,
+        low: u32,
+        pb: u32,
+    }
+
+    impl Layout {
+        /// Bits of a facet word of a top `D`-simplex.
+        fn total(&self, d: u32) -> u32 {
+            self.low + (d - 1) * self.vb + 2 + d * self.pb
+        }
+        /// Shift of the omitted vertex's position.
+        #[inline]
+        fn tsh(&self, d: usize) -> u32 {
+            d as u32 * self.pb
+        }
+        /// Shift of the facet's vertices after the smallest.
+        #[inline]
+        fn ksh(&self, d: usize) -> u32 {
+            self.tsh(d) + 2
+        }
+        /// Shift of the smallest vertex's low bits.
+        #[inline]
+        fn msh(&self, d: usize) -> u32 {
+            self.ksh(d) + (d as u32 - 1) * self.vb
+        }
+    }
+
+    /// The counts of pass 1.
+    struct Counts {
+        /// VT row offsets.
+        vt_off: Vec<u32>,
+        /// Per vertex, facet incidences (facets of tops of dimension ≥ 2 at it).
+        finc: Vec<u32>,
+        /// Facet bucket offsets (by smallest vertex), dimensions 2 and 3.
+        fcnt: [Vec<u32>; 2],
+    }
+
+    /// Builds the adjacency slots, the top records, the non-manifold face lists and the
+    /// per-vertex references; `None` when a facet does not pack into 128 bits (then the
+    /// general construction is used).
+    pub(super) fn build(
+        k: &IndexedComplex,
+        blocks: &mut [Block],
+        t: &[u64],
+        nv: usize,
+    ) -> Option<(Vec<Csr>, Csr)> {
+        let dmax = t.len() - 1;
+        // 1. degrees and facet bucket sizes
+        let mut deg = vec![0u32; nv];
+        let mut finc = vec![0u32; nv];
+        let mut fcnt: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+        for d in 2..=dmax.min(3) {
+            if t[d] > 0 {
+                fcnt[d - 2] = vec![0u32; nv + 1];
+            }
+        }
+        for b in k.blocks() {
+            let d = b.kind.dim();
+            let n = d + 1;
+            if d < 2 {
+                for &v in b.vertices.iter() {
+                    deg[v as usize] += 1;
+                }
+                continue;
+            }
+            let fc = &mut fcnt[d - 2];
+            for c in b.vertices.chunks_exact(n) {
+                let (mut m0, mut m1) = (u32::MAX, u32::MAX);
+                for &v in c {
+                    deg[v as usize] += 1;
+                    finc[v as usize] += d as u32;
+                    if v < m0 {
+                        m1 = m0;
+                        m0 = v;
+                    } else if v < m1 {
+                        m1 = v;
+                    }
+                }
+                fc[m0 as usize + 1] += d as u32;
+                fc[m1 as usize + 1] += 1;
+            }
+        }
+        let maxdeg = deg.iter().copied().max().unwrap_or(0);
+        let mut vt_off = Vec::with_capacity(nv + 1);
+        vt_off.push(0u32);
+        let mut a = 0u32;
+        for &x in &deg {
+            a += x;
+            vt_off.push(a);
+        }
+        drop(deg);
+        for f in fcnt.iter_mut().filter(|f| !f.is_empty()) {
+            for i in 0..nv {
+                f[i + 1] += f[i];
+            }
+        }
+        let t3 = t.get(3).copied().unwrap_or(0);
+        let vb = bits(nv.saturating_sub(1) as u64);
+        let lay = Layout {
+            vb,
+            low: vb.saturating_sub(COARSE_BITS),
+            pb: bits(maxdeg.saturating_sub(1) as u64),
+        };
+        let bits = lay.total(if t3 > 0 { 3 } else { 2 });
+        let counts = Counts { vt_off, finc, fcnt };
+        if bits <= 64 {
+            Some(run::<u64>(k, blocks, t, nv, lay, counts))
+        } else if bits <= 128 {
+            Some(run::<u128>(k, blocks, t, nv, lay, counts))
+        } else {
+            None
+        }
+    }
+
+    /// Dimension-local indices of the tops of one dimension: (first id, first dimension-local
+    /// index) per block of that dimension.
+    struct DimIds(Vec<(u32, u32)>);
+
+    impl DimIds {
+        fn new(blocks: &[Block], d: usize) -> DimIds {
+            DimIds(
+                blocks
+                    .iter()
+                    .filter(|b| b.dim == d)
+                    .map(|b| (b.first, b.dim_offset))
+                    .collect(),
+            )
+        }
+        /// The dimension-local index of top `c` (of this dimension).
+        #[inline]
+        fn local(&self, c: u32) -> usize {
+            let i = if self.0.len() == 1 {
+                0
+            } else {
+                self.0.partition_point(|a| a.0 <= c) - 1
+            };
+            let (f, o) = self.0[i];
+            (o + (c - f)) as usize
+        }
+    }
+
+    /// Links waiting for the coarse bucket of their vertex: pairs of places in the bucket's
+    /// VT rows. A bucket's area holds half the facet incidences at its vertices, enough for
+    /// the links of facets shared by two tops (two incidences each); those of non-manifold
+    /// facets go to `over`.
+    struct Links {
+        area: Vec<[u32; 2]>,
+        start: Vec<u32>,
+        end: Vec<u32>,
+        over: Vec<Vec<[u32; 2]>>,
+    }
+
+    /// The coarse bucket being processed: its union-find over its VT rows.
+    struct Chunk<'p> {
+        c: usize,
+        par: &'p mut Vec<u32>,
+        /// Whether any union was made.
+        joined: bool,
+    }
+
+    impl Chunk<'_> {
+        /// Joins places `x` and `y` of the VT row of `w`: now if `w` is in this bucket, else
+        /// through `links` (`nm`: a link of a non-manifold facet).
+        #[inline]
+        #[allow(clippy::too_many_arguments)]
+        fn link(
+            &mut self,
+            links: &mut Links,
+            vt_off: &[u32],
+            low: u32,
+            w: u32,
+            x: u32,
+            y: u32,
+            nm: bool,
+        ) {
+            let cw = (w >> low) as usize;
+            let base = vt_off[w as usize] - vt_off[cw << low];
+            let (x, y) = (base + x, base + y);
+            if cw == self.c {
+                union(self.par, x, y);
+                self.joined = true;
+            } else if nm {
+                links.over[cw].push([x, y]);
+            } else {
+                let e = &mut links.end[cw];
+                links.area[*e as usize] = [x, y];
+                *e += 1;
+            }
+        }
+    }
+
+    /// The VT relation: row offsets and targets (rows sorted by id).
+    struct Vt<'a> {
+        off: &'a [u32],
+        targets: &'a [u32],
+    }
+
+    /// Scratch of one dimension's facet grouping.
+    struct Group<'a> {
+        lay: Layout,
+        ids: DimIds,
+        /// Adjacency slot values, dimension-local slot `li * (d + 1) + j`.
+        adj: &'a mut [u32],
+        nm_tops: Vec<u32>,
+        nm_offsets: Vec<u32>,
+    }
+
+    fn run<W: Word>(
+        k: &IndexedComplex,
+        blocks: &mut [Block],
+        t: &[u64],
+        nv: usize,
+        lay: Layout,
+        counts: Counts,
+    ) -> (Vec<Csr>, Csr) {
+        let Counts { vt_off, finc, fcnt } = counts;
+        let dmax = t.len() - 1;
+        let low = lay.low;
+        let nc = if nv == 0 { 0 } else { ((nv - 1) >> low) + 1 };
+        let mut links = Links {
+            area: Vec::new(),
+            start: Vec::with_capacity(nc + 1),
+            end: Vec::new(),
+            over: vec![Vec::new(); nc],
+        };
+        let mut l = 0u32;
+        for (v, &x) in finc.iter().enumerate() {
+            if v & ((1 << low) - 1) == 0 {
+                links.start.push(l);
+            }
+            l += x / 2;
+        }
+        links.start.push(l);
+        drop(finc);
+        links.area = vec![[0, 0]; l as usize];
+        links.end = links.start[..nc].to_vec();
+        // 2. VT by counting sort; facet words into coarse buckets
+        let mut pos: Vec<[u32; 2]> = vt_off[..nv].iter().map(|&o| [o, 0]).collect();
+        let mut targets = vec![0u32; *vt_off.last().unwrap_or(&0) as usize];
+        let mut cpos: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+        for d in 0..2 {
+            if !fcnt[d].is_empty() {
+                cpos[d] = (0..nc).map(|c| fcnt[d][c << low]).collect();
+            }
+        }
+        let mut recs: [Vec<W>; 2] = [
+            vec![W::default(); 3 * t.get(2).map_or(0, |&x| x as usize)],
+            vec![W::default(); 4 * t.get(3).map_or(0, |&x| x as usize)],
+        ];
+        for (blk, b) in blocks.iter().zip(k.blocks()) {
+            let d = blk.dim;
+            let n = d + 1;
+            if d < 2 {
+                for (i, c) in b.vertices.chunks_exact(n).enumerate() {
+                    let id = blk.first + i as u32;
+                    for &v in c {
+                        let p = &mut pos[v as usize];
+                        targets[p[0] as usize] = id;
+                        *p = [p[0] + 1, p[1] + 1];
+                    }
+                }
+                continue;
+            }
+            let (recs, cpos) = (&mut recs[d - 2], &mut cpos[d - 2]);
+            for (i, c) in b.vertices.chunks_exact(n).enumerate() {
+                let id = blk.first + i as u32;
+                // sorted vertices, their input positions and the top's places in their rows
+                let mut sv = [0u32; 4];
+                let mut pm = [0u8; 4];
+                for (j, &v) in c.iter().enumerate() {
+                    let mut x = j;
+                    while x > 0 && sv[x - 1] > v {
+                        sv[x] = sv[x - 1];
+                        pm[x] = pm[x - 1];
+                        x -= 1;
+                    }
+                    sv[x] = v;
+                    pm[x] = j as u8;
+                }
+                let mut vp = [0u32; 4];
+                for s in 0..n {
+                    let p = &mut pos[sv[s] as usize];
+                    vp[s] = p[1];
+                    targets[p[0] as usize] = id;
+                    *p = [p[0] + 1, p[1] + 1];
+                }
+                if d == 2 {
+                    emit::<W, 2>(&sv, &pm, &vp, lay, recs, cpos);
+                } else {
+                    emit::<W, 3>(&sv, &pm, &vp, lay, recs, cpos);
+                }
+            }
+        }
+        drop(pos);
+        drop(cpos);
+        // 3, 4. per coarse bucket: group equal facets, then the clusters of its vertices by
+        //    union-find over their VT rows (roots kept, compacting `targets` in place)
+        let mut adj: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+        for (a, r) in adj.iter_mut().zip(&recs) {
+            *a = vec![NONE; r.len()];
+        }
+        let [adj2, adj3] = &mut adj;
+        let mut groups = [
+            Group::new(lay, DimIds::new(blocks, 2), adj2),
+            Group::new(lay, DimIds::new(blocks, 3), adj3),
+        ];
+        let mut tmp: Vec<W> = Vec::new();
+        let mut offsets = Vec::with_capacity(nv + 1);
+        offsets.push(0u32);
+        let mut out = 0usize;
+        let mut par: Vec<u32> = Vec::new();
+        for c in 0..nc {
+            let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
+            let (lo, hi) = (vt_off[v0] as usize, vt_off[v1] as usize);
+            par.clear();
+            par.extend(0..(hi - lo) as u32);
+            let mut cur = Chunk {
+                c,
+                par: &mut par,
+                joined: false,
+            };
+            for (d, g) in groups.iter_mut().enumerate() {
+                if !recs[d].is_empty() {
+                    let vt = Vt {
+                        off: &vt_off,
+                        targets: &targets,
+                    };
+                    g.chunk(
+                        d + 2,
+                        &mut recs[d],
+                        &fcnt[d],
+                        &vt,
+                        &mut cur,
+                        &mut tmp,
+                        &mut links,
+                    );
+                }
+            }
+            let ls = &links.area[links.start[c] as usize..links.end[c] as usize];
+            let joined = cur.joined || !ls.is_empty() || !links.over[c].is_empty();
+            if !joined {
+                targets.copy_within(lo..hi, out);
+                for v in v0..v1 {
+                    offsets.push((out + (vt_off[v + 1] as usize - lo)) as u32);
+                }
+                out += hi - lo;
+                continue;
+            }
+            for &[x, y] in ls.iter().chain(&links.over[c]) {
+                union(&mut par, x, y);
+            }
+            links.over[c] = Vec::new();
+            let mut i = 0usize;
+            for v in v0..v1 {
+                let e = vt_off[v + 1] as usize - lo;
+                while i < e {
+                    if par[i] == i as u32 {
+                        targets[out] = targets[lo + i];
+                        out += 1;
+                    }
+                    i += 1;
+                }
+                offsets.push(out as u32);
+            }
+        }
+        let mut nm: Vec<Csr> = vec![Csr::default(); dmax + 1];
+        for (d, g) in groups.into_iter().enumerate() {
+            if !recs[d].is_empty() {
+                nm[d + 2] = g.finish();
+            }
+        }
+        drop((recs, tmp, fcnt, links));
+        targets.truncate(out);
+        targets.shrink_to_fit();
+        // 5. the top records: vertices (input order), then the adjacency slots
+        for (blk, b) in blocks.iter_mut().zip(k.blocks()) {
+            let d = blk.dim;
+            if d < 2 {
+                blk.data = b.vertices.to_vec();
+                continue;
+            }
+            let n = d + 1;
+            let a = &adj[d - 2][blk.dim_offset as usize * n..];
+            let mut data = Vec::with_capacity(2 * b.vertices.len());
+            for (c, s) in b.vertices.chunks_exact(n).zip(a.chunks_exact(n)) {
+                data.extend_from_slice(c);
+                data.extend_from_slice(s);
+            }
+            blk.data = data;
+        }
+        (nm, Csr { offsets, targets })
+    }
+
+    /// Union by smallest index (so a root is the smallest member of its set).
+    #[inline]
+    fn union(par: &mut [u32], a: u32, b: u32) {
+        let (ra, rb) = (find(par, a), find(par, b));
+        if ra < rb {
+            par[rb as usize] = ra;
+        } else if rb < ra {
+            par[ra as usize] = rb;
+        }
+    }
+
+    #[inline]
+    fn find(par: &mut [u32], mut x: u32) -> u32 {
+        while par[x as usize] != x {
+            let g = par[par[x as usize] as usize];
+            par[x as usize] = g;
+            x = g;
+        }
+        x
+    }
+
+    /// The `D + 1` facet words of a top, into the coarse buckets of their smallest vertices.
+    #[inline]
+    fn emit<W: Word, const D: usize>(
+        sv: &[u32; 4],
+        pm: &[u8; 4],
+        vp: &[u32; 4],
+        lay: Layout,
+        recs: &mut [W],
+        cpos: &mut [u32],
+    ) {
+        let lowmask = (1u32 << lay.low) - 1;
+        for jj in 0..=D {
+            let mut key = 0u128;
+            let mut places = 0u128;
+            let mut first = true;
+            for s in 0..=D {
+                if s == jj {
+                    continue;
+                }
+                let v = sv[s];
+                key = if first {
+                    (v & lowmask) as u128
+                } else {
+                    (key << lay.vb) | v as u128
+                };
+                first = false;
+                places = (places << lay.pb) | vp[s] as u128;
+            }
+            key = (key << 2) | pm[jj] as u128;
+            let w = W::of((key << lay.tsh(D)) | places);
+            let m = sv[usize::from(jj == 0)];
+            let slot = &mut cpos[(m >> lay.low) as usize];
+            recs[*slot as usize] = w;
+            *slot += 1;
+        }
+    }
+
+    impl<'a> Group<'a> {
+        fn new(lay: Layout, ids: DimIds, adj: &'a mut [u32]) -> Self {
+            Group {
+                lay,
+                ids,
+                adj,
+                nm_tops: Vec::new(),
+                nm_offsets: vec![0],
+            }
+        }
+
+        fn finish(self) -> Csr {
+            Csr {
+                offsets: self.nm_offsets,
+                targets: self.nm_tops,
+            }
+        }
+
+        /// Coarse bucket `cur.c` of the facets of the top `d`-simplices: a counting sort by
+        /// smallest vertex into `tmp`, then each vertex's facets sorted and grouped.
+        #[allow(clippy::too_many_arguments)]
+        fn chunk<W: Word>(
+            &mut self,
+            d: usize,
+            recs: &mut [W],
+            fcnt: &[u32],
+            vt: &Vt,
+            cur: &mut Chunk,
+            tmp: &mut Vec<W>,
+            links: &mut Links,
+        ) {
+            let nv = fcnt.len() - 1;
+            let low = self.lay.low;
+            let lowmask = (1u128 << low) - 1;
+            let msh = self.lay.msh(d);
+            let (v0, v1) = (cur.c << low, ((cur.c + 1) << low).min(nv));
+            let (s, e) = (fcnt[v0] as usize, fcnt[v1] as usize);
+            if e - s < 2 {
+                return;
+            }
+            let src = &recs[s..e];
+            tmp.clear();
+            tmp.resize(e - s, W::default());
+            let mut fpos: Vec<u32> = fcnt[v0..v1].iter().map(|&x| x - s as u32).collect();
+            for &r in src {
+                let m = ((r.wide() >> msh) & lowmask) as usize;
+                tmp[fpos[m] as usize] = r;
+                fpos[m] += 1;
+            }
+            for v in v0..v1 {
+                let (a, b) = (fcnt[v] as usize - s, fcnt[v + 1] as usize - s);
+                if b - a >= 2 {
+                    if d == 2 {
+                        self.bucket::<W, 2>(v as u32, &mut tmp[a..b], vt, cur, links);
+                    } else {
+                        self.bucket::<W, 3>(v as u32, &mut tmp[a..b], vt, cur, links);
+                    }
+                }
+            }
+        }
+
+        /// The facets whose smallest vertex is `m`.
+        fn bucket<W: Word, const D: usize>(
+            &mut self,
+            m: u32,
+            bucket: &mut [W],
+            vt: &Vt,
+            cur: &mut Chunk,
+            links: &mut Links,
+        ) {
+            let lay = self.lay;
+            let (tsh, ksh) = (lay.tsh(D), lay.ksh(D));
+            let n = D + 1;
+            let vmask = (1u128 << lay.vb) - 1;
+            let pmask = (1u128 << lay.pb) - 1;
+            let place =
+                |x: W, q: usize| ((x.wide() >> ((D - 1 - q) as u32 * lay.pb)) & pmask) as u32;
+            // a facet's top: its id (its place in the VT row of m) and the input position of
+            // the vertex the facet omits
+            let row = &vt.targets[vt.off[m as usize] as usize..];
+            let top = |x: W| (row[place(x, 0) as usize], ((x.wide() >> tsh) & 3) as usize);
+            if bucket.len() == 2 {
+                // the common case: skip the sort
+                if bucket[1] < bucket[0] {
+                    bucket.swap(0, 1);
+                }
+            } else if std::mem::size_of::<W>() > 8 && lay.msh(D) - tsh <= 64 {
+                // the smallest vertex is shared and the facet's other vertices fit in 64
+                // bits: sort by them (the order inside a group does not change the result)
+                bucket.sort_unstable_by_key(|w| (w.wide() >> tsh) as u64);
+            } else {
+                bucket.sort_unstable();
+            }
+            let mut i = 0;
+            while i < bucket.len() {
+                let rest = bucket[i].wide() >> ksh;
+                let mut j = i + 1;
+                while j < bucket.len() && bucket[j].wide() >> ksh == rest {
+                    j += 1;
+                }
+                if j - i >= 2 {
+                    // the facet's vertices
+                    let mut f = [0u32; D];
+                    f[0] = m;
+                    let mut r = rest;
+                    for x in f[1..].iter_mut().rev() {
+                        *x = (r & vmask) as u32;
+                        r >>= lay.vb;
+                    }
+                    let g = &bucket[i..j];
+                    if g.len() == 2 {
+                        let ((ca, ja), (cb, jb)) = (top(g[0]), top(g[1]));
+                        self.adj[self.ids.local(ca) * n + ja] = cb;
+                        self.adj[self.ids.local(cb) * n + jb] = ca;
+                        for (q, &w) in f.iter().enumerate() {
+                            let (x, y) = (place(g[0], q), place(g[1], q));
+                            cur.link(links, vt.off, lay.low, w, x, y, false);
+                        }
+                    } else {
+                        let fid = NM_BIT | (self.nm_offsets.len() - 1) as u32;
+                        let s0 = self.nm_tops.len();
+                        for &r in g {
+                            let (c, jr) = top(r);
+                            self.nm_tops.push(c);
+                            self.adj[self.ids.local(c) * n + jr] = fid;
+                        }
+                        self.nm_tops[s0..].sort_unstable();
+                        self.nm_offsets.push(self.nm_tops.len() as u32);
+                        for p in g.windows(2) {
+                            for (q, &w) in f.iter().enumerate() {
+                                let (x, y) = (place(p[0], q), place(p[1], q));
+                                cur.link(links, vt.off, lay.low, w, x, y, true);
+                            }
+                        }
+                    }
+                }
+                i = j;
+            }
+        }
     }
 }
 
@@ -936,5 +1611,88 @@ impl IaStar {
             .collect::<Result<Vec<_>, _>>()?;
         out.sort_unstable();
         Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::complex::{BuildOptions, ComplexBuilder};
+
+    /// The construction for dimension ≤ 3 and the general one give the same structure, on
+    /// random mixed complexes with non-manifold faces, several blocks per dimension and
+    /// input orders that are not sorted.
+    #[test]
+    fn low_dim_build_equals_general_build() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        };
+        for case in 0..300 {
+            let nv = 3 + next(if case < 200 { 8 } else { 40 }) as usize;
+            let mut b = ComplexBuilder::new(1).unwrap();
+            for _ in 0..nv {
+                b.push_vertex(&[0.0]).unwrap();
+            }
+            let nc = 1 + next(if case < 200 { 12 } else { 120 });
+            for _ in 0..nc {
+                let len = (1 + next(4) as usize).min(nv);
+                let mut c: Vec<u32> = Vec::new();
+                while c.len() < len {
+                    let v = next(nv as u64) as u32;
+                    if !c.contains(&v) {
+                        c.push(v);
+                    }
+                }
+                b.push_cell(CellKind::Simplex(len as u8 - 1), &c).unwrap();
+            }
+            let opts = BuildOptions {
+                drop_face_cells: true,
+                drop_duplicates: true,
+                ..Default::default()
+            };
+            let k = b.build(&opts).unwrap().0;
+            let fast = IaStar::build(&k, false).unwrap();
+            let general = IaStar::build(&k, true).unwrap();
+            assert_eq!(fast.refs(), general.refs(), "case {case}");
+            assert_eq!(fast.bytes(), general.bytes(), "case {case}");
+            assert_eq!(fast.vrefs, general.vrefs, "case {case}");
+            assert_eq!(fast.nm.len(), general.nm.len(), "case {case}");
+            for (a, b) in fast.nm.iter().zip(&general.nm) {
+                assert_eq!(a, b, "case {case}");
+            }
+            for (a, b) in fast.blocks.iter().zip(&general.blocks) {
+                assert_eq!(a.data, b.data, "case {case}");
+            }
+        }
+    }
+
+    /// The same on the medium meshes of `$STARPLEX_DATA` (slow in a debug build:
+    /// `cargo test --release -- --ignored`).
+    #[test]
+    #[ignore]
+    fn low_dim_build_equals_general_build_on_medium_meshes() {
+        let Ok(dir) = std::env::var("STARPLEX_DATA") else {
+            return;
+        };
+        for name in ["tri_armadillo_x16", "tet_armadillo_m"] {
+            let p = std::path::Path::new(&dir).join(format!("medium/{name}/{name}.spx"));
+            if !p.exists() {
+                continue;
+            }
+            let k = crate::io::read(&p, &Default::default()).unwrap().complex;
+            assert!(k.n_cells() > 500_000, "{name}");
+            let fast = IaStar::build(&k, false).unwrap();
+            let general = IaStar::build(&k, true).unwrap();
+            assert_eq!(fast.refs(), general.refs(), "{name}");
+            assert_eq!(fast.vrefs, general.vrefs, "{name}");
+            assert_eq!(fast.nm, general.nm, "{name}");
+            for (a, b) in fast.blocks.iter().zip(&general.blocks) {
+                assert!(a.data == b.data, "{name}");
+            }
+        }
     }
 }
