@@ -299,9 +299,23 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
             Some("pass --vertex ID ... or --all".into()),
         ));
     }
-    let k = common::load(ctx, &a.input)?.complex;
+    let saved = crate::cmd_stellar::is_saved_tree(&a.input.file);
+    if saved && a.structure != StructureKind::Stellar {
+        return Err(CliError::Input(
+            format!("{} is a saved Stellar tree", a.input.file.display()),
+            Some("query it with --structure stellar, or pass the mesh file".into()),
+        ));
+    }
+    let k = if saved {
+        None
+    } else {
+        Some(common::load(ctx, &a.input)?.complex)
+    };
     let t = Instant::now();
-    let s = build_with(&k, a.structure, a.kv)?;
+    let s: Built<'_> = match &k {
+        Some(k) => build_with(k, a.structure, a.kv)?,
+        None => Box::new(crate::cmd_stellar::load_saved_tree(ctx, &a.input.file)?),
+    };
     let build_s = t.elapsed().as_secs_f64();
     if !a.vertex.is_empty() {
         let mut objs = Vec::new();

@@ -154,26 +154,64 @@ pub fn print_stats(s: &StellarStats) {
     );
 }
 
+/// True when `path` holds a Stellar tree written by `starplex stellar --save` (checked by its
+/// magic bytes, whatever the extension).
+pub fn is_saved_tree(path: &std::path::Path) -> bool {
+    use std::io::Read;
+    let mut magic = [0u8; 8];
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_exact(&mut magic))
+        .is_ok()
+        && &magic == starplex::stellar::SAVED_TREE_MAGIC
+}
+
+/// Loads a saved tree (memory-mapped), mapping its error to an input error.
+pub fn load_saved_tree(ctx: &Ctx, path: &std::path::Path) -> Result<StellarTree, CliError> {
+    common::with_spinner(ctx, "loading the saved Stellar tree", || {
+        StellarTree::load(path)
+    })
+    .map_err(|e| {
+        CliError::Input(
+            e.to_string(),
+            Some("rebuild it with `starplex stellar MESH --save OUT`".into()),
+        )
+    })
+}
+
 pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     let t0 = Instant::now();
-    let r = common::load(ctx, &a.input)?;
+    let saved = is_saved_tree(&a.input.file);
+    let k = if saved {
+        None
+    } else {
+        Some(common::load(ctx, &a.input)?.complex)
+    };
     let read_s = t0.elapsed().as_secs_f64();
-    let k = r.complex;
     let rss_loaded = rss().map(|r| r.0);
     let peak_reset = reset_peak();
     let c0 = cpu_seconds();
     let (t, build_s) = with_threads(a.threads, || {
         let t1 = Instant::now();
-        let t = build_tree(ctx, &k, a.kv, &a.split);
+        let t = match &k {
+            Some(k) => build_tree(ctx, k, a.kv, &a.split),
+            None => load_saved_tree(ctx, &a.input.file),
+        };
         (t, t1.elapsed().as_secs_f64())
     })?;
     let build_cpu = c0.and_then(|c| Some(cpu_seconds()? - c));
     let t = t?;
+    // what the memory ratios are measured against: the indexed complex (or, for a loaded
+    // tree, its base complex)
+    let complex_bytes = k
+        .as_ref()
+        .map_or(t.stats().storage.base_bytes, |k| k.bytes() as u64);
+    let n_cells = t.n_top_cells();
     let s = t.stats();
     let bt = t.timings();
     let mut timings = json!({
         "read_s": read_s,
-        "build_s": build_s,
+        "build_s": if saved { 0.0 } else { build_s },
+        "load_s": if saved { Some(build_s) } else { None },
         "decomposition_s": bt.decomposition_s,
         "vertex_reindex_s": bt.vertex_reindex_s,
         "cell_reindex_s": bt.cell_reindex_s,
@@ -224,18 +262,18 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
         timings["vt_local_s"] = json!(vt_local_s);
         if let (true, Some(base), Some((_, hwm))) = (peak_reset, rss_loaded, rss()) {
             timings["memory"] = json!({
-                "complex_bytes": k.bytes(),
+                "complex_bytes": complex_bytes,
                 "rss_after_load": base,
                 "peak_rss_build_and_queries": hwm,
                 "extra_over_loaded": hwm.saturating_sub(base),
-                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / k.bytes().max(1) as f64,
+                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / complex_bytes.max(1) as f64,
             });
         }
         timings["iastar_global_s"] = json!(ia_s);
         if let Some((base, hwm)) = *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) {
             timings["memory_build_and_vt"] = json!({
                 "extra_over_loaded": hwm.saturating_sub(base),
-                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / k.bytes().max(1) as f64,
+                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / complex_bytes.max(1) as f64,
             });
         }
         timings["cpu"] = Value::Object(cpu);
@@ -259,8 +297,14 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     } else {
         println!("{}", a.input.file.display());
         print_stats(&s);
-        let per = |x: f64| 1e6 * x / (k.n_cells().max(1) as f64);
-        println!(
+        let per = |x: f64| 1e6 * x / (n_cells.max(1) as f64);
+        if saved {
+            println!(
+                "  loaded              {:.3} s (saved tree, memory-mapped and checked)",
+                build_s
+            );
+        } else {
+            println!(
             "  build               {:.3} s ({:.3} us per top cell): decomposition {:.3}, vertex reindex {:.3}, cell reindex {:.3}, leaf lists {:.3}",
             build_s,
             per(build_s),
@@ -269,7 +313,8 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
             bt.cell_reindex_s,
             bt.leaf_lists_s
         );
-        if let Some(c) = build_cpu {
+        }
+        if let (false, Some(c)) = (saved, build_cpu) {
             println!(
                 "  build cpu           {c:.3} s ({:.3} us per top cell)",
                 per(c)

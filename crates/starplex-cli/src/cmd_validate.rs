@@ -148,12 +148,19 @@ pub fn print_human(r: &ValidationReport, max: usize) {
 
 pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
     let t0 = Instant::now();
-    let r = common::load(ctx, &a.input)?;
+    let saved = crate::cmd_stellar::is_saved_tree(&a.input.file);
+    let k = if saved {
+        None
+    } else {
+        Some(common::load(ctx, &a.input)?.complex)
+    };
     let read_s = t0.elapsed().as_secs_f64();
-    let k = r.complex;
     let (rep, build_s, validate_s) = with_threads(a.threads, || {
         let t1 = Instant::now();
-        let t = build_tree(ctx, &k, a.kv, "auto")?;
+        let t = match &k {
+            Some(k) => build_tree(ctx, k, a.kv, "auto")?,
+            None => crate::cmd_stellar::load_saved_tree(ctx, &a.input.file)?,
+        };
         let build_s = t1.elapsed().as_secs_f64();
         let t2 = Instant::now();
         let rep = common::with_spinner(ctx, "validating", || t.validate());

@@ -39,6 +39,7 @@ pub mod validate;
 pub mod visit;
 
 pub use relations::FaceList;
+pub use save::SAVED_TREE_MAGIC;
 pub use stats::StellarStats;
 pub use validate::{Manifoldness, ValidationReport};
 pub use visit::{ExpandedLeaf, LeafCache, LeafView};

@@ -29,7 +29,13 @@ use std::path::Path;
 use super::sre::RUN_FLAG;
 use super::{code_kind, BuildTimings, CellStore, Node, SplitMode, StellarError, StellarTree};
 
-const MAGIC: &[u8; 8] = b"SPXSTEL1";
+/// The first 8 bytes of a saved Stellar tree.
+///
+/// ```
+/// assert_eq!(starplex::stellar::SAVED_TREE_MAGIC, b"SPXSTEL1");
+/// ```
+pub const SAVED_TREE_MAGIC: &[u8; 8] = b"SPXSTEL1";
+const MAGIC: &[u8; 8] = SAVED_TREE_MAGIC;
 const VERSION: u64 = 1;
 const N_HEADER: usize = 13;
 
