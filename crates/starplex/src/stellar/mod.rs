@@ -45,6 +45,24 @@ pub use validate::{Manifoldness, ValidationReport};
 pub use visit::{ExpandedLeaf, LeafCache, LeafView};
 
 /// How blocks are split.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::stellar::SplitMode;
+/// assert_eq!(SplitMode::default(), SplitMode::Auto);
+/// // `Auto` resolves to a regular split in 2D
+/// assert_eq!(t.split(), SplitMode::Regular);
+/// let opts = StellarOptions { kv: Some(1), split: SplitMode::Kd, ..Default::default() };
+/// assert_eq!(StellarTree::build(&k, &opts).unwrap().split(), SplitMode::Kd);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SplitMode {
     /// Regular 2^n split for ambient dimension <= 3, kD bisection above.
@@ -91,6 +109,23 @@ pub fn default_kv(k: &IndexedComplex) -> u32 {
 }
 
 /// Why a Stellar tree could not be built or queried.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::ids::VertexId;
+/// use starplex::stellar::StellarError;
+/// let e = t.leaf_of_vertex(VertexId(9)).unwrap_err();
+/// assert_eq!(e, StellarError::NoSuchVertex(9, 4));
+/// assert_eq!(e.to_string(), "vertex 9 out of range (4 vertices)");
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum StellarError {
     /// More top cells than the SRE encoding addresses.
@@ -124,6 +159,24 @@ pub enum StellarError {
 
 /// A node of the hierarchy. Children of a node are contiguous (brood encoding); a leaf has
 /// `n_children == 0` and `first` is its [`LeafId`].
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// let root = t.nodes()[0];
+/// assert_eq!((root.v_start, root.v_end), (0, 4));
+/// assert_eq!(root.n_children, 4); // quadtree split, one vertex per leaf
+/// let leaf = t.nodes()[root.first as usize];
+/// assert_eq!(leaf.n_children, 0);
+/// assert_eq!(leaf.v_end - leaf.v_start, 1);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C)]
 pub struct Node {
@@ -138,6 +191,22 @@ pub struct Node {
 }
 
 /// Seconds spent in each build phase.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::stellar::BuildTimings;
+/// let tm = t.timings();
+/// assert!(tm.decomposition_s >= 0.0 && tm.leaf_lists_s >= 0.0);
+/// assert_eq!(BuildTimings::default().cell_reindex_s, 0.0);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BuildTimings {
     /// Spatial decomposition of the vertices.
@@ -191,7 +260,7 @@ pub(crate) struct CellStore {
 
 impl CellStore {
     #[inline(always)]
-    pub fn get(&self, i: u32) -> (CellKind, &[u32]) {
+    pub(crate) fn get(&self, i: u32) -> (CellKind, &[u32]) {
         if self.uniform != 255 {
             let s = self.stride as usize;
             let i = i as usize;
@@ -205,15 +274,28 @@ impl CellStore {
         }
     }
     #[inline]
-    pub fn verts(&self, i: u32) -> &[u32] {
+    pub(crate) fn verts(&self, i: u32) -> &[u32] {
         self.get(i).1
     }
-    pub fn bytes(&self) -> usize {
+    pub(crate) fn bytes(&self) -> usize {
         self.kinds.len() + 4 * (self.offsets.len() + self.verts.len())
     }
 }
 
 /// A Stellar tree over a complex. See the [module docs](self).
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// assert_eq!((t.n_vertices(), t.n_top_cells(), t.n_leaves()), (4, 2, 4));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct StellarTree {
     pub(crate) ambient_dim: u32,
@@ -290,46 +372,199 @@ impl StellarTree {
         self.v_orig.len()
     }
     /// Number of top cells.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.n_top_cells(), 2);
+    /// ```
     pub fn n_top_cells(&self) -> usize {
         self.c_orig.len()
     }
     /// Number of nodes (internal + leaves).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.n_nodes(), 5); // the root and its four leaves
+    /// assert_eq!(t.n_nodes(), t.nodes().len());
+    /// ```
     pub fn n_nodes(&self) -> usize {
         self.nodes.len()
     }
     /// Number of leaves.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.n_leaves(), 4); // k_V = 1: one vertex per leaf
+    /// ```
     pub fn n_leaves(&self) -> usize {
         self.leaf_vstart.len().saturating_sub(1)
     }
     /// The bucketing threshold used.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.kv(), 1);
+    /// ```
     pub fn kv(&self) -> u32 {
         self.kv
     }
     /// The split rule used (`Regular` or `Kd`).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.split(), starplex::stellar::SplitMode::Regular);
+    /// ```
     pub fn split(&self) -> SplitMode {
         self.split
     }
     /// Ambient dimension.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.ambient_dim(), 2);
+    /// ```
     pub fn ambient_dim(&self) -> usize {
         self.ambient_dim as usize
     }
     /// The root block `(lo, hi)`.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let (lo, hi) = t.bbox();
+    /// assert_eq!((lo.len(), hi.len()), (2, 2));
+    /// // every point lies in the root block
+    /// assert!(lo.iter().all(|&x| x <= 0.0) && hi.iter().all(|&x| x >= 1.0));
+    /// ```
     pub fn bbox(&self) -> (&[f64], &[f64]) {
         (&self.bbox.0, &self.bbox.1)
     }
     /// The nodes, root first.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let nodes = t.nodes();
+    /// assert_eq!(nodes.len(), t.n_nodes());
+    /// assert_eq!((nodes[0].v_start, nodes[0].v_end), (0, 4)); // the root covers every vertex
+    /// assert_eq!(nodes.iter().filter(|n| n.n_children == 0).count(), t.n_leaves());
+    /// ```
     pub fn nodes(&self) -> &[Node] {
         &self.nodes
     }
     /// One node.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::NodeId;
+    /// assert_eq!(t.node(NodeId(0)), t.nodes()[0]);
+    /// assert_eq!(t.node(NodeId(0)).n_children, 4);
+    /// ```
     pub fn node(&self, n: NodeId) -> Node {
         self.nodes[n.index()]
     }
     /// Time of each build phase.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let tm = t.timings();
+    /// assert!(tm.decomposition_s >= 0.0 && tm.vertex_reindex_s >= 0.0);
+    /// ```
     pub fn timings(&self) -> &BuildTimings {
         &self.timings
     }
     /// Largest top-cell dimension (`None` without cells).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.dim(), Some(2));
+    /// ```
     pub fn dim(&self) -> Option<usize> {
         if self.cells.uniform != 255 {
             return (self.cells.n > 0).then(|| code_kind(self.cells.uniform).dim());
@@ -337,30 +572,142 @@ impl StellarTree {
         self.cells.kinds.iter().map(|&c| code_kind(c).dim()).max()
     }
     /// Permutation tree vertex id -> input vertex id.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let mut ids = t.vertex_to_input().to_vec();
+    /// ids.sort_unstable();
+    /// assert_eq!(ids, vec![0, 1, 2, 3]); // a permutation of the input ids
+    /// ```
     pub fn vertex_to_input(&self) -> &[u32] {
         &self.v_orig
     }
     /// Permutation input vertex id -> tree vertex id.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// for v in 0..4u32 {
+    ///     assert_eq!(t.vertex_to_input()[t.vertex_from_input()[v as usize] as usize], v);
+    /// }
+    /// ```
     pub fn vertex_from_input(&self) -> &[u32] {
         &self.v_new
     }
     /// Permutation tree cell id -> input cell id.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let mut ids = t.cell_to_input().to_vec();
+    /// ids.sort_unstable();
+    /// assert_eq!(ids, vec![0, 1]);
+    /// ```
     pub fn cell_to_input(&self) -> &[u32] {
         &self.c_orig
     }
     /// Permutation input cell id -> tree cell id.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// for c in 0..2u32 {
+    ///     assert_eq!(t.cell_to_input()[t.cell_from_input()[c as usize] as usize], c);
+    /// }
+    /// ```
     pub fn cell_from_input(&self) -> &[u32] {
         &self.c_new
     }
     /// Tree vertex range of a leaf.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::LeafId;
+    /// // the leaves split the tree numbering into contiguous ranges
+    /// assert_eq!(t.leaf_vertices(LeafId(0)).start, 0);
+    /// assert_eq!(t.leaf_vertices(LeafId(3)).end, 4);
+    /// assert!((0..4).all(|l| t.leaf_vertices(LeafId(l)).len() == 1));
+    /// ```
     pub fn leaf_vertices(&self, l: LeafId) -> std::ops::Range<u32> {
         self.leaf_vstart[l.index()]..self.leaf_vstart[l.index() + 1]
     }
     /// The SRE-encoded top-cell list of a leaf (tree cell ids).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{LeafId, VertexId};
+    /// use starplex::stellar::sre::SreIter;
+    /// // vertex 1 is in both triangles
+    /// let l = t.leaf_of_vertex(VertexId(1)).unwrap();
+    /// let cells: Vec<u32> = SreIter::new(t.leaf_encoded_cells(l)).collect();
+    /// assert_eq!(cells, vec![0, 1]);
+    /// ```
     pub fn leaf_encoded_cells(&self, l: LeafId) -> &[u32] {
         &self.leaf_tops[self.leaf_toff[l.index()] as usize..self.leaf_toff[l.index() + 1] as usize]
     }
     /// The leaf holding a vertex given in tree numbering.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::LeafId;
+    /// for l in 0..4 {
+    ///     let r = t.leaf_vertices(LeafId(l));
+    ///     assert_eq!(t.leaf_of_tree_vertex(r.start), LeafId(l));
+    /// }
+    /// ```
     pub fn leaf_of_tree_vertex(&self, v: u32) -> LeafId {
         // last l with leaf_vstart[l] <= v
         let l = self.leaf_vstart.partition_point(|&s| s <= v) - 1;
@@ -370,6 +717,22 @@ impl StellarTree {
     ///
     /// # Errors
     /// The vertex does not exist.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::VertexId;
+    /// let l = t.leaf_of_vertex(VertexId(3)).unwrap();
+    /// assert!(t.leaf_vertices(l).contains(&t.vertex_from_input()[3]));
+    /// assert!(t.leaf_of_vertex(VertexId(4)).is_err());
+    /// ```
     pub fn leaf_of_vertex(&self, v: VertexId) -> Result<LeafId, StellarError> {
         let tv = self.tree_vertex(v)?;
         Ok(self.leaf_of_tree_vertex(tv))
@@ -381,10 +744,43 @@ impl StellarTree {
             .ok_or(StellarError::NoSuchVertex(v.0, self.v_new.len()))
     }
     /// Kind and vertices (tree numbering) of a cell given in tree numbering.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let c = t.cell_from_input()[1]; // input triangle [1, 3, 2]
+    /// let (kind, vs) = t.tree_cell(c);
+    /// assert_eq!(kind, CellKind::Simplex(2));
+    /// let input: Vec<u32> = vs.iter().map(|&v| t.vertex_to_input()[v as usize]).collect();
+    /// assert_eq!(input, vec![1, 3, 2]);
+    /// ```
     pub fn tree_cell(&self, c: u32) -> (CellKind, &[u32]) {
         self.cells.get(c)
     }
     /// Kind and vertices (input numbering, the kind's vertex order) of an input cell.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let (kind, vs) = t.input_cell(CellId(0));
+    /// assert_eq!(kind, CellKind::Simplex(2));
+    /// assert_eq!(vs, vec![VertexId(0), VertexId(1), VertexId(2)]);
+    /// ```
     pub fn input_cell(&self, c: CellId) -> (CellKind, Vec<VertexId>) {
         let (k, v) = self.cells.get(self.c_new[c.index()]);
         (
