@@ -29,6 +29,24 @@ use crate::cell::CellKind;
 use crate::ids::{CellId, LeafId, VertexId};
 
 /// A leaf expanded for processing: its cells and its local VT relation, in tree numbering.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::ids::VertexId;
+/// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+/// assert_eq!(e.v_end - e.v_start, 1); // k_V = 1
+/// assert_eq!(e.cells, vec![0, 1]); // vertex 1 is in both triangles
+/// assert_eq!(e.vt_off, vec![0, 2]);
+/// assert_eq!(e.vt, vec![0, 1]);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct ExpandedLeaf {
     /// The leaf.
@@ -47,6 +65,23 @@ pub struct ExpandedLeaf {
 
 impl ExpandedLeaf {
     /// Bytes used.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::VertexId;
+    /// use starplex::stellar::ExpandedLeaf;
+    /// assert_eq!(ExpandedLeaf::default().bytes(), 0);
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// assert_eq!(e.bytes(), 4 * (2 + 2 + 2)); // cells, vt_off, vt
+    /// ```
     pub fn bytes(&self) -> usize {
         4 * (self.cells.len() + self.vt_off.len() + self.vt.len())
     }
@@ -156,6 +191,25 @@ impl StellarTree {
     }
 
     /// Expands leaf `l` into a new [`ExpandedLeaf`].
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::LeafId;
+    /// use starplex::stellar::ExpandedLeaf;
+    /// let e = t.expand_leaf(LeafId(2));
+    /// assert_eq!(e.leaf, LeafId(2));
+    /// let mut f = ExpandedLeaf::default();
+    /// t.expand_leaf_into(LeafId(2), &mut f);
+    /// assert_eq!(e, f);
+    /// ```
     pub fn expand_leaf(&self, l: LeafId) -> ExpandedLeaf {
         let mut e = ExpandedLeaf::default();
         self.expand_leaf_into(l, &mut e);
@@ -163,6 +217,26 @@ impl StellarTree {
     }
 
     /// Calls `f` on every leaf, in order, on one thread.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let mut leaves = Vec::new();
+    /// let mut refs = 0;
+    /// t.for_each_leaf(|leaf| {
+    ///     leaves.push(leaf.leaf().0);
+    ///     refs += leaf.tree_cells().len();
+    /// });
+    /// assert_eq!(leaves, vec![0, 1, 2, 3]);
+    /// assert_eq!(refs, 6); // vertices 1 and 2 are in both triangles
+    /// ```
     pub fn for_each_leaf(&self, mut f: impl FnMut(&LeafView<'_>)) {
         let mut e = ExpandedLeaf::default();
         for l in 0..self.n_leaves() {
@@ -173,6 +247,22 @@ impl StellarTree {
 
     /// Maps every leaf in parallel (per-worker expansion buffers); results in leaf order, the
     /// same for any number of threads.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let ids = t.par_map_leaves(|leaf| leaf.leaf().0);
+    /// assert_eq!(ids, vec![0, 1, 2, 3]); // in leaf order
+    /// let n_cells: Vec<usize> = t.par_map_leaves(|leaf| leaf.tree_cells().len());
+    /// assert_eq!(n_cells.iter().sum::<usize>(), 6);
+    /// ```
     pub fn par_map_leaves<R: Send>(&self, f: impl Fn(&LeafView<'_>) -> R + Sync + Send) -> Vec<R> {
         (0..self.n_leaves() as u32)
             .into_par_iter()
@@ -186,6 +276,24 @@ impl StellarTree {
     /// Maps every leaf in parallel with a per-worker LRU cache of `cache_size` expanded leaves:
     /// `f` gets the leaf and the worker's cache, through which it may expand neighbouring
     /// leaves cheaply. Results in leaf order.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::LeafId;
+    /// let n0 = t.expand_leaf(LeafId(0)).cells.len();
+    /// // every leaf looks into leaf 0 through the worker's cache
+    /// let r = t.par_map_leaves_cached(2, |leaf, cache| (leaf.leaf(), cache.get(leaf.tree, LeafId(0)).cells.len()));
+    /// assert_eq!(r.len(), 4);
+    /// assert!(r.iter().enumerate().all(|(i, &(l, n))| l == LeafId(i as u32) && n == n0));
+    /// ```
     pub fn par_map_leaves_cached<R: Send>(
         &self,
         cache_size: usize,
@@ -230,6 +338,24 @@ pub struct LeafCache {
 
 impl LeafCache {
     /// A cache of `capacity` leaves.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::LeafId;
+    /// use starplex::stellar::LeafCache;
+    /// let mut c = LeafCache::new(0); // no caching
+    /// c.get(&t, LeafId(0));
+    /// c.get(&t, LeafId(0));
+    /// assert_eq!((c.hits(), c.misses()), (0, 2));
+    /// ```
     pub fn new(capacity: usize) -> LeafCache {
         LeafCache {
             cache: std::num::NonZeroUsize::new(capacity).map(lru::LruCache::new),
@@ -238,6 +364,22 @@ impl LeafCache {
         }
     }
     /// The expanded leaf, from the cache or freshly expanded (and cached).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::LeafId;
+    /// use starplex::stellar::LeafCache;
+    /// let mut c = LeafCache::new(4);
+    /// assert_eq!(*c.get(&t, LeafId(2)), t.expand_leaf(LeafId(2)));
+    /// ```
     pub fn get(&mut self, t: &StellarTree, l: LeafId) -> Arc<ExpandedLeaf> {
         if let Some(c) = &mut self.cache {
             if let Some(e) = c.get(&l.0) {
@@ -253,10 +395,44 @@ impl LeafCache {
         e
     }
     /// Lookups answered from the cache.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::LeafId;
+    /// use starplex::stellar::LeafCache;
+    /// let mut c = LeafCache::new(1);
+    /// for l in [0, 0, 1, 0] { c.get(&t, LeafId(l)); }
+    /// assert_eq!(c.hits(), 1); // leaf 1 evicted leaf 0
+    /// ```
     pub fn hits(&self) -> u64 {
         self.hits
     }
     /// Lookups that expanded a leaf.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::LeafId;
+    /// use starplex::stellar::LeafCache;
+    /// let mut c = LeafCache::new(1);
+    /// for l in [0, 0, 1, 0] { c.get(&t, LeafId(l)); }
+    /// assert_eq!(c.misses(), 3);
+    /// ```
     pub fn misses(&self) -> u64 {
         self.misses
     }
@@ -264,6 +440,25 @@ impl LeafCache {
 
 /// A read-only view of one expanded leaf: its vertices, its top cells and their local
 /// relations, with conversions to input numbering.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// # use starplex::ids::{CellId, LeafId, VertexId};
+/// use starplex::stellar::LeafView;
+/// // the leaf of input vertex 1, which is in both triangles
+/// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+/// let leaf = LeafView { tree: &t, e: &e };
+/// assert_eq!(leaf.tree_cells(), &[0, 1]);
+/// assert_eq!(leaf.input_vertices().collect::<Vec<_>>(), vec![VertexId(1)]);
+/// ```
 #[derive(Clone, Copy)]
 pub struct LeafView<'a> {
     /// The tree.
@@ -274,44 +469,217 @@ pub struct LeafView<'a> {
 
 impl<'a> LeafView<'a> {
     /// The leaf id.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// # use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::LeafView;
+    /// // the leaf of input vertex 1, which is in both triangles
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// let leaf = LeafView { tree: &t, e: &e };
+    /// assert_eq!(leaf.leaf(), t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// ```
     pub fn leaf(&self) -> LeafId {
         self.e.leaf
     }
     /// Tree ids of the leaf's vertices.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// # use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::LeafView;
+    /// // the leaf of input vertex 1, which is in both triangles
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// let leaf = LeafView { tree: &t, e: &e };
+    /// assert_eq!(leaf.tree_vertices(), t.leaf_vertices(leaf.leaf()));
+    /// assert!(leaf.tree_vertices().contains(&t.vertex_from_input()[1]));
+    /// ```
     pub fn tree_vertices(&self) -> std::ops::Range<u32> {
         self.e.v_start..self.e.v_end
     }
     /// Input ids of the leaf's vertices (in tree order).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// # use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::LeafView;
+    /// // the leaf of input vertex 1, which is in both triangles
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// let leaf = LeafView { tree: &t, e: &e };
+    /// assert_eq!(leaf.input_vertices().collect::<Vec<_>>(), vec![VertexId(1)]);
+    /// ```
     pub fn input_vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
         self.tree_vertices()
             .map(|v| VertexId(self.tree.v_orig[v as usize]))
     }
     /// True when tree vertex `v` belongs to the leaf.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// # use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::LeafView;
+    /// // the leaf of input vertex 1, which is in both triangles
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// let leaf = LeafView { tree: &t, e: &e };
+    /// assert!(leaf.owns(t.vertex_from_input()[1]));
+    /// assert!(!leaf.owns(t.vertex_from_input()[0]));
+    /// ```
     #[inline]
     pub fn owns(&self, v: u32) -> bool {
         v >= self.e.v_start && v < self.e.v_end
     }
     /// Tree ids of the leaf's top cells (increasing).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// # use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::LeafView;
+    /// // the leaf of input vertex 1, which is in both triangles
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// let leaf = LeafView { tree: &t, e: &e };
+    /// let mut input: Vec<CellId> = leaf.tree_cells().iter().map(|&c| leaf.input_cell(c)).collect();
+    /// input.sort();
+    /// assert_eq!(input, vec![CellId(0), CellId(1)]);
+    /// ```
     pub fn tree_cells(&self) -> &'a [u32] {
         &self.e.cells
     }
     /// Kind and tree-numbered vertices of a tree cell.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// # use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::LeafView;
+    /// // the leaf of input vertex 1, which is in both triangles
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// let leaf = LeafView { tree: &t, e: &e };
+    /// for &c in leaf.tree_cells() {
+    ///     let (kind, vs) = leaf.cell(c);
+    ///     assert_eq!(kind, CellKind::Simplex(2));
+    ///     assert!(vs.contains(&t.vertex_from_input()[1]));
+    /// }
+    /// ```
     #[inline]
     pub fn cell(&self, c: u32) -> (CellKind, &'a [u32]) {
         self.tree.cells.get(c)
     }
     /// Top cells (tree ids, increasing) incident to tree vertex `v` of this leaf.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// # use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::LeafView;
+    /// // the leaf of input vertex 1, which is in both triangles
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// let leaf = LeafView { tree: &t, e: &e };
+    /// let v = t.vertex_from_input()[1];
+    /// assert_eq!(leaf.vt_tree(v).len(), 2); // both triangles
+    /// ```
     #[inline]
     pub fn vt_tree(&self, v: u32) -> &'a [u32] {
         let i = (v - self.e.v_start) as usize;
         &self.e.vt[self.e.vt_off[i] as usize..self.e.vt_off[i + 1] as usize]
     }
     /// Input id of a tree vertex.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// # use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::LeafView;
+    /// // the leaf of input vertex 1, which is in both triangles
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// let leaf = LeafView { tree: &t, e: &e };
+    /// let v = leaf.tree_vertices().start;
+    /// assert_eq!(leaf.input_vertex(v), VertexId(1));
+    /// ```
     #[inline]
     pub fn input_vertex(&self, v: u32) -> VertexId {
         VertexId(self.tree.v_orig[v as usize])
     }
     /// Input id of a tree cell.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// # use starplex::ids::{CellId, LeafId, VertexId};
+    /// use starplex::stellar::LeafView;
+    /// // the leaf of input vertex 1, which is in both triangles
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+    /// let leaf = LeafView { tree: &t, e: &e };
+    /// let c = t.cell_from_input()[1];
+    /// assert_eq!(leaf.input_cell(c), CellId(1));
+    /// ```
     #[inline]
     pub fn input_cell(&self, c: u32) -> CellId {
         CellId(self.tree.c_orig[c as usize])
