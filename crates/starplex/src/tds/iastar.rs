@@ -42,6 +42,17 @@ use crate::ids::{CellId, VertexId};
 use crate::topo::{sorted_simplex, QueryError, Storage, TopCells, VertexAdjacency, VertexStar};
 
 /// Why an IA* could not be built.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// use starplex::tds::iastar::{IaStar, IaStarError};
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// assert!(matches!(IaStar::new(&k), Err(IaStarError::NotSimplicial(0, _))));
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum IaStarError {
     /// A top cell that is not a simplex.
@@ -53,6 +64,21 @@ pub enum IaStarError {
 }
 
 /// One adjacency slot of a top k-simplex.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// use starplex::ids::{CellId, VertexId};
+/// use starplex::tds::iastar::IaStar;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for _ in 0..5 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+/// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let ia = IaStar::new(&k).unwrap(); // the book: three triangles on edge {0,1}
+/// use starplex::tds::iastar::Adj;
+/// // facet j omits vertex j: facet 2 of [0, 1, 2] is the non-manifold edge {0,1}
+/// assert_eq!(ia.adjacency(CellId(0)), vec![Adj::None, Adj::None, Adj::NmFace(0)]);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Adj {
     /// The facet is in no other top k-simplex.
@@ -114,6 +140,22 @@ impl Block {
 }
 
 /// The IA* data structure. See the [module docs](self).
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// use starplex::ids::{CellId, VertexId};
+/// use starplex::tds::iastar::IaStar;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let ia = IaStar::new(&k).unwrap(); // triangles [0, 1, 2] and [1, 3, 2]
+/// assert_eq!(ia.n_tops(2), 2);
+/// assert_eq!(ia.top_adjacent(CellId(0)), vec![CellId(1)]);
+/// assert_eq!(ia.n_nm_faces(2), 0);
+/// ```
 #[derive(Clone, Debug)]
 pub struct IaStar {
     n_vertices: u32,
@@ -133,6 +175,22 @@ impl IaStar {
     ///
     /// # Errors
     /// A CP cell; more than 2^31 - 1 top cells.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangles [0, 1, 2] and [1, 3, 2]
+    /// assert_eq!(ia.n_tops(2), 2);
+    /// // one cluster per vertex: each vertex stores one triangle
+    /// assert_eq!(ia.vertex_references(VertexId(3)), &[1]);
+    /// ```
     pub fn new(k: &IndexedComplex) -> Result<IaStar, IaStarError> {
         Self::build(k, false)
     }
@@ -383,6 +441,20 @@ impl IaStar {
     }
 
     /// Number of non-manifold (k-1)-faces of the top k-simplices.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..5 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // the book: three triangles on edge {0,1}
+    /// assert_eq!(ia.n_nm_faces(2), 1); // edge {0,1}
+    /// assert_eq!(ia.n_nm_faces(3), 0);
+    /// ```
     pub fn n_nm_faces(&self, k: usize) -> usize {
         self.nm.get(k).map_or(0, |c| c.n_rows())
     }
@@ -406,6 +478,19 @@ impl IaStar {
     }
 
     /// The sorted vertices of non-manifold face `f` of dimension k-1.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..5 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // the book: three triangles on edge {0,1}
+    /// assert_eq!(ia.nm_face_vertices(2, 0), vec![VertexId(0), VertexId(1)]);
+    /// ```
     pub fn nm_face_vertices(&self, k: usize, f: u32) -> Vec<VertexId> {
         let tops = self.nm_face_tops(k, f);
         let (_, verts, adj) = self.top(tops[0]);
@@ -425,11 +510,42 @@ impl IaStar {
 
     /// The stored per-vertex references: every top edge at `v` and one top k-simplex per
     /// k-cluster of `v` (k ≥ 2), sorted by id.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..5 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // the book: three triangles on edge {0,1}
+    /// // vertex 0: one cluster, represented by its smallest triangle
+    /// assert_eq!(ia.vertex_references(VertexId(0)), &[0]);
+    /// assert_eq!(ia.vertex_references(VertexId(4)), &[2]);
+    /// ```
     pub fn vertex_references(&self, v: VertexId) -> &[u32] {
         self.vrefs.row(v.index())
     }
 
     /// Number of k-clusters at `v` (k ≥ 2), or of top edges for k = 1.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// // a bowtie: two triangles meeting at vertex 0 only
+    /// let mut b = ComplexBuilder::new(2).unwrap();
+    /// for _ in 0..5 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// b.push_cell(CellKind::Simplex(2), &[0, 3, 4]).unwrap();
+    /// let ia = IaStar::new(&b.build(&BuildOptions::default()).unwrap().0).unwrap();
+    /// assert_eq!(ia.n_clusters(VertexId(0), 2), 2);
+    /// assert_eq!(ia.n_clusters(VertexId(1), 2), 1);
+    /// assert_eq!(ia.n_clusters(VertexId(0), 1), 0); // no top edges
+    /// ```
     pub fn n_clusters(&self, v: VertexId, k: usize) -> usize {
         self.vrefs
             .row(v.index())
@@ -439,22 +555,82 @@ impl IaStar {
     }
 
     /// Number of top k-simplices.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(1), &[2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangle 0 = [0, 1, 2] and top edge 1 = [2, 3]
+    /// assert_eq!((ia.n_tops(0), ia.n_tops(1), ia.n_tops(2), ia.n_tops(3)), (0, 1, 1, 0));
+    /// ```
     pub fn n_tops(&self, k: usize) -> u64 {
         self.t.get(k).copied().unwrap_or(0)
     }
 
     /// References with the Stellar-code variant (adjacency slots also for top edges: +2 t_1).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(1), &[2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangle 0 = [0, 1, 2] and top edge 1 = [2, 3]
+    /// use starplex::topo::Storage;
+    /// assert_eq!(ia.refs_stellar_variant(), ia.refs() + 2); // one top edge
+    /// ```
     pub fn refs_stellar_variant(&self) -> u64 {
         self.refs() + 2 * self.n_tops(1)
     }
 
     /// The index of top `c` among the top simplices of its dimension, and that dimension.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(1), &[2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangle 0 = [0, 1, 2] and top edge 1 = [2, 3]
+    /// assert_eq!(ia.dim_index(CellId(0)), (2, 0));
+    /// assert_eq!(ia.dim_index(CellId(1)), (1, 0));
+    /// ```
     pub fn dim_index(&self, c: CellId) -> (usize, u32) {
         let b = self.block_of(c.0);
         (b.dim, b.dim_offset + (c.0 - b.first))
     }
 
     /// The input id of the `i`-th top m-simplex.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(1), &[2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangle 0 = [0, 1, 2] and top edge 1 = [2, 3]
+    /// assert_eq!(ia.cell_of(2, 0), Some(CellId(0)));
+    /// assert_eq!(ia.cell_of(1, 0), Some(CellId(1)));
+    /// assert_eq!(ia.cell_of(2, 1), None);
+    /// ```
     pub fn cell_of(&self, m: usize, i: u32) -> Option<CellId> {
         let b = self
             .blocks
@@ -1455,6 +1631,23 @@ crate::impl_relations_from_tops!(IaStar);
 /// rank({s_0<…<s_p}) = Σ_j C(s_j, j+1)). Ghosts returned by [`IaStar`] are canonical: the top
 /// is the smallest (m, k) containing the face, so one simplex has one ghost and `==` is
 /// simplex equality.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// use starplex::ids::{CellId, VertexId};
+/// use starplex::tds::iastar::IaStar;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let ia = IaStar::new(&k).unwrap(); // triangles [0, 1, 2] and [1, 3, 2]
+/// use starplex::tds::iastar::Ghost;
+/// // edge {1,2}: positions {1,2} of top triangle 0, colex rank C(1,1) + C(2,2) = 2
+/// let g = ia.ghost(&[VertexId(1), VertexId(2)]).unwrap();
+/// assert_eq!(g, Ghost { m: 2, k: 0, p: 1, i: 2 });
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Ghost {
     /// Dimension of the top.
@@ -1517,6 +1710,25 @@ impl IaStar {
     ///
     /// # Errors
     /// `s` is not a simplex of the complex.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangles [0, 1, 2] and [1, 3, 2]
+    /// use starplex::tds::iastar::Ghost;
+    /// // vertex 3 is position 1 of the second triangle [1, 3, 2]
+    /// assert_eq!(ia.ghost(&[VertexId(3)]).unwrap(), Ghost { m: 2, k: 1, p: 0, i: 1 });
+    /// // the shared edge has one canonical ghost, from triangle 0
+    /// assert_eq!(ia.ghost(&[VertexId(2), VertexId(1)]).unwrap().k, 0);
+    /// assert!(ia.ghost(&[VertexId(0), VertexId(3)]).is_err()); // not an edge
+    /// ```
     pub fn ghost(&self, s: &[VertexId]) -> Result<Ghost, QueryError> {
         let s = sorted_simplex(s)?;
         let mut cells = Vec::new();
@@ -1553,6 +1765,21 @@ impl IaStar {
     ///
     /// # Errors
     /// A ghost that names no face of a top.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangles [0, 1, 2] and [1, 3, 2]
+    /// let g = ia.ghost(&[VertexId(3), VertexId(2)]).unwrap();
+    /// assert_eq!(ia.ghost_vertices(g).unwrap(), vec![VertexId(2), VertexId(3)]);
+    /// ```
     pub fn ghost_vertices(&self, g: Ghost) -> Result<Vec<VertexId>, QueryError> {
         let bad = || QueryError::NotInComplex(vec![]);
         let c = self.cell_of(g.m as usize, g.k).ok_or_else(bad)?;
@@ -1572,6 +1799,23 @@ impl IaStar {
     ///
     /// # Errors
     /// A bad ghost; too many faces.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangles [0, 1, 2] and [1, 3, 2]
+    /// let e = ia.ghost(&[VertexId(1), VertexId(2)]).unwrap();
+    /// let vs: Vec<_> = ia.ghost_boundary(e, 0).unwrap().into_iter()
+    ///     .map(|g| ia.ghost_vertices(g).unwrap()).collect();
+    /// assert_eq!(vs, vec![vec![VertexId(1)], vec![VertexId(2)]]);
+    /// ```
     pub fn ghost_boundary(&self, g: Ghost, q: usize) -> Result<Vec<Ghost>, QueryError> {
         let s = self.ghost_vertices(g)?;
         let mut flat = Vec::new();
@@ -1583,6 +1827,26 @@ impl IaStar {
     ///
     /// # Errors
     /// A bad ghost; too many cofaces.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangles [0, 1, 2] and [1, 3, 2]
+    /// let e = ia.ghost(&[VertexId(1), VertexId(2)]).unwrap();
+    /// let ts: Vec<_> = ia.ghost_coboundary(e, 2).unwrap().into_iter()
+    ///     .map(|g| ia.ghost_vertices(g).unwrap()).collect();
+    /// assert_eq!(ts, vec![
+    ///     vec![VertexId(0), VertexId(1), VertexId(2)],
+    ///     vec![VertexId(1), VertexId(2), VertexId(3)],
+    /// ]);
+    /// ```
     pub fn ghost_coboundary(&self, g: Ghost, q: usize) -> Result<Vec<Ghost>, QueryError> {
         let s = self.ghost_vertices(g)?;
         let mut flat = Vec::new();
@@ -1594,6 +1858,23 @@ impl IaStar {
     ///
     /// # Errors
     /// A bad ghost; too many simplices.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// use starplex::ids::{CellId, VertexId};
+    /// use starplex::tds::iastar::IaStar;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for _ in 0..4 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let ia = IaStar::new(&k).unwrap(); // triangles [0, 1, 2] and [1, 3, 2]
+    /// let t0 = ia.ghost(&[VertexId(0), VertexId(1), VertexId(2)]).unwrap();
+    /// let adj = ia.ghost_adjacent(t0).unwrap();
+    /// assert_eq!(adj.len(), 1);
+    /// assert_eq!(ia.ghost_vertices(adj[0]).unwrap(), vec![VertexId(1), VertexId(2), VertexId(3)]);
+    /// ```
     pub fn ghost_adjacent(&self, g: Ghost) -> Result<Vec<Ghost>, QueryError> {
         let s = self.ghost_vertices(g)?;
         let mut flat = Vec::new();
