@@ -52,6 +52,27 @@ const NOT_LOCAL: u32 = u32::MAX - 1;
 const NM: u32 = 1 << 31;
 
 /// What lies across one facet of a top cell.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::ids::{CellId, VertexId};
+/// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+/// use starplex::stellar::iastar::Adjacent;
+/// // facet j omits vertex j: facet 0 of [0, 1, 2] is edge {1,2}, shared with triangle 1
+/// assert_eq!(ia.adjacent(CellId(0), 0), Adjacent::Top(CellId(1)));
+/// assert_eq!(ia.adjacent(CellId(0), 1), Adjacent::None);
+/// // the leaf of vertex 0 does not examine edge {1,2}
+/// let local = t.local_iastar(t.leaf_of_vertex(VertexId(0)).unwrap());
+/// assert_eq!(local.adjacent(CellId(0), 0), Adjacent::NotComputed);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Adjacent {
     /// No other top cell of the same dimension.
@@ -76,6 +97,24 @@ fn decode(x: u32) -> Adjacent {
 /// An IA* data structure over the tree's complex, stored in tree numbering and answering in
 /// input numbering. For a local IA*, the cells are those of one leaf and the vertex lists
 /// those of the leaf's vertices.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::ids::{CellId, VertexId};
+/// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+/// assert_eq!(ia.cells(), vec![0, 1]);
+/// assert_eq!(ia.star(VertexId(2)), vec![CellId(0), CellId(1)]);
+/// let local = t.local_iastar(t.leaf_of_vertex(VertexId(3)).unwrap());
+/// assert_eq!((local.cells(), local.vertices()), (vec![1], vec![3]));
+/// ```
 #[derive(Clone, Debug)]
 pub struct IaStar<'t> {
     tree: &'t StellarTree,
@@ -120,6 +159,23 @@ impl<'t> IaStar<'t> {
         v
     }
     /// Cells covered (input ids, sorted).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+    /// assert_eq!(ia.cells(), vec![0, 1]);
+    /// let local = t.local_iastar(t.leaf_of_vertex(VertexId(0)).unwrap());
+    /// assert_eq!(local.cells(), vec![0]); // the cells of vertex 0's leaf
+    /// ```
     pub fn cells(&self) -> Vec<u32> {
         match &self.cells {
             None => (0..self.tree.n_top_cells() as u32).collect(),
@@ -127,6 +183,23 @@ impl<'t> IaStar<'t> {
         }
     }
     /// Vertices covered (input ids, sorted).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+    /// assert_eq!(ia.vertices(), vec![0, 1, 2, 3]);
+    /// let local = t.local_iastar(t.leaf_of_vertex(VertexId(3)).unwrap());
+    /// assert_eq!(local.vertices(), vec![3]);
+    /// ```
     pub fn vertices(&self) -> Vec<u32> {
         let mut v: Vec<u32> = (self.v_range.0..self.v_range.1)
             .map(|t| self.tree.v_orig[t as usize])
@@ -135,11 +208,46 @@ impl<'t> IaStar<'t> {
         v
     }
     /// Number of adjacency slots of a covered cell (its facet count for dimension >= 2).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+    /// assert_eq!(ia.n_slots(CellId(0)), 3); // three edges
+    /// let local = t.local_iastar(t.leaf_of_vertex(VertexId(3)).unwrap());
+    /// assert_eq!(local.n_slots(CellId(0)), 0); // triangle 0 is not in that leaf
+    /// ```
     pub fn n_slots(&self, c: CellId) -> usize {
         self.cell_pos(c)
             .map_or(0, |i| (self.adj_off[i + 1] - self.adj_off[i]) as usize)
     }
     /// What lies across facet `j` of cell `c` (`None` for an uncovered cell or bad slot).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+    /// use starplex::stellar::iastar::Adjacent;
+    /// assert_eq!(ia.adjacent(CellId(1), 1), Adjacent::Top(CellId(0))); // edge {1,2}
+    /// assert_eq!(ia.adjacent(CellId(1), 0), Adjacent::None); // edge {3,2}
+    /// assert_eq!(ia.adjacent(CellId(1), 7), Adjacent::None); // no such slot
+    /// ```
     pub fn adjacent(&self, c: CellId, j: usize) -> Adjacent {
         let Some(i) = self.cell_pos(c) else {
             return Adjacent::None;
@@ -152,14 +260,59 @@ impl<'t> IaStar<'t> {
         }
     }
     /// Number of non-manifold facets.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(3).unwrap();
+    /// # for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]] {
+    /// #     b.push_vertex(&p).unwrap();
+    /// # }
+    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+    /// let ia = t.iastar(); // the book: three triangles on edge {0,1}
+    /// assert_eq!(ia.n_nm_faces(), 1); // edge {0,1}
+    /// ```
     pub fn n_nm_faces(&self) -> usize {
         self.nm_cells.n_rows()
     }
     /// Top cells of non-manifold facet `f` (input ids, sorted).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(3).unwrap();
+    /// # for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]] {
+    /// #     b.push_vertex(&p).unwrap();
+    /// # }
+    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+    /// let ia = t.iastar(); // the book: three triangles on edge {0,1}
+    /// assert_eq!(ia.nm_face_cells(0), vec![0, 1, 2]);
+    /// ```
     pub fn nm_face_cells(&self, f: u32) -> Vec<u32> {
         self.to_input_sorted(self.nm_cells.row(f as usize))
     }
     /// Vertices of non-manifold facet `f` (input ids, sorted).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(3).unwrap();
+    /// # for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]] {
+    /// #     b.push_vertex(&p).unwrap();
+    /// # }
+    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+    /// let ia = t.iastar(); // the book: three triangles on edge {0,1}
+    /// assert_eq!(ia.nm_face_vertices(0), vec![0, 1]);
+    /// ```
     pub fn nm_face_vertices(&self, f: u32) -> Vec<u32> {
         let mut v: Vec<u32> = self
             .nm_verts
@@ -171,12 +324,45 @@ impl<'t> IaStar<'t> {
         v
     }
     /// R_{0,1}(v) plus one top k-cell per k-cluster (k >= 2), sorted input ids.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+    /// // one cluster per vertex, represented by its smallest triangle
+    /// assert_eq!(ia.vertex_representatives(VertexId(1)), vec![0]);
+    /// assert_eq!(ia.vertex_representatives(VertexId(3)), vec![1]);
+    /// ```
     pub fn vertex_representatives(&self, v: VertexId) -> Vec<u32> {
         self.vertex_pos(v)
             .map_or(Vec::new(), |i| self.to_input_sorted(self.reps.row(i)))
     }
     /// References stored (the spec's paper-faithful count): R_{k,0} + R_{k,k} slots + the
     /// non-manifold facet lists + R_{0,1} and cluster representatives.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+    /// // 6 vertex refs + 6 adjacency slots + 4 representatives
+    /// assert_eq!(ia.storage_refs(), 16);
+    /// ```
     pub fn storage_refs(&self) -> u64 {
         let cell_refs = match &self.cells {
             None => self.tree.cells.verts.len(),
@@ -185,6 +371,23 @@ impl<'t> IaStar<'t> {
         (cell_refs + self.adj.len() + self.nm_cells.n_refs() + self.reps.n_refs()) as u64
     }
     /// Bytes of the arrays this structure adds to the tree.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+    /// assert!(ia.bytes() >= 4 * 6); // at least the six adjacency slots
+    /// let local = t.local_iastar(t.leaf_of_vertex(VertexId(0)).unwrap());
+    /// assert!(local.bytes() < ia.bytes());
+    /// ```
     pub fn bytes(&self) -> usize {
         4 * (self.cells.as_ref().map_or(0, |c| c.len()) + self.adj_off.len() + self.adj.len())
             + self.nm_cells.bytes()
@@ -195,6 +398,23 @@ impl<'t> IaStar<'t> {
     /// Expands the clusters of `v` through the adjacency slots: the top cells incident to `v`
     /// (needs the cells of the whole star to be covered, true for the global IA* and for the
     /// leaf's own vertices in a local one).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+    /// assert_eq!(ia.star(VertexId(1)), vec![CellId(0), CellId(1)]);
+    /// assert_eq!(ia.star(VertexId(0)), vec![CellId(0)]);
+    /// assert_eq!(ia.star(VertexId(9)), vec![]); // not a vertex
+    /// ```
     pub fn star(&self, v: VertexId) -> Vec<CellId> {
         let Some(i) = self.vertex_pos(v) else {
             return Vec::new();
@@ -359,6 +579,25 @@ impl StellarTree {
     /// The global IA*, built leaf by leaf in parallel: each facet is examined once, in the leaf
     /// owning its smallest vertex; the cluster representatives of each vertex are found in its
     /// leaf. Same result for any number of threads.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{CellId, VertexId};
+    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
+    /// use starplex::stellar::iastar::Adjacent;
+    /// assert_eq!(ia.adjacent(CellId(0), 0), Adjacent::Top(CellId(1)));
+    /// // the same structure whatever the leaves
+    /// let one_leaf = StellarTree::build(&k, &StellarOptions { kv: Some(0), ..Default::default() }).unwrap();
+    /// assert_eq!(one_leaf.iastar().storage_refs(), ia.storage_refs());
+    /// ```
     pub fn iastar(&self) -> IaStar<'_> {
         let nc = self.n_top_cells();
         let pieces: Vec<Pieces> =
@@ -769,6 +1008,24 @@ impl StellarTree {
 
     /// Builds the local IA* of every leaf in parallel and returns the total of their
     /// reference counts (the local approach: each is discarded after use by `f`).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::VertexId;
+    /// // each leaf's local IA* covers its own vertex and that vertex's triangles
+    /// let per_leaf = t.par_local_iastar(|ia| (ia.vertices().len(), ia.cells().len()));
+    /// assert_eq!(per_leaf.len(), 4);
+    /// assert!(per_leaf.iter().all(|&(nv, _)| nv == 1));
+    /// assert_eq!(per_leaf.iter().map(|&(_, nc)| nc).sum::<usize>(), 6);
+    /// ```
     pub fn par_local_iastar<R: Send>(&self, f: impl Fn(&IaStar<'_>) -> R + Sync + Send) -> Vec<R> {
         (0..self.n_leaves() as u32)
             .into_par_iter()
