@@ -32,10 +32,44 @@ use crate::topo::naive::edge_neighbours;
 use crate::topo::{TopCells, VertexAdjacency, VertexStar};
 
 /// Default budget of (cell, face) pairs for face extraction.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::stellar::relations::FACE_BUDGET;
+/// // `p_faces` uses this budget
+/// assert_eq!(t.p_faces_with_budget(1, FACE_BUDGET).unwrap(), t.p_faces(1).unwrap());
+/// assert!(t.p_faces_with_budget(1, 1).is_err());
+/// ```
 pub const FACE_BUDGET: u128 = 2_000_000_000;
 
 /// Faces of one dimension: vertex lists (input ids, sorted) and how many top cells contain
 /// each face.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// let edges = t.p_faces(1).unwrap();
+/// assert_eq!(edges.len(), 5);
+/// // the diagonal {1,2} is in both triangles, the other edges in one
+/// let i = (0..edges.len()).find(|&i| edges.faces.row(i) == [1, 2]).unwrap();
+/// assert_eq!(edges.n_cofaces[i], 2);
+/// assert_eq!(edges.n_cofaces.iter().sum::<u32>(), 6);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct FaceList {
     /// Face `i` is `faces.row(i)`.
@@ -46,10 +80,39 @@ pub struct FaceList {
 
 impl FaceList {
     /// Number of faces.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.p_faces(0).unwrap().len(), 4);
+    /// assert_eq!(t.p_faces(2).unwrap().len(), 2);
+    /// ```
     pub fn len(&self) -> usize {
         self.n_cofaces.len()
     }
     /// True without faces.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::stellar::FaceList;
+    /// assert!(FaceList::default().is_empty());
+    /// assert!(!t.p_faces(1).unwrap().is_empty());
+    /// ```
     pub fn is_empty(&self) -> bool {
         self.n_cofaces.is_empty()
     }
@@ -88,7 +151,7 @@ pub(crate) struct FaceKeys {
 const PAD: u32 = u32::MAX;
 
 impl FaceKeys {
-    pub fn clear(&mut self, w: usize) {
+    pub(crate) fn clear(&mut self, w: usize) {
         self.w = w;
         self.prefix = None;
         self.buckets = None;
@@ -100,17 +163,17 @@ impl FaceKeys {
     }
     /// Every key pushed shares this leading entry, which is not stored but is reported by
     /// [`for_each_group`](Self::for_each_group).
-    pub fn set_prefix(&mut self, p: Option<u32>) {
+    pub(crate) fn set_prefix(&mut self, p: Option<u32>) {
         self.prefix = p;
     }
     /// Every stored key starts with a vertex in `lo..hi` (the leaf's own range): grouping
     /// then buckets by that vertex before sorting each small bucket (same order as a sort).
-    pub fn set_buckets(&mut self, r: Option<(u32, u32)>) {
+    pub(crate) fn set_buckets(&mut self, r: Option<(u32, u32)>) {
         self.buckets = r;
     }
     /// Pushes a sorted key (at most `w` ids).
     #[inline]
-    pub fn push(&mut self, key: &[u32], payload: u64) {
+    pub(crate) fn push(&mut self, key: &[u32], payload: u64) {
         debug_assert!(key.len() <= self.w);
         if self.w <= 2 {
             let a = key.first().copied().unwrap_or(PAD) as u64;
@@ -135,7 +198,7 @@ impl FaceKeys {
         }
     }
     /// Calls `f(key, payloads)` for every distinct key, in key order.
-    pub fn for_each_group(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
+    pub(crate) fn for_each_group(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
         if self.w <= 2 {
             match self.buckets {
                 Some((lo, hi)) => bucket_sort(
@@ -242,7 +305,7 @@ impl FaceKeys {
     /// group) may come in any order that depends only on the pushes: for keys of three
     /// vertices with buckets, each bucket is grouped with a small hash table instead of
     /// sorted.
-    pub fn for_each_group_unordered(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
+    pub(crate) fn for_each_group_unordered(&mut self, mut f: impl FnMut(&[u32], &[u64])) {
         if !(self.w == 3 && self.buckets.is_some()) {
             return self.for_each_group(f);
         }
