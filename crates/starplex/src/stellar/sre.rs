@@ -17,12 +17,35 @@
 //! ```
 
 /// High bit marking the start of a run.
+///
+/// ```
+/// use starplex::stellar::sre::{encode, RUN_FLAG};
+/// let mut enc = Vec::new();
+/// encode(&[5, 6, 7, 8], &mut enc);
+/// assert_eq!(enc, vec![5 | RUN_FLAG, 3]); // flagged start, then 3 more ids
+/// assert_eq!(enc[0] & !RUN_FLAG, 5);
+/// ```
 pub const RUN_FLAG: u32 = 1 << 31;
 
 /// Shortest run that is encoded as a pair.
+///
+/// ```
+/// use starplex::stellar::sre::{encode, MIN_RUN, RUN_FLAG};
+/// assert_eq!(MIN_RUN, 3);
+/// let mut enc = Vec::new();
+/// encode(&[1, 2, 10, 11, 12], &mut enc); // a pair stays plain, a triple is a run
+/// assert_eq!(enc, vec![1, 2, 10 | RUN_FLAG, 2]);
+/// ```
 pub const MIN_RUN: u32 = 3;
 
 /// Appends the SRE encoding of the strictly increasing list `sorted` to `out`.
+///
+/// ```
+/// use starplex::stellar::sre::{encode, RUN_FLAG};
+/// let mut enc = vec![42]; // appends
+/// encode(&[0, 1, 2, 3, 4, 9], &mut enc);
+/// assert_eq!(enc, vec![42, RUN_FLAG, 4, 9]);
+/// ```
 pub fn encode(sorted: &[u32], out: &mut Vec<u32>) {
     let mut i = 0;
     while i < sorted.len() {
@@ -37,6 +60,17 @@ pub fn encode(sorted: &[u32], out: &mut Vec<u32>) {
 }
 
 /// Appends a run of `len >= 1` consecutive ids starting at `start`.
+///
+/// ```
+/// use starplex::stellar::sre::{push_run, decode, RUN_FLAG};
+/// let mut enc = Vec::new();
+/// push_run(3, 2, &mut enc); // short: stored as ids
+/// push_run(7, 4, &mut enc); // 7..=10: stored as a pair
+/// assert_eq!(enc, vec![3, 4, 7 | RUN_FLAG, 3]);
+/// let mut ids = Vec::new();
+/// decode(&enc, &mut ids);
+/// assert_eq!(ids, vec![3, 4, 7, 8, 9, 10]);
+/// ```
 #[inline]
 pub fn push_run(start: u32, len: u32, out: &mut Vec<u32>) {
     debug_assert!(start < RUN_FLAG && len >= 1);
@@ -49,6 +83,14 @@ pub fn push_run(start: u32, len: u32, out: &mut Vec<u32>) {
 }
 
 /// Number of words a run of `len` ids takes.
+///
+/// ```
+/// use starplex::stellar::sre::{push_run, run_cost};
+/// assert_eq!((run_cost(1), run_cost(2), run_cost(3), run_cost(1000)), (1, 2, 2, 2));
+/// let mut enc = Vec::new();
+/// push_run(0, 1000, &mut enc);
+/// assert_eq!(enc.len() as u32, run_cost(1000));
+/// ```
 #[inline]
 pub fn run_cost(len: u32) -> u32 {
     if len >= MIN_RUN {
@@ -59,6 +101,13 @@ pub fn run_cost(len: u32) -> u32 {
 }
 
 /// Appends the decoded ids of `enc` to `out`.
+///
+/// ```
+/// use starplex::stellar::sre::{decode, RUN_FLAG};
+/// let mut ids = vec![0]; // appends
+/// decode(&[2, 5 | RUN_FLAG, 2, 9], &mut ids);
+/// assert_eq!(ids, vec![0, 2, 5, 6, 7, 9]);
+/// ```
 pub fn decode(enc: &[u32], out: &mut Vec<u32>) {
     let mut i = 0;
     while i < enc.len() {
@@ -113,6 +162,12 @@ pub struct SreIter<'a> {
 
 impl<'a> SreIter<'a> {
     /// Iterates over `enc`.
+    ///
+    /// ```
+    /// use starplex::stellar::sre::{SreIter, RUN_FLAG};
+    /// assert_eq!(SreIter::new(&[]).count(), 0);
+    /// assert_eq!(SreIter::new(&[RUN_FLAG, 4]).sum::<u32>(), 0 + 1 + 2 + 3 + 4);
+    /// ```
     pub fn new(enc: &'a [u32]) -> Self {
         SreIter {
             enc,

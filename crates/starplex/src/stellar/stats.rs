@@ -28,6 +28,22 @@ use super::StellarTree;
 use crate::ids::LeafId;
 
 /// Storage of one encoding.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// // 5 nodes, 4 leaves, 6 cell references in the leaf lists (no runs)
+/// let c = &t.stats().storage.compressed;
+/// assert_eq!(c.refs, 7 * 5 + 2 * 4 + 6);
+/// assert_eq!(c.bytes, 48 * 5 + 4 * (2 * 4 + 6));
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct EncodingStorage {
     /// References (32-bit ids), hierarchy at 7 per node.
@@ -37,6 +53,23 @@ pub struct EncodingStorage {
 }
 
 /// Storage of the tree's encodings and of the base complex.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// let s = t.stats().storage;
+/// assert_eq!(s.base_refs, 6); // two triangles
+/// assert_eq!(s.base_bytes, 8 * 4 * 2 + 4 * 6); // 4 points in 2D + 6 references
+/// assert_eq!(s.explicit.refs, 7 * 5 + 4 + 6);
+/// assert!(s.in_memory_bytes > 0);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Storage {
     /// Base indexed complex: references of the top cells.
@@ -55,6 +88,23 @@ pub struct Storage {
 }
 
 /// Statistics of a tree.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// let s = t.stats();
+/// assert_eq!((s.n_nodes, s.n_leaves, s.max_depth), (5, 4, 1));
+/// assert_eq!((s.leaf_max_vertices, s.leaf_max_cells), (1, 2));
+/// assert_eq!(s.chi, 3.0); // 6 leaf references for 2 triangles
+/// assert_eq!(s.leaf_mean_cells, 1.5);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct StellarStats {
     /// Nodes (internal + leaves).
@@ -87,6 +137,21 @@ pub struct StellarStats {
 
 impl StellarTree {
     /// Computes the statistics (one pass over the leaf lists).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let s = t.stats();
+    /// assert_eq!((s.n_vertices, s.n_top_cells, s.kv), (4, 2, 1));
+    /// assert_eq!(s.mu, 3.0); // no run to compress
+    /// ```
     pub fn stats(&self) -> StellarStats {
         let nl = self.n_leaves();
         let sizes: Vec<(u64, u64)> = (0..nl)
@@ -153,6 +218,21 @@ impl StellarTree {
     }
 
     /// Depth of the deepest leaf (root = 0).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.depth(), 1); // root and four leaves
+    /// let one = StellarTree::build(&k, &StellarOptions { kv: Some(0), ..Default::default() }).unwrap();
+    /// assert_eq!(one.depth(), 0);
+    /// ```
     pub fn depth(&self) -> u32 {
         let mut best = 0;
         let mut stack = vec![(0usize, 0u32)];
