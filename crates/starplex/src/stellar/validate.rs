@@ -39,6 +39,29 @@ use crate::ids::{CellId, VertexId};
 use crate::topo::naive::edge_neighbours;
 
 /// Tri-state answer of a manifold test.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// use starplex::ids::VertexId;
+/// // a bow tie: two triangles sharing vertex 0
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [-1.0, 0.0], [-1.0, -1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[0, 3, 4]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let r = StellarTree::build(&k, &StellarOptions::default()).unwrap().validate();
+/// use starplex::stellar::Manifoldness;
+/// // the report lists the vertices of every class but `Manifold`
+/// let class = |v| {
+///     if r.non_manifold_vertices.contains(&v) { Manifoldness::NonManifold }
+///     else if r.unknown_vertices.contains(&v) { Manifoldness::Unknown }
+///     else { Manifoldness::Manifold }
+/// };
+/// assert_eq!(class(VertexId(0)), Manifoldness::NonManifold);
+/// assert_eq!(class(VertexId(1)), Manifoldness::Manifold);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Manifoldness {
     /// The link is a sphere or a ball of the right dimension.
@@ -50,6 +73,25 @@ pub enum Manifoldness {
 }
 
 /// The result of [`StellarTree::validate`].
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// // two triangles forming a square: a disk
+/// let r = t.validate();
+/// assert_eq!((r.dim, r.n_connected_components, r.n_facet_components), (2, 1, 1));
+/// assert!(r.pure && r.facet_connected && r.pseudo_manifold);
+/// assert!(r.faces_in_more_than_two_cells.is_empty() && r.non_manifold_edges.is_empty());
+/// assert_eq!(r.orientable, Some(true));
+/// assert_eq!(r.cells_to_flip, Some(vec![])); // already consistently oriented
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ValidationReport {
     /// Dimension of the complex (-1 when empty).
@@ -90,10 +132,37 @@ pub struct ValidationReport {
 
 impl ValidationReport {
     /// Number of boundary (d-1)-faces.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let r = t.validate();
+    /// assert_eq!(r.n_boundary_faces(), 4); // the sides of the square
+    /// ```
     pub fn n_boundary_faces(&self) -> usize {
         self.boundary_faces.len()
     }
     /// True when no problem was found.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert!(t.validate().is_valid_manifold()); // a disk
+    /// ```
     pub fn is_valid_manifold(&self) -> bool {
         self.pseudo_manifold
             && self.non_manifold_vertices.is_empty()
@@ -115,6 +184,23 @@ struct LeafOut {
 
 impl StellarTree {
     /// Validates the complex (see the [module docs](self)).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// use starplex::ids::VertexId;
+    /// // a bow tie: two triangles sharing vertex 0
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [-1.0, 0.0], [-1.0, -1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 3, 4]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let r = StellarTree::build(&k, &StellarOptions::default()).unwrap().validate();
+    /// assert!(r.pure);
+    /// assert_eq!(r.non_manifold_vertices, vec![VertexId(0)]);
+    /// assert!(!r.is_valid_manifold());
+    /// ```
     pub fn validate(&self) -> ValidationReport {
         let d = self.dim();
         let dim = d.map_or(-1, |d| d as i64);
