@@ -10,6 +10,16 @@ use crate::ids::{SimplexId, VertexId};
 
 /// Largest number of vertices of a simplex the complex inserts with all its faces (2^24 nodes);
 /// larger ones are refused with an estimate.
+///
+/// ```
+/// use starplex::hasse::{Hasse, HasseError, MAX_INSERT_VERTICES};
+/// use starplex::ids::VertexId;
+/// let mut h: Hasse = Hasse::new();
+/// let big: Vec<VertexId> = (0..MAX_INSERT_VERTICES as u32 + 1).map(VertexId).collect();
+/// let e = h.insert(&big).unwrap_err();
+/// assert!(matches!(e, HasseError::TooManyFaces { n_vertices: 25, .. }));
+/// assert!(h.insert(&big[..3]).is_ok()); // small simplices are inserted with their faces
+/// ```
 pub const MAX_INSERT_VERTICES: usize = 24;
 
 pub(crate) type Verts = SmallVec<[u32; 8]>;

@@ -51,6 +51,23 @@ impl StellarTree {
     ///
     /// # Errors
     /// The file cannot be written.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::stellar::SAVED_TREE_MAGIC;
+    /// let path = std::env::temp_dir().join(format!("starplex-doc-save-{}.stl", std::process::id()));
+    /// t.save(&path).unwrap();
+    /// assert_eq!(&std::fs::read(&path).unwrap()[..8], SAVED_TREE_MAGIC);
+    /// # std::fs::remove_file(&path).ok();
+    /// ```
     pub fn save(&self, path: &Path) -> Result<(), crate::io::IoError> {
         crate::io::atomic_write(path, |w| {
             w.write_all(MAGIC)?;
@@ -95,6 +112,25 @@ impl StellarTree {
     ///
     /// # Errors
     /// A missing, truncated or inconsistent file.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let path = std::env::temp_dir().join(format!("starplex-doc-load-{}.stl", std::process::id()));
+    /// t.save(&path).unwrap();
+    /// let u = StellarTree::load(&path).unwrap();
+    /// assert_eq!((u.n_leaves(), u.vertex_to_input()), (t.n_leaves(), t.vertex_to_input()));
+    /// std::fs::write(&path, b"not a tree").unwrap();
+    /// assert!(StellarTree::load(&path).is_err());
+    /// # std::fs::remove_file(&path).ok();
+    /// ```
     pub fn load(path: &Path) -> Result<StellarTree, StellarError> {
         let err = |reason: String| StellarError::File {
             path: path.display().to_string(),
