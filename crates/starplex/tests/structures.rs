@@ -221,6 +221,13 @@ fn check_structure<S: Queries + ?Sized>(name: &str, s: &S, m: &Model, sorted_top
         if let Some(e) = missing {
             assert!(matches!(s.star(&vs(&e)), Err(QueryError::NotInComplex(_))));
             assert!(s.top_star(&vs(&e), &mut cells).is_err());
+            assert!(
+                matches!(
+                    s.boundary(&vs(&e), 0, &mut out),
+                    Err(QueryError::NotInComplex(_))
+                ),
+                "{name}: boundary of the non-simplex {e:?}"
+            );
         }
     }
     assert!(s.star(&[VertexId(m.nv as u32 + 5)]).is_err());

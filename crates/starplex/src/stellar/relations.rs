@@ -1489,6 +1489,27 @@ impl VertexStar for StellarTree {
         }
         out.sort_unstable();
     }
+
+    /// One scan of the leaf of `s[0]` (tree ids, no sort, no mapping back), for complexes of
+    /// one simplex kind; `None` otherwise (a CP cell holding the vertices of `s` need not have
+    /// `s` as a face).
+    fn star_has_top_containing(&self, s: &[VertexId]) -> Option<bool> {
+        if self.cells.uniform == 255 || !super::code_kind(self.cells.uniform).is_simplex() {
+            return None;
+        }
+        let mut tv: smallvec::SmallVec<[u32; 8]> = smallvec::SmallVec::new();
+        for &v in s {
+            tv.push(self.tree_vertex(v).ok()?);
+        }
+        let l = self.leaf_of_tree_vertex(*tv.first()?);
+        for c in super::sre::SreIter::new(self.leaf_encoded_cells(l)) {
+            let vs = self.cells.verts(c);
+            if tv.iter().all(|x| vs.contains(x)) {
+                return Some(true);
+            }
+        }
+        Some(false)
+    }
 }
 
 impl VertexAdjacency for StellarTree {
