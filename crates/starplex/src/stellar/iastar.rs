@@ -755,53 +755,7 @@ impl StellarTree {
                 h = (h + 1) & mask;
             }
         };
-        stack.clear();
-        for (i, &c) in star.iter().enumerate() {
-            let kind = self.cells.get(c).0;
-            if kind.dim() < 2 {
-                if kind.dim() == 1 {
-                    out.push(c);
-                }
-                continue;
-            }
-            if seen[i] {
-                continue;
-            }
-            seen[i] = true;
-            // the cluster's representative: its smallest input id, as the direct IA* picks
-            let mut best = c;
-            stack.push(c);
-            while let Some(a) = stack.pop() {
-                if self.c_orig[a as usize] < self.c_orig[best as usize] {
-                    best = a;
-                }
-                let (ka, vs) = self.cells.get(a);
-                let p = vs.iter().position(|&w| w == v).expect("in the star");
-                let simplex = ka.is_simplex();
-                for (j, &x) in slots_of(a).iter().enumerate() {
-                    if x == NONE
-                        || x == NOT_LOCAL
-                        || if simplex {
-                            j == p
-                        } else {
-                            !facet_contains(ka, j, p)
-                        }
-                    {
-                        continue;
-                    }
-                    if x & NM != 0 {
-                        for &u in nm_cells.row((x & !NM) as usize) {
-                            if mark(seen, u) {
-                                stack.push(u);
-                            }
-                        }
-                    } else if mark(seen, x) {
-                        stack.push(x);
-                    }
-                }
-            }
-            out.push(best);
-        }
+        self.flood_clusters(v, star, slots_of, nm_cells, stack, out, |c| mark(seen, c));
         // empty the table
         for &c in star {
             let mut h = hash(c);
@@ -835,6 +789,29 @@ impl StellarTree {
             *epoch = 1;
         }
         let ep = *epoch;
+        self.flood_clusters(v, star, slots_of, nm_cells, stack, out, |c| {
+            let fresh = stamps[c as usize] != ep;
+            stamps[c as usize] = ep;
+            fresh
+        });
+    }
+
+    /// The flood shared by both marking schemes: every top edge of `star` (the star of tree
+    /// vertex `v`), then each k-cluster (k >= 2) found by walking the adjacency slots across
+    /// facets containing `v`, represented by its cell of smallest input id. `mark(c)` marks
+    /// `c` visited and says whether it was not visited before.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn flood_clusters<'s>(
+        &self,
+        v: u32,
+        star: &[u32],
+        slots_of: &impl Fn(u32) -> &'s [u32],
+        nm_cells: &Csr,
+        stack: &mut Vec<u32>,
+        out: &mut Vec<u32>,
+        mut mark: impl FnMut(u32) -> bool,
+    ) {
         stack.clear();
         for &c in star {
             let kind = self.cells.get(c).0;
@@ -844,10 +821,9 @@ impl StellarTree {
                 }
                 continue;
             }
-            if stamps[c as usize] == ep {
+            if !mark(c) {
                 continue;
             }
-            stamps[c as usize] = ep;
             // the cluster's representative: its smallest input id, as the direct IA* picks
             let mut best = c;
             stack.push(c);
@@ -871,13 +847,11 @@ impl StellarTree {
                     }
                     if x & NM != 0 {
                         for &u in nm_cells.row((x & !NM) as usize) {
-                            if stamps[u as usize] != ep {
-                                stamps[u as usize] = ep;
+                            if mark(u) {
                                 stack.push(u);
                             }
                         }
-                    } else if stamps[x as usize] != ep {
-                        stamps[x as usize] = ep;
+                    } else if mark(x) {
                         stack.push(x);
                     }
                 }
