@@ -314,23 +314,8 @@ impl FaceKeys {
         if n == 0 || !self.mid.iter().all(|x| x.0 >= lo && x.0 < hi) {
             return self.mid_groups(&mut f);
         }
-        let counts = &mut self.counts;
-        counts.clear();
-        counts.resize(n + 1, 0);
-        for x in &self.mid {
-            counts[(x.0 - lo) as usize + 1] += 1;
-        }
-        for i in 0..n {
-            counts[i + 1] += counts[i];
-        }
-        let tmp = &mut self.mid_tmp;
-        tmp.clear();
-        tmp.resize(self.mid.len(), (0, 0));
-        for x in &self.mid {
-            let b = (x.0 - lo) as usize;
-            tmp[counts[b] as usize] = (x.1, x.2);
-            counts[b] += 1;
-        }
+        self.scatter_mid(lo, n);
+        let (counts, tmp) = (&self.counts, &mut self.mid_tmp);
         let (hk, hv, gid, gcount, firsts_slot) = (
             &mut self.ukeys,
             &mut self.uvals,
@@ -420,6 +405,29 @@ impl FaceKeys {
         }
     }
 
+    /// Counting sort of the three-vertex records by first vertex (all in `lo..lo + n`): the
+    /// (other two, payload) pairs land in `mid_tmp`, bucket by bucket, and `counts[b]` ends
+    /// as the end of bucket `b`.
+    fn scatter_mid(&mut self, lo: u32, n: usize) {
+        let counts = &mut self.counts;
+        counts.clear();
+        counts.resize(n + 1, 0);
+        for x in &self.mid {
+            counts[(x.0 - lo) as usize + 1] += 1;
+        }
+        for i in 0..n {
+            counts[i + 1] += counts[i];
+        }
+        let tmp = &mut self.mid_tmp;
+        tmp.clear();
+        tmp.resize(self.mid.len(), (0, 0));
+        for x in &self.mid {
+            let b = (x.0 - lo) as usize;
+            tmp[counts[b] as usize] = (x.1, x.2);
+            counts[b] += 1;
+        }
+    }
+
     /// [`for_each_group`](Self::for_each_group) for keys of three vertices with buckets: a
     /// counting sort by first vertex, then each bucket's 16-byte (other two, payload) records
     /// sorted. Same order as sorting the whole keys.
@@ -453,23 +461,8 @@ impl FaceKeys {
             }
             return;
         }
-        let counts = &mut self.counts;
-        counts.clear();
-        counts.resize(n + 1, 0);
-        for x in &self.mid {
-            counts[(x.0 - lo) as usize + 1] += 1;
-        }
-        for i in 0..n {
-            counts[i + 1] += counts[i];
-        }
-        let tmp = &mut self.mid_tmp;
-        tmp.clear();
-        tmp.resize(self.mid.len(), (0, 0));
-        for x in &self.mid {
-            let b = (x.0 - lo) as usize;
-            tmp[counts[b] as usize] = (x.1, x.2);
-            counts[b] += 1;
-        }
+        self.scatter_mid(lo, n);
+        let (counts, tmp) = (&self.counts, &mut self.mid_tmp);
         // counts[b] is now the end of bucket b
         let mut start = 0usize;
         for (b, &end) in counts[..n].iter().enumerate() {
