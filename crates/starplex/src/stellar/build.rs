@@ -238,22 +238,7 @@ pub(super) fn build(
                     packed.clear();
                     for &c in part.iter() {
                         let (kind, vs) = in_cell(c);
-                        let mut t = [0u32; 4];
-                        let mut m = 0;
-                        for &v in vs {
-                            let x = leaf_in[v as usize];
-                            // insertion into the sorted distinct prefix t[..m]
-                            let mut p = m;
-                            while p > 0 && t[p - 1] > x {
-                                p -= 1;
-                            }
-                            if p > 0 && t[p - 1] == x {
-                                continue;
-                            }
-                            t.copy_within(p..m, p + 1);
-                            t[p] = x;
-                            m += 1;
-                        }
+                        let (t, _) = distinct_leaves::<4>(vs, &leaf_in);
                         let key = ((t[0] as u128) << 96)
                             | ((t[1] as u128) << 64)
                             | ((t[2] as u128) << 32)
@@ -452,6 +437,29 @@ fn leaf_lists(cells: &CellStore, leaf_of: &[u32], n_leaves: usize) -> (Vec<u32>,
     (offsets, out)
 }
 
+/// The distinct leaves of the vertices `vs` (at most `N` of them), increasing, in the prefix of
+/// the returned array (rest 0) whose length is returned: insertion into a sorted prefix, no
+/// allocation.
+#[inline]
+fn distinct_leaves<const N: usize>(vs: &[u32], leaf_of: &[u32]) -> ([u32; N], usize) {
+    let mut t = [0u32; N];
+    let mut m = 0;
+    for &v in vs {
+        let x = leaf_of[v as usize];
+        let mut p = m;
+        while p > 0 && t[p - 1] > x {
+            p -= 1;
+        }
+        if p > 0 && t[p - 1] == x {
+            continue;
+        }
+        t.copy_within(p..m, p + 1);
+        t[p] = x;
+        m += 1;
+    }
+    (t, m)
+}
+
 /// Calls `f` on the distinct leaves of cell `c`, increasing.
 #[inline]
 fn cell_leaves(
@@ -463,22 +471,7 @@ fn cell_leaves(
 ) {
     let vs = cells.verts(c);
     if vs.len() <= 8 {
-        // insertion into a sorted distinct prefix
-        let mut t = [0u32; 8];
-        let mut m = 0;
-        for &v in vs {
-            let x = leaf_of[v as usize];
-            let mut p = m;
-            while p > 0 && t[p - 1] > x {
-                p -= 1;
-            }
-            if p > 0 && t[p - 1] == x {
-                continue;
-            }
-            t.copy_within(p..m, p + 1);
-            t[p] = x;
-            m += 1;
-        }
+        let (t, m) = distinct_leaves::<8>(vs, leaf_of);
         for &l in &t[..m] {
             f(l);
         }
