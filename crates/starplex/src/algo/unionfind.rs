@@ -55,13 +55,8 @@ impl UnionFind {
     /// assert_ne!(uf.find(1), uf.find(0));
     /// ```
     #[inline]
-    pub fn find(&mut self, mut x: u32) -> u32 {
-        while self.parent[x as usize] != x {
-            let p = self.parent[x as usize];
-            self.parent[x as usize] = self.parent[p as usize];
-            x = self.parent[x as usize];
-        }
-        x
+    pub fn find(&mut self, x: u32) -> u32 {
+        find_in(&mut self.parent, x)
     }
 
     /// Merges the sets of `a` and `b`; true when they were different.
@@ -116,4 +111,46 @@ impl UnionFind {
         let r = self.find(x);
         self.size[r as usize] as usize
     }
+}
+
+/// Path-halving find on a bare parent array (`parent[x] == x` at a root), for hot loops that
+/// reuse one scratch array across many small problems instead of allocating a [`UnionFind`].
+///
+/// ```
+/// use starplex::algo::unionfind::{find_in, union_min_in};
+/// let mut p: Vec<u32> = (0..5).collect();
+/// assert!(union_min_in(&mut p, 4, 2));
+/// assert!(union_min_in(&mut p, 2, 3));
+/// assert!(!union_min_in(&mut p, 3, 4));
+/// assert_eq!(find_in(&mut p, 4), 2); // the root is the smallest member
+/// assert_eq!(find_in(&mut p, 0), 0);
+/// ```
+#[inline]
+pub fn find_in(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        let g = parent[parent[x as usize] as usize];
+        parent[x as usize] = g;
+        x = g;
+    }
+    x
+}
+
+/// Merges the sets of `a` and `b` on a bare parent array, keeping the smaller root (so every
+/// root is the smallest member of its set); true when they were different sets.
+///
+/// ```
+/// use starplex::algo::unionfind::{find_in, union_min_in};
+/// let mut p: Vec<u32> = (0..3).collect();
+/// union_min_in(&mut p, 2, 1);
+/// assert_eq!(find_in(&mut p, 2), 1);
+/// ```
+#[inline]
+pub fn union_min_in(parent: &mut [u32], a: u32, b: u32) -> bool {
+    let (ra, rb) = (find_in(parent, a), find_in(parent, b));
+    if ra < rb {
+        parent[rb as usize] = ra;
+    } else if rb < ra {
+        parent[ra as usize] = rb;
+    }
+    ra != rb
 }

@@ -14,6 +14,7 @@
 //!   characteristic V - E + F is 2 (no boundary) or 1 with a boundary made of one cycle.
 use super::validate::Manifoldness;
 use super::StellarTree;
+use crate::algo::unionfind::{find_in as find, union_min_in as union};
 
 const EMPTY: u32 = u32::MAX;
 const EMPTY2: u64 = u64::MAX;
@@ -49,28 +50,6 @@ pub(crate) struct TetScratch {
     tuf: Vec<u32>,
     cuf: Vec<u32>,
     vuf: Vec<u32>,
-}
-
-#[inline]
-fn find(p: &mut [u32], mut x: u32) -> u32 {
-    while p[x as usize] != x {
-        let g = p[p[x as usize] as usize];
-        p[x as usize] = g;
-        x = g;
-    }
-    x
-}
-
-/// Merges the sets of `a` and `b`; true when they were different.
-#[inline]
-fn union(p: &mut [u32], a: u32, b: u32) -> bool {
-    let (x, y) = (find(p, a), find(p, b));
-    if x != y {
-        p[x as usize] = y;
-        true
-    } else {
-        false
-    }
 }
 
 #[inline]

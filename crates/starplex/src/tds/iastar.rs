@@ -699,6 +699,7 @@ impl IaStar {
 /// 5. the top records, in order.
 mod low_dim {
     use super::{Block, Csr, IndexedComplex, NM_BIT, NONE};
+    use crate::algo::unionfind::union_min_in as union;
 
     /// Number of coarse buckets is at most `1 << COARSE_BITS`.
     const COARSE_BITS: u32 = 10;
@@ -1130,27 +1131,6 @@ mod low_dim {
             blk.data = data;
         }
         (nm, Csr { offsets, targets })
-    }
-
-    /// Union by smallest index (so a root is the smallest member of its set).
-    #[inline]
-    fn union(par: &mut [u32], a: u32, b: u32) {
-        let (ra, rb) = (find(par, a), find(par, b));
-        if ra < rb {
-            par[rb as usize] = ra;
-        } else if rb < ra {
-            par[ra as usize] = rb;
-        }
-    }
-
-    #[inline]
-    fn find(par: &mut [u32], mut x: u32) -> u32 {
-        while par[x as usize] != x {
-            let g = par[par[x as usize] as usize];
-            par[x as usize] = g;
-            x = g;
-        }
-        x
     }
 
     /// The `D + 1` facet words of a top, into the coarse buckets of their smallest vertices.
