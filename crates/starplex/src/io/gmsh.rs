@@ -632,16 +632,7 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
             writeln!(w, "{i}")?;
         }
         for p in k.coords().chunks_exact(d) {
-            for (i, &x) in p.iter().enumerate() {
-                if i > 0 {
-                    w.write_all(b" ")?;
-                }
-                write_f64(w, x)?;
-            }
-            for _ in d..3 {
-                w.write_all(b" 0")?;
-            }
-            w.write_all(b"\n")?;
+            write_xyz(w, p)?;
         }
     }
     writeln!(w, "$EndNodes")?;
@@ -662,6 +653,20 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     }
     writeln!(w, "$EndElements")?;
     Ok(())
+}
+
+/// Writes one node's coordinates, padded with zeros to 3, and the line end.
+fn write_xyz(w: &mut dyn Write, p: &[f64]) -> std::io::Result<()> {
+    for (i, &x) in p.iter().enumerate() {
+        if i > 0 {
+            w.write_all(b" ")?;
+        }
+        write_f64(w, x)?;
+    }
+    for _ in p.len()..3 {
+        w.write_all(b" 0")?;
+    }
+    w.write_all(b"\n")
 }
 
 /// Refuses what gmsh cannot hold: more than 3 coordinates, simplices of dimension 4 and more.
@@ -729,15 +734,8 @@ pub fn write_22(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind
     writeln!(w, "$MeshFormat\n2.2 0 8\n$EndMeshFormat")?;
     writeln!(w, "$Nodes\n{}", k.n_vertices())?;
     for (i, p) in k.coords().chunks_exact(d.max(1)).enumerate() {
-        write!(w, "{}", i + 1)?;
-        for &x in p {
-            w.write_all(b" ")?;
-            write_f64(w, x)?;
-        }
-        for _ in d..3 {
-            w.write_all(b" 0")?;
-        }
-        w.write_all(b"\n")?;
+        write!(w, "{} ", i + 1)?;
+        write_xyz(w, p)?;
     }
     writeln!(w, "$EndNodes")?;
     writeln!(w, "$Elements\n{}", k.n_cells())?;
