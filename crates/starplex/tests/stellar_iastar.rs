@@ -184,21 +184,27 @@ fn check(k: &IndexedComplex, kv: u32) {
     }
 }
 
-#[test]
-fn iastar_equals_brute_force() {
-    let strat = (1usize..=3, 1usize..30).prop_flat_map(|(amb, nv)| {
+/// Runs `check(k, kv)` for k_V in {1, 5, 0} on seeded random complexes in 1 to 3 ambient
+/// dimensions whose cells have kinds drawn by `kinds` (indices into [`KINDS`]).
+fn on_random_complexes(
+    kinds: BoxedStrategy<u8>,
+    cases: u32,
+    seed: u64,
+    check: impl Fn(&IndexedComplex, u32),
+) {
+    let strat = (1usize..=3, 1usize..30).prop_flat_map(move |(amb, nv)| {
         (
             Just(amb),
             proptest::collection::vec(proptest::collection::vec(0i32..4, amb), nv),
             proptest::collection::vec(
-                (0u8..9, proptest::collection::vec(0u32..nv as u32, 8)),
+                (kinds.clone(), proptest::collection::vec(0u32..nv as u32, 8)),
                 0..25,
             ),
         )
     });
     let mut runner = TestRunner::new(Config {
-        cases: 64,
-        rng_seed: RngSeed::Fixed(7),
+        cases,
+        rng_seed: RngSeed::Fixed(seed),
         failure_persistence: None,
         ..Config::default()
     });
@@ -211,6 +217,11 @@ fn iastar_equals_brute_force() {
             Ok(())
         })
         .unwrap();
+}
+
+#[test]
+fn iastar_equals_brute_force() {
+    on_random_complexes((0u8..9).boxed(), 64, 7, check);
 }
 
 #[test]
@@ -293,35 +304,9 @@ fn same_as_direct(k: &IndexedComplex, kv: u32) {
 
 #[test]
 fn tree_iastar_is_the_direct_iastar() {
-    let strat = (1usize..=3, 1usize..30).prop_flat_map(|(amb, nv)| {
-        (
-            Just(amb),
-            proptest::collection::vec(proptest::collection::vec(0i32..4, amb), nv),
-            proptest::collection::vec(
-                // simplices only: the direct IA* holds simplicial complexes
-                (
-                    prop_oneof![Just(0u8), Just(1), Just(3), Just(4)],
-                    proptest::collection::vec(0u32..nv as u32, 8),
-                ),
-                0..25,
-            ),
-        )
-    });
-    let mut runner = TestRunner::new(Config {
-        cases: 96,
-        rng_seed: RngSeed::Fixed(11),
-        failure_persistence: None,
-        ..Config::default()
-    });
-    runner
-        .run(&strat, |(amb, pts, cells)| {
-            let k = make(amb, &pts, &cells);
-            for kv in [1, 5, 0] {
-                same_as_direct(&k, kv);
-            }
-            Ok(())
-        })
-        .unwrap();
+    // simplices only: the direct IA* holds simplicial complexes
+    let simplices = prop_oneof![Just(0u8), Just(1), Just(3), Just(4)].boxed();
+    on_random_complexes(simplices, 96, 11, same_as_direct);
 }
 
 #[test]
