@@ -4,15 +4,14 @@
 //! ascii), so each input goes through a per-process temporary file.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use starplex::io::{stl, ReadOptions};
+use starplex::io::stl;
+use starplex_fuzz::options;
 
 fuzz_target!(|data: &[u8]| {
     let Some((&mode, bytes)) = data.split_first() else {
         return;
     };
-    let mut opts = ReadOptions::default();
-    opts.build.drop_duplicates = mode & 2 == 2;
-    opts.build.drop_face_cells = mode & 4 == 4;
+    let opts = options(mode, false);
     let path = std::env::temp_dir().join(format!("starplex-fuzz-{}.stl", std::process::id()));
     std::fs::write(&path, bytes).expect("temporary file");
     let _ = stl::read(&path, &opts);

@@ -1,0 +1,34 @@
+//! What the fuzz targets share: the reader options picked by an input's first byte, and the
+//! read → write → read round trip every target with a writer runs.
+use std::io::Write;
+
+use starplex::complex::IndexedComplex;
+use starplex::io::{IoError, IoErrorKind, PolygonMode, ReadOptions, ReadResult};
+
+/// Reader options from a target's mode byte: bit 1 drops duplicate cells, bit 2 drops cells
+/// that are faces of others, and, when `polygon_bit` is set (OFF, PLY), bit 0 reads every
+/// face as a simplex.
+pub fn options(mode: u8, polygon_bit: bool) -> ReadOptions {
+    let mut opts = ReadOptions::default();
+    if polygon_bit && mode & 1 == 1 {
+        opts.polygons = PolygonMode::Simplices;
+    }
+    opts.build.drop_duplicates = mode & 2 == 2;
+    opts.build.drop_face_cells = mode & 4 == 4;
+    opts
+}
+
+/// Reads `data`; when that succeeds and `write` accepts the complex, reads the written bytes
+/// back (which must succeed) and returns both results.
+pub fn round_trip(
+    data: &[u8],
+    opts: &ReadOptions,
+    read: impl Fn(&[u8], &ReadOptions) -> Result<ReadResult, IoError>,
+    write: impl Fn(&mut dyn Write, &IndexedComplex) -> Result<(), IoErrorKind>,
+) -> Option<(ReadResult, ReadResult)> {
+    let r = read(data, opts).ok()?;
+    let mut out = Vec::new();
+    write(&mut out, &r.complex).ok()?;
+    let back = read(&out, opts).expect("a written file must read back");
+    Some((r, back))
+}
