@@ -123,3 +123,66 @@ impl<T: bytemuck::Pod + PartialEq> PartialEq for Buf<T> {
         self.deref() == other.deref()
     }
 }
+
+/// Arrays of at least this many bytes are offered to the kernel for transparent huge pages.
+const HUGE_MIN_BYTES: usize = 4 << 20;
+
+/// A vector of `n` zeros for a large scratch or result array of a build.
+///
+/// On Linux, when the array spans at least 4 MiB, its not yet touched pages are marked for
+/// transparent huge pages (`madvise(MADV_HUGEPAGE)`, which takes effect where the system's
+/// setting is `madvise` or `always`): 2 MiB pages mean 512 times fewer page faults and far
+/// fewer TLB misses for the random writes of a counting sort. Elsewhere, or if the kernel
+/// refuses, it is an ordinary zeroed vector.
+///
+/// ```
+/// use starplex::buf::large_zeroed;
+/// let v: Vec<u64> = large_zeroed(1 << 20); // 8 MiB
+/// assert_eq!(v.len(), 1 << 20);
+/// assert!(v.iter().all(|&x| x == 0));
+/// ```
+pub fn large_zeroed<T: bytemuck::Pod>(n: usize) -> Vec<T> {
+    // a zeroed allocation (calloc): fresh pages are not touched, so the advice still applies
+    // to them and the kernel's zeroing is the only one
+    let mut v = vec![T::zeroed(); n];
+    advise_huge(&mut v);
+    v
+}
+
+/// A vector of `n` copies of `x`, with the huge-page advice of [`large_zeroed`].
+///
+/// ```
+/// use starplex::buf::large_filled;
+/// let v = large_filled(3, u32::MAX);
+/// assert_eq!(v, vec![u32::MAX; 3]);
+/// ```
+pub fn large_filled<T: bytemuck::Pod>(n: usize, x: T) -> Vec<T> {
+    let mut v = Vec::<T>::with_capacity(n);
+    advise_huge(&mut v);
+    v.resize(n, x);
+    v
+}
+
+/// Marks the 2 MiB-aligned part of `v`'s allocation for transparent huge pages.
+#[cfg(target_os = "linux")]
+fn advise_huge<T>(v: &mut Vec<T>) {
+    const HUGE: usize = 2 << 20;
+    let bytes = v.capacity().saturating_mul(std::mem::size_of::<T>());
+    if bytes < HUGE_MIN_BYTES {
+        return;
+    }
+    let p = v.as_mut_ptr() as usize;
+    let start = p.div_ceil(HUGE) * HUGE;
+    let end = (p + bytes) / HUGE * HUGE;
+    if end > start {
+        // SAFETY: [start, end) lies inside the allocation `v` owns, borrowed mutably here;
+        // MADV_HUGEPAGE changes how the kernel backs those pages, never their contents or
+        // validity, and a failure (an old kernel, THP disabled) leaves the memory as it was.
+        unsafe {
+            libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE);
+        }
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn advise_huge<T>(_v: &mut Vec<T>) {}

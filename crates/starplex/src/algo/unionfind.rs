@@ -154,3 +154,41 @@ pub fn union_min_in(parent: &mut [u32], a: u32, b: u32) -> bool {
     }
     ra != rb
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Random unions on bare arrays agree with a naive labelling: the same answer from every
+    /// union, and every root is the smallest member of its set.
+    #[test]
+    fn slice_union_find_equals_naive_labels() {
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = |m: u64| {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s % m
+        };
+        for case in 0..200 {
+            let n = 1 + next(60) as usize;
+            let mut p: Vec<u32> = (0..n as u32).collect();
+            let mut label: Vec<usize> = (0..n).collect();
+            for _ in 0..next(3 * n as u64) {
+                let (a, b) = (next(n as u64) as usize, next(n as u64) as usize);
+                let (la, lb) = (label[a], label[b]);
+                let merged = union_min_in(&mut p, a as u32, b as u32);
+                assert_eq!(merged, la != lb, "case {case}");
+                let m = la.min(lb);
+                for l in label.iter_mut() {
+                    if *l == la || *l == lb {
+                        *l = m;
+                    }
+                }
+            }
+            for (x, &l) in label.iter().enumerate() {
+                assert_eq!(find_in(&mut p, x as u32) as usize, l, "case {case}");
+            }
+        }
+    }
+}

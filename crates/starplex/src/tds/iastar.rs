@@ -192,11 +192,12 @@ impl IaStar {
     /// assert_eq!(ia.vertex_references(VertexId(3)), &[1]);
     /// ```
     pub fn new(k: &IndexedComplex) -> Result<IaStar, IaStarError> {
-        Self::build(k, false)
+        Self::build(k, Some(low_dim::Tuning::DEFAULT))
     }
 
-    /// Builds IA*; `general` forces the path for any dimension (tests compare the two).
-    fn build(k: &IndexedComplex, general: bool) -> Result<IaStar, IaStarError> {
+    /// Builds IA*: by the construction for dimension ≤ 3 with `tuning` where it applies, else
+    /// (and always when `tuning` is `None`) by the path for any dimension. Tests compare them.
+    fn build(k: &IndexedComplex, tuning: Option<low_dim::Tuning>) -> Result<IaStar, IaStarError> {
         if k.n_cells() >= NM_BIT as usize {
             return Err(IaStarError::TooManyCells(k.n_cells()));
         }
@@ -219,10 +220,10 @@ impl IaStar {
         }
         let nv = k.n_vertices();
         let incidences: u64 = blocks.iter().map(|b| b.n_verts() as u64).sum();
-        let fast = !general && dmax <= 3 && incidences + incidences / 2 < u32::MAX as u64;
-        if let Some((nm, vrefs)) = fast
-            .then(|| low_dim::build(k, &mut blocks, &t, nv))
-            .flatten()
+        let fast = dmax <= 3 && incidences + incidences / 2 < u32::MAX as u64;
+        if let Some((nm, vrefs)) = tuning
+            .filter(|_| fast)
+            .and_then(|tu| low_dim::build(k, &mut blocks, &t, nv, tu))
         {
             return Ok(IaStar {
                 n_vertices: nv as u32,
@@ -700,37 +701,78 @@ impl IaStar {
 mod low_dim {
     use super::{Block, Csr, IndexedComplex, NM_BIT, NONE};
     use crate::algo::unionfind::union_min_in as union;
+    use crate::buf::{large_filled, large_zeroed};
 
-    /// Number of coarse buckets is at most `1 << COARSE_BITS`.
-    const COARSE_BITS: u32 = 10;
+    /// Settings of the construction (tests vary them to reach every code path on small
+    /// complexes).
+    #[derive(Clone, Copy, Debug)]
+    pub(super) struct Tuning {
+        /// The number of coarse buckets is at most `1 << coarse_bits`.
+        pub coarse_bits: u32,
+        /// Use 128-bit facet words even when 64 bits would do.
+        pub wide: bool,
+    }
+
+    impl Tuning {
+        pub const DEFAULT: Tuning = Tuning {
+            coarse_bits: 10,
+            wide: false,
+        };
+    }
 
     /// A facet word: from the most significant end, the low bits of the facet's smallest vertex
     /// (`low`), its other vertices (`vb` bits each), the input position of the vertex the facet
     /// omits (2 bits) and the top's place in the VT row of each of the facet's vertices (`pb`
     /// bits each; the place in the smallest vertex's row names the top).
-    pub(super) trait Word: Copy + Ord + Default {
-        fn of(x: u128) -> Self;
-        fn wide(self) -> u128;
+    /// All arithmetic on facet words is done in the word's own width (64-bit words are the
+    /// common case, and 128-bit shifts cost several instructions each).
+    pub(super) trait Word:
+        bytemuck::Pod
+        + Ord
+        + Default
+        + std::ops::Shl<u32, Output = Self>
+        + std::ops::Shr<u32, Output = Self>
+        + std::ops::BitOr<Output = Self>
+    {
+        fn of(x: u32) -> Self;
+        /// The low 32 bits.
+        fn low32(self) -> u32;
+        /// The low 64 bits.
+        fn low64(self) -> u64;
     }
     impl Word for u64 {
         #[inline]
-        fn of(x: u128) -> Self {
+        fn of(x: u32) -> Self {
             x as u64
         }
         #[inline]
-        fn wide(self) -> u128 {
-            self as u128
+        fn low32(self) -> u32 {
+            self as u32
+        }
+        #[inline]
+        fn low64(self) -> u64 {
+            self
         }
     }
     impl Word for u128 {
         #[inline]
-        fn of(x: u128) -> Self {
-            x
+        fn of(x: u32) -> Self {
+            x as u128
         }
         #[inline]
-        fn wide(self) -> u128 {
-            self
+        fn low32(self) -> u32 {
+            self as u32
         }
+        #[inline]
+        fn low64(self) -> u64 {
+            self as u64
+        }
+    }
+
+    /// The mask of the low `b` bits (`b` ≤ 32).
+    #[inline]
+    fn mask(b: u32) -> u32 {
+        ((1u64 << b) - 1) as u32
     }
 
     fn bits(x: u64) -> u32 {
@@ -785,6 +827,7 @@ mod low_dim {
         blocks: &mut [Block],
         t: &[u64],
         nv: usize,
+        tuning: Tuning,
     ) -> Option<(Vec<Csr>, Csr)> {
         let dmax = t.len() - 1;
         // 1. degrees and facet bucket sizes
@@ -840,12 +883,12 @@ mod low_dim {
         let vb = bits(nv.saturating_sub(1) as u64);
         let lay = Layout {
             vb,
-            low: vb.saturating_sub(COARSE_BITS),
+            low: vb.saturating_sub(tuning.coarse_bits),
             pb: bits(maxdeg.saturating_sub(1) as u64),
         };
         let bits = lay.total(if t3 > 0 { 3 } else { 2 });
         let counts = Counts { vt_off, finc, fcnt };
-        if bits <= 64 {
+        if bits <= 64 && !tuning.wide {
             Some(run::<u64>(k, blocks, t, nv, lay, counts))
         } else if bits <= 128 {
             Some(run::<u128>(k, blocks, t, nv, lay, counts))
@@ -974,11 +1017,11 @@ mod low_dim {
         }
         links.start.push(l);
         drop(finc);
-        links.area = vec![[0, 0]; l as usize];
+        links.area = large_zeroed(l as usize);
         links.end = links.start[..nc].to_vec();
         // 2. VT by counting sort; facet words into coarse buckets
         let mut pos: Vec<[u32; 2]> = vt_off[..nv].iter().map(|&o| [o, 0]).collect();
-        let mut targets = vec![0u32; *vt_off.last().unwrap_or(&0) as usize];
+        let mut targets: Vec<u32> = large_zeroed(*vt_off.last().unwrap_or(&0) as usize);
         let mut cpos: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
         for d in 0..2 {
             if !fcnt[d].is_empty() {
@@ -986,8 +1029,8 @@ mod low_dim {
             }
         }
         let mut recs: [Vec<W>; 2] = [
-            vec![W::default(); 3 * t.get(2).map_or(0, |&x| x as usize)],
-            vec![W::default(); 4 * t.get(3).map_or(0, |&x| x as usize)],
+            large_zeroed(3 * t.get(2).map_or(0, |&x| x as usize)),
+            large_zeroed(4 * t.get(3).map_or(0, |&x| x as usize)),
         ];
         for (blk, b) in blocks.iter().zip(k.blocks()) {
             let d = blk.dim;
@@ -1007,18 +1050,7 @@ mod low_dim {
             for (i, c) in b.vertices.chunks_exact(n).enumerate() {
                 let id = blk.first + i as u32;
                 // sorted vertices, their input positions and the top's places in their rows
-                let mut sv = [0u32; 4];
-                let mut pm = [0u8; 4];
-                for (j, &v) in c.iter().enumerate() {
-                    let mut x = j;
-                    while x > 0 && sv[x - 1] > v {
-                        sv[x] = sv[x - 1];
-                        pm[x] = pm[x - 1];
-                        x -= 1;
-                    }
-                    sv[x] = v;
-                    pm[x] = j as u8;
-                }
+                let (sv, pm) = sort_top(c);
                 let mut vp = [0u32; 4];
                 for s in 0..n {
                     let p = &mut pos[sv[s] as usize];
@@ -1039,7 +1071,7 @@ mod low_dim {
         //    union-find over their VT rows (roots kept, compacting `targets` in place)
         let mut adj: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
         for (a, r) in adj.iter_mut().zip(&recs) {
-            *a = vec![NONE; r.len()];
+            *a = large_filled(r.len(), NONE);
         }
         let [adj2, adj3] = &mut adj;
         let mut groups = [
@@ -1133,6 +1165,34 @@ mod low_dim {
         (nm, Csr { offsets, targets })
     }
 
+    /// The vertices of a triangle or tetrahedron sorted, with their input positions, by a
+    /// branch-free sorting network on (vertex, position) keys.
+    #[inline]
+    fn sort_top(c: &[u32]) -> ([u32; 4], [u8; 4]) {
+        let mut k = [u64::MAX; 4];
+        for (j, (x, &v)) in k.iter_mut().zip(c).enumerate() {
+            *x = (v as u64) << 2 | j as u64;
+        }
+        let mut cx = |a: usize, b: usize| {
+            let (x, y) = (k[a], k[b]);
+            k[a] = x.min(y);
+            k[b] = x.max(y);
+        };
+        // optimal network for 4 keys (an absent fourth key is u64::MAX and stays last)
+        cx(0, 1);
+        cx(2, 3);
+        cx(0, 2);
+        cx(1, 3);
+        cx(1, 2);
+        let mut sv = [0u32; 4];
+        let mut pm = [0u8; 4];
+        for s in 0..c.len() {
+            sv[s] = (k[s] >> 2) as u32;
+            pm[s] = (k[s] & 3) as u8;
+        }
+        (sv, pm)
+    }
+
     /// The `D + 1` facet words of a top, into the coarse buckets of their smallest vertices.
     #[inline]
     fn emit<W: Word, const D: usize>(
@@ -1143,27 +1203,18 @@ mod low_dim {
         recs: &mut [W],
         cpos: &mut [u32],
     ) {
-        let lowmask = (1u32 << lay.low) - 1;
-        for jj in 0..=D {
-            let mut key = 0u128;
-            let mut places = 0u128;
-            let mut first = true;
-            for s in 0..=D {
-                if s == jj {
-                    continue;
-                }
-                let v = sv[s];
-                key = if first {
-                    (v & lowmask) as u128
-                } else {
-                    (key << lay.vb) | v as u128
-                };
-                first = false;
-                places = (places << lay.pb) | vp[s] as u128;
+        let lowmask = mask(lay.low);
+        for (jj, &omitted) in pm[..=D].iter().enumerate() {
+            // the facet's q-th vertex is sorted vertex o(q)
+            let o = |q: usize| q + usize::from(q >= jj);
+            let mut key = W::of(sv[o(0)] & lowmask);
+            let mut places = W::of(vp[o(0)]);
+            for q in 1..D {
+                key = (key << lay.vb) | W::of(sv[o(q)]);
+                places = (places << lay.pb) | W::of(vp[o(q)]);
             }
-            key = (key << 2) | pm[jj] as u128;
-            let w = W::of((key << lay.tsh(D)) | places);
-            let m = sv[usize::from(jj == 0)];
+            let w = (((key << 2) | W::of(omitted as u32)) << lay.tsh(D)) | places;
+            let m = sv[o(0)];
             let slot = &mut cpos[(m >> lay.low) as usize];
             recs[*slot as usize] = w;
             *slot += 1;
@@ -1203,7 +1254,7 @@ mod low_dim {
         ) {
             let nv = fcnt.len() - 1;
             let low = self.lay.low;
-            let lowmask = (1u128 << low) - 1;
+            let lowmask = mask(low);
             let msh = self.lay.msh(d);
             let (v0, v1) = (cur.c << low, ((cur.c + 1) << low).min(nv));
             let (s, e) = (fcnt[v0] as usize, fcnt[v1] as usize);
@@ -1215,7 +1266,7 @@ mod low_dim {
             tmp.resize(e - s, W::default());
             let mut fpos: Vec<u32> = fcnt[v0..v1].iter().map(|&x| x - s as u32).collect();
             for &r in src {
-                let m = ((r.wide() >> msh) & lowmask) as usize;
+                let m = ((r >> msh).low32() & lowmask) as usize;
                 tmp[fpos[m] as usize] = r;
                 fpos[m] += 1;
             }
@@ -1243,14 +1294,12 @@ mod low_dim {
             let lay = self.lay;
             let (tsh, ksh) = (lay.tsh(D), lay.ksh(D));
             let n = D + 1;
-            let vmask = (1u128 << lay.vb) - 1;
-            let pmask = (1u128 << lay.pb) - 1;
-            let place =
-                |x: W, q: usize| ((x.wide() >> ((D - 1 - q) as u32 * lay.pb)) & pmask) as u32;
+            let (vmask, pmask) = (mask(lay.vb), mask(lay.pb));
+            let place = |x: W, q: usize| (x >> ((D - 1 - q) as u32 * lay.pb)).low32() & pmask;
             // a facet's top: its id (its place in the VT row of m) and the input position of
             // the vertex the facet omits
             let row = &vt.targets[vt.off[m as usize] as usize..];
-            let top = |x: W| (row[place(x, 0) as usize], ((x.wide() >> tsh) & 3) as usize);
+            let top = |x: W| (row[place(x, 0) as usize], ((x >> tsh).low32() & 3) as usize);
             if bucket.len() == 2 {
                 // the common case: skip the sort
                 if bucket[1] < bucket[0] {
@@ -1259,15 +1308,15 @@ mod low_dim {
             } else if std::mem::size_of::<W>() > 8 && lay.msh(D) - tsh <= 64 {
                 // the smallest vertex is shared and the facet's other vertices fit in 64
                 // bits: sort by them (the order inside a group does not change the result)
-                bucket.sort_unstable_by_key(|w| (w.wide() >> tsh) as u64);
+                bucket.sort_unstable_by_key(|&w| (w >> tsh).low64());
             } else {
                 bucket.sort_unstable();
             }
             let mut i = 0;
             while i < bucket.len() {
-                let rest = bucket[i].wide() >> ksh;
+                let rest = bucket[i] >> ksh;
                 let mut j = i + 1;
-                while j < bucket.len() && bucket[j].wide() >> ksh == rest {
+                while j < bucket.len() && bucket[j] >> ksh == rest {
                     j += 1;
                 }
                 if j - i >= 2 {
@@ -1276,8 +1325,8 @@ mod low_dim {
                     f[0] = m;
                     let mut r = rest;
                     for x in f[1..].iter_mut().rev() {
-                        *x = (r & vmask) as u32;
-                        r >>= lay.vb;
+                        *x = r.low32() & vmask;
+                        r = r >> lay.vb;
                     }
                     let g = &bucket[i..j];
                     if g.len() == 2 {
@@ -1916,17 +1965,19 @@ mod tests {
                 ..Default::default()
             };
             let k = b.build(&opts).unwrap().0;
-            let fast = IaStar::build(&k, false).unwrap();
-            let general = IaStar::build(&k, true).unwrap();
-            assert_eq!(fast.refs(), general.refs(), "case {case}");
-            assert_eq!(fast.bytes(), general.bytes(), "case {case}");
-            assert_eq!(fast.vrefs, general.vrefs, "case {case}");
-            assert_eq!(fast.nm.len(), general.nm.len(), "case {case}");
-            for (a, b) in fast.nm.iter().zip(&general.nm) {
-                assert_eq!(a, b, "case {case}");
-            }
-            for (a, b) in fast.blocks.iter().zip(&general.blocks) {
-                assert_eq!(a.data, b.data, "case {case}");
+            let general = IaStar::build(&k, None).unwrap();
+            // the default settings, several vertices per coarse bucket, and 128-bit words
+            for (coarse_bits, wide) in [(10, false), (2, false), (1, true), (10, true)] {
+                let tu = low_dim::Tuning { coarse_bits, wide };
+                let fast = IaStar::build(&k, Some(tu)).unwrap();
+                let at = format!("case {case}, {tu:?}");
+                assert_eq!(fast.refs(), general.refs(), "{at}");
+                assert_eq!(fast.bytes(), general.bytes(), "{at}");
+                assert_eq!(fast.vrefs, general.vrefs, "{at}");
+                assert_eq!(fast.nm, general.nm, "{at}");
+                for (a, b) in fast.blocks.iter().zip(&general.blocks) {
+                    assert_eq!(a.data, b.data, "{at}");
+                }
             }
         }
     }
@@ -1946,13 +1997,19 @@ mod tests {
             }
             let k = crate::io::read(&p, &Default::default()).unwrap().complex;
             assert!(k.n_cells() > 500_000, "{name}");
-            let fast = IaStar::build(&k, false).unwrap();
-            let general = IaStar::build(&k, true).unwrap();
-            assert_eq!(fast.refs(), general.refs(), "{name}");
-            assert_eq!(fast.vrefs, general.vrefs, "{name}");
-            assert_eq!(fast.nm, general.nm, "{name}");
-            for (a, b) in fast.blocks.iter().zip(&general.blocks) {
-                assert!(a.data == b.data, "{name}");
+            let general = IaStar::build(&k, None).unwrap();
+            for wide in [false, true] {
+                let tu = low_dim::Tuning {
+                    wide,
+                    ..low_dim::Tuning::DEFAULT
+                };
+                let fast = IaStar::build(&k, Some(tu)).unwrap();
+                assert_eq!(fast.refs(), general.refs(), "{name}");
+                assert_eq!(fast.vrefs, general.vrefs, "{name}");
+                assert_eq!(fast.nm, general.nm, "{name}");
+                for (a, b) in fast.blocks.iter().zip(&general.blocks) {
+                    assert!(a.data == b.data, "{name}");
+                }
             }
         }
     }
