@@ -149,20 +149,6 @@ pub fn large_zeroed<T: bytemuck::Pod>(n: usize) -> Vec<T> {
     v
 }
 
-/// A vector of `n` copies of `x`, with the huge-page advice of [`large_zeroed`].
-///
-/// ```
-/// use starplex::buf::large_filled;
-/// let v = large_filled(3, u32::MAX);
-/// assert_eq!(v, vec![u32::MAX; 3]);
-/// ```
-pub fn large_filled<T: bytemuck::Pod>(n: usize, x: T) -> Vec<T> {
-    let mut v = Vec::<T>::with_capacity(n);
-    advise_huge(&mut v);
-    v.resize(n, x);
-    v
-}
-
 /// Marks the 2 MiB-aligned part of `v`'s allocation for transparent huge pages.
 #[cfg(target_os = "linux")]
 fn advise_huge<T>(v: &mut Vec<T>) {

@@ -700,8 +700,11 @@ impl IaStar {
 /// 5. the top records, in order.
 mod low_dim {
     use super::{Block, Csr, IndexedComplex, NM_BIT, NONE};
+
+    // adjacency slots are kept complemented while they are built: zero is `NONE`
+    const _: () = assert!(!NONE == 0);
     use crate::algo::unionfind::union_min_in as union;
-    use crate::buf::{large_filled, large_zeroed};
+    use crate::buf::large_zeroed;
 
     /// Settings of the construction (tests vary them to reach every code path on small
     /// complexes).
@@ -984,7 +987,8 @@ mod low_dim {
     struct Group<'a> {
         lay: Layout,
         ids: DimIds,
-        /// Adjacency slot values, dimension-local slot `li * (d + 1) + j`.
+        /// Adjacency slot values, complemented (so that a zeroed array is all `NONE`),
+        /// dimension-local slot `li * (d + 1) + j`.
         adj: &'a mut [u32],
         nm_tops: Vec<u32>,
         nm_offsets: Vec<u32>,
@@ -1071,7 +1075,7 @@ mod low_dim {
         //    union-find over their VT rows (roots kept, compacting `targets` in place)
         let mut adj: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
         for (a, r) in adj.iter_mut().zip(&recs) {
-            *a = large_filled(r.len(), NONE);
+            *a = large_zeroed(r.len());
         }
         let [adj2, adj3] = &mut adj;
         let mut groups = [
@@ -1158,7 +1162,7 @@ mod low_dim {
             let mut data = Vec::with_capacity(2 * b.vertices.len());
             for (c, s) in b.vertices.chunks_exact(n).zip(a.chunks_exact(n)) {
                 data.extend_from_slice(c);
-                data.extend_from_slice(s);
+                data.extend(s.iter().map(|&x| !x));
             }
             blk.data = data;
         }
@@ -1331,8 +1335,8 @@ mod low_dim {
                     let g = &bucket[i..j];
                     if g.len() == 2 {
                         let ((ca, ja), (cb, jb)) = (top(g[0]), top(g[1]));
-                        self.adj[self.ids.local(ca) * n + ja] = cb;
-                        self.adj[self.ids.local(cb) * n + jb] = ca;
+                        self.adj[self.ids.local(ca) * n + ja] = !cb;
+                        self.adj[self.ids.local(cb) * n + jb] = !ca;
                         for (q, &w) in f.iter().enumerate() {
                             let (x, y) = (place(g[0], q), place(g[1], q));
                             cur.link(links, vt.off, lay.low, w, x, y, false);
@@ -1343,7 +1347,7 @@ mod low_dim {
                         for &r in g {
                             let (c, jr) = top(r);
                             self.nm_tops.push(c);
-                            self.adj[self.ids.local(c) * n + jr] = fid;
+                            self.adj[self.ids.local(c) * n + jr] = !fid;
                         }
                         self.nm_tops[s0..].sort_unstable();
                         self.nm_offsets.push(self.nm_tops.len() as u32);
