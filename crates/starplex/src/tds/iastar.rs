@@ -714,12 +714,15 @@ mod low_dim {
         pub coarse_bits: u32,
         /// Use 128-bit facet words even when 64 bits would do.
         pub wide: bool,
+        /// Pack a link into one word in buckets with fewer than 2^16 places.
+        pub pack_links: bool,
     }
 
     impl Tuning {
         pub const DEFAULT: Tuning = Tuning {
             coarse_bits: 10,
             wide: false,
+            pack_links: true,
         };
     }
 
@@ -892,9 +895,9 @@ mod low_dim {
         let bits = lay.total(if t3 > 0 { 3 } else { 2 });
         let counts = Counts { vt_off, finc, fcnt };
         if bits <= 64 && !tuning.wide {
-            Some(run::<u64>(k, blocks, t, nv, lay, counts))
+            Some(run::<u64>(k, blocks, t, nv, lay, counts, tuning))
         } else if bits <= 128 {
-            Some(run::<u128>(k, blocks, t, nv, lay, counts))
+            Some(run::<u128>(k, blocks, t, nv, lay, counts, tuning))
         } else {
             None
         }
@@ -928,13 +931,15 @@ mod low_dim {
     }
 
     /// Links waiting for the coarse bucket of their vertex: pairs of places in the bucket's
-    /// VT rows. A bucket's area holds half the facet incidences at its vertices, enough for
-    /// the links of facets shared by two tops (two incidences each); those of non-manifold
-    /// facets go to `over`.
+    /// VT rows. A bucket's area has room for half the facet incidences at its vertices, enough
+    /// for the links of facets shared by two tops (two incidences each); those of non-manifold
+    /// facets go to `over`. In a *narrow* bucket (fewer than 2^16 places) a link is one word
+    /// (`x << 16 | y`), else two.
     struct Links {
-        area: Vec<[u32; 2]>,
+        area: Vec<u32>,
         start: Vec<u32>,
         end: Vec<u32>,
+        narrow: Vec<bool>,
         over: Vec<Vec<[u32; 2]>>,
     }
 
@@ -971,8 +976,14 @@ mod low_dim {
                 links.over[cw].push([x, y]);
             } else {
                 let e = &mut links.end[cw];
-                links.area[*e as usize] = [x, y];
-                *e += 1;
+                if links.narrow[cw] {
+                    links.area[*e as usize] = x << 16 | y;
+                    *e += 1;
+                } else {
+                    links.area[*e as usize] = x;
+                    links.area[*e as usize + 1] = y;
+                    *e += 2;
+                }
             }
         }
     }
@@ -1001,15 +1012,23 @@ mod low_dim {
         nv: usize,
         lay: Layout,
         counts: Counts,
+        tuning: Tuning,
     ) -> (Vec<Csr>, Csr) {
         let Counts { vt_off, finc, fcnt } = counts;
         let dmax = t.len() - 1;
         let low = lay.low;
         let nc = if nv == 0 { 0 } else { ((nv - 1) >> low) + 1 };
+        let narrow: Vec<bool> = (0..nc)
+            .map(|c| {
+                let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
+                tuning.pack_links && vt_off[v1] - vt_off[v0] <= 1 << 16
+            })
+            .collect();
         let mut links = Links {
             area: Vec::new(),
             start: Vec::with_capacity(nc + 1),
             end: Vec::new(),
+            narrow,
             over: vec![Vec::new(); nc],
         };
         let mut l = 0u32;
@@ -1017,7 +1036,11 @@ mod low_dim {
             if v & ((1 << low) - 1) == 0 {
                 links.start.push(l);
             }
-            l += x / 2;
+            l += if links.narrow[v >> low] {
+                x / 2
+            } else {
+                x / 2 * 2
+            };
         }
         links.start.push(l);
         drop(finc);
@@ -1124,7 +1147,16 @@ mod low_dim {
                 out += hi - lo;
                 continue;
             }
-            for &[x, y] in ls.iter().chain(&links.over[c]) {
+            if links.narrow[c] {
+                for &p in ls {
+                    union(&mut par, p >> 16, p & 0xffff);
+                }
+            } else {
+                for p in ls.chunks_exact(2) {
+                    union(&mut par, p[0], p[1]);
+                }
+            }
+            for &[x, y] in &links.over[c] {
                 union(&mut par, x, y);
             }
             links.over[c] = Vec::new();
@@ -1970,9 +2002,20 @@ mod tests {
             };
             let k = b.build(&opts).unwrap().0;
             let general = IaStar::build(&k, None).unwrap();
-            // the default settings, several vertices per coarse bucket, and 128-bit words
-            for (coarse_bits, wide) in [(10, false), (2, false), (1, true), (10, true)] {
-                let tu = low_dim::Tuning { coarse_bits, wide };
+            // the default settings, several vertices per coarse bucket, 128-bit words, and
+            // links of two words
+            for (coarse_bits, wide, pack_links) in [
+                (10, false, true),
+                (2, false, true),
+                (1, true, true),
+                (10, true, false),
+                (2, false, false),
+            ] {
+                let tu = low_dim::Tuning {
+                    coarse_bits,
+                    wide,
+                    pack_links,
+                };
                 let fast = IaStar::build(&k, Some(tu)).unwrap();
                 let at = format!("case {case}, {tu:?}");
                 assert_eq!(fast.refs(), general.refs(), "{at}");
@@ -2002,9 +2045,10 @@ mod tests {
             let k = crate::io::read(&p, &Default::default()).unwrap().complex;
             assert!(k.n_cells() > 500_000, "{name}");
             let general = IaStar::build(&k, None).unwrap();
-            for wide in [false, true] {
+            for (wide, pack_links) in [(false, true), (true, false)] {
                 let tu = low_dim::Tuning {
                     wide,
+                    pack_links,
                     ..low_dim::Tuning::DEFAULT
                 };
                 let fast = IaStar::build(&k, Some(tu)).unwrap();
