@@ -1299,12 +1299,17 @@ mod low_dim {
             }
             let src = &recs[s..e];
             tmp.clear();
-            tmp.resize(e - s, W::default());
-            let mut fpos: Vec<u32> = fcnt[v0..v1].iter().map(|&x| x - s as u32).collect();
-            for &r in src {
-                let m = ((r >> msh).low32() & lowmask) as usize;
-                tmp[fpos[m] as usize] = r;
-                fpos[m] += 1;
+            if low == 0 {
+                // one vertex per bucket (and `msh` may be the word's full width)
+                tmp.extend_from_slice(src);
+            } else {
+                tmp.resize(e - s, W::default());
+                let mut fpos: Vec<u32> = fcnt[v0..v1].iter().map(|&x| x - s as u32).collect();
+                for &r in src {
+                    let m = ((r >> msh).low32() & lowmask) as usize;
+                    tmp[fpos[m] as usize] = r;
+                    fpos[m] += 1;
+                }
             }
             for v in v0..v1 {
                 let (a, b) = (fcnt[v] as usize - s, fcnt[v + 1] as usize - s);
@@ -2026,6 +2031,34 @@ mod tests {
                     assert_eq!(a.data, b.data, "{at}");
                 }
             }
+        }
+    }
+
+    /// A facet word of exactly 64 bits with one vertex per coarse bucket (the shift to the
+    /// smallest vertex's low bits is then the full word width): a cone over every triangle of
+    /// 60 vertices (34,220 tetrahedra at the apex, 16-bit places) and 9 isolated vertices
+    /// (7-bit vertex ids).
+    #[test]
+    fn low_dim_build_with_a_full_64_bit_word() {
+        let mut b = ComplexBuilder::new(1).unwrap();
+        for _ in 0..70 {
+            b.push_vertex(&[0.0]).unwrap();
+        }
+        for x in 1..=60u32 {
+            for y in x + 1..=60 {
+                for z in y + 1..=60 {
+                    b.push_cell(CellKind::Simplex(3), &[0, x, y, z]).unwrap();
+                }
+            }
+        }
+        let k = b.build(&BuildOptions::default()).unwrap().0;
+        let general = IaStar::build(&k, None).unwrap();
+        let fast = IaStar::build(&k, Some(low_dim::Tuning::DEFAULT)).unwrap();
+        assert_eq!(fast.vrefs, general.vrefs);
+        assert_eq!(fast.nm, general.nm);
+        assert!(fast.n_nm_faces(3) > 0);
+        for (a, b) in fast.blocks.iter().zip(&general.blocks) {
+            assert!(a.data == b.data);
         }
     }
 
