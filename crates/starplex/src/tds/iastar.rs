@@ -937,8 +937,8 @@ mod low_dim {
     /// (`x << 16 | y`), else two.
     struct Links {
         area: Vec<u32>,
-        start: Vec<u32>,
-        end: Vec<u32>,
+        start: Vec<usize>,
+        end: Vec<usize>,
         narrow: Vec<bool>,
         over: Vec<Vec<[u32; 2]>>,
     }
@@ -977,11 +977,11 @@ mod low_dim {
             } else {
                 let e = &mut links.end[cw];
                 if links.narrow[cw] {
-                    links.area[*e as usize] = x << 16 | y;
+                    links.area[*e] = x << 16 | y;
                     *e += 1;
                 } else {
-                    links.area[*e as usize] = x;
-                    links.area[*e as usize + 1] = y;
+                    links.area[*e] = x;
+                    links.area[*e + 1] = y;
                     *e += 2;
                 }
             }
@@ -1031,20 +1031,20 @@ mod low_dim {
             narrow,
             over: vec![Vec::new(); nc],
         };
-        let mut l = 0u32;
+        let mut l = 0usize;
         for (v, &x) in finc.iter().enumerate() {
             if v & ((1 << low) - 1) == 0 {
                 links.start.push(l);
             }
             l += if links.narrow[v >> low] {
-                x / 2
+                x as usize / 2
             } else {
-                x / 2 * 2
+                x as usize / 2 * 2
             };
         }
         links.start.push(l);
         drop(finc);
-        links.area = large_zeroed(l as usize);
+        links.area = large_zeroed(l);
         links.end = links.start[..nc].to_vec();
         // 2. VT by counting sort; facet words into coarse buckets
         let mut pos: Vec<[u32; 2]> = vt_off[..nv].iter().map(|&o| [o, 0]).collect();
@@ -1137,7 +1137,7 @@ mod low_dim {
                     );
                 }
             }
-            let ls = &links.area[links.start[c] as usize..links.end[c] as usize];
+            let ls = &links.area[links.start[c]..links.end[c]];
             let joined = cur.joined || !ls.is_empty() || !links.over[c].is_empty();
             if !joined {
                 targets.copy_within(lo..hi, out);
