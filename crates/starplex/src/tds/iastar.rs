@@ -954,7 +954,7 @@ mod low_dim {
     impl Chunk<'_> {
         /// Joins places `x` and `y` of the VT row of `w`: now if `w` is in this bucket, else
         /// through `links` (`nm`: a link of a non-manifold facet).
-        #[inline]
+        #[inline(always)]
         #[allow(clippy::too_many_arguments)]
         fn link(
             &mut self,
@@ -1298,12 +1298,15 @@ mod low_dim {
                 return;
             }
             let src = &recs[s..e];
-            tmp.clear();
+            // grown, never cleared: every place below `e - s` is written before it is read
+            if tmp.len() < e - s {
+                tmp.resize(e - s, W::default());
+            }
+            let tmp = &mut tmp[..e - s];
             if low == 0 {
                 // one vertex per bucket (and `msh` may be the word's full width)
-                tmp.extend_from_slice(src);
+                tmp.copy_from_slice(src);
             } else {
-                tmp.resize(e - s, W::default());
                 let mut fpos: Vec<u32> = fcnt[v0..v1].iter().map(|&x| x - s as u32).collect();
                 for &r in src {
                     let m = ((r >> msh).low32() & lowmask) as usize;
