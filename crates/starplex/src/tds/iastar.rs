@@ -716,6 +716,11 @@ mod low_dim {
         pub wide: bool,
         /// Pack a link into one word in buckets with fewer than 2^16 places.
         pub pack_links: bool,
+        /// Number of parts of the input counted and scattered in parallel (passes 1 and 2);
+        /// 0: one per worker thread (at most 4) for 2^17 tops or more. Used only when the
+        /// complex is one block of triangles or tetrahedra; the result is the same for any
+        /// number.
+        pub parts: usize,
     }
 
     impl Tuning {
@@ -723,7 +728,62 @@ mod low_dim {
             coarse_bits: 10,
             wide: false,
             pack_links: true,
+            parts: 0,
         };
+    }
+
+    /// The facet words of one part of the input, by coarse bucket: bucket `c` is
+    /// `recs[start[c]..start[c + 1]]`.
+    struct Part<W> {
+        recs: Vec<W>,
+        start: Vec<u32>,
+    }
+
+    /// The counts of pass 1 for one part of a one-block complex.
+    struct PartCounts {
+        /// The part's tops (indices in the block).
+        range: std::ops::Range<usize>,
+        /// Per vertex, the part's tops at it.
+        deg: Vec<u32>,
+        /// Per vertex `v`, at `v + 1`: the part's facets whose smallest vertex is `v`.
+        fc: Vec<u32>,
+    }
+
+    /// The parts of pass 1 and 2 (empty: one sequential pass over every block).
+    fn part_ranges(k: &IndexedComplex, tuning: Tuning) -> Vec<std::ops::Range<usize>> {
+        let [b] = k.blocks() else {
+            return Vec::new();
+        };
+        let n = b.len();
+        let p = match tuning.parts {
+            0 if n >= 1 << 17 => rayon::current_num_threads().clamp(1, 4),
+            0 => 1,
+            p => p.min(n.max(1)),
+        };
+        if p <= 1 || !matches!(b.kind.dim(), 2 | 3) {
+            return Vec::new();
+        }
+        (0..p).map(|i| i * n / p..(i + 1) * n / p).collect()
+    }
+
+    /// Pass 1 over the tops `verts` of dimension `d` ≥ 2: degrees, facet incidences, and
+    /// facets by smallest vertex (at `v + 1`).
+    fn count_tops(verts: &[u32], d: usize, deg: &mut [u32], finc: &mut [u32], fc: &mut [u32]) {
+        for c in verts.chunks_exact(d + 1) {
+            let (mut m0, mut m1) = (u32::MAX, u32::MAX);
+            for &v in c {
+                deg[v as usize] += 1;
+                finc[v as usize] += d as u32;
+                if v < m0 {
+                    m1 = m0;
+                    m0 = v;
+                } else if v < m1 {
+                    m1 = v;
+                }
+            }
+            fc[m0 as usize + 1] += d as u32;
+            fc[m1 as usize + 1] += 1;
+        }
     }
 
     /// A facet word: from the most significant end, the low bits of the facet's smallest vertex
@@ -736,6 +796,8 @@ mod low_dim {
         bytemuck::Pod
         + Ord
         + Default
+        + Send
+        + Sync
         + std::ops::Shl<u32, Output = Self>
         + std::ops::Shr<u32, Output = Self>
         + std::ops::BitOr<Output = Self>
@@ -823,6 +885,8 @@ mod low_dim {
         finc: Vec<u32>,
         /// Facet bucket offsets (by smallest vertex), dimensions 2 and 3.
         fcnt: [Vec<u32>; 2],
+        /// Per part, when passes 1 and 2 run in parallel.
+        parts: Vec<PartCounts>,
     }
 
     /// Builds the adjacency slots, the top records, the non-manifold face lists and the
@@ -845,30 +909,44 @@ mod low_dim {
                 fcnt[d - 2] = vec![0u32; nv + 1];
             }
         }
-        for b in k.blocks() {
-            let d = b.kind.dim();
-            let n = d + 1;
-            if d < 2 {
-                for &v in b.vertices.iter() {
-                    deg[v as usize] += 1;
-                }
-                continue;
-            }
-            let fc = &mut fcnt[d - 2];
-            for c in b.vertices.chunks_exact(n) {
-                let (mut m0, mut m1) = (u32::MAX, u32::MAX);
-                for &v in c {
-                    deg[v as usize] += 1;
-                    finc[v as usize] += d as u32;
-                    if v < m0 {
-                        m1 = m0;
-                        m0 = v;
-                    } else if v < m1 {
-                        m1 = v;
+        let ranges = part_ranges(k, tuning);
+        let mut parts = Vec::new();
+        if ranges.is_empty() {
+            for b in k.blocks() {
+                let d = b.kind.dim();
+                if d < 2 {
+                    for &v in b.vertices.iter() {
+                        deg[v as usize] += 1;
                     }
+                    continue;
                 }
-                fc[m0 as usize + 1] += d as u32;
-                fc[m1 as usize + 1] += 1;
+                count_tops(&b.vertices, d, &mut deg, &mut finc, &mut fcnt[d - 2]);
+            }
+        } else {
+            use rayon::prelude::*;
+            let b = &k.blocks()[0];
+            let d = b.kind.dim();
+            let counted: Vec<(PartCounts, Vec<u32>)> = ranges
+                .into_par_iter()
+                .map(|r| {
+                    let (mut deg, mut finc, mut fc) =
+                        (vec![0u32; nv], vec![0u32; nv], vec![0u32; nv + 1]);
+                    let verts = &b.vertices[r.start * (d + 1)..r.end * (d + 1)];
+                    count_tops(verts, d, &mut deg, &mut finc, &mut fc);
+                    (PartCounts { range: r, deg, fc }, finc)
+                })
+                .collect();
+            for (pc, pf) in counted {
+                for (x, y) in deg.iter_mut().zip(&pc.deg) {
+                    *x += y;
+                }
+                for (x, y) in finc.iter_mut().zip(&pf) {
+                    *x += y;
+                }
+                for (x, y) in fcnt[d - 2].iter_mut().zip(&pc.fc) {
+                    *x += y;
+                }
+                parts.push(pc);
             }
         }
         let maxdeg = deg.iter().copied().max().unwrap_or(0);
@@ -893,7 +971,12 @@ mod low_dim {
             pb: bits(maxdeg.saturating_sub(1) as u64),
         };
         let bits = lay.total(if t3 > 0 { 3 } else { 2 });
-        let counts = Counts { vt_off, finc, fcnt };
+        let counts = Counts {
+            vt_off,
+            finc,
+            fcnt,
+            parts,
+        };
         if bits <= 64 && !tuning.wide {
             Some(run::<u64>(k, blocks, t, nv, lay, counts, tuning))
         } else if bits <= 128 {
@@ -1014,7 +1097,12 @@ mod low_dim {
         counts: Counts,
         tuning: Tuning,
     ) -> (Vec<Csr>, Csr) {
-        let Counts { vt_off, finc, fcnt } = counts;
+        let Counts {
+            vt_off,
+            finc,
+            fcnt,
+            parts,
+        } = counts;
         let dmax = t.len() - 1;
         let low = lay.low;
         let nc = if nv == 0 { 0 } else { ((nv - 1) >> low) + 1 };
@@ -1047,58 +1135,19 @@ mod low_dim {
         links.area = large_zeroed(l);
         links.end = links.start[..nc].to_vec();
         // 2. VT by counting sort; facet words into coarse buckets
-        let mut pos: Vec<[u32; 2]> = vt_off[..nv].iter().map(|&o| [o, 0]).collect();
-        let mut targets: Vec<u32> = large_zeroed(*vt_off.last().unwrap_or(&0) as usize);
-        let mut cpos: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
-        for d in 0..2 {
-            if !fcnt[d].is_empty() {
-                cpos[d] = (0..nc).map(|c| fcnt[d][c << low]).collect();
-            }
-        }
-        let mut recs: [Vec<W>; 2] = [
-            large_zeroed(3 * t.get(2).map_or(0, |&x| x as usize)),
-            large_zeroed(4 * t.get(3).map_or(0, |&x| x as usize)),
-        ];
-        for (blk, b) in blocks.iter().zip(k.blocks()) {
-            let d = blk.dim;
-            let n = d + 1;
-            if d < 2 {
-                for (i, c) in b.vertices.chunks_exact(n).enumerate() {
-                    let id = blk.first + i as u32;
-                    for &v in c {
-                        let p = &mut pos[v as usize];
-                        targets[p[0] as usize] = id;
-                        *p = [p[0] + 1, p[1] + 1];
-                    }
-                }
-                continue;
-            }
-            let (recs, cpos) = (&mut recs[d - 2], &mut cpos[d - 2]);
-            for (i, c) in b.vertices.chunks_exact(n).enumerate() {
-                let id = blk.first + i as u32;
-                // sorted vertices, their input positions and the top's places in their rows
-                let (sv, pm) = sort_top(c);
-                let mut vp = [0u32; 4];
-                for s in 0..n {
-                    let p = &mut pos[sv[s] as usize];
-                    vp[s] = p[1];
-                    targets[p[0] as usize] = id;
-                    *p = [p[0] + 1, p[1] + 1];
-                }
-                if d == 2 {
-                    emit::<W, 2>(&sv, &pm, &vp, lay, recs, cpos);
-                } else {
-                    emit::<W, 3>(&sv, &pm, &vp, lay, recs, cpos);
-                }
-            }
-        }
-        drop(pos);
-        drop(cpos);
+        let total = *vt_off.last().unwrap_or(&0) as usize;
+        let (targets, recs) = if parts.is_empty() {
+            scatter_blocks::<W>(k, blocks, t, &vt_off, &fcnt, lay)
+        } else {
+            scatter_parts::<W>(k, blocks, &vt_off, parts, lay)
+        };
+        let mut targets = targets;
+        debug_assert_eq!(targets.len(), total);
         // 3, 4. per coarse bucket: group equal facets, then the clusters of its vertices by
         //    union-find over their VT rows (roots kept, compacting `targets` in place)
         let mut adj: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
-        for (a, r) in adj.iter_mut().zip(&recs) {
-            *a = large_zeroed(r.len());
+        for (d, a) in adj.iter_mut().enumerate() {
+            *a = large_zeroed((d + 3) * t.get(d + 2).map_or(0, |&x| x as usize));
         }
         let [adj2, adj3] = &mut adj;
         let mut groups = [
@@ -1121,14 +1170,14 @@ mod low_dim {
                 joined: false,
             };
             for (d, g) in groups.iter_mut().enumerate() {
-                if !recs[d].is_empty() {
+                if !fcnt[d].is_empty() {
                     let vt = Vt {
                         off: &vt_off,
                         targets: &targets,
                     };
                     g.chunk(
                         d + 2,
-                        &mut recs[d],
+                        &recs[d],
                         &fcnt[d],
                         &vt,
                         &mut cur,
@@ -1175,7 +1224,7 @@ mod low_dim {
         }
         let mut nm: Vec<Csr> = vec![Csr::default(); dmax + 1];
         for (d, g) in groups.into_iter().enumerate() {
-            if !recs[d].is_empty() {
+            if !fcnt[d].is_empty() {
                 nm[d + 2] = g.finish();
             }
         }
@@ -1199,6 +1248,191 @@ mod low_dim {
             blk.data = data;
         }
         (nm, Csr { offsets, targets })
+    }
+
+    /// Pass 2 over the tops `verts` of dimension `d` ≥ 2 (ids from `first`): their VT entries
+    /// (`pos[v]`: the next slot of `targets` for `v`, and the number of tops at `v` before it)
+    /// and their facet words, into the coarse buckets (`cpos`: the next slot of each).
+    #[allow(clippy::too_many_arguments)]
+    fn scatter_tops<W: Word>(
+        d: usize,
+        verts: &[u32],
+        first: u32,
+        pos: &mut [[u32; 2]],
+        targets: &mut [u32],
+        recs: &mut [W],
+        cpos: &mut [u32],
+        lay: Layout,
+    ) {
+        let n = d + 1;
+        for (i, c) in verts.chunks_exact(n).enumerate() {
+            let id = first + i as u32;
+            // sorted vertices, their input positions and the top's places in their rows
+            let (sv, pm) = sort_top(c);
+            let mut vp = [0u32; 4];
+            for s in 0..n {
+                let p = &mut pos[sv[s] as usize];
+                vp[s] = p[1];
+                targets[p[0] as usize] = id;
+                *p = [p[0] + 1, p[1] + 1];
+            }
+            if d == 2 {
+                emit::<W, 2>(&sv, &pm, &vp, lay, recs, cpos);
+            } else {
+                emit::<W, 3>(&sv, &pm, &vp, lay, recs, cpos);
+            }
+        }
+    }
+
+    /// Pass 2, sequentially over every block: the VT targets and, per dimension 2 and 3, the
+    /// facet words as one part.
+    fn scatter_blocks<W: Word>(
+        k: &IndexedComplex,
+        blocks: &[Block],
+        t: &[u64],
+        vt_off: &[u32],
+        fcnt: &[Vec<u32>; 2],
+        lay: Layout,
+    ) -> (Vec<u32>, [Vec<Part<W>>; 2]) {
+        let nv = vt_off.len() - 1;
+        let low = lay.low;
+        let nc = if nv == 0 { 0 } else { ((nv - 1) >> low) + 1 };
+        let mut pos: Vec<[u32; 2]> = vt_off[..nv].iter().map(|&o| [o, 0]).collect();
+        let mut targets: Vec<u32> = large_zeroed(*vt_off.last().unwrap_or(&0) as usize);
+        let mut recs: [Vec<Part<W>>; 2] = [Vec::new(), Vec::new()];
+        let mut cpos: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+        for d in 0..2 {
+            if !fcnt[d].is_empty() {
+                let start: Vec<u32> = (0..=nc).map(|c| fcnt[d][(c << low).min(nv)]).collect();
+                cpos[d] = start[..nc].to_vec();
+                let len = (d + 3) * t.get(d + 2).map_or(0, |&x| x as usize);
+                recs[d].push(Part {
+                    recs: large_zeroed(len),
+                    start,
+                });
+            }
+        }
+        for (blk, b) in blocks.iter().zip(k.blocks()) {
+            let d = blk.dim;
+            if d < 2 {
+                for (i, c) in b.vertices.chunks_exact(d + 1).enumerate() {
+                    let id = blk.first + i as u32;
+                    for &v in c {
+                        let p = &mut pos[v as usize];
+                        targets[p[0] as usize] = id;
+                        *p = [p[0] + 1, p[1] + 1];
+                    }
+                }
+                continue;
+            }
+            let r = &mut recs[d - 2][0].recs;
+            let verts = &b.vertices[..];
+            scatter_tops(
+                d,
+                verts,
+                blk.first,
+                &mut pos,
+                &mut targets,
+                r,
+                &mut cpos[d - 2],
+                lay,
+            );
+        }
+        (targets, recs)
+    }
+
+    /// Pass 2 in parallel over the parts of a one-block complex: each part writes its own VT
+    /// (rows laid out by its own degrees, places counted from the tops of the earlier parts)
+    /// and its own facet words; the VT rows are then joined part after part, so the result is
+    /// the sequential one.
+    fn scatter_parts<W: Word>(
+        k: &IndexedComplex,
+        blocks: &[Block],
+        vt_off: &[u32],
+        parts: Vec<PartCounts>,
+        lay: Layout,
+    ) -> (Vec<u32>, [Vec<Part<W>>; 2]) {
+        use rayon::prelude::*;
+        let nv = vt_off.len() - 1;
+        let low = lay.low;
+        let nc = if nv == 0 { 0 } else { ((nv - 1) >> low) + 1 };
+        let (blk, b) = (&blocks[0], &k.blocks()[0]);
+        let d = blk.dim;
+        // per part: its VT row offsets, and where each vertex's places start
+        let mut before = vec![0u32; nv];
+        let mut jobs = Vec::with_capacity(parts.len());
+        for pc in parts {
+            let mut off = Vec::with_capacity(nv + 1);
+            let mut a = 0u32;
+            let pos: Vec<[u32; 2]> = (0..nv)
+                .map(|v| {
+                    off.push(a);
+                    let p = [a, before[v]];
+                    a += pc.deg[v];
+                    before[v] += pc.deg[v];
+                    p
+                })
+                .collect();
+            off.push(a);
+            let mut start = Vec::with_capacity(nc + 1);
+            let mut f = 0u32;
+            for (v, &x) in pc.fc[1..].iter().enumerate() {
+                if v & ((1 << low) - 1) == 0 {
+                    start.push(f);
+                }
+                f += x;
+            }
+            start.push(f);
+            jobs.push((pc.range, off, pos, start));
+        }
+        drop(before);
+        let done: Vec<(Vec<u32>, Vec<u32>, Part<W>)> = jobs
+            .into_par_iter()
+            .map(|(range, off, mut pos, start)| {
+                let mut targets = vec![0u32; off[nv] as usize];
+                let mut recs = large_zeroed(start[nc] as usize);
+                let mut cpos = start[..nc].to_vec();
+                let verts = &b.vertices[range.start * (d + 1)..range.end * (d + 1)];
+                let first = blk.first + range.start as u32;
+                scatter_tops(
+                    d,
+                    verts,
+                    first,
+                    &mut pos,
+                    &mut targets,
+                    &mut recs,
+                    &mut cpos,
+                    lay,
+                );
+                (off, targets, Part { recs, start })
+            })
+            .collect();
+        // join the VT rows, in parallel over vertex ranges
+        let mut targets: Vec<u32> = large_zeroed(vt_off[nv] as usize);
+        let n_ranges = done.len();
+        let mut pieces = Vec::with_capacity(n_ranges);
+        let mut rest = &mut targets[..];
+        let mut at = 0usize;
+        for i in 0..n_ranges {
+            let (v0, v1) = (i * nv / n_ranges, (i + 1) * nv / n_ranges);
+            let (piece, r) = rest.split_at_mut(vt_off[v1] as usize - at);
+            at = vt_off[v1] as usize;
+            rest = r;
+            pieces.push((v0..v1, piece));
+        }
+        pieces.into_par_iter().for_each(|(vs, piece)| {
+            let mut o = 0usize;
+            for v in vs {
+                for (off, t, _) in &done {
+                    let row = &t[off[v] as usize..off[v + 1] as usize];
+                    piece[o..o + row.len()].copy_from_slice(row);
+                    o += row.len();
+                }
+            }
+        });
+        let mut recs: [Vec<Part<W>>; 2] = [Vec::new(), Vec::new()];
+        recs[d - 2] = done.into_iter().map(|(_, _, p)| p).collect();
+        (targets, recs)
     }
 
     /// The vertices of a triangle or tetrahedron sorted, with their input positions, by a
@@ -1281,7 +1515,7 @@ mod low_dim {
         fn chunk<W: Word>(
             &mut self,
             d: usize,
-            recs: &mut [W],
+            parts: &[Part<W>],
             fcnt: &[u32],
             vt: &Vt,
             cur: &mut Chunk,
@@ -1297,7 +1531,10 @@ mod low_dim {
             if e - s < 2 {
                 return;
             }
-            let src = &recs[s..e];
+            let c = cur.c;
+            let srcs = parts
+                .iter()
+                .map(|p| &p.recs[p.start[c] as usize..p.start[c + 1] as usize]);
             // grown, never cleared: every place below `e - s` is written before it is read
             if tmp.len() < e - s {
                 tmp.resize(e - s, W::default());
@@ -1305,10 +1542,14 @@ mod low_dim {
             let tmp = &mut tmp[..e - s];
             if low == 0 {
                 // one vertex per bucket (and `msh` may be the word's full width)
-                tmp.copy_from_slice(src);
+                let mut o = 0;
+                for src in srcs {
+                    tmp[o..o + src.len()].copy_from_slice(src);
+                    o += src.len();
+                }
             } else {
                 let mut fpos: Vec<u32> = fcnt[v0..v1].iter().map(|&x| x - s as u32).collect();
-                for &r in src {
+                for &r in srcs.flatten() {
                     let m = ((r >> msh).low32() & lowmask) as usize;
                     tmp[fpos[m] as usize] = r;
                     fpos[m] += 1;
@@ -2023,11 +2264,65 @@ mod tests {
                     coarse_bits,
                     wide,
                     pack_links,
+                    parts: 1,
                 };
                 let fast = IaStar::build(&k, Some(tu)).unwrap();
                 let at = format!("case {case}, {tu:?}");
                 assert_eq!(fast.refs(), general.refs(), "{at}");
                 assert_eq!(fast.bytes(), general.bytes(), "{at}");
+                assert_eq!(fast.vrefs, general.vrefs, "{at}");
+                assert_eq!(fast.nm, general.nm, "{at}");
+                for (a, b) in fast.blocks.iter().zip(&general.blocks) {
+                    assert_eq!(a.data, b.data, "{at}");
+                }
+            }
+        }
+    }
+
+    /// Passes 1 and 2 split into parts (run in parallel) give the general path's IA* on random
+    /// pure triangle and tetrahedral complexes (one block each), whatever the number of parts.
+    #[test]
+    fn low_dim_build_in_parts_equals_general_build() {
+        let mut x = 0x1234_5678_9abc_def1u64;
+        let mut next = |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        };
+        for case in 0..120 {
+            let d = 2 + next(2) as usize;
+            let nv = d + 1 + next(30) as usize;
+            let mut b = ComplexBuilder::new(1).unwrap();
+            for _ in 0..nv {
+                b.push_vertex(&[0.0]).unwrap();
+            }
+            for _ in 0..1 + next(80) {
+                let mut c: Vec<u32> = Vec::new();
+                while c.len() < d + 1 {
+                    let v = next(nv as u64) as u32;
+                    if !c.contains(&v) {
+                        c.push(v);
+                    }
+                }
+                b.push_cell(CellKind::Simplex(d as u8), &c).unwrap();
+            }
+            let opts = BuildOptions {
+                drop_duplicates: true,
+                ..Default::default()
+            };
+            let k = b.build(&opts).unwrap().0;
+            assert_eq!(k.blocks().len(), 1);
+            let general = IaStar::build(&k, None).unwrap();
+            for (parts, coarse_bits, wide) in [(2, 10, false), (3, 2, false), (7, 1, true)] {
+                let tu = low_dim::Tuning {
+                    coarse_bits,
+                    wide,
+                    parts,
+                    ..low_dim::Tuning::DEFAULT
+                };
+                let fast = IaStar::build(&k, Some(tu)).unwrap();
+                let at = format!("case {case}, {tu:?}");
                 assert_eq!(fast.vrefs, general.vrefs, "{at}");
                 assert_eq!(fast.nm, general.nm, "{at}");
                 for (a, b) in fast.blocks.iter().zip(&general.blocks) {
@@ -2081,10 +2376,12 @@ mod tests {
             let k = crate::io::read(&p, &Default::default()).unwrap().complex;
             assert!(k.n_cells() > 500_000, "{name}");
             let general = IaStar::build(&k, None).unwrap();
-            for (wide, pack_links) in [(false, true), (true, false)] {
+            for (wide, pack_links, parts) in [(false, true, 1), (false, true, 2), (true, false, 3)]
+            {
                 let tu = low_dim::Tuning {
                     wide,
                     pack_links,
+                    parts,
                     ..low_dim::Tuning::DEFAULT
                 };
                 let fast = IaStar::build(&k, Some(tu)).unwrap();
