@@ -149,6 +149,23 @@ pub fn large_zeroed<T: bytemuck::Pod>(n: usize) -> Vec<T> {
     v
 }
 
+/// A vector of `n` values made by `f`, with the huge-page advice of [`large_zeroed`] given
+/// before the values are written (for types that cannot be calloc'd, such as atomics).
+///
+/// ```
+/// use std::sync::atomic::{AtomicU32, Ordering};
+/// use starplex::buf::large_with;
+/// let v = large_with(3, || AtomicU32::new(7));
+/// v[1].store(9, Ordering::Relaxed);
+/// assert_eq!(v[1].load(Ordering::Relaxed), 9);
+/// ```
+pub fn large_with<T>(n: usize, f: impl FnMut() -> T) -> Vec<T> {
+    let mut v = Vec::with_capacity(n);
+    advise_huge(&mut v);
+    v.extend(std::iter::repeat_with(f).take(n));
+    v
+}
+
 /// Marks the 2 MiB-aligned part of `v`'s allocation for transparent huge pages.
 #[cfg(target_os = "linux")]
 fn advise_huge<T>(v: &mut Vec<T>) {

@@ -704,7 +704,9 @@ mod low_dim {
     // adjacency slots are kept complemented while they are built: zero is `NONE`
     const _: () = assert!(!NONE == 0);
     use crate::algo::unionfind::union_min_in as union;
-    use crate::buf::large_zeroed;
+    use crate::buf::{large_with, large_zeroed};
+    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
     /// Settings of the construction (tests vary them to reach every code path on small
     /// complexes).
@@ -988,6 +990,7 @@ mod low_dim {
 
     /// Dimension-local indices of the tops of one dimension: (first id, first dimension-local
     /// index) per block of that dimension.
+    #[derive(Clone)]
     struct DimIds(Vec<(u32, u32)>);
 
     impl DimIds {
@@ -1026,10 +1029,60 @@ mod low_dim {
         over: Vec<Vec<[u32; 2]>>,
     }
 
+    /// What grouping a range of coarse buckets leaves: its links into buckets from its start
+    /// on, whether each of its buckets joined places at once, and per dimension 2 and 3 its
+    /// non-manifold facets (offsets, tops, and the slots to write).
+    struct Grouped {
+        links: Links,
+        joined: Vec<bool>,
+        nm: [NmFound; 2],
+    }
+
+    /// Non-manifold facets found by one range: CSR offsets and tops, and (slot, index) pairs.
+    type NmFound = (Vec<u32>, Vec<u32>, Vec<(usize, u32)>);
+
+    /// `n` consecutive ranges of `0..nc` of about the same total `weight`.
+    fn balanced(nc: usize, n: usize, weight: impl Fn(usize) -> u64) -> Vec<std::ops::Range<usize>> {
+        let w: Vec<u64> = (0..nc).map(weight).collect();
+        let total: u64 = w.iter().sum();
+        let mut out = Vec::with_capacity(n);
+        let (mut start, mut acc) = (0usize, 0u64);
+        for (c, &x) in w.iter().enumerate() {
+            acc += x;
+            // close range i once the running total passes (i + 1) / n of the whole
+            if out.len() + 1 < n && acc * n as u64 >= total * (out.len() as u64 + 1) {
+                out.push(start..c + 1);
+                start = c + 1;
+            }
+        }
+        out.push(start..nc);
+        while out.len() < n {
+            out.push(nc..nc);
+        }
+        out
+    }
+
+    /// Splits `a` into the pieces of the bucket ranges `br` (`at(c)`: where bucket `c`
+    /// starts in `a`).
+    fn split_by<'a, T>(
+        a: &'a mut [T],
+        br: &[std::ops::Range<usize>],
+        at: impl Fn(usize) -> usize,
+    ) -> Vec<&'a mut [T]> {
+        let mut rest = a;
+        let mut pieces = Vec::with_capacity(br.len());
+        for r in br {
+            let (piece, tail) = std::mem::take(&mut rest).split_at_mut(at(r.end) - at(r.start));
+            pieces.push(piece);
+            rest = tail;
+        }
+        pieces
+    }
+
     /// The coarse bucket being processed: its union-find over its VT rows.
     struct Chunk<'p> {
         c: usize,
-        par: &'p mut Vec<u32>,
+        par: &'p mut [u32],
         /// Whether any union was made.
         joined: bool,
     }
@@ -1082,10 +1135,14 @@ mod low_dim {
         lay: Layout,
         ids: DimIds,
         /// Adjacency slot values, complemented (so that a zeroed array is all `NONE`),
-        /// dimension-local slot `li * (d + 1) + j`.
-        adj: &'a mut [u32],
+        /// dimension-local slot `li * (d + 1) + j`. Shared by the workers: each slot is
+        /// written by the one facet it holds (relaxed stores, plain moves on common targets).
+        adj: &'a [AtomicU32],
         nm_tops: Vec<u32>,
         nm_offsets: Vec<u32>,
+        /// The slots of the non-manifold facets found here, with the facet's index among
+        /// them; their values are written once all workers have numbered their facets.
+        nm_slots: Vec<(usize, u32)>,
     }
 
     fn run<W: Word>(
@@ -1112,123 +1169,218 @@ mod low_dim {
                 tuning.pack_links && vt_off[v1] - vt_off[v0] <= 1 << 16
             })
             .collect();
-        let mut links = Links {
-            area: Vec::new(),
-            start: Vec::with_capacity(nc + 1),
-            end: Vec::new(),
-            narrow,
-            over: vec![Vec::new(); nc],
-        };
+        // room for the links into each bucket (see `Links`)
+        let mut room = Vec::with_capacity(nc);
         let mut l = 0usize;
         for (v, &x) in finc.iter().enumerate() {
-            if v & ((1 << low) - 1) == 0 {
-                links.start.push(l);
-            }
-            l += if links.narrow[v >> low] {
+            l += if narrow[v >> low] {
                 x as usize / 2
             } else {
                 x as usize / 2 * 2
             };
+            if v & ((1 << low) - 1) == (1 << low) - 1 || v + 1 == nv {
+                room.push(l);
+                l = 0;
+            }
         }
-        links.start.push(l);
         drop(finc);
-        links.area = large_zeroed(l);
-        links.end = links.start[..nc].to_vec();
         // 2. VT by counting sort; facet words into coarse buckets
+        let n_ranges = parts.len().max(1);
         let total = *vt_off.last().unwrap_or(&0) as usize;
-        let (targets, recs) = if parts.is_empty() {
+        let (mut targets, recs) = if parts.is_empty() {
             scatter_blocks::<W>(k, blocks, t, &vt_off, &fcnt, lay)
         } else {
             scatter_parts::<W>(k, blocks, &vt_off, parts, lay)
         };
-        let mut targets = targets;
         debug_assert_eq!(targets.len(), total);
-        // 3, 4. per coarse bucket: group equal facets, then the clusters of its vertices by
-        //    union-find over their VT rows (roots kept, compacting `targets` in place)
-        let mut adj: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
-        for (d, a) in adj.iter_mut().enumerate() {
-            *a = large_zeroed((d + 3) * t.get(d + 2).map_or(0, |&x| x as usize));
+        // 3. per coarse bucket, in ranges of buckets run in parallel: group equal facets,
+        //    write the adjacency slots, join places of the bucket's own rows at once and
+        //    leave links for later buckets
+        let adj: [Vec<AtomicU32>; 2] = std::array::from_fn(|d| {
+            let len = (d + 3) * t.get(d + 2).map_or(0, |&x| x as usize);
+            large_with(len, || AtomicU32::new(0))
+        });
+        let ids = [DimIds::new(blocks, 2), DimIds::new(blocks, 3)];
+        let vlo = |c: usize| vt_off[(c << low).min(nv)] as usize;
+        // ranges with about the same number of facet words (buckets of small vertices hold
+        // more of them: a facet is filed under its smallest vertex)
+        let branges = balanced(nc, n_ranges, |c| {
+            let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
+            fcnt.iter()
+                .filter(|f| !f.is_empty())
+                .map(|f| (f[v1] - f[v0]) as u64)
+                .sum()
+        });
+        let mut par: Vec<u32> = large_zeroed(total);
+        let par_pieces = split_by(&mut par, &branges, vlo);
+        let vt = Vt {
+            off: &vt_off,
+            targets: &targets,
+        };
+        let grouped: Vec<Grouped> = branges
+            .par_iter()
+            .zip(par_pieces)
+            .map(|(br, par)| {
+                // links into the buckets from this range's start on
+                let mut start = vec![0usize; nc + 1];
+                for c in br.start..nc {
+                    start[c + 1] = start[c] + room[c];
+                }
+                let mut links = Links {
+                    area: large_zeroed(start[nc]),
+                    end: start[..nc].to_vec(),
+                    start,
+                    narrow: narrow.clone(),
+                    over: vec![Vec::new(); nc],
+                };
+                let mut groups = [
+                    Group::new(lay, ids[0].clone(), &adj[0]),
+                    Group::new(lay, ids[1].clone(), &adj[1]),
+                ];
+                let mut joined = Vec::with_capacity(br.len());
+                let mut tmp: Vec<W> = Vec::new();
+                let base = vlo(br.start);
+                for c in br.clone() {
+                    let bpar = &mut par[vlo(c) - base..vlo(c + 1) - base];
+                    for (i, x) in bpar.iter_mut().enumerate() {
+                        *x = i as u32;
+                    }
+                    let mut cur = Chunk {
+                        c,
+                        par: bpar,
+                        joined: false,
+                    };
+                    for (d, g) in groups.iter_mut().enumerate() {
+                        if !fcnt[d].is_empty() {
+                            g.chunk(
+                                d + 2,
+                                &recs[d],
+                                &fcnt[d],
+                                &vt,
+                                &mut cur,
+                                &mut tmp,
+                                &mut links,
+                            );
+                        }
+                    }
+                    joined.push(cur.joined);
+                }
+                let [g2, g3] = groups;
+                Grouped {
+                    links,
+                    joined,
+                    nm: [
+                        (g2.nm_offsets, g2.nm_tops, g2.nm_slots),
+                        (g3.nm_offsets, g3.nm_tops, g3.nm_slots),
+                    ],
+                }
+            })
+            .collect();
+        drop((recs, fcnt));
+        // the non-manifold facets, numbered range after range (the sequential order)
+        let mut nm: Vec<Csr> = vec![Csr::default(); dmax + 1];
+        for d in 0..2 {
+            if t.get(d + 2).is_none_or(|&x| x == 0) {
+                continue;
+            }
+            let mut offsets = vec![0u32];
+            let mut tops = Vec::new();
+            for gr in &grouped {
+                let (o, ts, slots) = &gr.nm[d];
+                let first = (offsets.len() - 1) as u32;
+                for &(slot, f) in slots {
+                    adj[d][slot].store(!(NM_BIT | (first + f)), Relaxed);
+                }
+                let base = tops.len() as u32;
+                offsets.extend(o[1..].iter().map(|&x| base + x));
+                tops.extend_from_slice(ts);
+            }
+            nm[d + 2] = Csr {
+                offsets,
+                targets: tops,
+            };
         }
-        let [adj2, adj3] = &mut adj;
-        let mut groups = [
-            Group::new(lay, DimIds::new(blocks, 2), adj2),
-            Group::new(lay, DimIds::new(blocks, 3), adj3),
-        ];
-        let mut tmp: Vec<W> = Vec::new();
+        // 4. per coarse bucket, in parallel ranges: the links into it from every range, then
+        //    the clusters of its vertices (roots kept at the front of the range's VT); ranges
+        //    of about the same number of places and links
+        let joined: Vec<bool> = grouped
+            .iter()
+            .flat_map(|g| g.joined.iter().copied())
+            .collect();
+        let branges = balanced(nc, n_ranges, |c| {
+            let links: usize = grouped
+                .iter()
+                .map(|g| g.links.end[c] - g.links.start[c] + g.links.over[c].len())
+                .sum();
+            (vlo(c + 1) - vlo(c) + links) as u64
+        });
+        let par_pieces = split_by(&mut par, &branges, vlo);
+        let t_pieces = split_by(&mut targets, &branges, vlo);
+        let kept: Vec<(usize, Vec<u32>)> = branges
+            .par_iter()
+            .zip(par_pieces.into_par_iter().zip(t_pieces))
+            .map(|(br, (par, tg))| {
+                let base = vlo(br.start);
+                let mut out = 0usize;
+                let mut offs =
+                    Vec::with_capacity((br.end << low).min(nv) - (br.start << low).min(nv));
+                for c in br.clone() {
+                    let (lo, hi) = (vlo(c) - base, vlo(c + 1) - base);
+                    let bpar = &mut par[lo..hi];
+                    let mut joined = joined[c];
+                    for gr in &grouped {
+                        let lk = &gr.links;
+                        let ls = &lk.area[lk.start[c]..lk.end[c]];
+                        joined |= !ls.is_empty() || !lk.over[c].is_empty();
+                        if lk.narrow[c] {
+                            for &p in ls {
+                                union(bpar, p >> 16, p & 0xffff);
+                            }
+                        } else {
+                            for p in ls.chunks_exact(2) {
+                                union(bpar, p[0], p[1]);
+                            }
+                        }
+                        for &[x, y] in &lk.over[c] {
+                            union(bpar, x, y);
+                        }
+                    }
+                    let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
+                    if !joined {
+                        tg.copy_within(lo..hi, out);
+                        for v in v0..v1 {
+                            offs.push((out + (vt_off[v + 1] as usize - base - lo)) as u32);
+                        }
+                        out += hi - lo;
+                        continue;
+                    }
+                    let mut i = 0usize;
+                    for v in v0..v1 {
+                        let e = vt_off[v + 1] as usize - base - lo;
+                        while i < e {
+                            if bpar[i] == i as u32 {
+                                tg[out] = tg[lo + i];
+                                out += 1;
+                            }
+                            i += 1;
+                        }
+                        offs.push(out as u32);
+                    }
+                }
+                (out, offs)
+            })
+            .collect();
+        drop((grouped, par));
+        // the ranges' kept references, packed
         let mut offsets = Vec::with_capacity(nv + 1);
         offsets.push(0u32);
         let mut out = 0usize;
-        let mut par: Vec<u32> = Vec::new();
-        for c in 0..nc {
-            let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
-            let (lo, hi) = (vt_off[v0] as usize, vt_off[v1] as usize);
-            par.clear();
-            par.extend(0..(hi - lo) as u32);
-            let mut cur = Chunk {
-                c,
-                par: &mut par,
-                joined: false,
-            };
-            for (d, g) in groups.iter_mut().enumerate() {
-                if !fcnt[d].is_empty() {
-                    let vt = Vt {
-                        off: &vt_off,
-                        targets: &targets,
-                    };
-                    g.chunk(
-                        d + 2,
-                        &recs[d],
-                        &fcnt[d],
-                        &vt,
-                        &mut cur,
-                        &mut tmp,
-                        &mut links,
-                    );
-                }
-            }
-            let ls = &links.area[links.start[c]..links.end[c]];
-            let joined = cur.joined || !ls.is_empty() || !links.over[c].is_empty();
-            if !joined {
-                targets.copy_within(lo..hi, out);
-                for v in v0..v1 {
-                    offsets.push((out + (vt_off[v + 1] as usize - lo)) as u32);
-                }
-                out += hi - lo;
-                continue;
-            }
-            if links.narrow[c] {
-                for &p in ls {
-                    union(&mut par, p >> 16, p & 0xffff);
-                }
-            } else {
-                for p in ls.chunks_exact(2) {
-                    union(&mut par, p[0], p[1]);
-                }
-            }
-            for &[x, y] in &links.over[c] {
-                union(&mut par, x, y);
-            }
-            links.over[c] = Vec::new();
-            let mut i = 0usize;
-            for v in v0..v1 {
-                let e = vt_off[v + 1] as usize - lo;
-                while i < e {
-                    if par[i] == i as u32 {
-                        targets[out] = targets[lo + i];
-                        out += 1;
-                    }
-                    i += 1;
-                }
-                offsets.push(out as u32);
-            }
+        for (br, (n_kept, offs)) in branges.iter().zip(kept) {
+            let base = vlo(br.start);
+            targets.copy_within(base..base + n_kept, out);
+            offsets.extend(offs.iter().map(|&x| x + out as u32));
+            out += n_kept;
         }
-        let mut nm: Vec<Csr> = vec![Csr::default(); dmax + 1];
-        for (d, g) in groups.into_iter().enumerate() {
-            if !fcnt[d].is_empty() {
-                nm[d + 2] = g.finish();
-            }
-        }
-        drop((recs, tmp, fcnt, links));
         targets.truncate(out);
         targets.shrink_to_fit();
         // 5. the top records: vertices (input order), then the adjacency slots
@@ -1243,7 +1395,7 @@ mod low_dim {
             let mut data = Vec::with_capacity(2 * b.vertices.len());
             for (c, s) in b.vertices.chunks_exact(n).zip(a.chunks_exact(n)) {
                 data.extend_from_slice(c);
-                data.extend(s.iter().map(|&x| !x));
+                data.extend(s.iter().map(|x| !x.load(Relaxed)));
             }
             blk.data = data;
         }
@@ -1492,20 +1644,14 @@ mod low_dim {
     }
 
     impl<'a> Group<'a> {
-        fn new(lay: Layout, ids: DimIds, adj: &'a mut [u32]) -> Self {
+        fn new(lay: Layout, ids: DimIds, adj: &'a [AtomicU32]) -> Self {
             Group {
                 lay,
                 ids,
                 adj,
                 nm_tops: Vec::new(),
                 nm_offsets: vec![0],
-            }
-        }
-
-        fn finish(self) -> Csr {
-            Csr {
-                offsets: self.nm_offsets,
-                targets: self.nm_tops,
+                nm_slots: Vec::new(),
             }
         }
 
@@ -1616,19 +1762,19 @@ mod low_dim {
                     let g = &bucket[i..j];
                     if g.len() == 2 {
                         let ((ca, ja), (cb, jb)) = (top(g[0]), top(g[1]));
-                        self.adj[self.ids.local(ca) * n + ja] = !cb;
-                        self.adj[self.ids.local(cb) * n + jb] = !ca;
+                        self.adj[self.ids.local(ca) * n + ja].store(!cb, Relaxed);
+                        self.adj[self.ids.local(cb) * n + jb].store(!ca, Relaxed);
                         for (q, &w) in f.iter().enumerate() {
                             let (x, y) = (place(g[0], q), place(g[1], q));
                             cur.link(links, vt.off, lay.low, w, x, y, false);
                         }
                     } else {
-                        let fid = NM_BIT | (self.nm_offsets.len() - 1) as u32;
+                        let fid = (self.nm_offsets.len() - 1) as u32;
                         let s0 = self.nm_tops.len();
                         for &r in g {
                             let (c, jr) = top(r);
                             self.nm_tops.push(c);
-                            self.adj[self.ids.local(c) * n + jr] = !fid;
+                            self.nm_slots.push((self.ids.local(c) * n + jr, fid));
                         }
                         self.nm_tops[s0..].sort_unstable();
                         self.nm_offsets.push(self.nm_tops.len() as u32);
