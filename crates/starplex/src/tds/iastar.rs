@@ -698,6 +698,14 @@ impl IaStar {
 ///    rows; the roots (the smallest id of each cluster, top edges and top vertices alone) are
 ///    the vertices' references;
 /// 5. the top records, in order.
+///
+/// On large inputs the passes run in parallel (rayon), with the same result for any number of
+/// workers: passes 1 and 2 over consecutive parts of a one-block complex (each part writes its
+/// own VT rows, with places counted from the earlier parts, and its own facet words; the rows
+/// are then joined part after part), pass 3 over ranges of coarse buckets holding about the
+/// same number of facet words (adjacency slots are relaxed atomic stores, each slot written by
+/// its one facet; non-manifold facets are numbered range after range), and pass 4 over ranges
+/// holding about the same number of places and links.
 mod low_dim {
     use super::{Block, Csr, IndexedComplex, NM_BIT, NONE};
 
@@ -718,10 +726,10 @@ mod low_dim {
         pub wide: bool,
         /// Pack a link into one word in buckets with fewer than 2^16 places.
         pub pack_links: bool,
-        /// Number of parts of the input counted and scattered in parallel (passes 1 and 2);
-        /// 0: one per worker thread (at most 4) for 2^17 tops or more. Used only when the
-        /// complex is one block of triangles or tetrahedra; the result is the same for any
-        /// number.
+        /// Number of parallel parts: of the input in passes 1 and 2 (only when the complex is
+        /// one block of triangles or tetrahedra), of the coarse buckets in passes 3 and 4 (any
+        /// complex). 0: one per worker thread (at most 4) for 2^17 tops or more, else 1. The
+        /// result is the same for any number.
         pub parts: usize,
     }
 
@@ -751,17 +759,22 @@ mod low_dim {
         fc: Vec<u32>,
     }
 
+    /// The number of parallel parts for `n` tops.
+    fn n_parts(n: usize, tuning: Tuning) -> usize {
+        match tuning.parts {
+            0 if n >= 1 << 17 => rayon::current_num_threads().clamp(1, 4),
+            0 => 1,
+            p => p.min(n.max(1)),
+        }
+    }
+
     /// The parts of pass 1 and 2 (empty: one sequential pass over every block).
     fn part_ranges(k: &IndexedComplex, tuning: Tuning) -> Vec<std::ops::Range<usize>> {
         let [b] = k.blocks() else {
             return Vec::new();
         };
         let n = b.len();
-        let p = match tuning.parts {
-            0 if n >= 1 << 17 => rayon::current_num_threads().clamp(1, 4),
-            0 => 1,
-            p => p.min(n.max(1)),
-        };
+        let p = n_parts(n, tuning);
         if p <= 1 || !matches!(b.kind.dim(), 2 | 3) {
             return Vec::new();
         }
@@ -1185,7 +1198,7 @@ mod low_dim {
         }
         drop(finc);
         // 2. VT by counting sort; facet words into coarse buckets
-        let n_ranges = parts.len().max(1);
+        let n_ranges = n_parts(k.n_cells(), tuning);
         let total = *vt_off.last().unwrap_or(&0) as usize;
         let (mut targets, recs) = if parts.is_empty() {
             scatter_blocks::<W>(k, blocks, t, &vt_off, &fcnt, lay)
@@ -2399,18 +2412,23 @@ mod tests {
             let general = IaStar::build(&k, None).unwrap();
             // the default settings, several vertices per coarse bucket, 128-bit words, and
             // links of two words
-            for (coarse_bits, wide, pack_links) in [
-                (10, false, true),
-                (2, false, true),
-                (1, true, true),
-                (10, true, false),
-                (2, false, false),
+            // (passes 1 and 2 run in parts only on one-block complexes; passes 3 and 4 run in
+            // ranges of buckets on any)
+            for (coarse_bits, wide, pack_links, parts) in [
+                (10, false, true, 1),
+                (2, false, true, 1),
+                (1, true, true, 1),
+                (10, true, false, 1),
+                (2, false, false, 1),
+                (10, false, true, 2),
+                (1, false, false, 3),
+                (2, true, true, 5),
             ] {
                 let tu = low_dim::Tuning {
                     coarse_bits,
                     wide,
                     pack_links,
-                    parts: 1,
+                    parts,
                 };
                 let fast = IaStar::build(&k, Some(tu)).unwrap();
                 let at = format!("case {case}, {tu:?}");
