@@ -781,14 +781,23 @@ mod low_dim {
         (0..p).map(|i| i * n / p..(i + 1) * n / p).collect()
     }
 
-    /// Pass 1 over the tops `verts` of dimension `d` ≥ 2: degrees, facet incidences, and
-    /// facets by smallest vertex (at `v + 1`).
-    fn count_tops(verts: &[u32], d: usize, deg: &mut [u32], finc: &mut [u32], fc: &mut [u32]) {
+    /// Pass 1 over the tops `verts` of dimension `d` ≥ 2: degrees, facet incidences (if
+    /// asked: in a one-dimension complex they are `d` times the degrees), and facets by
+    /// smallest vertex (at `v + 1`).
+    fn count_tops(
+        verts: &[u32],
+        d: usize,
+        deg: &mut [u32],
+        mut finc: Option<&mut [u32]>,
+        fc: &mut [u32],
+    ) {
         for c in verts.chunks_exact(d + 1) {
             let (mut m0, mut m1) = (u32::MAX, u32::MAX);
             for &v in c {
                 deg[v as usize] += 1;
-                finc[v as usize] += d as u32;
+                if let Some(f) = finc.as_deref_mut() {
+                    f[v as usize] += d as u32;
+                }
                 if v < m0 {
                     m1 = m0;
                     m0 = v;
@@ -935,33 +944,32 @@ mod low_dim {
                     }
                     continue;
                 }
-                count_tops(&b.vertices, d, &mut deg, &mut finc, &mut fcnt[d - 2]);
+                count_tops(&b.vertices, d, &mut deg, Some(&mut finc), &mut fcnt[d - 2]);
             }
         } else {
             use rayon::prelude::*;
             let b = &k.blocks()[0];
             let d = b.kind.dim();
-            let counted: Vec<(PartCounts, Vec<u32>)> = ranges
+            let counted: Vec<PartCounts> = ranges
                 .into_par_iter()
                 .map(|r| {
-                    let (mut deg, mut finc, mut fc) =
-                        (vec![0u32; nv], vec![0u32; nv], vec![0u32; nv + 1]);
+                    let (mut deg, mut fc) = (vec![0u32; nv], vec![0u32; nv + 1]);
                     let verts = &b.vertices[r.start * (d + 1)..r.end * (d + 1)];
-                    count_tops(verts, d, &mut deg, &mut finc, &mut fc);
-                    (PartCounts { range: r, deg, fc }, finc)
+                    count_tops(verts, d, &mut deg, None, &mut fc);
+                    PartCounts { range: r, deg, fc }
                 })
                 .collect();
-            for (pc, pf) in counted {
+            for pc in counted {
                 for (x, y) in deg.iter_mut().zip(&pc.deg) {
-                    *x += y;
-                }
-                for (x, y) in finc.iter_mut().zip(&pf) {
                     *x += y;
                 }
                 for (x, y) in fcnt[d - 2].iter_mut().zip(&pc.fc) {
                     *x += y;
                 }
                 parts.push(pc);
+            }
+            for (f, &x) in finc.iter_mut().zip(&deg) {
+                *f = d as u32 * x;
             }
         }
         let maxdeg = deg.iter().copied().max().unwrap_or(0);
