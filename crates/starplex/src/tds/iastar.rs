@@ -2381,18 +2381,34 @@ mod tests {
     use super::*;
     use crate::complex::{BuildOptions, ComplexBuilder};
 
+    /// A seeded xorshift generator: `next(m)` is in `0..m`.
+    fn xorshift(mut x: u64) -> impl FnMut(u64) -> u64 {
+        move |m| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        }
+    }
+
+    /// The two builds hold the same structure: references, per-vertex references,
+    /// non-manifold facets and every top record.
+    fn assert_same(fast: &IaStar, general: &IaStar, at: &str) {
+        assert_eq!(fast.refs(), general.refs(), "{at}");
+        assert_eq!(fast.bytes(), general.bytes(), "{at}");
+        assert_eq!(fast.vrefs, general.vrefs, "{at}");
+        assert_eq!(fast.nm, general.nm, "{at}");
+        for (a, b) in fast.blocks.iter().zip(&general.blocks) {
+            assert!(a.data == b.data, "{at}");
+        }
+    }
+
     /// The construction for dimension ≤ 3 and the general one give the same structure, on
     /// random mixed complexes with non-manifold faces, several blocks per dimension and
     /// input orders that are not sorted.
     #[test]
     fn low_dim_build_equals_general_build() {
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         for case in 0..300 {
             let nv = 3 + next(if case < 200 { 8 } else { 40 }) as usize;
             let mut b = ComplexBuilder::new(1).unwrap();
@@ -2439,14 +2455,7 @@ mod tests {
                     parts,
                 };
                 let fast = IaStar::build(&k, Some(tu)).unwrap();
-                let at = format!("case {case}, {tu:?}");
-                assert_eq!(fast.refs(), general.refs(), "{at}");
-                assert_eq!(fast.bytes(), general.bytes(), "{at}");
-                assert_eq!(fast.vrefs, general.vrefs, "{at}");
-                assert_eq!(fast.nm, general.nm, "{at}");
-                for (a, b) in fast.blocks.iter().zip(&general.blocks) {
-                    assert_eq!(a.data, b.data, "{at}");
-                }
+                assert_same(&fast, &general, &format!("case {case}, {tu:?}"));
             }
         }
     }
@@ -2455,13 +2464,7 @@ mod tests {
     /// pure triangle and tetrahedral complexes (one block each), whatever the number of parts.
     #[test]
     fn low_dim_build_in_parts_equals_general_build() {
-        let mut x = 0x1234_5678_9abc_def1u64;
-        let mut next = |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut next = xorshift(0x1234_5678_9abc_def1);
         for case in 0..120 {
             let d = 2 + next(2) as usize;
             let nv = d + 1 + next(30) as usize;
@@ -2494,12 +2497,7 @@ mod tests {
                     ..low_dim::Tuning::DEFAULT
                 };
                 let fast = IaStar::build(&k, Some(tu)).unwrap();
-                let at = format!("case {case}, {tu:?}");
-                assert_eq!(fast.vrefs, general.vrefs, "{at}");
-                assert_eq!(fast.nm, general.nm, "{at}");
-                for (a, b) in fast.blocks.iter().zip(&general.blocks) {
-                    assert_eq!(a.data, b.data, "{at}");
-                }
+                assert_same(&fast, &general, &format!("case {case}, {tu:?}"));
             }
         }
     }
@@ -2524,12 +2522,8 @@ mod tests {
         let k = b.build(&BuildOptions::default()).unwrap().0;
         let general = IaStar::build(&k, None).unwrap();
         let fast = IaStar::build(&k, Some(low_dim::Tuning::DEFAULT)).unwrap();
-        assert_eq!(fast.vrefs, general.vrefs);
-        assert_eq!(fast.nm, general.nm);
+        assert_same(&fast, &general, "cone");
         assert!(fast.n_nm_faces(3) > 0);
-        for (a, b) in fast.blocks.iter().zip(&general.blocks) {
-            assert!(a.data == b.data);
-        }
     }
 
     /// The same on the medium meshes of `$STARPLEX_DATA` (slow in a debug build:
@@ -2557,12 +2551,7 @@ mod tests {
                     ..low_dim::Tuning::DEFAULT
                 };
                 let fast = IaStar::build(&k, Some(tu)).unwrap();
-                assert_eq!(fast.refs(), general.refs(), "{name}");
-                assert_eq!(fast.vrefs, general.vrefs, "{name}");
-                assert_eq!(fast.nm, general.nm, "{name}");
-                for (a, b) in fast.blocks.iter().zip(&general.blocks) {
-                    assert!(a.data == b.data, "{name}");
-                }
+                assert_same(&fast, &general, name);
             }
         }
     }
