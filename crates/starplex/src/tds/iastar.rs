@@ -1051,11 +1051,10 @@ mod low_dim {
     }
 
     /// What grouping a range of coarse buckets leaves: its links into buckets from its start
-    /// on, whether each of its buckets joined places at once, and per dimension 2 and 3 its
-    /// non-manifold facets (offsets, tops, and the slots to write).
+    /// on, and per dimension 2 and 3 its non-manifold facets (offsets, tops, and the slots to
+    /// write).
     struct Grouped {
         links: Links,
-        joined: Vec<bool>,
         nm: [NmFound; 2],
     }
 
@@ -1100,17 +1099,14 @@ mod low_dim {
         pieces
     }
 
-    /// The coarse bucket being processed: its union-find over its VT rows.
-    struct Chunk<'p> {
+    /// The coarse bucket being grouped.
+    struct Chunk {
         c: usize,
-        par: &'p mut [u32],
-        /// Whether any union was made.
-        joined: bool,
     }
 
-    impl Chunk<'_> {
-        /// Joins places `x` and `y` of the VT row of `w`: now if `w` is in this bucket, else
-        /// through `links` (`nm`: a link of a non-manifold facet).
+    impl Chunk {
+        /// Leaves a link joining places `x` and `y` of the VT row of `w` for the bucket of `w`
+        /// (`nm`: a link of a non-manifold facet).
         #[inline(always)]
         #[allow(clippy::too_many_arguments)]
         fn link(
@@ -1126,10 +1122,8 @@ mod low_dim {
             let cw = (w >> low) as usize;
             let base = vt_off[w as usize] - vt_off[cw << low];
             let (x, y) = (base + x, base + y);
-            if cw == self.c {
-                union(self.par, x, y);
-                self.joined = true;
-            } else if nm {
+            debug_assert!(cw >= self.c, "links go to the bucket or later ones");
+            if nm {
                 links.over[cw].push([x, y]);
             } else {
                 let e = &mut links.end[cw];
@@ -1232,16 +1226,13 @@ mod low_dim {
                 .map(|f| (f[v1] - f[v0]) as u64)
                 .sum()
         });
-        let mut par: Vec<u32> = large_zeroed(total);
-        let par_pieces = split_by(&mut par, &branges, vlo);
         let vt = Vt {
             off: &vt_off,
             targets: &targets,
         };
         let grouped: Vec<Grouped> = branges
             .par_iter()
-            .zip(par_pieces)
-            .map(|(br, par)| {
+            .map(|br| {
                 // links into the buckets from this range's start on
                 let mut start = vec![0usize; nc + 1];
                 for c in br.start..nc {
@@ -1258,19 +1249,9 @@ mod low_dim {
                     Group::new(lay, ids[0].clone(), &adj[0]),
                     Group::new(lay, ids[1].clone(), &adj[1]),
                 ];
-                let mut joined = Vec::with_capacity(br.len());
                 let mut tmp: Vec<W> = Vec::new();
-                let base = vlo(br.start);
                 for c in br.clone() {
-                    let bpar = &mut par[vlo(c) - base..vlo(c + 1) - base];
-                    for (i, x) in bpar.iter_mut().enumerate() {
-                        *x = i as u32;
-                    }
-                    let mut cur = Chunk {
-                        c,
-                        par: bpar,
-                        joined: false,
-                    };
+                    let mut cur = Chunk { c };
                     for (d, g) in groups.iter_mut().enumerate() {
                         if !fcnt[d].is_empty() {
                             g.chunk(
@@ -1284,12 +1265,10 @@ mod low_dim {
                             );
                         }
                     }
-                    joined.push(cur.joined);
                 }
                 let [g2, g3] = groups;
                 Grouped {
                     links,
-                    joined,
                     nm: [
                         (g2.nm_offsets, g2.nm_tops, g2.nm_slots),
                         (g3.nm_offsets, g3.nm_tops, g3.nm_slots),
@@ -1324,10 +1303,6 @@ mod low_dim {
         // 4. per coarse bucket, in parallel ranges: the links into it from every range, then
         //    the clusters of its vertices (roots kept at the front of the range's VT); ranges
         //    of about the same number of places and links
-        let joined: Vec<bool> = grouped
-            .iter()
-            .flat_map(|g| g.joined.iter().copied())
-            .collect();
         let branges = balanced(nc, n_ranges, |c| {
             let links: usize = grouped
                 .iter()
@@ -1335,20 +1310,22 @@ mod low_dim {
                 .sum();
             (vlo(c + 1) - vlo(c) + links) as u64
         });
-        let par_pieces = split_by(&mut par, &branges, vlo);
         let t_pieces = split_by(&mut targets, &branges, vlo);
         let kept: Vec<(usize, Vec<u32>)> = branges
             .par_iter()
-            .zip(par_pieces.into_par_iter().zip(t_pieces))
-            .map(|(br, (par, tg))| {
+            .zip(t_pieces)
+            .map(|(br, tg)| {
+                let mut par: Vec<u32> = Vec::new();
                 let base = vlo(br.start);
                 let mut out = 0usize;
                 let mut offs =
                     Vec::with_capacity((br.end << low).min(nv) - (br.start << low).min(nv));
                 for c in br.clone() {
                     let (lo, hi) = (vlo(c) - base, vlo(c + 1) - base);
-                    let bpar = &mut par[lo..hi];
-                    let mut joined = joined[c];
+                    par.clear();
+                    par.extend(0..(hi - lo) as u32);
+                    let bpar = &mut par[..];
+                    let mut joined = false;
                     for gr in &grouped {
                         let lk = &gr.links;
                         let ls = &lk.area[lk.start[c]..lk.end[c]];
@@ -1391,7 +1368,7 @@ mod low_dim {
                 (out, offs)
             })
             .collect();
-        drop((grouped, par));
+        drop(grouped);
         // the ranges' kept references, packed
         let mut offsets = Vec::with_capacity(nv + 1);
         offsets.push(0u32);
