@@ -947,7 +947,6 @@ mod low_dim {
                 count_tops(&b.vertices, d, &mut deg, Some(&mut finc), &mut fcnt[d - 2]);
             }
         } else {
-            use rayon::prelude::*;
             let b = &k.blocks()[0];
             let d = b.kind.dim();
             let counted: Vec<PartCounts> = ranges
@@ -1502,7 +1501,6 @@ mod low_dim {
         parts: Vec<PartCounts>,
         lay: Layout,
     ) -> (Vec<u32>, [Vec<Part<W>>; 2]) {
-        use rayon::prelude::*;
         let nv = vt_off.len() - 1;
         let low = lay.low;
         let nc = if nv == 0 { 0 } else { ((nv - 1) >> low) + 1 };
