@@ -1098,40 +1098,24 @@ mod low_dim {
         pieces
     }
 
-    /// The coarse bucket being grouped.
-    struct Chunk {
-        c: usize,
-    }
-
-    impl Chunk {
+    impl Links {
         /// Leaves a link joining places `x` and `y` of the VT row of `w` for the bucket of `w`
         /// (`nm`: a link of a non-manifold facet).
         #[inline(always)]
-        #[allow(clippy::too_many_arguments)]
-        fn link(
-            &mut self,
-            links: &mut Links,
-            vt_off: &[u32],
-            low: u32,
-            w: u32,
-            x: u32,
-            y: u32,
-            nm: bool,
-        ) {
+        fn push(&mut self, vt_off: &[u32], low: u32, w: u32, x: u32, y: u32, nm: bool) {
             let cw = (w >> low) as usize;
             let base = vt_off[w as usize] - vt_off[cw << low];
             let (x, y) = (base + x, base + y);
-            debug_assert!(cw >= self.c, "links go to the bucket or later ones");
             if nm {
-                links.over[cw].push([x, y]);
+                self.over[cw].push([x, y]);
             } else {
-                let e = &mut links.end[cw];
-                if links.narrow[cw] {
-                    links.area[*e] = x << 16 | y;
+                let e = &mut self.end[cw];
+                if self.narrow[cw] {
+                    self.area[*e] = x << 16 | y;
                     *e += 1;
                 } else {
-                    links.area[*e] = x;
-                    links.area[*e + 1] = y;
+                    self.area[*e] = x;
+                    self.area[*e + 1] = y;
                     *e += 2;
                 }
             }
@@ -1250,18 +1234,9 @@ mod low_dim {
                 ];
                 let mut tmp: Vec<W> = Vec::new();
                 for c in br.clone() {
-                    let mut cur = Chunk { c };
                     for (d, g) in groups.iter_mut().enumerate() {
                         if !fcnt[d].is_empty() {
-                            g.chunk(
-                                d + 2,
-                                &recs[d],
-                                &fcnt[d],
-                                &vt,
-                                &mut cur,
-                                &mut tmp,
-                                &mut links,
-                            );
+                            g.chunk(d + 2, &recs[d], &fcnt[d], &vt, c, &mut tmp, &mut links);
                         }
                     }
                 }
@@ -1651,7 +1626,7 @@ mod low_dim {
             }
         }
 
-        /// Coarse bucket `cur.c` of the facets of the top `d`-simplices: a counting sort by
+        /// Coarse bucket `c` of the facets of the top `d`-simplices: a counting sort by
         /// smallest vertex into `tmp`, then each vertex's facets sorted and grouped.
         #[allow(clippy::too_many_arguments)]
         fn chunk<W: Word>(
@@ -1660,7 +1635,7 @@ mod low_dim {
             parts: &[Part<W>],
             fcnt: &[u32],
             vt: &Vt,
-            cur: &mut Chunk,
+            c: usize,
             tmp: &mut Vec<W>,
             links: &mut Links,
         ) {
@@ -1668,12 +1643,11 @@ mod low_dim {
             let low = self.lay.low;
             let lowmask = mask(low);
             let msh = self.lay.msh(d);
-            let (v0, v1) = (cur.c << low, ((cur.c + 1) << low).min(nv));
+            let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
             let (s, e) = (fcnt[v0] as usize, fcnt[v1] as usize);
             if e - s < 2 {
                 return;
             }
-            let c = cur.c;
             let srcs = parts
                 .iter()
                 .map(|p| &p.recs[p.start[c] as usize..p.start[c + 1] as usize]);
@@ -1701,9 +1675,9 @@ mod low_dim {
                 let (a, b) = (fcnt[v] as usize - s, fcnt[v + 1] as usize - s);
                 if b - a >= 2 {
                     if d == 2 {
-                        self.bucket::<W, 2>(v as u32, &mut tmp[a..b], vt, cur, links);
+                        self.bucket::<W, 2>(v as u32, &mut tmp[a..b], vt, links);
                     } else {
-                        self.bucket::<W, 3>(v as u32, &mut tmp[a..b], vt, cur, links);
+                        self.bucket::<W, 3>(v as u32, &mut tmp[a..b], vt, links);
                     }
                 }
             }
@@ -1715,7 +1689,6 @@ mod low_dim {
             m: u32,
             bucket: &mut [W],
             vt: &Vt,
-            cur: &mut Chunk,
             links: &mut Links,
         ) {
             let lay = self.lay;
@@ -1762,7 +1735,7 @@ mod low_dim {
                         self.adj[self.ids.local(cb) * n + jb].store(!ca, Relaxed);
                         for (q, &w) in f.iter().enumerate() {
                             let (x, y) = (place(g[0], q), place(g[1], q));
-                            cur.link(links, vt.off, lay.low, w, x, y, false);
+                            links.push(vt.off, lay.low, w, x, y, false);
                         }
                     } else {
                         let fid = (self.nm_offsets.len() - 1) as u32;
@@ -1777,7 +1750,7 @@ mod low_dim {
                         for p in g.windows(2) {
                             for (q, &w) in f.iter().enumerate() {
                                 let (x, y) = (place(p[0], q), place(p[1], q));
-                                cur.link(links, vt.off, lay.low, w, x, y, true);
+                                links.push(vt.off, lay.low, w, x, y, true);
                             }
                         }
                     }
