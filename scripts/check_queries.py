@@ -9,12 +9,9 @@ usage: scripts/check_queries.py DATA_DIR [SIZE ...] [--structure S]
     only are skipped on CP complexes). Needs `cargo build --release -p starplex-cli`.
 Prints one line per dataset and exits 1 on any mismatch.
 """
-import glob, json, os, subprocess, sys, time
+import json, subprocess, sys, time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-ORACLE = os.path.join(ROOT, '..', 'shared', 'datasets', 'oracle')
-BIN = os.path.join(ROOT, 'target', 'release', 'starplex')
+from datasets import BIN, with_oracles
 
 
 def norm(v):
@@ -35,54 +32,47 @@ def main():
     data = args[0]
     sizes = args[1:] or ['small', 'medium']
     bad = 0
-    for size in sizes:
-        for spx in sorted(glob.glob(os.path.join(data, size, '*', '*.spx'))):
-            name = os.path.basename(spx)[:-4]
-            o_path = os.path.join(ORACLE, name + '.json')
-            if not os.path.exists(o_path):
-                print('%-20s no oracle' % name)
-                continue
-            o = json.load(open(o_path))
-            qs = o.get('vertex_queries') or []
-            simplicial = o.get('top_cells') is not None and all(
-                t == 'line' or t == 'tri' or t == 'tet' or t.startswith('simplex_') for t in o['top_cells'])
-            if not simplicial and structure not in ('stellar', 'vt'):
-                print('%-20s %-7s skipped (%s holds simplices only)' % (name, size, structure))
-                continue
-            problems = []
-            t0 = time.time()
-            cmd = [BIN, '--quiet', 'query', spx, '--structure', structure,
-                   '--relation', 'link' if simplicial else 'vv', '--json', '--vertex']
-            cmd += [str(q['vertex']) for q in qs]
-            p = subprocess.run(cmd, capture_output=True, text=True)
-            if p.returncode != 0:
-                problems.append('query failed: ' + p.stderr.strip())
-            else:
-                got = json.loads(p.stdout)
-                keys = ['incident_top_cells', 'vv']
-                if simplicial:
-                    keys += ['link_f_vector', 'link_maximal_simplices']
-                for g, q in zip(got, qs):
-                    for k in keys:
-                        # medium oracles omit what was too costly to compute (sierp: vv, links)
-                        if k in q and norm(g.get(k)) != norm(q.get(k)):
-                            problems.append('vertex %s %s' % (q['vertex'], k))
-            tq = time.time() - t0
-            t0 = time.time()
-            p = subprocess.run([BIN, '--quiet', 'validate', spx, '--json'], capture_output=True, text=True)
-            if p.returncode != 0:
-                problems.append('validate failed: ' + p.stderr.strip())
-            else:
-                v = json.loads(p.stdout)
-                for k in ['n_connected_components', 'n_boundary_faces', 'n_non_manifold_vertices',
-                          'n_non_manifold_edges']:
-                    if o.get(k) is not None and v.get(k) != o[k]:
-                        problems.append('%s %s != oracle %s' % (k, v.get(k), o[k]))
-            tv = time.time() - t0
-            status = 'OK' if not problems else 'MISMATCH ' + '; '.join(problems[:5])
-            bad += bool(problems)
-            print('%-20s %-7s %d vertices  query %.2fs  validate %.2fs  %s'
-                  % (name, size, len(qs), tq, tv, status), flush=True)
+    for size, name, spx, o in with_oracles(data, sizes):
+        qs = o.get('vertex_queries') or []
+        simplicial = o.get('top_cells') is not None and all(
+            t == 'line' or t == 'tri' or t == 'tet' or t.startswith('simplex_') for t in o['top_cells'])
+        if not simplicial and structure not in ('stellar', 'vt'):
+            print('%-20s %-7s skipped (%s holds simplices only)' % (name, size, structure))
+            continue
+        problems = []
+        t0 = time.time()
+        cmd = [BIN, '--quiet', 'query', spx, '--structure', structure,
+               '--relation', 'link' if simplicial else 'vv', '--json', '--vertex']
+        cmd += [str(q['vertex']) for q in qs]
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        if p.returncode != 0:
+            problems.append('query failed: ' + p.stderr.strip())
+        else:
+            got = json.loads(p.stdout)
+            keys = ['incident_top_cells', 'vv']
+            if simplicial:
+                keys += ['link_f_vector', 'link_maximal_simplices']
+            for g, q in zip(got, qs):
+                for k in keys:
+                    # medium oracles omit what was too costly to compute (sierp: vv, links)
+                    if k in q and norm(g.get(k)) != norm(q.get(k)):
+                        problems.append('vertex %s %s' % (q['vertex'], k))
+        tq = time.time() - t0
+        t0 = time.time()
+        p = subprocess.run([BIN, '--quiet', 'validate', spx, '--json'], capture_output=True, text=True)
+        if p.returncode != 0:
+            problems.append('validate failed: ' + p.stderr.strip())
+        else:
+            v = json.loads(p.stdout)
+            for k in ['n_connected_components', 'n_boundary_faces', 'n_non_manifold_vertices',
+                      'n_non_manifold_edges']:
+                if o.get(k) is not None and v.get(k) != o[k]:
+                    problems.append('%s %s != oracle %s' % (k, v.get(k), o[k]))
+        tv = time.time() - t0
+        status = 'OK' if not problems else 'MISMATCH ' + '; '.join(problems[:5])
+        bad += bool(problems)
+        print('%-20s %-7s %d vertices  query %.2fs  validate %.2fs  %s'
+              % (name, size, len(qs), tq, tv, status), flush=True)
     sys.exit(1 if bad else 0)
 
 
