@@ -2,7 +2,7 @@
 use std::time::Instant;
 
 use serde_json::{json, Value};
-use starplex::stellar::ValidationReport;
+use starplex::algo::validate::ValidationReport;
 
 use crate::cmd_stellar::{build_tree, with_threads};
 use crate::common::{self, CliError, Ctx, InputArgs};

@@ -9,7 +9,7 @@ use std::collections::BTreeSet;
 
 use proptest::prelude::*;
 use starplex::algo::components::components;
-use starplex::algo::nonmanifold::{singularities, Manifoldness};
+use starplex::algo::manifold::{singularities, Convention::Local, Manifoldness};
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 use starplex::hasse::HasseQueries;
@@ -621,9 +621,9 @@ fn non_manifold_singularities_on_the_fixtures() {
         let ia = IaStar::new(&k).unwrap();
         let is = Is::new(&k, 1 << 20).unwrap();
         for (sname, r) in [
-            ("vt", singularities(&VtIndex::new(&k)).unwrap()),
-            ("ia*", singularities(&ia).unwrap()),
-            ("is", singularities(&is).unwrap()),
+            ("vt", singularities(&VtIndex::new(&k), Local).unwrap()),
+            ("ia*", singularities(&ia, Local).unwrap()),
+            ("is", singularities(&is, Local).unwrap()),
         ] {
             assert_eq!(r.non_manifold_vertices, want_v, "{name}/{sname}");
             assert_eq!(r.non_manifold_edges, want_e, "{name}/{sname}");
@@ -637,18 +637,28 @@ fn non_manifold_singularities_on_the_fixtures() {
         .collect();
     let refs: Vec<&[u32]> = sph.iter().map(|x| x.as_slice()).collect();
     let k = complex(5, &refs);
-    assert!(singularities(&IaStar::new(&k).unwrap())
+    assert!(singularities(&IaStar::new(&k).unwrap(), Local)
         .unwrap()
         .non_manifold_vertices
         .is_empty());
-    let verts: Vec<u32> = (0..6).collect();
-    let k = complex(6, &[&verts]);
-    let r = singularities(&VtIndex::new(&k)).unwrap();
+    // the boundary of a 5-simplex: vertex links are 3-spheres, undecided
+    let bd5: Vec<Vec<u32>> = (0..6u32)
+        .map(|j| (0..6).filter(|&x| x != j).collect())
+        .collect();
+    let refs: Vec<&[u32]> = bd5.iter().map(|x| x.as_slice()).collect();
+    let k = complex(6, &refs);
+    let r = singularities(&VtIndex::new(&k), Local).unwrap();
     assert_eq!(r.unknown_vertices.len(), 6);
     assert_eq!(
-        starplex::algo::nonmanifold::vertex_manifoldness(&VtIndex::new(&k), VertexId(0)).unwrap(),
+        starplex::algo::manifold::vertex_manifoldness(&VtIndex::new(&k), VertexId(0), Local)
+            .unwrap(),
         Manifoldness::Unknown
     );
+    // a single 5-simplex: every link is a simplex, a ball
+    let verts: Vec<u32> = (0..6).collect();
+    let k = complex(6, &[&verts]);
+    let r = singularities(&VtIndex::new(&k), Local).unwrap();
+    assert!(r.unknown_vertices.is_empty() && r.non_manifold_vertices.is_empty());
 }
 
 // ------------------------------------------------------------------------------------------
@@ -706,13 +716,13 @@ proptest! {
             prop_assert_eq!(components(&Is::new(&k, 1 << 20).unwrap()), c0.clone());
             prop_assert_eq!(components(&HasseQueries::new(&k, 1 << 20).unwrap()), c0);
             // non-manifold detection agrees across structures
-            let r0 = singularities(&VtIndex::new(&k)).unwrap();
-            prop_assert_eq!(singularities(&IaStar::new(&k).unwrap()).unwrap(), r0.clone());
+            let r0 = singularities(&VtIndex::new(&k), Local).unwrap();
+            prop_assert_eq!(singularities(&IaStar::new(&k).unwrap(), Local).unwrap(), r0.clone());
             prop_assert_eq!(
-                singularities(&SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap()).unwrap(),
+                singularities(&SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap(), Local).unwrap(),
                 r0.clone()
             );
-            prop_assert_eq!(singularities(&HasseQueries::new(&k, 1 << 20).unwrap()).unwrap(), r0);
+            prop_assert_eq!(singularities(&HasseQueries::new(&k, 1 << 20).unwrap(), Local).unwrap(), r0);
         }
     }
 }
@@ -828,8 +838,8 @@ fn every_structure_matches_the_oracles_on_the_small_datasets() {
         check_oracle(&name, "stellar", &stellar, &o);
         if let Some(nmv) = o.get("n_non_manifold_vertices").and_then(|x| x.as_u64()) {
             for (sname, r) in [
-                ("ia*", singularities(&ia).unwrap()),
-                ("is", singularities(&is).unwrap()),
+                ("ia*", singularities(&ia, Local).unwrap()),
+                ("is", singularities(&is, Local).unwrap()),
             ] {
                 assert_eq!(r.non_manifold_vertices.len() as u64, nmv, "{name}/{sname}");
                 if let Some(nme) = o.get("n_non_manifold_edges").and_then(|x| x.as_u64()) {

@@ -2,5 +2,7 @@
 
 pub mod components;
 pub mod info;
-pub mod nonmanifold;
+pub mod manifold;
+pub mod orientation;
 pub mod unionfind;
+pub mod validate;

@@ -907,7 +907,7 @@ impl StellarTree {
                 continue;
             }
             let mut j = 0u64;
-            super::relations::oriented_facets_of(kind, |local, _| {
+            crate::cell::oriented_facets_of(kind, |local, _| {
                 j += 1;
                 key.clear();
                 key.extend(local.iter().map(|&i| vs[i as usize]));
@@ -933,7 +933,7 @@ impl StellarTree {
                 continue;
             }
             let mut j = 0usize;
-            super::relations::oriented_facets_of(kind, |local, _| {
+            crate::cell::oriented_facets_of(kind, |local, _| {
                 if local.iter().any(|&x| view.owns(vs[x as usize])) {
                     adj[off[i] as usize + j] = NONE;
                 }

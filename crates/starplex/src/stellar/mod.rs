@@ -34,14 +34,12 @@ pub mod relations;
 mod save;
 pub mod sre;
 pub mod stats;
-mod tetlink;
 pub mod validate;
 pub mod visit;
 
 pub use relations::FaceList;
 pub use save::SAVED_TREE_MAGIC;
 pub use stats::StellarStats;
-pub use validate::{Manifoldness, ValidationReport};
 pub use visit::{ExpandedLeaf, LeafCache, LeafView};
 
 /// How blocks are split.

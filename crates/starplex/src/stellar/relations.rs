@@ -24,7 +24,7 @@
 use rayon::prelude::*;
 
 use super::{LeafView, StellarError, StellarTree};
-use crate::cell::CellKind;
+use crate::cell::{faces_of, oriented_facets_of, CellKind};
 use crate::csr::Csr;
 use crate::ids::{CellId, LeafId, VertexId};
 use crate::topo::link::{LinkError, VertexLink};
@@ -559,62 +559,6 @@ fn insertion_sort(v: &mut [u32]) {
             j -= 1;
         }
         v[j] = x;
-    }
-}
-
-/// [`CellKind::for_each_face`] without a heap allocation per call.
-#[inline]
-pub(crate) fn faces_of(kind: CellKind, p: usize, mut f: impl FnMut(&[u8])) {
-    match kind {
-        CellKind::Simplex(d) => {
-            let n = d as usize + 1;
-            if p + 1 > n {
-                return;
-            }
-            let mut idx = [0u8; 66];
-            for (i, x) in idx.iter_mut().enumerate().take(p + 1) {
-                *x = i as u8;
-            }
-            loop {
-                f(&idx[..=p]);
-                let mut i = p as isize;
-                while i >= 0 && idx[i as usize] as usize == n - (p + 1) + i as usize {
-                    i -= 1;
-                }
-                if i < 0 {
-                    return;
-                }
-                let i = i as usize;
-                idx[i] += 1;
-                for j in i + 1..=p {
-                    idx[j] = idx[j - 1] + 1;
-                }
-            }
-        }
-        _ => kind.for_each_face(p, f),
-    }
-}
-
-/// [`CellKind::for_each_oriented_facet`] without a heap allocation per call.
-#[inline]
-pub(crate) fn oriented_facets_of(kind: CellKind, mut f: impl FnMut(&[u8], i8)) {
-    match kind {
-        CellKind::Simplex(0) => {}
-        CellKind::Simplex(d) => {
-            let n = d as usize + 1;
-            let mut buf = [0u8; 66];
-            for i in 0..n {
-                let mut m = 0;
-                for j in 0..n {
-                    if j != i {
-                        buf[m] = j as u8;
-                        m += 1;
-                    }
-                }
-                f(&buf[..n - 1], if i % 2 == 0 { 1 } else { -1 });
-            }
-        }
-        _ => kind.for_each_oriented_facet(f),
     }
 }
 

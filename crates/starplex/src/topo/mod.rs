@@ -25,7 +25,7 @@
 //!
 //! Generic algorithms written once against them: [`generic`] (closure, link, skeleton,
 //! Euler characteristic), [`link::vertex_link`], [`crate::algo::components`],
-//! [`crate::algo::nonmanifold`].
+//! [`crate::algo::manifold`], [`crate::algo::validate`], [`crate::algo::orientation`].
 //!
 //! Which structure implements which trait (✓ native, g = through the generic top-star helpers
 //! of [`from_tops`], – = not implemented). Structures that store every simplex (simplex tree,

@@ -1,0 +1,109 @@
+//! Consistent orientation of the top cells, written once: every structure (and the Stellar tree's
+//! leaf-parallel validation) supplies the pairs of top cells that share a facet with the product
+//! of the orientations they induce on it, and [`orient_tops`] propagates.
+//!
+//! The answer is canonical, whatever order the pairs come in: each component of top cells
+//! (connected through shared facets) keeps the orientation of its smallest cell id, the cells
+//! are visited depth-first from it with every cell's neighbours in increasing id order, and the
+//! first conflict met on that walk is the one reported.
+//!
+//! ```
+//! use starplex::algo::orientation::{orient_tops, Orientation};
+//! use starplex::ids::CellId;
+//! // a strip of three triangles; cell 1 induces the same orientation as its neighbours on the
+//! // shared edges (+1), so it must be flipped
+//! let pairs = [(0, 1, 1), (1, 2, 1)];
+//! let o = orient_tops(3, |_| true, &pairs);
+//! assert_eq!(o, Orientation::Orientable { flips: vec![CellId(1)] });
+//! // a Möbius-like cycle: the signs cannot agree
+//! let pairs = [(0, 1, -1), (1, 2, -1), (0, 2, 1)];
+//! assert!(matches!(orient_tops(3, |_| true, &pairs), Orientation::NonOrientable { .. }));
+//! ```
+use crate::csr::Csr;
+use crate::ids::CellId;
+
+/// The result of [`orient_tops`].
+///
+/// ```
+/// use starplex::algo::orientation::{orient_tops, Orientation};
+/// assert_eq!(orient_tops(2, |_| true, &[]), Orientation::Orientable { flips: vec![] });
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Orientation {
+    /// The top cells to reverse (sorted) for a consistent orientation.
+    Orientable {
+        /// Cells to flip.
+        flips: Vec<CellId>,
+    },
+    /// Two adjacent cells (smaller id first) whose orientations cannot agree.
+    NonOrientable {
+        /// The pair where the walk found the conflict.
+        conflict: (CellId, CellId),
+    },
+}
+
+/// Orients the cells `c < n_cells` with `is_top(c)` given `pairs` `(a, b, rel)`: `a` and `b`
+/// share a facet and `rel` is the product of the orientations they induce on it (+1: they
+/// induce the same one, so as they stand they are inconsistently oriented). Pairs whose cells
+/// are not tops are ignored.
+///
+/// ```
+/// use starplex::algo::orientation::{orient_tops, Orientation};
+/// use starplex::ids::CellId;
+/// // two components: {0, 1} consistent, {2, 3} not; cell 4 is not a top
+/// let o = orient_tops(5, |c| c < 4, &[(1, 0, -1), (3, 2, 1), (3, 4, 1)]);
+/// assert_eq!(o, Orientation::Orientable { flips: vec![CellId(3)] });
+/// ```
+pub fn orient_tops(
+    n_cells: usize,
+    is_top: impl Fn(u32) -> bool,
+    pairs: &[(u32, u32, i8)],
+) -> Orientation {
+    let keep = |&&(a, b, _): &&(u32, u32, i8)| is_top(a) && is_top(b);
+    let mut adj = Csr::from_fn(n_cells, |emit| {
+        for (i, p) in pairs.iter().enumerate() {
+            if keep(&p) {
+                emit(p.0, i as u32);
+                emit(p.1, i as u32);
+            }
+        }
+    });
+    // neighbours in increasing id order (then sign), so the walk does not depend on the order
+    // the pairs were found in
+    let other = |a: u32, i: u32| {
+        let (x, y, rel) = pairs[i as usize];
+        (if x == a { y } else { x }, rel)
+    };
+    for a in 0..n_cells {
+        let (lo, hi) = (adj.offsets[a] as usize, adj.offsets[a + 1] as usize);
+        adj.targets[lo..hi].sort_unstable_by_key(|&i| other(a as u32, i));
+    }
+    let mut o = vec![0i8; n_cells];
+    let mut stack = Vec::new();
+    for s in 0..n_cells as u32 {
+        if o[s as usize] != 0 || !is_top(s) {
+            continue;
+        }
+        o[s as usize] = 1;
+        stack.push(s);
+        while let Some(a) = stack.pop() {
+            for &pi in adj.row(a as usize) {
+                let (b, rel) = other(a, pi);
+                let want = -o[a as usize] * rel;
+                if o[b as usize] == 0 {
+                    o[b as usize] = want;
+                    stack.push(b);
+                } else if o[b as usize] != want {
+                    let (x, y) = (CellId(a.min(b)), CellId(a.max(b)));
+                    return Orientation::NonOrientable { conflict: (x, y) };
+                }
+            }
+        }
+    }
+    Orientation::Orientable {
+        flips: (0..n_cells)
+            .filter(|&c| o[c] < 0)
+            .map(|c| CellId(c as u32))
+            .collect(),
+    }
+}
