@@ -42,23 +42,41 @@ pub enum Orientation {
     },
 }
 
-/// Orients the cells `c < n_cells` with `is_top(c)` given `pairs` `(a, b, rel)`: `a` and `b`
-/// share a facet and `rel` is the product of the orientations they induce on it (+1: they
-/// induce the same one, so as they stand they are inconsistently oriented). Pairs whose cells
-/// are not tops are ignored.
+/// The full result of an orientation walk: a sign per cell (0 for cells that are not tops),
+/// the first conflict met, and the number of components walked.
 ///
 /// ```
-/// use starplex::algo::orientation::{orient_tops, Orientation};
-/// use starplex::ids::CellId;
-/// // two components: {0, 1} consistent, {2, 3} not; cell 4 is not a top
-/// let o = orient_tops(5, |c| c < 4, &[(1, 0, -1), (3, 2, 1), (3, 4, 1)]);
-/// assert_eq!(o, Orientation::Orientable { flips: vec![CellId(3)] });
+/// use starplex::algo::orientation::orient_walk;
+/// let w = orient_walk(3, |_| true, &[(0, 1, 1)], |_| 1);
+/// assert_eq!(w.signs, [1, -1, 1]);
+/// assert_eq!((w.conflict, w.n_components), (None, 2));
 /// ```
-pub fn orient_tops(
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Walk {
+    /// +1 or -1 per top cell, relative to the cell's listed orientation; 0 for other cells.
+    pub signs: Vec<i8>,
+    /// The first pair whose orientations could not agree (smaller id first).
+    pub conflict: Option<(CellId, CellId)>,
+    /// Components of top cells through the pairs.
+    pub n_components: usize,
+}
+
+/// The walk behind [`orient_tops`], for callers that want every sign even when the complex is
+/// not orientable: each component starts from its smallest cell `s` with sign `seed(s)` (+1
+/// when `seed` returns 0) and the walk goes on past a conflict.
+///
+/// ```
+/// use starplex::algo::orientation::orient_walk;
+/// // start the component from -1: every sign flips with it
+/// let w = orient_walk(2, |_| true, &[(0, 1, -1)], |_| -1);
+/// assert_eq!(w.signs, [-1, -1]);
+/// ```
+pub fn orient_walk(
     n_cells: usize,
     is_top: impl Fn(u32) -> bool,
     pairs: &[(u32, u32, i8)],
-) -> Orientation {
+    seed: impl Fn(u32) -> i8,
+) -> Walk {
     let keep = |&&(a, b, _): &&(u32, u32, i8)| is_top(a) && is_top(b);
     let mut adj = Csr::from_fn(n_cells, |emit| {
         for (i, p) in pairs.iter().enumerate() {
@@ -78,13 +96,19 @@ pub fn orient_tops(
         let (lo, hi) = (adj.offsets[a] as usize, adj.offsets[a + 1] as usize);
         adj.targets[lo..hi].sort_unstable_by_key(|&i| other(a as u32, i));
     }
-    let mut o = vec![0i8; n_cells];
+    let mut w = Walk {
+        signs: vec![0i8; n_cells],
+        conflict: None,
+        n_components: 0,
+    };
+    let o = &mut w.signs;
     let mut stack = Vec::new();
     for s in 0..n_cells as u32 {
         if o[s as usize] != 0 || !is_top(s) {
             continue;
         }
-        o[s as usize] = 1;
+        w.n_components += 1;
+        o[s as usize] = if seed(s) < 0 { -1 } else { 1 };
         stack.push(s);
         while let Some(a) = stack.pop() {
             for &pi in adj.row(a as usize) {
@@ -93,17 +117,40 @@ pub fn orient_tops(
                 if o[b as usize] == 0 {
                     o[b as usize] = want;
                     stack.push(b);
-                } else if o[b as usize] != want {
-                    let (x, y) = (CellId(a.min(b)), CellId(a.max(b)));
-                    return Orientation::NonOrientable { conflict: (x, y) };
+                } else if o[b as usize] != want && w.conflict.is_none() {
+                    w.conflict = Some((CellId(a.min(b)), CellId(a.max(b))));
                 }
             }
         }
     }
-    Orientation::Orientable {
-        flips: (0..n_cells)
-            .filter(|&c| o[c] < 0)
-            .map(|c| CellId(c as u32))
-            .collect(),
+    w
+}
+
+/// Orients the cells `c < n_cells` with `is_top(c)` given `pairs` `(a, b, rel)`: `a` and `b`
+/// share a facet and `rel` is the product of the orientations they induce on it (+1: they
+/// induce the same one, so as they stand they are inconsistently oriented). Pairs whose cells
+/// are not tops are ignored.
+///
+/// ```
+/// use starplex::algo::orientation::{orient_tops, Orientation};
+/// use starplex::ids::CellId;
+/// // two components: {0, 1} consistent, {2, 3} not; cell 4 is not a top
+/// let o = orient_tops(5, |c| c < 4, &[(1, 0, -1), (3, 2, 1), (3, 4, 1)]);
+/// assert_eq!(o, Orientation::Orientable { flips: vec![CellId(3)] });
+/// ```
+pub fn orient_tops(
+    n_cells: usize,
+    is_top: impl Fn(u32) -> bool,
+    pairs: &[(u32, u32, i8)],
+) -> Orientation {
+    let w = orient_walk(n_cells, is_top, pairs, |_| 1);
+    match w.conflict {
+        Some(conflict) => Orientation::NonOrientable { conflict },
+        None => Orientation::Orientable {
+            flips: (0..n_cells)
+                .filter(|&c| w.signs[c] < 0)
+                .map(|c| CellId(c as u32))
+                .collect(),
+        },
     }
 }

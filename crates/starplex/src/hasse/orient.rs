@@ -2,8 +2,6 @@
 //! consistent orientation of the top simplices per connected component, orientability and
 //! pseudo-manifoldness; surface geometry (areas, signed volume, vertex normals and tangents,
 //! eq. 9-10) over positions stored on vertices.
-use std::collections::VecDeque;
-
 use super::complex::Hasse;
 use super::edit::Position;
 use super::levels::{At, Levels};
@@ -185,7 +183,7 @@ impl<L: Levels> Hasse<L> {
         s
     }
 
-    /// Orients the top simplices consistently (eq. 8), one breadth-first search per component
+    /// Orients the top simplices consistently (eq. 8), one walk per component ([`orient_walk`](crate::algo::orientation::orient_walk))
     /// through faces with exactly two cofaces. Each component starts from its first simplex
     /// with the sign given in `initial` (when non-zero) or `+1`, so an input winding that is
     /// already consistent is kept as is.
@@ -209,55 +207,36 @@ impl<L: Levels> Hasse<L> {
             };
         };
         let n = self.n_slots(d);
-        let mut signs = vec![0i8; n];
-        let mut orientable = true;
         // pure: every lower simplex has a coface
         let mut pseudo = (0..d).all(|k| self.level(k).all(|s| self.up(s).len() > 0));
         if d > 0 {
             pseudo &= self.level(d - 1).all(|s| self.up(s).len() <= 2);
         }
-        let mut components = 0;
-        let mut q = VecDeque::new();
-        for seed in 0..n {
-            if signs[seed] != 0 || self.levels[d].up.is_dead(seed as u32) {
-                continue;
-            }
-            components += 1;
-            let s0 = initial
-                .and_then(|x| x.get(seed).copied())
-                .filter(|&x| x != 0)
-                .unwrap_or(1);
-            signs[seed] = s0;
-            q.push_back(seed as u32);
-            while let Some(t) = q.pop_front() {
-                if d == 0 {
-                    break;
+        // pairs of top simplices through faces with exactly two cofaces; the sign of facet i
+        // of a simplex relative to its sorted order is (-1)^i
+        let mut pairs = Vec::new();
+        if d > 0 {
+            let l = &self.levels[d];
+            for f in self.level(d - 1) {
+                let ups = self.levels[d - 1].up.get(f.id.0);
+                if ups.len() != 2 {
+                    continue;
                 }
-                let ot = signs[t as usize];
-                let l = &self.levels[d];
-                for (i, &f) in l.downs(t).iter().enumerate() {
-                    let ups = self.levels[d - 1].up.get(f);
-                    if ups.len() != 2 {
-                        continue;
-                    }
-                    let induced = if i % 2 == 0 { ot } else { -ot };
-                    for p in ups {
-                        let u = p[1];
-                        if u == t {
-                            continue;
-                        }
-                        let j = l.downs(u).iter().position(|&x| x == f).unwrap_or(0);
-                        let want = if j % 2 == 0 { -induced } else { induced };
-                        if signs[u as usize] == 0 {
-                            signs[u as usize] = want;
-                            q.push_back(u);
-                        } else if signs[u as usize] != want {
-                            orientable = false;
-                        }
-                    }
-                }
+                let (t, u) = (ups[0][1], ups[1][1]);
+                let i = l.downs(t).iter().position(|&x| x == f.id.0).unwrap_or(0);
+                let j = l.downs(u).iter().position(|&x| x == f.id.0).unwrap_or(0);
+                pairs.push((t, u, if (i + j) % 2 == 0 { 1 } else { -1 }));
             }
         }
+        let dead = |c: u32| self.levels[d].up.is_dead(c);
+        let seed = |c: u32| {
+            initial
+                .and_then(|x| x.get(c as usize).copied())
+                .unwrap_or(1)
+        };
+        let walk = crate::algo::orientation::orient_walk(n, |c| !dead(c), &pairs, seed);
+        let (signs, orientable, components) =
+            (walk.signs, walk.conflict.is_none(), walk.n_components);
         Orientation {
             dim: d,
             signs,
