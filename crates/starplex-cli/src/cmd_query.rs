@@ -299,7 +299,7 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
             Some("pass --vertex ID ... or --all".into()),
         ));
     }
-    let saved = crate::cmd_stellar::is_saved_tree(&a.input.file);
+    let saved = starplex::stellar::is_saved_tree(&a.input.file);
     if saved && a.structure != StructureKind::Stellar {
         return Err(CliError::Input(
             format!("{} is a saved Stellar tree", a.input.file.display()),

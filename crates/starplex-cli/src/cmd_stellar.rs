@@ -154,17 +154,6 @@ pub fn print_stats(s: &StellarStats) {
     );
 }
 
-/// True when `path` holds a Stellar tree written by `starplex stellar --save` (checked by its
-/// magic bytes, whatever the extension).
-pub fn is_saved_tree(path: &std::path::Path) -> bool {
-    use std::io::Read;
-    let mut magic = [0u8; 8];
-    std::fs::File::open(path)
-        .and_then(|mut f| f.read_exact(&mut magic))
-        .is_ok()
-        && &magic == starplex::stellar::SAVED_TREE_MAGIC
-}
-
 /// Loads a saved tree (memory-mapped), mapping its error to an input error.
 pub fn load_saved_tree(ctx: &Ctx, path: &std::path::Path) -> Result<StellarTree, CliError> {
     common::with_spinner(ctx, "loading the saved Stellar tree", || {
@@ -180,7 +169,7 @@ pub fn load_saved_tree(ctx: &Ctx, path: &std::path::Path) -> Result<StellarTree,
 
 pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     let t0 = Instant::now();
-    let saved = is_saved_tree(&a.input.file);
+    let saved = starplex::stellar::is_saved_tree(&a.input.file);
     let k = if saved {
         None
     } else {

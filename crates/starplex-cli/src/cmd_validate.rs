@@ -148,7 +148,7 @@ pub fn print_human(r: &ValidationReport, max: usize) {
 
 pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
     let t0 = Instant::now();
-    let saved = crate::cmd_stellar::is_saved_tree(&a.input.file);
+    let saved = starplex::stellar::is_saved_tree(&a.input.file);
     let k = if saved {
         None
     } else {

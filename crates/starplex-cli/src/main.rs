@@ -9,6 +9,7 @@ mod cmd_bench;
 mod cmd_bench_hasse;
 mod cmd_compare;
 mod cmd_convert;
+mod cmd_demo;
 mod cmd_generate;
 mod cmd_info;
 mod cmd_query;
@@ -70,8 +71,8 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let ctx = common::Ctx { quiet: cli.quiet };
     let result = match cli.command {
-        None => common::demo(&ctx, None),
-        Some(Command::Demo { file }) => common::demo(&ctx, file),
+        None => cmd_demo::run(&ctx, None),
+        Some(Command::Demo { file }) => cmd_demo::run(&ctx, file),
         Some(Command::Info(a)) => cmd_info::run(&ctx, &a),
         Some(Command::Convert(a)) => cmd_convert::run(&ctx, &a),
         Some(Command::Stellar(a)) => cmd_stellar::run(&ctx, &a),

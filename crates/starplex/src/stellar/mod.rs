@@ -38,7 +38,7 @@ pub mod validate;
 pub mod visit;
 
 pub use relations::FaceList;
-pub use save::SAVED_TREE_MAGIC;
+pub use save::{is_saved_tree, SAVED_TREE_MAGIC};
 pub use stats::StellarStats;
 pub use visit::{ExpandedLeaf, LeafCache, LeafView};
 

@@ -35,6 +35,29 @@ use super::{code_kind, BuildTimings, CellStore, Node, SplitMode, StellarError, S
 /// assert_eq!(starplex::stellar::SAVED_TREE_MAGIC, b"SPXSTEL1");
 /// ```
 pub const SAVED_TREE_MAGIC: &[u8; 8] = b"SPXSTEL1";
+
+/// True when the file at `path` starts with [`SAVED_TREE_MAGIC`]: a tree written by
+/// [`StellarTree::save`], recognised by content whatever its extension (a mesh format never
+/// starts with these bytes). An unreadable or shorter file is not a saved tree.
+///
+/// ```
+/// use starplex::stellar::is_saved_tree;
+/// let p = std::env::temp_dir().join(format!("starplex_magic_{}.bin", std::process::id()));
+/// std::fs::write(&p, b"SPXSTEL1 and the rest").unwrap();
+/// assert!(is_saved_tree(&p));
+/// std::fs::write(&p, b"OFF\n3 1 0\n").unwrap();
+/// assert!(!is_saved_tree(&p));
+/// # std::fs::remove_file(&p).ok();
+/// assert!(!is_saved_tree(std::path::Path::new("/nonexistent/file")));
+/// ```
+pub fn is_saved_tree(path: &Path) -> bool {
+    use std::io::Read;
+    let mut magic = [0u8; 8];
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_exact(&mut magic))
+        .is_ok()
+        && &magic == SAVED_TREE_MAGIC
+}
 const MAGIC: &[u8; 8] = SAVED_TREE_MAGIC;
 const VERSION: u64 = 1;
 const N_HEADER: usize = 13;
