@@ -3,9 +3,10 @@
 //! of the orientations they induce on it, and [`orient_tops`] propagates.
 //!
 //! The answer is canonical, whatever order the pairs come in: each component of top cells
-//! (connected through shared facets) keeps the orientation of its smallest cell id, the cells
-//! are visited depth-first from it with every cell's neighbours in increasing id order, and the
-//! first conflict met on that walk is the one reported.
+//! (connected through shared facets) keeps the orientation of its smallest cell id (which fixes
+//! every sign of an orientable component), and when a conflict exists the one reported is the
+//! first met by a depth-first walk from those cells with every cell's neighbours in increasing
+//! id order.
 //!
 //! ```
 //! use starplex::algo::orientation::{orient_tops, Orientation};
@@ -86,16 +87,32 @@ pub fn orient_walk(
             }
         }
     });
-    // neighbours in increasing id order (then sign), so the walk does not depend on the order
-    // the pairs were found in
     let other = |a: u32, i: u32| {
         let (x, y, rel) = pairs[i as usize];
         (if x == a { y } else { x }, rel)
     };
-    for a in 0..n_cells {
-        let (lo, hi) = (adj.offsets[a] as usize, adj.offsets[a + 1] as usize);
-        adj.targets[lo..hi].sort_unstable_by_key(|&i| other(a as u32, i));
+    let mut w = walk(n_cells, &is_top, &adj, &other, &seed);
+    if w.conflict.is_some() {
+        // The signs of an orientable component do not depend on the walk order (its smallest
+        // cell keeps its seed), but which conflict is met first does: walk again with every
+        // row in increasing neighbour order, so the answer does not depend on the order the
+        // pairs were found in.
+        for a in 0..n_cells {
+            let (lo, hi) = (adj.offsets[a] as usize, adj.offsets[a + 1] as usize);
+            adj.targets[lo..hi].sort_unstable_by_key(|&i| other(a as u32, i));
+        }
+        w = walk(n_cells, &is_top, &adj, &other, &seed);
     }
+    w
+}
+
+fn walk(
+    n_cells: usize,
+    is_top: &impl Fn(u32) -> bool,
+    adj: &Csr,
+    other: &impl Fn(u32, u32) -> (u32, i8),
+    seed: &impl Fn(u32) -> i8,
+) -> Walk {
     let mut w = Walk {
         signs: vec![0i8; n_cells],
         conflict: None,

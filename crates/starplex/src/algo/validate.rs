@@ -334,6 +334,9 @@ pub(crate) fn finish_report(
     is_top: impl Fn(u32) -> bool,
     pairs: &[(u32, u32, i8)],
 ) {
+    // the top mask once: `is_top` may map ids and look up kinds
+    let top: Vec<bool> = (0..n_cells as u32).map(is_top).collect();
+    let is_top = |c: u32| top[c as usize];
     let mut cuf = crate::algo::unionfind::UnionFind::new(n_cells);
     for &(a, b, _) in pairs {
         if is_top(a) && is_top(b) {

@@ -44,11 +44,11 @@ struct TreeStar<'a> {
 }
 
 impl StarCells for TreeStar<'_> {
-    #[inline]
+    #[inline(always)]
     fn len(&self) -> usize {
         self.star.len()
     }
-    #[inline]
+    #[inline(always)]
     fn cell(&self, i: usize) -> (CellKind, &[u32]) {
         self.cells.get(self.star[i])
     }

@@ -173,9 +173,11 @@ impl OwnedStar {
 }
 
 impl StarCells for OwnedStar {
+    #[inline]
     fn len(&self) -> usize {
         self.kinds.len()
     }
+    #[inline]
     fn cell(&self, i: usize) -> (CellKind, &[u32]) {
         (
             self.kinds[i],
@@ -278,7 +280,10 @@ impl StarTester {
     ) -> Manifoldness {
         let start = edges_out.len();
         let m = star::star_tests(v, star, d, fast, &mut self.s, &mut self.groups, edges_out);
-        edges_out[start..].sort_unstable_by_key(|e| e.0);
+        let new = &mut edges_out[start..];
+        if !new.is_sorted_by_key(|e| e.0) {
+            new.sort_unstable_by_key(|e| e.0);
+        }
         m
     }
 
