@@ -245,22 +245,21 @@ pub fn answer_size(
         RelationKind::IaStar => {
             let mut tv = Vec::new();
             s.top_cell_vertices(CellId(i), &mut tv);
-            let k = tv.len();
+            let kind = s.top_cell_kind(CellId(i));
+            let d = kind.dim();
             let mut n = 0u64;
-            if k >= 3 {
-                let mut facet = Vec::with_capacity(k - 1);
-                for j in 0..k {
-                    facet.clear();
-                    facet.extend(
-                        tv.iter()
-                            .enumerate()
-                            .filter(|&(x, _)| x != j)
-                            .map(|(_, &w)| w),
-                    );
-                    s.top_star(&facet, cells)?;
+            if d >= 2 {
+                // the facets of the kind (a simplex's facet j omits vertex j; a CP cell's
+                // come from its table); the structures with sorted tops are simplicial
+                let mut facets: Vec<Vec<VertexId>> = Vec::new();
+                kind.for_each_oriented_facet(|l, _| {
+                    facets.push(l.iter().map(|&x| tv[x as usize]).collect())
+                });
+                for facet in &facets {
+                    s.top_star(facet, cells)?;
                     n += cells
                         .iter()
-                        .filter(|&&c| c.0 != i && s.top_cell_kind(c).dim() + 1 == k)
+                        .filter(|&&c| c.0 != i && s.top_cell_kind(c).dim() == d)
                         .count() as u64;
                 }
             }

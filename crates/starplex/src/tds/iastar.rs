@@ -288,6 +288,20 @@ impl IaStar {
                 simplicial,
             });
         }
+        Ok(Self::build_general(k, blocks, t, simplicial))
+    }
+
+    /// The construction for any dimension and any cell kinds (grouping facet records); kept out
+    /// of line so that the fast path's code is laid out as before CP cells existed.
+    #[inline(never)]
+    fn build_general(
+        k: &IndexedComplex,
+        mut blocks: Vec<Block>,
+        t: Vec<u64>,
+        simplicial: bool,
+    ) -> IaStar {
+        let dmax = k.dim().unwrap_or(0);
+        let nv = k.n_vertices();
         for (blk, b) in blocks.iter_mut().zip(k.blocks()) {
             let (n, st) = (blk.nv as usize, blk.stride());
             blk.data = if blk.ns > 0 {
@@ -326,7 +340,7 @@ impl IaStar {
         } else {
             cp::cluster_representatives(&ia, &vt)
         };
-        Ok(ia)
+        ia
     }
 
     #[inline]

@@ -569,7 +569,8 @@ impl Storage for SimplicialIg {
 /// one node. A cell is named by its canonical key, its sorted vertices, as the Stellar tree's
 /// face lists name CP faces. [`TopCells`], [`VertexStar`], [`VertexAdjacency`], [`TopStar`],
 /// [`Counts`] (cells per dimension) and [`SimplexVertices`] (keys of any length) answer for
-/// every cell; the relations whose answer is a flat list of sorted (q+1)-vertex tuples
+/// every cell ([`TopCells::top_cell_vertices`] keeps the input order of a CP complex's tops,
+/// which the face tables index); the relations whose answer is a flat list of sorted (q+1)-vertex tuples
 /// ([`Boundary`], [`Coboundary`], [`Adjacency`], [`Star`], [`Levels`]) answer when the cells
 /// listed are simplices and return [`QueryError::NotSimplicial`], naming the first quad or
 /// 3-cell, otherwise. The id-based relations ([`IncidenceGraph::cell_faces`],
@@ -846,7 +847,8 @@ impl TopCells for IncidenceGraph {
     fn top_cell_kind(&self, c: CellId) -> CellKind {
         each!(self, g => g.top_cell_kind(c))
     }
-    /// Sorted vertices (the structure keeps no orientation).
+    /// Sorted vertices for a simplicial complex (the structure keeps no orientation); input
+    /// (VTK) order for a CP complex, whose face tables index it.
     fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
         each!(self, g => g.top_cell_vertices(c, out))
     }

@@ -104,7 +104,10 @@ pub(super) struct CellGraph {
     cob: Vec<Csr>,
     level_offset: Vec<u32>,
     cell_node: Vec<u32>,
-    blocks: Vec<(u32, CellKind)>,
+    /// Per block of the input: first top, kind, start of its vertices in `top_verts`.
+    blocks: Vec<(u32, CellKind, usize)>,
+    /// The tops' vertices in input (VTK) order, block after block: the face tables index them.
+    top_verts: Vec<u32>,
     top_at: Vec<Vec<(u32, u32)>>,
 }
 
@@ -292,6 +295,12 @@ impl CellGraph {
         for t in &mut top_at {
             t.sort_unstable();
         }
+        let mut blocks = Vec::with_capacity(k.blocks().len());
+        let mut top_verts = Vec::with_capacity(k.n_refs());
+        for b in k.blocks() {
+            blocks.push((b.first, b.kind, top_verts.len()));
+            top_verts.extend_from_slice(&b.vertices);
+        }
         Ok(CellGraph {
             n_vertices: nv as u32,
             keys,
@@ -299,7 +308,8 @@ impl CellGraph {
             cob,
             level_offset,
             cell_node,
-            blocks: k.blocks().iter().map(|b| (b.first, b.kind)).collect(),
+            blocks,
+            top_verts,
             top_at,
         })
     }
@@ -478,6 +488,14 @@ impl CellGraph {
         self.blocks[i].1
     }
 
+    /// The vertices of top `c` in input (VTK) order.
+    fn top_vertices(&self, c: u32) -> &[u32] {
+        let (first, kind, start) = self.blocks[self.blocks.partition_point(|b| b.0 <= c) - 1];
+        let n = kind.n_vertices();
+        let at = start + (c - first) as usize * n;
+        &self.top_verts[at..at + n]
+    }
+
     fn top_cell(&self, p: usize, i: u32) -> Option<CellId> {
         let t = &self.top_at[p];
         t.binary_search_by_key(&i, |x| x.0)
@@ -498,7 +516,7 @@ impl CellGraph {
     pub(super) fn aux_bytes(&self) -> u64 {
         let k: usize = self.keys.iter().map(|k| k.bytes()).sum();
         let t: usize = self.top_at.iter().map(|t| 8 * t.len()).sum();
-        (k + t + 4 * self.cell_node.len()) as u64
+        (k + t + 4 * self.cell_node.len() + 4 * self.top_verts.len()) as u64
     }
 }
 
@@ -512,13 +530,9 @@ impl TopCells for CellGraph {
     fn top_cell_kind(&self, c: CellId) -> CellKind {
         self.cell_kind(c.0)
     }
+    /// Input (VTK) order: the kinds' face tables index it.
     fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
-        let p = self.cell_dim(c.0);
-        out.extend(
-            self.key(p, self.cell_node[c.index()])
-                .iter()
-                .map(|&v| VertexId(v)),
-        );
+        out.extend(self.top_vertices(c.0).iter().map(|&v| VertexId(v)));
     }
 }
 
