@@ -479,10 +479,6 @@ impl CellGraph {
         ))
     }
 
-    fn cell_dim(&self, c: u32) -> usize {
-        self.cell_kind(c).dim()
-    }
-
     fn cell_kind(&self, c: u32) -> CellKind {
         let i = self.blocks.partition_point(|b| b.0 <= c) - 1;
         self.blocks[i].1
