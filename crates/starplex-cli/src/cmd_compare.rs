@@ -130,7 +130,10 @@ fn compare(ctx: &Ctx, a: &CompareArgs, threads: usize) -> Result<(), CliError> {
         if cp && !kind.holds_cp() {
             // listed, not failed: the structure holds simplicial complexes only
             let why = match cmd_query::build(&k, kind) {
-                Err(e) => e.to_string(),
+                Err(e) => match e.hint() {
+                    Some(h) => format!("{e} ({h})"),
+                    None => e.to_string(),
+                },
                 Ok(_) => "it holds simplicial complexes only".to_string(),
             };
             if a.json {
