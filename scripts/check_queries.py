@@ -5,8 +5,8 @@ surfaces) with the third-party oracles, on every dataset found.
 
 usage: scripts/check_queries.py DATA_DIR [SIZE ...] [--structure S]
     DATA_DIR as made by ../shared/datasets/get; SIZE defaults to small medium; S defaults to
-    stellar (any of vt ia-star simplex-tree ig is hasse stellar; structures that hold simplices
-    only are skipped on CP complexes). Needs `cargo build --release -p starplex-cli`.
+    stellar (any of vt ia-star simplex-tree ig is hasse stellar; the structures that hold
+    simplices only — simplex-tree, is, hasse — are skipped on CP complexes). Needs `cargo build --release -p starplex-cli`.
 Prints one line per dataset and exits 1 on any mismatch.
 """
 import json, subprocess, sys, time
@@ -36,7 +36,7 @@ def main():
         qs = o.get('vertex_queries') or []
         simplicial = o.get('top_cells') is not None and all(
             t == 'line' or t == 'tri' or t == 'tet' or t.startswith('simplex_') for t in o['top_cells'])
-        if not simplicial and structure not in ('stellar', 'vt'):
+        if not simplicial and structure not in ('stellar', 'vt', 'ig', 'ia-star'):
             print('%-20s %-7s skipped (%s holds simplices only)' % (name, size, structure))
             continue
         problems = []

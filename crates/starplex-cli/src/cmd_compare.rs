@@ -29,10 +29,27 @@ fn qerr(e: QueryError) -> CliError {
     CliError::Other(e.to_string())
 }
 
-fn timed(f: impl FnOnce() -> Result<u64, QueryError>) -> Result<(f64, u64), CliError> {
+/// The seconds of one query over the whole complex, `None` when the structure answers it for
+/// simplices only and the complex has CP cells (the reason is kept in `skipped`).
+fn measured(
+    what: &str,
+    r: Result<f64, QueryError>,
+    skipped: &mut Vec<String>,
+) -> Result<Option<f64>, CliError> {
+    match r {
+        Ok(t) => Ok(Some(t)),
+        Err(e @ QueryError::NotSimplicial(_)) => {
+            skipped.push(format!("{what}: {e}"));
+            Ok(None)
+        }
+        Err(e) => Err(qerr(e)),
+    }
+}
+
+fn timed(f: impl FnOnce() -> Result<u64, QueryError>) -> Result<f64, QueryError> {
     let t = Instant::now();
-    let n = f().map_err(qerr)?;
-    Ok((t.elapsed().as_secs_f64(), n))
+    f()?;
+    Ok(t.elapsed().as_secs_f64())
 }
 
 /// R_{k,k-1} of every top cell (in parallel on the current pool).
@@ -45,11 +62,12 @@ fn boundary_all(s: &(dyn Queries + Sync)) -> Result<u64, QueryError> {
             |(tv, out), c| {
                 tv.clear();
                 s.top_cell_vertices(CellId(c), tv);
-                if tv.len() < 2 {
+                let d = s.top_cell_kind(CellId(c)).dim();
+                if d == 0 {
                     return Ok(0);
                 }
-                s.boundary(tv, tv.len() - 2, out)?;
-                Ok((out.len() / (tv.len() - 1)) as u64)
+                s.boundary(tv, d - 1, out)?;
+                Ok((out.len() / d) as u64)
             },
         )
         .try_reduce(|| 0, |a, b| Ok(a + b))
@@ -107,7 +125,27 @@ fn compare(ctx: &Ctx, a: &CompareArgs, threads: usize) -> Result<(), CliError> {
             "pfaces_s"
         );
     }
+    let cp = !k.is_simplicial();
     for kind in StructureKind::AVAILABLE {
+        if cp && !kind.holds_cp() {
+            // listed, not failed: the structure holds simplicial complexes only
+            let why = match cmd_query::build(&k, kind) {
+                Err(e) => match e.hint() {
+                    Some(h) => format!("{e} ({h})"),
+                    None => e.to_string(),
+                },
+                Ok(_) => "it holds simplicial complexes only".to_string(),
+            };
+            if a.json {
+                println!(
+                    "{}",
+                    serde_json::json!({"structure": kind.name(), "skipped": why})
+                );
+            } else {
+                println!("{:<13} skipped: {why}", kind.name());
+            }
+            continue;
+        }
         let t = Instant::now();
         let s = match cmd_query::build(&k, kind) {
             Ok(s) => s,
@@ -125,50 +163,56 @@ fn compare(ctx: &Ctx, a: &CompareArgs, threads: usize) -> Result<(), CliError> {
         };
         let build_s = t.elapsed().as_secs_f64();
         let s: &(dyn Queries + Sync) = s.as_ref();
-        let (vt_s, _, _) = {
-            let (_, n, t) = cmd_query::run_all(s, RelationKind::Vt, threads)?;
-            (t, n, ())
+        let mut skipped = Vec::new();
+        let all = |r| -> Result<Result<f64, QueryError>, CliError> {
+            Ok(cmd_query::try_run_all(s, r, threads)?.map(|x| x.2))
         };
-        let (_, _, vv_s) = cmd_query::run_all(s, RelationKind::Vv, threads)?;
-        let (boundary_s, _) = timed(|| boundary_all(s))?;
-        let (coboundary_s, _) = timed(|| coboundary_all(s))?;
-        let (_, _, link_s) = cmd_query::run_all(s, RelationKind::Link, threads)?;
-        let (_, _, pfaces_s) = cmd_query::run_all(s, RelationKind::Pfaces, threads)?;
+        let vt_s = measured("vt", all(RelationKind::Vt)?, &mut skipped)?;
+        let vv_s = measured("vv", all(RelationKind::Vv)?, &mut skipped)?;
+        let boundary_s = measured("boundary", timed(|| boundary_all(s)), &mut skipped)?;
+        let coboundary_s = measured("co-boundary", timed(|| coboundary_all(s)), &mut skipped)?;
+        let link_s = measured("link", all(RelationKind::Link)?, &mut skipped)?;
+        let pfaces_s = measured("p-faces", all(RelationKind::Pfaces)?, &mut skipped)?;
         let refs = s.refs() as f64 / base_refs;
         let bytes = s.bytes() as f64 / base_bytes;
         if a.json {
-            println!(
-                "{}",
-                serde_json::json!({
-                    "structure": kind.name(),
-                    "threads": threads,
-                    "build_s": build_s,
-                    "refs": refs,
-                    "bytes": bytes,
-                    "refs_abs": s.refs(),
-                    "bytes_abs": s.bytes(),
-                    "vt_s": vt_s,
-                    "vv_s": vv_s,
-                    "boundary_s": boundary_s,
-                    "coboundary_s": coboundary_s,
-                    "link_s": link_s,
-                    "pfaces_s": pfaces_s,
-                })
-            );
+            let mut o = serde_json::json!({
+                "structure": kind.name(),
+                "threads": threads,
+                "build_s": build_s,
+                "refs": refs,
+                "bytes": bytes,
+                "refs_abs": s.refs(),
+                "bytes_abs": s.bytes(),
+                "vt_s": vt_s,
+                "vv_s": vv_s,
+                "boundary_s": boundary_s,
+                "coboundary_s": coboundary_s,
+                "link_s": link_s,
+                "pfaces_s": pfaces_s,
+            });
+            if !skipped.is_empty() {
+                o["skipped_queries"] = serde_json::json!(skipped);
+            }
+            println!("{o}");
         } else {
+            let col = |x: Option<f64>| x.map_or(format!("{:>8}", "-"), |t| format!("{t:>8.3}"));
             println!(
-                "{:<13} {:>8.3} {:>8.2} {:>8.2} {:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>8.3}",
+                "{:<13} {:>8.3} {:>8.2} {:>8.2} {} {} {} {} {} {}",
                 kind.name(),
                 build_s,
                 refs,
                 bytes,
-                vt_s,
-                vv_s,
-                boundary_s,
-                coboundary_s,
-                link_s,
-                pfaces_s
+                col(vt_s),
+                col(vv_s),
+                col(boundary_s),
+                col(coboundary_s),
+                col(link_s),
+                col(pfaces_s)
             );
+            for why in &skipped {
+                println!("{:<13}   - {why}", "");
+            }
         }
     }
     Ok(())

@@ -44,6 +44,14 @@ impl StructureKind {
         StructureKind::Hasse,
         StructureKind::Stellar,
     ];
+    /// Whether the structure holds CP cells (quads, hexahedra, prisms, pyramids); the others
+    /// refuse CP complexes.
+    pub fn holds_cp(self) -> bool {
+        !matches!(
+            self,
+            StructureKind::SimplexTree | StructureKind::Is | StructureKind::Hasse
+        )
+    }
     pub fn name(self) -> &'static str {
         match self {
             StructureKind::Ig => "ig",
@@ -118,7 +126,10 @@ pub fn build_with(
     kv: Option<usize>,
 ) -> Result<Built<'_>, CliError> {
     let limit = 1u128 << 31;
-    let err = |e: String| CliError::Input(e, None);
+    // a simplicial-only structure on a CP complex: name the ones that can answer
+    let hint = (!s.holds_cp() && !k.is_simplicial())
+        .then(|| "use --structure ig, ia-star, stellar or vt for CP cells".to_string());
+    let err = |e: String| CliError::Input(e, hint.clone());
     Ok(match s {
         StructureKind::Vt => Box::new(VtIndex::new(k)),
         StructureKind::IaStar => Box::new(IaStar::new(k).map_err(|e| err(e.to_string()))?),
@@ -234,22 +245,21 @@ pub fn answer_size(
         RelationKind::IaStar => {
             let mut tv = Vec::new();
             s.top_cell_vertices(CellId(i), &mut tv);
-            let k = tv.len();
+            let kind = s.top_cell_kind(CellId(i));
+            let d = kind.dim();
             let mut n = 0u64;
-            if k >= 3 {
-                let mut facet = Vec::with_capacity(k - 1);
-                for j in 0..k {
-                    facet.clear();
-                    facet.extend(
-                        tv.iter()
-                            .enumerate()
-                            .filter(|&(x, _)| x != j)
-                            .map(|(_, &w)| w),
-                    );
-                    s.top_star(&facet, cells)?;
+            if d >= 2 {
+                // the facets of the kind (a simplex's facet j omits vertex j; a CP cell's
+                // come from its table); the structures with sorted tops are simplicial
+                let mut facets: Vec<Vec<VertexId>> = Vec::new();
+                kind.for_each_oriented_facet(|l, _| {
+                    facets.push(l.iter().map(|&x| tv[x as usize]).collect())
+                });
+                for facet in &facets {
+                    s.top_star(facet, cells)?;
                     n += cells
                         .iter()
-                        .filter(|&&c| c.0 != i && s.top_cell_kind(c).dim() + 1 == k)
+                        .filter(|&&c| c.0 != i && s.top_cell_kind(c).dim() == d)
                         .count() as u64;
                 }
             }
@@ -265,9 +275,21 @@ pub fn run_all(
     r: RelationKind,
     threads: usize,
 ) -> Result<(u64, u64, f64), CliError> {
+    try_run_all(s, r, threads)?.map_err(qerr)
+}
+
+/// [`run_all`] with the query's own error kept apart (e.g. `NotSimplicial` on a CP complex).
+pub fn try_run_all(
+    s: &(dyn Queries + Sync),
+    r: RelationKind,
+    threads: usize,
+) -> Result<Result<(u64, u64, f64), QueryError>, CliError> {
     let n = match r {
         RelationKind::Adj | RelationKind::IaStar => s.n_top_cells(),
-        RelationKind::Pfaces => s.f_vector().map_err(qerr)?.len(),
+        RelationKind::Pfaces => match s.f_vector() {
+            Ok(f) => f.len(),
+            Err(e) => return Ok(Err(e)),
+        },
         _ => s.n_vertices(),
     } as u32;
     let pool = rayon::ThreadPoolBuilder::new()
@@ -286,7 +308,7 @@ pub fn run_all(
             .try_reduce(|| 0, |a, b| Ok(a + b))
     });
     let secs = t.elapsed().as_secs_f64();
-    Ok((n as u64, total.map_err(qerr)?, secs))
+    Ok(total.map(|total| (n as u64, total, secs)))
 }
 
 pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {

@@ -44,7 +44,7 @@ fn every_structure_answers_the_oracle_vertex_queries() {
                 "stellar",
             ]
         } else {
-            &["vt", "stellar"] // the standalone IA* holds simplicial complexes only
+            &["vt", "ia-star", "ig", "stellar"] // the structures that hold CP cells
         };
         for s in structures {
             let mut cmd = Command::new(env!("CARGO_BIN_EXE_starplex"));
@@ -90,9 +90,9 @@ fn every_structure_answers_the_oracle_vertex_queries() {
         eprintln!("SKIPPED: no small datasets at {}", shared().display());
         return;
     }
-    // 7 structures on 4 simplicial sets, 2 on the quad mesh
+    // 7 structures on 4 simplicial sets, 4 on the quad mesh
     assert!(
-        checked == 30,
+        checked == 32,
         "expected the small datasets in ../shared/datasets/small"
     );
 }

@@ -304,9 +304,11 @@ fn same_as_direct(k: &IndexedComplex, kv: u32) {
 
 #[test]
 fn tree_iastar_is_the_direct_iastar() {
-    // simplices only: the direct IA* holds simplicial complexes
     let simplices = prop_oneof![Just(0u8), Just(1), Just(3), Just(4)].boxed();
     on_random_complexes(simplices, 96, 11, same_as_direct);
+    // CP cells, alone and mixed with simplices
+    on_random_complexes((0u8..9).boxed(), 96, 12, same_as_direct);
+    on_random_complexes((5u8..9).boxed(), 64, 13, same_as_direct);
 }
 
 #[test]
@@ -316,7 +318,7 @@ fn tree_iastar_is_the_direct_iastar_on_the_small_datasets() {
         let k = starplex::io::read(&path, &Default::default())
             .unwrap()
             .complex;
-        if !k.is_simplicial() || k.n_cells() > 40_000 {
+        if k.n_cells() > 40_000 {
             continue;
         }
         eprintln!("{name}");
@@ -327,5 +329,5 @@ fn tree_iastar_is_the_direct_iastar_on_the_small_datasets() {
         eprintln!("SKIPPED: no small datasets found (see tests/common_data.rs)");
         return;
     }
-    assert!(n >= 5, "only {n} simplicial datasets");
+    assert!(n >= 7, "only {n} datasets");
 }

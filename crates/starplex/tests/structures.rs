@@ -2,7 +2,9 @@
 //! label lists, incidence graph, IS, the CASC Hasse diagram, the Stellar tree for several k_V):
 //! every relation is compared with a brute-force model
 //! (all simplices enumerated from the tops) on named fixtures and on seeded random complexes,
-//! and with the dataset oracles (vertex queries, f-vector, Euler characteristic).
+//! and with the dataset oracles (vertex queries, f-vector, Euler characteristic). CP complexes
+//! (quads, hexahedra, prisms, pyramids, mixed) run the structures that hold them (incidence
+//! graph, IA*) against a model of cells from the face tables.
 mod common_data;
 
 use std::collections::BTreeSet;
@@ -815,7 +817,22 @@ fn every_structure_matches_the_oracles_on_the_small_datasets() {
             assert_eq!(got, u64s(&q["vv"]), "{name}/vt");
         }
         if !k.is_simplicial() {
-            assert!(IaStar::new(&k).is_err(), "{name}: IA* refuses CP cells");
+            // the structures that hold CP cells: VT and VV (tests/cp_oracle_small.rs checks more)
+            let ig = IncidenceGraph::new(&k, 1 << 30).unwrap();
+            let ia = IaStar::new(&k).unwrap();
+            for (sname, s) in [("ig", &ig as &dyn Queries), ("ia*", &ia)] {
+                for q in o["vertex_queries"].as_array().unwrap() {
+                    let v = VertexId(q["vertex"].as_u64().unwrap() as u32);
+                    s.vertex_top_cells(v, &mut cells);
+                    let got: Vec<u64> = cells.iter().map(|c| c.0 as u64).collect();
+                    assert_eq!(got, u64s(&q["incident_top_cells"]), "{name}/{sname}");
+                    s.vertex_neighbours(v, &mut vv);
+                    let got: Vec<u64> = vv.iter().map(|w| w.0 as u64).collect();
+                    assert_eq!(got, u64s(&q["vv"]), "{name}/{sname}");
+                }
+            }
+            let f = starplex::topo::Counts::f_vector(&ig).unwrap();
+            assert_eq!(f, u64s(&o["f_vector"]), "{name}/ig");
             continue;
         }
         check_oracle(&name, "vt", &vt, &o);
@@ -853,4 +870,612 @@ fn every_structure_matches_the_oracles_on_the_small_datasets() {
         n_checked >= 5,
         "only {n_checked} simplicial datasets checked"
     );
+}
+
+// ------------------------------------------------------------------------------------------
+// CP complexes: the incidence graph and IA* against a brute-force model of cells
+
+/// Every cell of a CP complex from the kinds' face tables, named by its sorted vertices.
+struct CpModel {
+    nv: usize,
+    kinds: Vec<CellKind>,
+    /// Vertices of each top, input order.
+    tops: Vec<Vec<u32>>,
+    /// Per top: its faces of every dimension (itself included), as (dimension, sorted key).
+    faces: Vec<BTreeSet<(usize, Vec<u32>)>>,
+    /// Every cell, vertices included.
+    cells: BTreeSet<(usize, Vec<u32>)>,
+}
+
+impl CpModel {
+    fn new(k: &IndexedComplex) -> CpModel {
+        let mut m = CpModel {
+            nv: k.n_vertices(),
+            kinds: Vec::new(),
+            tops: Vec::new(),
+            faces: Vec::new(),
+            cells: (0..k.n_vertices() as u32).map(|v| (0, vec![v])).collect(),
+        };
+        for c in k.cells() {
+            let mut f = BTreeSet::new();
+            for p in 0..=c.kind.dim() {
+                c.kind.for_each_face(p, |l| {
+                    let mut key: Vec<u32> = l.iter().map(|&i| c.vertices[i as usize]).collect();
+                    key.sort_unstable();
+                    f.insert((p, key));
+                });
+            }
+            m.cells.extend(f.iter().cloned());
+            m.kinds.push(c.kind);
+            m.tops.push(c.vertices.to_vec());
+            m.faces.push(f);
+        }
+        m
+    }
+    /// Keys naming a single cell (a key of two levels, e.g. a quad face and a tetrahedron on
+    /// the same four vertices, is ambiguous by vertices).
+    fn unambiguous(&self, key: &[u32]) -> bool {
+        self.cells.iter().filter(|c| c.1 == key).count() == 1
+    }
+    fn top_star(&self, s: &(usize, Vec<u32>)) -> Vec<u32> {
+        (0..self.tops.len() as u32)
+            .filter(|&c| self.faces[c as usize].contains(s))
+            .collect()
+    }
+    /// The q-cells having `s` as a face (q > p) or being a face of `s` (q < p).
+    fn related(&self, s: &(usize, Vec<u32>), q: usize) -> Vec<Vec<u32>> {
+        let mut out = BTreeSet::new();
+        for f in self.faces.iter().filter(|f| f.contains(s)) {
+            for t in f.iter().filter(|t| t.0 == q) {
+                let sub = |a: &[u32], b: &[u32]| a.iter().all(|x| b.contains(x));
+                if (q < s.0 && sub(&t.1, &s.1)) || (q > s.0 && sub(&s.1, &t.1)) {
+                    out.insert(t.1.clone());
+                }
+            }
+        }
+        out.into_iter().collect()
+    }
+    fn vv(&self, v: u32) -> Vec<u32> {
+        self.cells
+            .iter()
+            .filter(|c| c.0 == 1 && c.1.contains(&v))
+            .map(|c| if c.1[0] == v { c.1[1] } else { c.1[0] })
+            .collect()
+    }
+    fn adjacent(&self, s: &(usize, Vec<u32>)) -> Vec<Vec<u32>> {
+        if s.0 == 0 {
+            return self.vv(s.1[0]).into_iter().map(|w| vec![w]).collect();
+        }
+        let mine = self.related(s, s.0 - 1);
+        self.cells
+            .iter()
+            .filter(|t| t.0 == s.0 && *t != s)
+            .filter(|t| self.related(t, s.0 - 1).iter().any(|f| mine.contains(f)))
+            .map(|t| t.1.clone())
+            .collect()
+    }
+    fn f_vector(&self) -> Vec<u64> {
+        let mut f = Vec::new();
+        for c in &self.cells {
+            if f.len() <= c.0 {
+                f.resize(c.0 + 1, 0);
+            }
+            f[c.0] += 1;
+        }
+        f
+    }
+    /// Local facets of a top of `kind` (simplex: facet j omits vertex j; CP: the table).
+    fn facet_locals(kind: CellKind) -> Vec<Vec<u8>> {
+        match kind {
+            CellKind::Simplex(d) => (0..=d)
+                .map(|j| (0..=d).filter(|&x| x != j).collect())
+                .collect(),
+            _ => kind
+                .cp_faces(kind.dim() - 1)
+                .unwrap()
+                .iter()
+                .map(|f| f.to_vec())
+                .collect(),
+        }
+    }
+}
+
+/// The answer of a flat-tuple relation: the model's cells if they are all simplices, else a
+/// `NotSimplicial` refusal.
+fn flat_or_refusal(
+    name: &str,
+    got: Result<Vec<VertexId>, QueryError>,
+    want: &[Vec<u32>],
+    q: usize,
+) {
+    if want.iter().all(|t| t.len() == q + 1) {
+        assert_eq!(got.unwrap(), flat(want), "{name}");
+    } else {
+        assert!(
+            matches!(got, Err(QueryError::NotSimplicial(_))),
+            "{name}: {got:?}"
+        );
+    }
+}
+
+fn check_cp_ig(name: &str, ig: &IncidenceGraph, m: &CpModel) {
+    use starplex::ids::SimplexId;
+    use starplex::topo::{Adjacency, Boundary, Coboundary, Counts, Star, TopStar};
+    use starplex::topo::{Levels, SimplexVertices, TopCells};
+    assert_eq!(ig.n_vertices(), m.nv, "{name}");
+    assert_eq!(ig.n_top_cells(), m.tops.len(), "{name}");
+    let mut buf = Vec::new();
+    for c in 0..m.tops.len() {
+        buf.clear();
+        ig.top_cell_vertices(CellId(c as u32), &mut buf);
+        // input order with CP cells (the tables index it), sorted for a simplicial complex
+        let mut want = m.tops[c].clone();
+        if m.kinds.iter().all(|k| k.is_simplex()) {
+            want.sort_unstable();
+        }
+        assert_eq!(buf, vs(&want), "{name}: top {c}");
+        assert_eq!(ig.top_cell_kind(CellId(c as u32)), m.kinds[c], "{name}");
+    }
+    let f = m.f_vector();
+    assert_eq!(ig.f_vector().unwrap(), f, "{name}: f-vector");
+    let bnd: u64 = m
+        .cells
+        .iter()
+        .filter(|c| c.0 >= 1)
+        .map(|c| m.related(c, c.0 - 1).len() as u64)
+        .sum();
+    assert_eq!(ig.refs(), 2 * bnd, "{name}: references");
+    let (mut cells, mut vv, mut out) = (Vec::new(), Vec::new(), Vec::new());
+    for v in 0..m.nv as u32 {
+        ig.vertex_top_cells(VertexId(v), &mut cells);
+        let want: Vec<CellId> = m.top_star(&(0, vec![v])).into_iter().map(CellId).collect();
+        assert_eq!(cells, want, "{name}: VT({v})");
+        ig.vertex_neighbours(VertexId(v), &mut vv);
+        assert_eq!(vv, vs(&m.vv(v)), "{name}: VV({v})");
+    }
+    for p in 0..f.len() {
+        let mut got = Vec::new();
+        let r = ig.for_each_simplex(p, &mut |t| got.extend_from_slice(t));
+        let want: Vec<Vec<u32>> = m
+            .cells
+            .iter()
+            .filter(|c| c.0 == p)
+            .map(|c| c.1.clone())
+            .collect();
+        flat_or_refusal(&format!("{name}: level {p}"), r.map(|_| got), &want, p);
+    }
+    let keys = |ids: Vec<SimplexId>| -> Vec<Vec<u32>> {
+        let mut l: Vec<Vec<u32>> = ids
+            .into_iter()
+            .map(|i| {
+                let mut b = Vec::new();
+                ig.simplex_vertices(i, &mut b);
+                b.iter().map(|v| v.0).collect()
+            })
+            .collect();
+        l.sort();
+        l
+    };
+    for sigma in m.cells.iter().filter(|c| m.unambiguous(&c.1)) {
+        let (p, key) = (sigma.0, &sigma.1);
+        let sv = vs(key);
+        let id = ig.find_simplex(&sv).unwrap();
+        assert_eq!(ig.cell_dim(id), Some(p), "{name}: {key:?}");
+        ig.simplex_vertices(id, &mut buf);
+        assert_eq!(buf, sv, "{name}");
+        ig.top_star(&sv, &mut cells).unwrap();
+        let want: Vec<CellId> = m.top_star(sigma).into_iter().map(CellId).collect();
+        assert_eq!(cells, want, "{name}: St_T({key:?})");
+        for q in 0..f.len() {
+            let want = m.related(sigma, q);
+            if q < p {
+                assert_eq!(
+                    keys(ig.cell_faces(id, q).unwrap()),
+                    want,
+                    "{name}: {key:?} {q}"
+                );
+                let r = ig.boundary(&sv, q, &mut out).map(|_| out.clone());
+                flat_or_refusal(&format!("{name}: R_{p},{q}({key:?})"), r, &want, q);
+            } else if q > p {
+                assert_eq!(
+                    keys(ig.cell_cofaces(id, q).unwrap()),
+                    want,
+                    "{name}: {key:?} {q}"
+                );
+                let r = ig.coboundary(&sv, q, &mut out).map(|_| out.clone());
+                flat_or_refusal(&format!("{name}: R_{p},{q}({key:?})"), r, &want, q);
+            }
+        }
+        let want = m.adjacent(sigma);
+        assert_eq!(
+            keys(ig.cell_adjacent(id).unwrap()),
+            want,
+            "{name}: adj {key:?}"
+        );
+        let r = ig.adjacent(&sv, &mut out).map(|_| out.clone());
+        flat_or_refusal(&format!("{name}: R_{p},{p}({key:?})"), r, &want, p);
+        // the star: every coface, σ included
+        let star: Vec<Vec<u32>> = (p..f.len())
+            .flat_map(|q| {
+                if q == p {
+                    vec![key.clone()]
+                } else {
+                    m.related(sigma, q)
+                }
+            })
+            .collect();
+        match ig.star(&sv) {
+            Ok(st) => {
+                assert!(star.iter().all(|t| t.len() <= p + 1 + (t.len() - p - 1)));
+                let got: Vec<Vec<u32>> =
+                    st.iter().map(|t| t.iter().map(|v| v.0).collect()).collect();
+                let mut want = star.clone();
+                want.sort_by(|a, b| a.len().cmp(&b.len()).then(a.cmp(b)));
+                assert_eq!(got, want, "{name}: St({key:?})");
+            }
+            Err(QueryError::NotSimplicial(_)) => {
+                let dims: Vec<usize> = (p..f.len()).collect();
+                assert!(
+                    dims.iter()
+                        .any(|&q| m.related(sigma, q).iter().any(|t| t.len() != q + 1))
+                        || key.len() != p + 1,
+                    "{name}: St({key:?}) refused without a CP cell"
+                );
+            }
+            Err(e) => panic!("{name}: St({key:?}): {e}"),
+        }
+    }
+    assert!(ig.star(&[VertexId(m.nv as u32 + 5)]).is_err());
+    assert!(ig.cell_faces(SimplexId(u32::MAX), 0).is_err());
+}
+
+fn check_cp_iastar(name: &str, ia: &IaStar, m: &CpModel) {
+    use starplex::tds::iastar::Adj;
+    use starplex::topo::{TopCells, TopStar};
+    assert_eq!(ia.n_vertices(), m.nv, "{name}");
+    assert_eq!(ia.n_top_cells(), m.tops.len(), "{name}");
+    let mut buf = Vec::new();
+    for c in 0..m.tops.len() {
+        buf.clear();
+        ia.top_cell_vertices(CellId(c as u32), &mut buf);
+        assert_eq!(buf, vs(&m.tops[c]), "{name}: top {c} (input order)");
+        assert_eq!(ia.top_cell_kind(CellId(c as u32)), m.kinds[c], "{name}");
+    }
+    let (mut cells, mut vv) = (Vec::new(), Vec::new());
+    for v in 0..m.nv as u32 {
+        ia.vertex_top_cells(VertexId(v), &mut cells);
+        let want: Vec<CellId> = m.top_star(&(0, vec![v])).into_iter().map(CellId).collect();
+        assert_eq!(cells, want, "{name}: VT({v})");
+        ia.vertex_neighbours(VertexId(v), &mut vv);
+        assert_eq!(vv, vs(&m.vv(v)), "{name}: VV({v})");
+    }
+    // adjacency slots: none, the other top, or a non-manifold facet with all its tops
+    let facet_key = |c: usize, l: &[u8]| -> Vec<u32> {
+        let mut k: Vec<u32> = l.iter().map(|&i| m.tops[c][i as usize]).collect();
+        k.sort_unstable();
+        k
+    };
+    let mut refs: u64 = m.tops.iter().map(|t| t.len() as u64).sum();
+    let mut nm_refs = 0u64;
+    let mut nm_seen = BTreeSet::new();
+    for c in 0..m.tops.len() {
+        let d = m.kinds[c].dim();
+        let slots = ia.adjacency(CellId(c as u32));
+        if d < 2 {
+            assert!(slots.is_empty(), "{name}");
+            continue;
+        }
+        let locals = CpModel::facet_locals(m.kinds[c]);
+        assert_eq!(slots.len(), locals.len(), "{name}: slots of {c}");
+        refs += slots.len() as u64;
+        for (j, l) in locals.iter().enumerate() {
+            let key = facet_key(c, l);
+            let with: Vec<u32> = (0..m.tops.len() as u32)
+                .filter(|&u| m.kinds[u as usize].dim() == d)
+                .filter(|&u| m.faces[u as usize].contains(&(d - 1, key.clone())))
+                .collect();
+            match (with.len(), slots[j]) {
+                (1, Adj::None) => {}
+                (2, Adj::Top(u)) => {
+                    assert_eq!(u.0, with.iter().copied().find(|&x| x != c as u32).unwrap())
+                }
+                (n, Adj::NmFace(f)) if n >= 3 => {
+                    assert_eq!(ia.nm_face_tops(d, f), &with[..], "{name}");
+                    assert_eq!(ia.nm_face_vertices(d, f), vs(&key), "{name}");
+                    if nm_seen.insert((d, f)) {
+                        nm_refs += n as u64;
+                    }
+                }
+                (n, a) => panic!("{name}: top {c} facet {j} {key:?}: {n} tops, slot {a:?}"),
+            }
+        }
+    }
+    // per vertex: every top of dimension <= 1, and the smallest top of each k-cluster
+    for v in 0..m.nv as u32 {
+        let star: Vec<usize> = (0..m.tops.len())
+            .filter(|&c| m.tops[c].contains(&v))
+            .collect();
+        let mut reps: Vec<u32> = Vec::new();
+        let mut uf = starplex::algo::unionfind::UnionFind::new(star.len());
+        for a in 0..star.len() {
+            for b in a + 1..star.len() {
+                let (ca, cb) = (star[a], star[b]);
+                let d = m.kinds[ca].dim();
+                if d < 2 || m.kinds[cb].dim() != d {
+                    continue;
+                }
+                let shares = CpModel::facet_locals(m.kinds[ca]).iter().any(|l| {
+                    let key = facet_key(ca, l);
+                    key.contains(&v) && m.faces[cb].contains(&(d - 1, key))
+                });
+                if shares {
+                    uf.union(a as u32, b as u32);
+                }
+            }
+        }
+        for (i, &c) in star.iter().enumerate() {
+            if m.kinds[c].dim() <= 1 || (0..i).all(|j| uf.find(j as u32) != uf.find(i as u32)) {
+                reps.push(c as u32);
+            }
+        }
+        assert_eq!(
+            ia.vertex_references(VertexId(v)),
+            &reps[..],
+            "{name}: refs of {v}"
+        );
+        refs += reps.len() as u64;
+    }
+    assert_eq!(ia.refs(), refs + nm_refs, "{name}: references");
+    // top stars and ghosts of every cell
+    let mut seen = BTreeSet::new();
+    for sigma in m.cells.iter().filter(|c| m.unambiguous(&c.1)) {
+        let sv = vs(&sigma.1);
+        let want = m.top_star(sigma);
+        if want.is_empty() {
+            continue; // an isolated vertex
+        }
+        ia.top_star(&sv, &mut cells).unwrap();
+        let w: Vec<CellId> = want.iter().copied().map(CellId).collect();
+        assert_eq!(cells, w, "{name}: St_T({:?})", sigma.1);
+        let g = ia.ghost(&sv).unwrap();
+        assert_eq!(g.p as usize, sigma.0, "{name}: ghost {sigma:?}");
+        assert_eq!(ia.ghost_vertices(g).unwrap(), sv, "{name}: ghost {sigma:?}");
+        assert!(seen.insert(g), "{name}: two cells share ghost {g:?}");
+        let best = want.iter().map(|&c| ia.dim_index(CellId(c))).min().unwrap();
+        assert_eq!(
+            (g.m as usize, g.k),
+            best,
+            "{name}: canonical top of {sigma:?}"
+        );
+        let names = |gs: Vec<starplex::tds::iastar::Ghost>| -> Vec<Vec<u32>> {
+            let mut l: Vec<Vec<u32>> = gs
+                .into_iter()
+                .map(|h| ia.ghost_vertices(h).unwrap().iter().map(|v| v.0).collect())
+                .collect();
+            l.sort();
+            l
+        };
+        for q in 0..sigma.0 {
+            assert_eq!(
+                names(ia.ghost_boundary(g, q).unwrap()),
+                m.related(sigma, q),
+                "{name}: ghost boundary {sigma:?} {q}"
+            );
+        }
+        let q = sigma.0 + 1;
+        assert_eq!(
+            names(ia.ghost_coboundary(g, q).unwrap()),
+            m.related(sigma, q),
+            "{name}: ghost co-boundary {sigma:?}"
+        );
+        if sigma.0 >= 1 {
+            assert_eq!(
+                names(ia.ghost_adjacent(g).unwrap()),
+                m.adjacent(sigma),
+                "{name}: ghost adjacency {sigma:?}"
+            );
+        }
+    }
+}
+
+fn cp_complex(nv: usize, cells: &[(CellKind, &[u32])]) -> IndexedComplex {
+    let mut b = ComplexBuilder::new(3).unwrap();
+    for i in 0..nv {
+        b.push_vertex(&[i as f64, (i * i % 7) as f64, (i % 3) as f64])
+            .unwrap();
+    }
+    for (kind, c) in cells {
+        b.push_cell(*kind, c).unwrap();
+    }
+    b.build(&BuildOptions::default()).unwrap().0
+}
+
+fn cp_fixtures() -> Vec<(&'static str, IndexedComplex)> {
+    use CellKind::{Hex, Prism, Pyramid, Quad, Simplex};
+    vec![
+        ("quad", cp_complex(4, &[(Quad, &[0, 1, 2, 3])])),
+        (
+            "quad-strip-and-triangle",
+            cp_complex(
+                8,
+                &[
+                    (Quad, &[0, 1, 4, 3]),
+                    (Quad, &[1, 2, 5, 4]),
+                    (Simplex(2), &[4, 5, 6]),
+                    (Simplex(1), &[6, 7]),
+                ],
+            ),
+        ),
+        (
+            "quad-book",
+            cp_complex(
+                8,
+                &[
+                    (Quad, &[0, 1, 2, 3]),
+                    (Quad, &[0, 1, 4, 5]),
+                    (Quad, &[1, 0, 6, 7]),
+                ],
+            ),
+        ),
+        (
+            "quad-bow-tie",
+            cp_complex(7, &[(Quad, &[0, 1, 2, 3]), (Quad, &[0, 4, 5, 6])]),
+        ),
+        ("hex", cp_complex(8, &[(Hex, &[0, 1, 2, 3, 4, 5, 6, 7])])),
+        (
+            "two-hexes",
+            cp_complex(
+                12,
+                &[
+                    (Hex, &[0, 1, 2, 3, 4, 5, 6, 7]),
+                    (Hex, &[1, 8, 9, 2, 5, 10, 11, 6]),
+                ],
+            ),
+        ),
+        (
+            "three-hexes-on-a-quad",
+            cp_complex(
+                20,
+                &[
+                    (Hex, &[0, 1, 2, 3, 4, 5, 6, 7]),
+                    (Hex, &[1, 8, 9, 2, 5, 10, 11, 6]),
+                    (Hex, &[1, 12, 13, 2, 5, 14, 15, 6]),
+                    (Hex, &[16, 17, 18, 19, 0, 1, 2, 3]),
+                ],
+            ),
+        ),
+        (
+            "mixed-3d",
+            cp_complex(
+                15,
+                &[
+                    (Hex, &[0, 1, 2, 3, 4, 5, 6, 7]),
+                    (Prism, &[2, 8, 3, 6, 9, 7]),
+                    (Pyramid, &[4, 5, 6, 7, 10]),
+                    (Simplex(3), &[5, 6, 10, 11]),
+                    (Simplex(3), &[6, 9, 7, 12]),
+                    (Simplex(2), &[0, 1, 13]),
+                    (Simplex(1), &[13, 14]),
+                ],
+            ),
+        ),
+        (
+            "hexes-on-a-vertex-and-an-edge",
+            cp_complex(
+                21,
+                &[
+                    (Hex, &[0, 1, 2, 3, 4, 5, 6, 7]),
+                    (Hex, &[7, 8, 9, 10, 11, 12, 13, 14]),
+                    (Hex, &[0, 1, 15, 16, 17, 18, 19, 20]),
+                ],
+            ),
+        ),
+    ]
+}
+
+#[test]
+fn ig_and_iastar_answer_every_relation_on_the_cp_fixtures() {
+    for (name, k) in cp_fixtures() {
+        let m = CpModel::new(&k);
+        check_cp_ig(
+            &format!("{name}/ig"),
+            &IncidenceGraph::new(&k, 1 << 30).unwrap(),
+            &m,
+        );
+        check_cp_iastar(&format!("{name}/ia*"), &IaStar::new(&k).unwrap(), &m);
+        // VT and VV are the same from every structure that holds CP cells
+        let vt = VtIndex::new(&k);
+        let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        for v in 0..k.n_vertices() as u32 {
+            vt.vertex_neighbours(VertexId(v), &mut a);
+            t.vertex_neighbours(VertexId(v), &mut b);
+            assert_eq!(a, b, "{name}: VV({v}) vt/stellar");
+            assert_eq!(a, vs(&m.vv(v)), "{name}: VV({v}) model");
+        }
+    }
+}
+
+#[test]
+fn simplicial_only_structures_refuse_cp_complexes_naming_one_that_answers() {
+    let (_, k) = cp_fixtures().swap_remove(1);
+    let st = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap_err();
+    let is = Is::new(&k, 1 << 20).unwrap_err();
+    for e in [st, is] {
+        assert!(matches!(e, BuildError::NotSimplicial(0, _)));
+        assert!(e
+            .to_string()
+            .contains("the incidence graph, IA* and the Stellar tree"));
+    }
+    assert!(HasseQueries::new(&k, 1 << 20).is_err());
+}
+
+/// A random CP complex: cells of random kinds on few vertices (faces of other cells and
+/// duplicates dropped).
+fn random_cp_complex(nv: usize, raw: &[(u8, Vec<u32>)]) -> Option<IndexedComplex> {
+    const KINDS: [CellKind; 9] = [
+        CellKind::Simplex(1),
+        CellKind::Simplex(2),
+        CellKind::Simplex(3),
+        CellKind::Quad,
+        CellKind::Quad,
+        CellKind::Pyramid,
+        CellKind::Prism,
+        CellKind::Hex,
+        CellKind::Hex,
+    ];
+    let mut b = ComplexBuilder::new(1).unwrap();
+    for i in 0..nv {
+        b.push_vertex(&[i as f64]).unwrap();
+    }
+    let mut any = false;
+    for (kind, vs) in raw {
+        let kind = KINDS[*kind as usize % KINDS.len()];
+        let mut d: Vec<u32> = Vec::new();
+        for &v in vs {
+            let v = v % nv as u32;
+            if !d.contains(&v) {
+                d.push(v);
+            }
+        }
+        if d.len() >= kind.n_vertices() {
+            b.push_cell(kind, &d[..kind.n_vertices()]).unwrap();
+            any = true;
+        }
+    }
+    if !any {
+        return None;
+    }
+    let k = b
+        .build(&BuildOptions {
+            drop_face_cells: true,
+            drop_duplicates: true,
+            ..Default::default()
+        })
+        .ok()?
+        .0;
+    (k.n_cells() > 0).then_some(k)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 80,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(20261201),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+    #[test]
+    fn ig_and_iastar_match_the_model_on_random_cp_complexes(
+        nv in 4usize..14,
+        raw in proptest::collection::vec((0u8..9, proptest::collection::vec(0u32..64, 8)), 1..7),
+    ) {
+        if let Some(k) = random_cp_complex(nv, &raw) {
+            let m = CpModel::new(&k);
+            check_cp_ig("random/ig", &IncidenceGraph::new(&k, 1 << 30).unwrap(), &m);
+            check_cp_iastar("random/ia*", &IaStar::new(&k).unwrap(), &m);
+            let c0 = components(&VtIndex::new(&k));
+            prop_assert_eq!(components(&IaStar::new(&k).unwrap()), c0.clone());
+            prop_assert_eq!(components(&IncidenceGraph::new(&k, 1 << 30).unwrap()), c0);
+        }
+    }
 }

@@ -1,6 +1,6 @@
 //! IA*: the generalized indexed data structure with adjacencies (Canino, De Floriani, Weiss
 //! 2011) for non-manifold simplicial complexes of any dimension and mixed dimensions, as
-//! specified in `shared/specs/ia-star-is-ghosts.md` §2.
+//! specified in `shared/specs/ia-star-is-ghosts.md` §2, and for CP cell complexes (below).
 //!
 //! Stored (all ids are input ids):
 //! * R_{k,0}: the vertices of every top k-simplex (input order; facet j = the top without its
@@ -14,6 +14,55 @@
 //! On a pure pseudo-manifold there are no non-manifold faces nor top edges and it is IA
 //! (one reference per cluster per vertex). Storage follows the spec's formula exactly
 //! ([`IaStar::refs`]); ghost simplices ([`Ghost`]) name faces that are not stored.
+//!
+//! **CP complexes** (quads, pyramids, prisms, hexahedra, mixed with simplices) are held the
+//! same way, with the kinds' face tables ([`CellKind::cp_faces`], VTK order): a top stores its
+//! vertices in input (VTK) order and one adjacency slot per facet of its table — a hexahedron
+//! 6 (quads), a prism 5 (triangles 0-1-2 and 3-5-4, then 3 quads), a pyramid 5 (the base quad,
+//! then 4 triangles), a quad 4 (edges). Facets are matched across kinds by their canonical
+//! key (sorted vertices): a tetrahedron and a prism sharing a triangle are adjacent, a quad in
+//! three hexahedra is a non-manifold facet. Clusters, VT and VV walk the facets (and edges)
+//! of the tables, so a quad's diagonal is not an edge. A ghost in a CP top is "face `i` of the
+//! kind's p-face table"; ghosts on simplices keep the colex rank. Complexes with a CP cell
+//! are built by the general path, never the fast path for dimension ≤ 3 (which stays
+//! simplicial). The generic relations ([`crate::topo::from_tops`]) answer top stars on CP
+//! cells and refuse face enumerations with [`QueryError::NotSimplicial`]; the ghost relations
+//! ([`IaStar::ghost_boundary`], [`IaStar::ghost_coboundary`], [`IaStar::ghost_adjacent`])
+//! answer them for CP cells too.
+//!
+//! ```
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! use starplex::ids::{CellId, VertexId};
+//! use starplex::tds::iastar::{Adj, IaStar};
+//! use starplex::topo::{VertexAdjacency, VertexStar};
+//! // two hexahedra sharing the quad 1-2-6-5, and a prism on the quad 2-3-7-6
+//! let mut b = ComplexBuilder::new(3).unwrap();
+//! for z in [0.0, 1.0] {
+//!     for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+//!         b.push_vertex(&[x, y, z]).unwrap();
+//!     }
+//! }
+//! for (x, y, z) in [(2.0, 0.0, 0.0), (2.0, 1.0, 0.0), (2.0, 0.0, 1.0), (2.0, 1.0, 1.0),
+//!                   (1.0, 2.0, 0.0), (1.0, 2.0, 1.0)] {
+//!     b.push_vertex(&[x, y, z]).unwrap();
+//! }
+//! b.push_cell(CellKind::Hex, &[0, 1, 2, 3, 4, 5, 6, 7]).unwrap();
+//! b.push_cell(CellKind::Hex, &[1, 8, 9, 2, 5, 10, 11, 6]).unwrap();
+//! b.push_cell(CellKind::Prism, &[2, 12, 3, 6, 13, 7]).unwrap();
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let ia = IaStar::new(&k).unwrap();
+//! // hexahedron 0's facet 3 is the quad 1-2-6-5, facet 4 the quad 2-3-7-6
+//! assert_eq!(ia.adjacency(CellId(0))[3], Adj::Top(CellId(1)));
+//! assert_eq!(ia.adjacency(CellId(0))[4], Adj::Top(CellId(2)));
+//! assert_eq!(ia.adjacency(CellId(2)).len(), 5); // 2 triangles + 3 quads
+//! let mut vt = Vec::new();
+//! ia.vertex_top_cells(VertexId(2), &mut vt);
+//! assert_eq!(vt, [CellId(0), CellId(1), CellId(2)]);
+//! let mut vv = Vec::new();
+//! ia.vertex_neighbours(VertexId(0), &mut vv);
+//! assert_eq!(vv, [VertexId(1), VertexId(3), VertexId(4)]); // no diagonal
+//! ```
 //!
 //! ```
 //! use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -44,20 +93,12 @@ use crate::topo::{sorted_simplex, QueryError, Storage, TopCells, VertexAdjacency
 /// Why an IA* could not be built.
 ///
 /// ```
-/// # use starplex::complex::{ComplexBuilder, BuildOptions};
-/// # use starplex::cell::CellKind;
-/// use starplex::tds::iastar::{IaStar, IaStarError};
-/// let mut b = ComplexBuilder::new(2).unwrap();
-/// for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-/// b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
-/// let k = b.build(&BuildOptions::default()).unwrap().0;
-/// assert!(matches!(IaStar::new(&k), Err(IaStarError::NotSimplicial(0, _))));
+/// use starplex::tds::iastar::IaStarError;
+/// let e = IaStarError::TooManyCells(1 << 31);
+/// assert_eq!(e.to_string(), "2147483648 top cells: IA* adjacency slots address at most 2^31 - 1");
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum IaStarError {
-    /// A top cell that is not a simplex.
-    #[error("cell {0} is a {1}; IA* holds simplicial complexes only")]
-    NotSimplicial(u32, String),
     /// Too many top cells for the 31-bit adjacency encoding.
     #[error("{0} top cells: IA* adjacency slots address at most 2^31 - 1")]
     TooManyCells(usize),
@@ -104,38 +145,54 @@ fn decode(x: u32) -> Adj {
     }
 }
 
-/// The tops of one block of the input (one dimension).
+/// The tops of one block of the input (one kind).
 #[derive(Clone, Debug)]
 struct Block {
     dim: usize,
+    /// The kind of the block's tops.
+    kind: CellKind,
+    /// Vertices per top (dim + 1 for a simplex).
+    nv: u32,
+    /// Adjacency slots per top: one per facet for dimension ≥ 2 (dim + 1 for a simplex, the
+    /// facet table's length for a CP cell), none below.
+    ns: u32,
     first: u32,
     /// Index of the block's first top among the tops of its dimension.
     dim_offset: u32,
     /// Number of tops in the block.
     len: u32,
-    /// Per top: its k+1 vertices, then (k ≥ 2) its k+1 adjacency slots — one cache line per
+    /// Per top: its `nv` vertices, then its `ns` adjacency slots — one cache line per
     /// tetrahedron.
     data: Vec<u32>,
 }
 
 impl Block {
+    fn new(kind: CellKind, first: u32, dim_offset: u32, len: u32) -> Block {
+        let dim = kind.dim();
+        Block {
+            dim,
+            kind,
+            nv: kind.n_vertices() as u32,
+            ns: if dim >= 2 {
+                kind.n_faces(dim - 1) as u32
+            } else {
+                0
+            },
+            first,
+            dim_offset,
+            len,
+            data: Vec::new(),
+        }
+    }
     #[inline]
     fn stride(&self) -> usize {
-        if self.dim >= 2 {
-            2 * (self.dim + 1)
-        } else {
-            self.dim + 1
-        }
+        (self.nv + self.ns) as usize
     }
     fn n_verts(&self) -> usize {
-        self.len as usize * (self.dim + 1)
+        self.len as usize * self.nv as usize
     }
     fn n_slots(&self) -> usize {
-        if self.dim >= 2 {
-            self.n_verts()
-        } else {
-            0
-        }
+        self.len as usize * self.ns as usize
     }
 }
 
@@ -167,14 +224,16 @@ pub struct IaStar {
     vrefs: Csr,
     /// Number of tops per dimension.
     t: Vec<u64>,
+    /// Every top is a simplex (else the CP paths of [`cp`] answer).
+    simplicial: bool,
 }
 
 impl IaStar {
-    /// Builds IA* from an indexed simplicial complex (top cells assumed maximal, as the
+    /// Builds IA* from an indexed complex, simplicial or CP (top cells assumed maximal, as the
     /// complex's checked builder guarantees).
     ///
     /// # Errors
-    /// A CP cell; more than 2^31 - 1 top cells.
+    /// More than 2^31 - 1 top cells.
     ///
     /// ```
     /// # use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -204,23 +263,17 @@ impl IaStar {
         let mut blocks = Vec::with_capacity(k.blocks().len());
         let dmax = k.dim().unwrap_or(0);
         let mut t = vec![0u64; dmax + 1];
+        let mut simplicial = true;
         for b in k.blocks() {
-            if !b.kind.is_simplex() {
-                return Err(IaStarError::NotSimplicial(b.first, b.kind.type_name()));
-            }
             let dim = b.kind.dim();
-            blocks.push(Block {
-                dim,
-                first: b.first,
-                dim_offset: t[dim] as u32,
-                len: b.len() as u32,
-                data: Vec::new(),
-            });
+            simplicial &= b.kind.is_simplex();
+            blocks.push(Block::new(b.kind, b.first, t[dim] as u32, b.len() as u32));
             t[dim] += b.len() as u64;
         }
         let nv = k.n_vertices();
         let incidences: u64 = blocks.iter().map(|b| b.n_verts() as u64).sum();
-        let fast = dmax <= 3 && incidences + incidences / 2 < u32::MAX as u64;
+        // CP cells take the general path
+        let fast = simplicial && dmax <= 3 && incidences + incidences / 2 < u32::MAX as u64;
         if let Some((nm, vrefs)) = tuning
             .filter(|_| fast)
             .and_then(|tu| low_dim::build(k, &mut blocks, &t, nv, tu))
@@ -232,16 +285,29 @@ impl IaStar {
                 nm,
                 vrefs,
                 t,
+                simplicial,
             });
         }
+        Ok(Self::build_general(k, blocks, t, simplicial))
+    }
+
+    /// The construction for any dimension and any cell kinds (grouping facet records); kept out
+    /// of line so that the fast path's code is laid out as before CP cells existed.
+    #[inline(never)]
+    fn build_general(
+        k: &IndexedComplex,
+        mut blocks: Vec<Block>,
+        t: Vec<u64>,
+        simplicial: bool,
+    ) -> IaStar {
+        let dmax = k.dim().unwrap_or(0);
+        let nv = k.n_vertices();
         for (blk, b) in blocks.iter_mut().zip(k.blocks()) {
-            let n = blk.dim + 1;
-            blk.data = if blk.dim >= 2 {
-                let mut d = vec![NONE; 2 * b.vertices.len()];
-                for (rec, c) in d.chunks_exact_mut(2 * n).zip(b.vertices.chunks_exact(n)) {
-                    for (x, &y) in rec.iter_mut().zip(c) {
-                        *x = y;
-                    }
+            let (n, st) = (blk.nv as usize, blk.stride());
+            blk.data = if blk.ns > 0 {
+                let mut d = vec![NONE; blk.len as usize * st];
+                for (rec, c) in d.chunks_exact_mut(st).zip(b.vertices.chunks_exact(n)) {
+                    rec[..n].copy_from_slice(c);
                 }
                 d
             } else {
@@ -250,9 +316,14 @@ impl IaStar {
         }
         let mut nm: Vec<Csr> = vec![Csr::default(); dmax + 1];
         for d in 2..=dmax {
-            if t[d] > 0 {
-                nm[d] = build_adjacency(&mut blocks, d, nv);
+            if t[d] == 0 {
+                continue;
             }
+            nm[d] = if blocks.iter().any(|b| b.dim == d && !b.kind.is_simplex()) {
+                cp::build_adjacency(&mut blocks, d)
+            } else {
+                build_adjacency(&mut blocks, d, nv)
+            };
         }
         let mut ia = IaStar {
             n_vertices: nv as u32,
@@ -261,9 +332,15 @@ impl IaStar {
             nm,
             vrefs: Csr::default(),
             t,
+            simplicial,
         };
-        ia.vrefs = ia.cluster_representatives(&k.vertex_cells());
-        Ok(ia)
+        let vt = k.vertex_cells();
+        ia.vrefs = if simplicial {
+            ia.cluster_representatives(&vt)
+        } else {
+            cp::cluster_representatives(&ia, &vt)
+        };
+        ia
     }
 
     #[inline]
@@ -278,8 +355,13 @@ impl IaStar {
     /// Vertices (input order) and adjacency slots of top `c`.
     #[inline]
     fn top(&self, c: u32) -> (usize, &[u32], &[u32]) {
-        let b = self.block_of(c);
-        let n = b.dim + 1;
+        Self::record(self.block_of(c), c)
+    }
+
+    /// Vertices (input order) and adjacency slots of top `c` of block `b`.
+    #[inline]
+    fn record(b: &Block, c: u32) -> (usize, &[u32], &[u32]) {
+        let n = b.nv as usize;
         let st = b.stride();
         let i = (c - b.first) as usize;
         let rec = &b.data[i * st..(i + 1) * st];
@@ -289,7 +371,11 @@ impl IaStar {
     /// Calls `f` with every top reached from `c` through a facet containing `v`.
     #[inline]
     fn for_each_neighbour_at(&self, c: u32, v: u32, mut f: impl FnMut(u32)) {
-        let (dim, verts, adj) = self.top(c);
+        let b = self.block_of(c);
+        let (dim, verts, adj) = Self::record(b, c);
+        if !b.kind.is_simplex() {
+            return cp::for_each_neighbour_at(self, b.kind, c, v, verts, adj, f);
+        }
         for j in 0..adj.len() {
             if verts[j] == v {
                 continue;
@@ -494,17 +580,25 @@ impl IaStar {
     /// ```
     pub fn nm_face_vertices(&self, k: usize, f: u32) -> Vec<VertexId> {
         let tops = self.nm_face_tops(k, f);
-        let (_, verts, adj) = self.top(tops[0]);
+        let b = self.block_of(tops[0]);
+        let (_, verts, adj) = Self::record(b, tops[0]);
         let j = adj
             .iter()
             .position(|&x| x == (NM_BIT | f))
             .expect("an NmFace record is referenced by its tops");
-        let mut out: Vec<VertexId> = verts
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| i != j)
-            .map(|(_, &v)| VertexId(v))
-            .collect();
+        let mut out: Vec<VertexId> = if b.kind.is_simplex() {
+            verts
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| i != j)
+                .map(|(_, &v)| VertexId(v))
+                .collect()
+        } else {
+            cp::facet(b.kind, j)
+                .iter()
+                .map(|&l| VertexId(verts[l as usize]))
+                .collect()
+        };
         out.sort_unstable();
         out
     }
@@ -679,6 +773,8 @@ impl IaStar {
         out.sort_unstable();
     }
 }
+
+mod cp;
 
 /// Construction for complexes of dimension at most 3, in a few passes over flat arrays. The
 /// tops of real meshes come in no spatial order and the build is bound by memory traffic, so
@@ -1957,7 +2053,7 @@ impl TopCells for IaStar {
         self.n_cells as usize
     }
     fn top_cell_kind(&self, c: CellId) -> CellKind {
-        CellKind::Simplex(self.top(c.0).0 as u8)
+        self.block_of(c.0).kind
     }
     fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
         out.extend(self.top(c.0).1.iter().map(|&v| VertexId(v)));
@@ -1969,8 +2065,12 @@ impl VertexStar for IaStar {
         self.vt_into(v.0, out);
     }
 
-    /// Walks the clusters of `s[0]` and stops at the first top containing `s`.
+    /// Walks the clusters of `s[0]` and stops at the first top containing `s` (simplicial
+    /// complexes; with CP cells, where a vertex subset of a top need not be a face, `None`).
     fn star_has_top_containing(&self, s: &[VertexId]) -> Option<bool> {
+        if !self.simplicial {
+            return None;
+        }
         Some(self.has_top_containing(s))
     }
 }
@@ -2017,6 +2117,17 @@ impl VertexAdjacency for IaStar {
         let mut cells = Vec::new();
         self.vt_into(v.0, &mut cells);
         out.clear();
+        if !self.simplicial {
+            // the edges of the face tables (a quad's diagonal is not an edge)
+            for c in cells {
+                let b = self.block_of(c.0);
+                let verts = Self::record(b, c.0).1;
+                crate::topo::naive::edge_neighbours(b.kind, verts, v.0, |w| out.push(VertexId(w)));
+            }
+            out.sort_unstable();
+            out.dedup();
+            return;
+        }
         for c in cells {
             out.extend(
                 self.top(c.0)
@@ -2171,7 +2282,19 @@ impl IaStar {
             .min()
             .ok_or_else(|| QueryError::NotInComplex(s.iter().map(|v| v.0).collect()))?;
         let (m, k, c) = best;
-        let verts = self.top(c.0).1;
+        let b = self.block_of(c.0);
+        let verts = Self::record(b, c.0).1;
+        if !b.kind.is_simplex() {
+            // a face of a CP top: its index in the kind's face table of its dimension
+            let (p, i) = cp::face_index(b.kind, verts, &s)
+                .ok_or_else(|| QueryError::NotInComplex(s.iter().map(|v| v.0).collect()))?;
+            return Ok(Ghost {
+                m: m as u8,
+                k,
+                p: p as u8,
+                i: i as u64,
+            });
+        }
         let mut pos: Vec<usize> = s
             .iter()
             .map(|v| {
@@ -2212,10 +2335,22 @@ impl IaStar {
     pub fn ghost_vertices(&self, g: Ghost) -> Result<Vec<VertexId>, QueryError> {
         let bad = || QueryError::NotInComplex(vec![]);
         let c = self.cell_of(g.m as usize, g.k).ok_or_else(bad)?;
+        let b = self.block_of(c.0);
+        let verts = Self::record(b, c.0).1;
+        if !b.kind.is_simplex() {
+            let face = b
+                .kind
+                .cp_faces(g.p as usize)
+                .and_then(|t| t.get(usize::try_from(g.i).ok()?))
+                .ok_or_else(bad)?;
+            let mut out: Vec<VertexId> =
+                face.iter().map(|&l| VertexId(verts[l as usize])).collect();
+            out.sort_unstable();
+            return Ok(out);
+        }
         if g.p > g.m || g.i as u128 >= binomial(g.m as u64 + 1, g.p as u64 + 1) {
             return Err(bad());
         }
-        let verts = self.top(c.0).1;
         let mut out: Vec<VertexId> = colex_unrank(g.i, g.p as usize)
             .into_iter()
             .map(|j| VertexId(verts[j]))
@@ -2247,6 +2382,10 @@ impl IaStar {
     /// ```
     pub fn ghost_boundary(&self, g: Ghost, q: usize) -> Result<Vec<Ghost>, QueryError> {
         let s = self.ghost_vertices(g)?;
+        if s.len() != g.p as usize + 1 {
+            // a CP cell (quad, pyramid, prism, hexahedron): the faces in its top's tables
+            return cp::ghost_boundary(self, g, &s, q);
+        }
         let mut flat = Vec::new();
         crate::topo::from_tops::boundary_of_sorted(&s, q, crate::topo::DEFAULT_BUDGET, &mut flat)?;
         self.ghosts_of_flat(&flat, q)
@@ -2277,6 +2416,9 @@ impl IaStar {
     /// ]);
     /// ```
     pub fn ghost_coboundary(&self, g: Ghost, q: usize) -> Result<Vec<Ghost>, QueryError> {
+        if !self.simplicial {
+            return cp::ghost_coboundary(self, g, q);
+        }
         let s = self.ghost_vertices(g)?;
         let mut flat = Vec::new();
         crate::topo::from_tops::coboundary(self, &s, q, crate::topo::DEFAULT_BUDGET, &mut flat)?;
@@ -2305,6 +2447,9 @@ impl IaStar {
     /// assert_eq!(ia.ghost_vertices(adj[0]).unwrap(), vec![VertexId(1), VertexId(2), VertexId(3)]);
     /// ```
     pub fn ghost_adjacent(&self, g: Ghost) -> Result<Vec<Ghost>, QueryError> {
+        if !self.simplicial {
+            return cp::ghost_adjacent(self, g);
+        }
         let s = self.ghost_vertices(g)?;
         let mut flat = Vec::new();
         crate::topo::from_tops::adjacent(self, &s, crate::topo::DEFAULT_BUDGET, &mut flat)?;

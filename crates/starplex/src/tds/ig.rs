@@ -31,6 +31,8 @@ use crate::topo::{
     DEFAULT_BUDGET,
 };
 
+mod cells;
+
 /// All simplices with their boundaries: the part shared by the incidence graph and IS.
 #[derive(Clone, Debug)]
 pub(crate) struct Explicit {
@@ -467,79 +469,23 @@ macro_rules! impl_explicit_common {
 }
 pub(crate) use impl_explicit_common;
 
-/// The incidence graph. See the [module docs](self).
-///
-/// ```
-/// use starplex::tds::ig::IncidenceGraph;
-/// use starplex::topo::{Boundary, Storage};
-/// use starplex::ids::VertexId;
-/// # use starplex::complex::{ComplexBuilder, BuildOptions};
-/// # use starplex::cell::CellKind;
-/// # let mut b = ComplexBuilder::new(2).unwrap();
-/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-/// # let k = b.build(&BuildOptions::default()).unwrap().0;
-/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
-/// let ig = IncidenceGraph::new(&k, 1000).unwrap();
-/// // Boundary and co-boundary references: 2 * (2 * 5 edges + 3 * 2 triangles).
-/// assert_eq!(ig.refs(), 32);
-/// let mut out = Vec::new();
-/// ig.boundary(&[VertexId(1), VertexId(3)], 0, &mut out).unwrap();
-/// assert_eq!(out, [VertexId(1), VertexId(3)]);
-/// ```
+/// The incidence graph of a simplicial complex (its simplices from the simplex-tree levels).
 #[derive(Clone, Debug)]
-pub struct IncidenceGraph {
+struct SimplicialIg {
     x: Explicit,
     /// Full immediate co-boundaries per level p < dim (indices at level p+1).
     cob: Vec<Csr>,
 }
 
-impl IncidenceGraph {
-    /// Builds every simplex with its boundary and co-boundary.
-    ///
-    /// ```
-    /// use starplex::tds::{ig::IncidenceGraph, simplex_tree::BuildError};
-    /// use starplex::topo::Counts;
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # let mut b = ComplexBuilder::new(1).unwrap();
-    /// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// // k: the tetrahedron 0-1-2-3
-    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
-    /// assert_eq!(ig.f_vector().unwrap(), vec![4, 6, 4, 1]);
-    /// assert!(matches!(IncidenceGraph::new(&k, 10), Err(BuildError::TooLarge { .. })));
-    /// ```
-    ///
-    /// # Errors
-    /// A CP cell; more than `limit` simplices (refused before allocating them).
-    pub fn new(k: &IndexedComplex, limit: u128) -> Result<IncidenceGraph, BuildError> {
-        let x = Explicit::new(k, limit)?;
-        let cob = x.coboundaries().into_iter().map(|(c, _)| c).collect();
-        Ok(IncidenceGraph { x, cob })
+impl SimplicialIg {
+    fn descend(&self, p: usize, i: u32, q: usize) -> Vec<u32> {
+        self.x.descend(p, i, q)
     }
 
-    /// Bytes of the auxiliary index (sorted vertex tuples, top-cell map), not counted in
-    /// [`Storage::bytes`].
-    ///
-    /// ```
-    /// use starplex::tds::ig::IncidenceGraph;
-    /// use starplex::topo::Storage;
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # let mut b = ComplexBuilder::new(1).unwrap();
-    /// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// // k: the tetrahedron 0-1-2-3
-    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
-    /// assert!(ig.aux_bytes() > 0);
-    /// assert!(ig.bytes() >= 4 * ig.refs()); // aux_bytes is not part of bytes
-    /// ```
-    pub fn aux_bytes(&self) -> u64 {
-        self.x.aux_bytes()
+    fn new(k: &IndexedComplex, limit: u128) -> Result<SimplicialIg, BuildError> {
+        let x = Explicit::new(k, limit)?;
+        let cob = x.coboundaries().into_iter().map(|(c, _)| c).collect();
+        Ok(SimplicialIg { x, cob })
     }
 
     /// St(σ) as (level, index) by breadth-first ascent through full co-boundaries.
@@ -569,7 +515,7 @@ impl IncidenceGraph {
     }
 }
 
-impl VertexAdjacency for IncidenceGraph {
+impl VertexAdjacency for SimplicialIg {
     fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>) {
         out.clear();
         if v.0 >= self.x.n_vertices || self.cob.is_empty() {
@@ -583,14 +529,414 @@ impl VertexAdjacency for IncidenceGraph {
     }
 }
 
-impl_explicit_common!(IncidenceGraph);
+impl_explicit_common!(SimplicialIg);
 
-impl Storage for IncidenceGraph {
+impl Storage for SimplicialIg {
     /// 2·Σ_{p≥1}(p+1)n_p: every boundary arc in both directions.
     fn refs(&self) -> u64 {
         self.x.boundary_refs() + self.cob.iter().map(|c| c.n_refs() as u64).sum::<u64>()
     }
     fn bytes(&self) -> u64 {
         self.x.boundary_bytes() + self.cob.iter().map(|c| c.bytes() as u64).sum::<u64>()
+    }
+}
+
+/// The incidence graph. See the [module docs](self).
+///
+/// ```
+/// use starplex::tds::ig::IncidenceGraph;
+/// use starplex::topo::{Boundary, Storage};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
+/// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+/// // Boundary and co-boundary references: 2 * (2 * 5 edges + 3 * 2 triangles).
+/// assert_eq!(ig.refs(), 32);
+/// let mut out = Vec::new();
+/// ig.boundary(&[VertexId(1), VertexId(3)], 0, &mut out).unwrap();
+/// assert_eq!(out, [VertexId(1), VertexId(3)]);
+/// ```
+///
+/// A CP complex (quads, pyramids, prisms, hexahedra, mixed with simplices) is held the same
+/// way, its cells taken from the kinds' face tables: edges are the tables' edges (a quad's
+/// diagonal is not one), a 2-cell is a triangle or a quad, and a face shared by two cells is
+/// one node. A cell is named by its canonical key, its sorted vertices, as the Stellar tree's
+/// face lists name CP faces. [`TopCells`], [`VertexStar`], [`VertexAdjacency`], [`TopStar`],
+/// [`Counts`] (cells per dimension) and [`SimplexVertices`] (keys of any length) answer for
+/// every cell ([`TopCells::top_cell_vertices`] keeps the input order of a CP complex's tops,
+/// which the face tables index); the relations whose answer is a flat list of sorted (q+1)-vertex tuples
+/// ([`Boundary`], [`Coboundary`], [`Adjacency`], [`Star`], [`Levels`]) answer when the cells
+/// listed are simplices and return [`QueryError::NotSimplicial`], naming the first quad or
+/// 3-cell, otherwise. The id-based relations ([`IncidenceGraph::cell_faces`],
+/// [`IncidenceGraph::cell_cofaces`], [`IncidenceGraph::cell_adjacent`]) answer everything.
+///
+/// ```
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// use starplex::ids::{CellId, VertexId};
+/// use starplex::tds::ig::IncidenceGraph;
+/// use starplex::topo::{Boundary, Counts, SimplexVertices, VertexAdjacency, VertexStar};
+/// // two quads sharing the edge 1-4, and a triangle on the edge 4-5
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [0.0, 1.0], [1.0, 1.0], [2.0, 1.0], [1.5, 2.0]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Quad, &[0, 1, 4, 3]).unwrap();
+/// b.push_cell(CellKind::Quad, &[1, 2, 5, 4]).unwrap();
+/// b.push_cell(CellKind::Simplex(2), &[4, 5, 6]).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+/// assert_eq!(ig.f_vector().unwrap(), vec![7, 9, 3]); // no diagonals
+/// let mut vv = Vec::new();
+/// ig.vertex_neighbours(VertexId(4), &mut vv);
+/// assert_eq!(vv, [VertexId(1), VertexId(3), VertexId(5), VertexId(6)]);
+/// let mut vt = Vec::new();
+/// ig.vertex_top_cells(VertexId(5), &mut vt);
+/// assert_eq!(vt, [CellId(1), CellId(2)]);
+/// // a quad is named by its sorted vertices; its edges are simplices
+/// let v = |x: &[u32]| x.iter().map(|&i| VertexId(i)).collect::<Vec<_>>();
+/// let mut edges = Vec::new();
+/// ig.boundary(&v(&[4, 1, 2, 5]), 1, &mut edges).unwrap();
+/// assert_eq!(edges, v(&[1, 2, 1, 4, 2, 5, 4, 5]));
+/// // the 2-cells at the edge 4-5, by id: a quad and a triangle
+/// let e = ig.find_simplex(&v(&[4, 5])).unwrap();
+/// let cells: Vec<Vec<VertexId>> = ig.cell_cofaces(e, 2).unwrap().into_iter().map(|c| {
+///     let mut vs = Vec::new();
+///     ig.simplex_vertices(c, &mut vs);
+///     vs
+/// }).collect();
+/// assert_eq!(cells, [v(&[1, 2, 4, 5]), v(&[4, 5, 6])]);
+/// ```
+#[derive(Clone, Debug)]
+pub struct IncidenceGraph {
+    repr: Repr,
+}
+
+#[derive(Clone, Debug)]
+enum Repr {
+    Simplices(SimplicialIg),
+    Cells(cells::CellGraph),
+}
+
+/// Runs `$e` with `$g` bound to the representation.
+macro_rules! each {
+    ($self:expr, $g:ident => $e:expr) => {
+        match &$self.repr {
+            Repr::Simplices($g) => $e,
+            Repr::Cells($g) => $e,
+        }
+    };
+}
+
+impl IncidenceGraph {
+    /// Builds every simplex (every cell, for a CP complex) with its boundary and co-boundary.
+    ///
+    /// ```
+    /// use starplex::tds::{ig::IncidenceGraph, simplex_tree::BuildError};
+    /// use starplex::topo::Counts;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the tetrahedron 0-1-2-3
+    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// assert_eq!(ig.f_vector().unwrap(), vec![4, 6, 4, 1]);
+    /// assert!(matches!(IncidenceGraph::new(&k, 10), Err(BuildError::TooLarge { .. })));
+    /// ```
+    ///
+    /// # Errors
+    /// More than `limit` simplices or cells (refused before allocating them).
+    pub fn new(k: &IndexedComplex, limit: u128) -> Result<IncidenceGraph, BuildError> {
+        let repr = if k.is_simplicial() {
+            Repr::Simplices(SimplicialIg::new(k, limit)?)
+        } else {
+            Repr::Cells(cells::CellGraph::new(k, limit)?)
+        };
+        Ok(IncidenceGraph { repr })
+    }
+
+    /// Bytes of the auxiliary index (sorted vertex tuples, top-cell map), not counted in
+    /// [`Storage::bytes`].
+    ///
+    /// ```
+    /// use starplex::tds::ig::IncidenceGraph;
+    /// use starplex::topo::Storage;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the tetrahedron 0-1-2-3
+    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// assert!(ig.aux_bytes() > 0);
+    /// assert!(ig.bytes() >= 4 * ig.refs()); // aux_bytes is not part of bytes
+    /// ```
+    pub fn aux_bytes(&self) -> u64 {
+        match &self.repr {
+            Repr::Simplices(g) => g.x.aux_bytes(),
+            Repr::Cells(g) => g.aux_bytes(),
+        }
+    }
+
+    /// The dimension of cell `c` (a [`SimplexVertices`] id), `None` for an id out of range.
+    ///
+    /// ```
+    /// use starplex::tds::ig::IncidenceGraph;
+    /// use starplex::topo::SimplexVertices;
+    /// use starplex::ids::{SimplexId, VertexId};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the quad 0-1-2-3
+    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let q = ig.find_simplex(&[VertexId(3), VertexId(2), VertexId(1), VertexId(0)]).unwrap();
+    /// assert_eq!(ig.cell_dim(q), Some(2));
+    /// assert_eq!(ig.cell_dim(SimplexId(99)), None);
+    /// ```
+    pub fn cell_dim(&self, c: SimplexId) -> Option<usize> {
+        self.split(c).map(|(p, _)| p)
+    }
+
+    fn split(&self, c: SimplexId) -> Option<(usize, u32)> {
+        match &self.repr {
+            Repr::Simplices(g) => (c.0 < *g.x.level_offset.last()?).then(|| g.x.split(c)),
+            Repr::Cells(g) => g.split(c),
+        }
+    }
+
+    fn globals(&self, p: usize, ids: Vec<u32>) -> Vec<SimplexId> {
+        ids.into_iter()
+            .map(|i| match &self.repr {
+                Repr::Simplices(g) => g.x.global(p, i),
+                Repr::Cells(g) => g.global(p, i),
+            })
+            .collect()
+    }
+
+    /// R_{p,q}, q < p: the q-faces of cell `c` by id (quads and 3-cells included), sorted;
+    /// empty for q ≥ p.
+    ///
+    /// # Errors
+    /// An id out of range.
+    ///
+    /// ```
+    /// use starplex::tds::ig::IncidenceGraph;
+    /// use starplex::topo::SimplexVertices;
+    /// use starplex::ids::VertexId;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(3).unwrap();
+    /// # for i in 0..8 { b.push_vertex(&[(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2) as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Hex, &[0, 1, 3, 2, 4, 5, 7, 6]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: one hexahedron
+    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let hex = ig.find_simplex(&(0..8).map(VertexId).collect::<Vec<_>>()).unwrap();
+    /// assert_eq!(ig.cell_faces(hex, 2).unwrap().len(), 6);
+    /// assert_eq!(ig.cell_faces(hex, 1).unwrap().len(), 12);
+    /// ```
+    pub fn cell_faces(&self, c: SimplexId, q: usize) -> Result<Vec<SimplexId>, QueryError> {
+        let (p, i) = self.split(c).ok_or(QueryError::NotInComplex(vec![]))?;
+        if q >= p {
+            return Ok(Vec::new());
+        }
+        let ids = each!(self, g => g.descend(p, i, q));
+        Ok(self.globals(q, ids))
+    }
+
+    /// R_{p,q}, q > p: the q-cells having cell `c` as a face, by id, sorted; empty for q ≤ p.
+    ///
+    /// # Errors
+    /// An id out of range; a star over the budget.
+    ///
+    /// ```
+    /// use starplex::tds::ig::IncidenceGraph;
+    /// use starplex::topo::SimplexVertices;
+    /// use starplex::ids::VertexId;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(3).unwrap();
+    /// # for i in 0..8 { b.push_vertex(&[(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2) as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Hex, &[0, 1, 3, 2, 4, 5, 7, 6]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: one hexahedron
+    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let v0 = ig.find_simplex(&[VertexId(0)]).unwrap();
+    /// assert_eq!(ig.cell_cofaces(v0, 2).unwrap().len(), 3); // three quads at a corner
+    /// ```
+    pub fn cell_cofaces(&self, c: SimplexId, q: usize) -> Result<Vec<SimplexId>, QueryError> {
+        let (p, i) = self.split(c).ok_or(QueryError::NotInComplex(vec![]))?;
+        if q <= p {
+            return Ok(Vec::new());
+        }
+        let ids: Vec<u32> = each!(self, g => g.star_ids(p, i))?
+            .into_iter()
+            .filter(|&(d, _)| d == q)
+            .map(|(_, j)| j)
+            .collect();
+        Ok(self.globals(q, ids))
+    }
+
+    /// R_{p,p}: the p-cells sharing a (p-1)-face with cell `c` (p ≥ 1), or the vertices
+    /// sharing an edge with it (p = 0), by id, sorted.
+    ///
+    /// # Errors
+    /// An id out of range.
+    ///
+    /// ```
+    /// use starplex::tds::ig::IncidenceGraph;
+    /// use starplex::topo::SimplexVertices;
+    /// use starplex::ids::VertexId;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(3).unwrap();
+    /// # for i in 0..8 { b.push_vertex(&[(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2) as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Hex, &[0, 1, 3, 2, 4, 5, 7, 6]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: one hexahedron
+    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let bottom = ig.find_simplex(&[VertexId(0), VertexId(1), VertexId(2), VertexId(3)]).unwrap();
+    /// assert_eq!(ig.cell_adjacent(bottom).unwrap().len(), 4); // the four side quads
+    /// ```
+    pub fn cell_adjacent(&self, c: SimplexId) -> Result<Vec<SimplexId>, QueryError> {
+        let (p, i) = self.split(c).ok_or(QueryError::NotInComplex(vec![]))?;
+        let ids = match &self.repr {
+            Repr::Cells(g) => g.adjacent_ids(p, i),
+            Repr::Simplices(g) if p == 0 => {
+                let mut vv = Vec::new();
+                g.vertex_neighbours(VertexId(i), &mut vv);
+                vv.into_iter().map(|v| v.0).collect()
+            }
+            Repr::Simplices(g) => {
+                let mut ids: Vec<u32> = Vec::new();
+                for &f in g.x.facets(p, i) {
+                    for (d, j) in g.star_ids(p - 1, f)? {
+                        if d == p && j != i {
+                            ids.push(j);
+                        }
+                    }
+                }
+                ids.sort_unstable();
+                ids.dedup();
+                ids
+            }
+        };
+        Ok(self.globals(p, ids))
+    }
+}
+
+impl TopCells for IncidenceGraph {
+    fn n_vertices(&self) -> usize {
+        each!(self, g => g.n_vertices())
+    }
+    fn n_top_cells(&self) -> usize {
+        each!(self, g => g.n_top_cells())
+    }
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        each!(self, g => g.top_cell_kind(c))
+    }
+    /// Sorted vertices for a simplicial complex (the structure keeps no orientation); input
+    /// (VTK) order for a CP complex, whose face tables index it.
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        each!(self, g => g.top_cell_vertices(c, out))
+    }
+}
+
+impl VertexStar for IncidenceGraph {
+    fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
+        each!(self, g => g.vertex_top_cells(v, out))
+    }
+}
+
+impl VertexAdjacency for IncidenceGraph {
+    fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>) {
+        each!(self, g => g.vertex_neighbours(v, out))
+    }
+}
+
+impl TopStar for IncidenceGraph {
+    fn top_star(&self, s: &[VertexId], out: &mut Vec<CellId>) -> Result<(), QueryError> {
+        each!(self, g => g.top_star(s, out))
+    }
+}
+
+impl Counts for IncidenceGraph {
+    fn f_vector(&self) -> Result<Vec<u64>, QueryError> {
+        each!(self, g => g.f_vector())
+    }
+}
+
+impl SimplexVertices for IncidenceGraph {
+    fn n_simplices(&self) -> usize {
+        each!(self, g => g.n_simplices())
+    }
+    fn simplex_vertices(&self, s: SimplexId, out: &mut Vec<VertexId>) {
+        each!(self, g => g.simplex_vertices(s, out))
+    }
+    fn find_simplex(&self, verts: &[VertexId]) -> Option<SimplexId> {
+        each!(self, g => g.find_simplex(verts))
+    }
+}
+
+impl Boundary for IncidenceGraph {
+    fn boundary(
+        &self,
+        s: &[VertexId],
+        q: usize,
+        out: &mut Vec<VertexId>,
+    ) -> Result<(), QueryError> {
+        each!(self, g => g.boundary(s, q, out))
+    }
+}
+
+impl Coboundary for IncidenceGraph {
+    fn coboundary(
+        &self,
+        s: &[VertexId],
+        q: usize,
+        out: &mut Vec<VertexId>,
+    ) -> Result<(), QueryError> {
+        each!(self, g => g.coboundary(s, q, out))
+    }
+}
+
+impl Adjacency for IncidenceGraph {
+    fn adjacent(&self, s: &[VertexId], out: &mut Vec<VertexId>) -> Result<(), QueryError> {
+        each!(self, g => g.adjacent(s, out))
+    }
+}
+
+impl Star for IncidenceGraph {
+    fn star(&self, s: &[VertexId]) -> Result<SimplexSet, QueryError> {
+        each!(self, g => g.star(s))
+    }
+}
+
+impl Levels for IncidenceGraph {
+    fn for_each_simplex(&self, p: usize, f: &mut dyn FnMut(&[VertexId])) -> Result<(), QueryError> {
+        each!(self, g => g.for_each_simplex(p, f))
+    }
+}
+
+impl Storage for IncidenceGraph {
+    /// 2·Σ_{p≥1}(p+1)n_p for a simplicial complex (every boundary arc in both directions);
+    /// for a CP complex likewise 2·(the cells' facet counts summed).
+    fn refs(&self) -> u64 {
+        each!(self, g => g.refs())
+    }
+    fn bytes(&self) -> u64 {
+        each!(self, g => g.bytes())
     }
 }

@@ -90,7 +90,10 @@ impl Default for SimplexTreeOptions {
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum BuildError {
     /// A top cell that is not a simplex.
-    #[error("cell {0} is a {1}; the structure holds simplicial complexes only")]
+    #[error(
+        "cell {0} is a {1}; the structure holds simplicial complexes only (the incidence \
+         graph, IA* and the Stellar tree hold CP cells)"
+    )]
     NotSimplicial(u32, String),
     /// Too many simplices.
     #[error("the complex has up to {estimate} simplices (every face of every top); the limit is {limit}")]

@@ -45,6 +45,20 @@
 //! | [`HasseQueries`](crate::hasse::HasseQueries) (CASC) | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ | ✓ |
 //! | [`StellarTree`](crate::stellar::StellarTree) | ✓ | ✓ | ✓ | g | g | – | g | g | g | g | g | ✓ |
 //!
+//! **CP complexes** (quads, pyramids, prisms, hexahedra, mixed with simplices): the simplex
+//! tree, IS and the Hasse diagram refuse to build. The others hold them, with the cells of the
+//! kinds' face tables (a quad's diagonal is not an edge), and name a cell by its canonical key,
+//! its sorted vertices (so a list of p-cells may mix sizes: triangles and quads). VtIndex, IA*
+//! and the Stellar tree answer [`TopCells`], [`VertexStar`], [`VertexAdjacency`] and
+//! [`TopStar`]; their generic (g) face enumerations refuse a star holding a CP cell with
+//! [`QueryError::NotSimplicial`] (IA*'s ghosts answer boundary, co-boundary and adjacency on CP
+//! cells). The incidence graph stores every cell and answers every trait: [`Counts`] counts
+//! cells per dimension, [`SimplexVertices`] takes and gives keys of any length, and the
+//! relations written as flat (p+1)-vertex tuples ([`Boundary`], [`Coboundary`], [`Adjacency`],
+//! [`Star`], [`Levels`]) answer when the cells listed are simplices and refuse with
+//! [`QueryError::NotSimplicial`], naming the quad or 3-cell, otherwise; its id-based
+//! `cell_faces`, `cell_cofaces` and `cell_adjacent` answer all of them.
+//!
 //! ```
 //! use starplex::complex::{ComplexBuilder, BuildOptions};
 //! use starplex::cell::CellKind;
