@@ -3,4 +3,5 @@
 pub mod components;
 pub mod info;
 pub mod nonmanifold;
+pub mod surface;
 pub mod unionfind;

@@ -670,7 +670,17 @@ fn write_xyz(w: &mut dyn Write, p: &[f64]) -> std::io::Result<()> {
 }
 
 /// Refuses what gmsh cannot hold: more than 3 coordinates, simplices of dimension 4 and more.
-fn check_writable(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
+///
+/// ```
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{gmsh, Format};
+/// let k4 = IndexedComplex::from_parts(4, vec![0.0; 4].into(), vec![]).unwrap();
+/// assert!(gmsh::check_writable(&k4, Format::Gmsh).is_err());
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason.
+pub fn check_writable(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
     let d = k.ambient_dim();
     if d > 3 {
         return Err(IoErrorKind::CannotWrite {

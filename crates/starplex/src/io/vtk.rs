@@ -587,6 +587,39 @@ fn read_offsets_layout(
     Ok(())
 }
 
+/// Refuses what legacy VTK cannot hold: more than 3 coordinates, simplices of dimension 4 and
+/// more.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::vtk;
+/// let s4 = IndexedComplex::from_parts(3, vec![0.0; 15].into(),
+///                                     vec![(CellKind::Simplex(4), vec![0, 1, 2, 3, 4].into())]).unwrap();
+/// assert!(vtk::check(&s4).unwrap_err().to_string().contains("no cell type for 4-simplex"));
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason.
+pub fn check(k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let d = k.ambient_dim();
+    if d > 3 {
+        return Err(IoErrorKind::CannotWrite {
+            format: Format::Vtk,
+            reason: format!("VTK points have 3 coordinates, the complex has {d}"),
+        });
+    }
+    for b in k.blocks() {
+        if vtk_type(b.kind).is_none() {
+            return Err(IoErrorKind::CannotWrite {
+                format: Format::Vtk,
+                reason: format!("VTK has no cell type for {} cells", b.kind),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Writes `k` as legacy VTK (version 4.2, ascii, classic layout).
 ///
 /// ```
@@ -609,21 +642,8 @@ fn read_offsets_layout(
 /// [`IoErrorKind::CannotWrite`] for an ambient dimension above 3 or simplices of dimension 4 and
 /// more; OS errors of the writer.
 pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check(k)?;
     let d = k.ambient_dim();
-    if d > 3 {
-        return Err(IoErrorKind::CannotWrite {
-            format: Format::Vtk,
-            reason: format!("VTK points have 3 coordinates, the complex has {d}"),
-        });
-    }
-    for b in k.blocks() {
-        if vtk_type(b.kind).is_none() {
-            return Err(IoErrorKind::CannotWrite {
-                format: Format::Vtk,
-                reason: format!("VTK has no cell type for {} cells", b.kind),
-            });
-        }
-    }
     writeln!(w, "# vtk DataFile Version 4.2")?;
     writeln!(w, "written by starplex {}", env!("CARGO_PKG_VERSION"))?;
     writeln!(w, "ASCII")?;
