@@ -1,4 +1,10 @@
-//! gmsh `.msh`, ascii versions 4.1 and 2.2.
+//! gmsh `.msh`, versions 4.1 and 2.2, ascii and binary.
+//!
+//! Binary files (file type 1) are read in either byte order (the integer 1 after the version
+//! line says which) with `size_t` of 8 or 4 bytes (4.1); node coordinates and element node
+//! lists are read in bulk, a few MB at a time. Sections other than `$Nodes` and `$Elements`
+//! (`$Entities`, `$PartitionedEntities`, `$PhysicalNames`, `$NodeData`, ...) are skipped to their
+//! `$End` marker. Errors in a binary file name the byte offset instead of the line.
 //!
 //! Read: `$MeshFormat`, `$Nodes` and `$Elements` (4.1: entity blocks, node tags in any order and
 //! possibly non-contiguous; 2.2: one node or element per entry, elements with their tag counts);
@@ -226,13 +232,15 @@ fn read_element_nodes(
 ///
 /// ```
 /// use starplex::io::{gmsh, ReadOptions};
-/// let text = "$MeshFormat\n4.1 1 8\n$EndMeshFormat\n";
+/// // a binary file whose byte-order marker is cut off
+/// let text = "$MeshFormat\n4.1 1 8\n\x01";
 /// let e = gmsh::read_from(text.as_bytes(), "m.msh".as_ref(), &ReadOptions::default()).unwrap_err();
-/// assert!(e.to_string().contains("binary .msh is not supported"), "{e}");
+/// assert_eq!(e.to_string(), "m.msh: byte 20: unexpected end of file in the binary marker (the integer 1) \
+///                            (4 bytes needed): the file is truncated or a count is wrong");
 /// ```
 ///
 /// # Errors
-/// A missing `$MeshFormat`, a binary file ("binary .msh is not supported; re-save as ascii"),
+/// A missing `$MeshFormat`, a binary marker that is not the integer 1 in either byte order,
 /// versions other than 2.x and 4.1, malformed or non-finite numbers, repeated node tags, element
 /// nodes that are not in `$Nodes`, unsupported element types, repeated nodes in one element,
 /// counts that do not match the data, a missing `$End...` line; each with the line.

@@ -1,4 +1,10 @@
-//! Legacy VTK `.vtk`, `DATASET UNSTRUCTURED_GRID`, ascii.
+//! Legacy VTK `.vtk`, `DATASET UNSTRUCTURED_GRID`, ascii and binary.
+//!
+//! Binary files (`BINARY`, big-endian as the format says) are read in both layouts: classic
+//! `CELLS` of `int`s (version up to 4.2) and `OFFSETS`/`CONNECTIVITY` of `vtktypeint64` or
+//! `vtktypeint32` (version 5.x, meshio's default); `POINTS` of `float` or `double`. Reading stops at
+//! the first `POINT_DATA`, `CELL_DATA` or `FIELD` block (noted: starplex keeps no attributes).
+//! Errors in a binary file name the byte offset instead of the line.
 //!
 //! Read: the classic layout (`CELLS n size` followed by `k v_0 .. v_{k-1}` per cell) and the
 //! layout of version 5.x (`CELLS n_offsets n_connectivity`, `OFFSETS type`, `CONNECTIVITY type`),
@@ -289,7 +295,7 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
 /// ```
 ///
 /// # Errors
-/// A missing or malformed header, a binary file, a dataset other than `UNSTRUCTURED_GRID`,
+/// A missing or malformed header, a dataset other than `UNSTRUCTURED_GRID`,
 /// malformed or non-finite numbers, counts that do not match the data, unsupported cell types,
 /// vertex counts that do not fit the cell type, out-of-range or repeated vertex indices, and the
 /// checks of [`ComplexBuilder::build`](crate::complex::ComplexBuilder::build) under
