@@ -496,3 +496,58 @@ fn stl_writers_read_back_by_the_stl_reader() {
     assert_eq!(read(&p).coords(), &[0., 0., 0., 1., 0., 0., 0., 1., 0.]);
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn gzip_inputs_are_recognised_by_content_and_unknown_extensions_by_magic() {
+    use std::io::Write;
+    let d = dir("gzip");
+    let text = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let gz = |bytes: &[u8]| {
+        let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+        e.write_all(bytes).unwrap();
+        e.finish().unwrap()
+    };
+    // .off.gz, a gzipped file named .off, and two gzip members (as `cat a.gz b.gz` makes)
+    let half = text.len() / 2;
+    let mut two = gz(&text.as_bytes()[..half]);
+    two.extend(gz(&text.as_bytes()[half..]));
+    for (name, bytes) in [
+        ("t.off.gz", gz(text.as_bytes())),
+        ("t.off", gz(text.as_bytes())),
+        ("two.off.gz", two),
+        ("noext.gz", gz(text.as_bytes())),
+    ] {
+        let p = d.join(name);
+        std::fs::write(&p, bytes).unwrap();
+        let r = io::read(&p, &ReadOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(r.complex, tri(), "{name}");
+        assert_eq!(r.format, Format::Off);
+        assert!(
+            r.notes.contains(&"decompressed gzip input".to_string()),
+            "{name}"
+        );
+    }
+    // an unknown extension: the first bytes name the format
+    for (name, k) in [
+        ("mesh.dat", Format::Vtk),
+        ("mesh.txt", Format::Gmsh),
+        ("mesh", Format::Spx),
+    ] {
+        let p = d.join(name);
+        io::write(&p, &tri(), Some(k)).unwrap();
+        let r = io::read(&p, &ReadOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(r.format, k);
+        assert_eq!(r.complex.n_cells(), 1);
+    }
+    // truncated gzip is an error, not a short mesh
+    let p = d.join("cut.off.gz");
+    let g = gz(text.as_bytes());
+    std::fs::write(&p, &g[..g.len() - 12]).unwrap();
+    assert!(io::read(&p, &ReadOptions::default()).is_err());
+    // nothing recognisable: the unknown-format error
+    let p = d.join("notes.txt");
+    std::fs::write(&p, "hello").unwrap();
+    let e = io::read(&p, &ReadOptions::default()).unwrap_err();
+    assert!(matches!(e.kind, IoErrorKind::UnknownFormat(_)), "{e}");
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -165,6 +165,52 @@ impl Format {
         })
     }
 
+    /// The format that a file's first bytes show (`None` when they show none): the magic of
+    /// `spb`, `SPX`, `ply`, `$MeshFormat`, `# vtk DataFile`, `MeshVersionFormatted`, an OFF
+    /// keyword, `solid` (ascii STL). Used for files whose extension names no format.
+    ///
+    /// ```
+    /// use starplex::io::Format;
+    /// assert_eq!(Format::sniff(b"$MeshFormat\n4.1 0 8\n"), Some(Format::Gmsh));
+    /// assert_eq!(Format::sniff(b"# vtk DataFile Version 5.1\n"), Some(Format::Vtk));
+    /// assert_eq!(Format::sniff(b"COFF\n3 1 0\n"), Some(Format::Off));
+    /// assert_eq!(Format::sniff(b"ply\nformat ascii 1.0\n"), Some(Format::Ply));
+    /// assert_eq!(Format::sniff(b"hello"), None);
+    /// ```
+    pub fn sniff(head: &[u8]) -> Option<Format> {
+        let starts = |m: &[u8]| head.len() >= m.len() && head[..m.len()].eq_ignore_ascii_case(m);
+        if head.starts_with(&binary::MAGIC) {
+            return Some(Format::Binary);
+        }
+        if starts(b"SPX") {
+            return Some(Format::Spx);
+        }
+        if starts(b"ply\n") || starts(b"ply\r\n") {
+            return Some(Format::Ply);
+        }
+        if starts(b"$MeshFormat") {
+            return Some(Format::Gmsh);
+        }
+        if starts(b"# vtk DataFile") {
+            return Some(Format::Vtk);
+        }
+        if starts(b"MeshVersionFormatted") {
+            return Some(Format::Medit);
+        }
+        if starts(b"solid") {
+            return Some(Format::Stl);
+        }
+        let first = head
+            .split(|c| c.is_ascii_whitespace())
+            .next()
+            .unwrap_or_default();
+        let is_off = first
+            .strip_suffix(b"OFF")
+            .is_some_and(|p| p.iter().all(|c| b"CNST4n".contains(c)))
+            && !first.is_empty();
+        is_off.then_some(Format::Off)
+    }
+
     /// The usual extension.
     ///
     /// ```
@@ -464,7 +510,11 @@ pub struct ReadResult {
     pub notes: Vec<String>,
 }
 
-/// Reads a complex, choosing the reader by `opts.format` or the extension.
+/// Reads a complex, choosing the reader by `opts.format`, the extension (for `name.off.gz`, the
+/// one before `.gz`) or, when neither names a format, the file's first bytes
+/// ([`Format::sniff`]). A gzip-compressed file (recognised by its content, whatever its name;
+/// several members are read as one stream) is decompressed on the fly, and so is gzip on
+/// standard input. `-` is standard input, which needs `opts.format`.
 ///
 /// ```
 /// use starplex::io::{self, Format, ReadOptions};
@@ -479,6 +529,7 @@ pub struct ReadResult {
 /// # Errors
 /// An [`IoError`] naming the file, the line or byte, and the problem.
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    use std::io::BufRead;
     if path.as_os_str() == "-" {
         let name = Path::new(STDIN_NAME);
         let Some(format) = opts.format else {
@@ -491,17 +542,63 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
             ));
         };
         let stdin = std::io::stdin();
-        let r = std::io::BufReader::with_capacity(1 << 20, stdin.lock());
+        let mut r = std::io::BufReader::with_capacity(1 << 20, stdin.lock());
+        let gz = r
+            .fill_buf()
+            .map_err(|e| IoError::new(name, e))?
+            .starts_with(&GZIP_MAGIC);
+        if gz {
+            let d =
+                std::io::BufReader::with_capacity(1 << 20, flate2::bufread::MultiGzDecoder::new(r));
+            return read_stream(d, name, format, opts);
+        }
         return read_stream(r, name, format, opts);
     }
-    let format = match opts.format.or_else(|| Format::from_path(path)) {
-        Some(f) => f,
-        None => {
-            return Err(IoError::new(
-                path,
-                IoErrorKind::UnknownFormat(path.display().to_string()),
-            ))
+    // the extension names the format, unless it is .gz: then the one before it does
+    let gz_ext = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
+    let named = opts.format.or_else(|| {
+        if gz_ext {
+            path.file_stem()
+                .and_then(|s| Format::from_path(Path::new(s)))
+        } else {
+            Format::from_path(path)
         }
+    });
+    let unknown = || IoError::new(path, IoErrorKind::UnknownFormat(path.display().to_string()));
+    // the first bytes: gzip is recognised by content, and an unnamed format by its magic
+    let mut head = [0u8; 64];
+    let n_head = match std::fs::File::open(path) {
+        Ok(mut f) => read_head(&mut f, &mut head).map_err(|e| IoError::new(path, e))?,
+        Err(e) => {
+            return Err(match named {
+                None => unknown(),
+                Some(_) => IoError::new(path, e),
+            })
+        }
+    };
+    let head = &head[..n_head];
+    if head.starts_with(&GZIP_MAGIC) {
+        let f = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+        let mut d = std::io::BufReader::with_capacity(
+            1 << 20,
+            flate2::bufread::MultiGzDecoder::new(std::io::BufReader::with_capacity(1 << 20, f)),
+        );
+        let format = match named {
+            Some(f) => f,
+            None => {
+                let inner = d.fill_buf().map_err(|e| IoError::new(path, e))?;
+                Format::sniff(inner).ok_or_else(unknown)?
+            }
+        };
+        let mut r = read_stream(d, path, format, opts)?;
+        r.notes.push("decompressed gzip input".into());
+        return Ok(r);
+    }
+    let format = match named.or_else(|| Format::sniff(head)) {
+        Some(f) => f,
+        None => return Err(unknown()),
     };
     let mut r = match format {
         Format::Spx => spx::read(path, opts),
@@ -526,6 +623,24 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
     }?;
     r.format = format;
     Ok(r)
+}
+
+/// The first two bytes of a gzip stream.
+const GZIP_MAGIC: [u8; 2] = [0x1f, 0x8b];
+
+/// Reads up to `buf.len()` bytes from the start of `f`.
+fn read_head(f: &mut std::fs::File, buf: &mut [u8]) -> std::io::Result<usize> {
+    use std::io::Read;
+    let mut n = 0;
+    while n < buf.len() {
+        match f.read(&mut buf[n..]) {
+            Ok(0) => break,
+            Ok(k) => n += k,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(n)
 }
 
 /// How standard input is named in errors (`-` on the command line).
