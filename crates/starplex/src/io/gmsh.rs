@@ -272,7 +272,7 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
         }
     };
     let bin = if file_type == 1 {
-        if (v4 && data_size != 4 && data_size != 8) || (!v4 && data_size != 8) {
+        if data_size != 8 && !(v4 && data_size == 4) {
             return Err(w.err(format!(
                 "binary data size {data_size} is not supported (gmsh writes 8)"
             )));
