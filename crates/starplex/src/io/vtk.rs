@@ -894,7 +894,7 @@ fn read_offsets_layout(
 /// use starplex::io::vtk;
 /// let s4 = IndexedComplex::from_parts(3, vec![0.0; 15].into(),
 ///                                     vec![(CellKind::Simplex(4), vec![0, 1, 2, 3, 4].into())]).unwrap();
-/// assert!(vtk::check(&s4).unwrap_err().to_string().contains("no cell type for 4-simplex"));
+/// assert!(vtk::check(&s4).unwrap_err().to_string().contains("no cell type for simplex_4"));
 /// ```
 ///
 /// # Errors
