@@ -27,7 +27,7 @@ pub struct ConvertArgs {
 }
 
 pub fn run(ctx: &Ctx, a: &ConvertArgs) -> Result<(), CliError> {
-    let to = common::output_format(a.to.as_deref())?;
+    let to = common::output_format_for(a.to.as_deref(), &a.output)?;
     let r = common::load(ctx, &a.input)?;
     let mut k = r.complex;
     let convert_err = |e: surface::SurfaceError| {

@@ -32,7 +32,7 @@ pub enum GenerateWhat {
 
 pub fn run(ctx: &Ctx, a: &GenerateArgs) -> Result<(), CliError> {
     let GenerateWhat::Grid { cubes, out, to } = &a.what;
-    let to = common::output_format(to.as_deref())?;
+    let to = common::output_format_for(to.as_deref(), out)?;
     let k = common::with_spinner(ctx, "generating", || starplex::gen::kuhn_grid(cubes)).map_err(
         |e| {
             CliError::Input(

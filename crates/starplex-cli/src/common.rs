@@ -92,6 +92,40 @@ pub fn output_format(to: Option<&str>) -> Result<Option<Format>, CliError> {
     }
 }
 
+/// The output format named by `--to`, or else by the output's extension: an output whose
+/// extension names no writable format is an error whose hint lists the writable ones.
+pub fn output_format_for(to: Option<&str>, out: &Path) -> Result<Option<Format>, CliError> {
+    if let Some(f) = output_format(to)? {
+        return Ok(Some(f));
+    }
+    if out.as_os_str() == "-" {
+        return Ok(None); // io::write says standard output needs --to
+    }
+    match Format::from_path(out) {
+        Some(f) if f.can_write() => Ok(None),
+        Some(f) => Err(CliError::Input(
+            format!(
+                "{}: starplex reads {f} but does not write it",
+                out.display()
+            ),
+            Some(format!(
+                "choose the output format with --to ({})",
+                Format::writable_names()
+            )),
+        )),
+        None => Err(CliError::Input(
+            format!(
+                "{}: the extension names no format starplex writes",
+                out.display()
+            ),
+            Some(format!(
+                "choose the output format with --to ({})",
+                Format::writable_names()
+            )),
+        )),
+    }
+}
+
 /// How an output path is shown in messages (`-` as standard output).
 pub fn shown(p: &Path) -> String {
     if p.as_os_str() == "-" {

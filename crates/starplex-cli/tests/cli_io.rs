@@ -201,6 +201,15 @@ fn lossy_writes_are_refused_with_hints_naming_to() {
     }
     let e = fails(&["convert", &g, "x.off", "--to", "ts"], None);
     assert!(e.contains("reads ts but does not write it"), "{e}");
+    // an output extension that names no writable format: checked before reading the input
+    for out in ["x.txt", "x.sierp"] {
+        let e = fails(&["convert", &g, out], None);
+        let hint = e.lines().find(|l| l.starts_with("hint:")).unwrap();
+        assert!(
+            hint.contains("--to") && hint.contains("msh22") && !hint.contains("sierp"),
+            "{e}"
+        );
+    }
     std::fs::remove_dir_all(&d).ok();
 }
 
