@@ -1,7 +1,9 @@
-//! `starplex convert IN OUT`.
+//! `starplex convert IN OUT [--to FORMAT] [--boundary] [--triangulate]`. `-` is standard input
+//! (with `--format`) or standard output (with `--to`).
 use std::path::PathBuf;
 
-use starplex::io::{self, Format};
+use starplex::algo::surface;
+use starplex::io;
 
 use crate::common::{self, CliError, Ctx, InputArgs};
 
@@ -9,29 +11,48 @@ use crate::common::{self, CliError, Ctx, InputArgs};
 pub struct ConvertArgs {
     #[command(flatten)]
     pub input: InputArgs,
-    /// Output file (format from its extension unless --to is given).
+    /// Output file (format from its extension unless --to is given); `-` is standard output.
+    /// A symbolic link is followed (its target is replaced), a FIFO or device written through.
     pub output: PathBuf,
-    /// Output format.
+    /// Output format: spx spb off off-simplices ply obj stl stl-binary mesh vtk msh msh22.
     #[arg(long)]
     pub to: Option<String>,
+    /// Write the boundary of the mesh (the faces in exactly one top cell, oriented outward)
+    /// instead of the mesh: a tet or hex volume becomes its surface.
+    #[arg(long)]
+    pub boundary: bool,
+    /// Split quads into triangles before writing (after --boundary).
+    #[arg(long)]
+    pub triangulate: bool,
 }
 
 pub fn run(ctx: &Ctx, a: &ConvertArgs) -> Result<(), CliError> {
+    let to = common::output_format_for(a.to.as_deref(), &a.output)?;
     let r = common::load(ctx, &a.input)?;
-    let to = match &a.to {
-        None => None,
-        Some(n) => Some(
-            Format::from_name(n)
-                .ok_or_else(|| CliError::Input(format!("unknown output format '{n}'"), None))?,
-        ),
+    let mut k = r.complex;
+    let convert_err = |e: surface::SurfaceError| {
+        CliError::Input(format!("{}: {e}", a.input.file.display()), None)
     };
-    common::with_spinner(ctx, "writing", || io::write(&a.output, &r.complex, to))?;
+    if a.boundary {
+        let (b, report) = surface::boundary(&k).map_err(convert_err)?;
+        if !ctx.quiet && report.ignored_lower_cells > 0 {
+            eprintln!(
+                "note: --boundary ignored {} top cells of lower dimension than the mesh",
+                report.ignored_lower_cells
+            );
+        }
+        k = b;
+    }
+    if a.triangulate {
+        k = surface::triangulate(&k).map_err(convert_err)?;
+    }
+    common::with_spinner(ctx, "writing", || io::write(&a.output, &k, to))?;
     if !ctx.quiet {
         eprintln!(
             "wrote {} ({} vertices, {} cells)",
-            a.output.display(),
-            r.complex.n_vertices(),
-            r.complex.n_cells()
+            common::shown(&a.output),
+            k.n_vertices(),
+            k.n_cells()
         );
     }
     Ok(())

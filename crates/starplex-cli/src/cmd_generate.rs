@@ -3,7 +3,7 @@
 //! 203 big.spb` is 50.2 million tetrahedra in 1 GB).
 use std::path::PathBuf;
 
-use starplex::io::{self, Format};
+use starplex::io;
 
 use crate::common::{self, CliError, Ctx};
 
@@ -21,7 +21,7 @@ pub enum GenerateWhat {
         /// Cubes along each axis (1 to 8 axes).
         #[arg(required = true, num_args = 1..=8)]
         cubes: Vec<usize>,
-        /// Output file (format from its extension unless --to is given).
+        /// Output file (format from its extension unless --to is given; `-` is standard output).
         #[arg(short, long)]
         out: PathBuf,
         /// Output format.
@@ -32,13 +32,7 @@ pub enum GenerateWhat {
 
 pub fn run(ctx: &Ctx, a: &GenerateArgs) -> Result<(), CliError> {
     let GenerateWhat::Grid { cubes, out, to } = &a.what;
-    let to = match to {
-        None => None,
-        Some(n) => Some(
-            Format::from_name(n)
-                .ok_or_else(|| CliError::Input(format!("unknown output format '{n}'"), None))?,
-        ),
-    };
+    let to = common::output_format_for(to.as_deref(), out)?;
     let k = common::with_spinner(ctx, "generating", || starplex::gen::kuhn_grid(cubes)).map_err(
         |e| {
             CliError::Input(
@@ -51,7 +45,7 @@ pub fn run(ctx: &Ctx, a: &GenerateArgs) -> Result<(), CliError> {
     if !ctx.quiet {
         eprintln!(
             "wrote {} ({} vertices, {} cells)",
-            out.display(),
+            common::shown(out),
             k.n_vertices(),
             k.n_cells()
         );

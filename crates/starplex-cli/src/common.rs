@@ -1,6 +1,6 @@
 //! Shared pieces of the subcommands: errors with exit codes, loading with a progress spinner,
 //! the bundled sample.
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use starplex::io::{self, Format, PolygonMode, ReadOptions, ReadResult};
 
@@ -44,14 +44,26 @@ impl std::fmt::Display for CliError {
 impl From<io::IoError> for CliError {
     fn from(e: io::IoError) -> Self {
         let hint = match &e.kind {
-            io::IoErrorKind::UnknownFormat(_) => Some("pass --format NAME (spx, off, ply, obj, stl, mesh, vtk, msh, tri, ts, sierp, hex, spb)".to_string()),
+            io::IoErrorKind::UnknownFormat(_) => Some(format!(
+                "pass --format NAME to read it ({}), or --to NAME to write it ({})",
+                READABLE,
+                Format::writable_names()
+            )),
+            io::IoErrorKind::NeedsFormat { flag, .. } => Some(if *flag == "--to" {
+                format!("writable formats: {}", Format::writable_names())
+            } else {
+                format!("readable formats: {READABLE}")
+            }),
             io::IoErrorKind::Complex(starplex::complex::ComplexError::CellIsFaceOf { .. }) => {
                 Some("pass --drop-faces to keep only the maximal cells".to_string())
             }
             io::IoErrorKind::Complex(starplex::complex::ComplexError::DuplicateCell { .. }) => {
                 Some("pass --drop-duplicates to keep the first copy".to_string())
             }
-            io::IoErrorKind::CannotWrite { .. } => Some("choose a format that holds these cells (spx, spb, vtk, mesh, msh)".to_string()),
+            io::IoErrorKind::CannotWrite { .. } => Some(format!(
+                "choose another output format with --to ({}), or convert explicitly with --boundary / --triangulate",
+                Format::writable_names()
+            )),
             _ => None,
         };
         match e.kind {
@@ -61,12 +73,76 @@ impl From<io::IoError> for CliError {
     }
 }
 
+/// The formats starplex reads, for hints.
+pub const READABLE: &str = "spx spb off off-simplices ply obj stl mesh vtk msh tri ts sierp hex";
+
+/// The output format named by `--to` (`None`: from the output's extension).
+pub fn output_format(to: Option<&str>) -> Result<Option<Format>, CliError> {
+    let Some(n) = to else { return Ok(None) };
+    match Format::from_name(n) {
+        Some(f) if f.can_write() => Ok(Some(f)),
+        Some(f) => Err(CliError::Input(
+            format!("--to {n}: starplex reads {f} but does not write it"),
+            Some(format!("writable formats: {}", Format::writable_names())),
+        )),
+        None => Err(CliError::Input(
+            format!("--to {n}: unknown output format"),
+            Some(format!("writable formats: {}", Format::writable_names())),
+        )),
+    }
+}
+
+/// The output format named by `--to`, or else by the output's extension: an output whose
+/// extension names no writable format is an error whose hint lists the writable ones.
+pub fn output_format_for(to: Option<&str>, out: &Path) -> Result<Option<Format>, CliError> {
+    if let Some(f) = output_format(to)? {
+        return Ok(Some(f));
+    }
+    if out.as_os_str() == "-" {
+        return Ok(None); // io::write says standard output needs --to
+    }
+    match Format::from_path(out) {
+        Some(f) if f.can_write() => Ok(None),
+        Some(f) => Err(CliError::Input(
+            format!(
+                "{}: starplex reads {f} but does not write it",
+                out.display()
+            ),
+            Some(format!(
+                "choose the output format with --to ({})",
+                Format::writable_names()
+            )),
+        )),
+        None => Err(CliError::Input(
+            format!(
+                "{}: the extension names no format starplex writes",
+                out.display()
+            ),
+            Some(format!(
+                "choose the output format with --to ({})",
+                Format::writable_names()
+            )),
+        )),
+    }
+}
+
+/// How an output path is shown in messages (`-` as standard output).
+pub fn shown(p: &Path) -> String {
+    if p.as_os_str() == "-" {
+        "standard output".into()
+    } else {
+        p.display().to_string()
+    }
+}
+
 /// Options shared by every command that reads a complex.
 #[derive(clap::Args, Debug, Clone)]
 pub struct InputArgs {
-    /// Input file (format from the extension unless --format is given).
+    /// Input file (format from the extension unless --format is given); `-` is standard input
+    /// (--format required).
     pub file: PathBuf,
-    /// Input format: spx, spb, off, ply, obj, stl, mesh, vtk, msh, tri, ts, sierp, hex.
+    /// Input format: spx, spb, off, off-simplices, ply, obj, stl, mesh, vtk, msh, tri, ts,
+    /// sierp, hex.
     #[arg(long)]
     pub format: Option<String>,
     /// Read every OFF/PLY/OBJ face of k vertices as a (k-1)-simplex (Stellar-reference convention
@@ -88,7 +164,7 @@ impl InputArgs {
             Some(name) => Some(Format::from_name(name).ok_or_else(|| {
                 CliError::Input(
                     format!("unknown format '{name}'"),
-                    Some("use one of spx spb off ply obj stl mesh vtk msh tri ts sierp hex".into()),
+                    Some(format!("readable formats: {READABLE}")),
                 )
             })?),
         };

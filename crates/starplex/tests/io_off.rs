@@ -123,7 +123,10 @@ fn hex_equals_spx() {
 /// Writes `k` as OFF into memory and reads it back.
 fn off_round_trip(k: &IndexedComplex, mode: PolygonMode) -> IndexedComplex {
     let mut buf = Vec::new();
-    off::write(&mut buf, k).unwrap();
+    match mode {
+        PolygonMode::Polygons => off::write(&mut buf, k).unwrap(),
+        PolygonMode::Simplices => off::write_simplices(&mut buf, k).unwrap(),
+    }
     let opts = ReadOptions {
         polygons: mode,
         ..Default::default()
@@ -148,9 +151,16 @@ fn datasets_round_trip_through_off_files() {
         let Some(p) = dataset(file) else { continue };
         let k = read(&p, false);
         let out = dir.join(file.replace(".spx", ".off"));
-        io::write(&out, &k, None).unwrap();
+        let format = simplices.then_some(io::Format::OffSimplices);
+        io::write(&out, &k, format).unwrap();
         let back = read(&out, simplices);
         assert!(back == k, "{file}: OFF round trip changed the complex");
+        if simplices && k.dim().is_some_and(|d| d >= 3) {
+            // plain OFF refuses what would read back as polygons, and writes nothing
+            let e = io::write(&out.with_extension("plain.off"), &k, None).unwrap_err();
+            assert!(e.to_string().contains("off-simplices"), "{e}");
+            assert!(!out.with_extension("plain.off").exists());
+        }
     }
     // 3D cells cannot be written, with a clear reason.
     if let Some(p) = dataset("hexvox_skull.spx") {
@@ -222,7 +232,7 @@ proptest! {
 }
 
 #[test]
-fn quads_round_trip_and_mixed_quad_tet_is_refused() {
+fn quads_round_trip_and_tets_are_refused_in_plain_off() {
     let mut b = ComplexBuilder::new(3).unwrap();
     for i in 0..6 {
         b.push_vertex(&[i as f64, (i * i) as f64 * 0.5, -0.25])
@@ -236,7 +246,9 @@ fn quads_round_trip_and_mixed_quad_tet_is_refused() {
     b.push_cell(CellKind::Simplex(3), &[0, 1, 4, 5]).unwrap();
     let k = b.build(&BuildOptions::default()).unwrap().0;
     let e = off::write(&mut Vec::new(), &k).unwrap_err();
-    assert!(e.to_string().contains("both quads and tetrahedra"), "{e}");
+    assert!(e.to_string().contains("3-simplex"), "{e}");
+    let e = off::write_simplices(&mut Vec::new(), &k).unwrap_err();
+    assert!(e.to_string().contains("is a quad"), "{e}");
 }
 
 #[test]

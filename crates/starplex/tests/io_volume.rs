@@ -568,7 +568,7 @@ fn broken_inputs_fail_with_their_line() {
         (Format::Medit, "MeshVersionFormatted 2\nDimension 3\nTriangles\n1\n1 2 3 0\n".into(), 3, "before 'Vertices'"),
         (Format::Medit, format!("{M_HEAD}Triangles\n2\n1 2 3 0\n3 2 1 0\nEnd\n"), 0, "same vertices"),
         // VTK
-        (Format::Vtk, "# vtk DataFile Version 4.2\nt\nBINARY\n".into(), 3, "binary legacy .vtk"),
+        (Format::Vtk, "# vtk DataFile Version 4.2\nt\nBINARY\n".into(), 4, "expected 'DATASET'"),
         (Format::Vtk, "solid x\n".into(), 1, "not a legacy VTK file"),
         (Format::Vtk, "# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\n".into(), 4, "POLYDATA"),
         (Format::Vtk, V_HEAD[..V_HEAD.len() - 6].into(), 9, "unexpected end of file"),
@@ -591,7 +591,7 @@ fn broken_inputs_fail_with_their_line() {
         (Format::Vtk, format!("{V_HEAD}CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\nPOINT_DATA 4\nSCALARS s float 1\n1 2 3 4\n"), 16, "expected 'LOOKUP_TABLE', found '1'"),
         (Format::Vtk, format!("{V_HEAD}CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\nPOINT_DATA 4\nBLOB s float\n"), 15, "unknown keyword 'BLOB'"),
         // gmsh
-        (Format::Gmsh, "$MeshFormat\n4.1 1 8\n$EndMeshFormat\n".into(), 2, "binary .msh is not supported; re-save as ascii"),
+        (Format::Gmsh, "$MeshFormat\n4.1 1 8\n$EndMeshFormat\n".into(), 0, "t.msh: byte 20: expected the integer 1"),
         (Format::Gmsh, "$MeshFormat\n3.0 0 8\n$EndMeshFormat\n".into(), 2, "version 3.0"),
         (Format::Gmsh, "$Nodes\n".into(), 1, "not a gmsh file"),
         (Format::Gmsh, G_HEAD.replace("1 4 1 4\n3 1 0 4", "1 5 1 4\n3 1 0 4"), 5, "declares 5 nodes"),

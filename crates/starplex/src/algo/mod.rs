@@ -4,5 +4,6 @@ pub mod components;
 pub mod info;
 pub mod manifold;
 pub mod orientation;
+pub mod surface;
 pub mod unionfind;
 pub mod validate;

@@ -1,4 +1,10 @@
-//! gmsh `.msh`, ascii versions 4.1 and 2.2.
+//! gmsh `.msh`, versions 4.1 and 2.2, ascii and binary.
+//!
+//! Binary files (file type 1) are read in either byte order (the integer 1 after the version
+//! line says which) with `size_t` of 8 or 4 bytes (4.1); node coordinates and element node
+//! lists are read in bulk, a few MB at a time. Sections other than `$Nodes` and `$Elements`
+//! (`$Entities`, `$PartitionedEntities`, `$PhysicalNames`, `$NodeData`, ...) are skipped to their
+//! `$End` marker. Errors in a binary file name the byte offset instead of the line.
 //!
 //! Read: `$MeshFormat`, `$Nodes` and `$Elements` (4.1: entity blocks, node tags in any order and
 //! possibly non-contiguous; 2.2: one node or element per entry, elements with their tag counts);
@@ -44,6 +50,7 @@ use std::path::Path;
 
 use rustc_hash::FxHashMap;
 
+use super::raw::{get_i32, get_uint, push_f64s, read_records, Endian};
 use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
@@ -225,13 +232,15 @@ fn read_element_nodes(
 ///
 /// ```
 /// use starplex::io::{gmsh, ReadOptions};
-/// let text = "$MeshFormat\n4.1 1 8\n$EndMeshFormat\n";
+/// // a binary file whose byte-order marker is cut off
+/// let text = "$MeshFormat\n4.1 1 8\n\x01";
 /// let e = gmsh::read_from(text.as_bytes(), "m.msh".as_ref(), &ReadOptions::default()).unwrap_err();
-/// assert!(e.to_string().contains("binary .msh is not supported"), "{e}");
+/// assert_eq!(e.to_string(), "m.msh: byte 20: unexpected end of file in the binary marker (the integer 1) \
+///                            (4 bytes needed): the file is truncated or a count is wrong");
 /// ```
 ///
 /// # Errors
-/// A missing `$MeshFormat`, a binary file ("binary .msh is not supported; re-save as ascii"),
+/// A missing `$MeshFormat`, a binary marker that is not the integer 1 in either byte order,
 /// versions other than 2.x and 4.1, malformed or non-finite numbers, repeated node tags, element
 /// nodes that are not in `$Nodes`, unsupported element types, repeated nodes in one element,
 /// counts that do not match the data, a missing `$End...` line; each with the line.
@@ -247,15 +256,12 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
     let version = w.expect("the format version")?.to_vec();
     let version = String::from_utf8_lossy(&version).into_owned();
     let file_type = w.u64("the file type (0 ascii, 1 binary)")?;
-    if file_type == 1 {
-        return Err(w.err("binary .msh is not supported; re-save as ascii"));
-    }
-    if file_type != 0 {
+    if file_type > 1 {
         return Err(w.err(format!(
             "file type {file_type} is neither 0 (ascii) nor 1 (binary)"
         )));
     }
-    w.u64("the data size")?;
+    let data_size = w.u64("the data size")?;
     let v4 = match version.as_str() {
         "4.1" => true,
         v if v == "2" || v.starts_with("2.") => false,
@@ -264,6 +270,37 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
                 "gmsh format version {v} is not supported (starplex reads 4.1 and 2.2; re-save in one of them)"
             )))
         }
+    };
+    let bin = if file_type == 1 {
+        if data_size != 8 && !(v4 && data_size == 4) {
+            return Err(w.err(format!(
+                "binary data size {data_size} is not supported (gmsh writes 8)"
+            )));
+        }
+        w.rest_of_line()?;
+        let at = w.offset();
+        let mut one = [0u8; 4];
+        w.read_raw(&mut one, "the binary marker (the integer 1)")?;
+        let endian = if u32::from_le_bytes(one) == 1 {
+            Endian::Little
+        } else if u32::from_be_bytes(one) == 1 {
+            Endian::Big
+        } else {
+            return Err(IoError::parse(
+                path,
+                Some(Location::Byte(at)),
+                format!(
+                    "expected the integer 1 that gives the byte order of a binary .msh, found bytes {one:02x?}"
+                ),
+            ));
+        };
+        w.set_binary();
+        Some(Bin {
+            e: endian,
+            size: data_size as usize,
+        })
+    } else {
+        None
     };
     w.keyword("$EndMeshFormat")?;
 
@@ -284,10 +321,11 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
                     return Err(w.err("a second $Nodes section"));
                 }
                 have_nodes = true;
-                if v4 {
-                    read_nodes_41(&mut w, &mut tags, &mut coords)?;
-                } else {
-                    read_nodes_22(&mut w, &mut tags, &mut coords)?;
+                match (bin, v4) {
+                    (Some(b), true) => read_nodes_41_bin(&mut w, b, &mut tags, &mut coords)?,
+                    (Some(b), false) => read_nodes_22_bin(&mut w, b, &mut tags, &mut coords)?,
+                    (None, true) => read_nodes_41(&mut w, &mut tags, &mut coords)?,
+                    (None, false) => read_nodes_22(&mut w, &mut tags, &mut coords)?,
                 }
                 w.keyword("$EndNodes")?;
             }
@@ -299,12 +337,21 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
                     return Err(w.err("a second $Elements section"));
                 }
                 have_elements = true;
-                if v4 {
-                    read_elements_41(&mut w, &tags, &mut elems, &mut verts)?;
-                } else {
-                    read_elements_22(&mut w, &tags, &mut elems, &mut verts)?;
+                match (bin, v4) {
+                    (Some(b), true) => read_elements_41_bin(&mut w, b, &tags, &mut elems)?,
+                    (Some(b), false) => read_elements_22_bin(&mut w, b, &tags, &mut elems)?,
+                    (None, true) => read_elements_41(&mut w, &tags, &mut elems, &mut verts)?,
+                    (None, false) => read_elements_22(&mut w, &tags, &mut elems, &mut verts)?,
                 }
                 w.keyword("$EndElements")?;
+            }
+            s if s.starts_with('$') && !s.starts_with("$End") && bin.is_some() => {
+                // binary sections ($Entities, $PartitionedEntities, $NodeData, ...) may hold
+                // any byte: skip to the end marker
+                let end = format!("$End{}", &s[1..]);
+                if !w.skip_raw_past(end.as_bytes())? {
+                    return Err(w.eof(&format!("'{end}'")));
+                }
             }
             s if s.starts_with('$') && !s.starts_with("$End") => {
                 let end = format!("$End{}", &s[1..]);
@@ -542,6 +589,279 @@ fn read_elements_22(
     Ok(())
 }
 
+/// Byte order and `size_t` width of a binary file.
+#[derive(Clone, Copy)]
+struct Bin {
+    e: Endian,
+    size: usize,
+}
+
+fn byte_err(path: &Path, at: u64, msg: impl Into<String>) -> IoError {
+    IoError::parse(path, Some(Location::Byte(at)), msg)
+}
+
+fn add_node_bin(path: &Path, tags: &mut TagMap, tag: u64, at: u64) -> Result<(), IoError> {
+    let id = tags.n;
+    if id as u64 >= u32::MAX as u64 - 1 {
+        return Err(byte_err(
+            path,
+            at,
+            "more nodes than the 32-bit ids of starplex can address",
+        ));
+    }
+    if !tags.insert(tag, id as u32) {
+        return Err(byte_err(path, at, format!("node tag {tag} appears twice")));
+    }
+    Ok(())
+}
+
+/// Checks that the coordinates appended from `from` on are finite.
+fn check_finite(path: &Path, coords: &[f64], from: usize, at: u64) -> Result<(), IoError> {
+    match coords[from..].iter().position(|x| !x.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(byte_err(
+            path,
+            at,
+            format!(
+                "node {} of the block has a non-finite coordinate ({})",
+                i / 3,
+                coords[from + i]
+            ),
+        )),
+    }
+}
+
+fn read_nodes_41_bin(
+    w: &mut Words<'_, impl BufRead>,
+    b: Bin,
+    tags: &mut TagMap,
+    coords: &mut Vec<f64>,
+) -> Result<(), IoError> {
+    let (sz, e) = (b.size, b.e);
+    let path = w.path();
+    w.rest_of_line()?;
+    let head_at = w.offset();
+    let mut h = [0u8; 32];
+    w.read_raw(&mut h[..4 * sz], "the $Nodes header")?;
+    let n_blocks = get_uint(&h, sz, e);
+    let n_nodes = get_uint(&h[sz..], sz, e);
+    let mut block_tags: Vec<u64> = Vec::new();
+    for _ in 0..n_blocks {
+        let at = w.offset();
+        let mut bh = [0u8; 20];
+        w.read_raw(&mut bh[..12 + sz], "a node block header")?;
+        let dim = get_i32(&bh, e);
+        let parametric = get_i32(&bh[8..], e);
+        let n = get_uint(&bh[12..], sz, e);
+        if !(0..=3).contains(&dim) || !(0..=1).contains(&parametric) {
+            return Err(byte_err(
+                path,
+                at,
+                format!("node block with entity dimension {dim} and parametric flag {parametric}"),
+            ));
+        }
+        let extra = if parametric == 1 { dim as usize } else { 0 };
+        block_tags.clear();
+        read_records(w, n, sz, "node tags", |_, c, _| {
+            block_tags.extend(c.chunks_exact(sz).map(|x| get_uint(x, sz, e)));
+            Ok(())
+        })?;
+        let from = coords.len();
+        let coords_at = w.offset();
+        let rec = (3 + extra) * 8;
+        read_records(w, n, rec, "node coordinates", |_, c, _| {
+            if extra == 0 {
+                push_f64s(c, e, coords);
+            } else {
+                for r in c.chunks_exact(rec) {
+                    push_f64s(&r[..24], e, coords);
+                }
+            }
+            Ok(())
+        })?;
+        check_finite(path, coords, from, coords_at)?;
+        for &t in &block_tags {
+            add_node_bin(path, tags, t, at)?;
+        }
+    }
+    if tags.n as u64 != n_nodes {
+        return Err(byte_err(
+            path,
+            head_at,
+            format!(
+                "$Nodes declares {n_nodes} nodes, its blocks hold {}",
+                tags.n
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn read_nodes_22_bin(
+    w: &mut Words<'_, impl BufRead>,
+    b: Bin,
+    tags: &mut TagMap,
+    coords: &mut Vec<f64>,
+) -> Result<(), IoError> {
+    let e = b.e;
+    let path = w.path();
+    let n = w.u64("the number of nodes")?;
+    w.rest_of_line()?;
+    let at = w.offset();
+    let from = coords.len();
+    let mut node_tags: Vec<u64> = Vec::new();
+    read_records(w, n, 28, "nodes", |_, c, _| {
+        for r in c.chunks_exact(28) {
+            node_tags.push(get_i32(r, e) as u32 as u64);
+            push_f64s(&r[4..], e, coords);
+        }
+        Ok(())
+    })?;
+    check_finite(path, coords, from, at)?;
+    for (i, &t) in node_tags.iter().enumerate() {
+        add_node_bin(path, tags, t, at + 28 * i as u64)?;
+    }
+    Ok(())
+}
+
+/// One binary element record's node tags (`width` bytes each) into `verts`, checked.
+#[allow(clippy::too_many_arguments)]
+fn element_bin(
+    path: &Path,
+    r: &[u8],
+    width: usize,
+    e: Endian,
+    kind: CellKind,
+    tags: &TagMap,
+    n_elem: u64,
+    at: u64,
+    verts: &mut Vec<u32>,
+) -> Result<(), IoError> {
+    let k = kind.n_vertices();
+    let mut raw = [0u32; 8];
+    for (slot, x) in raw.iter_mut().zip(r.chunks_exact(width)).take(k) {
+        let t = get_uint(x, width, e);
+        *slot = tags.get(t).ok_or_else(|| {
+            byte_err(
+                path,
+                at,
+                format!("element node tag {t} is not a node of the $Nodes section"),
+            )
+        })?;
+    }
+    verts.clear();
+    if kind == CellKind::Prism {
+        verts.extend(PRISM_PERM.iter().map(|&i| raw[i]));
+    } else {
+        verts.extend_from_slice(&raw[..k]);
+    }
+    check_cell(n_elem, verts, tags.n).map_err(|x| IoError::new(path, x).at(Location::Byte(at)))
+}
+
+fn read_elements_41_bin(
+    w: &mut Words<'_, impl BufRead>,
+    b: Bin,
+    tags: &TagMap,
+    elems: &mut Elements,
+) -> Result<(), IoError> {
+    let (sz, e) = (b.size, b.e);
+    let path = w.path();
+    w.rest_of_line()?;
+    let head_at = w.offset();
+    let mut h = [0u8; 32];
+    w.read_raw(&mut h[..4 * sz], "the $Elements header")?;
+    let n_blocks = get_uint(&h, sz, e);
+    let n_elems = get_uint(&h[sz..], sz, e);
+    let mut seen: u64 = 0;
+    let mut verts: Vec<u32> = Vec::with_capacity(8);
+    for _ in 0..n_blocks {
+        let at = w.offset();
+        let mut bh = [0u8; 20];
+        w.read_raw(&mut bh[..12 + sz], "an element block header")?;
+        let ty = get_i32(&bh[8..], e);
+        let n = get_uint(&bh[12..], sz, e);
+        let kind = kind_of_gmsh_type(ty as u32 as u64)
+            .ok_or_else(|| byte_err(path, at, unsupported_type(ty as u32 as u64)))?;
+        let k = kind.n_vertices();
+        let rec = (1 + k) * sz;
+        read_records(w, n, rec, "elements", |w, c, first| {
+            let start = w.offset() - c.len() as u64;
+            for (j, r) in c.chunks_exact(rec).enumerate() {
+                let at = start + (j * rec) as u64;
+                let id = seen + first + j as u64;
+                element_bin(path, &r[sz..], sz, e, kind, tags, id, at, &mut verts)?;
+                if kind == CellKind::Simplex(0) {
+                    elems.points += 1;
+                } else {
+                    elems.push(kind, &verts);
+                }
+            }
+            Ok(())
+        })?;
+        seen += n;
+    }
+    if seen != n_elems {
+        return Err(byte_err(
+            path,
+            head_at,
+            format!("$Elements declares {n_elems} elements, its blocks hold {seen}"),
+        ));
+    }
+    Ok(())
+}
+
+fn read_elements_22_bin(
+    w: &mut Words<'_, impl BufRead>,
+    b: Bin,
+    tags: &TagMap,
+    elems: &mut Elements,
+) -> Result<(), IoError> {
+    let e = b.e;
+    let path = w.path();
+    let n = w.u64("the number of elements")?;
+    w.rest_of_line()?;
+    let mut seen: u64 = 0;
+    let mut verts: Vec<u32> = Vec::with_capacity(8);
+    while seen < n {
+        let at = w.offset();
+        let mut h = [0u8; 12];
+        w.read_raw(&mut h, "an element header")?;
+        let ty = get_i32(&h, e) as u32 as u64;
+        let follow = get_i32(&h[4..], e);
+        let n_tags = get_i32(&h[8..], e);
+        let kind = kind_of_gmsh_type(ty).ok_or_else(|| byte_err(path, at, unsupported_type(ty)))?;
+        if follow <= 0 || follow as u64 > n - seen || !(0..=64).contains(&n_tags) {
+            return Err(byte_err(
+                path,
+                at,
+                format!(
+                    "element header says {follow} elements with {n_tags} tags follow, with {} of the {n} declared left",
+                    n - seen
+                ),
+            ));
+        }
+        let k = kind.n_vertices();
+        let rec = (1 + n_tags as usize + k) * 4;
+        let skip = (1 + n_tags as usize) * 4;
+        read_records(w, follow as u64, rec, "elements", |w, c, first| {
+            let start = w.offset() - c.len() as u64;
+            for (j, r) in c.chunks_exact(rec).enumerate() {
+                let at = start + (j * rec) as u64;
+                let id = seen + first + j as u64;
+                element_bin(path, &r[skip..], 4, e, kind, tags, id, at, &mut verts)?;
+                if kind == CellKind::Simplex(0) {
+                    elems.points += 1;
+                } else {
+                    elems.push(kind, &verts);
+                }
+            }
+            Ok(())
+        })?;
+        seen += follow as u64;
+    }
+    Ok(())
+}
+
 /// Writes `k` as gmsh 4.1 ascii.
 ///
 /// ```
@@ -670,7 +990,17 @@ fn write_xyz(w: &mut dyn Write, p: &[f64]) -> std::io::Result<()> {
 }
 
 /// Refuses what gmsh cannot hold: more than 3 coordinates, simplices of dimension 4 and more.
-fn check_writable(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
+///
+/// ```
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{gmsh, Format};
+/// let k4 = IndexedComplex::from_parts(4, vec![0.0; 4].into(), vec![]).unwrap();
+/// assert!(gmsh::check_writable(&k4, Format::Gmsh).is_err());
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason.
+pub fn check_writable(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
     let d = k.ambient_dim();
     if d > 3 {
         return Err(IoErrorKind::CannotWrite {

@@ -269,6 +269,42 @@ pub(crate) fn push_build_notes(notes: &mut Vec<String>, report: &BuildReport) {
     }
 }
 
+/// Refuses what Medit cannot hold: an ambient dimension other than 2 or 3, vertex cells and
+/// simplices of dimension 4 and more.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::medit;
+/// let pt = IndexedComplex::from_parts(3, vec![0.0; 3].into(),
+///                                     vec![(CellKind::Simplex(0), vec![0].into())]).unwrap();
+/// assert!(medit::check(&pt).is_err());
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason.
+pub fn check(k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let d = k.ambient_dim();
+    if d != 2 && d != 3 {
+        return Err(IoErrorKind::CannotWrite {
+            format: Format::Medit,
+            reason: format!("Medit holds 2 or 3 coordinates per vertex, the complex has {d}"),
+        });
+    }
+    for b in k.blocks() {
+        if !CELL_KEYWORDS.iter().any(|(_, kind)| *kind == b.kind) {
+            return Err(IoErrorKind::CannotWrite {
+                format: Format::Medit,
+                reason: format!(
+                    "Medit has no element for {} cells (it holds edges, triangles, quads, tets, pyramids, prisms and hexahedra)",
+                    b.kind
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Writes `k` as Medit `.mesh` (version 2, references 0).
 ///
 /// ```
@@ -291,24 +327,8 @@ pub(crate) fn push_build_notes(notes: &mut Vec<String>, report: &BuildReport) {
 /// [`IoErrorKind::CannotWrite`] for an ambient dimension other than 2 or 3, vertex cells (0-simplex
 /// top cells) or simplices of dimension 4 and more; OS errors of the writer.
 pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check(k)?;
     let d = k.ambient_dim();
-    if d != 2 && d != 3 {
-        return Err(IoErrorKind::CannotWrite {
-            format: Format::Medit,
-            reason: format!("Medit holds 2 or 3 coordinates per vertex, the complex has {d}"),
-        });
-    }
-    for b in k.blocks() {
-        if !CELL_KEYWORDS.iter().any(|(_, kind)| *kind == b.kind) {
-            return Err(IoErrorKind::CannotWrite {
-                format: Format::Medit,
-                reason: format!(
-                    "Medit has no element for {} cells (it holds edges, triangles, quads, tets, pyramids, prisms and hexahedra)",
-                    b.kind
-                ),
-            });
-        }
-    }
     writeln!(w, "MeshVersionFormatted 2")?;
     writeln!(w, "# written by starplex {}", env!("CARGO_PKG_VERSION"))?;
     writeln!(w, "Dimension {d}")?;

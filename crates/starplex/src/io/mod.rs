@@ -32,7 +32,9 @@ pub mod gmsh;
 pub mod medit;
 pub mod obj;
 pub mod off;
+pub mod output;
 pub mod ply;
+mod raw;
 pub mod spx;
 pub mod stellar_ref;
 pub mod stl;
@@ -48,7 +50,7 @@ pub mod words;
 /// assert_eq!(Format::from_path(Path::new("bunny.PLY")), Some(Format::Ply));
 /// assert_eq!(Format::from_name("msh22"), Some(Format::Gmsh22));
 /// assert_eq!(Format::Gmsh22.to_string(), "msh22");
-/// assert!(!Format::Stl.can_write());
+/// assert!(!Format::Hex.can_write());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Format {
@@ -56,14 +58,20 @@ pub enum Format {
     Spx,
     /// `.spb`, the starplex binary format (memory-mapped).
     Binary,
-    /// `.off` (OFF, COFF, NOFF, nOFF).
+    /// `.off` (OFF, COFF, NOFF, nOFF): faces are polygons (triangles, quads, ...).
     Off,
+    /// `.off` whose faces of `k` vertices are `(k-1)`-simplices (the Stellar reference's
+    /// convention for simplicial complexes of any dimension; named `off-simplices`). Reads as
+    /// OFF with [`PolygonMode::Simplices`]; writes simplices of every dimension.
+    OffSimplices,
     /// `.ply` (ascii and binary).
     Ply,
     /// `.obj` (Wavefront).
     Obj,
-    /// `.stl` (ascii and binary).
+    /// `.stl` (ascii and binary read; written as ascii).
     Stl,
+    /// `.stl` written as binary (named `stl-binary` or `stlb`; reads as [`Format::Stl`]).
+    StlBinary,
     /// `.mesh` (Medit).
     Medit,
     /// `.vtk` (legacy unstructured grid, ascii).
@@ -87,17 +95,20 @@ impl Format {
     ///
     /// ```
     /// use starplex::io::Format;
-    /// assert_eq!(Format::ALL.len(), 14);
+    /// assert_eq!(Format::ALL.len(), 16);
     /// let writable: Vec<String> = Format::ALL.iter().filter(|f| f.can_write()).map(|f| f.to_string()).collect();
-    /// assert_eq!(writable, ["spx", "spb", "off", "ply", "obj", "mesh", "vtk", "msh", "msh22"]);
+    /// assert_eq!(writable, ["spx", "spb", "off", "off-simplices", "ply", "obj", "stl", "stl-binary",
+    ///                       "mesh", "vtk", "msh", "msh22"]);
     /// ```
-    pub const ALL: [Format; 14] = [
+    pub const ALL: [Format; 16] = [
         Format::Spx,
         Format::Binary,
         Format::Off,
+        Format::OffSimplices,
         Format::Ply,
         Format::Obj,
         Format::Stl,
+        Format::StlBinary,
         Format::Medit,
         Format::Vtk,
         Format::Gmsh,
@@ -137,9 +148,11 @@ impl Format {
             "spx" => Format::Spx,
             "spb" | "binary" | "bin" => Format::Binary,
             "off" | "coff" | "noff" => Format::Off,
+            "off-simplices" | "offs" | "soff" => Format::OffSimplices,
             "ply" => Format::Ply,
             "obj" => Format::Obj,
-            "stl" => Format::Stl,
+            "stl" | "stl-ascii" => Format::Stl,
+            "stl-binary" | "stlb" => Format::StlBinary,
             "mesh" | "medit" => Format::Medit,
             "vtk" => Format::Vtk,
             "msh" | "gmsh" | "msh4" | "msh41" | "gmsh4" | "gmsh41" => Format::Gmsh,
@@ -152,13 +165,60 @@ impl Format {
         })
     }
 
+    /// The format that a file's first bytes show (`None` when they show none): the magic of
+    /// `spb`, `SPX`, `ply`, `$MeshFormat`, `# vtk DataFile`, `MeshVersionFormatted`, an OFF
+    /// keyword, `solid` (ascii STL). Used for files whose extension names no format.
+    ///
+    /// ```
+    /// use starplex::io::Format;
+    /// assert_eq!(Format::sniff(b"$MeshFormat\n4.1 0 8\n"), Some(Format::Gmsh));
+    /// assert_eq!(Format::sniff(b"# vtk DataFile Version 5.1\n"), Some(Format::Vtk));
+    /// assert_eq!(Format::sniff(b"COFF\n3 1 0\n"), Some(Format::Off));
+    /// assert_eq!(Format::sniff(b"ply\nformat ascii 1.0\n"), Some(Format::Ply));
+    /// assert_eq!(Format::sniff(b"hello"), None);
+    /// ```
+    pub fn sniff(head: &[u8]) -> Option<Format> {
+        let starts = |m: &[u8]| head.len() >= m.len() && head[..m.len()].eq_ignore_ascii_case(m);
+        if head.starts_with(&binary::MAGIC) {
+            return Some(Format::Binary);
+        }
+        if starts(b"SPX") {
+            return Some(Format::Spx);
+        }
+        if starts(b"ply\n") || starts(b"ply\r\n") {
+            return Some(Format::Ply);
+        }
+        if starts(b"$MeshFormat") {
+            return Some(Format::Gmsh);
+        }
+        if starts(b"# vtk DataFile") {
+            return Some(Format::Vtk);
+        }
+        if starts(b"MeshVersionFormatted") {
+            return Some(Format::Medit);
+        }
+        if starts(b"solid") {
+            return Some(Format::Stl);
+        }
+        let first = head
+            .split(|c| c.is_ascii_whitespace())
+            .next()
+            .unwrap_or_default();
+        let is_off = first
+            .strip_suffix(b"OFF")
+            .is_some_and(|p| p.iter().all(|c| b"CNST4n".contains(c)))
+            && !first.is_empty();
+        is_off.then_some(Format::Off)
+    }
+
     /// The usual extension.
     ///
     /// ```
     /// use starplex::io::Format;
     /// assert_eq!(Format::Medit.extension(), "mesh");
     /// assert_eq!(Format::Gmsh22.extension(), "msh");
-    /// for f in Format::ALL.into_iter().filter(|&f| f != Format::Gmsh22) {
+    /// let variants = [Format::Gmsh22, Format::OffSimplices, Format::StlBinary];
+    /// for f in Format::ALL.into_iter().filter(|f| !variants.contains(f)) {
     ///     assert_eq!(Format::from_name(f.extension()), Some(f));
     /// }
     /// ```
@@ -166,10 +226,10 @@ impl Format {
         match self {
             Format::Spx => "spx",
             Format::Binary => "spb",
-            Format::Off => "off",
+            Format::Off | Format::OffSimplices => "off",
             Format::Ply => "ply",
             Format::Obj => "obj",
-            Format::Stl => "stl",
+            Format::Stl | Format::StlBinary => "stl",
             Format::Medit => "mesh",
             Format::Vtk => "vtk",
             Format::Gmsh | Format::Gmsh22 => "msh",
@@ -188,10 +248,23 @@ impl Format {
     /// assert!(!Format::Hex.can_write()); // the Stellar reference formats are read only
     /// ```
     pub fn can_write(self) -> bool {
-        !matches!(
-            self,
-            Format::Stl | Format::Tri | Format::Ts | Format::Sierp | Format::Hex
-        )
+        !matches!(self, Format::Tri | Format::Ts | Format::Sierp | Format::Hex)
+    }
+
+    /// The names of the formats starplex writes, space-separated (for hints and help).
+    ///
+    /// ```
+    /// use starplex::io::Format;
+    /// assert!(Format::writable_names().starts_with("spx spb off"));
+    /// assert!(!Format::writable_names().contains("sierp"));
+    /// ```
+    pub fn writable_names() -> String {
+        Format::ALL
+            .iter()
+            .filter(|f| f.can_write())
+            .map(|f| f.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
     }
 }
 
@@ -199,6 +272,8 @@ impl fmt::Display for Format {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Format::Gmsh22 => f.write_str("msh22"),
+            Format::OffSimplices => f.write_str("off-simplices"),
+            Format::StlBinary => f.write_str("stl-binary"),
             _ => f.write_str(self.extension()),
         }
     }
@@ -229,8 +304,8 @@ pub enum Location {
 /// assert!(matches!(e.kind, IoErrorKind::UnknownFormat(_)));
 /// let e = io::read(Path::new("/no/such/dir/mesh.off"), &ReadOptions::default()).unwrap_err();
 /// assert!(matches!(e.kind, IoErrorKind::Os(_)));
-/// # let k = starplex::complex::IndexedComplex::from_parts(1, vec![0.0].into(), vec![]).unwrap();
-/// let e = io::write(Path::new("out.stl"), &k, None).unwrap_err();
+/// # let k = starplex::complex::IndexedComplex::from_parts(3, vec![0.0; 3].into(), vec![]).unwrap();
+/// let e = io::write(Path::new("out.stl"), &k, None).unwrap_err(); // STL has no isolated vertices
 /// assert!(matches!(e.kind, IoErrorKind::CannotWrite { format: Format::Stl, .. }));
 /// ```
 #[derive(Debug, thiserror::Error)]
@@ -247,6 +322,17 @@ pub enum IoErrorKind {
     /// The extension names no known format.
     #[error("unknown format for '{0}': use one of spx spb off ply obj stl mesh vtk msh tri ts sierp hex, or --format (msh22 writes gmsh 2.2)")]
     UnknownFormat(String),
+    /// Standard input or output (`-`) was given without a format: nothing names it.
+    #[error("{what} has no extension: say its format with {flag} (e.g. {flag} off)")]
+    NeedsFormat {
+        /// `standard input` or `standard output`.
+        what: &'static str,
+        /// The option that names the format (`--format` for input, `--to` for output).
+        flag: &'static str,
+    },
+    /// The format's reader needs a file (it seeks or memory-maps), not a stream.
+    #[error("{0} cannot be read from a stream (its reader needs a seekable file): save it to a file first")]
+    NeedsFile(Format),
     /// The format cannot hold this complex (e.g. tetrahedra in PLY).
     #[error("{format} cannot hold this complex: {reason}")]
     CannotWrite {
@@ -424,7 +510,11 @@ pub struct ReadResult {
     pub notes: Vec<String>,
 }
 
-/// Reads a complex, choosing the reader by `opts.format` or the extension.
+/// Reads a complex, choosing the reader by `opts.format`, the extension (for `name.off.gz`, the
+/// one before `.gz`) or, when neither names a format, the file's first bytes
+/// ([`Format::sniff`]). A gzip-compressed file (recognised by its content, whatever its name;
+/// several members are read as one stream) is decompressed on the fly, and so is gzip on
+/// standard input. `-` is standard input, which needs `opts.format`.
 ///
 /// ```
 /// use starplex::io::{self, Format, ReadOptions};
@@ -439,22 +529,91 @@ pub struct ReadResult {
 /// # Errors
 /// An [`IoError`] naming the file, the line or byte, and the problem.
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
-    let format = match opts.format.or_else(|| Format::from_path(path)) {
-        Some(f) => f,
-        None => {
+    use std::io::BufRead;
+    if path.as_os_str() == "-" {
+        let name = Path::new(STDIN_NAME);
+        let Some(format) = opts.format else {
             return Err(IoError::new(
-                path,
-                IoErrorKind::UnknownFormat(path.display().to_string()),
-            ))
+                name,
+                IoErrorKind::NeedsFormat {
+                    what: "standard input",
+                    flag: "--format",
+                },
+            ));
+        };
+        let stdin = std::io::stdin();
+        let mut r = std::io::BufReader::with_capacity(1 << 20, stdin.lock());
+        let gz = r
+            .fill_buf()
+            .map_err(|e| IoError::new(name, e))?
+            .starts_with(&GZIP_MAGIC);
+        if gz {
+            let d =
+                std::io::BufReader::with_capacity(1 << 20, flate2::bufread::MultiGzDecoder::new(r));
+            return read_stream(d, name, format, opts);
         }
+        return read_stream(r, name, format, opts);
+    }
+    // the extension names the format, unless it is .gz: then the one before it does
+    let gz_ext = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
+    let named = opts.format.or_else(|| {
+        if gz_ext {
+            path.file_stem()
+                .and_then(|s| Format::from_path(Path::new(s)))
+        } else {
+            Format::from_path(path)
+        }
+    });
+    let unknown = || IoError::new(path, IoErrorKind::UnknownFormat(path.display().to_string()));
+    // the first bytes: gzip is recognised by content, and an unnamed format by its magic
+    let mut head = [0u8; 64];
+    let n_head = match std::fs::File::open(path) {
+        Ok(mut f) => read_head(&mut f, &mut head).map_err(|e| IoError::new(path, e))?,
+        Err(e) => {
+            return Err(match named {
+                None => unknown(),
+                Some(_) => IoError::new(path, e),
+            })
+        }
+    };
+    let head = &head[..n_head];
+    if head.starts_with(&GZIP_MAGIC) {
+        let f = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+        let mut d = std::io::BufReader::with_capacity(
+            1 << 20,
+            flate2::bufread::MultiGzDecoder::new(std::io::BufReader::with_capacity(1 << 20, f)),
+        );
+        let format = match named {
+            Some(f) => f,
+            None => {
+                let inner = d.fill_buf().map_err(|e| IoError::new(path, e))?;
+                Format::sniff(inner).ok_or_else(unknown)?
+            }
+        };
+        let mut r = read_stream(d, path, format, opts)?;
+        r.notes.push("decompressed gzip input".into());
+        return Ok(r);
+    }
+    let format = match named.or_else(|| Format::sniff(head)) {
+        Some(f) => f,
+        None => return Err(unknown()),
     };
     let mut r = match format {
         Format::Spx => spx::read(path, opts),
         Format::Binary => binary::read(path, opts),
         Format::Off => off::read(path, opts),
+        Format::OffSimplices => {
+            let o = ReadOptions {
+                polygons: PolygonMode::Simplices,
+                ..opts.clone()
+            };
+            off::read(path, &o)
+        }
         Format::Ply => ply::read(path, opts),
         Format::Obj => obj::read(path, opts),
-        Format::Stl => stl::read(path, opts),
+        Format::Stl | Format::StlBinary => stl::read(path, opts),
         Format::Medit => medit::read(path, opts),
         Format::Vtk => vtk::read(path, opts),
         Format::Gmsh | Format::Gmsh22 => gmsh::read(path, opts),
@@ -464,6 +623,83 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
     }?;
     r.format = format;
     Ok(r)
+}
+
+/// The first two bytes of a gzip stream.
+const GZIP_MAGIC: [u8; 2] = [0x1f, 0x8b];
+
+/// Reads up to `buf.len()` bytes from the start of `f`.
+fn read_head(f: &mut std::fs::File, buf: &mut [u8]) -> std::io::Result<usize> {
+    use std::io::Read;
+    let mut n = 0;
+    while n < buf.len() {
+        match f.read(&mut buf[n..]) {
+            Ok(0) => break,
+            Ok(k) => n += k,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(n)
+}
+
+/// How standard input is named in errors (`-` on the command line).
+///
+/// ```
+/// assert_eq!(starplex::io::STDIN_NAME, "<stdin>");
+/// ```
+pub const STDIN_NAME: &str = "<stdin>";
+
+/// Reads a complex in `format` from a stream (standard input, a decompressor, memory); `path`
+/// names it in errors. Formats whose reader needs a file (`spb`, memory-mapped; STL, which
+/// looks at the file length) are refused; PLY is read into memory first (its reader checks
+/// declared counts against the length).
+///
+/// ```
+/// use starplex::io::{self, Format, IoErrorKind, ReadOptions};
+/// let text = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+/// let r = io::read_stream(text.as_bytes(), "pipe".as_ref(), Format::Off, &ReadOptions::default()).unwrap();
+/// assert_eq!((r.format, r.complex.n_cells()), (Format::Off, 1));
+/// let e = io::read_stream(&b""[..], "pipe".as_ref(), Format::Binary, &ReadOptions::default()).unwrap_err();
+/// assert!(matches!(e.kind, IoErrorKind::NeedsFile(Format::Binary)));
+/// ```
+///
+/// # Errors
+/// As the format's `read_from`; [`IoErrorKind::NeedsFile`] for `spb` and STL.
+pub fn read_stream(
+    mut r: impl std::io::BufRead,
+    path: &Path,
+    format: Format,
+    opts: &ReadOptions,
+) -> Result<ReadResult, IoError> {
+    let mut res = match format {
+        Format::Spx => spx::read_from(r, path, opts),
+        Format::Off => off::read_from(r, path, opts),
+        Format::OffSimplices => {
+            let o = ReadOptions {
+                polygons: PolygonMode::Simplices,
+                ..opts.clone()
+            };
+            off::read_from(r, path, &o)
+        }
+        Format::Ply => {
+            let mut buf = Vec::new();
+            std::io::Read::read_to_end(&mut r, &mut buf).map_err(|e| IoError::new(path, e))?;
+            ply::read_from(&buf[..], buf.len() as u64, path, opts)
+        }
+        Format::Obj => obj::read_from(r, path, opts),
+        Format::Medit => medit::read_from(r, path, opts),
+        Format::Vtk => vtk::read_from(r, path, opts),
+        Format::Gmsh | Format::Gmsh22 => gmsh::read_from(r, path, opts),
+        Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
+            stellar_ref::read_from(r, path, format, opts)
+        }
+        Format::Binary | Format::Stl | Format::StlBinary => {
+            Err(IoError::new(path, IoErrorKind::NeedsFile(format)))
+        }
+    }?;
+    res.format = format;
+    Ok(res)
 }
 
 /// Writes `complex` in `format` (or the extension's). The file appears only when complete.
@@ -483,10 +719,20 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
 /// ```
 ///
 /// # Errors
-/// Unknown or read-only formats, a complex the format cannot hold, operating-system errors.
+/// Unknown or read-only formats, a complex the format cannot hold (checked by
+/// [`check_writable`] before anything is opened or written), operating-system errors.
 pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> Result<(), IoError> {
     let format = match format.or_else(|| Format::from_path(path)) {
         Some(f) => f,
+        None if path.as_os_str() == "-" => {
+            return Err(IoError::new(
+                path,
+                IoErrorKind::NeedsFormat {
+                    what: "standard output",
+                    flag: "--to",
+                },
+            ))
+        }
         None => {
             return Err(IoError::new(
                 path,
@@ -494,28 +740,71 @@ pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> R
             ))
         }
     };
+    check_writable(complex, format).map_err(|k| IoError::new(path, k))?;
     match format {
         Format::Spx => atomic_write(path, |w| spx::write(w, complex)),
         Format::Binary => atomic_write(path, |w| binary::write(w, complex)),
         Format::Off => atomic_write(path, |w| off::write(w, complex)),
+        Format::OffSimplices => atomic_write(path, |w| off::write_simplices(w, complex)),
         Format::Ply => atomic_write(path, |w| ply::write(w, complex)),
         Format::Obj => atomic_write(path, |w| obj::write(w, complex)),
+        Format::Stl => atomic_write(path, |w| stl::write(w, complex)),
+        Format::StlBinary => atomic_write(path, |w| stl::write_binary(w, complex)),
         Format::Medit => atomic_write(path, |w| medit::write(w, complex)),
         Format::Vtk => atomic_write(path, |w| vtk::write(w, complex)),
         Format::Gmsh => atomic_write(path, |w| gmsh::write(w, complex)),
         Format::Gmsh22 => atomic_write(path, |w| gmsh::write_22(w, complex)),
-        Format::Stl | Format::Tri | Format::Ts | Format::Sierp | Format::Hex => Err(IoError::new(
-            path,
-            IoErrorKind::CannotWrite {
-                format,
-                reason: "starplex reads this format but does not write it".into(),
-            },
-        )),
+        Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
+            unreachable!("refused by check_writable")
+        }
     }
 }
 
-/// Runs `f` on a buffered writer to a temporary file beside `path`, then renames it over `path`.
-/// On any error the temporary file is removed and `path` is untouched.
+/// Whether `format` can hold `complex` exactly: every cell kind, every dimension, every vertex
+/// (what a reader of the file gets back is the same complex, up to the zero padding of 1- or
+/// 2-dimensional points in formats with 3 coordinates). Every writer runs this check first;
+/// [`write`] runs it before opening the output.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{check_writable, Format, IoErrorKind};
+/// let tet = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.].into(),
+///                                      vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
+/// for f in [Format::Spx, Format::Binary, Format::Vtk, Format::Gmsh, Format::Medit, Format::OffSimplices] {
+///     assert!(check_writable(&tet, f).is_ok(), "{f}");
+/// }
+/// // OFF faces of 4 vertices read back as quads; PLY, OBJ and STL hold surfaces only
+/// for f in [Format::Off, Format::Ply, Format::Obj, Format::Stl, Format::StlBinary] {
+///     let e = check_writable(&tet, f).unwrap_err();
+///     assert!(matches!(e, IoErrorKind::CannotWrite { format, .. } if format == f), "{f}");
+/// }
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason; read-only formats.
+pub fn check_writable(complex: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
+    match format {
+        Format::Spx | Format::Binary => Ok(()),
+        Format::Off => off::check(complex),
+        Format::OffSimplices => off::check_simplices(complex),
+        Format::Ply | Format::Obj => ply::check_surface(complex, format),
+        Format::Stl | Format::StlBinary => stl::check(complex, format),
+        Format::Medit => medit::check(complex),
+        Format::Vtk => vtk::check(complex),
+        Format::Gmsh | Format::Gmsh22 => gmsh::check_writable(complex, format),
+        Format::Tri | Format::Ts | Format::Sierp | Format::Hex => Err(IoErrorKind::CannotWrite {
+            format,
+            reason: format!(
+                "starplex reads this format but does not write it; it writes {}",
+                Format::writable_names()
+            ),
+        }),
+    }
+}
+
+/// Runs `f` on a buffered writer to `path` through [`output::write_with`] (atomic for regular
+/// files, straight through for standard output, FIFOs and devices, symbolic links followed).
 ///
 /// # Errors
 /// What `f` returns (its path is replaced by `path`), or the OS error of create/flush/rename.
@@ -523,27 +812,5 @@ pub(crate) fn atomic_write(
     path: &Path,
     f: impl FnOnce(&mut dyn std::io::Write) -> Result<(), IoErrorKind>,
 ) -> Result<(), IoError> {
-    use std::io::Write;
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = (|| -> Result<(), IoErrorKind> {
-        let file = std::fs::File::create(&tmp)?;
-        let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
-        f(&mut w)?;
-        w.flush()?;
-        w.into_inner().map_err(|e| e.into_error())?.sync_all().ok();
-        std::fs::rename(&tmp, path)?;
-        Ok(())
-    })();
-    result.map_err(|kind| {
-        let _ = std::fs::remove_file(&tmp);
-        IoError::new(path, kind)
-    })
+    output::write_with(path, f)
 }

@@ -66,7 +66,8 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
 /// # Errors
 /// Malformed or non-finite coordinates, malformed corner indices, index 0, indices of vertices
 /// not defined yet (or before the first one, for negative indices), repeated corners, faces of
-/// fewer than 3 corners (polygon mode), polylines of fewer than 2, and the checks of
+/// fewer than 3 corners (polygon mode), polylines of fewer than 2, a line whose keyword is not
+/// printable ASCII, a file with no vertex and no element (an empty or non-OBJ file), and the checks of
 /// [`ComplexBuilder::build`]. Every error before the final build has its line.
 pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
     let mut lr = LineReader::new(r, path, Some(b'#'));
@@ -172,8 +173,24 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 }
             }
             b"p" => n_points += 1,
-            _ => {}
+            key => {
+                // other OBJ statements (vt, vn, g, usemtl, ...) are words of printable ASCII;
+                // anything else is not OBJ text (a binary file, random bytes)
+                if !key.iter().all(|c| c.is_ascii_graphic()) {
+                    return Err(l.err(format!(
+                        "not an OBJ file: a line starts with '{}', which is not an OBJ keyword",
+                        String::from_utf8_lossy(&key[..key.len().min(20)]).escape_debug()
+                    )));
+                }
+            }
         }
+    }
+    if b.n_vertices() == 0 && b.n_cells() == 0 {
+        return Err(IoError::parse(
+            path,
+            Some(Location::Line(lr.line_no().max(1))),
+            "not an OBJ file: no vertex ('v') and no face ('f') or polyline ('l') in it",
+        ));
     }
     let mut notes = Vec::new();
     if n_fanned > 0 {

@@ -539,15 +539,92 @@ fn check_distinct(
     }
 }
 
+/// Refuses what plain OFF (faces read back as polygons) cannot hold: 0-simplices, simplices of
+/// dimension 3 and more (their faces of 4+ vertices read back as quads or fans of triangles:
+/// write them with [`write_simplices`], format `off-simplices`) and 3D CP cells.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::off;
+/// let tet = IndexedComplex::from_parts(3, vec![0.0; 12].into(),
+///                                      vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
+/// let e = off::check(&tet).unwrap_err();
+/// assert!(e.to_string().contains("off-simplices"), "{e}");
+/// assert!(off::check_simplices(&tet).is_ok());
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] naming the first cell that cannot be written and the way out.
+pub fn check(k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    for b in k.blocks() {
+        let reason = match b.kind {
+            CellKind::Simplex(1) | CellKind::Simplex(2) | CellKind::Quad => continue,
+            CellKind::Simplex(0) => format!(
+                "cell {} is a vertex (a 0-simplex top cell), which OFF readers drop; write \
+                 off-simplices (the Stellar convention, read back with --simplices), spx or spb",
+                b.first
+            ),
+            CellKind::Simplex(d) => format!(
+                "cell {} is a {d}-simplex, whose {} vertices an OFF reader takes for a polygon \
+                 (a tetrahedron comes back as a quad); write off-simplices (the Stellar \
+                 convention, read back with --simplices), or the surface with --boundary",
+                b.first,
+                d + 1
+            ),
+            kind => format!(
+                "OFF holds simplices and polygons, not 3D cells; cell {} is a {} (write its \
+                 surface with --boundary, or use vtk, msh, mesh, spx or spb)",
+                b.first,
+                kind.type_name()
+            ),
+        };
+        return Err(IoErrorKind::CannotWrite {
+            format: Format::Off,
+            reason,
+        });
+    }
+    Ok(())
+}
+
+/// Refuses what OFF read as simplices (format `off-simplices`) cannot hold: CP cells (a quad's 4
+/// vertices would come back as a tetrahedron).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::off;
+/// let quad = IndexedComplex::from_parts(2, vec![0.0; 8].into(),
+///                                       vec![(CellKind::Quad, vec![0, 1, 2, 3].into())]).unwrap();
+/// assert!(off::check_simplices(&quad).is_err());
+/// assert!(off::check(&quad).is_ok());
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] naming the first CP cell.
+pub fn check_simplices(k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    match k.blocks().iter().find(|b| !b.kind.is_simplex()) {
+        None => Ok(()),
+        Some(b) => Err(IoErrorKind::CannotWrite {
+            format: Format::OffSimplices,
+            reason: format!(
+                "off-simplices reads every face as a simplex, and cell {} is a {} (write off, \
+                 or --triangulate first)",
+                b.first,
+                b.kind.type_name()
+            ),
+        }),
+    }
+}
+
 /// Writes `k` as plain OFF: `OFF`, the counts, one line of `ambient_dim` coordinates per vertex
 /// (the Stellar reference's convention when the ambient dimension is not 3), then one line
 /// `k i_0 .. i_{k-1}` per cell in cell-id order (so cell ids survive a round trip). A complex
 /// with no vertex and an ambient dimension other than 3 is written as `nOFF` so that its
 /// dimension survives.
 ///
-/// Simplices of any dimension and quads are written. A complex that has both quads and
-/// tetrahedra is refused (both would be 4-vertex faces). Tetrahedra and higher simplices read
-/// back as simplices only with [`PolygonMode::Simplices`].
+/// Edges, triangles and quads are written (see [`check`]); [`write_simplices`] writes simplices
+/// of every dimension.
 ///
 /// ```
 /// use starplex::cell::CellKind;
@@ -565,36 +642,36 @@ fn check_distinct(
 /// ```
 ///
 /// # Errors
-/// [`IoErrorKind::CannotWrite`] for pyramids, prisms, hexahedra and quads mixed with tetrahedra;
-/// OS errors of the writer.
+/// [`IoErrorKind::CannotWrite`] (see [`check`]); OS errors of the writer.
 pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
-    let mut has_quad = false;
-    let mut has_tet = false;
-    for b in k.blocks() {
-        match b.kind {
-            CellKind::Quad => has_quad = true,
-            CellKind::Simplex(3) => has_tet = true,
-            CellKind::Simplex(_) => {}
-            kind => {
-                return Err(IoErrorKind::CannotWrite {
-                    format: Format::Off,
-                    reason: format!(
-                        "OFF holds simplices and polygons, not 3D cells; cell {} is a {}",
-                        b.first,
-                        kind.type_name()
-                    ),
-                })
-            }
-        }
-    }
-    if has_quad && has_tet {
-        return Err(IoErrorKind::CannotWrite {
-            format: Format::Off,
-            reason: "the complex has both quads and tetrahedra, which OFF cannot tell apart \
-                     (both are faces of 4 vertices)"
-                .into(),
-        });
-    }
+    check(k)?;
+    write_faces(w, k)
+}
+
+/// Writes `k` as OFF whose faces are simplices of any dimension (the Stellar reference's
+/// convention, format `off-simplices`): read it back with [`PolygonMode::Simplices`]
+/// (`--simplices`, or `--format off-simplices`).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{off, PolygonMode, ReadOptions};
+/// let tet = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.].into(),
+///                                      vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
+/// let mut out = Vec::new();
+/// off::write_simplices(&mut out, &tet).unwrap();
+/// let opts = ReadOptions { polygons: PolygonMode::Simplices, ..Default::default() };
+/// assert_eq!(off::read_from(&out[..], "t.off".as_ref(), &opts).unwrap().complex, tet);
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] for CP cells (see [`check_simplices`]); OS errors of the writer.
+pub fn write_simplices(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check_simplices(k)?;
+    write_faces(w, k)
+}
+
+fn write_faces(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     if k.n_vertices() == 0 && k.ambient_dim() != 3 {
         // No vertex line to carry the dimension: say it in the header.
         writeln!(w, "nOFF\n{}", k.ambient_dim())?;

@@ -564,7 +564,20 @@ fn read_record<E: PropertyAccess, R: BufRead>(
 
 /// Refuses complexes that a surface format (PLY, OBJ) cannot hold: anything but triangles and
 /// quads, or an ambient dimension other than 2 and 3.
-pub(crate) fn check_surface(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{ply, Format};
+/// let tet = IndexedComplex::from_parts(3, vec![0.0; 12].into(),
+///                                      vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
+/// let e = ply::check_surface(&tet, Format::Obj).unwrap_err();
+/// assert!(e.to_string().contains("a tetrahedral mesh cannot be written to OBJ"), "{e}");
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason and the formats that would hold the complex.
+pub fn check_surface(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
     let name = match format {
         Format::Ply => "PLY",
         Format::Obj => "OBJ",
@@ -593,7 +606,7 @@ pub(crate) fn check_surface(k: &IndexedComplex, format: Format) -> Result<(), Io
             }
         };
         let alt = if b.kind.dim() == 3 {
-            ".mesh, .vtk, .msh, .spx or .spb"
+            ".mesh, .vtk, .msh, .spx or .spb (or write its surface with --boundary)"
         } else {
             ".spx, .spb, .vtk or .msh"
         };

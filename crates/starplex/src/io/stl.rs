@@ -1,4 +1,11 @@
-//! STL (ascii and binary) reader, through `stl_io`. STL is read-only in starplex.
+//! STL (ascii and binary): reader through `stl_io`, writers of starplex's own.
+//!
+//! Writing ([`write`] ascii, [`write_binary`] binary; formats `stl` and `stl-binary`): one facet
+//! per triangle with its unit normal (right-hand rule, zero for a degenerate facet), coordinates
+//! as `f32` (STL has no other type). What a reader gets back is the same triangles in the same
+//! order on vertices numbered by first use; [`check`] refuses what would come back different:
+//! cells other than triangles, isolated vertices, two vertices that become one point in `f32`, an
+//! ambient dimension other than 2 or 3 (2D points get `z = 0`).
 //!
 //! STL stores every facet with its own three corners; the reader merges corners with equal
 //! coordinates into one vertex (equal as `f32` bit patterns after mapping `-0.0` to `0.0`, with a
@@ -26,14 +33,14 @@
 //! assert_eq!(r.complex.n_vertices(), 4); // 6 corners, 2 shared
 //! assert_eq!(r.complex.n_cells(), 2);
 //! ```
-use std::io::{Read, Seek, SeekFrom};
+use std::io::{Read, Seek, SeekFrom, Write};
 use std::path::Path;
 
 use rustc_hash::FxHashMap;
 
-use super::{Format, IoError, ReadOptions, ReadResult};
+use super::{Format, IoError, IoErrorKind, ReadOptions, ReadResult};
 use crate::cell::CellKind;
-use crate::complex::ComplexBuilder;
+use crate::complex::{ComplexBuilder, IndexedComplex};
 
 /// A file seen through a replaced prefix: the bytes of `prefix`, then the file from `skip` on.
 /// Lets `stl_io` read binary files whose header starts with `solid` and ascii files whose first
@@ -235,4 +242,204 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
         format: Format::Stl,
         notes,
     })
+}
+
+/// The STL key of a point: its `f32` bit patterns, `-0.0` as `0.0` (what the reader merges).
+fn key32(p: [f32; 3]) -> [u32; 3] {
+    p.map(|x| if x == 0.0 { 0 } else { x.to_bits() })
+}
+
+fn point32(k: &IndexedComplex, v: u32) -> [f32; 3] {
+    let d = k.ambient_dim();
+    let p = &k.coords()[v as usize * d..v as usize * d + d];
+    let mut q = [0f32; 3];
+    for (x, y) in q.iter_mut().zip(p) {
+        *x = *y as f32;
+    }
+    q
+}
+
+/// Refuses what STL cannot give back: cells other than triangles, vertices in no triangle,
+/// distinct vertices at the same `f32` point (the reader would merge them), coordinates that
+/// overflow `f32`, an ambient dimension other than 2 or 3. `format` is [`Format::Stl`] or
+/// [`Format::StlBinary`] (named in the error).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{stl, Format};
+/// let quad = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.].into(),
+///                                       vec![(CellKind::Quad, vec![0, 1, 2, 3].into())]).unwrap();
+/// let e = stl::check(&quad, Format::Stl).unwrap_err();
+/// assert!(e.to_string().contains("--triangulate"), "{e}");
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason.
+pub fn check(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
+    let fail = |reason: String| Err(IoErrorKind::CannotWrite { format, reason });
+    let d = k.ambient_dim();
+    if d != 2 && d != 3 {
+        return fail(format!(
+            "STL holds points of 3 coordinates, this complex has {d}: use spx or spb"
+        ));
+    }
+    for b in k.blocks() {
+        match b.kind {
+            CellKind::Simplex(2) => {}
+            CellKind::Quad => {
+                return fail(format!(
+                    "STL holds triangles only, cell {} is a quad: split quads with --triangulate",
+                    b.first
+                ))
+            }
+            kind if kind.dim() == 3 => {
+                return fail(format!(
+                    "STL holds triangles only, cell {} is a {}: write the surface with --boundary (and --triangulate for quad faces)",
+                    b.first,
+                    kind.type_name()
+                ))
+            }
+            kind => {
+                return fail(format!(
+                    "STL holds triangles only, cell {} is a {}: use vtk, msh, spx or spb",
+                    b.first,
+                    kind.type_name()
+                ))
+            }
+        }
+    }
+    if k.n_cells() > u32::MAX as usize {
+        return fail(format!(
+            "{} facets exceed the 32-bit count of STL",
+            k.n_cells()
+        ));
+    }
+    let used = k.used_vertices();
+    if let Some(v) = (0..k.n_vertices()).find(|&v| !used.contains(v)) {
+        return fail(format!(
+            "STL stores facets only, and vertex {v} is in no triangle (it would be lost)"
+        ));
+    }
+    let mut seen: FxHashMap<[u32; 3], u32> = FxHashMap::default();
+    seen.reserve(k.n_vertices());
+    for v in 0..k.n_vertices() as u32 {
+        let p = point32(k, v);
+        if p.iter().any(|x| !x.is_finite()) {
+            return fail(format!(
+                "vertex {v} has a coordinate beyond the range of STL's 32-bit floats"
+            ));
+        }
+        if let Some(u) = seen.insert(key32(p), v) {
+            return fail(format!(
+                "vertices {u} and {v} are the same point in STL's 32-bit floats ({p:?}), so a \
+                 reader would merge them"
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn normal(t: [[f32; 3]; 3]) -> [f32; 3] {
+    let a = [0, 1, 2].map(|i| t[1][i] as f64 - t[0][i] as f64);
+    let b = [0, 1, 2].map(|i| t[2][i] as f64 - t[0][i] as f64);
+    let n = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    if len > 0.0 && len.is_finite() {
+        n.map(|x| (x / len) as f32)
+    } else {
+        [0.0; 3]
+    }
+}
+
+fn facets(k: &IndexedComplex) -> impl Iterator<Item = [[f32; 3]; 3]> + '_ {
+    k.blocks().iter().flat_map(move |b| {
+        (0..b.len()).map(move |i| {
+            let c = b.cell(i);
+            [point32(k, c[0]), point32(k, c[1]), point32(k, c[2])]
+        })
+    })
+}
+
+/// Writes `k` as ascii STL (`solid starplex ... endsolid starplex`).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::stl;
+/// let t = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 0., 1., 0.].into(),
+///                                    vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let mut out = Vec::new();
+/// stl::write(&mut out, &t).unwrap();
+/// let text = String::from_utf8(out).unwrap();
+/// assert!(text.starts_with("solid starplex\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n"));
+/// assert!(text.ends_with("endsolid starplex\n"));
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] (see [`check`]); OS errors of the writer.
+pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check(k, Format::Stl)?;
+    w.write_all(b"solid starplex\n")?;
+    let mut s = String::with_capacity(256);
+    for t in facets(k) {
+        use std::fmt::Write as _;
+        s.clear();
+        let n = normal(t);
+        let _ = writeln!(s, "  facet normal {} {} {}", n[0], n[1], n[2]);
+        s.push_str("    outer loop\n");
+        for p in t {
+            let _ = writeln!(s, "      vertex {} {} {}", p[0], p[1], p[2]);
+        }
+        s.push_str("    endloop\n  endfacet\n");
+        w.write_all(s.as_bytes())?;
+    }
+    w.write_all(b"endsolid starplex\n")?;
+    Ok(())
+}
+
+/// Writes `k` as binary STL (an 80-byte header that does not start with `solid`, the facet
+/// count, 50 bytes per facet, little-endian).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::stl;
+/// let t = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 0., 1., 0.].into(),
+///                                    vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let mut out = Vec::new();
+/// stl::write_binary(&mut out, &t).unwrap();
+/// assert_eq!(out.len(), 84 + 50);
+/// assert_eq!(&out[80..84], &1u32.to_le_bytes());
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] (see [`check`]); OS errors of the writer.
+pub fn write_binary(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check(k, Format::StlBinary)?;
+    let mut head = [b' '; 80];
+    let title = format!(
+        "binary STL written by starplex {}",
+        env!("CARGO_PKG_VERSION")
+    );
+    head[..title.len().min(80)].copy_from_slice(&title.as_bytes()[..title.len().min(80)]);
+    w.write_all(&head)?;
+    w.write_all(&(k.n_cells() as u32).to_le_bytes())?;
+    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+    for t in facets(k) {
+        for x in normal(t).iter().chain(t.iter().flatten()) {
+            buf.extend_from_slice(&x.to_le_bytes());
+        }
+        buf.extend_from_slice(&[0, 0]);
+        if buf.len() >= 1 << 16 {
+            w.write_all(&buf)?;
+            buf.clear();
+        }
+    }
+    w.write_all(&buf)?;
+    Ok(())
 }

@@ -1,4 +1,10 @@
-//! Legacy VTK `.vtk`, `DATASET UNSTRUCTURED_GRID`, ascii.
+//! Legacy VTK `.vtk`, `DATASET UNSTRUCTURED_GRID`, ascii and binary.
+//!
+//! Binary files (`BINARY`, big-endian as the format says) are read in both layouts: classic
+//! `CELLS` of `int`s (version up to 4.2) and `OFFSETS`/`CONNECTIVITY` of `vtktypeint64` or
+//! `vtktypeint32` (version 5.x, meshio's default); `POINTS` of `float` or `double`. Reading stops at
+//! the first `POINT_DATA`, `CELL_DATA` or `FIELD` block (noted: starplex keeps no attributes).
+//! Errors in a binary file name the byte offset instead of the line.
 //!
 //! Read: the classic layout (`CELLS n size` followed by `k v_0 .. v_{k-1}` per cell) and the
 //! layout of version 5.x (`CELLS n_offsets n_connectivity`, `OFFSETS type`, `CONNECTIVITY type`),
@@ -27,6 +33,7 @@ use std::io::{BufRead, Write};
 use std::path::Path;
 
 use super::medit::push_build_notes;
+use super::raw::{get_i32, get_i64, push_f32s, push_f64s, read_records, Endian};
 use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
@@ -288,7 +295,7 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
 /// ```
 ///
 /// # Errors
-/// A missing or malformed header, a binary file, a dataset other than `UNSTRUCTURED_GRID`,
+/// A missing or malformed header, a dataset other than `UNSTRUCTURED_GRID`,
 /// malformed or non-finite numbers, counts that do not match the data, unsupported cell types,
 /// vertex counts that do not fit the cell type, out-of-range or repeated vertex indices, and the
 /// checks of [`ComplexBuilder::build`](crate::complex::ComplexBuilder::build) under
@@ -315,10 +322,8 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         .ok_or_else(|| w.err_at(1, format!("unreadable VTK version '{}'", ver.trim())))?;
     w.rest_of_line()?; // title
     let enc = w.expect("ASCII or BINARY")?.to_vec();
-    if enc.eq_ignore_ascii_case(b"BINARY") {
-        return Err(w.err("binary legacy .vtk is not supported; re-save as ascii"));
-    }
-    if !enc.eq_ignore_ascii_case(b"ASCII") {
+    let binary = enc.eq_ignore_ascii_case(b"BINARY");
+    if !binary && !enc.eq_ignore_ascii_case(b"ASCII") {
         return Err(w.err(format!("expected ASCII or BINARY, found '{}'", lossy(&enc))));
     }
     w.keyword("DATASET")?;
@@ -339,9 +344,79 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut have_cells = false;
     let mut types: Option<Vec<CellKind>> = None;
     let mut notes = Vec::new();
+    if binary {
+        w.set_binary();
+    }
     while let Some(word) = w.next_word()?.map(|t| t.to_vec()) {
         let kw = word.to_ascii_uppercase();
         match kw.as_slice() {
+            b"POINTS" if binary => {
+                if builder.is_some() {
+                    return Err(w.err("a second POINTS section"));
+                }
+                let n = count(&mut w, "the point count")?;
+                let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
+                read_points_bin(&mut w, n, &mut b)?;
+                nv = n;
+                builder = Some(b);
+            }
+            b"CELLS" if binary => {
+                if builder.is_none() {
+                    return Err(w.err("CELLS before POINTS"));
+                }
+                if have_cells {
+                    return Err(w.err("a second CELLS section"));
+                }
+                have_cells = true;
+                let a = w.u64("the cell count")?;
+                let size = w.u64("the cell list size")?;
+                if major >= 5 {
+                    // the binary data may start with any byte: the layout follows the version
+                    w.keyword("OFFSETS")?;
+                    read_offsets_bin(&mut w, a, size, nv, &mut conn, &mut ends)?;
+                } else {
+                    w.rest_of_line()?;
+                    read_classic_bin(&mut w, a, size, nv, &mut conn, &mut ends)?;
+                }
+            }
+            b"CELL_TYPES" if binary => {
+                if types.is_some() {
+                    return Err(w.err("a second CELL_TYPES section"));
+                }
+                let n = w.u64("the cell type count")?;
+                if !have_cells {
+                    return Err(w.err("CELL_TYPES before CELLS"));
+                }
+                if n != ends.len() as u64 {
+                    return Err(w.err(format!(
+                        "CELL_TYPES counts {n} cells but CELLS has {}",
+                        ends.len()
+                    )));
+                }
+                w.rest_of_line()?;
+                let at = w.offset();
+                let mut tys: Vec<u64> = Vec::new();
+                read_records(&mut w, n, 4, "the cell types", |_, c, _| {
+                    tys.extend(c.chunks_exact(4).map(|x| get_i32(x, Endian::Big) as u32 as u64));
+                    Ok(())
+                })?;
+                let mut kinds = Vec::with_capacity(tys.len());
+                let mut start = 0u64;
+                for (i, (&ty, &end)) in tys.iter().zip(ends.iter()).enumerate() {
+                    let kind = cell_kind(i, ty, end - start).map_err(|m| {
+                        IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), m)
+                    })?;
+                    start = end;
+                    kinds.push(kind);
+                }
+                types = Some(kinds);
+            }
+            b"POINT_DATA" | b"CELL_DATA" | b"FIELD" | b"METADATA" if binary => {
+                // attribute arrays are not read (starplex keeps no attributes yet); the mesh
+                // sections come before them
+                notes.push("binary attribute data (POINT_DATA/CELL_DATA/FIELD) was not read".into());
+                break;
+            }
             b"POINTS" => {
                 if builder.is_some() {
                     return Err(w.err("a second POINTS section"));
@@ -403,20 +478,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 let mut start = 0u64;
                 for (i, &end) in ends.iter().enumerate() {
                     let ty = w.u64("a cell type")?;
-                    let Some(kind) = kind_of_vtk_type(ty) else {
-                        return Err(w.err(format!(
-                            "cell {i}: VTK cell type {ty} ({}) is not supported (starplex reads types 1, 3, 5, 9, 10, 12, 13, 14)",
-                            vtk_type_name(ty)
-                        )));
-                    };
-                    if end - start != kind.n_vertices() as u64 {
-                        return Err(w.err(format!(
-                            "cell {i}: VTK cell type {ty} ({}) needs {} points, the cell lists {}",
-                            vtk_type_name(ty),
-                            kind.n_vertices(),
-                            end - start
-                        )));
-                    }
+                    let kind = cell_kind(i, ty, end - start).map_err(|m| w.err(m))?;
                     start = end;
                     kinds.push(kind);
                 }
@@ -484,6 +546,242 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         format: Format::Vtk,
         notes,
     })
+}
+
+/// The kind of cell `i` of VTK type `ty` listing `n` points, or why not.
+fn cell_kind(i: usize, ty: u64, n: u64) -> Result<CellKind, String> {
+    let Some(kind) = kind_of_vtk_type(ty) else {
+        return Err(format!(
+            "cell {i}: VTK cell type {ty} ({}) is not supported (starplex reads types 1, 3, 5, 9, 10, 12, 13, 14)",
+            vtk_type_name(ty)
+        ));
+    };
+    if n != kind.n_vertices() as u64 {
+        return Err(format!(
+            "cell {i}: VTK cell type {ty} ({}) needs {} points, the cell lists {n}",
+            vtk_type_name(ty),
+            kind.n_vertices(),
+        ));
+    }
+    Ok(kind)
+}
+
+/// Bytes of one value of a binary legacy VTK data type (`None`: not an integer or float type
+/// starplex reads here).
+fn type_width(ty: &[u8]) -> Option<(usize, bool)> {
+    let t = ty.to_ascii_lowercase();
+    Some(match t.as_slice() {
+        b"float" | b"vtktypefloat32" => (4, true),
+        b"double" | b"vtktypefloat64" => (8, true),
+        b"int" | b"unsigned_int" | b"vtktypeint32" | b"vtktypeuint32" => (4, false),
+        b"long" | b"unsigned_long" | b"vtkidtype" | b"vtktypeint64" | b"vtktypeuint64" => {
+            (8, false)
+        }
+        _ => return None,
+    })
+}
+
+/// Binary `POINTS n type` body (big-endian `float` or `double`), the count already read.
+fn read_points_bin(
+    w: &mut Words<'_, impl BufRead>,
+    n: usize,
+    b: &mut ComplexBuilder,
+) -> Result<(), IoError> {
+    let ty = w.expect("the point data type")?.to_vec();
+    let (width, float) = type_width(&ty).unwrap_or((0, false));
+    if !float {
+        return Err(w.err(format!(
+            "binary POINTS of type '{}' are not supported (float or double)",
+            lossy(&ty)
+        )));
+    }
+    w.rest_of_line()?;
+    let path = w.path();
+    let mut p: Vec<f64> = Vec::with_capacity(3 * 4096);
+    read_records(w, n as u64, 3 * width, "the points", |w, c, first| {
+        p.clear();
+        if width == 8 {
+            push_f64s(c, Endian::Big, &mut p);
+        } else {
+            push_f32s(c, Endian::Big, &mut p);
+        }
+        let start = w.offset() - c.len() as u64;
+        for (j, q) in p.chunks_exact(3).enumerate() {
+            b.push_vertex(q).map_err(|e| {
+                IoError::new(path, e).at(Location::Byte(start + (3 * width * j) as u64))
+            })?;
+        }
+        let _ = first;
+        Ok(())
+    })
+}
+
+/// `n` big-endian integers of `width` bytes.
+fn read_ints_bin(
+    w: &mut Words<'_, impl BufRead>,
+    n: u64,
+    width: usize,
+    what: &str,
+) -> Result<Vec<u64>, IoError> {
+    let mut out = Vec::new();
+    read_records(w, n, width, what, |_, c, _| {
+        if width == 4 {
+            out.extend(
+                c.chunks_exact(4)
+                    .map(|x| get_i32(x, Endian::Big) as i64 as u64),
+            );
+        } else {
+            out.extend(c.chunks_exact(8).map(|x| get_i64(x, Endian::Big) as u64));
+        }
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+/// Binary classic `CELLS n size` body: `size` big-endian `int`s, `k v_0 .. v_{k-1}` per cell.
+fn read_classic_bin(
+    w: &mut Words<'_, impl BufRead>,
+    n: u64,
+    size: u64,
+    nv: usize,
+    conn: &mut Vec<u32>,
+    ends: &mut Vec<u64>,
+) -> Result<(), IoError> {
+    if n >= u32::MAX as u64 {
+        return Err(w.err(format!(
+            "cell count {n} exceeds the 32-bit id limit of starplex"
+        )));
+    }
+    let at = w.offset();
+    let flat = read_ints_bin(w, size, 4, "the cell list")?;
+    let path = w.path();
+    let bad =
+        |i: usize, msg: String| IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), msg);
+    let mut i = 0usize;
+    for c in 0..n {
+        let Some(&k) = flat.get(i) else {
+            return Err(bad(
+                i,
+                format!("CELLS says the cell list has {size} numbers, and cell {c} is past them"),
+            ));
+        };
+        if k == 0 || k > 64 || i + 1 + k as usize > flat.len() {
+            return Err(bad(
+                i,
+                format!(
+                    "cell {c} lists {} points (a supported cell has 2 to 8, a vertex 1)",
+                    k as i64
+                ),
+            ));
+        }
+        let start = conn.len();
+        for (j, &v) in flat[i + 1..i + 1 + k as usize].iter().enumerate() {
+            if v >= nv as u64 {
+                return Err(bad(
+                    i + 1 + j,
+                    format!(
+                        "point index {} is out of range: the file has {nv} points",
+                        v as i64
+                    ),
+                ));
+            }
+            conn.push(v as u32);
+        }
+        check_cell(c, &conn[start..], nv)
+            .map_err(|e| IoError::new(path, e).at(Location::Byte(at + 4 * i as u64)))?;
+        i += 1 + k as usize;
+        ends.push(conn.len() as u64);
+    }
+    if i != flat.len() {
+        return Err(bad(
+            i,
+            format!("CELLS says the cell list has {size} numbers, the {n} cells hold {i}"),
+        ));
+    }
+    Ok(())
+}
+
+/// Binary version-5 body: `OFFSETS type` then `CONNECTIVITY type` (the word `OFFSETS` already
+/// read), big-endian integers.
+fn read_offsets_bin(
+    w: &mut Words<'_, impl BufRead>,
+    n_off: u64,
+    n_conn: u64,
+    nv: usize,
+    conn: &mut Vec<u32>,
+    ends: &mut Vec<u64>,
+) -> Result<(), IoError> {
+    if n_off == 0 {
+        return Err(w.err("CELLS declares 0 offsets (there must be cells + 1)"));
+    }
+    if n_off >= u32::MAX as u64 {
+        return Err(w.err(format!(
+            "cell count {n_off} exceeds the 32-bit id limit of starplex"
+        )));
+    }
+    let ty = w.expect("the offsets' data type")?.to_vec();
+    let Some((width, false)) = type_width(&ty) else {
+        return Err(w.err(format!(
+            "offsets of type '{}' are not supported",
+            lossy(&ty)
+        )));
+    };
+    w.rest_of_line()?;
+    let path = w.path();
+    let at = w.offset();
+    let offs = read_ints_bin(w, n_off, width, "the offsets")?;
+    let bad = |at: u64, msg: String| IoError::parse(path, Some(Location::Byte(at)), msg);
+    if offs[0] != 0 {
+        return Err(bad(
+            at,
+            format!("the first offset is {}, expected 0", offs[0] as i64),
+        ));
+    }
+    let mut prev = 0u64;
+    for (i, &o) in offs.iter().enumerate().skip(1) {
+        if o < prev || o - prev > 64 || o > n_conn {
+            return Err(bad(at + (i * width) as u64, format!(
+                "offset {i} is {} after {prev}: a cell has 1 to 64 points, and CELLS declares {n_conn} connectivity entries",
+                o as i64
+            )));
+        }
+        prev = o;
+        ends.push(o);
+    }
+    if prev != n_conn {
+        return Err(bad(
+            at,
+            format!("the last offset is {prev} but CELLS declares {n_conn} connectivity entries"),
+        ));
+    }
+    w.keyword("CONNECTIVITY")?;
+    let ty = w.expect("the connectivity's data type")?.to_vec();
+    let Some((width, false)) = type_width(&ty) else {
+        return Err(w.err(format!(
+            "connectivity of type '{}' is not supported",
+            lossy(&ty)
+        )));
+    };
+    w.rest_of_line()?;
+    let at = w.offset();
+    let flat = read_ints_bin(w, n_conn, width, "the connectivity")?;
+    if let Some(i) = flat.iter().position(|&v| v >= nv as u64) {
+        return Err(bad(
+            at + (i * width) as u64,
+            format!(
+                "point index {} is out of range: the file has {nv} points",
+                flat[i] as i64
+            ),
+        ));
+    }
+    conn.extend(flat.iter().map(|&v| v as u32));
+    let mut start = 0usize;
+    for (i, &end) in ends.iter().enumerate() {
+        check_cell(i as u64, &conn[start..end as usize], nv)
+            .map_err(|e| IoError::new(path, e).at(Location::Byte(at + (start * width) as u64)))?;
+        start = end as usize;
+    }
+    Ok(())
 }
 
 /// Reads the classic `CELLS n size` body: `n` lines `k v_0 .. v_{k-1}`, `size = n + sum k`.
@@ -587,6 +885,39 @@ fn read_offsets_layout(
     Ok(())
 }
 
+/// Refuses what legacy VTK cannot hold: more than 3 coordinates, simplices of dimension 4 and
+/// more.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::vtk;
+/// let s4 = IndexedComplex::from_parts(3, vec![0.0; 15].into(),
+///                                     vec![(CellKind::Simplex(4), vec![0, 1, 2, 3, 4].into())]).unwrap();
+/// assert!(vtk::check(&s4).unwrap_err().to_string().contains("no cell type for simplex_4"));
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason.
+pub fn check(k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let d = k.ambient_dim();
+    if d > 3 {
+        return Err(IoErrorKind::CannotWrite {
+            format: Format::Vtk,
+            reason: format!("VTK points have 3 coordinates, the complex has {d}"),
+        });
+    }
+    for b in k.blocks() {
+        if vtk_type(b.kind).is_none() {
+            return Err(IoErrorKind::CannotWrite {
+                format: Format::Vtk,
+                reason: format!("VTK has no cell type for {} cells", b.kind),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Writes `k` as legacy VTK (version 4.2, ascii, classic layout).
 ///
 /// ```
@@ -609,21 +940,8 @@ fn read_offsets_layout(
 /// [`IoErrorKind::CannotWrite`] for an ambient dimension above 3 or simplices of dimension 4 and
 /// more; OS errors of the writer.
 pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check(k)?;
     let d = k.ambient_dim();
-    if d > 3 {
-        return Err(IoErrorKind::CannotWrite {
-            format: Format::Vtk,
-            reason: format!("VTK points have 3 coordinates, the complex has {d}"),
-        });
-    }
-    for b in k.blocks() {
-        if vtk_type(b.kind).is_none() {
-            return Err(IoErrorKind::CannotWrite {
-                format: Format::Vtk,
-                reason: format!("VTK has no cell type for {} cells", b.kind),
-            });
-        }
-    }
     writeln!(w, "# vtk DataFile Version 4.2")?;
     writeln!(w, "written by starplex {}", env!("CARGO_PKG_VERSION"))?;
     writeln!(w, "ASCII")?;

@@ -64,6 +64,12 @@ pub struct Words<'p, R: BufRead> {
     in_comment: bool,
     pushed_back: bool,
     at_eof: bool,
+    /// Bytes consumed from `r`.
+    pos: u64,
+    /// Byte offset of the last word.
+    word_pos: u64,
+    /// Errors name byte offsets instead of lines (binary files, see [`Words::set_binary`]).
+    binary: bool,
 }
 
 impl<'p, R: BufRead> Words<'p, R> {
@@ -88,6 +94,78 @@ impl<'p, R: BufRead> Words<'p, R> {
             in_comment: false,
             pushed_back: false,
             at_eof: false,
+            pos: 0,
+            word_pos: 0,
+            binary: false,
+        }
+    }
+
+    /// From now on errors name the byte offset of the word (or of the binary data) in question
+    /// instead of its line: for formats whose text header is followed by binary sections, whose
+    /// line numbers mean nothing.
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"$Nodes x"[..], "b.msh".as_ref(), None);
+    /// w.set_binary();
+    /// w.expect("a section").unwrap();
+    /// assert_eq!(w.u64("a count").unwrap_err().to_string(),
+    ///            "b.msh: byte 7: expected a count (an unsigned integer), found 'x'");
+    /// ```
+    pub fn set_binary(&mut self) {
+        self.binary = true;
+    }
+
+    /// Bytes consumed so far (the offset of the next raw byte).
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"ab cd"[..], "m".as_ref(), None);
+    /// w.expect("a word").unwrap();
+    /// assert_eq!(w.offset(), 2);
+    /// ```
+    pub fn offset(&self) -> u64 {
+        self.pos
+    }
+
+    /// Reads exactly `buf.len()` raw bytes (binary data after a text header line; call
+    /// [`rest_of_line`](Self::rest_of_line) first to consume the header's line end).
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"POINTS 1 float\n\x00\x00\x80\x3f\nEND"[..], "b.vtk".as_ref(), None);
+    /// w.keyword("POINTS").unwrap();
+    /// w.u64("n").unwrap();
+    /// w.expect("type").unwrap();
+    /// w.rest_of_line().unwrap();
+    /// let mut b = [0u8; 4];
+    /// w.read_raw(&mut b, "a coordinate").unwrap();
+    /// assert_eq!(f32::from_le_bytes(b), 1.0);
+    /// assert_eq!(w.expect("a keyword").unwrap(), b"END");
+    /// let e = w.read_raw(&mut b, "more data").unwrap_err();
+    /// assert!(e.to_string().contains("unexpected end of file in more data"), "{e}");
+    /// ```
+    ///
+    /// # Errors
+    /// OS errors; the end of the input before `buf` is full (located at the byte where the
+    /// data started).
+    pub fn read_raw(&mut self, buf: &mut [u8], what: &str) -> Result<(), IoError> {
+        debug_assert!(!self.pushed_back);
+        let start = self.pos;
+        match std::io::Read::read_exact(&mut self.r, buf) {
+            Ok(()) => {
+                self.pos += buf.len() as u64;
+                Ok(())
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => Err(IoError::parse(
+                self.path,
+                Some(Location::Byte(start)),
+                format!(
+                    "unexpected end of file in {what} ({} bytes needed): the file is truncated or a count is wrong",
+                    buf.len()
+                ),
+            )),
+            Err(e) => Err(IoError::new(self.path, e).at(Location::Byte(start))),
         }
     }
 
@@ -132,6 +210,9 @@ impl<'p, R: BufRead> Words<'p, R> {
     /// assert_eq!(w.err("a negative count").to_string(), "mem.mesh:2: a negative count");
     /// ```
     pub fn err(&self, msg: impl Into<String>) -> IoError {
+        if self.binary {
+            return IoError::parse(self.path, Some(Location::Byte(self.word_pos)), msg);
+        }
         IoError::parse(self.path, Some(Location::Line(self.line())), msg)
     }
 
@@ -144,6 +225,9 @@ impl<'p, R: BufRead> Words<'p, R> {
     /// assert_eq!(w.err_at(0, "empty").to_string(), "mem.vtk:1: empty"); // lines start at 1
     /// ```
     pub fn err_at(&self, line: u64, msg: impl Into<String>) -> IoError {
+        if self.binary {
+            return IoError::parse(self.path, Some(Location::Byte(self.word_pos)), msg);
+        }
         IoError::parse(self.path, Some(Location::Line(line.max(1))), msg)
     }
 
@@ -201,9 +285,11 @@ impl<'p, R: BufRead> Words<'p, R> {
                 }
                 if i == n {
                     self.r.consume(n);
+                    self.pos += n as u64;
                     continue;
                 }
                 self.word_line = self.line;
+                self.word_pos = self.pos + i as u64;
             }
             let start = i;
             while i < n && !is_ws(buf[i]) {
@@ -212,6 +298,7 @@ impl<'p, R: BufRead> Words<'p, R> {
             if self.word.len() + (i - start) > MAX_WORD {
                 let line = self.line;
                 self.r.consume(i);
+                self.pos += i as u64;
                 return Err(self.err_at(
                     line,
                     format!("a word longer than {MAX_WORD} bytes (is this a binary file?)"),
@@ -219,6 +306,7 @@ impl<'p, R: BufRead> Words<'p, R> {
             }
             self.word.extend_from_slice(&buf[start..i]);
             self.r.consume(i);
+            self.pos += i as u64;
             if i < n {
                 return Ok(true);
             }
@@ -276,12 +364,13 @@ impl<'p, R: BufRead> Words<'p, R> {
     /// assert!(w.eof("the cells").to_string().ends_with("expected the cells (the file is truncated or a count is wrong)"));
     /// ```
     pub fn eof(&self, what: &str) -> IoError {
-        self.err_at(
-            self.line,
-            format!(
-                "unexpected end of file: expected {what} (the file is truncated or a count is wrong)"
-            ),
-        )
+        let msg = format!(
+            "unexpected end of file: expected {what} (the file is truncated or a count is wrong)"
+        );
+        if self.binary {
+            return IoError::parse(self.path, Some(Location::Byte(self.pos)), msg);
+        }
+        self.err_at(self.line, msg)
     }
 
     fn bad(&self, what: &str, kind: &str) -> IoError {
@@ -411,6 +500,59 @@ impl<'p, R: BufRead> Words<'p, R> {
         }
     }
 
+    /// Skips raw bytes up to and including the next occurrence of `marker` (a section end in a
+    /// binary file, whose data may hold any byte). Returns false at the end of the input.
+    ///
+    /// ```
+    /// use starplex::io::words::Words;
+    /// let mut w = Words::new(&b"$Data\n\x00\xff$End x\n$EndData\n$Next"[..], "b.msh".as_ref(), None);
+    /// w.expect("a section").unwrap();
+    /// assert!(w.skip_raw_past(b"$EndData").unwrap());
+    /// assert_eq!(w.expect("a section").unwrap(), b"$Next");
+    /// assert!(!w.skip_raw_past(b"$EndNext").unwrap());
+    /// ```
+    ///
+    /// # Errors
+    /// OS errors.
+    pub fn skip_raw_past(&mut self, marker: &[u8]) -> Result<bool, IoError> {
+        debug_assert!(!self.pushed_back && !marker.is_empty());
+        let finder = memchr::memmem::Finder::new(marker);
+        let mut carry: Vec<u8> = Vec::with_capacity(2 * marker.len());
+        loop {
+            let buf = match self.r.fill_buf() {
+                Ok(b) => b,
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+                Err(e) => return Err(self.os(e)),
+            };
+            if buf.is_empty() {
+                return Ok(false);
+            }
+            let n = buf.len();
+            // a marker straddling the previous buffer and this one
+            let head = n.min(marker.len() - 1);
+            if !carry.is_empty() {
+                carry.extend_from_slice(&buf[..head]);
+                if let Some(i) = finder.find(&carry) {
+                    let old = carry.len() - head;
+                    let used = i + marker.len() - old;
+                    self.r.consume(used);
+                    self.pos += used as u64;
+                    return Ok(true);
+                }
+            }
+            if let Some(i) = finder.find(buf) {
+                let used = i + marker.len();
+                self.r.consume(used);
+                self.pos += used as u64;
+                return Ok(true);
+            }
+            carry.clear();
+            carry.extend_from_slice(&buf[n - head..]);
+            self.r.consume(n);
+            self.pos += n as u64;
+        }
+    }
+
     /// The rest of the current line (after the last word; the whole next line before any word),
     /// without the terminator, at most [`MAX_WORD`] bytes; the line terminator is consumed.
     ///
@@ -454,6 +596,7 @@ impl<'p, R: BufRead> Words<'p, R> {
             }
             out.extend_from_slice(&buf[..take]);
             self.r.consume(take + done as usize);
+            self.pos += (take + done as usize) as u64;
             if done {
                 self.line += 1;
                 break;
