@@ -103,7 +103,11 @@ impl Field {
                 if p >= 1 << 31 || !is_prime(p) {
                     return Err(HomologyError::NotPrime(p));
                 }
-                Ok(if p == 2 { Field::Z2 } else { Field::Zp(p as u32) })
+                Ok(if p == 2 {
+                    Field::Z2
+                } else {
+                    Field::Zp(p as u32)
+                })
             }
         }
     }
@@ -436,7 +440,11 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
         return Err(HomologyError::TooLarge(QueryError::TooLarge {
             what: "homology: cells of the lower stars to enumerate".into(),
             estimate: est,
-            budget: opts.max_faces.min(if worst > MAX_STAR { MAX_STAR } else { u128::MAX }),
+            budget: opts.max_faces.min(if worst > MAX_STAR {
+                MAX_STAR
+            } else {
+                u128::MAX
+            }),
         }));
     }
     let apex: Vec<u32> = plans.into_iter().flat_map(|p| p.0).collect();
@@ -472,7 +480,11 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
     let comps = components(s);
     let n_comp = comps.n_components;
     let comp_of = |c: &Cell| comps.label[c.key[0] as usize];
-    let comp_labels: Vec<Vec<u32>> = g.crit.iter().map(|l| l.iter().map(comp_of).collect()).collect();
+    let comp_labels: Vec<Vec<u32>> = g
+        .crit
+        .iter()
+        .map(|l| l.iter().map(comp_of).collect())
+        .collect();
 
     let m = opts.field.modulus();
     let flow_err = |_| HomologyError::Overflow("the Morse boundary".into());
@@ -536,7 +548,8 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
                     };
                     let mut chain: BTreeMap<Key, (Cell, i64)> = BTreeMap::new();
                     let mut w = Scratch::default();
-                    g.flow(&combo, m, Some(&mut chain), &mut w).map_err(flow_err)?;
+                    g.flow(&combo, m, Some(&mut chain), &mut w)
+                        .map_err(flow_err)?;
                     generators.push(Generator {
                         dim: k,
                         cells: chain
@@ -598,7 +611,8 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
     let mut betti = vec![0u64; dmax + 1];
     let mut torsion = vec![Vec::new(); dmax + 1];
     let mut per = Vec::new();
-    let facts = (opts.per_component && dmax == 2).then(|| surface::surface_facts(s, &comps.label, n_comp));
+    let facts =
+        (opts.per_component && dmax == 2).then(|| surface::surface_facts(s, &comps.label, n_comp));
     let mut first_vertex = vec![u32::MAX; n_comp];
     for (v, &l) in comps.label.iter().enumerate() {
         if first_vertex[l as usize] == u32::MAX {
@@ -622,7 +636,11 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
                     let x = 2 - chi - f.boundary_loops as i64;
                     Surface {
                         orientable: f.orientable,
-                        genus: if f.orientable { (x / 2).max(0) } else { x.max(0) } as u64,
+                        genus: if f.orientable {
+                            (x / 2).max(0)
+                        } else {
+                            x.max(0)
+                        } as u64,
                         boundary_loops: f.boundary_loops,
                         euler_characteristic: chi,
                     }
@@ -677,7 +695,10 @@ pub fn write_generators_obj(
     gens: &[Generator],
     mut w: impl Write,
 ) -> std::io::Result<()> {
-    writeln!(w, "# starplex homology generators: one group per class (g hK_i)")?;
+    writeln!(
+        w,
+        "# starplex homology generators: one group per class (g hK_i)"
+    )?;
     let d = k.ambient_dim();
     for p in k.coords().chunks_exact(d.max(1)) {
         let c = |i: usize| p.get(i).copied().unwrap_or(0.0);

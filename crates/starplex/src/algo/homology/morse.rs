@@ -111,7 +111,9 @@ pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
     }
     let m = w.cells.len();
     let set = |i: usize| &w.lower[w.starts[i]..w.starts[i + 1]];
-    let best = (0..m).max_by_key(|&i| (set(i).len(), usize::MAX - i)).unwrap_or(0);
+    let best = (0..m)
+        .max_by_key(|&i| (set(i).len(), usize::MAX - i))
+        .unwrap_or(0);
     let mut work = 0usize;
     'cand: for &cand in set(best) {
         for i in 0..m {
@@ -307,8 +309,26 @@ pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
             time[a] = t;
             t += 1;
             done += 2;
-            classify(tau, &mut remaining, &cof, &ccount, &status, &mut pairq, &mut free, &dims);
-            classify(a, &mut remaining, &cof, &ccount, &status, &mut pairq, &mut free, &dims);
+            classify(
+                tau,
+                &mut remaining,
+                &cof,
+                &ccount,
+                &status,
+                &mut pairq,
+                &mut free,
+                &dims,
+            );
+            classify(
+                a,
+                &mut remaining,
+                &cof,
+                &ccount,
+                &status,
+                &mut pairq,
+                &mut free,
+                &dims,
+            );
             progressed = true;
         }
         if done >= n {
@@ -334,7 +354,16 @@ pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
         for &z in cofaces(g) {
             let _ = z;
         }
-        classify(g, &mut remaining, &cof, &ccount, &status, &mut pairq, &mut free, &dims);
+        classify(
+            g,
+            &mut remaining,
+            &cof,
+            &ccount,
+            &status,
+            &mut pairq,
+            &mut free,
+            &dims,
+        );
         // cofaces of g with one unclassified facet may now pair
         for &z in &cof[ccount[g] as usize..ccount[g + 1] as usize] {
             if remaining[z as usize] == 1 && status[z as usize].is_none() {
@@ -379,7 +408,11 @@ pub(crate) enum Look {
     Critical(u32),
     Down,
     /// Paired with `alpha`, in whose boundary the cell has incidence `sign`; `time` orders paths.
-    Up { alpha: Cell, sign: i8, time: u32 },
+    Up {
+        alpha: Cell,
+        sign: i8,
+        time: u32,
+    },
 }
 
 /// Arithmetic overflow of integer coefficients.
@@ -434,9 +467,7 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
                 None => Look::Down,
             },
             EXPLICIT => {
-                let ls = cache
-                    .entry(v)
-                    .or_insert_with(|| lower_star(self.s, v, w));
+                let ls = cache.entry(v).or_insert_with(|| lower_star(self.s, v, w));
                 let Some(i) = ls.find(&tau.key) else {
                     debug_assert!(false, "cell not in its lower star");
                     return Look::Down;
@@ -524,7 +555,14 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
             buf.clear();
             sigma.facets(&mut buf);
             for (f, s) in buf.drain(..) {
-                add(f, mul_c(*c0, s as i64, m)?, &mut pending, &mut result, &mut cache, w)?;
+                add(
+                    f,
+                    mul_c(*c0, s as i64, m)?,
+                    &mut pending,
+                    &mut result,
+                    &mut cache,
+                    w,
+                )?;
             }
         }
         while let Some(((v, _, _), (c, tau, alpha, sign))) = pending.pop_last() {

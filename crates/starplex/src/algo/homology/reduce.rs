@@ -61,7 +61,11 @@ pub(crate) fn reduce(cols: Vec<Option<Column>>, n_rows: usize, p: i64, track: bo
     let mut v: Vec<Column> = Vec::new();
     for (j, c) in cols.into_iter().enumerate() {
         let mut col = c.unwrap_or_default();
-        let mut vj: Column = if track { vec![(j as u32, 1)] } else { Vec::new() };
+        let mut vj: Column = if track {
+            vec![(j as u32, 1)]
+        } else {
+            Vec::new()
+        };
         while let Some(&(r, a)) = col.last() {
             let i = pivot_of_row[r as usize];
             if i == u32::MAX {
