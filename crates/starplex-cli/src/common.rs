@@ -180,6 +180,7 @@ pub fn demo(ctx: &Ctx, file: Option<PathBuf>) -> Result<(), CliError> {
         input: input.clone(),
         json: false,
         max_faces: None,
+        betti: false,
     };
     crate::cmd_info::run(ctx, &args)?;
     demo_stellar(ctx, &input)

@@ -526,7 +526,7 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
         let mut result: BTreeMap<u32, i64> = BTreeMap::new();
         let mut cache: Cache = BTreeMap::new();
         let mut buf: Vec<(Cell, i8)> = Vec::new();
-        let mut add = |tau: Cell,
+        let add = |tau: Cell,
                        c: i64,
                        pending: &mut Pending,
                        result: &mut BTreeMap<u32, i64>,
