@@ -67,7 +67,7 @@ pub fn run(ctx: &Ctx, a: &HomologyArgs) -> Result<(), CliError> {
     let read_s = t0.elapsed().as_secs_f64();
     let k = &r.complex;
     let pb = if k.n_cells() > 200_000 {
-        common::progress_bar(ctx, 2 * k.n_vertices() as u64, "homology")
+        common::progress_bar(ctx, k.n_vertices() as u64, "homology")
     } else {
         indicatif::ProgressBar::hidden()
     };

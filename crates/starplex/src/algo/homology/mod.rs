@@ -46,6 +46,7 @@ use crate::topo::{naive::VtIndex, QueryError, TopCells, VertexStar};
 
 mod cells;
 mod morse;
+mod order;
 mod reduce;
 mod smith;
 mod surface;
@@ -192,7 +193,7 @@ pub struct HomologyOptions {
     pub generators: bool,
     /// Largest number of lower-star cells to enumerate before refusing with an estimate.
     pub max_faces: u128,
-    /// Called with the number of vertices just processed (for progress bars; two passes).
+    /// Called with the number of vertices just processed (for progress bars; one pass).
     pub progress: Option<Arc<dyn Fn(u64) + Send + Sync>>,
 }
 
@@ -395,6 +396,57 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
     opts: &HomologyOptions,
 ) -> Result<Homology, HomologyError> {
     let nv = s.n_vertices();
+    // the input order, else the order of first appearance in the cells, else breadth-first
+    let few = 64 + nv / 1000;
+    let t = std::time::Instant::now();
+    let minima = order::local_minima(s);
+    debug_time("local minima", t);
+    if minima > few {
+        let r = order::Relabeled::new(s, order::first_appearance_order(s));
+        let m2 = order::local_minima(&r);
+        debug_time("first-appearance order", t);
+        if m2 <= few {
+            return homology_ordered(&r, opts, Some(&r.to_old));
+        }
+        let r = order::Relabeled::new(s, order::bfs_order(s));
+        debug_time("bfs order", t);
+        return homology_ordered(&r, opts, Some(&r.to_old));
+    }
+    homology_ordered(s, opts, None)
+}
+
+/// Maps a cell of a relabeled view back to input numbering (sign of the change of orientation).
+fn map_back(c: &Cell, to_old: Option<&[u32]>) -> (Vec<u32>, i64) {
+    let Some(t) = to_old else {
+        return (c.verts.to_vec(), 1);
+    };
+    let g: Vec<u32> = c.verts.iter().map(|&v| t[v as usize]).collect();
+    match c.shape {
+        cells::Shape::Simplex => {
+            let (k, sg) = cells::sort_with_sign(&g);
+            (k.to_vec(), sg as i64)
+        }
+        cells::Shape::Quad => {
+            let (q, sg) = cells::canonical_quad([g[0], g[1], g[2], g[3]]);
+            (q.verts.to_vec(), sg as i64)
+        }
+        cells::Shape::Solid(_) => (g, 1),
+    }
+}
+
+/// Phase timings on stderr when `STARPLEX_HOMOLOGY_TIMES` is set.
+fn debug_time(what: &str, t: std::time::Instant) {
+    if std::env::var_os("STARPLEX_HOMOLOGY_TIMES").is_some() {
+        eprintln!("homology: {what}: {:.3} s", t.elapsed().as_secs_f64());
+    }
+}
+
+fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
+    s: &S,
+    opts: &HomologyOptions,
+    to_old: Option<&[u32]>,
+) -> Result<Homology, HomologyError> {
+    let nv = s.n_vertices();
     let dmax = (0..s.n_top_cells())
         .into_par_iter()
         .map(|c| s.top_cell_kind(CellId(c as u32)).dim())
@@ -414,28 +466,46 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
             p(n as u64);
         }
     };
-    // pass 1: the plan of every lower star
-    let plans: Vec<(Vec<u32>, u128, u128)> = (0..nv.div_ceil(CHUNK))
+    let t0 = std::time::Instant::now();
+    // one pass: the plan of every lower star, and the critical cells of those enumerated (the
+    // enumeration stops as soon as the budget is known to be exceeded; the decision itself
+    // depends only on the plans, so it is the same for any thread count)
+    let spent = std::sync::atomic::AtomicU64::new(0);
+    let over = std::sync::atomic::AtomicBool::new(false);
+    let budget = u64::try_from(opts.max_faces).unwrap_or(u64::MAX);
+    type Part = (Vec<u32>, u128, u128, Vec<Cell>);
+    let parts: Vec<Part> = (0..nv.div_ceil(CHUNK))
         .into_par_iter()
         .map_init(Scratch::default, |w, ci| {
+            use std::sync::atomic::Ordering::Relaxed;
             let lo = ci * CHUNK;
             let hi = (lo + CHUNK).min(nv);
             let mut apex = Vec::with_capacity(hi - lo);
             let (mut est, mut worst) = (0u128, 0u128);
+            let mut out = Vec::new();
             for v in lo..hi {
                 let p = morse::plan_vertex(s, v as u32, w);
                 if p.apex == EXPLICIT {
                     est = est.saturating_add(p.estimate);
                     worst = worst.max(p.estimate);
+                    let e = u64::try_from(p.estimate).unwrap_or(u64::MAX);
+                    if p.estimate > MAX_STAR
+                        || spent.fetch_add(e.min(1 << 40), Relaxed).saturating_add(e) > budget
+                    {
+                        over.store(true, Relaxed);
+                    }
+                }
+                if (p.apex == ALONE || p.apex == EXPLICIT) && !over.load(Relaxed) {
+                    morse::critical_cells(s, v as u32, p.apex, w, &mut out);
                 }
                 apex.push(p.apex);
             }
             progress(hi - lo);
-            (apex, est, worst)
+            (apex, est, worst, out)
         })
         .collect();
-    let est = plans.iter().fold(0u128, |a, p| a.saturating_add(p.1));
-    let worst = plans.iter().map(|p| p.2).max().unwrap_or(0);
+    let est = parts.iter().fold(0u128, |a, p| a.saturating_add(p.1));
+    let worst = parts.iter().map(|p| p.2).max().unwrap_or(0);
     if est > opts.max_faces || worst > MAX_STAR {
         return Err(HomologyError::TooLarge(QueryError::TooLarge {
             what: "homology: cells of the lower stars to enumerate".into(),
@@ -447,24 +517,13 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
             }),
         }));
     }
-    let apex: Vec<u32> = plans.into_iter().flat_map(|p| p.0).collect();
-    // pass 2: critical cells
-    let crit_lists: Vec<Vec<Cell>> = (0..nv.div_ceil(CHUNK))
-        .into_par_iter()
-        .map_init(Scratch::default, |w, ci| {
-            let lo = ci * CHUNK;
-            let hi = (lo + CHUNK).min(nv);
-            let mut out = Vec::new();
-            for v in lo..hi {
-                let a = apex[v];
-                if a == ALONE || a == EXPLICIT {
-                    morse::critical_cells(s, v as u32, a, w, &mut out);
-                }
-            }
-            progress(hi - lo);
-            out
-        })
-        .collect();
+    let mut apex: Vec<u32> = Vec::with_capacity(nv);
+    let mut crit_lists = Vec::with_capacity(parts.len());
+    for p in parts {
+        apex.extend(p.0);
+        crit_lists.push(p.3);
+    }
+    debug_time("plan and critical cells", t0);
     let mut crit: Vec<Vec<Cell>> = vec![Vec::new(); dmax + 1];
     for c in crit_lists.into_iter().flatten() {
         let d = c.dim();
@@ -474,10 +533,20 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
         l.sort_unstable_by(|a, b| a.key.cmp(&b.key));
     }
     let g = Gradient { s, apex, crit };
+    debug_time("critical cells", t0);
     let critical: Vec<u64> = g.crit.iter().map(|l| l.len() as u64).collect();
 
     // components
-    let comps = components(s);
+    let comps = if opts.per_component {
+        components(s)
+    } else {
+        // one label for everything: totals need no components
+        crate::algo::components::Components {
+            n_components: 1,
+            label: vec![0; nv],
+        }
+    };
+    debug_time("components", t0);
     let n_comp = comps.n_components;
     let comp_of = |c: &Cell| comps.label[c.key[0] as usize];
     let comp_labels: Vec<Vec<u32>> = g
@@ -554,7 +623,10 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
                         dim: k,
                         cells: chain
                             .into_values()
-                            .map(|(c, x)| (c.verts.to_vec(), x))
+                            .map(|(c, x)| {
+                                let (v, sg) = map_back(&c, to_old);
+                                (v, (x * sg).rem_euclid(m))
+                            })
                             .collect(),
                     });
                 }
@@ -596,6 +668,7 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
             }
         }
     }
+    debug_time("boundaries and ranks", t0);
     // Betti numbers per component and in total
     let mut crit_per_comp = vec![vec![0u64; n_comp]; dmax + 1];
     for k in 0..=dmax {
@@ -615,9 +688,8 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
         (opts.per_component && dmax == 2).then(|| surface::surface_facts(s, &comps.label, n_comp));
     let mut first_vertex = vec![u32::MAX; n_comp];
     for (v, &l) in comps.label.iter().enumerate() {
-        if first_vertex[l as usize] == u32::MAX {
-            first_vertex[l as usize] = v as u32;
-        }
+        let old = to_old.map_or(v as u32, |t| t[v]);
+        first_vertex[l as usize] = first_vertex[l as usize].min(old);
     }
     for c in 0..n_comp {
         let b = betti_of(c);
@@ -656,6 +728,10 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
     }
     for t in &mut torsion {
         t.sort_unstable();
+    }
+    per.sort_by_key(|c: &ComponentHomology| c.first_vertex);
+    for g in &mut generators {
+        g.cells.sort();
     }
     Ok(Homology {
         field: opts.field,

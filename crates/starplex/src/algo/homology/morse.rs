@@ -255,6 +255,8 @@ pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
     for i in 0..n {
         if remaining[i] == 0 {
             free.push(std::cmp::Reverse((dims[i], i as u32)));
+        } else if remaining[i] == 1 {
+            pairq.push_back(i as u32);
         }
     }
     let mut t = 0u32;
