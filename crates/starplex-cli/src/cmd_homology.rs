@@ -58,7 +58,10 @@ pub fn run(ctx: &Ctx, a: &HomologyArgs) -> Result<(), CliError> {
     // open the generators file first, so a bad path fails before the work
     let gen_file = match &a.generators {
         Some(p) => Some(std::fs::File::create(p).map_err(|e| {
-            CliError::Input(format!("{}: cannot write the generators: {e}", p.display()), None)
+            CliError::Input(
+                format!("{}: cannot write the generators: {e}", p.display()),
+                None,
+            )
         })?),
         None => None,
     };
@@ -99,7 +102,10 @@ pub fn run(ctx: &Ctx, a: &HomologyArgs) -> Result<(), CliError> {
     if let (Some(f), Some(p)) = (gen_file, &a.generators) {
         let w = std::io::BufWriter::new(f);
         write_generators_obj(k, &h.generators, w).map_err(|e| {
-            CliError::Input(format!("{}: cannot write the generators: {e}", p.display()), None)
+            CliError::Input(
+                format!("{}: cannot write the generators: {e}", p.display()),
+                None,
+            )
         })?;
     }
     if a.json {
@@ -125,10 +131,7 @@ pub fn run(ctx: &Ctx, a: &HomologyArgs) -> Result<(), CliError> {
         if let Some(comps) = &h.components {
             println!("  components          {}", comps.len());
             for (i, c) in comps.iter().enumerate() {
-                let mut line = format!(
-                    "    #{i} (vertex {}): Betti {:?}",
-                    c.first_vertex, c.betti
-                );
+                let mut line = format!("    #{i} (vertex {}): Betti {:?}", c.first_vertex, c.betti);
                 if h.field == Field::Z && c.torsion.iter().any(|t| !t.is_empty()) {
                     line += &format!(", {}", groups(&c.betti, &c.torsion));
                 }

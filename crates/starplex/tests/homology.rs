@@ -7,7 +7,9 @@ mod common_data;
 use std::collections::BTreeSet;
 
 use proptest::prelude::*;
-use starplex::algo::homology::{homology, Field, Homology, HomologyError, HomologyOptions};
+use starplex::algo::homology::{
+    homology, Field, Homology, HomologyError, HomologyOptions, VertexOrder,
+};
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 use starplex::io::{self, ReadOptions};
@@ -597,11 +599,17 @@ fn per_component_and_surfaces() {
 fn generators_are_cycles_with_the_right_count() {
     let t = grid_surface(3, 3, false);
     let k = simplices(&t);
-    for field in [Field::Z2, Field::Zp(3)] {
+    for (field, order) in [
+        (Field::Z2, VertexOrder::Input),
+        (Field::Zp(3), VertexOrder::Input),
+        (Field::Zp(3), VertexOrder::BreadthFirst),
+        (Field::Z2, VertexOrder::FirstAppearance),
+    ] {
         let h = homology(
             &VtIndex::new(&k),
             &HomologyOptions {
                 field,
+                order,
                 generators: true,
                 ..Default::default()
             },
@@ -687,6 +695,18 @@ proptest! {
         prop_assert_eq!(&hq.betti, &hz.betti);
         prop_assert_eq!(hq.euler_characteristic(), chi);
         prop_assert_eq!(run(&k, Field::Zp(3)).euler_characteristic(), chi);
+        // every vertex order gives the same Betti numbers (and torsion over Z)
+        for order in [VertexOrder::FirstAppearance, VertexOrder::BreadthFirst] {
+            let o = HomologyOptions { order, per_component: true, ..Default::default() };
+            let h = homology(&VtIndex::new(&k), &o).unwrap();
+            prop_assert_eq!(&h.betti, &want);
+            let comps = h.components.unwrap();
+            prop_assert!(comps.windows(2).all(|w| w[0].first_vertex < w[1].first_vertex));
+            let oz = HomologyOptions { order, field: Field::Z, ..Default::default() };
+            let hz2 = homology(&VtIndex::new(&k), &oz).unwrap();
+            prop_assert_eq!(&hz2.betti, &hz.betti);
+            prop_assert_eq!(&hz2.torsion, &hz.torsion);
+        }
     }
 }
 

@@ -175,6 +175,27 @@ pub enum HomologyError {
     NotPrime(u64),
 }
 
+/// The vertex order that drives the lower-star matching (the answer never depends on it; the
+/// number of critical cells, hence the time, does).
+///
+/// ```
+/// use starplex::algo::homology::VertexOrder;
+/// assert_eq!(VertexOrder::default(), VertexOrder::Auto);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum VertexOrder {
+    /// The input order, unless it has many local minima (more than 64 + n/1000); then the
+    /// order of first appearance in the cells, unless that has many too; then breadth-first.
+    #[default]
+    Auto,
+    /// The input numbering.
+    Input,
+    /// First appearance in the top cells.
+    FirstAppearance,
+    /// Breadth-first from the smallest vertex of each component.
+    BreadthFirst,
+}
+
 /// Options of [`homology`].
 ///
 /// ```
@@ -193,6 +214,8 @@ pub struct HomologyOptions {
     pub generators: bool,
     /// Largest number of lower-star cells to enumerate before refusing with an estimate.
     pub max_faces: u128,
+    /// The vertex order of the matching.
+    pub order: VertexOrder,
     /// Called with the number of vertices just processed (for progress bars; one pass).
     pub progress: Option<Arc<dyn Fn(u64) + Send + Sync>>,
 }
@@ -204,6 +227,7 @@ impl Default for HomologyOptions {
             per_component: false,
             generators: false,
             max_faces: 4_000_000_000,
+            order: VertexOrder::Auto,
             progress: None,
         }
     }
@@ -216,6 +240,7 @@ impl std::fmt::Debug for HomologyOptions {
             .field("per_component", &self.per_component)
             .field("generators", &self.generators)
             .field("max_faces", &self.max_faces)
+            .field("order", &self.order)
             .finish()
     }
 }
@@ -397,6 +422,16 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
 ) -> Result<Homology, HomologyError> {
     let nv = s.n_vertices();
     // the input order, else the order of first appearance in the cells, else breadth-first
+    let relabel = |to_new: Vec<u32>| {
+        let r = order::Relabeled::new(s, to_new);
+        homology_ordered(&r, opts, Some(&r.to_old))
+    };
+    match opts.order {
+        VertexOrder::Input => return homology_ordered(s, opts, None),
+        VertexOrder::FirstAppearance => return relabel(order::first_appearance_order(s)),
+        VertexOrder::BreadthFirst => return relabel(order::bfs_order(s)),
+        VertexOrder::Auto => {}
+    }
     let few = 64 + nv / 1000;
     let t = std::time::Instant::now();
     let minima = order::local_minima(s);
@@ -408,9 +443,10 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
         if m2 <= few {
             return homology_ordered(&r, opts, Some(&r.to_old));
         }
-        let r = order::Relabeled::new(s, order::bfs_order(s));
+        drop(r);
+        let to_new = order::bfs_order(s);
         debug_time("bfs order", t);
-        return homology_ordered(&r, opts, Some(&r.to_old));
+        return relabel(to_new);
     }
     homology_ordered(s, opts, None)
 }

@@ -114,22 +114,23 @@ pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
     let best = (0..m)
         .max_by_key(|&i| (set(i).len(), usize::MAX - i))
         .unwrap_or(0);
+    let mut with: Vec<usize> = Vec::with_capacity(m);
     let mut work = 0usize;
     'cand: for &cand in set(best) {
+        // the cells whose lower set holds the candidate, largest first
+        with.clear();
+        with.extend((0..m).filter(|&j| set(j).contains(&cand)));
+        with.sort_by_key(|&j| std::cmp::Reverse(set(j).len()));
         for i in 0..m {
             let si = set(i);
-            if si.binary_search(&cand).is_ok() || is_subset(si, set(best)) {
+            if si.contains(&cand) {
                 continue;
             }
-            let mut found = false;
-            for j in 0..m {
+            let found = with.iter().any(|&j| {
                 work += 1;
                 let sj = set(j);
-                if sj.len() > si.len() && sj.binary_search(&cand).is_ok() && is_subset(si, sj) {
-                    found = true;
-                    break;
-                }
-            }
+                sj.len() > si.len() && is_subset(si, sj)
+            });
             if work > 50_000 {
                 break 'cand;
             }
@@ -529,11 +530,11 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
         let mut cache: Cache = BTreeMap::new();
         let mut buf: Vec<(Cell, i8)> = Vec::new();
         let add = |tau: Cell,
-                       c: i64,
-                       pending: &mut Pending,
-                       result: &mut BTreeMap<u32, i64>,
-                       cache: &mut Cache,
-                       w: &mut Scratch|
+                   c: i64,
+                   pending: &mut Pending,
+                   result: &mut BTreeMap<u32, i64>,
+                   cache: &mut Cache,
+                   w: &mut Scratch|
          -> Result<(), Overflow> {
             match self.look(&tau, cache, w) {
                 Look::Critical(i) => {

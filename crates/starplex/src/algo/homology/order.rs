@@ -125,7 +125,8 @@ impl<S: TopCells + ?Sized> TopCells for Relabeled<'_, S> {
 
 impl<S: VertexStar + ?Sized> VertexStar for Relabeled<'_, S> {
     fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
-        self.s.vertex_top_cells(VertexId(self.to_old[v.0 as usize]), out);
+        self.s
+            .vertex_top_cells(VertexId(self.to_old[v.0 as usize]), out);
     }
 }
 
