@@ -16,7 +16,7 @@ use std::collections::{BTreeMap, BinaryHeap, VecDeque};
 
 use smallvec::SmallVec;
 
-use super::cells::{cp_lower_star_faces, Cell, Key, Shape};
+use super::cells::{cp_lower_star_faces, Cell, Key};
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
 
@@ -246,7 +246,6 @@ pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
             fill[f as usize] += 1;
         }
     }
-    let cofaces = |i: usize| &cof[ccount[i] as usize..ccount[i + 1] as usize];
     let mut remaining: Vec<u32> = (0..n).map(|i| (fstart[i + 1] - fstart[i]) as u32).collect();
     let mut status: Vec<Option<Status>> = vec![None; n];
     let mut time = vec![0u32; n];
@@ -263,6 +262,7 @@ pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
     let mut t = 0u32;
     let mut done = 0usize;
     // classify x: update cofaces' counts
+    #[allow(clippy::too_many_arguments)]
     fn classify(
         x: usize,
         remaining: &mut [u32],
@@ -292,7 +292,6 @@ pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
         }
     }
     while done < n {
-        let mut progressed = false;
         while let Some(a) = pairq.pop_front() {
             let a = a as usize;
             if status[a].is_some() || remaining[a] != 1 {
@@ -332,12 +331,10 @@ pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
                 &mut free,
                 &dims,
             );
-            progressed = true;
         }
         if done >= n {
             break;
         }
-        let _ = progressed;
         // a critical cell: the lowest-dimensional free unclassified cell
         let mut g = None;
         while let Some(std::cmp::Reverse((_, i))) = free.pop() {
@@ -354,9 +351,6 @@ pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
         time[g] = t;
         t += 1;
         done += 1;
-        for &z in cofaces(g) {
-            let _ = z;
-        }
         classify(
             g,
             &mut remaining,
@@ -604,10 +598,4 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
         }
         Ok(result.into_iter().filter(|&(_, c)| c != 0).collect())
     }
-}
-
-/// Shape of the cells in a gradient (used by tests).
-#[allow(dead_code)]
-pub(crate) fn shape_of(c: &Cell) -> Shape {
-    c.shape
 }

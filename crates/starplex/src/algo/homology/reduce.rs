@@ -1,8 +1,6 @@
 //! Sparse column reduction over Z/p (p prime, 2 included) of the Morse boundary matrices, with
 //! clearing: a column whose cell is the pivot row of a reduced column one dimension up is known
 //! to reduce to zero and is neither computed nor reduced.
-use super::morse::Overflow;
-
 /// A sparse column: (row, coefficient in 1..p), sorted by row.
 pub(crate) type Column = Vec<(u32, i64)>;
 
@@ -92,10 +90,4 @@ pub(crate) fn reduce(cols: Vec<Option<Column>>, n_rows: usize, p: i64, track: bo
         low,
         v: track.then_some(v),
     }
-}
-
-/// Keeps the `Overflow` type in scope for callers mixing integer paths.
-#[allow(dead_code)]
-pub(crate) fn never_overflows() -> Result<(), Overflow> {
-    Ok(())
 }

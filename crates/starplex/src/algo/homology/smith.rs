@@ -80,7 +80,7 @@ pub(crate) fn int_rank(
         col_alive[j] = false;
         row_alive[r as usize] = false;
         rank[col_comp[j] as usize] += 1;
-        for (&rr, _) in &pivot_col {
+        for &rr in pivot_col.keys() {
             rows[rr as usize].retain(|&x| x as usize != j);
         }
     }
@@ -129,6 +129,7 @@ impl From<Overflow> for IntError {
     }
 }
 
+#[allow(clippy::needless_range_loop)]
 /// Diagonalizes a dense matrix by unimodular row and column operations; returns the nonzero
 /// diagonal entries (absolute values).
 fn diagonalize(a: &mut [Vec<i128>]) -> Result<Vec<i128>, IntError> {
