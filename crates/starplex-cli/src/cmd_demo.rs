@@ -30,6 +30,7 @@ pub fn run(ctx: &Ctx, file: Option<PathBuf>) -> Result<(), CliError> {
         input: input.clone(),
         json: false,
         max_faces: None,
+        betti: false,
     };
     crate::cmd_info::run(ctx, &args)?;
     demo_stellar(ctx, &input)

@@ -18,6 +18,9 @@ pub struct InfoArgs {
     /// f-vector is skipped and an estimate printed.
     #[arg(long)]
     pub max_faces: Option<u128>,
+    /// Also compute the Betti numbers over Z/2 (`betti_z2`, the oracles' key).
+    #[arg(long)]
+    pub betti: bool,
 }
 
 pub fn run(ctx: &Ctx, a: &InfoArgs) -> Result<(), CliError> {
@@ -40,10 +43,16 @@ pub fn run(ctx: &Ctx, a: &InfoArgs) -> Result<(), CliError> {
     let s = info(k, &opts);
     pb.finish_and_clear();
     let info_s = t1.elapsed().as_secs_f64();
+    let betti = a.betti.then(|| starplex::algo::homology::betti_z2(k));
     if a.json {
         let mut v = to_json(&s);
         v["format"] = json!(r.format.extension());
         v["timings"] = json!({"read_s": load_s, "info_s": info_s});
+        match &betti {
+            Some(Ok(b)) => v["betti_z2"] = json!(b),
+            Some(Err(e)) => v["betti_z2_skipped"] = json!(e.to_string()),
+            None => {}
+        }
         if !r.notes.is_empty() {
             v["notes"] = json!(r.notes);
         }
@@ -59,6 +68,11 @@ pub fn run(ctx: &Ctx, a: &InfoArgs) -> Result<(), CliError> {
             info_s,
             opts.max_faces,
         );
+        match &betti {
+            Some(Ok(b)) => println!("  Betti numbers (Z/2) {b:?}"),
+            Some(Err(e)) => println!("  Betti numbers (Z/2) skipped: {e}"),
+            None => {}
+        }
     }
     Ok(())
 }

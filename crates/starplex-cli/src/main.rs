@@ -11,6 +11,7 @@ mod cmd_compare;
 mod cmd_convert;
 mod cmd_demo;
 mod cmd_generate;
+mod cmd_homology;
 mod cmd_info;
 mod cmd_query;
 mod cmd_stellar;
@@ -43,6 +44,8 @@ enum Command {
     Query(cmd_query::QueryArgs),
     /// Generate a complex (the Freudenthal triangulation of a grid) for tests and scale runs.
     Generate(cmd_generate::GenerateArgs),
+    /// Homology: Betti numbers over Z/2, Z/p, Q or Z (torsion), per component, generators.
+    Homology(cmd_homology::HomologyArgs),
     /// Build every data structure and compare storage and query times.
     Compare(cmd_compare::CompareArgs),
     /// Timings of one data structure (single thread): `bench simplex-tree FILE`.
@@ -81,6 +84,7 @@ fn main() -> ExitCode {
         Some(Command::Query(a)) => cmd_query::run(&ctx, &a),
         Some(Command::Compare(a)) => cmd_compare::run(&ctx, &a),
         Some(Command::Generate(a)) => cmd_generate::run(&ctx, &a),
+        Some(Command::Homology(a)) => cmd_homology::run(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,851 @@
+//! Homology of any complex: Betti numbers over Z/2, Z/p, Q and Z (with torsion), per connected
+//! component, a one-line summary of surface components, and representative cycles.
+//!
+//! Written once against [`TopCells`] + [`VertexStar`], so it runs on every structure that can
+//! give the top cells around a vertex. **Reduce first, then linear algebra on what is left:**
+//! 1. [`morse`] builds a discrete gradient (an acyclic matching) independently in the lower
+//!    star of every vertex, generating faces on the fly from the top cells around the vertex
+//!    (nothing is stored per face). Lower stars whose lower link is a cone are matched without
+//!    enumerating them, so a single 40-simplex is answered at once; the few cells left
+//!    unmatched are the *critical cells*.
+//! 2. The boundary of each critical cell in the Morse complex is found by following gradient
+//!    paths (cells merged in a front ordered by largest vertex, so each is visited once).
+//! 3. Over a field the small boundary matrices are reduced by sparse column reduction with
+//!    clearing (top dimension first; a cleared column is never even computed); over Z and Q by
+//!    sparse unit-pivot elimination and a checked Smith normal form of what is left.
+//!
+//! Simplicial cells are oriented by their sorted vertices; the facets of CP cells come from
+//! the cell kinds' VTK tables with their induced orientations (see [`crate::cell`]). Parallel
+//! over vertices and over critical cells; the answer does not depend on the thread count.
+//!
+//! ```
+//! use starplex::complex::{ComplexBuilder, BuildOptions};
+//! use starplex::cell::CellKind;
+//! use starplex::topo::naive::VtIndex;
+//! use starplex::algo::homology::{homology, Field, HomologyOptions};
+//! // the boundary of a tetrahedron: a 2-sphere
+//! let mut b = ComplexBuilder::new(3).unwrap();
+//! for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+//! for t in [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]] { b.push_cell(CellKind::Simplex(2), &t).unwrap(); }
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let h = homology(&VtIndex::new(&k), &HomologyOptions::default()).unwrap();
+//! assert_eq!(h.betti, vec![1, 0, 1]);
+//! let hz = homology(&VtIndex::new(&k), &HomologyOptions { field: Field::Z, ..Default::default() }).unwrap();
+//! assert_eq!((hz.betti, hz.torsion), (vec![1, 0, 1], vec![vec![], vec![], vec![]]));
+//! ```
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use crate::algo::components::components;
+use crate::complex::IndexedComplex;
+use crate::ids::CellId;
+use crate::topo::{naive::VtIndex, QueryError, TopCells, VertexStar};
+
+mod cells;
+mod morse;
+mod order;
+mod reduce;
+mod smith;
+mod surface;
+
+use cells::{Cell, Key};
+use morse::{Gradient, Scratch, ALONE, EXPLICIT};
+
+/// Coefficients.
+///
+/// ```
+/// use starplex::algo::homology::Field;
+/// assert_eq!(Field::parse("2").unwrap(), Field::Z2);
+/// assert_eq!(Field::parse("3").unwrap(), Field::Zp(3));
+/// assert_eq!(Field::parse("q").unwrap(), Field::Q);
+/// assert_eq!(Field::parse("Z").unwrap(), Field::Z);
+/// assert!(Field::parse("4").is_err()); // not a prime
+/// assert!(Field::parse("r").is_err());
+/// assert_eq!(Field::Zp(5).to_string(), "Z/5");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Field {
+    /// Z/2 (the default; what the dataset oracles call `betti_z2`).
+    #[default]
+    Z2,
+    /// Z/p for a prime p (3 ≤ p < 2^31).
+    Zp(u32),
+    /// The rationals.
+    Q,
+    /// The integers: ranks and torsion coefficients.
+    Z,
+}
+
+impl Field {
+    /// Parses `2`, a prime `p`, `q` or `z` (case-insensitive).
+    ///
+    /// ```
+    /// use starplex::algo::homology::{Field, HomologyError};
+    /// assert_eq!(Field::parse("7"), Ok(Field::Zp(7)));
+    /// assert_eq!(Field::parse("9"), Err(HomologyError::NotPrime(9)));
+    /// ```
+    ///
+    /// # Errors
+    /// [`HomologyError::UnknownField`] for anything else, [`HomologyError::NotPrime`] for a
+    /// number that is not a prime below 2^31.
+    pub fn parse(s: &str) -> Result<Field, HomologyError> {
+        match s.to_ascii_lowercase().as_str() {
+            "2" | "z2" | "z/2" => Ok(Field::Z2),
+            "q" => Ok(Field::Q),
+            "z" => Ok(Field::Z),
+            t => {
+                let t = t.strip_prefix("z/").unwrap_or(t);
+                let p: u64 = t
+                    .parse()
+                    .map_err(|_| HomologyError::UnknownField(s.to_string()))?;
+                if p >= 1 << 31 || !is_prime(p) {
+                    return Err(HomologyError::NotPrime(p));
+                }
+                Ok(if p == 2 {
+                    Field::Z2
+                } else {
+                    Field::Zp(p as u32)
+                })
+            }
+        }
+    }
+
+    /// The modulus of the coefficient arithmetic (0 for Q and Z).
+    ///
+    /// ```
+    /// use starplex::algo::homology::Field;
+    /// assert_eq!((Field::Z2.modulus(), Field::Zp(5).modulus(), Field::Z.modulus()), (2, 5, 0));
+    /// ```
+    pub fn modulus(self) -> i64 {
+        match self {
+            Field::Z2 => 2,
+            Field::Zp(p) => p as i64,
+            Field::Q | Field::Z => 0,
+        }
+    }
+}
+
+impl std::fmt::Display for Field {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Field::Z2 => f.write_str("Z/2"),
+            Field::Zp(p) => write!(f, "Z/{p}"),
+            Field::Q => f.write_str("Q"),
+            Field::Z => f.write_str("Z"),
+        }
+    }
+}
+
+fn is_prime(p: u64) -> bool {
+    if p < 2 {
+        return false;
+    }
+    let mut d = 2;
+    while d * d <= p {
+        if p.is_multiple_of(d) {
+            return false;
+        }
+        d += 1;
+    }
+    true
+}
+
+/// Why homology could not be computed.
+///
+/// ```
+/// use starplex::algo::homology::HomologyError;
+/// assert_eq!(HomologyError::NotPrime(6).to_string(), "6 is not a prime (use 2, a prime p, q or z)");
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum HomologyError {
+    /// The work would explode (faces of huge non-cone lower stars).
+    #[error(transparent)]
+    TooLarge(#[from] QueryError),
+    /// Integer coefficients overflowed (Z or Q).
+    #[error("integer coefficients overflow in {0}; try a prime field (--field p)")]
+    Overflow(String),
+    /// A field name that is not known.
+    #[error("unknown field '{0}' (use 2, a prime p, q or z)")]
+    UnknownField(String),
+    /// A modulus that is not a prime.
+    #[error("{0} is not a prime (use 2, a prime p, q or z)")]
+    NotPrime(u64),
+}
+
+/// The vertex order that drives the lower-star matching (the answer never depends on it; the
+/// number of critical cells, hence the time, does).
+///
+/// ```
+/// use starplex::algo::homology::VertexOrder;
+/// assert_eq!(VertexOrder::default(), VertexOrder::Auto);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum VertexOrder {
+    /// The input order, unless it has many local minima (more than 64 + n/1000); then the
+    /// order of first appearance in the cells, unless that has many too; then breadth-first.
+    #[default]
+    Auto,
+    /// The input numbering.
+    Input,
+    /// First appearance in the top cells.
+    FirstAppearance,
+    /// Breadth-first from the smallest vertex of each component.
+    BreadthFirst,
+}
+
+/// Options of [`homology`].
+///
+/// ```
+/// use starplex::algo::homology::{Field, HomologyOptions};
+/// let o = HomologyOptions { field: Field::Q, per_component: true, ..Default::default() };
+/// assert!(!o.generators);
+/// assert_eq!(o.max_faces, 4_000_000_000);
+/// ```
+#[derive(Clone)]
+pub struct HomologyOptions {
+    /// Coefficients.
+    pub field: Field,
+    /// Also compute Betti numbers (and surface summaries) per connected component.
+    pub per_component: bool,
+    /// Also compute representative cycles (over Z/2 or Z/p; not for Q or Z).
+    pub generators: bool,
+    /// Largest number of lower-star cells to enumerate before refusing with an estimate.
+    pub max_faces: u128,
+    /// The vertex order of the matching.
+    pub order: VertexOrder,
+    /// Called with the number of vertices just processed (for progress bars; one pass).
+    pub progress: Option<Arc<dyn Fn(u64) + Send + Sync>>,
+}
+
+impl Default for HomologyOptions {
+    fn default() -> Self {
+        HomologyOptions {
+            field: Field::Z2,
+            per_component: false,
+            generators: false,
+            max_faces: 4_000_000_000,
+            order: VertexOrder::Auto,
+            progress: None,
+        }
+    }
+}
+
+impl std::fmt::Debug for HomologyOptions {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("HomologyOptions")
+            .field("field", &self.field)
+            .field("per_component", &self.per_component)
+            .field("generators", &self.generators)
+            .field("max_faces", &self.max_faces)
+            .field("order", &self.order)
+            .finish()
+    }
+}
+
+/// A surface component: orientability, genus, boundary loops and Euler characteristic.
+///
+/// ```
+/// use starplex::algo::homology::Surface;
+/// let s = Surface { orientable: true, genus: 1, boundary_loops: 0, euler_characteristic: 0 };
+/// assert_eq!(s.to_string(), "orientable surface, genus 1, 0 boundary loops, Euler characteristic 0");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Surface {
+    /// Orientable.
+    pub orientable: bool,
+    /// Genus (orientable: handles; non-orientable: cross-caps).
+    pub genus: u64,
+    /// Boundary loops.
+    pub boundary_loops: u64,
+    /// Euler characteristic.
+    pub euler_characteristic: i64,
+}
+
+impl std::fmt::Display for Surface {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} surface, genus {}, {} boundary loop{}, Euler characteristic {}",
+            if self.orientable {
+                "orientable"
+            } else {
+                "non-orientable"
+            },
+            self.genus,
+            self.boundary_loops,
+            if self.boundary_loops == 1 { "" } else { "s" },
+            self.euler_characteristic
+        )
+    }
+}
+
+/// The homology of one connected component.
+///
+/// ```
+/// use starplex::algo::homology::ComponentHomology;
+/// let c = ComponentHomology { first_vertex: 0, betti: vec![1, 0], torsion: vec![vec![], vec![]], surface: None };
+/// assert_eq!(c.betti[0], 1);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ComponentHomology {
+    /// Its smallest vertex (components are listed by it).
+    pub first_vertex: u32,
+    /// Betti numbers (ranks for Z).
+    pub betti: Vec<u64>,
+    /// Torsion coefficients per dimension (Z only; empty otherwise).
+    pub torsion: Vec<Vec<u128>>,
+    /// The surface summary when the component is a surface.
+    pub surface: Option<Surface>,
+}
+
+/// A representative cycle: cells (sorted vertex lists) with coefficients.
+///
+/// ```
+/// use starplex::algo::homology::Generator;
+/// let g = Generator { dim: 0, cells: vec![(vec![0], 1)] };
+/// assert_eq!(g.cells.len(), 1);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Generator {
+    /// Dimension of the class.
+    pub dim: usize,
+    /// The cells of the cycle (sorted vertex ids; a quad lists its 4 vertices in cyclic
+    /// order) and their coefficients (1 over Z/2).
+    pub cells: Vec<(Vec<u32>, i64)>,
+}
+
+/// The answer of [`homology`].
+///
+/// ```
+/// use starplex::algo::homology::{homology, HomologyOptions};
+/// use starplex::topo::naive::VtIndex;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// for x in 0..3 { b.push_vertex(&[x as f64]).unwrap(); }
+/// for e in [[0, 1], [1, 2], [0, 2]] { b.push_cell(CellKind::Simplex(1), &e).unwrap(); }
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let h = homology(&VtIndex::new(&k), &HomologyOptions::default()).unwrap();
+/// assert_eq!(h.betti, vec![1, 1]); // a circle
+/// assert_eq!(h.euler_characteristic(), 0);
+/// assert!(h.critical.iter().sum::<u64>() <= 3);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Homology {
+    /// The coefficients.
+    pub field: Field,
+    /// Betti numbers for dimensions 0..=dim (ranks of the free part for Z).
+    pub betti: Vec<u64>,
+    /// Torsion coefficients of H_k (Z only; empty lists otherwise).
+    pub torsion: Vec<Vec<u128>>,
+    /// Critical cells per dimension (the size of the Morse complex).
+    pub critical: Vec<u64>,
+    /// Per component (when asked), ordered by smallest vertex.
+    pub components: Option<Vec<ComponentHomology>>,
+    /// Representative cycles (when asked): for each dimension, one per Betti number.
+    pub generators: Vec<Generator>,
+}
+
+impl Homology {
+    /// The alternating sum of the Betti numbers.
+    ///
+    /// ```
+    /// # use starplex::algo::homology::{Homology, Field};
+    /// let h = Homology { field: Field::Z2, betti: vec![1, 2, 1], torsion: vec![], critical: vec![], components: None, generators: vec![] };
+    /// assert_eq!(h.euler_characteristic(), 0);
+    /// ```
+    pub fn euler_characteristic(&self) -> i64 {
+        alt_sum(&self.betti)
+    }
+}
+
+fn alt_sum(b: &[u64]) -> i64 {
+    b.iter()
+        .enumerate()
+        .map(|(i, &x)| if i % 2 == 0 { x as i64 } else { -(x as i64) })
+        .sum()
+}
+
+/// Betti numbers over Z/2 of an indexed complex (the oracles' `betti_z2`).
+///
+/// ```
+/// use starplex::algo::homology::betti_z2;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// assert_eq!(betti_z2(&k).unwrap(), vec![1, 0, 0]);
+/// ```
+///
+/// # Errors
+/// [`HomologyError::TooLarge`] when the lower stars to enumerate exceed the default budget.
+pub fn betti_z2(k: &IndexedComplex) -> Result<Vec<u64>, HomologyError> {
+    Ok(homology(&VtIndex::new(k), &HomologyOptions::default())?.betti)
+}
+
+const CHUNK: usize = 4096;
+/// Largest single lower star enumerated.
+const MAX_STAR: u128 = 1 << 26;
+/// Largest dense remainder of the integer elimination (entries).
+const MAX_DENSE: usize = 50_000_000;
+
+/// Computes the homology of the complex given by `s`.
+///
+/// ```
+/// use starplex::algo::homology::{homology, Field, HomologyOptions};
+/// use starplex::topo::naive::VtIndex;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// // One 40-simplex: contractible, answered without enumerating its 2^41 faces.
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// for x in 0..41 { b.push_vertex(&[x as f64]).unwrap(); }
+/// b.push_cell(CellKind::Simplex(40), &(0..41).collect::<Vec<u32>>()).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let h = homology(&VtIndex::new(&k), &HomologyOptions { field: Field::Z, ..Default::default() }).unwrap();
+/// assert_eq!(h.betti[0], 1);
+/// assert!(h.betti[1..].iter().all(|&x| x == 0));
+/// assert_eq!(h.critical[0], 1);
+/// ```
+///
+/// # Errors
+/// [`HomologyError::TooLarge`] (with an estimate) when the lower stars that must be enumerated
+/// exceed `opts.max_faces` cells or one of them exceeds 2^26 cells;
+/// [`HomologyError::Overflow`] when integer coefficients (Z, Q) overflow.
+pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
+    s: &S,
+    opts: &HomologyOptions,
+) -> Result<Homology, HomologyError> {
+    let nv = s.n_vertices();
+    // the input order, else the order of first appearance in the cells, else breadth-first
+    let relabel = |to_new: Vec<u32>| {
+        let r = order::Relabeled::new(s, to_new);
+        homology_ordered(&r, opts, Some(&r.to_old))
+    };
+    match opts.order {
+        VertexOrder::Input => return homology_ordered(s, opts, None),
+        VertexOrder::FirstAppearance => return relabel(order::first_appearance_order(s)),
+        VertexOrder::BreadthFirst => return relabel(order::bfs_order(s)),
+        VertexOrder::Auto => {}
+    }
+    let few = 64 + nv / 1000;
+    let t = std::time::Instant::now();
+    let minima = order::local_minima(s);
+    debug_time("local minima", t);
+    if minima > few {
+        let r = order::Relabeled::new(s, order::first_appearance_order(s));
+        let m2 = order::local_minima(&r);
+        debug_time("first-appearance order", t);
+        if m2 <= few {
+            return homology_ordered(&r, opts, Some(&r.to_old));
+        }
+        drop(r);
+        let to_new = order::bfs_order(s);
+        debug_time("bfs order", t);
+        return relabel(to_new);
+    }
+    homology_ordered(s, opts, None)
+}
+
+/// Maps a cell of a relabeled view back to input numbering (sign of the change of orientation).
+fn map_back(c: &Cell, to_old: Option<&[u32]>) -> (Vec<u32>, i64) {
+    let Some(t) = to_old else {
+        return (c.verts.to_vec(), 1);
+    };
+    let g: Vec<u32> = c.verts.iter().map(|&v| t[v as usize]).collect();
+    match c.shape {
+        cells::Shape::Simplex => {
+            let (k, sg) = cells::sort_with_sign(&g);
+            (k.to_vec(), sg as i64)
+        }
+        cells::Shape::Quad => {
+            let (q, sg) = cells::canonical_quad([g[0], g[1], g[2], g[3]]);
+            (q.verts.to_vec(), sg as i64)
+        }
+        cells::Shape::Solid(_) => (g, 1),
+    }
+}
+
+/// Phase timings on stderr when `STARPLEX_HOMOLOGY_TIMES` is set.
+fn debug_time(what: &str, t: std::time::Instant) {
+    if std::env::var_os("STARPLEX_HOMOLOGY_TIMES").is_some() {
+        eprintln!("homology: {what}: {:.3} s", t.elapsed().as_secs_f64());
+    }
+}
+
+fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
+    s: &S,
+    opts: &HomologyOptions,
+    to_old: Option<&[u32]>,
+) -> Result<Homology, HomologyError> {
+    let nv = s.n_vertices();
+    let dmax = (0..s.n_top_cells())
+        .into_par_iter()
+        .map(|c| s.top_cell_kind(CellId(c as u32)).dim())
+        .max();
+    let Some(dmax) = dmax.or(if nv > 0 { Some(0) } else { None }) else {
+        return Ok(Homology {
+            field: opts.field,
+            betti: vec![],
+            torsion: vec![],
+            critical: vec![],
+            components: opts.per_component.then(Vec::new),
+            generators: vec![],
+        });
+    };
+    let progress = |n: usize| {
+        if let Some(p) = &opts.progress {
+            p(n as u64);
+        }
+    };
+    let t0 = std::time::Instant::now();
+    // one pass: the plan of every lower star, and the critical cells of those enumerated (the
+    // enumeration stops as soon as the budget is known to be exceeded; the decision itself
+    // depends only on the plans, so it is the same for any thread count)
+    let spent = std::sync::atomic::AtomicU64::new(0);
+    let over = std::sync::atomic::AtomicBool::new(false);
+    let budget = u64::try_from(opts.max_faces).unwrap_or(u64::MAX);
+    type Part = (Vec<u32>, u128, u128, Vec<Cell>);
+    let parts: Vec<Part> = (0..nv.div_ceil(CHUNK))
+        .into_par_iter()
+        .map_init(Scratch::default, |w, ci| {
+            use std::sync::atomic::Ordering::Relaxed;
+            let lo = ci * CHUNK;
+            let hi = (lo + CHUNK).min(nv);
+            let mut apex = Vec::with_capacity(hi - lo);
+            let (mut est, mut worst) = (0u128, 0u128);
+            let mut out = Vec::new();
+            for v in lo..hi {
+                let p = morse::plan_vertex(s, v as u32, w);
+                if p.apex == EXPLICIT {
+                    est = est.saturating_add(p.estimate);
+                    worst = worst.max(p.estimate);
+                    let e = u64::try_from(p.estimate).unwrap_or(u64::MAX);
+                    if p.estimate > MAX_STAR
+                        || spent.fetch_add(e.min(1 << 40), Relaxed).saturating_add(e) > budget
+                    {
+                        over.store(true, Relaxed);
+                    }
+                }
+                if (p.apex == ALONE || p.apex == EXPLICIT) && !over.load(Relaxed) {
+                    morse::critical_cells(s, v as u32, p.apex, w, &mut out);
+                }
+                apex.push(p.apex);
+            }
+            progress(hi - lo);
+            (apex, est, worst, out)
+        })
+        .collect();
+    let est = parts.iter().fold(0u128, |a, p| a.saturating_add(p.1));
+    let worst = parts.iter().map(|p| p.2).max().unwrap_or(0);
+    if est > opts.max_faces || worst > MAX_STAR {
+        return Err(HomologyError::TooLarge(QueryError::TooLarge {
+            what: "homology: cells of the lower stars to enumerate".into(),
+            estimate: est,
+            budget: opts.max_faces.min(if worst > MAX_STAR {
+                MAX_STAR
+            } else {
+                u128::MAX
+            }),
+        }));
+    }
+    let mut apex: Vec<u32> = Vec::with_capacity(nv);
+    let mut crit_lists = Vec::with_capacity(parts.len());
+    for p in parts {
+        apex.extend(p.0);
+        crit_lists.push(p.3);
+    }
+    debug_time("plan and critical cells", t0);
+    let mut crit: Vec<Vec<Cell>> = vec![Vec::new(); dmax + 1];
+    for c in crit_lists.into_iter().flatten() {
+        let d = c.dim();
+        crit[d].push(c);
+    }
+    for l in &mut crit {
+        l.sort_unstable_by(|a, b| a.key.cmp(&b.key));
+    }
+    let g = Gradient { s, apex, crit };
+    debug_time("critical cells", t0);
+    let critical: Vec<u64> = g.crit.iter().map(|l| l.len() as u64).collect();
+
+    // components
+    let comps = if opts.per_component {
+        components(s)
+    } else {
+        // one label for everything: totals need no components
+        crate::algo::components::Components {
+            n_components: 1,
+            label: vec![0; nv],
+        }
+    };
+    debug_time("components", t0);
+    let n_comp = comps.n_components;
+    let comp_of = |c: &Cell| comps.label[c.key[0] as usize];
+    let comp_labels: Vec<Vec<u32>> = g
+        .crit
+        .iter()
+        .map(|l| l.iter().map(comp_of).collect())
+        .collect();
+
+    let m = opts.field.modulus();
+    let flow_err = |_| HomologyError::Overflow("the Morse boundary".into());
+    // per component Betti numbers and torsion
+    let mut rank = vec![vec![0u64; n_comp]; dmax + 2]; // rank[k] = rank of ∂_k per component
+    let mut tors: Vec<Vec<Vec<u128>>> = vec![vec![Vec::new(); n_comp]; dmax + 1];
+    let mut generators = Vec::new();
+    if m > 0 {
+        let mut cleared: Vec<bool> = Vec::new();
+        let mut essential_rows: Vec<Vec<bool>> = vec![Vec::new(); dmax + 2];
+        let mut vs: Vec<Option<Vec<reduce::Column>>> = vec![None; dmax + 1];
+        let mut zero_cols: Vec<Vec<bool>> = vec![Vec::new(); dmax + 1];
+        for k in (1..=dmax).rev() {
+            let n = g.crit[k].len();
+            if cleared.len() != n {
+                cleared = vec![false; n];
+            }
+            let cols: Vec<Option<reduce::Column>> = (0..n)
+                .into_par_iter()
+                .map_init(Scratch::default, |w, j| {
+                    if cleared[j] {
+                        return Ok(None);
+                    }
+                    let col = g.flow(&[(g.crit[k][j].clone(), 1)], m, None, w)?;
+                    Ok(Some(col))
+                })
+                .collect::<Result<_, _>>()
+                .map_err(flow_err)?;
+            let r = reduce::reduce(cols, g.crit[k - 1].len(), m, opts.generators);
+            let mut next = vec![false; g.crit[k - 1].len()];
+            let mut zc = vec![false; n];
+            for (j, l) in r.low.iter().enumerate() {
+                match l {
+                    Some(row) => {
+                        next[*row as usize] = true;
+                        rank[k][comp_labels[k][j] as usize] += 1;
+                    }
+                    None => zc[j] = !cleared[j],
+                }
+            }
+            zero_cols[k] = zc;
+            essential_rows[k - 1] = next.clone();
+            vs[k] = r.v;
+            cleared = next;
+        }
+        if opts.generators {
+            zero_cols[0] = vec![true; g.crit[0].len()];
+            for k in 0..=dmax {
+                let pivots = &essential_rows[k];
+                for j in 0..g.crit[k].len() {
+                    let is_pivot = pivots.get(j).copied().unwrap_or(false);
+                    if !zero_cols[k][j] || is_pivot {
+                        continue;
+                    }
+                    let combo: Vec<(Cell, i64)> = match &vs[k] {
+                        Some(v) => v[j]
+                            .iter()
+                            .map(|&(i, c)| (g.crit[k][i as usize].clone(), c))
+                            .collect(),
+                        None => vec![(g.crit[k][j].clone(), 1)],
+                    };
+                    let mut chain: BTreeMap<Key, (Cell, i64)> = BTreeMap::new();
+                    let mut w = Scratch::default();
+                    g.flow(&combo, m, Some(&mut chain), &mut w)
+                        .map_err(flow_err)?;
+                    generators.push(Generator {
+                        dim: k,
+                        cells: chain
+                            .into_values()
+                            .map(|(c, x)| {
+                                let (v, sg) = map_back(&c, to_old);
+                                (v, (x * sg).rem_euclid(m))
+                            })
+                            .collect(),
+                    });
+                }
+            }
+        }
+    } else {
+        for k in 1..=dmax {
+            let n = g.crit[k].len();
+            let cols: Vec<Vec<(u32, i64)>> = (0..n)
+                .into_par_iter()
+                .map_init(Scratch::default, |w, j| {
+                    g.flow(&[(g.crit[k][j].clone(), 1)], 0, None, w)
+                })
+                .collect::<Result<_, _>>()
+                .map_err(flow_err)?;
+            let r = smith::int_rank(
+                &cols,
+                g.crit[k - 1].len(),
+                &comp_labels[k],
+                &comp_labels[k - 1],
+                n_comp,
+                MAX_DENSE,
+            )
+            .map_err(|e| match e {
+                smith::IntError::Overflow => {
+                    HomologyError::Overflow("the Smith normal form".into())
+                }
+                smith::IntError::TooLarge(n) => HomologyError::TooLarge(QueryError::TooLarge {
+                    what: "homology over Z: dense Smith normal form entries".into(),
+                    estimate: n,
+                    budget: MAX_DENSE as u128,
+                }),
+            })?;
+            for c in 0..n_comp {
+                rank[k][c] = r.rank[c] as u64;
+                if opts.field == Field::Z {
+                    tors[k - 1][c] = r.torsion[c].iter().map(|&x| x as u128).collect();
+                }
+            }
+        }
+    }
+    debug_time("boundaries and ranks", t0);
+    // Betti numbers per component and in total
+    let mut crit_per_comp = vec![vec![0u64; n_comp]; dmax + 1];
+    for k in 0..=dmax {
+        for &l in &comp_labels[k] {
+            crit_per_comp[k][l as usize] += 1;
+        }
+    }
+    let betti_of = |c: usize| -> Vec<u64> {
+        (0..=dmax)
+            .map(|k| crit_per_comp[k][c] - rank[k][c] - rank[k + 1][c])
+            .collect()
+    };
+    let mut betti = vec![0u64; dmax + 1];
+    let mut torsion = vec![Vec::new(); dmax + 1];
+    let mut per = Vec::new();
+    let facts =
+        (opts.per_component && dmax == 2).then(|| surface::surface_facts(s, &comps.label, n_comp));
+    let mut first_vertex = vec![u32::MAX; n_comp];
+    for (v, &l) in comps.label.iter().enumerate() {
+        let old = to_old.map_or(v as u32, |t| t[v]);
+        first_vertex[l as usize] = first_vertex[l as usize].min(old);
+    }
+    for c in 0..n_comp {
+        let b = betti_of(c);
+        for (t, x) in betti.iter_mut().zip(&b) {
+            *t += x;
+        }
+        let tc: Vec<Vec<u128>> = (0..=dmax).map(|k| tors[k][c].clone()).collect();
+        for k in 0..=dmax {
+            torsion[k].extend(tc[k].iter().copied());
+        }
+        if opts.per_component {
+            let chi = alt_sum(&b);
+            let surface = facts.as_ref().and_then(|f| {
+                let f = f[c];
+                f.is_surface.then(|| {
+                    let x = 2 - chi - f.boundary_loops as i64;
+                    Surface {
+                        orientable: f.orientable,
+                        genus: if f.orientable {
+                            (x / 2).max(0)
+                        } else {
+                            x.max(0)
+                        } as u64,
+                        boundary_loops: f.boundary_loops,
+                        euler_characteristic: chi,
+                    }
+                })
+            });
+            per.push(ComponentHomology {
+                first_vertex: first_vertex[c],
+                betti: b,
+                torsion: tc,
+                surface,
+            });
+        }
+    }
+    for t in &mut torsion {
+        t.sort_unstable();
+    }
+    per.sort_by_key(|c: &ComponentHomology| c.first_vertex);
+    for g in &mut generators {
+        g.cells.sort();
+    }
+    Ok(Homology {
+        field: opts.field,
+        betti,
+        torsion,
+        critical,
+        components: opts.per_component.then_some(per),
+        generators,
+    })
+}
+
+/// Writes generators as an OBJ file a viewer can show: every vertex of the complex (`v x y z`,
+/// coordinates padded or cut to 3), then one group per generator (`g h1_0`, `g h2_0`, ...)
+/// holding its cells: `p` for vertices, `l` for edges, `f` for triangles and quads, and for
+/// cells of dimension 3 or more their boundary triangles as `f` lines (a comment line
+/// `# cell a b c d` names each such cell). Coefficients other than 1 are written as comments.
+///
+/// ```
+/// use starplex::algo::homology::{write_generators_obj, Generator};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// for e in [[0, 1], [1, 2], [0, 2]] { b.push_cell(CellKind::Simplex(1), &e).unwrap(); }
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let g = Generator { dim: 1, cells: vec![(vec![0, 1], 1), (vec![1, 2], 1), (vec![0, 2], 1)] };
+/// let mut out = Vec::new();
+/// write_generators_obj(&k, &[g], &mut out).unwrap();
+/// let text = String::from_utf8(out).unwrap();
+/// assert!(text.contains("g h1_0\nl 1 2\nl 2 3\nl 1 3\n"));
+/// ```
+///
+/// # Errors
+/// Errors of the writer.
+pub fn write_generators_obj(
+    k: &IndexedComplex,
+    gens: &[Generator],
+    mut w: impl Write,
+) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "# starplex homology generators: one group per class (g hK_i)"
+    )?;
+    let d = k.ambient_dim();
+    for p in k.coords().chunks_exact(d.max(1)) {
+        let c = |i: usize| p.get(i).copied().unwrap_or(0.0);
+        writeln!(w, "v {} {} {}", c(0), c(1), c(2))?;
+    }
+    let mut count: BTreeMap<usize, usize> = BTreeMap::new();
+    for g in gens {
+        let i = count.entry(g.dim).or_insert(0);
+        writeln!(w, "g h{}_{}", g.dim, i)?;
+        *i += 1;
+        for (cell, coef) in &g.cells {
+            if *coef != 1 {
+                writeln!(w, "# coefficient {coef}")?;
+            }
+            let idx: Vec<String> = cell.iter().map(|v| (v + 1).to_string()).collect();
+            match cell.len() {
+                1 => writeln!(w, "p {}", idx[0])?,
+                2 => writeln!(w, "l {}", idx.join(" "))?,
+                3 | 4 if g.dim == 2 => writeln!(w, "f {}", idx.join(" "))?,
+                _ => {
+                    writeln!(w, "# cell {}", idx.join(" "))?;
+                    if g.dim >= 3 && cell.len() == g.dim + 1 {
+                        // boundary triangles of a simplex
+                        let n = cell.len();
+                        for a in 0..n {
+                            for b in a + 1..n {
+                                for c in b + 1..n {
+                                    writeln!(w, "f {} {} {}", idx[a], idx[b], idx[c])?;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,763 @@
+//! Homology: named fixtures built in code (spheres, torus, Klein bottle, RP², RP³, non-manifold
+//! gluings, a 40-simplex, wedges of spheres, CP complexes), property tests against a dense
+//! Z/2 rank computation over all faces written here, and the `betti_z2` of every dataset
+//! oracle (computed by GUDHI).
+mod common_data;
+
+use std::collections::BTreeSet;
+
+use proptest::prelude::*;
+use starplex::algo::homology::{
+    homology, Field, Homology, HomologyError, HomologyOptions, VertexOrder,
+};
+use starplex::cell::CellKind;
+use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
+use starplex::io::{self, ReadOptions};
+use starplex::topo::naive::VtIndex;
+
+fn complex(cells: &[(CellKind, Vec<u32>)]) -> IndexedComplex {
+    let nv = cells
+        .iter()
+        .flat_map(|(_, c)| c.iter().copied())
+        .max()
+        .map_or(0, |m| m + 1);
+    complex_n(nv as usize, cells)
+}
+
+fn complex_n(nv: usize, cells: &[(CellKind, Vec<u32>)]) -> IndexedComplex {
+    let mut b = ComplexBuilder::new(1).unwrap();
+    for i in 0..nv {
+        b.push_vertex(&[i as f64]).unwrap();
+    }
+    for (k, c) in cells {
+        b.push_cell(*k, c).unwrap();
+    }
+    b.build(&BuildOptions::default()).unwrap().0
+}
+
+fn simplices(cells: &[Vec<u32>]) -> IndexedComplex {
+    let v: Vec<(CellKind, Vec<u32>)> = cells
+        .iter()
+        .map(|c| (CellKind::Simplex((c.len() - 1) as u8), c.clone()))
+        .collect();
+    complex(&v)
+}
+
+fn run(k: &IndexedComplex, field: Field) -> Homology {
+    homology(
+        &VtIndex::new(k),
+        &HomologyOptions {
+            field,
+            ..Default::default()
+        },
+    )
+    .unwrap()
+}
+
+fn betti(k: &IndexedComplex, field: Field) -> Vec<u64> {
+    run(k, field).betti
+}
+
+/// Dense Z/2 Betti numbers over every face (the brute-force model).
+fn brute_betti_z2(nv: usize, cells: &[Vec<u32>]) -> Vec<u64> {
+    let mut faces: Vec<BTreeSet<Vec<u32>>> = Vec::new();
+    let mut used = vec![false; nv];
+    for c in cells {
+        let n = c.len();
+        for mask in 1u32..(1 << n) {
+            let mut f: Vec<u32> = (0..n)
+                .filter(|i| mask >> i & 1 == 1)
+                .map(|i| c[i])
+                .collect();
+            f.sort_unstable();
+            let d = f.len() - 1;
+            if faces.len() <= d {
+                faces.resize(d + 1, BTreeSet::new());
+            }
+            faces[d].insert(f);
+        }
+        for &v in c {
+            used[v as usize] = true;
+        }
+    }
+    if faces.is_empty() {
+        faces.push(BTreeSet::new());
+    }
+    for (v, u) in used.iter().enumerate() {
+        if !u {
+            faces[0].insert(vec![v as u32]);
+        }
+    }
+    let lists: Vec<Vec<Vec<u32>>> = faces.iter().map(|s| s.iter().cloned().collect()).collect();
+    let rank = |d: usize| -> usize {
+        // boundary d -> d-1 as bit rows
+        if d == 0 || d >= lists.len() {
+            return 0;
+        }
+        let rows = lists[d - 1].len();
+        let words = rows.div_ceil(64);
+        let mut m: Vec<Vec<u64>> = lists[d]
+            .iter()
+            .map(|s| {
+                let mut col = vec![0u64; words];
+                for i in 0..s.len() {
+                    let mut f = s.clone();
+                    f.remove(i);
+                    let r = lists[d - 1].binary_search(&f).unwrap();
+                    col[r / 64] ^= 1 << (r % 64);
+                }
+                col
+            })
+            .collect();
+        let mut rank = 0;
+        for bit in 0..rows {
+            let Some(p) = (rank..m.len()).find(|&j| m[j][bit / 64] >> (bit % 64) & 1 == 1) else {
+                continue;
+            };
+            m.swap(rank, p);
+            for j in 0..m.len() {
+                if j != rank && m[j][bit / 64] >> (bit % 64) & 1 == 1 {
+                    let pr = m[rank].clone();
+                    for (a, b) in m[j].iter_mut().zip(&pr) {
+                        *a ^= b;
+                    }
+                }
+            }
+            rank += 1;
+        }
+        rank
+    };
+    let ranks: Vec<usize> = (0..=lists.len()).map(rank).collect();
+    (0..lists.len())
+        .map(|d| (lists[d].len() - ranks[d] - ranks[d + 1]) as u64)
+        .collect()
+}
+
+fn tetra_boundary(off: u32) -> Vec<Vec<u32>> {
+    let v = [off, off + 1, off + 2, off + 3];
+    vec![
+        vec![v[0], v[1], v[2]],
+        vec![v[0], v[1], v[3]],
+        vec![v[0], v[2], v[3]],
+        vec![v[1], v[2], v[3]],
+    ]
+}
+
+/// Boundary of the (d+1)-simplex on `vs` (d+2 vertices): a d-sphere.
+fn sphere(vs: &[u32]) -> Vec<Vec<u32>> {
+    (0..vs.len())
+        .map(|i| {
+            let mut f = vs.to_vec();
+            f.remove(i);
+            f
+        })
+        .collect()
+}
+
+/// A triangulated n x m grid with wrap-around; `flip` glues the last column to the first with
+/// the rows reversed (a Klein bottle).
+fn grid_surface(n: u32, m: u32, flip: bool) -> Vec<Vec<u32>> {
+    let v = |i: u32, j: u32| -> u32 {
+        let j = j % m;
+        if i == n {
+            if flip {
+                (m - j) % m
+            } else {
+                j
+            }
+        } else {
+            i * m + j
+        }
+    };
+    let mut t = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            let (a, b, c, d) = (v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1));
+            t.push(vec![a, b, c]);
+            t.push(vec![a, c, d]);
+        }
+    }
+    t
+}
+
+const RP2: [[u32; 3]; 10] = [
+    [0, 1, 2],
+    [0, 2, 3],
+    [0, 3, 4],
+    [0, 4, 5],
+    [0, 5, 1],
+    [1, 2, 4],
+    [2, 3, 5],
+    [3, 4, 1],
+    [4, 5, 2],
+    [5, 1, 3],
+];
+
+/// Walkup's minimal RP³ (11 vertices, f = (11, 51, 80, 40)) as listed by Lutz (vertices 1..11).
+const RP3: [[u32; 4]; 40] = [
+    [1, 2, 3, 7],
+    [1, 4, 7, 9],
+    [2, 3, 4, 8],
+    [2, 5, 8, 10],
+    [3, 6, 7, 10],
+    [1, 2, 3, 11],
+    [1, 4, 7, 10],
+    [2, 3, 4, 11],
+    [2, 5, 9, 10],
+    [3, 6, 8, 9],
+    [1, 2, 6, 9],
+    [1, 4, 8, 9],
+    [2, 3, 7, 8],
+    [2, 6, 9, 10],
+    [3, 6, 9, 10],
+    [1, 2, 6, 11],
+    [1, 4, 8, 10],
+    [2, 4, 6, 10],
+    [3, 4, 5, 9],
+    [4, 5, 6, 7],
+    [1, 2, 7, 9],
+    [1, 5, 6, 8],
+    [2, 4, 6, 11],
+    [3, 4, 5, 11],
+    [4, 5, 6, 11],
+    [1, 3, 5, 10],
+    [1, 5, 6, 11],
+    [2, 4, 8, 10],
+    [3, 4, 8, 9],
+    [4, 5, 7, 9],
+    [1, 3, 5, 11],
+    [1, 5, 8, 10],
+    [2, 5, 7, 8],
+    [3, 5, 9, 10],
+    [4, 6, 7, 10],
+    [1, 3, 7, 10],
+    [1, 6, 8, 9],
+    [2, 5, 7, 9],
+    [3, 6, 7, 8],
+    [5, 6, 7, 8],
+];
+
+fn f_vector(cells: &[Vec<u32>]) -> Vec<usize> {
+    let mut faces: Vec<BTreeSet<Vec<u32>>> = Vec::new();
+    for c in cells {
+        for mask in 1u32..(1 << c.len()) {
+            let f: Vec<u32> = (0..c.len())
+                .filter(|i| mask >> i & 1 == 1)
+                .map(|i| c[i])
+                .collect();
+            if faces.len() < f.len() {
+                faces.resize(f.len(), BTreeSet::new());
+            }
+            let mut f = f;
+            f.sort_unstable();
+            faces[f.len() - 1].insert(f);
+        }
+    }
+    faces.iter().map(|s| s.len()).collect()
+}
+
+#[test]
+fn point_and_spheres() {
+    let k = complex_n(1, &[]);
+    assert_eq!(betti(&k, Field::Z2), vec![1]);
+    let t = tetra_boundary(0);
+    assert_eq!(betti(&simplices(&t), Field::Z2), vec![1, 0, 1]);
+    let mut oct = Vec::new();
+    for a in [0, 1] {
+        for b in [2, 3] {
+            for c in [4, 5] {
+                oct.push(vec![a, b, c]);
+            }
+        }
+    }
+    let k = simplices(&oct);
+    for f in [Field::Z2, Field::Zp(3), Field::Q, Field::Z] {
+        assert_eq!(betti(&k, f), vec![1, 0, 1], "{f}");
+    }
+}
+
+#[test]
+fn torus_and_klein_bottle() {
+    let t = grid_surface(3, 3, false);
+    assert_eq!(brute_betti_z2(9, &t), vec![1, 2, 1]);
+    let k = simplices(&t);
+    for f in [Field::Z2, Field::Zp(5), Field::Q, Field::Z] {
+        let h = run(&k, f);
+        assert_eq!(h.betti, vec![1, 2, 1], "{f}");
+        assert!(h.torsion.iter().all(|t| t.is_empty()));
+    }
+    let kb = grid_surface(4, 4, true);
+    assert_eq!(brute_betti_z2(16, &kb), vec![1, 2, 1]);
+    let k = simplices(&kb);
+    assert_eq!(betti(&k, Field::Z2), vec![1, 2, 1]);
+    assert_eq!(betti(&k, Field::Zp(3)), vec![1, 1, 0]);
+    assert_eq!(betti(&k, Field::Q), vec![1, 1, 0]);
+    let hz = run(&k, Field::Z);
+    assert_eq!(hz.betti, vec![1, 1, 0]);
+    assert_eq!(hz.torsion, vec![vec![], vec![2], vec![]]); // H_1 = Z + Z/2
+}
+
+#[test]
+fn projective_plane_and_space() {
+    let rp2: Vec<Vec<u32>> = RP2.iter().map(|t| t.to_vec()).collect();
+    assert_eq!(f_vector(&rp2), vec![6, 15, 10]); // Euler characteristic 1
+    let k = simplices(&rp2);
+    assert_eq!(betti(&k, Field::Z2), vec![1, 1, 1]);
+    assert_eq!(betti(&k, Field::Q), vec![1, 0, 0]);
+    assert_eq!(betti(&k, Field::Zp(3)), vec![1, 0, 0]);
+    let hz = run(&k, Field::Z);
+    assert_eq!(
+        (hz.betti, hz.torsion),
+        (vec![1, 0, 0], vec![vec![], vec![2], vec![]])
+    );
+
+    let rp3: Vec<Vec<u32>> = RP3
+        .iter()
+        .map(|t| t.iter().map(|x| x - 1).collect())
+        .collect();
+    assert_eq!(f_vector(&rp3), vec![11, 51, 80, 40]); // Euler characteristic 0
+    assert_eq!(brute_betti_z2(11, &rp3), vec![1, 1, 1, 1]);
+    let k = simplices(&rp3);
+    assert_eq!(betti(&k, Field::Z2), vec![1, 1, 1, 1]);
+    assert_eq!(betti(&k, Field::Q), vec![1, 0, 0, 1]);
+    let hz = run(&k, Field::Z);
+    assert_eq!(hz.betti, vec![1, 0, 0, 1]);
+    assert_eq!(hz.torsion, vec![vec![], vec![2], vec![], vec![]]); // H_1 = Z/2, H_3 = Z
+}
+
+#[test]
+fn non_manifold_gluings() {
+    // bow-tie: two triangles sharing a vertex
+    let k = simplices(&[vec![0, 1, 2], vec![0, 3, 4]]);
+    assert_eq!(betti(&k, Field::Z2), vec![1, 0, 0]);
+    // two hollow tetrahedra sharing a vertex, and sharing an edge
+    let mut a = tetra_boundary(0);
+    a.extend(tetra_boundary(3));
+    assert_eq!(betti(&simplices(&a), Field::Z), vec![1, 0, 2]);
+    let mut b = tetra_boundary(0);
+    b.extend(tetra_boundary(2));
+    assert_eq!(betti(&simplices(&b), Field::Z2), vec![1, 0, 2]);
+    // three triangles on one edge (a book), with a dangling edge and an isolated vertex
+    let cells = vec![
+        (CellKind::Simplex(2), vec![0, 1, 2]),
+        (CellKind::Simplex(2), vec![0, 1, 3]),
+        (CellKind::Simplex(2), vec![0, 1, 4]),
+        (CellKind::Simplex(1), vec![4, 5]),
+    ];
+    assert_eq!(betti(&complex_n(7, &cells), Field::Z2), vec![2, 0, 0]);
+    // a circle of edges and a hollow triangle pinched to a filled one (non-pure)
+    let cells = vec![
+        (CellKind::Simplex(1), vec![0, 1]),
+        (CellKind::Simplex(1), vec![1, 2]),
+        (CellKind::Simplex(1), vec![0, 2]),
+        (CellKind::Simplex(2), vec![2, 3, 4]),
+        (CellKind::Simplex(1), vec![4, 5]),
+        (CellKind::Simplex(1), vec![5, 3]),
+    ];
+    assert_eq!(betti(&complex(&cells), Field::Q), vec![1, 2, 0]);
+}
+
+#[test]
+fn a_40_simplex_is_answered_at_once() {
+    let t0 = std::time::Instant::now();
+    let k = simplices(&[(0..41).collect()]);
+    let h = run(&k, Field::Z);
+    let mut want = vec![0u64; 41];
+    want[0] = 1;
+    assert_eq!(h.betti, want);
+    assert_eq!(h.critical.iter().sum::<u64>(), 1);
+    // two 40-simplices sharing 39 vertices: still cones everywhere
+    let k = simplices(&[(0..41).collect(), (0..39).chain([41, 42]).collect()]);
+    assert_eq!(run(&k, Field::Z2).betti, want);
+    assert!(t0.elapsed().as_secs_f64() < 2.0, "{:?}", t0.elapsed());
+}
+
+#[test]
+fn exploding_work_is_refused_with_an_estimate() {
+    // the boundary of a 30-simplex: the lower star of its last vertex has ~2^30 cells
+    let k = simplices(&sphere(&(0..31).collect::<Vec<u32>>()));
+    let err = homology(&VtIndex::new(&k), &HomologyOptions::default()).unwrap_err();
+    match err {
+        HomologyError::TooLarge(starplex::topo::QueryError::TooLarge { estimate, .. }) => {
+            assert!(estimate >= 1 << 30, "{estimate}")
+        }
+        e => panic!("{e:?}"),
+    }
+}
+
+#[test]
+fn wedges_of_spheres_up_to_dimension_8() {
+    let mut cells = Vec::new();
+    let mut next = 1u32;
+    for d in 1..=8u32 {
+        let mut vs = vec![0u32];
+        vs.extend(next..next + d + 1);
+        next += d + 1;
+        cells.extend(sphere(&vs));
+    }
+    let k = simplices(&cells);
+    for f in [Field::Z2, Field::Zp(7), Field::Z] {
+        assert_eq!(betti(&k, f), vec![1; 9], "{f}");
+    }
+    // two copies of S^4 and one S^6 at different base points, plus a circle
+    let mut cells = sphere(&[0, 1, 2, 3, 4, 5]);
+    cells.extend(sphere(&[5, 6, 7, 8, 9, 10]));
+    cells.extend(sphere(&[11, 12, 13, 14, 15, 16, 17, 18]));
+    cells.extend([vec![18, 19], vec![19, 20], vec![18, 20]]);
+    // (two components: S^4 v S^4, and S^6 v S^1)
+    let n = 21;
+    assert_eq!(brute_betti_z2(n, &cells), vec![2, 1, 0, 0, 2, 0, 1]);
+    assert_eq!(
+        betti(&simplices(&cells), Field::Z2),
+        vec![2, 1, 0, 0, 2, 0, 1]
+    );
+}
+
+fn quad_grid(n: u32, m: u32, flip: bool) -> Vec<(CellKind, Vec<u32>)> {
+    let v = |i: u32, j: u32| -> u32 {
+        let j = j % m;
+        if i == n {
+            if flip {
+                (m - j) % m
+            } else {
+                j
+            }
+        } else {
+            i * m + j
+        }
+    };
+    let mut q = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            q.push((
+                CellKind::Quad,
+                vec![v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)],
+            ));
+        }
+    }
+    q
+}
+
+#[test]
+fn cp_complexes() {
+    let k = complex(&quad_grid(4, 4, false));
+    for f in [Field::Z2, Field::Q, Field::Z] {
+        assert_eq!(betti(&k, f), vec![1, 2, 1], "{f}");
+    }
+    let kb = complex(&quad_grid(4, 4, true));
+    let hz = run(&kb, Field::Z);
+    assert_eq!(
+        (hz.betti, hz.torsion),
+        (vec![1, 1, 0], vec![vec![], vec![2], vec![]])
+    );
+    assert_eq!(betti(&kb, Field::Z2), vec![1, 2, 1]);
+    // a solid torus of hexahedra: a ring of 4 cubes
+    let n = 4u32;
+    let v = |i: u32, y: u32, z: u32| (i % n) * 4 + y * 2 + z;
+    let mut hexes = Vec::new();
+    let mut prisms = Vec::new();
+    for i in 0..n {
+        hexes.push((
+            CellKind::Hex,
+            vec![
+                v(i, 0, 0),
+                v(i + 1, 0, 0),
+                v(i + 1, 1, 0),
+                v(i, 1, 0),
+                v(i, 0, 1),
+                v(i + 1, 0, 1),
+                v(i + 1, 1, 1),
+                v(i, 1, 1),
+            ],
+        ));
+        // the same ring cut into prisms (each cube into two wedges standing on z = 0, so the
+        // faces between cubes stay quads and the cells can be mixed with hexahedra)
+        prisms.push((
+            CellKind::Prism,
+            vec![
+                v(i, 0, 0),
+                v(i + 1, 0, 0),
+                v(i + 1, 1, 0),
+                v(i, 0, 1),
+                v(i + 1, 0, 1),
+                v(i + 1, 1, 1),
+            ],
+        ));
+        prisms.push((
+            CellKind::Prism,
+            vec![
+                v(i, 0, 0),
+                v(i + 1, 1, 0),
+                v(i, 1, 0),
+                v(i, 0, 1),
+                v(i + 1, 1, 1),
+                v(i, 1, 1),
+            ],
+        ));
+    }
+    let k = complex(&hexes);
+    for f in [Field::Z2, Field::Zp(3), Field::Z] {
+        assert_eq!(betti(&k, f), vec![1, 1, 0, 0], "{f}");
+    }
+    let k = complex(&prisms);
+    assert_eq!(betti(&k, Field::Z), vec![1, 1, 0, 0]);
+    // mixed: two hexes of the ring, the other two cubes as prisms, plus a pyramid on one face
+    let mut mixed: Vec<(CellKind, Vec<u32>)> = hexes[..2].to_vec();
+    mixed.extend(prisms[4..].iter().cloned());
+    let apex = 16;
+    mixed.push((
+        CellKind::Pyramid,
+        vec![v(0, 0, 0), v(0, 1, 0), v(1, 1, 0), v(1, 0, 0), apex],
+    ));
+    let k = complex(&mixed);
+    assert_eq!(betti(&k, Field::Z), vec![1, 1, 0, 0]);
+    assert_eq!(betti(&k, Field::Z2), vec![1, 1, 0, 0]);
+}
+
+#[test]
+fn per_component_and_surfaces() {
+    // a torus, a Klein bottle (quads), a disk, and a point
+    let mut cells: Vec<(CellKind, Vec<u32>)> = grid_surface(3, 3, false)
+        .into_iter()
+        .map(|t| (CellKind::Simplex(2), t))
+        .collect();
+    cells.extend(
+        quad_grid(4, 4, true)
+            .into_iter()
+            .map(|(k, q)| (k, q.iter().map(|x| x + 9).collect())),
+    );
+    cells.push((CellKind::Simplex(2), vec![25, 26, 27]));
+    let k = complex_n(29, &cells);
+    let h = homology(
+        &VtIndex::new(&k),
+        &HomologyOptions {
+            per_component: true,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(h.betti, vec![4, 4, 2]);
+    let comps = h.components.unwrap();
+    assert_eq!(comps.len(), 4);
+    assert_eq!(comps[0].betti, vec![1, 2, 1]);
+    let s0 = comps[0].surface.unwrap();
+    assert!(s0.orientable);
+    assert_eq!(
+        (s0.genus, s0.boundary_loops, s0.euler_characteristic),
+        (1, 0, 0)
+    );
+    let s1 = comps[1].surface.unwrap();
+    assert!(!s1.orientable);
+    assert_eq!((s1.genus, s1.boundary_loops), (2, 0)); // Klein bottle: 2 cross-caps
+    let s2 = comps[2].surface.unwrap();
+    assert!(s2.orientable);
+    assert_eq!((s2.genus, s2.boundary_loops), (0, 1));
+    assert_eq!(comps[3].betti, vec![1, 0, 0]);
+    assert!(comps[3].surface.is_none());
+    // the bow-tie is not a surface
+    let k = simplices(&[vec![0, 1, 2], vec![0, 3, 4]]);
+    let h = homology(
+        &VtIndex::new(&k),
+        &HomologyOptions {
+            per_component: true,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(h.components.unwrap()[0].surface.is_none());
+    // the Moebius strip: non-orientable, one boundary loop
+    let m = simplices(&[
+        vec![0, 1, 3],
+        vec![1, 3, 4],
+        vec![1, 2, 4],
+        vec![2, 4, 5],
+        vec![2, 5, 3], // the twist: 2 meets 3 and 5 meets 0
+        vec![5, 3, 0],
+    ]);
+    let h = homology(
+        &VtIndex::new(&m),
+        &HomologyOptions {
+            per_component: true,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(h.betti, vec![1, 1, 0]);
+    let s = h.components.unwrap()[0].surface.unwrap();
+    assert!(!s.orientable);
+    assert_eq!(
+        (s.genus, s.boundary_loops, s.euler_characteristic),
+        (1, 1, 0)
+    );
+    assert_eq!(
+        s.to_string(),
+        "non-orientable surface, genus 1, 1 boundary loop, Euler characteristic 0"
+    );
+}
+
+#[test]
+fn generators_are_cycles_with_the_right_count() {
+    let t = grid_surface(3, 3, false);
+    let k = simplices(&t);
+    for (field, order) in [
+        (Field::Z2, VertexOrder::Input),
+        (Field::Zp(3), VertexOrder::Input),
+        (Field::Zp(3), VertexOrder::BreadthFirst),
+        (Field::Z2, VertexOrder::FirstAppearance),
+    ] {
+        let h = homology(
+            &VtIndex::new(&k),
+            &HomologyOptions {
+                field,
+                order,
+                generators: true,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let dims: Vec<usize> = h.generators.iter().map(|g| g.dim).collect();
+        assert_eq!(dims, vec![0, 1, 1, 2], "{field}");
+        let p = field.modulus();
+        for g in &h.generators {
+            // boundary of the chain is zero mod p
+            let mut bd: std::collections::BTreeMap<Vec<u32>, i64> = Default::default();
+            for (c, x) in &g.cells {
+                if c.len() < 2 {
+                    continue;
+                }
+                for i in 0..c.len() {
+                    let mut f = c.clone();
+                    f.remove(i);
+                    let s = if i % 2 == 0 { 1 } else { -1 };
+                    *bd.entry(f).or_insert(0) += s * x;
+                }
+            }
+            assert!(bd.values().all(|x| x.rem_euclid(p) == 0), "{field} {g:?}");
+        }
+        // the H_2 generator is the whole torus
+        assert_eq!(h.generators[3].cells.len(), 18);
+    }
+}
+
+fn threads<T: Send>(n: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 500, rng_algorithm: proptest::test_runner::RngAlgorithm::ChaCha, ..ProptestConfig::default() })]
+    #[test]
+    fn random_complexes_match_brute_force(
+        nv in 1usize..10,
+        raw in proptest::collection::vec(proptest::collection::btree_set(0u32..10, 1..6), 0..9),
+        perm_seed in 0u64..1000,
+    ) {
+        // maximal simplices only, vertices in range
+        let mut cells: Vec<Vec<u32>> = raw
+            .into_iter()
+            .map(|s| s.into_iter().filter(|&v| (v as usize) < nv).collect::<Vec<u32>>())
+            .filter(|s: &Vec<u32>| !s.is_empty())
+            .collect();
+        cells.sort();
+        cells.dedup();
+        let all = cells.clone();
+        cells.retain(|c| !all.iter().any(|d| d != c && c.iter().all(|x| d.contains(x))));
+        // a vertex relabeling, so lower stars see many orders
+        let mut perm: Vec<u32> = (0..nv as u32).collect();
+        let mut s = perm_seed;
+        for i in (1..nv).rev() {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            perm.swap(i, (s >> 33) as usize % (i + 1));
+        }
+        let cells: Vec<Vec<u32>> = cells.iter().map(|c| c.iter().map(|&v| perm[v as usize]).collect()).collect();
+        let want = brute_betti_z2(nv, &cells);
+        let typed: Vec<(CellKind, Vec<u32>)> = cells
+            .iter()
+            .map(|c| (CellKind::Simplex((c.len() - 1) as u8), c.clone()))
+            .collect();
+        let k = complex_n(nv, &typed);
+        let h1 = threads(1, || run(&k, Field::Z2));
+        let h3 = threads(3, || run(&k, Field::Z2));
+        prop_assert_eq!(&h1.betti, &want);
+        prop_assert_eq!(&h1, &h3);
+        // alternating sum = Euler characteristic of the f-vector
+        let f = f_vector(&cells);
+        let mut chi: i64 = f.iter().enumerate().map(|(i, &x)| if i % 2 == 0 { x as i64 } else { -(x as i64) }).sum();
+        let isolated = nv - cells.iter().flatten().collect::<BTreeSet<_>>().len();
+        chi += isolated as i64;
+        prop_assert_eq!(h1.euler_characteristic(), chi);
+        // Q and Z ranks agree with each other; Z/3 has the same Euler characteristic
+        let hq = run(&k, Field::Q);
+        let hz = run(&k, Field::Z);
+        prop_assert_eq!(&hq.betti, &hz.betti);
+        prop_assert_eq!(hq.euler_characteristic(), chi);
+        prop_assert_eq!(run(&k, Field::Zp(3)).euler_characteristic(), chi);
+        // every vertex order gives the same Betti numbers (and torsion over Z)
+        for order in [VertexOrder::FirstAppearance, VertexOrder::BreadthFirst] {
+            let o = HomologyOptions { order, per_component: true, ..Default::default() };
+            let h = homology(&VtIndex::new(&k), &o).unwrap();
+            prop_assert_eq!(&h.betti, &want);
+            let comps = h.components.unwrap();
+            prop_assert!(comps.windows(2).all(|w| w[0].first_vertex < w[1].first_vertex));
+            let oz = HomologyOptions { order, field: Field::Z, ..Default::default() };
+            let hz2 = homology(&VtIndex::new(&k), &oz).unwrap();
+            prop_assert_eq!(&hz2.betti, &hz.betti);
+            prop_assert_eq!(&hz2.torsion, &hz.torsion);
+        }
+    }
+}
+
+/// Medium datasets: `$STARPLEX_DATA/medium/<name>/<name>.spx` with an oracle.
+fn medium_datasets() -> Vec<(String, std::path::PathBuf, serde_json::Value)> {
+    let Ok(d) = std::env::var("STARPLEX_DATA") else {
+        return vec![];
+    };
+    let mut out = Vec::new();
+    let Ok(rd) = std::fs::read_dir(std::path::Path::new(&d).join("medium")) else {
+        return out;
+    };
+    let mut dirs: Vec<_> = rd.flatten().map(|e| e.path()).collect();
+    dirs.sort();
+    for p in dirs {
+        let name = p.file_name().unwrap().to_string_lossy().into_owned();
+        let spx = p.join(format!("{name}.spx"));
+        let o = common_data::datasets_dir()
+            .join("oracle")
+            .join(format!("{name}.json"));
+        if let (true, Ok(text)) = (spx.is_file(), std::fs::read_to_string(o)) {
+            out.push((name, spx, serde_json::from_str(&text).unwrap()));
+        }
+    }
+    out
+}
+
+#[test]
+fn betti_z2_matches_the_oracles() {
+    let sets = common_data::small_datasets();
+    if sets.is_empty() && !common_data::data_required() {
+        eprintln!(
+            "SKIPPED: no small datasets at {} (set STARPLEX_SHARED to the shared/ directory)",
+            common_data::datasets_dir().display()
+        );
+        return;
+    }
+    let mut checked = 0;
+    for (name, path, o) in sets.into_iter().chain(medium_datasets()) {
+        let Some(want) = o.get("betti_z2").and_then(|b| b.as_array()) else {
+            continue;
+        };
+        let want: Vec<u64> = want.iter().map(|x| x.as_u64().unwrap()).collect();
+        let k = io::read(&path, &ReadOptions::default()).unwrap().complex;
+        let got = starplex::algo::homology::betti_z2(&k).unwrap();
+        assert_eq!(got, want, "{name}");
+        eprintln!("{name}: betti_z2 {got:?} (oracle)");
+        checked += 1;
+    }
+    assert!(
+        checked >= 9 || !common_data::data_required(),
+        "checked {checked}"
+    );
+}
