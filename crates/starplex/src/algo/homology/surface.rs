@@ -2,6 +2,8 @@
 //! A component is a surface when all its top cells are 2-cells (triangles, quads), every edge
 //! is in one or two of them, and the link of every vertex is one path or one cycle.
 use super::cells::{top_cell, Cell};
+use crate::algo::manifold::{Convention, Manifoldness, OwnedStar, StarTester};
+use crate::algo::orientation::orient_walk;
 use crate::algo::unionfind::UnionFind;
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
@@ -12,45 +14,6 @@ pub(crate) struct SurfaceFacts {
     pub is_surface: bool,
     pub orientable: bool,
     pub boundary_loops: u64,
-}
-
-struct ParityUf {
-    parent: Vec<u32>,
-    parity: Vec<u8>,
-}
-
-impl ParityUf {
-    fn find(&mut self, x: u32) -> (u32, u8) {
-        let mut root = x;
-        let mut par = 0u8;
-        while self.parent[root as usize] != root {
-            par ^= self.parity[root as usize];
-            root = self.parent[root as usize];
-        }
-        // path compression: every node on the way points at the root with its own parity
-        let mut cur = x;
-        let mut acc = 0u8;
-        while cur != root {
-            let next = self.parent[cur as usize];
-            let pc = self.parity[cur as usize];
-            self.parent[cur as usize] = root;
-            self.parity[cur as usize] = par ^ acc;
-            acc ^= pc;
-            cur = next;
-        }
-        (root, par)
-    }
-    /// Requires parity(a) ^ parity(b) == p; false on a contradiction.
-    fn union(&mut self, a: u32, b: u32, p: u8) -> bool {
-        let (ra, pa) = self.find(a);
-        let (rb, pb) = self.find(b);
-        if ra == rb {
-            return pa ^ pb == p;
-        }
-        self.parent[ra as usize] = rb;
-        self.parity[ra as usize] = pa ^ pb ^ p;
-        true
-    }
 }
 
 /// Surface facts per component (`label[v]` = component of vertex v).
@@ -97,10 +60,9 @@ pub(crate) fn surface_facts<S: TopCells + VertexStar + ?Sized>(
         }
     }
     edges.sort_unstable();
-    let mut puf = ParityUf {
-        parent: (0..s.n_top_cells() as u32).collect(),
-        parity: vec![0; s.n_top_cells()],
-    };
+    // pairs of 2-cells sharing an edge, with the product of their induced signs: the
+    // orientation is the shared walk of `algo::orientation`
+    let mut pairs: Vec<(u32, u32, i8)> = Vec::new();
     let mut buf_uf = UnionFind::new(nv);
     let mut on_boundary = vec![false; nv];
     let mut i = 0;
@@ -118,54 +80,45 @@ pub(crate) fn surface_facts<S: TopCells + VertexStar + ?Sized>(
             }
             2 => {
                 let (a, b) = (edges[i], edges[i + 1]);
-                let p = u8::from(a.3 == b.3);
-                if !puf.union(a.2, b.2, p) {
-                    facts[comp].orientable = false;
-                }
+                pairs.push((a.2, b.2, a.3 * b.3));
             }
             _ => facts[comp].is_surface = false,
         }
         i = j;
     }
-    // vertex links: one path or one cycle
+    // a component is orientable when the walk's signs agree on every one of its pairs
+    let nc = s.n_top_cells();
+    let is2 = |c: u32| s.top_cell_kind(CellId(c)).dim() == 2;
+    let walk = orient_walk(nc, is2, &pairs, |_| 1);
+    for &(a, b, rel) in &pairs {
+        if walk.signs[b as usize] != -walk.signs[a as usize] * rel {
+            let mut vs = Vec::new();
+            s.top_cell_vertices(CellId(a), &mut vs);
+            facts[label[vs[0].0 as usize] as usize].orientable = false;
+        }
+    }
+    // vertex links: one path or one cycle (the shared manifold test, local convention)
     let mut cells = Vec::new();
-    let mut nb: Vec<(u32, u32)> = Vec::new();
+    let mut star = OwnedStar::default();
+    let mut tester = StarTester::default();
+    let mut edges_at = Vec::new();
     for v in 0..nv as u32 {
         let comp = label[v as usize] as usize;
         if !facts[comp].is_surface {
             continue;
         }
         s.vertex_top_cells(VertexId(v), &mut cells);
-        nb.clear();
+        star.clear();
         for &c in &cells {
             verts.clear();
             s.top_cell_vertices(c, &mut verts);
-            let kind = s.top_cell_kind(c);
             let g: Vec<u32> = verts.iter().map(|x| x.0).collect();
-            buf.clear();
-            top_cell(kind, &g).facets(&mut buf);
-            let ends: Vec<u32> = buf
-                .iter()
-                .filter(|(e, _)| e.key.contains(&v))
-                .map(|(e, _)| if e.key[0] == v { e.key[1] } else { e.key[0] })
-                .collect();
-            if ends.len() == 2 {
-                nb.push((ends[0], ends[1]));
-            }
+            star.push(s.top_cell_kind(c), &g);
         }
-        // connectivity of the link graph
-        let mut ids: Vec<u32> = nb.iter().flat_map(|&(a, b)| [a, b]).collect();
-        ids.sort_unstable();
-        ids.dedup();
-        let mut uf = UnionFind::new(ids.len());
-        for &(a, b) in &nb {
-            let (ia, ib) = (
-                ids.binary_search(&a).unwrap_or(0) as u32,
-                ids.binary_search(&b).unwrap_or(0) as u32,
-            );
-            uf.union(ia, ib);
-        }
-        if uf.n_sets() > 1 {
+        edges_at.clear();
+        if tester.test_vertex(v, &star, Convention::Local, 2, &mut edges_at)
+            != Manifoldness::Manifold
+        {
             facts[comp].is_surface = false;
         }
     }
