@@ -549,6 +549,31 @@ pub(crate) fn oriented_facets_of(kind: CellKind, mut f: impl FnMut(&[u8], i8)) {
     }
 }
 
+/// Orientation of a listed facet relative to its sorted order: the parity of the sorting
+/// permutation, or for a polygon (CP facet) the cyclic direction.
+pub(crate) fn listed_sign(key: &[u32], polygon: bool) -> i8 {
+    let n = key.len();
+    if polygon {
+        let i = (0..n).min_by_key(|&i| key[i]).expect("non-empty");
+        let next = key[(i + 1) % n];
+        let prev = key[(i + n - 1) % n];
+        return if next < prev { 1 } else { -1 };
+    }
+    let mut inv = 0usize;
+    for i in 0..n {
+        for j in i + 1..n {
+            if key[i] > key[j] {
+                inv += 1;
+            }
+        }
+    }
+    if inv.is_multiple_of(2) {
+        1
+    } else {
+        -1
+    }
+}
+
 impl fmt::Display for CellKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.type_name())

@@ -33,7 +33,7 @@
 use crate::algo::components::components;
 use crate::algo::manifold::{complex_dim, singularities, Convention};
 use crate::algo::orientation::{orient_tops, Orientation};
-use crate::cell::{oriented_facets_of, CellKind};
+use crate::cell::{listed_sign, oriented_facets_of, CellKind};
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
 
@@ -298,31 +298,6 @@ fn facet_groups<S: TopCells + VertexStar + ?Sized>(
             f(&recs[i].0, &group);
             i = j;
         }
-    }
-}
-
-/// Orientation of a listed facet relative to its sorted order: the parity of the sorting
-/// permutation, or for a polygon (a CP facet) the cyclic direction.
-pub(crate) fn listed_sign(key: &[u32], polygon: bool) -> i8 {
-    let n = key.len();
-    if polygon {
-        let i = (0..n).min_by_key(|&i| key[i]).expect("non-empty");
-        let next = key[(i + 1) % n];
-        let prev = key[(i + n - 1) % n];
-        return if next < prev { 1 } else { -1 };
-    }
-    let mut inv = 0usize;
-    for i in 0..n {
-        for j in i + 1..n {
-            if key[i] > key[j] {
-                inv += 1;
-            }
-        }
-    }
-    if inv.is_multiple_of(2) {
-        1
-    } else {
-        -1
     }
 }
 

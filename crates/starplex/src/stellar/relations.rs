@@ -24,7 +24,7 @@
 use rayon::prelude::*;
 
 use super::{LeafView, StellarError, StellarTree};
-use crate::cell::{faces_of, oriented_facets_of, CellKind};
+use crate::cell::{faces_of, listed_sign, oriented_facets_of, CellKind};
 use crate::csr::Csr;
 use crate::ids::{CellId, LeafId, VertexId};
 use crate::topo::link::{LinkError, VertexLink};
@@ -1369,31 +1369,6 @@ pub(crate) fn unpack(x: u64) -> (u32, i8) {
 #[inline]
 pub(crate) fn unpack_facet(x: u64) -> u32 {
     ((x >> 32) & 0x7fff_ffff) as u32
-}
-
-/// Orientation of a listed facet relative to its sorted order: the parity of the sorting
-/// permutation, or for a polygon (CP facet) the cyclic direction.
-pub(crate) fn listed_sign(key: &[u32], polygon: bool) -> i8 {
-    let n = key.len();
-    if polygon {
-        let i = (0..n).min_by_key(|&i| key[i]).expect("non-empty");
-        let next = key[(i + 1) % n];
-        let prev = key[(i + n - 1) % n];
-        return if next < prev { 1 } else { -1 };
-    }
-    let mut inv = 0usize;
-    for i in 0..n {
-        for j in i + 1..n {
-            if key[i] > key[j] {
-                inv += 1;
-            }
-        }
-    }
-    if inv.is_multiple_of(2) {
-        1
-    } else {
-        -1
-    }
 }
 
 impl TopCells for StellarTree {
