@@ -384,37 +384,8 @@ impl CellKind {
     /// CellKind::Prism.for_each_face(2, |f| quads += (f.len() == 4) as usize);
     /// assert_eq!(quads, 3);
     /// ```
-    pub fn for_each_face(self, k: usize, mut f: impl FnMut(&[u8])) {
-        match self {
-            CellKind::Simplex(d) => {
-                let n = d as usize + 1;
-                if k + 1 > n {
-                    return;
-                }
-                let mut idx: Vec<u8> = (0..=k as u8).collect();
-                loop {
-                    f(&idx);
-                    // next combination
-                    let mut i = k as isize;
-                    while i >= 0 && idx[i as usize] as usize == n - (k + 1) + i as usize {
-                        i -= 1;
-                    }
-                    if i < 0 {
-                        return;
-                    }
-                    let i = i as usize;
-                    idx[i] += 1;
-                    for j in i + 1..=k {
-                        idx[j] = idx[j - 1] + 1;
-                    }
-                }
-            }
-            _ => {
-                if let Some(t) = self.cp_faces(k) {
-                    t.iter().for_each(|face| f(face));
-                }
-            }
-        }
+    pub fn for_each_face(self, k: usize, f: impl FnMut(&[u8])) {
+        faces_of(self, k, f)
     }
 
     /// The facets ((dim-1)-faces) with their induced orientation: `f(local_vertices, sign)`
@@ -431,24 +402,8 @@ impl CellKind {
     /// CellKind::Hex.for_each_oriented_facet(|f, s| { assert_eq!((f.len(), s), (4, 1)); n += 1; });
     /// assert_eq!(n, 6);
     /// ```
-    pub fn for_each_oriented_facet(self, mut f: impl FnMut(&[u8], i8)) {
-        match self {
-            CellKind::Simplex(0) => {}
-            CellKind::Simplex(d) => {
-                let n = d as usize + 1;
-                let mut buf: Vec<u8> = Vec::with_capacity(n - 1);
-                for i in 0..n {
-                    buf.clear();
-                    buf.extend((0..n as u8).filter(|&j| j as usize != i));
-                    f(&buf, if i % 2 == 0 { 1 } else { -1 });
-                }
-            }
-            _ => {
-                if let Some(t) = self.cp_faces(self.dim() - 1) {
-                    t.iter().for_each(|face| f(face, 1));
-                }
-            }
-        }
+    pub fn for_each_oriented_facet(self, f: impl FnMut(&[u8], i8)) {
+        oriented_facets_of(self, f)
     }
 
     /// Whether the sorted global vertex set `face` is a face of a cell of this kind with global
@@ -493,7 +448,8 @@ impl CellKind {
     }
 }
 
-/// [`CellKind::for_each_face`] without a heap allocation per call.
+/// The faces of dimension `p` of a cell of this kind, as local vertex indices, without a heap
+/// allocation (what [`CellKind::for_each_face`] calls).
 #[inline]
 pub(crate) fn faces_of(kind: CellKind, p: usize, mut f: impl FnMut(&[u8])) {
     match kind {
@@ -522,11 +478,16 @@ pub(crate) fn faces_of(kind: CellKind, p: usize, mut f: impl FnMut(&[u8])) {
                 }
             }
         }
-        _ => kind.for_each_face(p, f),
+        _ => {
+            if let Some(t) = kind.cp_faces(p) {
+                t.iter().for_each(|face| f(face));
+            }
+        }
     }
 }
 
-/// [`CellKind::for_each_oriented_facet`] without a heap allocation per call.
+/// The facets with their induced orientation, without a heap allocation (what
+/// [`CellKind::for_each_oriented_facet`] calls).
 #[inline]
 pub(crate) fn oriented_facets_of(kind: CellKind, mut f: impl FnMut(&[u8], i8)) {
     match kind {
@@ -545,7 +506,11 @@ pub(crate) fn oriented_facets_of(kind: CellKind, mut f: impl FnMut(&[u8], i8)) {
                 f(&buf[..n - 1], if i % 2 == 0 { 1 } else { -1 });
             }
         }
-        _ => kind.for_each_oriented_facet(f),
+        _ => {
+            if let Some(t) = kind.cp_faces(kind.dim() - 1) {
+                t.iter().for_each(|face| f(face, 1));
+            }
+        }
     }
 }
 
