@@ -701,6 +701,19 @@ fn read_classic_bin(
     Ok(())
 }
 
+/// The offset count of a version-5 `CELLS` header: cells + 1, at least 1, ids within 32 bits.
+fn check_offset_count(w: &Words<'_, impl BufRead>, n_off: u64) -> Result<(), IoError> {
+    if n_off == 0 {
+        return Err(w.err("CELLS declares 0 offsets (there must be cells + 1)"));
+    }
+    if n_off >= u32::MAX as u64 {
+        return Err(w.err(format!(
+            "cell count {n_off} exceeds the 32-bit id limit of starplex"
+        )));
+    }
+    Ok(())
+}
+
 /// Binary version-5 body: `OFFSETS type` then `CONNECTIVITY type` (the word `OFFSETS` already
 /// read), big-endian integers.
 fn read_offsets_bin(
@@ -711,14 +724,7 @@ fn read_offsets_bin(
     conn: &mut Vec<u32>,
     ends: &mut Vec<u64>,
 ) -> Result<(), IoError> {
-    if n_off == 0 {
-        return Err(w.err("CELLS declares 0 offsets (there must be cells + 1)"));
-    }
-    if n_off >= u32::MAX as u64 {
-        return Err(w.err(format!(
-            "cell count {n_off} exceeds the 32-bit id limit of starplex"
-        )));
-    }
+    check_offset_count(w, n_off)?;
     let ty = w.expect("the offsets' data type")?.to_vec();
     let Some((width, false)) = type_width(&ty) else {
         return Err(w.err(format!(
@@ -834,14 +840,7 @@ fn read_offsets_layout(
     conn: &mut Vec<u32>,
     ends: &mut Vec<u64>,
 ) -> Result<(), IoError> {
-    if n_off == 0 {
-        return Err(w.err("CELLS declares 0 offsets (there must be cells + 1)"));
-    }
-    if n_off >= u32::MAX as u64 {
-        return Err(w.err(format!(
-            "cell count {n_off} exceeds the 32-bit id limit of starplex"
-        )));
-    }
+    check_offset_count(w, n_off)?;
     w.expect("the offsets' data type")?;
     let mut prev = w.u64("an offset")?;
     if prev != 0 {
