@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes the binary-format test corpus of starplex (crates/starplex/tests/data/io/).
 
-Needs meshio and numpy (`python3 -m venv /tmp/iovenv && /tmp/iovenv/bin/pip install meshio numpy`).
+Needs meshio and numpy (`python3 -m venv /tmp/iovenv && /tmp/iovenv/bin/pip install meshio numpy`);
+with `vtk` installed too it also writes the `vtk_*.vtu` / `vtk_surface.vtp` files by VTK's own writer.
 
 - `mixed.json`: the reference mesh (points, cells by meshio type, VTK vertex order: meshio's
   own wedges are in gmsh's order, the mirror image, and are permuted here);
@@ -155,6 +156,141 @@ def corpus(out):
             mod.write(os.path.join(out, name), m, binary=binary)
     gmsh41_be(os.path.join(out, "mixed_41_be.msh"), m)
     gmsh22_be(os.path.join(out, "mixed_22_be.msh"), m)
+    # VTK XML by meshio: ascii, inline base64 uncompressed and zlib (UInt32 and UInt64 headers)
+    meshio.vtu.write(os.path.join(out, "mixed_ascii.vtu"), m, binary=False)
+    meshio.vtu.write(os.path.join(out, "mixed_b64.vtu"), m, binary=True, compression=None)
+    meshio.vtu.write(os.path.join(out, "mixed_b64_zlib.vtu"), m, binary=True, compression="zlib")
+    meshio.vtu.write(os.path.join(out, "mixed_b64_zlib64.vtu"), m, binary=True, compression="zlib",
+                     header_type="UInt64")
+    # VTK XML with appended data, as VTK/ParaView write it (meshio does not): raw and base64,
+    # plain and zlib, little- and big-endian
+    for enc, zlib, be, hdr in [("raw", False, False, "UInt32"), ("raw", True, False, "UInt64"),
+                               ("raw", False, True, "UInt64"), ("base64", True, True, "UInt32"),
+                               ("base64", False, False, "UInt64")]:
+        name = "mixed_app_%s%s%s.vtu" % (enc, "_zlib" if zlib else "", "_be" if be else "")
+        vtu_appended(os.path.join(out, name), m, enc, zlib, be, hdr)
+    vtp_surface(os.path.join(out, "surface.vtp"))
+    try:
+        import vtk  # noqa: F401  (a large wheel: only where it is installed)
+    except ImportError:
+        print("vtk is not installed: the VTK-written files are not regenerated")
+    else:
+        vtk_written(out)
+
+
+def vtk_written(out):
+    """The same mesh written by VTK itself (its default: appended raw zlib; inline binary; ascii;
+    lz4 is left out) and the poly data surface re-written by VTK."""
+    import vtk
+    r = vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(os.path.join(out, "mixed_b64_zlib.vtu"))
+    r.Update()
+    for name, mode, comp in [("vtk_appended_zlib.vtu", "appended", True),
+                             ("vtk_appended_raw.vtu", "appended", False),
+                             ("vtk_binary.vtu", "binary", True),
+                             ("vtk_ascii.vtu", "ascii", False)]:
+        w = vtk.vtkXMLUnstructuredGridWriter()
+        w.SetInputData(r.GetOutput())
+        w.SetFileName(os.path.join(out, name))
+        {"appended": w.SetDataModeToAppended, "binary": w.SetDataModeToBinary,
+         "ascii": w.SetDataModeToAscii}[mode]()
+        if comp:
+            w.SetCompressorTypeToZLib()
+        else:
+            w.SetCompressorTypeToNone()
+        w.Write()
+    p = vtk.vtkXMLPolyDataReader()
+    p.SetFileName(os.path.join(out, "surface.vtp"))
+    p.Update()
+    w = vtk.vtkXMLPolyDataWriter()
+    w.SetInputData(p.GetOutput())
+    w.SetFileName(os.path.join(out, "vtk_surface.vtp"))
+    w.Write()
+
+
+VTK_TYPE = {"line": 3, "triangle": 5, "quad": 9, "tetra": 10, "hexahedron": 12, "wedge": 13,
+            "pyramid": 14}
+
+
+def vtk_array(values, dtype, zlib, be, hdr):
+    """The bytes of one array in VTK's binary layout: header (size, or block table) and data."""
+    e = ">" if be else "<"
+    data = np.asarray(values, dtype=np.dtype(dtype).newbyteorder(e)).tobytes()
+    h = e + ("I" if hdr == "UInt32" else "Q")
+    if not zlib:
+        return struct.pack(h, len(data)), data
+    import zlib as z
+    block = 256  # small blocks, so the test files have several
+    chunks = [data[i:i + block] for i in range(0, len(data), block)] or [b""]
+    comp = [z.compress(c) for c in chunks]
+    last = len(chunks[-1]) if len(chunks[-1]) != block else 0
+    head = struct.pack(e + ("%d" % (3 + len(comp))) + h[1], len(comp), block, last,
+                       *[len(c) for c in comp])
+    return head, b"".join(comp)
+
+
+def vtu_appended(path, mesh, enc, zlib, be, hdr):
+    """A .vtu with appended data (raw or base64; header and data base64-encoded apart, like VTK)."""
+    import base64
+    vtk_order = lambda b: b.data[:, PRISM] if b.type == "wedge" else b.data
+    conn = np.concatenate([vtk_order(b).ravel() for b in mesh.cells])
+    sizes = np.concatenate([np.full(len(b.data), b.data.shape[1]) for b in mesh.cells])
+    types = np.concatenate([np.full(len(b.data), VTK_TYPE[b.type]) for b in mesh.cells])
+    arrays = [("Points", "", "Float64", 3, mesh.points.ravel()),
+              ("Cells", "connectivity", "Int64", 1, conn),
+              ("Cells", "offsets", "Int32", 1, np.cumsum(sizes)),
+              ("Cells", "types", "UInt8", 1, types),
+              ("PointData", "height", "Float32", 1, mesh.points[:, 2])]
+    blobs, offsets, at = [], [], 0
+    for sec, name, ty, nc, vals in arrays:
+        head, data = vtk_array(vals, {"Float64": "f8", "Float32": "f4", "Int64": "i8",
+                                      "Int32": "i4", "UInt8": "u1"}[ty], zlib, be, hdr)
+        blob = head + data if enc == "raw" else base64.b64encode(head) + base64.b64encode(data)
+        offsets.append(at)
+        blobs.append(blob)
+        at += len(blob)
+    da = lambda i: '<DataArray type="%s" Name="%s" NumberOfComponents="%d" format="appended" offset="%d"/>' % (
+        arrays[i][2], arrays[i][1], arrays[i][3], offsets[i])
+    comp = ' compressor="vtkZLibDataCompressor"' if zlib else ""
+    xml = ('<?xml version="1.0"?>\n<!-- written by make_io_corpus.py -->\n'
+           '<VTKFile type="UnstructuredGrid" version="1.0" byte_order="%s" header_type="%s"%s>\n'
+           '<UnstructuredGrid>\n<Piece NumberOfPoints="%d" NumberOfCells="%d">\n'
+           '<PointData Scalars="height">%s</PointData>\n'
+           '<Points>%s</Points>\n<Cells>%s%s%s</Cells>\n</Piece>\n</UnstructuredGrid>\n'
+           '<AppendedData encoding="%s">\n_' % (
+               "BigEndian" if be else "LittleEndian", hdr, comp, len(mesh.points), len(types),
+               da(4), da(0), da(1), da(2), da(3), enc))
+    with open(path, "wb") as f:
+        f.write(xml.encode())
+        f.write(b"".join(blobs))
+        f.write(b"\n</AppendedData>\n</VTKFile>\n")
+
+
+def vtp_surface(path):
+    """Poly data with every section: a vertex, a poly-line, a strip, a triangle; then a pentagon
+    and a quad in a second piece (its point ids start at 0; VTK 9's reader does not shift the ids
+    of a section that an earlier piece has no cells in, so the first piece has a polygon too)."""
+    piece = lambda pts, verts, lines, strips, polys: (
+        '<Piece NumberOfPoints="%d" NumberOfVerts="%d" NumberOfLines="%d" NumberOfStrips="%d" '
+        'NumberOfPolys="%d">\n<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">'
+        '%s</DataArray></Points>\n' % (len(pts), len(verts), len(lines), len(strips), len(polys),
+                                       " ".join("%g %g %g" % tuple(p) for p in pts))
+        + "".join(
+            '<%s><DataArray type="Int32" Name="connectivity" format="ascii">%s</DataArray>'
+            '<DataArray type="Int32" Name="offsets" format="ascii">%s</DataArray></%s>\n' % (
+                sec, " ".join(str(v) for c in cells for v in c),
+                " ".join(str(o) for o in np.cumsum([len(c) for c in cells])), sec)
+            for sec, cells in [("Verts", verts), ("Lines", lines), ("Strips", strips),
+                               ("Polys", polys)])
+        + "</Piece>\n")
+    grid = [(x, y, 0) for y in range(3) for x in range(4)]
+    p1 = piece(grid, [[11]], [[0, 1, 2, 3]], [[4, 8, 5, 9, 6, 10]], [[7, 11, 10]])
+    penta = [(0, 0, 1), (1, 0, 1), (1.5, 1, 1), (0.5, 2, 1), (-0.5, 1, 1), (3, 0, 1), (4, 0, 1),
+             (4, 1, 1), (3, 1, 1)]
+    p2 = piece(penta, [], [], [], [[0, 1, 2, 3, 4], [5, 6, 7, 8]])
+    with open(path, "w") as f:
+        f.write('<?xml version="1.0"?>\n<VTKFile type="PolyData" version="0.1" '
+                'byte_order="LittleEndian">\n<PolyData>\n%s%s</PolyData>\n</VTKFile>\n' % (p1, p2))
 
 
 def kuhn_grid(n):

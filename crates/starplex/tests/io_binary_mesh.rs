@@ -1,5 +1,6 @@
-//! Binary gmsh (2.2, 4.1; little- and big-endian) and binary legacy VTK (4.2 classic cells, 5.1
-//! offsets/connectivity) against the reference mesh of `scripts/make_io_corpus.py` (written by
+//! Binary gmsh (2.2, 4.1; little- and big-endian), binary legacy VTK (4.2 classic cells, 5.1
+//! offsets/connectivity) and VTK XML `.vtu` (ascii, inline base64, appended raw and base64, zlib,
+//! UInt32/UInt64 headers, both byte orders) against the reference mesh of `scripts/make_io_corpus.py` (written by
 //! meshio, or by hand where meshio does not write the variant): the same points and the same
 //! cells of each kind. Truncated or corrupted files are errors with a byte offset, never a
 //! panic.
@@ -8,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use starplex::cell::CellKind;
 use starplex::complex::IndexedComplex;
-use starplex::io::{self, gmsh, vtk, Location, ReadOptions};
+use starplex::io::{self, gmsh, vtk, vtu, Format, Location, ReadOptions};
 
 fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -92,13 +93,29 @@ const ASCII: [&str; 4] = [
     "mixed_42_ascii.vtk",
     "mixed_51_ascii.vtk",
 ];
+/// VTK XML files: meshio's (ascii, inline base64, zlib), VTK-style appended data written by the
+/// script, and VTK's own writer's (appended raw with and without zlib, inline binary, ascii).
+const VTU: [&str; 12] = [
+    "mixed_ascii.vtu",
+    "mixed_b64.vtu",
+    "mixed_b64_zlib.vtu",
+    "mixed_b64_zlib64.vtu",
+    "mixed_app_raw.vtu",
+    "mixed_app_raw_zlib.vtu",
+    "mixed_app_raw_be.vtu",
+    "mixed_app_base64.vtu",
+    "mixed_app_base64_zlib_be.vtu",
+    "vtk_appended_zlib.vtu",
+    "vtk_appended_raw.vtu",
+    "vtk_binary.vtu",
+];
 
 #[test]
 fn binary_files_read_the_reference_mesh() {
     let (pts, cells) = reference();
     let mut sorted_ref = pts.clone();
     sorted_ref.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    for name in BINARY.iter().chain(ASCII.iter()) {
+    for name in BINARY.iter().chain(ASCII.iter()).chain(VTU.iter()) {
         let r = io::read(&data(name), &ReadOptions::default())
             .unwrap_or_else(|e| panic!("{name}: {e}"));
         let k = &r.complex;
@@ -119,10 +136,30 @@ fn binary_files_read_the_reference_mesh() {
         ("mixed_42_bin.vtk", "mixed_42_ascii.vtk"),
         ("mixed_51_bin.vtk", "mixed_51_ascii.vtk"),
         ("mixed_22_be.msh", "mixed_42_bin.vtk"),
+        ("mixed_ascii.vtu", "mixed_42_bin.vtk"),
+        ("mixed_app_raw.vtu", "mixed_b64_zlib.vtu"),
+        ("mixed_app_base64_zlib_be.vtu", "mixed_b64.vtu"),
+        ("vtk_appended_zlib.vtu", "mixed_b64.vtu"),
+        ("vtk_surface.vtp", "surface.vtp"),
     ] {
         let kb = io::read(&data(b), &ReadOptions::default()).unwrap().complex;
         let ka = io::read(&data(a), &ReadOptions::default()).unwrap().complex;
         assert_eq!(kb, ka, "{b} vs {a}");
+    }
+    // VTK's ascii writer keeps 6 digits (and puts InformationKey elements in data arrays): the
+    // same cells, points within its precision
+    let ka = io::read(&data("vtk_ascii.vtu"), &ReadOptions::default())
+        .unwrap()
+        .complex;
+    let kb = io::read(&data("mixed_b64.vtu"), &ReadOptions::default())
+        .unwrap()
+        .complex;
+    assert_eq!(ka.blocks().len(), kb.blocks().len());
+    for (x, y) in ka.blocks().iter().zip(kb.blocks()) {
+        assert_eq!((x.kind, &x.vertices[..]), (y.kind, &y.vertices[..]));
+    }
+    for (x, y) in ka.coords().iter().zip(kb.coords()) {
+        assert!((x - y).abs() < 1e-5, "{x} {y}");
     }
 }
 
@@ -139,6 +176,8 @@ fn read_bytes(name: &str, b: &[u8]) -> Result<io::ReadResult, io::IoError> {
     let o = ReadOptions::default();
     if name.ends_with(".msh") {
         gmsh::read_from(b, name.as_ref(), &o)
+    } else if name.ends_with(".vtu") {
+        vtu::read_bytes(b, name.as_ref(), &o)
     } else {
         vtk::read_from(b, name.as_ref(), &o)
     }
@@ -146,7 +185,7 @@ fn read_bytes(name: &str, b: &[u8]) -> Result<io::ReadResult, io::IoError> {
 
 #[test]
 fn every_truncation_is_an_error_never_a_panic() {
-    for name in BINARY {
+    for name in BINARY.iter().chain(VTU.iter().skip(1)) {
         let bytes = std::fs::read(data(name)).unwrap();
         for cut in 0..bytes.len() {
             let r = read_bytes(name, &bytes[..cut]);
@@ -173,7 +212,7 @@ fn corrupted_bytes_never_panic() {
         seed ^= seed << 17;
         seed
     };
-    for name in BINARY {
+    for name in BINARY.iter().chain(VTU.iter()) {
         let bytes = std::fs::read(data(name)).unwrap();
         for _ in 0..400 {
             let mut b = bytes.clone();
@@ -213,4 +252,94 @@ fn binary_errors_name_a_byte() {
     let e = read_bytes("m.vtk", &b).unwrap_err();
     assert_eq!(e.location, Some(Location::Byte(body as u64 + 4)), "{e}");
     assert!(e.to_string().contains("out of range"), "{e}");
+}
+
+#[test]
+fn vtu_notes_the_data_arrays_it_skips_and_vtp_reads_every_section() {
+    let r = io::read(&data("mixed_app_raw.vtu"), &ReadOptions::default()).unwrap();
+    assert_eq!(r.format, Format::Vtu);
+    assert_eq!(
+        r.notes,
+        ["ignored the data arrays PointData 'height' (attributes are not read yet)"]
+    );
+    // two pieces: a vertex (dropped), a 3-edge poly-line, a 6-point strip (4 triangles), a
+    // triangle; a pentagon (3 triangles) and a quad
+    let r = io::read(&data("surface.vtp"), &ReadOptions::default()).unwrap();
+    assert_eq!(r.format, Format::Vtp);
+    let k = &r.complex;
+    assert_eq!(k.n_vertices(), 12 + 9);
+    let count = |kind| k.cells().filter(|c| c.kind == kind).count();
+    assert_eq!(count(CellKind::Simplex(1)), 3);
+    assert_eq!(count(CellKind::Simplex(2)), 4 + 1 + 3);
+    assert_eq!(count(CellKind::Quad), 1);
+    // the second piece's ids are shifted past the first piece's points
+    assert!(k
+        .cells()
+        .any(|c| c.kind == CellKind::Quad && c.vertices == [17, 18, 19, 20]));
+    // strips keep one orientation: the triangles of 4 8 5 9 are 4 8 5 and 8 5 9 flipped
+    assert!(k.cells().any(|c| c.vertices == [4, 8, 5]));
+    assert!(k.cells().any(|c| c.vertices == [5, 8, 9]));
+    assert_eq!(r.notes.len(), 4, "{:?}", r.notes);
+}
+
+#[test]
+fn vtu_and_vtp_round_trip_every_kind_they_hold() {
+    let mixed = io::read(&data("mixed_b64_zlib.vtu"), &ReadOptions::default())
+        .unwrap()
+        .complex;
+    let mut out = Vec::new();
+    vtu::write_vtu(&mut out, &mixed).unwrap();
+    let back = vtu::read_bytes(&out, "m.vtu".as_ref(), &ReadOptions::default()).unwrap();
+    assert_eq!(back.complex, mixed);
+    assert!(back.notes.is_empty(), "{:?}", back.notes);
+    // poly data refuses volume cells, holds the surface kinds
+    let e = vtu::write_vtp(&mut Vec::new(), &mixed).unwrap_err();
+    assert!(e.to_string().contains("write .vtu"), "{e}");
+    let surf = io::read(&data("surface.vtp"), &ReadOptions::default())
+        .unwrap()
+        .complex;
+    let mut out = Vec::new();
+    vtu::write_vtp(&mut out, &surf).unwrap();
+    let back = vtu::read_bytes(&out, "s.vtp".as_ref(), &ReadOptions::default()).unwrap();
+    assert_eq!(back.complex, surf);
+}
+
+#[test]
+fn vtu_errors_say_what_and_where() {
+    let o = ReadOptions::default();
+    let bad = |text: &str| {
+        vtu::read_bytes(text.as_bytes(), "b.vtu".as_ref(), &o)
+            .unwrap_err()
+            .to_string()
+    };
+    assert!(bad("").contains("empty"));
+    assert!(bad("<VTKFile type=\"ImageData\"/>").contains("ImageData"));
+    assert!(bad("<a><b></a>").contains("malformed XML"));
+    let head = |body: &str| {
+        format!(
+            "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"3\" NumberOfCells=\"1\">\
+             <Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0</DataArray></Points>\
+             <Cells>{body}</Cells></Piece></UnstructuredGrid></VTKFile>"
+        )
+    };
+    let da = |name: &str, ty: &str, v: &str| {
+        format!("<DataArray type=\"{ty}\" Name=\"{name}\" format=\"ascii\">{v}</DataArray>")
+    };
+    let cells = |conn: &str, offs: &str, types: &str| {
+        head(&format!(
+            "{}{}{}",
+            da("connectivity", "Int32", conn),
+            da("offsets", "Int32", offs),
+            da("types", "UInt8", types)
+        ))
+    };
+    assert!(bad(&cells("0 1 7", "3", "5")).contains("point 7, out of range"));
+    assert!(bad(&cells("0 1 -2", "3", "5")).contains("negative"));
+    assert!(bad(&cells("0 1 2", "4", "5")).contains("offsets must grow"));
+    assert!(bad(&cells("0 1 2", "3", "42")).contains("type 42 is not supported"));
+    assert!(bad(&cells("0 1 2", "3", "10")).contains("needs 4 points"));
+    assert!(bad(&cells("0 1 x", "3", "5")).contains("'x' is not a Int32 value"));
+    assert!(bad(&head(&da("connectivity", "Int32", "0 1 2"))).contains("no offsets"));
+    let ok = vtu::read_bytes(cells("0 1 2", "3", "5").as_bytes(), "g.vtu".as_ref(), &o).unwrap();
+    assert_eq!(ok.complex.n_cells(), 1);
 }

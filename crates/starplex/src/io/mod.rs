@@ -40,6 +40,7 @@ pub mod stellar_ref;
 pub mod stl;
 pub mod text;
 pub mod vtk;
+pub mod vtu;
 pub mod words;
 
 /// A file format starplex reads or writes.
@@ -76,6 +77,11 @@ pub enum Format {
     Medit,
     /// `.vtk` (legacy unstructured grid, ascii).
     Vtk,
+    /// `.vtu` (VTK XML unstructured grid; the reader also takes poly data).
+    Vtu,
+    /// `.vtp` (VTK XML poly data: points, lines, polygons; the reader also takes unstructured
+    /// grids).
+    Vtp,
     /// `.msh` (gmsh 2.2 and 4.1 ascii; written as 4.1).
     Gmsh,
     /// `.msh` written as gmsh 2.2 ascii (named `msh22` or `gmsh22`; reads as [`Format::Gmsh`]).
@@ -95,12 +101,12 @@ impl Format {
     ///
     /// ```
     /// use starplex::io::Format;
-    /// assert_eq!(Format::ALL.len(), 16);
+    /// assert_eq!(Format::ALL.len(), 18);
     /// let writable: Vec<String> = Format::ALL.iter().filter(|f| f.can_write()).map(|f| f.to_string()).collect();
     /// assert_eq!(writable, ["spx", "spb", "off", "off-simplices", "ply", "obj", "stl", "stl-binary",
-    ///                       "mesh", "vtk", "msh", "msh22"]);
+    ///                       "mesh", "vtk", "vtu", "vtp", "msh", "msh22"]);
     /// ```
-    pub const ALL: [Format; 16] = [
+    pub const ALL: [Format; 18] = [
         Format::Spx,
         Format::Binary,
         Format::Off,
@@ -111,6 +117,8 @@ impl Format {
         Format::StlBinary,
         Format::Medit,
         Format::Vtk,
+        Format::Vtu,
+        Format::Vtp,
         Format::Gmsh,
         Format::Gmsh22,
         Format::Tri,
@@ -155,6 +163,8 @@ impl Format {
             "stl-binary" | "stlb" => Format::StlBinary,
             "mesh" | "medit" => Format::Medit,
             "vtk" => Format::Vtk,
+            "vtu" => Format::Vtu,
+            "vtp" => Format::Vtp,
             "msh" | "gmsh" | "msh4" | "msh41" | "gmsh4" | "gmsh41" => Format::Gmsh,
             "msh2" | "msh22" | "gmsh2" | "gmsh22" => Format::Gmsh22,
             "tri" => Format::Tri,
@@ -175,6 +185,7 @@ impl Format {
     /// assert_eq!(Format::sniff(b"# vtk DataFile Version 5.1\n"), Some(Format::Vtk));
     /// assert_eq!(Format::sniff(b"COFF\n3 1 0\n"), Some(Format::Off));
     /// assert_eq!(Format::sniff(b"ply\nformat ascii 1.0\n"), Some(Format::Ply));
+    /// assert_eq!(Format::sniff(b"<?xml version=\"1.0\"?>\n<VTKFile"), Some(Format::Vtu));
     /// assert_eq!(Format::sniff(b"hello"), None);
     /// ```
     pub fn sniff(head: &[u8]) -> Option<Format> {
@@ -193,6 +204,10 @@ impl Format {
         }
         if starts(b"# vtk DataFile") {
             return Some(Format::Vtk);
+        }
+        if starts(b"<?xml") || starts(b"<VTKFile") {
+            // one reader takes both kinds of VTK XML file
+            return Some(Format::Vtu);
         }
         if starts(b"MeshVersionFormatted") {
             return Some(Format::Medit);
@@ -232,6 +247,8 @@ impl Format {
             Format::Stl | Format::StlBinary => "stl",
             Format::Medit => "mesh",
             Format::Vtk => "vtk",
+            Format::Vtu => "vtu",
+            Format::Vtp => "vtp",
             Format::Gmsh | Format::Gmsh22 => "msh",
             Format::Tri => "tri",
             Format::Ts => "ts",
@@ -320,7 +337,7 @@ pub enum IoErrorKind {
     #[error("{0}")]
     Complex(#[from] ComplexError),
     /// The extension names no known format.
-    #[error("unknown format for '{0}': use one of spx spb off ply obj stl mesh vtk msh tri ts sierp hex, or --format (msh22 writes gmsh 2.2)")]
+    #[error("unknown format for '{0}': use one of spx spb off ply obj stl mesh vtk vtu vtp msh tri ts sierp hex, or --format (msh22 writes gmsh 2.2)")]
     UnknownFormat(String),
     /// Standard input or output (`-`) was given without a format: nothing names it.
     #[error("{what} has no extension: say its format with {flag} (e.g. {flag} off)")]
@@ -616,12 +633,16 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
         Format::Stl | Format::StlBinary => stl::read(path, opts),
         Format::Medit => medit::read(path, opts),
         Format::Vtk => vtk::read(path, opts),
+        Format::Vtu | Format::Vtp => vtu::read(path, opts),
         Format::Gmsh | Format::Gmsh22 => gmsh::read(path, opts),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             stellar_ref::read(path, format, opts)
         }
     }?;
-    r.format = format;
+    if !matches!(format, Format::Vtu | Format::Vtp) {
+        // (a VTK XML file says itself whether it is an unstructured grid or poly data)
+        r.format = format;
+    }
     Ok(r)
 }
 
@@ -690,6 +711,7 @@ pub fn read_stream(
         Format::Obj => obj::read_from(r, path, opts),
         Format::Medit => medit::read_from(r, path, opts),
         Format::Vtk => vtk::read_from(r, path, opts),
+        Format::Vtu | Format::Vtp => vtu::read_from(r, path, opts),
         Format::Gmsh | Format::Gmsh22 => gmsh::read_from(r, path, opts),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             stellar_ref::read_from(r, path, format, opts)
@@ -752,6 +774,8 @@ pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> R
         Format::StlBinary => atomic_write(path, |w| stl::write_binary(w, complex)),
         Format::Medit => atomic_write(path, |w| medit::write(w, complex)),
         Format::Vtk => atomic_write(path, |w| vtk::write(w, complex)),
+        Format::Vtu => atomic_write(path, |w| vtu::write_vtu(w, complex)),
+        Format::Vtp => atomic_write(path, |w| vtu::write_vtp(w, complex)),
         Format::Gmsh => atomic_write(path, |w| gmsh::write(w, complex)),
         Format::Gmsh22 => atomic_write(path, |w| gmsh::write_22(w, complex)),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
@@ -792,6 +816,8 @@ pub fn check_writable(complex: &IndexedComplex, format: Format) -> Result<(), Io
         Format::Stl | Format::StlBinary => stl::check(complex, format),
         Format::Medit => medit::check(complex),
         Format::Vtk => vtk::check(complex),
+        Format::Vtu => vtu::check(complex, false),
+        Format::Vtp => vtu::check(complex, true),
         Format::Gmsh | Format::Gmsh22 => gmsh::check_writable(complex, format),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => Err(IoErrorKind::CannotWrite {
             format,

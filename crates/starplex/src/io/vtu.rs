@@ -1,0 +1,1344 @@
+//! VTK XML: `.vtu` (unstructured grid) and `.vtp` (poly data), read and written.
+//!
+//! The reader takes what VTK, ParaView and meshio write: `ascii`, inline `binary` (base64) and
+//! `appended` data (`raw` or `base64`), with or without zlib compression, `UInt32` or `UInt64`
+//! headers, either byte order, several `Piece`s (concatenated, their point ids shifted). Cells:
+//! - unstructured grids: VTK cell types 1–14 (vertex and poly-vertex cells are dropped, their points
+//!   stay as vertices; poly-lines become edges, triangle strips triangles, polygons triangles or
+//!   quads like OFF faces, pixels and voxels quads and hexahedra in starplex's corner order);
+//! - poly data: `Verts` (dropped as above), `Lines`, `Strips` and `Polys`.
+//!
+//! Point and cell data arrays are not read yet (they are listed in [`ReadResult::notes`]).
+//! Whatever changed is said in the notes. The parser is `quick-xml` on the XML part of the file;
+//! raw appended data (not XML) is addressed by its offsets.
+//!
+//! The writer writes `.vtu` (every cell kind VTK has: simplices up to tetrahedra, quads, hexahedra,
+//! prisms, pyramids) and `.vtp` (points, edges, triangles, quads), with little-endian raw appended
+//! data and `UInt64` headers: compact, exact (coordinates as `Float64`) and read by VTK, ParaView
+//! and meshio.
+//!
+//! ```
+//! use starplex::cell::CellKind;
+//! use starplex::complex::IndexedComplex;
+//! use starplex::io::{vtu, ReadOptions};
+//! let tet = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.].into(),
+//!     vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
+//! let mut out = Vec::new();
+//! vtu::write_vtu(&mut out, &tet).unwrap();
+//! let back = vtu::read_bytes(&out, "t.vtu".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(back.complex, tet);
+//! // an ascii file as another tool writes it
+//! let xml = r#"<?xml version="1.0"?>
+//! <VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">
+//!  <PolyData><Piece NumberOfPoints="4" NumberOfPolys="1">
+//!   <Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">
+//!     0 0 0  1 0 0  1 1 0  0 1 0 </DataArray></Points>
+//!   <Polys><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2 3</DataArray>
+//!          <DataArray type="Int32" Name="offsets" format="ascii">4</DataArray></Polys>
+//!  </Piece></PolyData></VTKFile>"#;
+//! let r = vtu::read_bytes(xml.as_bytes(), "q.vtp".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(r.complex.blocks()[0].kind, CellKind::Quad);
+//! ```
+use std::borrow::Cow;
+use std::io::{Read, Write};
+use std::path::Path;
+
+use base64::Engine as _;
+use quick_xml::events::{BytesStart, Event};
+
+use super::medit::push_build_notes;
+use super::vtk::vtk_type;
+use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::cell::CellKind;
+use crate::complex::{ComplexBuilder, IndexedComplex};
+
+/// Reads a `.vtu` or `.vtp` file (the whole file is read into memory first).
+///
+/// ```
+/// use starplex::io::{vtu, ReadOptions};
+/// let e = vtu::read("/no/such/mesh.vtu".as_ref(), &ReadOptions::default()).unwrap_err();
+/// assert!(e.to_string().starts_with("/no/such/mesh.vtu"));
+/// ```
+///
+/// # Errors
+/// OS errors, and every error of [`read_bytes`].
+pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let data = std::fs::read(path).map_err(|e| IoError::new(path, e))?;
+    read_bytes(&data, path, opts)
+}
+
+/// Reads a `.vtu` or `.vtp` file from a stream (standard input, a gzip decoder).
+///
+/// ```
+/// use starplex::io::{vtu, ReadOptions};
+/// let e = vtu::read_from(&b"<VTKFile type=\"ImageData\"></VTKFile>"[..], "x.vtu".as_ref(),
+///                        &ReadOptions::default()).unwrap_err();
+/// assert!(e.to_string().contains("ImageData"), "{e}");
+/// ```
+///
+/// # Errors
+/// OS errors, and every error of [`read_bytes`].
+pub fn read_from(mut r: impl Read, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    let mut data = Vec::new();
+    r.read_to_end(&mut data)
+        .map_err(|e| IoError::new(path, e))?;
+    read_bytes(&data, path, opts)
+}
+
+/// A parse error at byte `pos`.
+fn perr(path: &Path, pos: usize, msg: impl Into<String>) -> IoError {
+    IoError::parse(path, Some(Location::Byte(pos as u64)), msg)
+}
+
+/// One `<DataArray>` of the file.
+#[derive(Clone, Debug)]
+struct ArraySpec<'a> {
+    /// The section holding it (`Points`, `Cells`, `Polys`, `PointData`, ...).
+    section: String,
+    /// Its `Name` attribute (empty when absent).
+    name: String,
+    /// Its `type` (`Float32`, `Int64`, ...).
+    ty: String,
+    /// `NumberOfComponents` (1 when absent).
+    n_comp: usize,
+    /// `ascii`, `binary` or `appended`.
+    format: String,
+    /// `offset` into the appended data.
+    offset: Option<usize>,
+    /// The element's text (ascii numbers or base64).
+    text: Cow<'a, str>,
+    /// Byte position of the element in the file (for errors).
+    pos: usize,
+}
+
+/// One `<Piece>`: its counts and arrays.
+#[derive(Debug, Default)]
+struct Piece<'a> {
+    n_points: usize,
+    arrays: Vec<ArraySpec<'a>>,
+    pos: usize,
+}
+
+/// What the `<VTKFile>` element says.
+#[derive(Debug)]
+struct Header {
+    poly: bool,
+    big_endian: bool,
+    header_u64: bool,
+    zlib: bool,
+}
+
+/// The appended data block: where it starts and how it is encoded.
+struct Appended<'a> {
+    data: &'a [u8],
+    start: usize,
+    base64: bool,
+}
+
+/// Reads a `.vtu` or `.vtp` file held in memory.
+///
+/// ```
+/// use starplex::io::{vtu, ReadOptions};
+/// let bad = br#"<VTKFile type="UnstructuredGrid"><UnstructuredGrid><Piece NumberOfPoints="1" NumberOfCells="0">
+///   <Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0</DataArray></Points>
+///   </Piece></UnstructuredGrid></VTKFile>"#;
+/// let e = vtu::read_bytes(bad, "p.vtu".as_ref(), &ReadOptions::default()).unwrap_err();
+/// assert!(e.to_string().contains("holds 2 values, expected 3"), "{e}");
+/// ```
+///
+/// # Errors
+/// Malformed XML, a dataset other than an unstructured grid or poly data, arrays that are missing,
+/// of the wrong length or type, undecodable base64 or zlib data, unsupported compressors or cell
+/// types, and the checks of [`ComplexBuilder::build`], each with the byte position in the file.
+pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
+    if data.iter().all(|b| b.is_ascii_whitespace()) {
+        return Err(perr(path, 0, "the file is empty"));
+    }
+    // The XML part ends where raw appended data may begin.
+    let tag = memchr::memmem::find(data, b"<AppendedData");
+    let xml_end = tag.map_or(data.len(), |t| {
+        memchr::memchr(b'>', &data[t..]).map_or(data.len(), |g| t + g + 1)
+    });
+    let xml = match std::str::from_utf8(&data[..xml_end]) {
+        Ok(s) => s,
+        Err(e) => {
+            return Err(perr(
+                path,
+                e.valid_up_to(),
+                "not a VTK XML file: the XML part is not text (UTF-8)",
+            ))
+        }
+    };
+    let mut reader = quick_xml::Reader::from_str(xml);
+    let mut header: Option<Header> = None;
+    let mut pieces: Vec<Piece<'_>> = Vec::new();
+    let mut stack: Vec<String> = Vec::new();
+    let mut current: Option<ArraySpec<'_>> = None;
+    let mut appended_encoding: Option<String> = None;
+    let mut notes = Vec::new();
+    loop {
+        let pos = reader.buffer_position() as usize;
+        let ev = reader.read_event().map_err(|e| {
+            perr(
+                path,
+                reader.error_position() as usize,
+                format!("malformed XML: {e}"),
+            )
+        })?;
+        match ev {
+            Event::Start(e) | Event::Empty(e) if e.local_name().as_ref() == "AppendedData" => {
+                appended_encoding =
+                    Some(attr(&e, "encoding", path, pos)?.unwrap_or_else(|| "raw".into()));
+                break;
+            }
+            Event::Start(e) => {
+                let name = e.local_name().as_ref().to_string();
+                open(
+                    &e,
+                    &name,
+                    pos,
+                    path,
+                    &stack,
+                    &mut header,
+                    &mut pieces,
+                    &mut current,
+                )?;
+                stack.push(name);
+            }
+            Event::Empty(e) => {
+                let name = e.local_name().as_ref().to_string();
+                open(
+                    &e,
+                    &name,
+                    pos,
+                    path,
+                    &stack,
+                    &mut header,
+                    &mut pieces,
+                    &mut current,
+                )?;
+                close(&name, &mut pieces, &mut current);
+            }
+            Event::End(e) => {
+                let name = e.local_name().as_ref().to_string();
+                if stack.pop().as_deref() != Some(name.as_str()) {
+                    return Err(perr(path, pos, format!("unexpected closing tag </{name}>")));
+                }
+                close(&name, &mut pieces, &mut current);
+            }
+            // (text directly inside a DataArray: not in its InformationKey children)
+            Event::Text(t) if stack.last().is_some_and(|n| n == "DataArray") => {
+                if let Some(a) = current.as_mut() {
+                    let s = t.into_inner();
+                    if a.text.is_empty() {
+                        a.text = s;
+                    } else {
+                        a.text.to_mut().push_str(&s);
+                    }
+                }
+            }
+            Event::CData(t) if stack.last().is_some_and(|n| n == "DataArray") => {
+                if let Some(a) = current.as_mut() {
+                    let s = t.into_inner();
+                    a.text.to_mut().push_str(&s);
+                }
+            }
+            Event::GeneralRef(_) if current.is_some() => {
+                return Err(perr(path, pos, "an XML entity inside a data array"));
+            }
+            Event::Eof => break,
+            _ => {}
+        }
+    }
+    let Some(header) = header else {
+        return Err(perr(
+            path,
+            0,
+            "not a VTK XML file: it has no <VTKFile> element",
+        ));
+    };
+    let appended = match appended_encoding {
+        None => None,
+        Some(enc) => {
+            let base64 = match enc.as_str() {
+                "raw" => false,
+                "base64" => true,
+                other => {
+                    return Err(perr(
+                        path,
+                        xml_end,
+                        format!("unknown AppendedData encoding '{other}' (expected raw or base64)"),
+                    ))
+                }
+            };
+            let Some(u) = memchr::memchr(b'_', &data[xml_end..]) else {
+                return Err(perr(path, xml_end, "the AppendedData has no '_' marker"));
+            };
+            Some(Appended {
+                data,
+                start: xml_end + u + 1,
+                base64,
+            })
+        }
+    };
+    if pieces.is_empty() {
+        return Err(perr(path, 0, "the file has no <Piece>"));
+    }
+    let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
+    let mut stats = CellStats::default();
+    let mut skipped_data: Vec<String> = Vec::new();
+    for piece in &pieces {
+        let base = b.n_vertices() as u64;
+        let find = |section: &str, name: Option<&str>| {
+            piece
+                .arrays
+                .iter()
+                .find(|a| a.section == section && name.is_none_or(|n| a.name == n))
+        };
+        // points
+        if piece.n_points > 0 {
+            let Some(p) = find("Points", None) else {
+                return Err(perr(
+                    path,
+                    piece.pos,
+                    "the piece has points but no <Points> array",
+                ));
+            };
+            if p.n_comp != 3 {
+                return Err(perr(
+                    path,
+                    p.pos,
+                    format!("points have {} components, VTK points have 3", p.n_comp),
+                ));
+            }
+            let xs = decode_f64(p, &header, appended.as_ref(), path)?;
+            if xs.len() != 3 * piece.n_points {
+                return Err(perr(
+                    path,
+                    p.pos,
+                    format!(
+                        "the Points array holds {} values, expected {} (3 per point, NumberOfPoints=\"{}\")",
+                        xs.len(),
+                        3 * piece.n_points,
+                        piece.n_points
+                    ),
+                ));
+            }
+            for q in xs.chunks_exact(3) {
+                b.push_vertex(q).map_err(|e| IoError::new(path, e))?;
+            }
+        }
+        let nv = piece.n_points as u64;
+        let sections: &[&str] = if header.poly {
+            &["Verts", "Lines", "Strips", "Polys"]
+        } else {
+            &["Cells"]
+        };
+        for &sec in sections {
+            let Some(conn) = find(sec, Some("connectivity")) else {
+                continue;
+            };
+            let Some(offs) = find(sec, Some("offsets")) else {
+                return Err(perr(
+                    path,
+                    conn.pos,
+                    format!("<{sec}> has connectivity but no offsets"),
+                ));
+            };
+            let conn_v = decode_index(conn, &header, appended.as_ref(), path, nv)?;
+            let offs_v = decode_index(offs, &header, appended.as_ref(), path, u64::MAX)?;
+            let types_v = if sec == "Cells" {
+                let Some(t) = find(sec, Some("types")) else {
+                    return Err(perr(path, conn.pos, "<Cells> has no types array"));
+                };
+                let v = decode_index(t, &header, appended.as_ref(), path, u64::MAX)?;
+                if v.len() != offs_v.len() {
+                    return Err(perr(
+                        path,
+                        t.pos,
+                        format!(
+                            "{} cell types for {} cells (offsets)",
+                            v.len(),
+                            offs_v.len()
+                        ),
+                    ));
+                }
+                Some(v)
+            } else {
+                None
+            };
+            let mut start = 0u64;
+            let mut verts: Vec<u32> = Vec::new();
+            for (i, &end) in offs_v.iter().enumerate() {
+                if end < start || end > conn_v.len() as u64 {
+                    return Err(perr(
+                        path,
+                        offs.pos,
+                        format!(
+                            "<{sec}> offset {i} is {end}: offsets must grow and stay within the {} connectivity entries",
+                            conn_v.len()
+                        ),
+                    ));
+                }
+                verts.clear();
+                verts.extend(
+                    conn_v[start as usize..end as usize]
+                        .iter()
+                        .map(|&v| (v + base) as u32),
+                );
+                start = end;
+                let ty = match (&types_v, sec) {
+                    (Some(t), _) => t[i],
+                    (None, "Verts") => 2,
+                    (None, "Lines") => 4,
+                    (None, "Strips") => 6,
+                    _ => 7,
+                };
+                push_cell(&mut b, &mut stats, ty, &verts)
+                    .map_err(|m| perr(path, conn.pos, format!("<{sec}> cell {i}: {m}")))?;
+            }
+        }
+        for a in &piece.arrays {
+            if a.section == "PointData" || a.section == "CellData" {
+                let label = format!("{} '{}'", a.section, a.name);
+                if !skipped_data.contains(&label) {
+                    skipped_data.push(label);
+                }
+            }
+        }
+    }
+    stats.notes(&mut notes);
+    if !skipped_data.is_empty() {
+        notes.push(format!(
+            "ignored the data arrays {} (attributes are not read yet)",
+            skipped_data.join(", ")
+        ));
+    }
+    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    push_build_notes(&mut notes, &report);
+    Ok(ReadResult {
+        complex,
+        format: if header.poly {
+            Format::Vtp
+        } else {
+            Format::Vtu
+        },
+        notes,
+    })
+}
+
+/// The value of attribute `key` of element `e`.
+fn attr(e: &BytesStart<'_>, key: &str, path: &Path, pos: usize) -> Result<Option<String>, IoError> {
+    for a in e.attributes() {
+        let a = a.map_err(|err| perr(path, pos, format!("malformed XML attribute: {err}")))?;
+        if a.key.as_ref() == key {
+            let v = a
+                .normalized_value(quick_xml::XmlVersion::Implicit1_0)
+                .map_err(|err| perr(path, pos, format!("malformed XML attribute: {err}")))?;
+            return Ok(Some(v.trim().to_string()));
+        }
+    }
+    Ok(None)
+}
+
+/// A count attribute (`NumberOfPoints`, ...), 0 when absent.
+fn count_attr(e: &BytesStart<'_>, key: &str, path: &Path, pos: usize) -> Result<usize, IoError> {
+    match attr(e, key, path, pos)? {
+        None => Ok(0),
+        Some(v) => v.parse::<u32>().map(|n| n as usize).map_err(|_| {
+            perr(
+                path,
+                pos,
+                format!("{key}=\"{v}\" is not a count (a whole number below 2^32)"),
+            )
+        }),
+    }
+}
+
+/// Handles an opening tag.
+#[allow(clippy::too_many_arguments)]
+fn open<'a>(
+    e: &BytesStart<'_>,
+    name: &str,
+    pos: usize,
+    path: &Path,
+    stack: &[String],
+    header: &mut Option<Header>,
+    pieces: &mut Vec<Piece<'a>>,
+    current: &mut Option<ArraySpec<'a>>,
+) -> Result<(), IoError> {
+    match name {
+        "VTKFile" => {
+            let ty = attr(e, "type", path, pos)?.unwrap_or_default();
+            let poly = match ty.as_str() {
+                "UnstructuredGrid" => false,
+                "PolyData" => true,
+                other => {
+                    return Err(perr(
+                        path,
+                        pos,
+                        format!(
+                            "VTK XML dataset type '{other}' is not a mesh starplex reads (UnstructuredGrid .vtu or PolyData .vtp)"
+                        ),
+                    ))
+                }
+            };
+            let big_endian = match attr(e, "byte_order", path, pos)?.as_deref() {
+                None | Some("LittleEndian") => false,
+                Some("BigEndian") => true,
+                Some(o) => return Err(perr(path, pos, format!("unknown byte_order '{o}'"))),
+            };
+            let header_u64 = match attr(e, "header_type", path, pos)?.as_deref() {
+                None | Some("UInt32") => false,
+                Some("UInt64") => true,
+                Some(o) => return Err(perr(path, pos, format!("unknown header_type '{o}'"))),
+            };
+            let zlib = match attr(e, "compressor", path, pos)?.as_deref() {
+                None | Some("") => false,
+                Some("vtkZLibDataCompressor") => true,
+                Some(o) => {
+                    return Err(perr(
+                        path,
+                        pos,
+                        format!(
+                            "compressor {o} is not supported (starplex reads zlib and uncompressed files): re-save with zlib or no compression"
+                        ),
+                    ))
+                }
+            };
+            *header = Some(Header {
+                poly,
+                big_endian,
+                header_u64,
+                zlib,
+            });
+        }
+        "Piece" => {
+            if header.is_none() {
+                return Err(perr(path, pos, "<Piece> outside a <VTKFile>"));
+            }
+            pieces.push(Piece {
+                n_points: count_attr(e, "NumberOfPoints", path, pos)?,
+                arrays: Vec::new(),
+                pos,
+            });
+        }
+        "DataArray" => {
+            if pieces.is_empty() {
+                return Err(perr(path, pos, "<DataArray> outside a <Piece>"));
+            }
+            let section = stack.last().cloned().unwrap_or_default();
+            let n_comp = match attr(e, "NumberOfComponents", path, pos)? {
+                None => 1,
+                Some(v) => match v.parse::<usize>() {
+                    Ok(n) if (1..=1024).contains(&n) => n,
+                    _ => {
+                        return Err(perr(
+                            path,
+                            pos,
+                            format!("NumberOfComponents=\"{v}\" is not a count from 1 to 1024"),
+                        ))
+                    }
+                },
+            };
+            let offset = match attr(e, "offset", path, pos)? {
+                None => None,
+                Some(v) => Some(v.parse::<usize>().map_err(|_| {
+                    perr(path, pos, format!("offset=\"{v}\" is not a byte offset"))
+                })?),
+            };
+            *current = Some(ArraySpec {
+                section,
+                name: attr(e, "Name", path, pos)?.unwrap_or_default(),
+                ty: attr(e, "type", path, pos)?.unwrap_or_default(),
+                n_comp,
+                format: attr(e, "format", path, pos)?.unwrap_or_else(|| "ascii".into()),
+                offset,
+                text: Cow::Borrowed(""),
+                pos,
+            });
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Handles a closing tag.
+fn close<'a>(name: &str, pieces: &mut [Piece<'a>], current: &mut Option<ArraySpec<'a>>) {
+    if name == "DataArray" {
+        if let (Some(a), Some(p)) = (current.take(), pieces.last_mut()) {
+            p.arrays.push(a);
+        }
+    }
+}
+
+/// Bytes per value of a VTK XML data type, and whether it is a float, signed integer.
+fn type_info(ty: &str) -> Option<(usize, Kind)> {
+    Some(match ty {
+        "Int8" => (1, Kind::Int),
+        "UInt8" => (1, Kind::UInt),
+        "Int16" => (2, Kind::Int),
+        "UInt16" => (2, Kind::UInt),
+        "Int32" => (4, Kind::Int),
+        "UInt32" => (4, Kind::UInt),
+        "Int64" => (8, Kind::Int),
+        "UInt64" => (8, Kind::UInt),
+        "Float32" => (4, Kind::Float),
+        "Float64" => (8, Kind::Float),
+        _ => return None,
+    })
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Int,
+    UInt,
+    Float,
+}
+
+/// A decoded value (integer or float).
+enum Val {
+    I(i64),
+    U(u64),
+    F(f64),
+}
+
+/// Calls `f` on every value of array `a`, in order.
+fn for_each_value(
+    a: &ArraySpec<'_>,
+    h: &Header,
+    app: Option<&Appended<'_>>,
+    path: &Path,
+    mut f: impl FnMut(Val) -> Result<(), String>,
+) -> Result<(), IoError> {
+    let Some((width, kind)) = type_info(&a.ty) else {
+        return Err(perr(
+            path,
+            a.pos,
+            format!(
+                "data type '{}' of array '{}' is not a VTK number type (Int8..UInt64, Float32, Float64)",
+                a.ty, a.name
+            ),
+        ));
+    };
+    let here = |m: String| {
+        perr(
+            path,
+            a.pos,
+            format!("array '{}' in <{}>: {m}", a.name, a.section),
+        )
+    };
+    if a.format == "ascii" {
+        for tok in a.text.split_ascii_whitespace() {
+            let v = match kind {
+                Kind::Float => fast_float2::parse::<f64, _>(tok).ok().map(Val::F),
+                Kind::Int => tok.parse::<i64>().ok().map(Val::I),
+                Kind::UInt => tok.parse::<u64>().ok().map(Val::U),
+            };
+            let Some(v) = v else {
+                return Err(here(format!("'{}' is not a {} value", shown(tok), a.ty)));
+            };
+            f(v).map_err(here)?;
+        }
+        return Ok(());
+    }
+    let bytes: Vec<u8> = match a.format.as_str() {
+        "binary" => {
+            let t: String = a.text.split_ascii_whitespace().collect();
+            decode_base64_array(t.as_bytes(), h).map_err(here)?
+        }
+        "appended" => {
+            let Some(app) = app else {
+                return Err(here(
+                    "format=\"appended\" but the file has no <AppendedData>".into(),
+                ));
+            };
+            let Some(off) = a.offset else {
+                return Err(here("format=\"appended\" without an offset".into()));
+            };
+            let Some(at) = app.start.checked_add(off).filter(|&s| s <= app.data.len()) else {
+                return Err(here(format!("offset {off} is past the end of the file")));
+            };
+            let rest = &app.data[at..];
+            if app.base64 {
+                decode_base64_array(base64_prefix(rest), h).map_err(here)?
+            } else {
+                decode_raw_array(rest, h).map_err(here)?
+            }
+        }
+        other => {
+            return Err(here(format!(
+                "unknown format '{other}' (expected ascii, binary or appended)"
+            )))
+        }
+    };
+    if !bytes.len().is_multiple_of(width) {
+        return Err(here(format!(
+            "{} bytes of data are not whole {} values",
+            bytes.len(),
+            a.ty
+        )));
+    }
+    let be = h.big_endian;
+    for c in bytes.chunks_exact(width) {
+        let mut w = [0u8; 8];
+        w[..width].copy_from_slice(c);
+        if be {
+            w[..width].reverse();
+        }
+        let u = u64::from_le_bytes(w);
+        let v = match (kind, width) {
+            (Kind::Float, 4) => Val::F(f32::from_bits(u as u32) as f64),
+            (Kind::Float, _) => Val::F(f64::from_bits(u)),
+            (Kind::UInt, _) => Val::U(u),
+            (Kind::Int, 8) => Val::I(u as i64),
+            (Kind::Int, _) => {
+                let shift = 64 - 8 * width as u32;
+                Val::I(((u << shift) as i64) >> shift)
+            }
+        };
+        f(v).map_err(here)?;
+    }
+    Ok(())
+}
+
+/// A token shortened for an error message.
+fn shown(tok: &str) -> String {
+    tok.chars().take(40).collect()
+}
+
+/// Decodes a float array.
+fn decode_f64(
+    a: &ArraySpec<'_>,
+    h: &Header,
+    app: Option<&Appended<'_>>,
+    path: &Path,
+) -> Result<Vec<f64>, IoError> {
+    let mut out = Vec::new();
+    for_each_value(a, h, app, path, |v| {
+        out.push(match v {
+            Val::F(x) => x,
+            Val::I(i) => i as f64,
+            Val::U(u) => u as f64,
+        });
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+/// Decodes an index array whose values must be below `limit`.
+fn decode_index(
+    a: &ArraySpec<'_>,
+    h: &Header,
+    app: Option<&Appended<'_>>,
+    path: &Path,
+    limit: u64,
+) -> Result<Vec<u64>, IoError> {
+    let mut out = Vec::new();
+    for_each_value(a, h, app, path, |v| {
+        let i = out.len();
+        let x = match v {
+            Val::U(u) => u,
+            Val::I(x) if x >= 0 => x as u64,
+            Val::I(x) => return Err(format!("value {i} is {x}, a negative index")),
+            Val::F(_) => return Err("indices must be integers, the array holds floats".into()),
+        };
+        if x >= limit {
+            return Err(format!(
+                "value {i} is point {x}, out of range: the piece has {limit} points, numbered from 0"
+            ));
+        }
+        out.push(x);
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+/// The base64 characters at the start of `rest` (until the first byte that is not base64).
+fn base64_prefix(rest: &[u8]) -> &[u8] {
+    let n = rest
+        .iter()
+        .position(|&c| !(c.is_ascii_alphanumeric() || c == b'+' || c == b'/' || c == b'='))
+        .unwrap_or(rest.len());
+    &rest[..n]
+}
+
+/// The unsigned integers of a block header of `n` values.
+fn header_values(bytes: &[u8], h: &Header, n: usize) -> Option<Vec<u64>> {
+    let w: usize = if h.header_u64 { 8 } else { 4 };
+    let len = n.checked_mul(w)?;
+    if bytes.len() < len {
+        return None;
+    }
+    Some(
+        bytes[..len]
+            .chunks_exact(w)
+            .map(|c| {
+                let mut b = [0u8; 8];
+                b[..w].copy_from_slice(c);
+                if h.big_endian {
+                    b[..w].reverse();
+                }
+                u64::from_le_bytes(b)
+            })
+            .collect(),
+    )
+}
+
+/// Base64 characters for `n` bytes encoded on their own (with padding).
+fn b64_len(n: usize) -> usize {
+    n.div_ceil(3).saturating_mul(4)
+}
+
+fn b64(s: &[u8]) -> Result<Vec<u8>, String> {
+    base64::engine::general_purpose::STANDARD
+        .decode(s)
+        .map_err(|e| format!("undecodable base64 data: {e}"))
+}
+
+/// Decodes an inline or appended base64 array (header and data encoded together or apart, the
+/// way VTK and meshio write them).
+fn decode_base64_array(s: &[u8], h: &Header) -> Result<Vec<u8>, String> {
+    let w: usize = if h.header_u64 { 8 } else { 4 };
+    // The first header value alone: a header encoded apart ends in padding.
+    let first_chars = b64_len(w).min(s.len());
+    let first = b64(&pad_to_quad(&s[..first_chars]))?;
+    let first_v = header_values(&first, h, 1).ok_or("the data header is truncated")?;
+    if !h.zlib {
+        let n = first_v[0] as usize;
+        let apart = s[..first_chars].contains(&b'=');
+        let data = if apart {
+            let end = first_chars
+                .checked_add(b64_len(n))
+                .filter(|&e| e <= s.len())
+                .ok_or("the data is shorter than its header says")?;
+            b64(&s[first_chars..end])?
+        } else {
+            let end = b64_len(w.saturating_add(n)).min(s.len());
+            let all = b64(&s[..end])?;
+            all.get(w..).map(<[u8]>::to_vec).unwrap_or_default()
+        };
+        if data.len() < n {
+            return Err(format!(
+                "the data holds {} bytes, its header says {n}",
+                data.len()
+            ));
+        }
+        let mut data = data;
+        data.truncate(n);
+        return Ok(data);
+    }
+    let nb = first_v[0] as usize;
+    let hlen = (3usize.checked_add(nb).ok_or("absurd block count")?)
+        .checked_mul(w)
+        .ok_or("absurd block count")?;
+    let hchars = b64_len(hlen);
+    if hchars > s.len() {
+        return Err(format!(
+            "the compressed data header ({nb} blocks) is truncated"
+        ));
+    }
+    let hb = b64(&s[..hchars])?;
+    let hv = header_values(&hb, h, 3 + nb).ok_or("the compressed data header is truncated")?;
+    // VTK and meshio encode the header apart from the blocks (when its length is a multiple of
+    // 3 bytes, encoding them together gives the same characters)
+    let comp_total = hv[3..].iter().fold(0u64, |a, &b| a.saturating_add(b));
+    let end = hchars + b64_len(comp_total as usize).min(s.len() - hchars);
+    let comp = b64(&s[hchars..end])?;
+    inflate_blocks(&hv, &comp)
+}
+
+/// Pads a base64 prefix to whole quads (so that its first bytes decode).
+fn pad_to_quad(s: &[u8]) -> Cow<'_, [u8]> {
+    if s.len().is_multiple_of(4) {
+        Cow::Borrowed(s)
+    } else {
+        let mut v = s.to_vec();
+        while !v.len().is_multiple_of(4) {
+            v.push(b'=');
+        }
+        Cow::Owned(v)
+    }
+}
+
+/// Decodes a raw appended array starting at `rest`.
+fn decode_raw_array(rest: &[u8], h: &Header) -> Result<Vec<u8>, String> {
+    let w: usize = if h.header_u64 { 8 } else { 4 };
+    let first = header_values(rest, h, 1).ok_or("the data header is truncated")?;
+    if !h.zlib {
+        let n = first[0] as usize;
+        return rest
+            .get(w..w.saturating_add(n))
+            .map(<[u8]>::to_vec)
+            .ok_or_else(|| {
+                format!(
+                    "the header says {n} bytes, the file holds {}",
+                    rest.len() - w
+                )
+            });
+    }
+    let nb = first[0] as usize;
+    let hn = 3usize.checked_add(nb).ok_or("absurd block count")?;
+    let hv = header_values(rest, h, hn).ok_or("the compressed data header is truncated")?;
+    let comp_total = hv[3..].iter().fold(0u64, |a, &b| a.saturating_add(b));
+    let comp = rest
+        .get(hn * w..(hn * w).saturating_add(comp_total as usize))
+        .ok_or("the compressed data is truncated")?;
+    inflate_blocks(&hv, comp)
+}
+
+/// Inflates zlib blocks described by a VTK compressed header `[nb, block, last, sizes...]`.
+fn inflate_blocks(hv: &[u64], comp: &[u8]) -> Result<Vec<u8>, String> {
+    let nb = hv[0] as usize;
+    let (block, last) = (hv[1] as usize, hv[2] as usize);
+    let total = if nb == 0 {
+        0
+    } else {
+        (nb - 1)
+            .checked_mul(block)
+            .and_then(|t| t.checked_add(if last == 0 { block } else { last }))
+            .ok_or("absurd block sizes")?
+    };
+    // a compressed block inflates at most ~1032x: refuse sizes no data could have
+    if total as u128 > (comp.len() as u128 + 64) * 1100 {
+        return Err(format!(
+            "the header announces {total} bytes from {} compressed bytes",
+            comp.len()
+        ));
+    }
+    // (grown by what actually inflates: a header cannot make it allocate)
+    let mut out = Vec::with_capacity(total.min(1 << 26));
+    let mut at = 0usize;
+    for (i, &cs) in hv[3..].iter().enumerate() {
+        let cs = cs as usize;
+        let src = comp
+            .get(at..at.saturating_add(cs))
+            .ok_or("the compressed data is truncated")?;
+        at += cs;
+        let want = if i + 1 == nb && last != 0 {
+            last
+        } else {
+            block
+        };
+        let before = out.len();
+        flate2::read::ZlibDecoder::new(src)
+            .take(want as u64)
+            .read_to_end(&mut out)
+            .map_err(|e| format!("block {i} does not inflate: {e}"))?;
+        if out.len() - before != want {
+            return Err(format!(
+                "block {i} inflates to {} bytes, its header says {want}",
+                out.len() - before
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// Counts of cells changed on the way in.
+#[derive(Default)]
+struct CellStats {
+    vertex_cells: u64,
+    fanned: u64,
+    fan_tris: u64,
+    strips: u64,
+    strip_tris: u64,
+    polylines: u64,
+    polyline_edges: u64,
+}
+
+impl CellStats {
+    fn notes(&self, notes: &mut Vec<String>) {
+        if self.vertex_cells > 0 {
+            notes.push(format!(
+                "dropped {} VTK vertex cells; their points stay as vertices",
+                self.vertex_cells
+            ));
+        }
+        if self.fanned > 0 {
+            notes.push(format!(
+                "fan-triangulated {} polygons with more than 4 vertices into {} triangles",
+                self.fanned, self.fan_tris
+            ));
+        }
+        if self.strips > 0 {
+            notes.push(format!(
+                "split {} triangle strips into {} triangles",
+                self.strips, self.strip_tris
+            ));
+        }
+        if self.polylines > 0 {
+            notes.push(format!(
+                "split {} poly-lines into {} edges",
+                self.polylines, self.polyline_edges
+            ));
+        }
+    }
+}
+
+/// Pushes the cell of VTK type `ty` on `v` (reordering pixels and voxels, splitting poly-lines,
+/// strips and large polygons), or says why not.
+fn push_cell(b: &mut ComplexBuilder, st: &mut CellStats, ty: u64, v: &[u32]) -> Result<(), String> {
+    let n = v.len();
+    let mut push =
+        |kind: CellKind, v: &[u32]| b.push_cell(kind, v).map(|_| ()).map_err(|e| e.to_string());
+    let need = |k: usize| {
+        if n == k {
+            Ok(())
+        } else {
+            Err(format!(
+                "VTK cell type {ty} needs {k} points, the cell lists {n}"
+            ))
+        }
+    };
+    match ty {
+        1 | 2 => {
+            st.vertex_cells += 1;
+            Ok(())
+        }
+        3 => {
+            need(2)?;
+            push(CellKind::Simplex(1), v)
+        }
+        4 => {
+            if n < 2 {
+                return Err(format!("a poly-line needs 2 points, it lists {n}"));
+            }
+            if n == 2 {
+                return push(CellKind::Simplex(1), v);
+            }
+            st.polylines += 1;
+            st.polyline_edges += n as u64 - 1;
+            for w in v.windows(2) {
+                push(CellKind::Simplex(1), w)?;
+            }
+            Ok(())
+        }
+        5 => {
+            need(3)?;
+            push(CellKind::Simplex(2), v)
+        }
+        6 => {
+            if n < 3 {
+                return Err(format!("a triangle strip needs 3 points, it lists {n}"));
+            }
+            if n > 3 {
+                st.strips += 1;
+                st.strip_tris += n as u64 - 2;
+            }
+            for i in 0..n - 2 {
+                // keep the strip's orientation: every other triangle is flipped back
+                let t = if i % 2 == 0 {
+                    [v[i], v[i + 1], v[i + 2]]
+                } else {
+                    [v[i + 1], v[i], v[i + 2]]
+                };
+                push(CellKind::Simplex(2), &t)?;
+            }
+            Ok(())
+        }
+        7 => match n {
+            0..=2 => Err(format!("a polygon needs 3 points, it lists {n}")),
+            3 => push(CellKind::Simplex(2), v),
+            4 => push(CellKind::Quad, v),
+            _ => {
+                st.fanned += 1;
+                st.fan_tris += n as u64 - 2;
+                for j in 1..n - 1 {
+                    push(CellKind::Simplex(2), &[v[0], v[j], v[j + 1]])?;
+                }
+                Ok(())
+            }
+        },
+        8 => {
+            need(4)?;
+            push(CellKind::Quad, &[v[0], v[1], v[3], v[2]])
+        }
+        11 => {
+            need(8)?;
+            push(
+                CellKind::Hex,
+                &[v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]],
+            )
+        }
+        _ => {
+            let Some(kind) = super::vtk::kind_of_vtk_type(ty) else {
+                return Err(format!(
+                    "VTK cell type {ty} is not supported (starplex reads types 1 to 14: linear cells)"
+                ));
+            };
+            need(kind.n_vertices())?;
+            push(kind, v)
+        }
+    }
+}
+
+/// Refuses what `.vtu` cannot hold (more than 3 coordinates, simplices of dimension 4 and more)
+/// or, with `poly`, what `.vtp` cannot hold (3D cells).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::vtu;
+/// let tet = IndexedComplex::from_parts(3, vec![0.0; 12].into(),
+///                                      vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
+/// assert!(vtu::check(&tet, false).is_ok());
+/// assert!(vtu::check(&tet, true).unwrap_err().to_string().contains("--boundary"));
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason.
+pub fn check(k: &IndexedComplex, poly: bool) -> Result<(), IoErrorKind> {
+    let format = if poly { Format::Vtp } else { Format::Vtu };
+    let d = k.ambient_dim();
+    if d > 3 {
+        return Err(IoErrorKind::CannotWrite {
+            format,
+            reason: format!("VTK points have 3 coordinates, the complex has {d}"),
+        });
+    }
+    for b in k.blocks() {
+        if vtk_type(b.kind).is_none() {
+            return Err(IoErrorKind::CannotWrite {
+                format,
+                reason: format!("VTK has no cell type for {} cells", b.kind),
+            });
+        }
+        if poly && b.kind.dim() > 2 {
+            return Err(IoErrorKind::CannotWrite {
+                format,
+                reason: format!(
+                    "VTK poly data holds points, lines and polygons, not {} cells: write .vtu, or its boundary surface with --boundary",
+                    b.kind
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Writes `k` as a `.vtu` unstructured grid (raw appended little-endian data, `UInt64` headers).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::vtu;
+/// let k = IndexedComplex::from_parts(3, vec![0.0; 24].into(),
+///     vec![(CellKind::Hex, (0..8).collect::<Vec<u32>>().into())]).unwrap();
+/// let mut out = Vec::new();
+/// vtu::write_vtu(&mut out, &k).unwrap();
+/// assert!(out.starts_with(b"<?xml"));
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] (see [`check`]) and OS errors of the writer.
+pub fn write_vtu(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check(k, false)?;
+    let n_cells = k.n_cells() as u64;
+    let conn_bytes = 8 * k.n_refs() as u64;
+    let sizes = [24 * k.n_vertices() as u64, conn_bytes, 8 * n_cells, n_cells];
+    let offsets = appended_offsets(&sizes);
+    writeln!(w, "<?xml version=\"1.0\"?>")?;
+    writeln!(
+        w,
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
+    )?;
+    writeln!(w, "  <UnstructuredGrid>")?;
+    writeln!(
+        w,
+        "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{n_cells}\">",
+        k.n_vertices()
+    )?;
+    writeln!(w, "      <Points>")?;
+    writeln!(w, "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>", offsets[0])?;
+    writeln!(w, "      </Points>")?;
+    writeln!(w, "      <Cells>")?;
+    writeln!(w, "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>", offsets[1])?;
+    writeln!(
+        w,
+        "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>",
+        offsets[2]
+    )?;
+    writeln!(
+        w,
+        "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{}\"/>",
+        offsets[3]
+    )?;
+    writeln!(w, "      </Cells>")?;
+    writeln!(w, "    </Piece>")?;
+    writeln!(w, "  </UnstructuredGrid>")?;
+    writeln!(w, "  <AppendedData encoding=\"raw\">")?;
+    w.write_all(b"   _")?;
+    write_points(w, k, sizes[0])?;
+    // connectivity
+    w.write_all(&conn_bytes.to_le_bytes())?;
+    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+    for b in k.blocks() {
+        for &v in b.vertices.iter() {
+            buf.extend_from_slice(&(v as i64).to_le_bytes());
+            flush_if_full(w, &mut buf)?;
+        }
+    }
+    w.write_all(&buf)?;
+    buf.clear();
+    // offsets
+    w.write_all(&(8 * n_cells).to_le_bytes())?;
+    let mut end = 0i64;
+    for b in k.blocks() {
+        let n = b.kind.n_vertices() as i64;
+        for _ in 0..b.len() {
+            end += n;
+            buf.extend_from_slice(&end.to_le_bytes());
+            flush_if_full(w, &mut buf)?;
+        }
+    }
+    w.write_all(&buf)?;
+    buf.clear();
+    // types
+    w.write_all(&n_cells.to_le_bytes())?;
+    for b in k.blocks() {
+        let t = vtk_type(b.kind).unwrap_or(0);
+        buf.clear();
+        buf.resize(b.len(), t);
+        w.write_all(&buf)?;
+    }
+    finish_appended(w)
+}
+
+/// Writes `k` as a `.vtp` poly data file (vertex cells as `Verts`, edges as `Lines`, triangles
+/// and quads as `Polys`).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{vtu, ReadOptions};
+/// let k = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 0., 1., 0., 1., 1., 0.].into(),
+///     vec![(CellKind::Simplex(2), vec![0, 1, 2].into()), (CellKind::Simplex(1), vec![1, 3].into())]).unwrap();
+/// let mut out = Vec::new();
+/// vtu::write_vtp(&mut out, &k).unwrap();
+/// let back = vtu::read_bytes(&out, "k.vtp".as_ref(), &ReadOptions::default()).unwrap();
+/// assert_eq!(back.complex.n_cells(), 2);
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] (see [`check`]) and OS errors of the writer.
+pub fn write_vtp(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check(k, true)?;
+    let groups: [&[CellKind]; 3] = [
+        &[CellKind::Simplex(0)],
+        &[CellKind::Simplex(1)],
+        &[CellKind::Simplex(2), CellKind::Quad],
+    ];
+    let stats: Vec<(u64, u64)> = groups
+        .iter()
+        .map(|g| {
+            k.blocks()
+                .iter()
+                .filter(|b| g.contains(&b.kind))
+                .fold((0, 0), |(c, r), b| {
+                    (c + b.len() as u64, r + b.vertices.len() as u64)
+                })
+        })
+        .collect();
+    let mut sizes = vec![24 * k.n_vertices() as u64];
+    for &(c, r) in &stats {
+        sizes.push(8 * r);
+        sizes.push(8 * c);
+    }
+    let offsets = appended_offsets(&sizes);
+    writeln!(w, "<?xml version=\"1.0\"?>")?;
+    writeln!(
+        w,
+        "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
+    )?;
+    writeln!(w, "  <PolyData>")?;
+    writeln!(
+        w,
+        "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" NumberOfPolys=\"{}\">",
+        k.n_vertices(),
+        stats[0].0,
+        stats[1].0,
+        stats[2].0
+    )?;
+    writeln!(w, "      <Points>")?;
+    writeln!(w, "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>", offsets[0])?;
+    writeln!(w, "      </Points>")?;
+    for (i, sec) in ["Verts", "Lines", "Polys"].iter().enumerate() {
+        writeln!(w, "      <{sec}>")?;
+        writeln!(w, "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>", offsets[1 + 2 * i])?;
+        writeln!(w, "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>", offsets[2 + 2 * i])?;
+        writeln!(w, "      </{sec}>")?;
+    }
+    writeln!(w, "    </Piece>")?;
+    writeln!(w, "  </PolyData>")?;
+    writeln!(w, "  <AppendedData encoding=\"raw\">")?;
+    w.write_all(b"   _")?;
+    write_points(w, k, sizes[0])?;
+    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+    for (g, &(c, r)) in groups.iter().zip(&stats) {
+        w.write_all(&(8 * r).to_le_bytes())?;
+        for b in k.blocks().iter().filter(|b| g.contains(&b.kind)) {
+            for &v in b.vertices.iter() {
+                buf.extend_from_slice(&(v as i64).to_le_bytes());
+                flush_if_full(w, &mut buf)?;
+            }
+        }
+        w.write_all(&buf)?;
+        buf.clear();
+        w.write_all(&(8 * c).to_le_bytes())?;
+        let mut end = 0i64;
+        for b in k.blocks().iter().filter(|b| g.contains(&b.kind)) {
+            let n = b.kind.n_vertices() as i64;
+            for _ in 0..b.len() {
+                end += n;
+                buf.extend_from_slice(&end.to_le_bytes());
+                flush_if_full(w, &mut buf)?;
+            }
+        }
+        w.write_all(&buf)?;
+        buf.clear();
+    }
+    finish_appended(w)
+}
+
+/// Offsets of consecutive arrays of `sizes` bytes, each after its 8-byte header.
+fn appended_offsets(sizes: &[u64]) -> Vec<u64> {
+    let mut at = 0u64;
+    sizes
+        .iter()
+        .map(|&s| {
+            let o = at;
+            at += 8 + s;
+            o
+        })
+        .collect()
+}
+
+/// Writes the points array (header and coordinates, padded to 3).
+fn write_points(w: &mut dyn Write, k: &IndexedComplex, bytes: u64) -> Result<(), IoErrorKind> {
+    w.write_all(&bytes.to_le_bytes())?;
+    let d = k.ambient_dim();
+    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+    for p in k.coords().chunks_exact(d) {
+        for a in 0..3 {
+            let x = p.get(a).copied().unwrap_or(0.0);
+            buf.extend_from_slice(&x.to_le_bytes());
+        }
+        flush_if_full(w, &mut buf)?;
+    }
+    w.write_all(&buf)?;
+    Ok(())
+}
+
+fn flush_if_full(w: &mut dyn Write, buf: &mut Vec<u8>) -> std::io::Result<()> {
+    if buf.len() >= (1 << 16) - 64 {
+        w.write_all(buf)?;
+        buf.clear();
+    }
+    Ok(())
+}
+
+fn finish_appended(w: &mut dyn Write) -> Result<(), IoErrorKind> {
+    w.write_all(b"\n  </AppendedData>\n</VTKFile>\n")?;
+    Ok(())
+}
