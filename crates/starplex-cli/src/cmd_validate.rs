@@ -1,4 +1,5 @@
-//! `starplex validate FILE [--json]`: topological validation on a Stellar tree.
+//! `starplex validate FILE [--json] [--check | --fail-on DEFECTS]`: topological validation on a
+//! Stellar tree; exit status 1 when a defect asked for is found (for scripts and CI).
 use std::time::Instant;
 
 use serde_json::{json, Value};
@@ -23,6 +24,67 @@ pub struct ValidateArgs {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
+    /// Exit with status 1 when the complex has a defect: the same as
+    /// `--fail-on non-manifold,non-pure,non-orientable,isolated`.
+    #[arg(long)]
+    pub check: bool,
+    /// Exit with status 1 when the complex has any of these (comma-separated): non-manifold
+    /// (vertices or edges, or faces in more than two top cells), non-pure, non-orientable,
+    /// isolated (vertices), boundary, disconnected, undecided (links not classified, d >= 4).
+    #[arg(long, value_delimiter = ',', value_name = "DEFECTS")]
+    pub fail_on: Vec<Defect>,
+}
+
+/// A property `validate --fail-on` can fail on.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Defect {
+    NonManifold,
+    NonPure,
+    NonOrientable,
+    Isolated,
+    Boundary,
+    Disconnected,
+    Undecided,
+}
+
+/// The defects of `r` among `wanted`, each with its count, in words.
+pub fn defects_found(r: &ValidationReport, wanted: &[Defect]) -> Vec<String> {
+    let mut out = Vec::new();
+    for &d in wanted {
+        let found = match d {
+            Defect::NonManifold => {
+                let (v, e, f) = (
+                    r.non_manifold_vertices.len(),
+                    r.non_manifold_edges.len(),
+                    r.faces_in_more_than_two_cells.len(),
+                );
+                (v + e + f > 0).then(|| {
+                    format!("{v} non-manifold vertices, {e} non-manifold edges, {f} faces in more than two top cells")
+                })
+            }
+            Defect::NonPure => (!r.lower_dimensional_cells.is_empty()).then(|| {
+                format!(
+                    "{} lower-dimensional top cells (not pure)",
+                    r.lower_dimensional_cells.len()
+                )
+            }),
+            Defect::NonOrientable => {
+                (r.orientable == Some(false)).then(|| "not orientable".to_string())
+            }
+            Defect::Isolated => (!r.isolated_vertices.is_empty())
+                .then(|| format!("{} isolated vertices", r.isolated_vertices.len())),
+            Defect::Boundary => (!r.boundary_faces.is_empty())
+                .then(|| format!("{} boundary faces", r.boundary_faces.len())),
+            Defect::Disconnected => (r.n_connected_components > 1)
+                .then(|| format!("{} connected components", r.n_connected_components)),
+            Defect::Undecided => {
+                let (v, e) = (r.unknown_vertices.len(), r.unknown_edges.len());
+                (v + e > 0).then(|| format!("{v} vertices and {e} edges not classified"))
+            }
+        };
+        out.extend(found);
+    }
+    out
 }
 
 fn ids<T: Clone>(v: &[T], max: usize) -> Vec<T> {
@@ -149,10 +211,11 @@ pub fn print_human(r: &ValidationReport, max: usize) {
 pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
     let t0 = Instant::now();
     let saved = starplex::stellar::is_saved_tree(&a.input.file);
-    let k = if saved {
-        None
+    let (k, notes) = if saved {
+        (None, Vec::new())
     } else {
-        Some(common::load(ctx, &a.input)?.complex)
+        let r = common::load(ctx, &a.input)?;
+        (Some(r.complex), r.notes)
     };
     let read_s = t0.elapsed().as_secs_f64();
     let (rep, build_s, validate_s) = with_threads(a.threads, || {
@@ -169,6 +232,9 @@ pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
     if a.json {
         let mut v = to_json(&rep, a.max_list);
         v["timings"] = json!({"read_s": read_s, "build_s": build_s, "validate_s": validate_s});
+        if !notes.is_empty() {
+            v["notes"] = json!(notes);
+        }
         println!(
             "{}",
             serde_json::to_string_pretty(&v).map_err(|e| CliError::Other(e.to_string()))?
@@ -177,6 +243,27 @@ pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
         println!("{}", a.input.file.display());
         print_human(&rep, a.max_list);
         println!("  time                read {read_s:.3} s, Stellar tree {build_s:.3} s, validation {validate_s:.3} s");
+    }
+    let mut wanted = a.fail_on.clone();
+    if a.check {
+        for d in [
+            Defect::NonManifold,
+            Defect::NonPure,
+            Defect::NonOrientable,
+            Defect::Isolated,
+        ] {
+            if !wanted.contains(&d) {
+                wanted.push(d);
+            }
+        }
+    }
+    let found = defects_found(&rep, &wanted);
+    if !found.is_empty() {
+        return Err(CliError::Other(format!(
+            "{}: validation failed: {}",
+            a.input.file.display(),
+            found.join("; ")
+        )));
     }
     Ok(())
 }

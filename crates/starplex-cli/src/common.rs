@@ -74,7 +74,8 @@ impl From<io::IoError> for CliError {
 }
 
 /// The formats starplex reads, for hints.
-pub const READABLE: &str = "spx spb off off-simplices ply obj stl mesh vtk msh tri ts sierp hex";
+pub const READABLE: &str =
+    "spx spb off off-simplices ply obj stl mesh vtk vtu vtp msh tri ts sierp hex";
 
 /// The output format named by `--to` (`None`: from the output's extension).
 pub fn output_format(to: Option<&str>) -> Result<Option<Format>, CliError> {
@@ -222,10 +223,9 @@ pub fn load(ctx: &Ctx, args: &InputArgs) -> Result<ReadResult, CliError> {
     let r = with_spinner(ctx, &format!("reading {name}"), || {
         io::read(&args.file, &opts)
     })?;
+    // (--quiet hides progress, never what was changed on the way in)
     for n in &r.notes {
-        if !ctx.quiet {
-            eprintln!("note: {name}: {n}");
-        }
+        eprintln!("note: {name}: {n}");
     }
     Ok(r)
 }

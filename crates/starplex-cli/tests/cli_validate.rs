@@ -99,3 +99,76 @@ fn validate_json_equals_algo_on_the_small_datasets() {
         assert_eq!(got, nme, "{name}");
     }
 }
+
+/// Writes `text` to a fresh file named `name` and returns its path.
+fn temp_file(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("starplex-cli-validate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn check_and_fail_on_set_the_exit_status_for_scripts() {
+    // a closed octahedron: no defect, but it is not a ball (no boundary), one component
+    let octa = temp_file(
+        "octa.off",
+        "OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n\
+         3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n",
+    );
+    // two triangles sharing only a vertex (non-manifold vertex 0) and a dangling edge
+    let bowtie = temp_file(
+        "bowtie.off",
+        "OFF\n6 3 0\n0 0 0\n1 0 0\n1 1 0\n-1 0 0\n-1 -1 0\n5 5 0\n3 0 1 2\n3 0 3 4\n2 2 5\n",
+    );
+    let run = |f: &Path, extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_starplex"))
+            .arg("validate")
+            .arg(f)
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let ok = run(&octa, &["--check"]);
+    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
+    let b = run(&octa, &["--fail-on", "boundary,disconnected"]);
+    assert_eq!(b.status.code(), Some(0));
+    let bad = run(&bowtie, &["--check"]);
+    assert_eq!(bad.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(err.contains("validation failed"), "{err}");
+    // (the global convention: vertex 0, and both ends of the dangling edge, which is itself a
+    // non-manifold edge of the 2-complex)
+    assert!(err.contains("3 non-manifold vertices, 1 non-manifold edges"), "{err}");
+    assert!(err.contains("1 lower-dimensional top cells"), "{err}");
+    // only what was asked for
+    let b = run(&bowtie, &["--fail-on", "disconnected"]);
+    assert_eq!(b.status.code(), Some(0));
+    let b = run(&bowtie, &["--fail-on", "boundary", "--json"]);
+    assert_eq!(b.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&b.stdout).unwrap();
+    assert_eq!(v["n_non_manifold_vertices"], 3);
+    // an unknown defect name is a usage error (exit 2) listing the names
+    let u = run(&bowtie, &["--fail-on", "holes"]);
+    assert_eq!(u.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&u.stderr).contains("non-manifold"));
+}
+
+#[test]
+fn notes_reach_the_json_and_survive_quiet() {
+    // a pentagon is fan-triangulated: the note is in the JSON and on stderr even with --quiet
+    let penta = temp_file(
+        "penta.off",
+        "OFF\n5 1 0\n0 0 0\n1 0 0\n1.5 1 0\n0.5 2 0\n-0.5 1 0\n5 0 1 2 3 4\n",
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_starplex"))
+        .args(["--quiet", "validate", "--json"])
+        .arg(&penta)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["notes"][0].as_str().unwrap().contains("fan-triangulated"), "{v}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("fan-triangulated"));
+}
