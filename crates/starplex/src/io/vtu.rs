@@ -63,8 +63,15 @@ use crate::complex::{ComplexBuilder, IndexedComplex};
 /// # Errors
 /// OS errors, and every error of [`read_bytes`].
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
-    let data = std::fs::read(path).map_err(|e| IoError::new(path, e))?;
-    read_bytes(&data, path, opts)
+    let f = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+    // SAFETY: the map is read only and lives for this call; a file truncated by another
+    // process meanwhile is the documented risk of every memory-mapped reader (SIGBUS), the same
+    // as for `.spb`.
+    match unsafe { memmap2::Mmap::map(&f) } {
+        Ok(m) => read_bytes(&m, path, opts),
+        // (not mappable: a pipe, /proc, an empty file)
+        Err(_) => read_from(f, path, opts),
+    }
 }
 
 /// Reads a `.vtu` or `.vtp` file from a stream (standard input, a gzip decoder).
@@ -603,14 +610,20 @@ enum Val {
     F(f64),
 }
 
-/// Calls `f` on every value of array `a`, in order.
-fn for_each_value(
+/// The values of array `a`, each converted by `conv(index, value)`.
+fn decode<T>(
     a: &ArraySpec<'_>,
     h: &Header,
     app: Option<&Appended<'_>>,
     path: &Path,
-    mut f: impl FnMut(Val) -> Result<(), String>,
-) -> Result<(), IoError> {
+    mut conv: impl FnMut(usize, Val) -> Result<T, String>,
+) -> Result<Vec<T>, IoError> {
+    let mut out: Vec<T> = Vec::new();
+    let mut f = |v: Val| {
+        let x = conv(out.len(), v)?;
+        out.push(x);
+        Ok::<(), String>(())
+    };
     let Some((width, kind)) = type_info(&a.ty) else {
         return Err(perr(
             path,
@@ -640,12 +653,12 @@ fn for_each_value(
             };
             f(v).map_err(here)?;
         }
-        return Ok(());
+        return Ok(out);
     }
-    let bytes: Vec<u8> = match a.format.as_str() {
+    let bytes: Cow<'_, [u8]> = match a.format.as_str() {
         "binary" => {
             let t: String = a.text.split_ascii_whitespace().collect();
-            decode_base64_array(t.as_bytes(), h).map_err(here)?
+            Cow::Owned(decode_base64_array(t.as_bytes(), h).map_err(here)?)
         }
         "appended" => {
             let Some(app) = app else {
@@ -661,7 +674,7 @@ fn for_each_value(
             };
             let rest = &app.data[at..];
             if app.base64 {
-                decode_base64_array(base64_prefix(rest), h).map_err(here)?
+                Cow::Owned(decode_base64_array(base64_prefix(rest), h).map_err(here)?)
             } else {
                 decode_raw_array(rest, h).map_err(here)?
             }
@@ -679,27 +692,42 @@ fn for_each_value(
             a.ty
         )));
     }
+    out.reserve_exact(bytes.len() / width);
+    let mut f = |v: Val| {
+        let x = conv(out.len(), v)?;
+        out.push(x);
+        Ok::<(), String>(())
+    };
     let be = h.big_endian;
-    for c in bytes.chunks_exact(width) {
-        let mut w = [0u8; 8];
-        w[..width].copy_from_slice(c);
-        if be {
-            w[..width].reverse();
-        }
-        let u = u64::from_le_bytes(w);
-        let v = match (kind, width) {
-            (Kind::Float, 4) => Val::F(f32::from_bits(u as u32) as f64),
-            (Kind::Float, _) => Val::F(f64::from_bits(u)),
-            (Kind::UInt, _) => Val::U(u),
-            (Kind::Int, 8) => Val::I(u as i64),
-            (Kind::Int, _) => {
-                let shift = 64 - 8 * width as u32;
-                Val::I(((u << shift) as i64) >> shift)
+    // one tight loop per type and byte order
+    macro_rules! each {
+        ($t:ty, $val:expr) => {{
+            const W: usize = std::mem::size_of::<$t>();
+            for c in bytes.chunks_exact(W) {
+                let mut b = [0u8; W];
+                b.copy_from_slice(c);
+                let x = if be {
+                    <$t>::from_be_bytes(b)
+                } else {
+                    <$t>::from_le_bytes(b)
+                };
+                f($val(x)).map_err(here)?;
             }
-        };
-        f(v).map_err(here)?;
+        }};
     }
-    Ok(())
+    match (kind, width) {
+        (Kind::Float, 4) => each!(f32, |x: f32| Val::F(x as f64)),
+        (Kind::Float, _) => each!(f64, Val::F),
+        (Kind::UInt, 1) => each!(u8, |x: u8| Val::U(x as u64)),
+        (Kind::UInt, 2) => each!(u16, |x: u16| Val::U(x as u64)),
+        (Kind::UInt, 4) => each!(u32, |x: u32| Val::U(x as u64)),
+        (Kind::UInt, _) => each!(u64, Val::U),
+        (Kind::Int, 1) => each!(i8, |x: i8| Val::I(x as i64)),
+        (Kind::Int, 2) => each!(i16, |x: i16| Val::I(x as i64)),
+        (Kind::Int, 4) => each!(i32, |x: i32| Val::I(x as i64)),
+        (Kind::Int, _) => each!(i64, Val::I),
+    }
+    Ok(out)
 }
 
 /// A token shortened for an error message.
@@ -714,16 +742,13 @@ fn decode_f64(
     app: Option<&Appended<'_>>,
     path: &Path,
 ) -> Result<Vec<f64>, IoError> {
-    let mut out = Vec::new();
-    for_each_value(a, h, app, path, |v| {
-        out.push(match v {
+    decode(a, h, app, path, |_, v| {
+        Ok(match v {
             Val::F(x) => x,
             Val::I(i) => i as f64,
             Val::U(u) => u as f64,
-        });
-        Ok(())
-    })?;
-    Ok(out)
+        })
+    })
 }
 
 /// Decodes an index array whose values must be below `limit`.
@@ -734,9 +759,7 @@ fn decode_index(
     path: &Path,
     limit: u64,
 ) -> Result<Vec<u64>, IoError> {
-    let mut out = Vec::new();
-    for_each_value(a, h, app, path, |v| {
-        let i = out.len();
+    decode(a, h, app, path, |i, v| {
         let x = match v {
             Val::U(u) => u,
             Val::I(x) if x >= 0 => x as u64,
@@ -748,10 +771,8 @@ fn decode_index(
                 "value {i} is point {x}, out of range: the piece has {limit} points, numbered from 0"
             ));
         }
-        out.push(x);
-        Ok(())
-    })?;
-    Ok(out)
+        Ok(x)
+    })
 }
 
 /// The base64 characters at the start of `rest` (until the first byte that is not base64).
@@ -861,15 +882,15 @@ fn pad_to_quad(s: &[u8]) -> Cow<'_, [u8]> {
     }
 }
 
-/// Decodes a raw appended array starting at `rest`.
-fn decode_raw_array(rest: &[u8], h: &Header) -> Result<Vec<u8>, String> {
+/// Decodes a raw appended array starting at `rest` (uncompressed: borrowed from the file).
+fn decode_raw_array<'a>(rest: &'a [u8], h: &Header) -> Result<Cow<'a, [u8]>, String> {
     let w: usize = if h.header_u64 { 8 } else { 4 };
     let first = header_values(rest, h, 1).ok_or("the data header is truncated")?;
     if !h.zlib {
         let n = first[0] as usize;
         return rest
             .get(w..w.saturating_add(n))
-            .map(<[u8]>::to_vec)
+            .map(Cow::Borrowed)
             .ok_or_else(|| {
                 format!(
                     "the header says {n} bytes, the file holds {}",
@@ -884,7 +905,7 @@ fn decode_raw_array(rest: &[u8], h: &Header) -> Result<Vec<u8>, String> {
     let comp = rest
         .get(hn * w..(hn * w).saturating_add(comp_total as usize))
         .ok_or("the compressed data is truncated")?;
-    inflate_blocks(&hv, comp)
+    inflate_blocks(&hv, comp).map(Cow::Owned)
 }
 
 /// Inflates zlib blocks described by a VTK compressed header `[nb, block, last, sizes...]`.
