@@ -52,6 +52,10 @@ pub struct SimplifyArgs {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
+    /// Worker threads for the before/after report (the contraction itself runs on one
+    /// thread); the answer is the same for any number.
+    #[arg(long)]
+    pub threads: Option<usize>,
 }
 
 fn summary_json(s: &TopologySummary) -> Value {
@@ -77,6 +81,19 @@ pub fn run(ctx: &Ctx, a: &SimplifyArgs) -> Result<(), CliError> {
             )
         })?),
     };
+    let threads = match a.threads {
+        Some(0) => return Err(CliError::Input("--threads must be at least 1".into(), None)),
+        Some(t) => t,
+        None => rayon::current_num_threads(),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| CliError::Other(e.to_string()))?;
+    pool.install(|| run_in_pool(ctx, a, mode))
+}
+
+fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), CliError> {
     let to = common::output_format_for(a.to.as_deref(), &a.output)?;
     let r = common::load(ctx, &a.input)?;
     let k = &r.complex;

@@ -5,7 +5,7 @@
 //! (the boundary triangles of a tetrahedral mesh), plus, on a surface's boundary edges, planes
 //! through the edge perpendicular to the triangle (weight [`BOUNDARY_WEIGHT`]), plus a tiny
 //! point quadric that makes every system solvable. Edges are contracted cheapest first (a binary
-//! heap with per-vertex stamps for lazy invalidation) to the point minimising the summed
+//! 4-ary heap with per-vertex stamps for lazy invalidation) to the point minimising the summed
 //! quadric. Every contraction is checked first by
 //! * the extended link condition ([`LinkMode::Manifold`]): the Betti numbers are kept, no
 //!   non-manifold vertex or edge appears, the boundary stays a manifold with the same loops;
@@ -34,8 +34,6 @@
 //! assert!(w.n_alive_tops() <= 8);
 //! assert!(s.max_error < 1e-9); // a plane is simplified without error
 //! ```
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 
 use rustc_hash::FxHashMap;
 
@@ -172,32 +170,93 @@ fn normal(p: [[f64; 3]; 3]) -> [f64; 3] {
     cross(sub(p[1], p[0]), sub(p[2], p[0]))
 }
 
-#[derive(Clone, Copy, Debug)]
-struct Entry {
-    cost: f64,
-    a: u32,
-    b: u32,
-    stamp_a: u32,
-    stamp_b: u32,
-}
-impl PartialEq for Entry {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
+/// A queued edge packed in 128 bits, so the heap compares one integer: the cost as f32 bits
+/// (monotonic for costs >= 0), the two vertices, and 16 bits of each vertex's stamp (a stale
+/// entry that slips through is harmless: its cost and position are recomputed when popped).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Entry(u128);
+
+/// A 4-ary min-heap: half the levels of a binary heap, and the four children of a node share
+/// a cache line or two, which matters when the queue holds millions of edges.
+#[derive(Default)]
+struct QuadHeap(Vec<Entry>);
+
+impl QuadHeap {
+    fn from_vec(v: Vec<Entry>) -> QuadHeap {
+        let mut h = QuadHeap(v);
+        let n = h.0.len();
+        for i in (0..n.div_ceil(4)).rev() {
+            h.sift_down(i);
+        }
+        h
+    }
+    fn push(&mut self, e: Entry) {
+        let mut i = self.0.len();
+        self.0.push(e);
+        while i > 0 {
+            let p = (i - 1) / 4;
+            if self.0[p] <= e {
+                break;
+            }
+            self.0[i] = self.0[p];
+            i = p;
+        }
+        self.0[i] = e;
+    }
+    fn pop(&mut self) -> Option<Entry> {
+        let last = self.0.pop()?;
+        if self.0.is_empty() {
+            return Some(last);
+        }
+        let top = std::mem::replace(&mut self.0[0], last);
+        self.sift_down(0);
+        Some(top)
+    }
+    fn sift_down(&mut self, mut i: usize) {
+        let n = self.0.len();
+        let e = self.0[i];
+        loop {
+            let c = 4 * i + 1;
+            if c >= n {
+                break;
+            }
+            let mut m = c;
+            for j in c + 1..(c + 4).min(n) {
+                if self.0[j] < self.0[m] {
+                    m = j;
+                }
+            }
+            if self.0[m] >= e {
+                break;
+            }
+            self.0[i] = self.0[m];
+            i = m;
+        }
+        self.0[i] = e;
     }
 }
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
+
+impl Entry {
+    fn new(cost: f64, a: u32, b: u32, stamp: &[u32]) -> Entry {
+        let c = cost as f32;
+        let key = if c.is_nan() {
+            f32::MAX.to_bits()
+        } else {
+            c.max(0.0).to_bits()
+        };
+        let st = (stamp[a as usize] & 0xffff) << 16 | (stamp[b as usize] & 0xffff);
+        Entry((key as u128) << 96 | (a as u128) << 64 | (b as u128) << 32 | st as u128)
     }
-}
-impl Ord for Entry {
-    /// Reversed: the heap pops the cheapest edge, ties by vertex ids.
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.cost
-            .total_cmp(&self.cost)
-            .then(o.a.cmp(&self.a))
-            .then(o.b.cmp(&self.b))
+    fn a(self) -> u32 {
+        (self.0 >> 64) as u32
+    }
+    fn b(self) -> u32 {
+        (self.0 >> 32) as u32
+    }
+    fn fresh(self, stamp: &[u32]) -> bool {
+        let st = self.0 as u32;
+        (stamp[self.a() as usize] & 0xffff) == st >> 16
+            && (stamp[self.b() as usize] & 0xffff) == st & 0xffff
     }
 }
 
@@ -342,7 +401,7 @@ pub fn simplify_qem(
     }
 
     let mut stamp = vec![0u32; n];
-    let mut heap = BinaryHeap::new();
+    let mut heap = QuadHeap::default();
     let mut nb = Vec::new();
     let mut scratch = LinkScratch::default();
     let mut stats = QemStats::default();
@@ -378,14 +437,15 @@ pub fn simplify_qem(
         Some((q.eval(p).max(0.0), p))
     };
 
-    let push_all = |heap: &mut BinaryHeap<Entry>,
+    let push_all = |heap: &mut QuadHeap,
                     w: &TopSimplices,
                     nb: &mut Vec<u32>,
                     quad: &[Quadric],
                     pos: &[[f64; 3]],
                     boundary: &[bool],
                     stamp: &[u32]| {
-        heap.clear();
+        let mut all = std::mem::take(&mut heap.0);
+        all.clear();
         for a in 0..n as u32 {
             if !w.is_alive(a) {
                 continue;
@@ -393,16 +453,11 @@ pub fn simplify_qem(
             w.neighbours_into(a, nb);
             for &b in nb.iter().filter(|&&b| b > a) {
                 if let Some((cost, _)) = candidate(a, b, quad, pos, boundary) {
-                    heap.push(Entry {
-                        cost,
-                        a,
-                        b,
-                        stamp_a: stamp[a as usize],
-                        stamp_b: stamp[b as usize],
-                    });
+                    all.push(Entry::new(cost, a, b, stamp));
                 }
             }
         }
+        *heap = QuadHeap::from_vec(all);
     };
 
     let mut last_round_contracted = true;
@@ -414,20 +469,16 @@ pub fn simplify_qem(
             if target.reached(w) {
                 break 'rounds;
             }
-            let (a, b) = (e.a, e.b);
-            if !w.is_alive(a)
-                || !w.is_alive(b)
-                || stamp[a as usize] != e.stamp_a
-                || stamp[b as usize] != e.stamp_b
-            {
+            let (a, b) = (e.a(), e.b());
+            if !w.is_alive(a) || !w.is_alive(b) || !e.fresh(&stamp) {
                 continue;
-            }
-            if target.max_error.is_some_and(|m| e.cost > m) {
-                break 'rounds;
             }
             let Some((cost, p)) = candidate(a, b, &quad, &pos, &boundary) else {
                 continue;
             };
+            if target.max_error.is_some_and(|m| cost > m) {
+                break 'rounds;
+            }
             // the survivor: the boundary vertex when the boundary is locked, else the smaller id
             let (s, t) = if lock_boundary && boundary[b as usize] {
                 (b, a)
@@ -459,14 +510,7 @@ pub fn simplify_qem(
             w.neighbours_into(s, &mut nb);
             for &x in &nb {
                 if let Some((c, _)) = candidate(s, x, &quad, &pos, &boundary) {
-                    let (lo, hi) = (s.min(x), s.max(x));
-                    heap.push(Entry {
-                        cost: c,
-                        a: lo,
-                        b: hi,
-                        stamp_a: stamp[lo as usize],
-                        stamp_b: stamp[hi as usize],
-                    });
+                    heap.push(Entry::new(c, s.min(x), s.max(x), &stamp));
                 }
             }
         }
