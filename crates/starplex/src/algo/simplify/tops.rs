@@ -360,9 +360,7 @@ impl TopSimplices {
     /// // two triangles sharing the edge 1-2: contracting it folds each into an edge
     /// let mut w = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![1, 3, 2]]).unwrap();
     /// assert!(w.contract(2, 1));
-    /// let mut tops: Vec<Vec<u32>> = w.tops().map(|t| t.to_vec()).collect();
-    /// tops.sort();
-    /// assert_eq!(tops, vec![vec![0, 2], vec![2, 3]]); // the triangles became edges
+    /// assert_eq!(w.sorted_tops(), vec![vec![0, 2], vec![2, 3]]); // the triangles became edges
     /// assert!(!w.contract(0, 3)); // not an edge
     /// ```
     pub fn contract(&mut self, a: u32, b: u32) -> bool {
