@@ -14,6 +14,7 @@ mod cmd_generate;
 mod cmd_homology;
 mod cmd_info;
 mod cmd_query;
+mod cmd_simplify;
 mod cmd_stellar;
 mod cmd_validate;
 mod common;
@@ -46,6 +47,8 @@ enum Command {
     Generate(cmd_generate::GenerateArgs),
     /// Homology: Betti numbers over Z/2, Z/p, Q or Z (torsion), per component, generators.
     Homology(cmd_homology::HomologyArgs),
+    /// Simplify by edge contraction keeping the topology (homology or quadric-error mode).
+    Simplify(cmd_simplify::SimplifyArgs),
     /// Build every data structure and compare storage and query times.
     Compare(cmd_compare::CompareArgs),
     /// Timings of one data structure (single thread): `bench simplex-tree FILE`.
@@ -85,6 +88,7 @@ fn main() -> ExitCode {
         Some(Command::Compare(a)) => cmd_compare::run(&ctx, &a),
         Some(Command::Generate(a)) => cmd_generate::run(&ctx, &a),
         Some(Command::Homology(a)) => cmd_homology::run(&ctx, &a),
+        Some(Command::Simplify(a)) => cmd_simplify::run(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -131,7 +131,12 @@ fn check_and_fail_on_set_the_exit_status_for_scripts() {
             .unwrap()
     };
     let ok = run(&octa, &["--check"]);
-    assert_eq!(ok.status.code(), Some(0), "{}", String::from_utf8_lossy(&ok.stderr));
+    assert_eq!(
+        ok.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
     let b = run(&octa, &["--fail-on", "boundary,disconnected"]);
     assert_eq!(b.status.code(), Some(0));
     let bad = run(&bowtie, &["--check"]);
@@ -140,7 +145,10 @@ fn check_and_fail_on_set_the_exit_status_for_scripts() {
     assert!(err.contains("validation failed"), "{err}");
     // (the global convention: vertex 0, and both ends of the dangling edge, which is itself a
     // non-manifold edge of the 2-complex)
-    assert!(err.contains("3 non-manifold vertices, 1 non-manifold edges"), "{err}");
+    assert!(
+        err.contains("3 non-manifold vertices, 1 non-manifold edges"),
+        "{err}"
+    );
     assert!(err.contains("1 lower-dimensional top cells"), "{err}");
     // only what was asked for
     let b = run(&bowtie, &["--fail-on", "disconnected"]);
@@ -169,6 +177,9 @@ fn notes_reach_the_json_and_survive_quiet() {
         .unwrap();
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert!(v["notes"][0].as_str().unwrap().contains("fan-triangulated"), "{v}");
+    assert!(
+        v["notes"][0].as_str().unwrap().contains("fan-triangulated"),
+        "{v}"
+    );
     assert!(String::from_utf8_lossy(&out.stderr).contains("fan-triangulated"));
 }

@@ -5,6 +5,7 @@ pub mod homology;
 pub mod info;
 pub mod manifold;
 pub mod orientation;
+pub mod simplify;
 pub mod surface;
 pub mod unionfind;
 pub mod validate;

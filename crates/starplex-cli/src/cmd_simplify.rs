@@ -1,0 +1,210 @@
+//! `starplex simplify IN OUT [--mode homology|qem] [--ratio R | --faces N | --vertices N |
+//! --max-error E] [--lock-boundary] [--json]`: edge contraction that keeps the topology, with
+//! a before/after report (f-vector, Euler characteristic, Betti numbers, non-manifold simplices,
+//! boundary faces). Nothing is written when the input or the target is bad.
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use serde_json::{json, Value};
+use starplex::algo::simplify::{
+    simplify, summary, Mode, SimplifyError, SimplifyOptions, Target, TopologySummary,
+};
+use starplex::io;
+
+use crate::common::{self, CliError, Ctx, InputArgs};
+
+#[derive(clap::Args, Debug)]
+pub struct SimplifyArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+    /// Output file (format from its extension unless --to is given).
+    pub output: PathBuf,
+    /// Output format (see `convert --help`).
+    #[arg(long)]
+    pub to: Option<String>,
+    /// homology (link-condition contraction, any simplicial complex) or qem (quadric error,
+    /// triangle and tetrahedral meshes; the default for them).
+    #[arg(long)]
+    pub mode: Option<String>,
+    /// Keep this fraction of the top cells (0 to 1).
+    #[arg(long, allow_hyphen_values = true)]
+    pub ratio: Option<f64>,
+    /// Stop at this many top cells.
+    #[arg(long)]
+    pub faces: Option<usize>,
+    /// Stop at this many vertices.
+    #[arg(long)]
+    pub vertices: Option<usize>,
+    /// qem: stop before a contraction whose quadric error exceeds this.
+    #[arg(long, allow_hyphen_values = true)]
+    pub max_error: Option<f64>,
+    /// qem: boundary vertices neither move nor disappear.
+    #[arg(long)]
+    pub lock_boundary: bool,
+    /// homology: also keep a manifold a manifold of its dimension (the extended link
+    /// condition); qem always does.
+    #[arg(long)]
+    pub keep_manifold: bool,
+    /// Skip the before/after topology (Betti numbers, validation): faster on big meshes.
+    #[arg(long)]
+    pub no_report: bool,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+    /// Worker threads for the before/after report (the contraction itself runs on one
+    /// thread); the answer is the same for any number.
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+fn summary_json(s: &TopologySummary) -> Value {
+    json!({
+        "n_vertices": s.n_vertices,
+        "n_cells": s.n_cells,
+        "f_vector": s.f_vector,
+        "euler_characteristic": s.euler_characteristic,
+        "betti_z2": s.betti,
+        "non_manifold_vertices": s.non_manifold_vertices,
+        "non_manifold_edges": s.non_manifold_edges,
+        "boundary_faces": s.boundary_faces,
+    })
+}
+
+pub fn run(ctx: &Ctx, a: &SimplifyArgs) -> Result<(), CliError> {
+    let mode = match a.mode.as_deref() {
+        None => None,
+        Some(m) => Some(Mode::parse(m).ok_or_else(|| {
+            CliError::Input(
+                format!("--mode {m}: unknown mode"),
+                Some("use --mode homology or --mode qem".into()),
+            )
+        })?),
+    };
+    let threads = match a.threads {
+        Some(0) => return Err(CliError::Input("--threads must be at least 1".into(), None)),
+        Some(t) => t,
+        None => rayon::current_num_threads(),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| CliError::Other(e.to_string()))?;
+    pool.install(|| run_in_pool(ctx, a, mode))
+}
+
+fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), CliError> {
+    let to = common::output_format_for(a.to.as_deref(), &a.output)?;
+    let r = common::load(ctx, &a.input)?;
+    let k = &r.complex;
+    let name = a.input.file.display().to_string();
+    let t_before = Instant::now();
+    let before =
+        (!a.no_report).then(|| common::with_spinner(ctx, "topology before", || summary(k)));
+    let before_s = t_before.elapsed().as_secs_f64();
+    let total = (k.n_vertices() as u64).max(1);
+    let pb = common::progress_bar(ctx, total, "simplify");
+    let pb2 = pb.clone();
+    let opts = SimplifyOptions {
+        mode,
+        target: Target {
+            faces: a.faces,
+            vertices: a.vertices,
+            ratio: a.ratio,
+            max_error: a.max_error,
+        },
+        lock_boundary: a.lock_boundary,
+        keep_manifold: a.keep_manifold,
+        progress: Some(Arc::new(move |n| pb2.inc(n))),
+    };
+    let res = simplify(k, &opts);
+    pb.finish_and_clear();
+    let (out, report) = res.map_err(|e| {
+        let hint = match &e {
+            SimplifyError::NotSimplicial { .. } => Some(format!(
+                "starplex convert --triangulate {name} triangulated.off"
+            )),
+            SimplifyError::BadTarget(_) => Some(format!(
+                "the input has {} vertices and {} top cells; --ratio is between 0 and 1",
+                k.n_vertices(),
+                k.n_cells()
+            )),
+            SimplifyError::NotAMesh => Some("pass --mode homology".into()),
+            _ => None,
+        };
+        CliError::Input(format!("{name}: {e}"), hint)
+    })?;
+    let t_after = Instant::now();
+    let after =
+        (!a.no_report).then(|| common::with_spinner(ctx, "topology after", || summary(&out)));
+    let after_s = t_after.elapsed().as_secs_f64();
+    common::with_spinner(ctx, "writing", || io::write(&a.output, &out, to))?;
+    if a.json {
+        let mut v = json!({
+            "input": name,
+            "output": common::shown(&a.output),
+            "mode": report.mode.name(),
+            "target_faces": report.target_faces,
+            "n_contractions": report.n_contractions,
+            "rounds": report.rounds,
+            "time_s": report.time_s,
+            "report_time_s": before_s + after_s,
+            "before": before.as_ref().map(summary_json),
+            "after": after.as_ref().map(summary_json),
+            "vertices": [k.n_vertices(), out.n_vertices()],
+            "cells": [k.n_cells(), out.n_cells()],
+        });
+        if report.mode == Mode::Qem {
+            v["max_error"] = json!(report.max_error);
+            v["mean_error"] = json!(report.mean_error);
+        }
+        if let (Some(b), Some(f)) = (&before, &after) {
+            v["topology_kept"] = json!(
+                b.betti == f.betti
+                    && b.euler_characteristic == f.euler_characteristic
+                    && f.non_manifold_vertices <= b.non_manifold_vertices
+                    && f.non_manifold_edges <= b.non_manifold_edges
+            );
+        }
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(|e| CliError::Other(e.to_string()))?
+        );
+    } else {
+        println!("{name} -> {}", common::shown(&a.output));
+        println!("  mode                {}", report.mode.name());
+        println!(
+            "  vertices            {} -> {}",
+            k.n_vertices(),
+            out.n_vertices()
+        );
+        println!("  top cells           {} -> {}", k.n_cells(), out.n_cells());
+        println!(
+            "  contractions        {} in {} round(s), {:.3} s",
+            report.n_contractions, report.rounds, report.time_s
+        );
+        if let (Some(m), Some(e)) = (report.max_error, report.mean_error) {
+            println!("  quadric error       max {m:.3e}, mean {e:.3e}");
+        }
+        if let (Some(b), Some(f)) = (&before, &after) {
+            println!("  f-vector            {:?} -> {:?}", b.f_vector, f.f_vector);
+            println!(
+                "  Euler char.         {:?} -> {:?}",
+                b.euler_characteristic, f.euler_characteristic
+            );
+            println!("  Betti (Z/2)         {:?} -> {:?}", b.betti, f.betti);
+            println!(
+                "  non-manifold        {} vertices, {} edges -> {} vertices, {} edges",
+                b.non_manifold_vertices,
+                b.non_manifold_edges,
+                f.non_manifold_vertices,
+                f.non_manifold_edges
+            );
+            println!(
+                "  boundary faces      {} -> {}",
+                b.boundary_faces, f.boundary_faces
+            );
+        }
+    }
+    Ok(())
+}

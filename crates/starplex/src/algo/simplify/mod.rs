@@ -1,0 +1,390 @@
+//! Simplification by edge contraction that keeps the topology: one engine, two modes.
+//!
+//! * [`Mode::Homology`] ([`contract`]): contract edges that pass the link condition
+//!   ([`link_condition`]), in rounds, on any simplicial complex of any dimension, pure or not,
+//!   manifold or not; faces left without a top become new lower-dimensional tops.
+//! * [`Mode::Qem`] ([`qem`]): Garland–Heckbert quadric error on triangle and tetrahedral meshes,
+//!   each contraction checked by the extended link condition and by geometry.
+//!
+//! Both edit the same working structure, [`TopSimplices`] (the complex by its top simplices),
+//! built from any structure through the `topo` traits, with the check-then-mutate pair
+//! [`TopSimplices::can_contract`] / [`TopSimplices::contract`].
+//!
+//! ```
+//! use starplex::algo::simplify::{simplify, SimplifyOptions, Mode, Target, summary};
+//! use starplex::gen::kuhn_grid;
+//! let ball = kuhn_grid(&[3, 3, 3]).unwrap(); // 162 tetrahedra filling a cube
+//! let opts = SimplifyOptions { mode: Some(Mode::Homology), ..Default::default() };
+//! let (point, report) = simplify(&ball, &opts).unwrap();
+//! assert_eq!((point.n_vertices(), point.n_cells()), (1, 0)); // contractible: one vertex
+//! let opts = SimplifyOptions { keep_manifold: true, ..opts };
+//! let (small, _) = simplify(&ball, &opts).unwrap(); // still a 3-ball
+//! assert!(small.n_cells() < 10);
+//! assert_eq!(summary(&small).betti, Some(vec![1, 0, 0, 0]));
+//! assert_eq!(report.mode, Mode::Homology);
+//! ```
+pub mod contract;
+pub mod link_condition;
+pub mod qem;
+pub mod tops;
+
+use std::sync::Arc;
+use std::time::Instant;
+
+pub use tops::TopSimplices;
+
+use crate::complex::{ComplexError, IndexedComplex};
+use crate::topo::naive::VtIndex;
+
+/// A progress callback: called with the number of contractions just made.
+pub type Progress = dyn Fn(u64) + Send + Sync;
+
+/// Why simplification could not run.
+///
+/// ```
+/// use starplex::algo::simplify::SimplifyError;
+/// let e = SimplifyError::NotSimplicial { cell: 3, kind: "quad".into() };
+/// assert!(e.to_string().contains("convert --triangulate"));
+/// ```
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SimplifyError {
+    /// The complex has no vertex or no cell.
+    #[error("the complex is empty: nothing to simplify")]
+    Empty,
+    /// A CP cell (quad, hexahedron, prism, pyramid).
+    #[error("cell {cell} is a {kind}: simplification works on simplicial complexes; triangulate first with `starplex convert --triangulate IN OUT`")]
+    NotSimplicial {
+        /// The first such cell.
+        cell: u32,
+        /// Its kind.
+        kind: String,
+    },
+    /// A list given as a top simplex is not one.
+    #[error("top {top}: {reason}")]
+    BadTop {
+        /// Its position.
+        top: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// QEM needs a pure triangle mesh (2D/3D) or a pure tetrahedral mesh (3D).
+    #[error("quadric simplification needs a pure triangle mesh (2 or 3 coordinates) or a pure tetrahedral mesh (3 coordinates); use --mode homology for other complexes")]
+    NotAMesh,
+    /// The target cannot be met or makes no sense.
+    #[error("bad target: {0}")]
+    BadTarget(String),
+    /// An enumeration over the budget.
+    #[error("{what}: about {estimate} faces, over the budget of {budget}")]
+    TooLarge {
+        /// What was asked.
+        what: String,
+        /// Estimated size.
+        estimate: u128,
+        /// The budget.
+        budget: u128,
+    },
+    /// The simplified complex could not be assembled.
+    #[error("building the simplified complex: {0}")]
+    Complex(ComplexError),
+}
+
+/// The two modes.
+///
+/// ```
+/// use starplex::algo::simplify::Mode;
+/// assert_eq!(Mode::parse("qem"), Some(Mode::Qem));
+/// assert_eq!(Mode::Homology.name(), "homology");
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// Link-condition contraction on any simplicial complex.
+    #[default]
+    Homology,
+    /// Quadric error on triangle / tetrahedral meshes, topology kept.
+    Qem,
+}
+
+impl Mode {
+    /// Parses `homology` or `qem`.
+    ///
+    /// ```
+    /// assert_eq!(starplex::algo::simplify::Mode::parse("x"), None);
+    /// ```
+    pub fn parse(s: &str) -> Option<Mode> {
+        match s {
+            "homology" => Some(Mode::Homology),
+            "qem" => Some(Mode::Qem),
+            _ => None,
+        }
+    }
+    /// The name on the command line.
+    ///
+    /// ```
+    /// assert_eq!(starplex::algo::simplify::Mode::Qem.name(), "qem");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Homology => "homology",
+            Mode::Qem => "qem",
+        }
+    }
+}
+
+/// When to stop: the first bound reached ends the run; none set means "as far as possible".
+///
+/// ```
+/// use starplex::algo::simplify::{Target, TopSimplices};
+/// let w = TopSimplices::from_tops(3, &[vec![0, 1, 2]]).unwrap();
+/// assert!(Target { faces: Some(1), ..Default::default() }.reached(&w));
+/// assert!(!Target::default().reached(&w));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Target {
+    /// Stop at this many top cells (or fewer).
+    pub faces: Option<usize>,
+    /// Stop at this many vertices (or fewer).
+    pub vertices: Option<usize>,
+    /// Keep this fraction of the top cells (0..=1); resolved into `faces` by [`simplify`].
+    pub ratio: Option<f64>,
+    /// QEM: stop before a contraction whose quadric error exceeds this.
+    pub max_error: Option<f64>,
+}
+
+impl Target {
+    /// True when a count bound is met.
+    ///
+    /// ```
+    /// use starplex::algo::simplify::{Target, TopSimplices};
+    /// let w = TopSimplices::from_tops(3, &[vec![0, 1, 2]]).unwrap();
+    /// assert!(Target { vertices: Some(3), ..Default::default() }.reached(&w));
+    /// ```
+    pub fn reached(&self, w: &TopSimplices) -> bool {
+        self.faces.is_some_and(|f| w.n_alive_tops() <= f)
+            || self.vertices.is_some_and(|v| w.n_alive_vertices() <= v)
+    }
+}
+
+/// Options of [`simplify`].
+///
+/// ```
+/// let o = starplex::algo::simplify::SimplifyOptions::default();
+/// assert!(o.mode.is_none() && !o.lock_boundary);
+/// ```
+#[derive(Clone, Default)]
+pub struct SimplifyOptions {
+    /// The mode (`None`: QEM for triangle and tetrahedral meshes, homology otherwise).
+    pub mode: Option<Mode>,
+    /// When to stop.
+    pub target: Target,
+    /// QEM: boundary vertices neither move nor disappear.
+    pub lock_boundary: bool,
+    /// Homology mode: test the extended link condition (the complex closed by a cone over its
+    /// boundary), so a manifold stays a manifold of its dimension (a ball ends as a few
+    /// top simplices instead of a point). QEM always does.
+    pub keep_manifold: bool,
+    /// Called with the number of contractions just made.
+    pub progress: Option<Arc<Progress>>,
+}
+
+/// What [`simplify`] did.
+///
+/// ```
+/// let r = starplex::algo::simplify::SimplifyReport::default();
+/// assert_eq!(r.n_contractions, 0);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SimplifyReport {
+    /// The mode that ran.
+    pub mode: Mode,
+    /// Edges contracted.
+    pub n_contractions: u64,
+    /// Rounds.
+    pub rounds: u64,
+    /// The resolved target of top cells, if any.
+    pub target_faces: Option<usize>,
+    /// QEM: largest and mean quadric error of the accepted contractions.
+    pub max_error: Option<f64>,
+    /// QEM: mean quadric error.
+    pub mean_error: Option<f64>,
+    /// Seconds spent simplifying (building the working structure and writing it back
+    /// included).
+    pub time_s: f64,
+}
+
+/// The mode [`simplify`] picks when none is given: QEM for a pure triangle mesh or a pure
+/// tetrahedral mesh in 3D, homology otherwise.
+///
+/// ```
+/// use starplex::algo::simplify::{default_mode, Mode};
+/// assert_eq!(default_mode(&starplex::gen::kuhn_grid(&[1, 1, 1]).unwrap()), Mode::Qem);
+/// assert_eq!(default_mode(&starplex::gen::kuhn_grid(&[1, 1, 1, 1]).unwrap()), Mode::Homology);
+/// ```
+pub fn default_mode(k: &IndexedComplex) -> Mode {
+    let d = k.dim();
+    let pure = k.cells().all(|c| Some(c.kind.dim()) == d);
+    let simplicial = k.is_simplicial();
+    match (d, k.ambient_dim()) {
+        (Some(2), 2 | 3) | (Some(3), 3) if pure && simplicial => Mode::Qem,
+        _ => Mode::Homology,
+    }
+}
+
+/// Simplifies `k` (see the module docs) and returns the result with a report.
+///
+/// ```
+/// use starplex::algo::simplify::{simplify, SimplifyOptions, Target};
+/// use starplex::gen::kuhn_grid;
+/// let sq = kuhn_grid(&[4, 4]).unwrap(); // 32 triangles in a square
+/// let opts = SimplifyOptions { target: Target { ratio: Some(0.25), ..Default::default() }, ..Default::default() };
+/// let (k, r) = simplify(&sq, &opts).unwrap();
+/// assert_eq!(r.target_faces, Some(8));
+/// assert!(k.n_cells() <= 8);
+/// ```
+///
+/// # Errors
+/// [`SimplifyError::Empty`], [`SimplifyError::NotSimplicial`] (CP cells: triangulate first),
+/// [`SimplifyError::BadTarget`] (a count above the complex's, a ratio outside 0..=1, a negative
+/// error, an error bound in homology mode), [`SimplifyError::NotAMesh`] (QEM asked on something
+/// else than a triangle or tetrahedral mesh).
+pub fn simplify(
+    k: &IndexedComplex,
+    opts: &SimplifyOptions,
+) -> Result<(IndexedComplex, SimplifyReport), SimplifyError> {
+    let t0 = Instant::now();
+    if k.n_vertices() == 0 || k.n_cells() == 0 {
+        return Err(SimplifyError::Empty);
+    }
+    if let Some(c) = k.cells().find(|c| !c.kind.is_simplex()) {
+        return Err(SimplifyError::NotSimplicial {
+            cell: c.id.0,
+            kind: c.kind.type_name(),
+        });
+    }
+    let mode = opts.mode.unwrap_or_else(|| default_mode(k));
+    let mut target = opts.target;
+    let n_tops = k.n_cells() + k.n_isolated_vertices();
+    if let Some(f) = target.faces {
+        if f > n_tops {
+            return Err(SimplifyError::BadTarget(format!(
+                "{f} faces asked, the complex has {n_tops} top cells"
+            )));
+        }
+    }
+    if let Some(v) = target.vertices {
+        if v > k.n_vertices() {
+            return Err(SimplifyError::BadTarget(format!(
+                "{v} vertices asked, the complex has {}",
+                k.n_vertices()
+            )));
+        }
+    }
+    if let Some(r) = target.ratio {
+        if !(0.0..=1.0).contains(&r) {
+            return Err(SimplifyError::BadTarget(format!(
+                "ratio {r}: it must be between 0 and 1"
+            )));
+        }
+        let f = (r * n_tops as f64).round() as usize;
+        target.faces = Some(target.faces.map_or(f, |x| x.max(f)));
+    }
+    if let Some(e) = target.max_error {
+        if !(e >= 0.0 && e.is_finite()) {
+            return Err(SimplifyError::BadTarget(format!(
+                "max error {e}: it must be a finite number >= 0"
+            )));
+        }
+        if mode == Mode::Homology {
+            return Err(SimplifyError::BadTarget(
+                "--max-error is a quadric error: it needs --mode qem".into(),
+            ));
+        }
+    }
+    let mut w = TopSimplices::from_complex(k)?;
+    let progress = opts.progress.as_deref();
+    let mut report = SimplifyReport {
+        mode,
+        target_faces: target.faces,
+        ..Default::default()
+    };
+    match mode {
+        Mode::Homology => {
+            let lm = if opts.keep_manifold {
+                link_condition::LinkMode::Manifold
+            } else {
+                link_condition::LinkMode::Homology
+            };
+            let s = contract::contract_homology(&mut w, &target, lm, progress);
+            report.n_contractions = s.n_contractions;
+            report.rounds = s.rounds;
+        }
+        Mode::Qem => {
+            let s = qem::simplify_qem(&mut w, &target, opts.lock_boundary, progress)?;
+            report.n_contractions = s.n_contractions;
+            report.rounds = s.rounds;
+            report.max_error = Some(s.max_error);
+            report.mean_error = Some(s.mean_error);
+        }
+    }
+    let (out, _) = w.to_complex()?;
+    report.time_s = t0.elapsed().as_secs_f64();
+    Ok((out, report))
+}
+
+/// The topology of a complex, as reported before and after simplification.
+///
+/// ```
+/// let s = starplex::algo::simplify::summary(&starplex::gen::kuhn_grid(&[1, 1]).unwrap());
+/// assert_eq!(s.f_vector, Some(vec![4, 5, 2]));
+/// assert_eq!((s.euler_characteristic, s.boundary_faces), (Some(1), 4));
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct TopologySummary {
+    /// Vertices.
+    pub n_vertices: usize,
+    /// Top cells.
+    pub n_cells: usize,
+    /// Simplices per dimension (`None` when over the counting budget).
+    pub f_vector: Option<Vec<u64>>,
+    /// Alternating sum of the f-vector.
+    pub euler_characteristic: Option<i64>,
+    /// Betti numbers over Z/2 (`None` when over the homology budget).
+    pub betti: Option<Vec<u64>>,
+    /// Non-manifold vertices.
+    pub non_manifold_vertices: usize,
+    /// Non-manifold edges.
+    pub non_manifold_edges: usize,
+    /// (d-1)-faces in exactly one top d-cell.
+    pub boundary_faces: usize,
+}
+
+/// Computes the [`TopologySummary`] of `k` with `algo::homology` and `algo::validate`.
+///
+/// ```
+/// let s = starplex::algo::simplify::summary(&starplex::gen::kuhn_grid(&[2, 2, 2]).unwrap());
+/// assert_eq!(s.betti, Some(vec![1, 0, 0, 0]));
+/// assert_eq!(s.non_manifold_vertices, 0);
+/// ```
+pub fn summary(k: &IndexedComplex) -> TopologySummary {
+    let idx = VtIndex::new(k);
+    let f_vector = crate::topo::from_tops::f_vector(&idx, 4_000_000_000).ok();
+    let euler_characteristic = f_vector.as_ref().map(|f| {
+        f.iter()
+            .enumerate()
+            .map(|(i, &x)| if i % 2 == 0 { x as i64 } else { -(x as i64) })
+            .sum()
+    });
+    let betti = crate::algo::homology::homology(&idx, &Default::default())
+        .ok()
+        .map(|h| h.betti);
+    let v = crate::algo::validate::validate(&idx);
+    TopologySummary {
+        n_vertices: k.n_vertices(),
+        n_cells: k.n_cells(),
+        f_vector,
+        euler_characteristic,
+        betti,
+        non_manifold_vertices: v.non_manifold_vertices.len(),
+        non_manifold_edges: v.non_manifold_edges.len(),
+        boundary_faces: v.boundary_faces.len(),
+    }
+}

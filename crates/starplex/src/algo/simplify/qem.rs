@@ -1,0 +1,571 @@
+//! Quadric-error simplification (`--mode qem`) of triangle and tetrahedral meshes
+//! (Garland–Heckbert), that never changes the topology.
+//!
+//! Each vertex carries the sum of the (area-weighted) plane quadrics of its surface triangles
+//! (the boundary triangles of a tetrahedral mesh), plus, on a surface's boundary edges, planes
+//! through the edge perpendicular to the triangle (weight [`BOUNDARY_WEIGHT`]), plus a tiny
+//! point quadric that makes every system solvable. Edges are contracted cheapest first (a binary
+//! 4-ary heap with per-vertex stamps for lazy invalidation) to the point minimising the summed
+//! quadric. Every contraction is checked first by
+//! * the extended link condition ([`LinkMode::Manifold`]): the Betti numbers are kept, no
+//!   non-manifold vertex or edge appears, the boundary stays a manifold with the same loops;
+//! * geometry: no triangle whose normal turns by more than ~78° (cos < 0.2) or becomes
+//!   degenerate; no tetrahedron whose orientation (the exact `orient3d` of the `robust` crate)
+//!   changes sign or becomes zero.
+//!
+//! When the heap empties before the target, the refused edges are queued again (a new round)
+//! as long as the previous round contracted something.
+//!
+//! ```
+//! use starplex::algo::simplify::{TopSimplices, Target, qem::simplify_qem};
+//! # use starplex::complex::{ComplexBuilder, BuildOptions};
+//! # use starplex::cell::CellKind;
+//! // a flat 4x4 grid of squares split into triangles
+//! let mut b = ComplexBuilder::new(3).unwrap();
+//! for j in 0..5 { for i in 0..5 { b.push_vertex(&[i as f64, j as f64, 0.0]).unwrap(); } }
+//! for j in 0..4u32 { for i in 0..4u32 {
+//!     let v = j * 5 + i;
+//!     b.push_cell(CellKind::Simplex(2), &[v, v + 1, v + 6]).unwrap();
+//!     b.push_cell(CellKind::Simplex(2), &[v, v + 6, v + 5]).unwrap();
+//! } }
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let mut w = TopSimplices::from_complex(&k).unwrap();
+//! let s = simplify_qem(&mut w, &Target { faces: Some(8), ..Default::default() }, false, None).unwrap();
+//! assert!(w.n_alive_tops() <= 8);
+//! assert_eq!(s.n_contractions as usize, 25 - w.n_alive_vertices());
+//! assert!(s.mean_error >= 0.0);
+//! ```
+
+use rustc_hash::FxHashMap;
+
+use super::link_condition::{link_condition, LinkMode, LinkScratch};
+use super::tops::TopSimplices;
+use super::{Progress, SimplifyError, Target};
+
+/// Weight of a boundary edge's perpendicular plane, per squared edge length.
+pub const BOUNDARY_WEIGHT: f64 = 100.0;
+/// Smallest cosine allowed between a triangle's normal before and after a contraction.
+pub const MIN_NORMAL_COS: f64 = 0.2;
+
+/// What [`simplify_qem`] did.
+///
+/// ```
+/// let s = starplex::algo::simplify::qem::QemStats::default();
+/// assert_eq!(s.n_contractions, 0);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct QemStats {
+    /// Edges contracted.
+    pub n_contractions: u64,
+    /// Passes over the edge queue.
+    pub rounds: u64,
+    /// Largest quadric error of an accepted contraction.
+    pub max_error: f64,
+    /// Mean quadric error of the accepted contractions.
+    pub mean_error: f64,
+    /// Contractions refused by the link condition.
+    pub refused_link: u64,
+    /// Contractions refused by geometry (flip, degenerate or inverted cell).
+    pub refused_geometry: u64,
+}
+
+/// A symmetric 4x4 quadric: a², ab, ac, ad, b², bc, bd, c², cd, d².
+#[derive(Clone, Copy, Debug, Default)]
+struct Quadric([f64; 10]);
+
+impl Quadric {
+    fn plane(n: [f64; 3], d: f64, w: f64) -> Quadric {
+        let [a, b, c] = n;
+        Quadric([
+            w * a * a,
+            w * a * b,
+            w * a * c,
+            w * a * d,
+            w * b * b,
+            w * b * c,
+            w * b * d,
+            w * c * c,
+            w * c * d,
+            w * d * d,
+        ])
+    }
+    fn point(p: [f64; 3], w: f64) -> Quadric {
+        Quadric([
+            w,
+            0.0,
+            0.0,
+            -w * p[0],
+            w,
+            0.0,
+            -w * p[1],
+            w,
+            -w * p[2],
+            w * dot(p, p),
+        ])
+    }
+    fn add(&mut self, o: &Quadric) {
+        for (x, y) in self.0.iter_mut().zip(o.0) {
+            *x += y;
+        }
+    }
+    fn sum(&self, o: &Quadric) -> Quadric {
+        let mut q = *self;
+        q.add(o);
+        q
+    }
+    fn eval(&self, p: [f64; 3]) -> f64 {
+        let q = &self.0;
+        let [x, y, z] = p;
+        q[0] * x * x
+            + 2.0 * q[1] * x * y
+            + 2.0 * q[2] * x * z
+            + 2.0 * q[3] * x
+            + q[4] * y * y
+            + 2.0 * q[5] * y * z
+            + 2.0 * q[6] * y
+            + q[7] * z * z
+            + 2.0 * q[8] * z
+            + q[9]
+    }
+    /// The minimiser, when the 3x3 system is well conditioned.
+    fn optimum(&self) -> Option<[f64; 3]> {
+        let q = &self.0;
+        let m = [[q[0], q[1], q[2]], [q[1], q[4], q[5]], [q[2], q[5], q[7]]];
+        let r = [-q[3], -q[6], -q[8]];
+        let det = det3(m);
+        let scale = q[0].abs() + q[4].abs() + q[7].abs();
+        if !det.is_finite() || det.abs() <= 1e-12 * scale * scale * scale {
+            return None;
+        }
+        let col = |i: usize| {
+            let mut mi = m;
+            for (row, ri) in mi.iter_mut().zip(r) {
+                row[i] = ri;
+            }
+            det3(mi) / det
+        };
+        let x = [col(0), col(1), col(2)];
+        x.iter().all(|v| v.is_finite()).then_some(x)
+    }
+}
+
+fn det3(m: [[f64; 3]; 3]) -> f64 {
+    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+}
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn normal(p: [[f64; 3]; 3]) -> [f64; 3] {
+    cross(sub(p[1], p[0]), sub(p[2], p[0]))
+}
+
+/// A queued edge packed in 128 bits, so the heap compares one integer: the cost as f32 bits
+/// (monotonic for costs >= 0), the two vertices, and 16 bits of each vertex's stamp (a stale
+/// entry that slips through is harmless: its cost and position are recomputed when popped).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Entry(u128);
+
+/// A 4-ary min-heap: half the levels of a binary heap, and the four children of a node share
+/// a cache line or two, which matters when the queue holds millions of edges.
+#[derive(Default)]
+struct QuadHeap(Vec<Entry>);
+
+impl QuadHeap {
+    fn from_vec(v: Vec<Entry>) -> QuadHeap {
+        let mut h = QuadHeap(v);
+        let n = h.0.len();
+        for i in (0..n.div_ceil(4)).rev() {
+            h.sift_down(i);
+        }
+        h
+    }
+    fn push(&mut self, e: Entry) {
+        let mut i = self.0.len();
+        self.0.push(e);
+        while i > 0 {
+            let p = (i - 1) / 4;
+            if self.0[p] <= e {
+                break;
+            }
+            self.0[i] = self.0[p];
+            i = p;
+        }
+        self.0[i] = e;
+    }
+    fn pop(&mut self) -> Option<Entry> {
+        let last = self.0.pop()?;
+        if self.0.is_empty() {
+            return Some(last);
+        }
+        let top = std::mem::replace(&mut self.0[0], last);
+        self.sift_down(0);
+        Some(top)
+    }
+    fn sift_down(&mut self, mut i: usize) {
+        let n = self.0.len();
+        let e = self.0[i];
+        loop {
+            let c = 4 * i + 1;
+            if c >= n {
+                break;
+            }
+            let mut m = c;
+            for j in c + 1..(c + 4).min(n) {
+                if self.0[j] < self.0[m] {
+                    m = j;
+                }
+            }
+            if self.0[m] >= e {
+                break;
+            }
+            self.0[i] = self.0[m];
+            i = m;
+        }
+        self.0[i] = e;
+    }
+}
+
+impl Entry {
+    fn new(cost: f64, a: u32, b: u32, stamp: &[u32]) -> Entry {
+        let c = cost as f32;
+        let key = if c.is_nan() {
+            f32::MAX.to_bits()
+        } else {
+            c.max(0.0).to_bits()
+        };
+        let st = (stamp[a as usize] & 0xffff) << 16 | (stamp[b as usize] & 0xffff);
+        Entry((key as u128) << 96 | (a as u128) << 64 | (b as u128) << 32 | st as u128)
+    }
+    fn a(self) -> u32 {
+        (self.0 >> 64) as u32
+    }
+    fn b(self) -> u32 {
+        (self.0 >> 32) as u32
+    }
+    fn fresh(self, stamp: &[u32]) -> bool {
+        let st = self.0 as u32;
+        (stamp[self.a() as usize] & 0xffff) == st >> 16
+            && (stamp[self.b() as usize] & 0xffff) == st & 0xffff
+    }
+}
+
+/// Is the working structure a mesh QEM handles: every top a triangle, or every top a
+/// tetrahedron in 3D, with 2 or 3 coordinates per vertex?
+///
+/// ```
+/// use starplex::algo::simplify::{TopSimplices, qem::qem_dimension};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(3).unwrap();
+/// # for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let w = TopSimplices::from_complex(&k).unwrap();
+/// assert_eq!(qem_dimension(&w), Some(2));
+/// ```
+pub fn qem_dimension(w: &TopSimplices) -> Option<usize> {
+    let d = w.dim()?;
+    let ok = (d == 2 && (w.stride == 2 || w.stride == 3)) || (d == 3 && w.stride == 3);
+    (ok && w.tops().all(|t| t.len() == d + 1)).then_some(d)
+}
+
+/// Simplifies a triangle or tetrahedral mesh by quadric error until the target (faces = top
+/// simplices, vertices, or the error bound) is reached or no edge can be contracted.
+/// `lock_boundary` keeps boundary vertices where they are and never removes one.
+///
+/// ```
+/// use starplex::algo::simplify::{TopSimplices, Target, qem::simplify_qem};
+/// let mut w = TopSimplices::from_tops(3, &[vec![0, 1, 2]]).unwrap();
+/// assert!(simplify_qem(&mut w, &Target::default(), false, None).is_err()); // no coordinates
+/// ```
+///
+/// # Errors
+/// [`SimplifyError::NotAMesh`] when the structure is not a pure triangle mesh (2D or 3D) or a
+/// pure tetrahedral mesh (3D).
+pub fn simplify_qem(
+    w: &mut TopSimplices,
+    target: &Target,
+    lock_boundary: bool,
+    progress: Option<&Progress>,
+) -> Result<QemStats, SimplifyError> {
+    let d = qem_dimension(w).ok_or(SimplifyError::NotAMesh)?;
+    let n = w.n_vertices();
+    let mut pos: Vec<[f64; 3]> = (0..n as u32)
+        .map(|v| {
+            let p = w.point(v);
+            [p[0], p[1], p.get(2).copied().unwrap_or(0.0)]
+        })
+        .collect();
+    let mut quad = vec![Quadric::default(); n];
+    let mut boundary = vec![false; n];
+    // surface triangles: the triangles themselves, or the boundary faces of the tets
+    let mut surface: Vec<[u32; 3]> = Vec::new();
+    if d == 2 {
+        surface.extend(w.tops().map(|t| [t[0], t[1], t[2]]));
+    } else {
+        let mut count: FxHashMap<[u32; 3], (u32, [u32; 3])> = FxHashMap::default();
+        for t in w.tops() {
+            // faces oriented outward for a positive tet (facet i omits vertex i, sign (-1)^i)
+            for (f, flip) in [
+                ([1, 2, 3], false),
+                ([0, 2, 3], true),
+                ([0, 1, 3], false),
+                ([0, 1, 2], true),
+            ] {
+                let mut face = [t[f[0]], t[f[1]], t[f[2]]];
+                if flip {
+                    face.swap(0, 1);
+                }
+                let mut key = face;
+                key.sort_unstable();
+                count.entry(key).or_insert((0, face)).0 += 1;
+            }
+        }
+        let mut faces: Vec<([u32; 3], [u32; 3])> = count
+            .into_iter()
+            .filter(|(_, (c, _))| *c == 1)
+            .map(|(k, (_, f))| (k, f))
+            .collect();
+        faces.sort_unstable();
+        surface.extend(faces.into_iter().map(|(_, f)| f));
+        for f in &surface {
+            for &v in f {
+                boundary[v as usize] = true;
+            }
+        }
+    }
+    let mut total_area = 0.0;
+    for f in &surface {
+        let p = f.map(|v| pos[v as usize]);
+        let nrm = normal(p);
+        let len = dot(nrm, nrm).sqrt();
+        if len > 0.0 {
+            let u = nrm.map(|x| x / len);
+            let q = Quadric::plane(u, -dot(u, p[0]), len / 2.0);
+            for &v in f {
+                quad[v as usize].add(&q);
+            }
+        }
+        total_area += len / 2.0;
+    }
+    if d == 2 {
+        // boundary edges: in exactly one triangle
+        let mut count: FxHashMap<(u32, u32), (u32, usize)> = FxHashMap::default();
+        for (i, f) in surface.iter().enumerate() {
+            for k in 0..3 {
+                let (u, v) = (f[k], f[(k + 1) % 3]);
+                count.entry((u.min(v), u.max(v))).or_insert((0, i)).0 += 1;
+            }
+        }
+        let mut edges: Vec<((u32, u32), usize)> = count
+            .into_iter()
+            .filter(|(_, (c, _))| *c == 1)
+            .map(|(e, (_, i))| (e, i))
+            .collect();
+        edges.sort_unstable();
+        for ((u, v), i) in edges {
+            boundary[u as usize] = true;
+            boundary[v as usize] = true;
+            let p = surface[i].map(|x| pos[x as usize]);
+            let nrm = normal(p);
+            let e = sub(pos[v as usize], pos[u as usize]);
+            let m = cross(e, nrm);
+            let len = dot(m, m).sqrt();
+            if len > 0.0 {
+                let m = m.map(|x| x / len);
+                let q = Quadric::plane(m, -dot(m, pos[u as usize]), BOUNDARY_WEIGHT * dot(e, e));
+                quad[u as usize].add(&q);
+                quad[v as usize].add(&q);
+            }
+        }
+    }
+    let eps = 1e-6 * total_area / surface.len().max(1) as f64;
+    let eps = if eps > 0.0 && eps.is_finite() {
+        eps
+    } else {
+        1e-12
+    };
+    for (q, p) in quad.iter_mut().zip(&pos) {
+        q.add(&Quadric::point(*p, eps));
+    }
+
+    let mut stamp = vec![0u32; n];
+    let mut heap = QuadHeap::default();
+    let mut nb = Vec::new();
+    let mut scratch = LinkScratch::default();
+    let mut stats = QemStats::default();
+    let mut sum_err = 0.0;
+
+    let candidate = |a: u32, b: u32, quad: &[Quadric], pos: &[[f64; 3]], boundary: &[bool]| {
+        let (ba, bb) = (boundary[a as usize], boundary[b as usize]);
+        let q = quad[a as usize].sum(&quad[b as usize]);
+        let (pa, pb) = (pos[a as usize], pos[b as usize]);
+        let p = if lock_boundary && ba && bb {
+            return None;
+        } else if lock_boundary && ba {
+            pa
+        } else if lock_boundary && bb {
+            pb
+        } else if let Some(x) = q.optimum() {
+            x
+        } else {
+            let mid = [
+                (pa[0] + pb[0]) / 2.0,
+                (pa[1] + pb[1]) / 2.0,
+                (pa[2] + pb[2]) / 2.0,
+            ];
+            let mut best = (q.eval(mid), mid);
+            for c in [pa, pb] {
+                let e = q.eval(c);
+                if e < best.0 {
+                    best = (e, c);
+                }
+            }
+            best.1
+        };
+        Some((q.eval(p).max(0.0), p))
+    };
+
+    let push_all = |heap: &mut QuadHeap,
+                    w: &TopSimplices,
+                    nb: &mut Vec<u32>,
+                    quad: &[Quadric],
+                    pos: &[[f64; 3]],
+                    boundary: &[bool],
+                    stamp: &[u32]| {
+        let mut all = std::mem::take(&mut heap.0);
+        all.clear();
+        for a in 0..n as u32 {
+            if !w.is_alive(a) {
+                continue;
+            }
+            w.neighbours_into(a, nb);
+            for &b in nb.iter().filter(|&&b| b > a) {
+                if let Some((cost, _)) = candidate(a, b, quad, pos, boundary) {
+                    all.push(Entry::new(cost, a, b, stamp));
+                }
+            }
+        }
+        *heap = QuadHeap::from_vec(all);
+    };
+
+    let mut last_round_contracted = true;
+    'rounds: while last_round_contracted && !target.reached(w) {
+        stats.rounds += 1;
+        last_round_contracted = false;
+        push_all(&mut heap, w, &mut nb, &quad, &pos, &boundary, &stamp);
+        while let Some(e) = heap.pop() {
+            if target.reached(w) {
+                break 'rounds;
+            }
+            let (a, b) = (e.a(), e.b());
+            if !w.is_alive(a) || !w.is_alive(b) || !e.fresh(&stamp) {
+                continue;
+            }
+            let Some((cost, p)) = candidate(a, b, &quad, &pos, &boundary) else {
+                continue;
+            };
+            if target.max_error.is_some_and(|m| cost > m) {
+                break 'rounds;
+            }
+            // the survivor: the boundary vertex when the boundary is locked, else the smaller id
+            let (s, t) = if lock_boundary && boundary[b as usize] {
+                (b, a)
+            } else {
+                (a, b)
+            };
+            if !link_condition(w, s, t, LinkMode::Manifold, &mut scratch) {
+                stats.refused_link += 1;
+                continue;
+            }
+            if !geometry_ok(w, d, &pos, s, t, p) {
+                stats.refused_geometry += 1;
+                continue;
+            }
+            w.contract(s, t);
+            pos[s as usize] = p;
+            let qs = quad[s as usize].sum(&quad[t as usize]);
+            quad[s as usize] = qs;
+            boundary[s as usize] |= boundary[t as usize];
+            stamp[s as usize] = stamp[s as usize].wrapping_add(1);
+            stamp[t as usize] = stamp[t as usize].wrapping_add(1);
+            stats.n_contractions += 1;
+            stats.max_error = stats.max_error.max(cost);
+            sum_err += cost;
+            last_round_contracted = true;
+            if let Some(pr) = progress {
+                pr(1);
+            }
+            w.neighbours_into(s, &mut nb);
+            for &x in &nb {
+                if let Some((c, _)) = candidate(s, x, &quad, &pos, &boundary) {
+                    heap.push(Entry::new(c, s.min(x), s.max(x), &stamp));
+                }
+            }
+        }
+    }
+    if stats.n_contractions > 0 {
+        stats.mean_error = sum_err / stats.n_contractions as f64;
+    }
+    let stride = w.stride;
+    for v in 0..n as u32 {
+        if w.is_alive(v) {
+            let p = pos[v as usize];
+            w.set_point(v, &p[..stride]);
+        }
+    }
+    Ok(stats)
+}
+
+/// No cell of the star of `s` or `t` (other than those through `st`, which disappear) flips,
+/// degenerates or inverts when `s` and `t` move to `p`.
+fn geometry_ok(w: &TopSimplices, d: usize, pos: &[[f64; 3]], s: u32, t: u32, p: [f64; 3]) -> bool {
+    for v in [s, t] {
+        for &c in w.star(v) {
+            let top = w.top(c);
+            if top.contains(&s) && top.contains(&t) {
+                continue;
+            }
+            if d == 2 {
+                let old = [0, 1, 2].map(|i| pos[top[i] as usize]);
+                let new = [0, 1, 2].map(|i| if top[i] == v { p } else { old[i] });
+                let (n0, n1) = (normal(old), normal(new));
+                let (l0, l1) = (dot(n0, n0), dot(n1, n1));
+                if l1 <= 1e-24 * l0 || l1 == 0.0 {
+                    return false;
+                }
+                if dot(n0, n1) < MIN_NORMAL_COS * (l0 * l1).sqrt() {
+                    return false;
+                }
+            } else {
+                let old = [0, 1, 2, 3].map(|i| pos[top[i] as usize]);
+                let new = [0, 1, 2, 3].map(|i| if top[i] == v { p } else { old[i] });
+                let o = |q: [[f64; 3]; 4]| {
+                    let c = |x: [f64; 3]| robust::Coord3D {
+                        x: x[0],
+                        y: x[1],
+                        z: x[2],
+                    };
+                    robust::orient3d(c(q[0]), c(q[1]), c(q[2]), c(q[3]))
+                };
+                let (o0, o1) = (o(old), o(new));
+                if o1 == 0.0 || (o0 > 0.0) != (o1 > 0.0) {
+                    return false;
+                }
+            }
+        }
+    }
+    true
+}

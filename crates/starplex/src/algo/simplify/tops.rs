@@ -1,0 +1,577 @@
+//! The editable working structure of simplification: a simplicial complex stored by its top
+//! (maximal) simplices, with the vertex → top relation kept up to date by every contraction.
+//!
+//! It is built once from any structure through [`TopCells`] (plus coordinates), edited by
+//! [`TopSimplices::contract`], and written back with [`TopSimplices::to_complex`]. Top simplices
+//! keep the vertex order they were given (a contraction replaces a vertex in place), so the
+//! orientation of the cells survives simplification.
+//!
+//! ```
+//! use starplex::algo::simplify::TopSimplices;
+//! use starplex::topo::naive::VtIndex;
+//! # use starplex::complex::{ComplexBuilder, BuildOptions};
+//! # use starplex::cell::CellKind;
+//! let mut b = ComplexBuilder::new(2).unwrap();
+//! for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+//! b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+//! b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+//! let k = b.build(&BuildOptions::default()).unwrap().0;
+//! let w = TopSimplices::from_structure(&VtIndex::new(&k), k.coords(), 2).unwrap();
+//! assert_eq!((w.n_alive_vertices(), w.n_alive_tops()), (4, 2));
+//! assert_eq!(w.neighbours(1), vec![0, 2, 3]);
+//! ```
+use smallvec::SmallVec;
+
+use super::SimplifyError;
+use crate::cell::CellKind;
+use crate::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
+use crate::ids::{CellId, VertexId};
+use crate::topo::TopCells;
+
+/// One top simplex: its vertices in the given order (inline up to a tetrahedron).
+pub type Top = SmallVec<[u32; 4]>;
+
+/// A simplicial complex stored by its top simplices, editable by edge contraction.
+///
+/// Vertex ids are those of the input for the whole life of the structure (a contracted vertex
+/// is marked dead, never renumbered); top ids grow (a changed top gets a new id).
+///
+/// ```
+/// use starplex::algo::simplify::TopSimplices;
+/// // [1, 2] is a face of [0, 1, 2]: tops must be maximal
+/// assert!(TopSimplices::from_tops(3, &[vec![0, 1, 2], vec![1, 2]]).is_err());
+/// let w = TopSimplices::from_tops(3, &[vec![0, 1, 2]]).unwrap();
+/// assert_eq!(w.top(0), &[0, 1, 2]);
+/// ```
+#[derive(Clone, Debug)]
+pub struct TopSimplices {
+    tops: Vec<Top>,
+    vt: Vec<SmallVec<[u32; 8]>>,
+    alive_v: Vec<bool>,
+    n_alive_tops: usize,
+    n_alive_v: usize,
+    /// Coordinates, `stride` numbers a vertex (empty when there are none).
+    pub coords: Vec<f64>,
+    /// Numbers per vertex in `coords`.
+    pub stride: usize,
+}
+
+impl TopSimplices {
+    /// Builds the structure from the top cells of any structure and its coordinates (`stride`
+    /// numbers a vertex; pass an empty slice for none). A vertex in no top cell becomes a
+    /// 0-dimensional top.
+    ///
+    /// ```
+    /// use starplex::algo::simplify::TopSimplices;
+    /// use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let st = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap();
+    /// let w = TopSimplices::from_structure(&st, &[], 0).unwrap();
+    /// assert_eq!(w.n_alive_tops(), 2); // the triangle and the isolated vertex 3
+    /// ```
+    ///
+    /// # Errors
+    /// [`SimplifyError::NotSimplicial`] for a CP cell (quad, hexahedron, ...);
+    /// [`SimplifyError::Empty`] when there is no vertex.
+    pub fn from_structure<S: TopCells + ?Sized>(
+        s: &S,
+        coords: &[f64],
+        stride: usize,
+    ) -> Result<TopSimplices, SimplifyError> {
+        let n = s.n_vertices();
+        if n == 0 {
+            return Err(SimplifyError::Empty);
+        }
+        let mut tops = Vec::with_capacity(s.n_top_cells() + 1);
+        let mut buf = Vec::new();
+        let mut used = vec![false; n];
+        for c in 0..s.n_top_cells() {
+            let c = CellId(c as u32);
+            let kind = s.top_cell_kind(c);
+            if !kind.is_simplex() {
+                return Err(SimplifyError::NotSimplicial {
+                    cell: c.0,
+                    kind: kind.type_name(),
+                });
+            }
+            buf.clear();
+            s.top_cell_vertices(c, &mut buf);
+            let t: Top = buf.iter().map(|v| v.0).collect();
+            for &v in &t {
+                used[v as usize] = true;
+            }
+            tops.push(t);
+        }
+        for (v, &u) in used.iter().enumerate() {
+            if !u {
+                tops.push(SmallVec::from_slice(&[v as u32]));
+            }
+        }
+        let coords = if stride == 0 {
+            Vec::new()
+        } else {
+            coords.to_vec()
+        };
+        Ok(Self::assemble(n, tops, coords, stride))
+    }
+
+    /// Builds the structure from an indexed complex (its coordinates included).
+    ///
+    /// ```
+    /// use starplex::algo::simplify::TopSimplices;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let w = TopSimplices::from_complex(&k).unwrap();
+    /// assert_eq!(w.point(2), &[0.0, 1.0]);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`from_structure`](Self::from_structure).
+    pub fn from_complex(k: &IndexedComplex) -> Result<TopSimplices, SimplifyError> {
+        Self::from_structure(
+            &crate::topo::naive::VtIndex::new(k),
+            k.coords(),
+            k.ambient_dim(),
+        )
+    }
+
+    /// Builds the structure from lists of vertices (no coordinates), checking that they are
+    /// simplices (no repeated vertex, in range) and maximal.
+    ///
+    /// ```
+    /// use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![2, 3]]).unwrap();
+    /// assert_eq!(w.n_alive_tops(), 2);
+    /// assert!(TopSimplices::from_tops(3, &[vec![0, 0]]).is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// [`SimplifyError::BadTop`] naming the list.
+    pub fn from_tops(n_vertices: usize, tops: &[Vec<u32>]) -> Result<TopSimplices, SimplifyError> {
+        let mut used = vec![false; n_vertices];
+        let mut out: Vec<Top> = Vec::with_capacity(tops.len());
+        for (i, t) in tops.iter().enumerate() {
+            let bad = |reason: &str| SimplifyError::BadTop {
+                top: i,
+                reason: reason.into(),
+            };
+            if t.is_empty() {
+                return Err(bad("no vertex"));
+            }
+            for (j, &v) in t.iter().enumerate() {
+                if v as usize >= n_vertices {
+                    return Err(bad("vertex out of range"));
+                }
+                if t[..j].contains(&v) {
+                    return Err(bad("repeated vertex"));
+                }
+                used[v as usize] = true;
+            }
+            for (j, u) in tops.iter().enumerate() {
+                if j != i && is_subset(t, u) && (t.len() < u.len() || j < i) {
+                    return Err(bad("not maximal (a face of another top, or a duplicate)"));
+                }
+            }
+            out.push(t.iter().copied().collect());
+        }
+        for (v, &u) in used.iter().enumerate() {
+            if !u {
+                out.push(SmallVec::from_slice(&[v as u32]));
+            }
+        }
+        Ok(Self::assemble(n_vertices, out, Vec::new(), 0))
+    }
+
+    fn assemble(n: usize, tops: Vec<Top>, coords: Vec<f64>, stride: usize) -> TopSimplices {
+        let mut vt: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];
+        for (i, t) in tops.iter().enumerate() {
+            for &v in t {
+                vt[v as usize].push(i as u32);
+            }
+        }
+        TopSimplices {
+            n_alive_tops: tops.len(),
+            tops,
+            vt,
+            alive_v: vec![true; n],
+            n_alive_v: n,
+            coords,
+            stride,
+        }
+    }
+
+    /// Number of vertex ids (dead ones included).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(3, &[vec![0, 1]]).unwrap();
+    /// assert_eq!(w.n_vertices(), 3);
+    /// ```
+    pub fn n_vertices(&self) -> usize {
+        self.alive_v.len()
+    }
+
+    /// Number of vertices not contracted away.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(3, &[vec![0, 1], vec![1, 2]]).unwrap();
+    /// w.contract(0, 1);
+    /// assert_eq!(w.n_alive_vertices(), 2);
+    /// ```
+    pub fn n_alive_vertices(&self) -> usize {
+        self.n_alive_v
+    }
+
+    /// Number of top simplices (0-dimensional tops, isolated vertices, included).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(3, &[vec![0, 1]]).unwrap();
+    /// assert_eq!(w.n_alive_tops(), 2); // the edge and the vertex 2
+    /// ```
+    pub fn n_alive_tops(&self) -> usize {
+        self.n_alive_tops
+    }
+
+    /// True when vertex `v` has not been contracted away.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(2, &[vec![0, 1]]).unwrap();
+    /// w.contract(1, 0);
+    /// assert!(w.is_alive(1) && !w.is_alive(0));
+    /// ```
+    pub fn is_alive(&self, v: u32) -> bool {
+        self.alive_v.get(v as usize).copied().unwrap_or(false)
+    }
+
+    /// The vertices of top `t` (empty for a removed top).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(3, &[vec![2, 0, 1]]).unwrap();
+    /// assert_eq!(w.top(0), &[2, 0, 1]);
+    /// ```
+    pub fn top(&self, t: u32) -> &[u32] {
+        self.tops.get(t as usize).map_or(&[], |t| &t[..])
+    }
+
+    /// The ids of the tops containing `v` (in no particular order).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(3, &[vec![0, 1], vec![1, 2]]).unwrap();
+    /// assert_eq!(w.star(1).len(), 2);
+    /// ```
+    pub fn star(&self, v: u32) -> &[u32] {
+        self.vt.get(v as usize).map_or(&[], |s| &s[..])
+    }
+
+    /// The vertices joined to `v` by an edge, sorted.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![2, 3]]).unwrap();
+    /// assert_eq!(w.neighbours(2), vec![0, 1, 3]);
+    /// ```
+    pub fn neighbours(&self, v: u32) -> Vec<u32> {
+        let mut out = Vec::new();
+        self.neighbours_into(v, &mut out);
+        out
+    }
+
+    /// [`neighbours`](Self::neighbours) into a reused buffer.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(3, &[vec![0, 1], vec![0, 2]]).unwrap();
+    /// let mut nb = Vec::new();
+    /// w.neighbours_into(0, &mut nb);
+    /// assert_eq!(nb, [1, 2]);
+    /// ```
+    pub fn neighbours_into(&self, v: u32, out: &mut Vec<u32>) {
+        out.clear();
+        for &t in self.star(v) {
+            out.extend(self.tops[t as usize].iter().copied().filter(|&x| x != v));
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+
+    /// The coordinates of `v` (empty without coordinates).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(2, &[vec![0, 1]]).unwrap();
+    /// assert!(w.point(0).is_empty());
+    /// ```
+    pub fn point(&self, v: u32) -> &[f64] {
+        let s = self.stride;
+        self.coords
+            .get(v as usize * s..(v as usize + 1) * s)
+            .unwrap_or(&[])
+    }
+
+    /// The highest dimension of a top simplex (`None` when there is none).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![2, 3]]).unwrap();
+    /// assert_eq!(w.dim(), Some(2));
+    /// ```
+    pub fn dim(&self) -> Option<usize> {
+        self.tops
+            .iter()
+            .filter(|t| !t.is_empty())
+            .map(|t| t.len() - 1)
+            .max()
+    }
+
+    /// Iterates over the alive tops.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(3, &[vec![0, 1], vec![1, 2]]).unwrap();
+    /// assert_eq!(w.tops().count(), 2);
+    /// ```
+    pub fn tops(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        self.tops.iter().filter(|t| !t.is_empty()).map(|t| &t[..])
+    }
+
+    /// Contracts the edge `ab` into `a` (`b` disappears; `a` keeps its coordinates, set them
+    /// with [`set_point`](Self::set_point)). Every top through `b` is replaced by its image
+    /// (`b` → `a`); an image that is a face of another top is dropped, and a face left without a
+    /// top becomes a new, lower-dimensional top. Does *not* check the link condition (call
+    /// [`can_contract`](Self::can_contract) first to keep the homology); returns false (and
+    /// changes nothing) when `ab` is not an edge.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// // two triangles sharing the edge 1-2: contracting it folds each into an edge
+    /// let mut w = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![1, 3, 2]]).unwrap();
+    /// assert!(w.contract(2, 1));
+    /// assert_eq!(w.sorted_tops(), vec![vec![0, 2], vec![2, 3]]); // the triangles became edges
+    /// assert!(!w.contract(0, 3)); // not an edge
+    /// ```
+    pub fn contract(&mut self, a: u32, b: u32) -> bool {
+        if a == b || !self.is_alive(a) || !self.is_alive(b) {
+            return false;
+        }
+        if !self
+            .star(b)
+            .iter()
+            .any(|&t| self.tops[t as usize].contains(&a))
+        {
+            return false;
+        }
+        let st_b = std::mem::take(&mut self.vt[b as usize]);
+        let mut images: Vec<Top> = Vec::with_capacity(st_b.len());
+        for &t in &st_b {
+            let mut top = std::mem::take(&mut self.tops[t as usize]);
+            self.n_alive_tops -= 1;
+            for &v in &top {
+                if v != b {
+                    remove_from(&mut self.vt[v as usize], t);
+                }
+            }
+            if top.contains(&a) {
+                top.retain(|v| *v != b);
+            } else {
+                for v in top.iter_mut() {
+                    if *v == b {
+                        *v = a;
+                    }
+                }
+            }
+            images.push(top);
+        }
+        self.alive_v[b as usize] = false;
+        self.n_alive_v -= 1;
+        // maximality among the images and the tops through a
+        let keep: Vec<bool> = (0..images.len())
+            .map(|i| {
+                let t = &images[i];
+                let dominated_by_image = images
+                    .iter()
+                    .enumerate()
+                    .any(|(j, u)| j != i && is_subset(t, u) && (t.len() < u.len() || j < i));
+                dominated_by_image
+                    || self.vt[a as usize]
+                        .iter()
+                        .any(|&u| is_subset(t, &self.tops[u as usize]))
+            })
+            .map(|dominated| !dominated)
+            .collect();
+        // tops through a swallowed by an image
+        let swallowed: Vec<u32> = self.vt[a as usize]
+            .iter()
+            .copied()
+            .filter(|&u| {
+                let u = &self.tops[u as usize];
+                images
+                    .iter()
+                    .zip(&keep)
+                    .any(|(t, &k)| k && u.len() < t.len() && is_subset(u, t))
+            })
+            .collect();
+        for u in swallowed {
+            let top = std::mem::take(&mut self.tops[u as usize]);
+            self.n_alive_tops -= 1;
+            for &v in &top {
+                remove_from(&mut self.vt[v as usize], u);
+            }
+        }
+        for (t, k) in images.into_iter().zip(keep) {
+            if k {
+                let id = self.tops.len() as u32;
+                for &v in &t {
+                    self.vt[v as usize].push(id);
+                }
+                self.tops.push(t);
+                self.n_alive_tops += 1;
+            }
+        }
+        true
+    }
+
+    /// Moves vertex `v` (no-op without coordinates).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let mut w = TopSimplices::from_complex(&k).unwrap();
+    /// w.set_point(0, &[0.5, 0.0]);
+    /// assert_eq!(w.point(0), &[0.5, 0.0]);
+    /// ```
+    pub fn set_point(&mut self, v: u32, p: &[f64]) {
+        let s = self.stride;
+        if let Some(dst) = self.coords.get_mut(v as usize * s..(v as usize + 1) * s) {
+            dst.copy_from_slice(&p[..s]);
+        }
+    }
+
+    /// Writes the structure back as an indexed complex: alive vertices renumbered in id order
+    /// (0-dimensional tops become isolated vertices), tops in id order. Also returns the new id
+    /// of every old vertex (`None` for a contracted one).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in 0..3 { b.push_vertex(&[x as f64]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(1), &[1, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let mut w = TopSimplices::from_complex(&k).unwrap();
+    /// w.contract(1, 2);
+    /// let (k2, map) = w.to_complex().unwrap();
+    /// assert_eq!((k2.n_vertices(), k2.n_cells()), (2, 1));
+    /// assert_eq!(map, vec![Some(0), Some(1), None]);
+    /// ```
+    ///
+    /// # Errors
+    /// [`SimplifyError::Complex`] if the builder refuses (not expected).
+    pub fn to_complex(&self) -> Result<(IndexedComplex, Vec<Option<u32>>), SimplifyError> {
+        let stride = self.stride.max(1);
+        let mut b = ComplexBuilder::new(stride).map_err(SimplifyError::Complex)?;
+        let mut map = vec![None; self.n_vertices()];
+        let zero = vec![0.0; stride];
+        for (v, slot) in map.iter_mut().enumerate() {
+            if self.alive_v[v] {
+                let p = if self.stride == 0 {
+                    &zero[..]
+                } else {
+                    self.point(v as u32)
+                };
+                *slot = Some(b.push_vertex(p).map_err(SimplifyError::Complex)?.0);
+            }
+        }
+        let mut cell = Vec::new();
+        for t in self.tops() {
+            if t.len() < 2 {
+                continue;
+            }
+            cell.clear();
+            cell.extend(t.iter().map(|&v| map[v as usize].unwrap_or(u32::MAX)));
+            let kind = CellKind::simplex(t.len() - 1).ok_or_else(|| SimplifyError::BadTop {
+                top: 0,
+                reason: "dimension too high".into(),
+            })?;
+            b.push_cell(kind, &cell).map_err(SimplifyError::Complex)?;
+        }
+        let opts = BuildOptions {
+            trust_maximality: true,
+            ..Default::default()
+        };
+        let (k, _) = b.build(&opts).map_err(SimplifyError::Complex)?;
+        Ok((k, map))
+    }
+
+    /// The alive tops as sorted vertex lists, the list sorted (for comparisons in tests).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(3, &[vec![2, 0, 1]]).unwrap();
+    /// assert_eq!(w.sorted_tops(), vec![vec![0, 1, 2]]);
+    /// ```
+    pub fn sorted_tops(&self) -> Vec<Vec<u32>> {
+        let mut out: Vec<Vec<u32>> = self
+            .tops()
+            .map(|t| {
+                let mut t = t.to_vec();
+                t.sort_unstable();
+                t
+            })
+            .collect();
+        out.sort();
+        out
+    }
+
+    /// The vertex ids of the alive vertices, as `VertexId`s.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(2, &[vec![0, 1]]).unwrap();
+    /// w.contract(0, 1);
+    /// assert_eq!(w.alive_vertices(), vec![starplex::ids::VertexId(0)]);
+    /// ```
+    pub fn alive_vertices(&self) -> Vec<VertexId> {
+        (0..self.n_vertices() as u32)
+            .filter(|&v| self.alive_v[v as usize])
+            .map(VertexId)
+            .collect()
+    }
+}
+
+fn remove_from(row: &mut SmallVec<[u32; 8]>, t: u32) {
+    if let Some(i) = row.iter().position(|&x| x == t) {
+        row.swap_remove(i);
+    }
+}
+
+/// True when every vertex of `s` is in `t` (both without repetition, any order).
+///
+/// ```
+/// use starplex::algo::simplify::tops::is_subset;
+/// assert!(is_subset(&[2, 0], &[0, 1, 2]));
+/// assert!(!is_subset(&[3], &[0, 1, 2]));
+/// ```
+pub fn is_subset(s: &[u32], t: &[u32]) -> bool {
+    s.len() <= t.len() && s.iter().all(|v| t.contains(v))
+}
