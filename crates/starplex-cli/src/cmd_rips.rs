@@ -41,10 +41,10 @@ pub struct RipsArgs {
     /// vertices of a mesh (.off, .ply, .obj, .spx, ...).
     pub points: PathBuf,
     /// Scale: two points are joined when their distance is at most E.
-    #[arg(long, value_name = "E")]
+    #[arg(long, value_name = "E", allow_negative_numbers = true)]
     pub eps: Option<f64>,
     /// Scale as a multiple F of the median nearest-neighbour distance.
-    #[arg(long, value_name = "F")]
+    #[arg(long, value_name = "F", allow_negative_numbers = true)]
     pub eps_nn: Option<f64>,
     #[command(flatten)]
     pub build: BuildArgs,
