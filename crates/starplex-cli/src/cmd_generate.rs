@@ -66,6 +66,20 @@ pub enum GenerateWhat {
         #[arg(long)]
         to: Option<String>,
     },
+    /// Midpoint 1-to-4 subdivision of a triangle mesh, as the datasets' generator.
+    Subdivide {
+        #[command(flatten)]
+        input: common::InputArgs,
+        /// Number of subdivision levels.
+        #[arg(long, default_value_t = 1)]
+        levels: usize,
+        /// Output file.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Output format.
+        #[arg(long)]
+        to: Option<String>,
+    },
     /// Each tetrahedron of a tetrahedral mesh -> 4 hexahedra (edge midpoints, face centroids,
     /// centroid), as the datasets' generator.
     Hexes {
@@ -121,6 +135,29 @@ pub fn run(ctx: &Ctx, a: &GenerateArgs) -> Result<(), CliError> {
                     s.complex.n_vertices(),
                     s.complex.n_cells(),
                     s.levels
+                );
+            }
+            return Ok(());
+        }
+        GenerateWhat::Subdivide {
+            input,
+            levels,
+            out,
+            to,
+        } => {
+            let to = common::output_format_for(to.as_deref(), out)?;
+            let r = common::load(ctx, input)?;
+            let k = common::with_spinner(ctx, "subdividing", || {
+                starplex::gen::refine::subdivide_triangles(&r.complex, *levels)
+            })
+            .map_err(|e| CliError::Input(format!("{}: {e}", input.file.display()), None))?;
+            common::with_spinner(ctx, "writing", || io::write(out, &k, to))?;
+            if !ctx.quiet {
+                eprintln!(
+                    "wrote {} ({} vertices, {} triangles)",
+                    common::shown(out),
+                    k.n_vertices(),
+                    k.n_cells()
                 );
             }
             return Ok(());

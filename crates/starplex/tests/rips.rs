@@ -249,3 +249,35 @@ fn quads_equal_the_datasets_generator() {
         .all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + b.abs())); // the file has 10 digits
     assert!(close, "coordinates differ");
 }
+
+/// Midpoint subdivision reproduces tri_armadillo_x16 (CGAL's armadillo, 2 levels) when the
+/// generated data is at hand (`STARPLEX_DATA`, medium; not beside the checkout in CI).
+#[test]
+fn subdivision_equals_the_datasets_generator() {
+    let Ok(data) = std::env::var("STARPLEX_DATA") else {
+        eprintln!("SKIPPED tri_armadillo_x16: STARPLEX_DATA not set");
+        return;
+    };
+    let data = Path::new(&data);
+    let src = data.join("cgal/data/meshes/armadillo.off");
+    let want = data.join("medium/tri_armadillo_x16/tri_armadillo_x16.spx");
+    if !src.is_file() || !want.is_file() {
+        eprintln!("SKIPPED tri_armadillo_x16: files not found");
+        return;
+    }
+    let t = io::read(&src, &ReadOptions::default()).unwrap().complex;
+    let want = io::read(&want, &ReadOptions::default()).unwrap().complex;
+    let got = starplex::gen::refine::subdivide_triangles(&t, 2).unwrap();
+    assert_eq!(got.n_vertices(), want.n_vertices());
+    assert_eq!(got.n_cells(), want.n_cells());
+    assert!(got
+        .cells()
+        .zip(want.cells())
+        .all(|(a, b)| a.vertices == b.vertices));
+    let close = got
+        .coords()
+        .iter()
+        .zip(want.coords())
+        .all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + b.abs()));
+    assert!(close, "coordinates differ");
+}

@@ -575,6 +575,9 @@ fn from_vertex(
         return; // an isolated vertex: a clique of one, not listed
     }
     let rv = rank[v as usize];
+    if nb.iter().all(|&u| rank[u as usize] < rv) {
+        return; // no later neighbour: every clique through v starts at an earlier vertex
+    }
     let m = nb.len();
     let words = m.div_ceil(64);
     let mut loc = Local {

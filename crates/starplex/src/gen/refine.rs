@@ -231,3 +231,67 @@ pub fn tets_to_hexes(k: &IndexedComplex) -> Result<IndexedComplex, RefineError> 
         vec![(CellKind::Hex, h.into())],
     )?)
 }
+
+/// Midpoint 1-to-4 subdivision of a triangle mesh, `levels` times (as the datasets'
+/// `subdivide_1to4`): triangle `abc` becomes `a m_ab m_ca`, `m_ab b m_bc`, `m_ca m_bc c`,
+/// `m_ab m_bc m_ca`, children grouped by kind (all first corners, then all second ones, ...),
+/// midpoints appended in the order of their sorted endpoint pairs.
+///
+/// ```
+/// # use starplex::cell::CellKind;
+/// # use starplex::complex::IndexedComplex;
+/// use starplex::gen::refine::subdivide_triangles;
+/// let tri = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+///                                      vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let s = subdivide_triangles(&tri, 2).unwrap();
+/// assert_eq!((s.n_vertices(), s.n_cells()), (15, 16));
+/// ```
+///
+/// # Errors
+/// A cell that is not a triangle; an output beyond 32-bit ids.
+pub fn subdivide_triangles(
+    k: &IndexedComplex,
+    levels: usize,
+) -> Result<IndexedComplex, RefineError> {
+    let mut f = only(k, CellKind::Simplex(2), "triangles")?;
+    let d = k.ambient_dim();
+    let mut coords = k.coords().to_vec();
+    for _ in 0..levels {
+        let n = coords.len() / d;
+        let m = f.len() / 3;
+        check_size(n as u128 + 3 * m as u128, "vertices")?;
+        check_size(4 * m as u128, "cells")?;
+        let pairs = [(0, 1), (1, 2), (2, 0)];
+        let keys: Vec<[u32; 2]> = f
+            .chunks_exact(3)
+            .flat_map(|c| pairs.map(|(i, j)| sorted([c[i], c[j]])))
+            .collect();
+        let (u, inv) = unique(keys);
+        for e in &u {
+            let (a, b) = (e[0] as usize, e[1] as usize);
+            for x in 0..d {
+                let v = 0.5 * (coords[a * d + x] + coords[b * d + x]);
+                coords.push(v);
+            }
+        }
+        let mid = |t: usize, i: usize| n as u32 + inv[3 * t + i];
+        let mut g = Vec::with_capacity(12 * m);
+        for child in 0..4 {
+            for (t, c) in f.chunks_exact(3).enumerate() {
+                let (mab, mbc, mca) = (mid(t, 0), mid(t, 1), mid(t, 2));
+                g.extend_from_slice(&match child {
+                    0 => [c[0], mab, mca],
+                    1 => [mab, c[1], mbc],
+                    2 => [mca, mbc, c[2]],
+                    _ => [mab, mbc, mca],
+                });
+            }
+        }
+        f = g;
+    }
+    Ok(IndexedComplex::from_parts(
+        d,
+        coords.into(),
+        vec![(CellKind::Simplex(2), f.into())],
+    )?)
+}
