@@ -281,3 +281,67 @@ fn subdivision_equals_the_datasets_generator() {
         .all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + b.abs()));
     assert!(close, "coordinates differ");
 }
+
+/// A `.npy` file as numpy writes it (format 1.0), C and Fortran order, float64 and int32.
+#[test]
+fn npy_points_are_read_in_either_order() {
+    fn npy(descr: &str, fortran: bool, shape: (usize, usize), data: &[u8]) -> Vec<u8> {
+        let mut h = format!(
+            "{{'descr': '{descr}', 'fortran_order': {}, 'shape': ({}, {}), }}",
+            if fortran { "True" } else { "False" },
+            shape.0,
+            shape.1
+        );
+        while (10 + h.len() + 1) % 64 != 0 {
+            h.push(' ');
+        }
+        h.push('\n');
+        let mut out = b"\x93NUMPY\x01\x00".to_vec();
+        out.extend_from_slice(&(h.len() as u16).to_le_bytes());
+        out.extend_from_slice(h.as_bytes());
+        out.extend_from_slice(data);
+        out
+    }
+    let dir = std::env::temp_dir().join(format!("starplex-npy-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let rows = [[0.0f64, 1.0, 2.0], [3.0, 4.0, 5.5]];
+    let c: Vec<u8> = rows
+        .iter()
+        .flatten()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    let f: Vec<u8> = (0..3)
+        .flat_map(|j| (0..2).map(move |i| rows[i][j]))
+        .flat_map(|x: f64| x.to_le_bytes())
+        .collect();
+    let i: Vec<u8> = [0i32, 1, 2, 3, 4, 5]
+        .iter()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    for (name, bytes, want) in [
+        (
+            "c.npy",
+            npy("<f8", false, (2, 3), &c),
+            vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.5],
+        ),
+        (
+            "f.npy",
+            npy("<f8", true, (2, 3), &f),
+            vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.5],
+        ),
+        (
+            "i.npy",
+            npy("<i4", false, (3, 2), &i),
+            vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0],
+        ),
+    ] {
+        let p = dir.join(name);
+        std::fs::write(&p, bytes).unwrap();
+        let pc = io::points::read_points(&p).unwrap();
+        assert_eq!(pc.coords, want, "{name}");
+        assert_eq!(pc.dim, if name == "i.npy" { 2 } else { 3 });
+    }
+    let bad = dir.join("bad.npy");
+    std::fs::write(&bad, b"not numpy").unwrap();
+    assert!(io::points::read_points(&bad).is_err());
+}
