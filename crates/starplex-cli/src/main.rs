@@ -15,6 +15,7 @@ mod cmd_homology;
 mod cmd_info;
 mod cmd_query;
 mod cmd_simplify;
+mod cmd_rips;
 mod cmd_stellar;
 mod cmd_validate;
 mod common;
@@ -53,6 +54,10 @@ enum Command {
     Compare(cmd_compare::CompareArgs),
     /// Timings of one data structure (single thread): `bench simplex-tree FILE`.
     Bench(cmd_bench::BenchArgs),
+    /// Vietoris–Rips complex of a point cloud, stored by its maximal simplices.
+    Rips(cmd_rips::RipsArgs),
+    /// Flag (clique) complex of a graph given as an edge list, stored by its maximal simplices.
+    Flag(cmd_rips::FlagArgs),
     /// The main job on the bundled sample (what `cargo run --release` does without arguments).
     Demo {
         /// A file to use instead of the bundled sample.
@@ -89,6 +94,8 @@ fn main() -> ExitCode {
         Some(Command::Generate(a)) => cmd_generate::run(&ctx, &a),
         Some(Command::Homology(a)) => cmd_homology::run(&ctx, &a),
         Some(Command::Simplify(a)) => cmd_simplify::run(&ctx, &a),
+        Some(Command::Rips(a)) => cmd_rips::run_rips(&ctx, &a),
+        Some(Command::Flag(a)) => cmd_rips::run_flag(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

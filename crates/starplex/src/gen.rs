@@ -20,6 +20,9 @@
 use crate::cell::CellKind;
 use crate::complex::{ComplexError, IndexedComplex, MAX_AMBIENT_DIM};
 
+pub mod refine;
+pub mod sierpinski;
+
 /// The Freudenthal triangulation of a grid of `cubes[0] x cubes[1] x ...` unit cubes (vertex
 /// coordinates are the integer grid points; vertex ids run with the first axis fastest).
 ///

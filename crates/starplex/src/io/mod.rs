@@ -34,6 +34,7 @@ pub mod obj;
 pub mod off;
 pub mod output;
 pub mod ply;
+pub mod points;
 mod raw;
 pub mod spx;
 pub mod stellar_ref;

@@ -1,0 +1,261 @@
+//! `starplex rips POINTS --eps E | --eps-nn F [--max-dim K] -o OUT` and `starplex flag EDGES -o
+//! OUT`: complexes from data, stored by their maximal simplices (maximal cliques of the
+//! neighbourhood graph or of the given graph).
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde_json::json;
+use starplex::algo::cliques::CliqueOptions;
+use starplex::algo::rips::{self, Built, RipsOptions};
+use starplex::io::{self, Format};
+
+use crate::common::{self, CliError, Ctx};
+
+/// Options shared by `rips` and `flag`.
+#[derive(clap::Args, Debug)]
+pub struct BuildArgs {
+    /// Keep the K-skeleton, stored by its maximal simplices (cliques of more than K + 1 vertices
+    /// are replaced by their (K+1)-subsets).
+    #[arg(long, value_name = "K")]
+    pub max_dim: Option<usize>,
+    /// Output file (format from the extension unless --to is given; `.off` is written as
+    /// off-simplices; `-` is standard output with --to).
+    #[arg(short, long)]
+    pub out: PathBuf,
+    /// Output format.
+    #[arg(long)]
+    pub to: Option<String>,
+    /// Memory budget for the graph and the output in GiB (default: a third of the available
+    /// memory); larger outputs are refused with an estimate.
+    #[arg(long, value_name = "GIB")]
+    pub max_memory: Option<f64>,
+    /// Print a JSON summary on standard output.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("scale").required(true).args(["eps", "eps_nn"])))]
+pub struct RipsArgs {
+    /// Point cloud: .xyz (first 3 columns), .txt/.pts (whitespace columns), .csv, .npy, or the
+    /// vertices of a mesh (.off, .ply, .obj, .spx, ...).
+    pub points: PathBuf,
+    /// Scale: two points are joined when their distance is at most E.
+    #[arg(long, value_name = "E", allow_negative_numbers = true)]
+    pub eps: Option<f64>,
+    /// Scale as a multiple F of the median nearest-neighbour distance.
+    #[arg(long, value_name = "F", allow_negative_numbers = true)]
+    pub eps_nn: Option<f64>,
+    #[command(flatten)]
+    pub build: BuildArgs,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct FlagArgs {
+    /// Edge list: two vertex ids per line (further columns ignored), or CSV with a header;
+    /// `#` and `%` start comments.
+    pub edges: PathBuf,
+    /// Number of vertices (ids must be below it); default: the largest id + 1.
+    #[arg(long, value_name = "N")]
+    pub n_vertices: Option<usize>,
+    #[command(flatten)]
+    pub build: BuildArgs,
+}
+
+/// A third of MemAvailable (Linux), else 8 GiB.
+fn default_budget() -> u64 {
+    let avail = std::fs::read_to_string("/proc/meminfo").ok().and_then(|s| {
+        s.lines()
+            .find(|l| l.starts_with("MemAvailable:"))
+            .and_then(|l| l.split_whitespace().nth(1))
+            .and_then(|kb| kb.parse::<u64>().ok())
+            .map(|kb| kb * 1024)
+    });
+    avail.map_or(8 << 30, |b| b / 3)
+}
+
+fn budget(b: &BuildArgs) -> Result<u64, CliError> {
+    match b.max_memory {
+        None => Ok(default_budget()),
+        Some(g) if g.is_finite() && g > 0.0 => Ok((g * (1u64 << 30) as f64) as u64),
+        Some(g) => Err(CliError::Input(
+            format!("--max-memory {g}: expected a positive number of GiB"),
+            None,
+        )),
+    }
+}
+
+/// The output format: `.off` means off-simplices (the output is simplicial of any dimension).
+fn out_format(b: &BuildArgs) -> Result<Option<Format>, CliError> {
+    let f = common::output_format_for(b.to.as_deref(), &b.out)?;
+    if f.is_none() && Format::from_path(&b.out) == Some(Format::Off) {
+        return Ok(Some(Format::OffSimplices));
+    }
+    Ok(f)
+}
+
+fn input_error(what: &Path, e: impl std::fmt::Display, hint: Option<&str>) -> CliError {
+    CliError::Input(format!("{}: {e}", what.display()), hint.map(str::to_string))
+}
+
+pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
+    let t0 = Instant::now();
+    let to = out_format(&a.build)?;
+    let max_bytes = budget(&a.build)?;
+    for (flag, v) in [("--eps", a.eps), ("--eps-nn", a.eps_nn)] {
+        if let Some(x) = v {
+            if !(x.is_finite() && x > 0.0) {
+                return Err(CliError::Input(
+                    format!("{flag} {x}: the scale must be a positive finite number"),
+                    None,
+                ));
+            }
+        }
+    }
+    let pc = common::with_spinner(ctx, "reading points", || io::points::read_points(&a.points))?;
+    let read_s = t0.elapsed().as_secs_f64();
+    let (eps, nn) = match (a.eps, a.eps_nn) {
+        (Some(e), _) => (e, None),
+        (None, Some(f)) => {
+            let m = rips::median_nn_distance(&pc.coords, pc.dim)
+                .map_err(|e| input_error(&a.points, e, None))?;
+            if m <= 0.0 {
+                return Err(input_error(
+                    &a.points,
+                    "the median nearest-neighbour distance is 0 (more than half the points are \
+                     duplicates): --eps-nn gives no scale",
+                    Some("give the scale with --eps"),
+                ));
+            }
+            (f * m, Some(m))
+        }
+        (None, None) => unreachable!("clap requires one of --eps, --eps-nn"),
+    };
+    let pb = common::progress_bar(ctx, pc.len() as u64, "maximal cliques");
+    let progress = |n: u64| pb.inc(n);
+    let opts = RipsOptions {
+        cliques: CliqueOptions {
+            max_dim: a.build.max_dim,
+            max_bytes,
+            progress: Some(&progress),
+        },
+        max_dim: a.build.max_dim,
+    };
+    let t1 = Instant::now();
+    let built = rips::rips_complex(&pc.coords, pc.dim, eps, &opts);
+    pb.finish_and_clear();
+    let built = built.map_err(|e| {
+        input_error(
+            &a.points,
+            e,
+            Some("use a smaller --eps, a --max-dim, or a larger --max-memory"),
+        )
+    })?;
+    let build_s = t1.elapsed().as_secs_f64();
+    finish(
+        ctx,
+        &a.build,
+        to,
+        built,
+        json!({
+            "input": a.points.display().to_string(),
+            "n_points": pc.len(),
+            "ambient_dim": pc.dim,
+            "eps": eps,
+            "median_nn_distance": nn,
+        }),
+        (read_s, build_s),
+    )
+}
+
+pub fn run_flag(ctx: &Ctx, a: &FlagArgs) -> Result<(), CliError> {
+    let t0 = Instant::now();
+    let to = out_format(&a.build)?;
+    let max_bytes = budget(&a.build)?;
+    let el = common::with_spinner(ctx, "reading edges", || {
+        io::points::read_edges(&a.edges, a.n_vertices)
+    })?;
+    let read_s = t0.elapsed().as_secs_f64();
+    let pb = common::progress_bar(ctx, el.n_vertices as u64, "maximal cliques");
+    let progress = |n: u64| pb.inc(n);
+    let opts = RipsOptions {
+        cliques: CliqueOptions {
+            max_dim: a.build.max_dim,
+            max_bytes,
+            progress: Some(&progress),
+        },
+        max_dim: a.build.max_dim,
+    };
+    let t1 = Instant::now();
+    let built = rips::flag_complex(el.n_vertices, &el.edges, &opts);
+    pb.finish_and_clear();
+    let built = built.map_err(|e| {
+        input_error(
+            &a.edges,
+            e,
+            Some("use a --max-dim, or a larger --max-memory"),
+        )
+    })?;
+    let build_s = t1.elapsed().as_secs_f64();
+    finish(
+        ctx,
+        &a.build,
+        to,
+        built,
+        json!({
+            "input": a.edges.display().to_string(),
+            "n_points": el.n_vertices,
+        }),
+        (read_s, build_s),
+    )
+}
+
+fn finish(
+    ctx: &Ctx,
+    b: &BuildArgs,
+    to: Option<Format>,
+    built: Built,
+    mut summary: serde_json::Value,
+    (read_s, build_s): (f64, f64),
+) -> Result<(), CliError> {
+    let t = Instant::now();
+    common::with_spinner(ctx, "writing", || io::write(&b.out, &built.complex, to))?;
+    let write_s = t.elapsed().as_secs_f64();
+    let n_max: usize = built.by_dim.iter().map(|&(_, c)| c).sum();
+    let isolated = built.complex.n_isolated_vertices();
+    if b.json {
+        summary["n_edges"] = json!(built.n_edges);
+        summary["n_maximal_simplices"] = json!(n_max);
+        summary["n_isolated_vertices"] = json!(isolated);
+        summary["maximal_simplices_by_dim"] = json!(built
+            .by_dim
+            .iter()
+            .map(|&(d, c)| (d.to_string(), json!(c)))
+            .collect::<serde_json::Map<_, _>>());
+        summary["max_dim"] = json!(b.max_dim);
+        summary["output"] = json!(common::shown(&b.out));
+        summary["timings"] = json!({"read_s": read_s, "build_s": build_s, "write_s": write_s});
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&summary).unwrap_or_default()
+        );
+    } else if !ctx.quiet {
+        let dims: Vec<String> = built
+            .by_dim
+            .iter()
+            .map(|&(d, c)| format!("{c} of dim {d}"))
+            .collect();
+        eprintln!(
+            "wrote {}: {} vertices ({} isolated), {} edges in the graph, {} maximal simplices ({}); \
+             build {:.3} s",
+            common::shown(&b.out),
+            built.complex.n_vertices(),
+            isolated,
+            built.n_edges,
+            n_max,
+            if dims.is_empty() { "none".to_string() } else { dims.join(", ") },
+            build_s
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,864 @@
+//! Maximal cliques of a graph, the maximal simplices of its flag (clique) complex: Bron–Kerbosch
+//! with pivoting, started once per vertex of a degeneracy ordering (Eppstein, Löffler and Strash,
+//! "Listing all maximal cliques in sparse graphs in near-optimal time", 2010), in parallel over
+//! the ordering. Each start works on its vertex's neighbourhood as a small bit matrix, so the
+//! inner loop is word-wise AND and popcount.
+//!
+//! The output is canonical: every clique's vertices ascending, cliques grouped by size
+//! (ascending) and sorted lexicographically within a size. It is therefore the same for any
+//! number of threads, and it is the order of the `vr_*` datasets (networkx cliques sorted by
+//! `(len, vertices)`). Cliques of one vertex are not listed: in the complex they are isolated
+//! vertices.
+//!
+//! With [`CliqueOptions::max_dim`] = `K`, the answer is the K-skeleton of the flag complex
+//! stored by its maximal simplices: the maximal cliques of at most `K` vertices plus every clique
+//! of exactly `K + 1` vertices (a `(K+1)`-clique is either maximal or inside a larger maximal
+//! clique, whose `(K+1)`-subsets are exactly these). They are listed directly, each once, from
+//! its earliest vertex in the ordering, so nothing is generated twice and then deduplicated.
+//!
+//! ```
+//! use starplex::algo::cliques::{maximal_cliques, CliqueOptions, Graph};
+//! // two triangles sharing the edge {1, 2}, plus a pendant edge {3, 4} and a lone vertex 5
+//! let g = Graph::from_edges(6, &[(0, 1), (0, 2), (1, 2), (1, 3), (2, 3), (3, 4)]).unwrap();
+//! let c = maximal_cliques(&g, &CliqueOptions::default()).unwrap();
+//! assert_eq!(c.to_vecs(), vec![vec![3, 4], vec![0, 1, 2], vec![1, 2, 3]]);
+//! // the 1-skeleton: every edge
+//! let e = maximal_cliques(&g, &CliqueOptions { max_dim: Some(1), ..Default::default() }).unwrap();
+//! assert_eq!(e.count(), 6);
+//! ```
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+
+use rayon::prelude::*;
+
+use crate::csr::Csr;
+
+/// What is wrong with a graph's input, or why an enumeration was refused.
+///
+/// ```
+/// use starplex::algo::cliques::{Graph, GraphError};
+/// assert_eq!(Graph::from_edges(3, &[(0, 0)]).unwrap_err(), GraphError::SelfLoop { edge: 0, vertex: 0 });
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GraphError {
+    /// An edge joins a vertex to itself.
+    #[error("edge {edge}: self-loop at vertex {vertex}")]
+    SelfLoop {
+        /// Edge position in the input.
+        edge: u64,
+        /// The vertex.
+        vertex: u32,
+    },
+    /// An edge names a vertex that does not exist.
+    #[error("edge {edge}: vertex {vertex} out of range (the graph has {n_vertices} vertices)")]
+    VertexOutOfRange {
+        /// Edge position in the input.
+        edge: u64,
+        /// The id given.
+        vertex: u64,
+        /// Number of vertices.
+        n_vertices: u64,
+    },
+    /// More vertices or adjacency entries than 32-bit ids address.
+    #[error("too many {what}: {count} (starplex ids are 32-bit)")]
+    TooLarge {
+        /// `vertices` or `adjacency entries`.
+        what: &'static str,
+        /// The count.
+        count: u64,
+    },
+    /// The output would exceed the memory budget.
+    #[error(
+        "the output would exceed the memory budget of {budget_bytes} bytes: {found} simplices \
+         ({found_refs} vertex references) after {done} of {total} start vertices, about \
+         {estimate} simplices and {estimate_bytes} bytes extrapolated"
+    )]
+    OverBudget {
+        /// Simplices found before stopping.
+        found: u64,
+        /// Their vertex references.
+        found_refs: u64,
+        /// Start vertices finished.
+        done: u64,
+        /// Start vertices in all.
+        total: u64,
+        /// Extrapolated number of simplices (a lower bound when few vertices were done).
+        estimate: u64,
+        /// Extrapolated bytes of the output (4 per vertex reference).
+        estimate_bytes: u64,
+        /// The budget.
+        budget_bytes: u64,
+    },
+}
+
+/// A simple undirected graph: sorted adjacency rows without self-loops or repeats.
+///
+/// ```
+/// use starplex::algo::cliques::Graph;
+/// let g = Graph::from_edges(4, &[(2, 0), (0, 2), (1, 2)]).unwrap(); // repeats are merged
+/// assert_eq!((g.n_vertices(), g.n_edges()), (4, 2));
+/// assert_eq!(g.neighbours(2), &[0, 1]);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Graph {
+    adj: Csr,
+}
+
+impl Graph {
+    /// The graph on `n` vertices with these edges (either direction, repeats merged).
+    ///
+    /// ```
+    /// use starplex::algo::cliques::{Graph, GraphError};
+    /// let e = Graph::from_edges(2, &[(0, 5)]).unwrap_err();
+    /// assert!(matches!(e, GraphError::VertexOutOfRange { edge: 0, vertex: 5, .. }));
+    /// ```
+    ///
+    /// # Errors
+    /// Self-loops, ids out of range (each naming the edge's position), more than 2^32 - 2
+    /// vertices or adjacency entries.
+    pub fn from_edges(n: usize, edges: &[(u32, u32)]) -> Result<Graph, GraphError> {
+        if n >= u32::MAX as usize {
+            return Err(GraphError::TooLarge {
+                what: "vertices",
+                count: n as u64,
+            });
+        }
+        for (i, &(a, b)) in edges.iter().enumerate() {
+            for v in [a, b] {
+                if v as usize >= n {
+                    return Err(GraphError::VertexOutOfRange {
+                        edge: i as u64,
+                        vertex: v as u64,
+                        n_vertices: n as u64,
+                    });
+                }
+            }
+            if a == b {
+                return Err(GraphError::SelfLoop {
+                    edge: i as u64,
+                    vertex: a,
+                });
+            }
+        }
+        if 2 * edges.len() as u64 >= u32::MAX as u64 {
+            return Err(GraphError::TooLarge {
+                what: "adjacency entries",
+                count: 2 * edges.len() as u64,
+            });
+        }
+        let mut adj = Csr::from_fn(n, |push| {
+            for &(a, b) in edges {
+                push(a, b);
+                push(b, a);
+            }
+        });
+        sort_dedup_rows(&mut adj);
+        Ok(Graph { adj })
+    }
+
+    /// A graph from rows already symmetric, sorted and free of self-loops and repeats
+    /// (checked in debug builds).
+    ///
+    /// ```
+    /// use starplex::algo::cliques::Graph;
+    /// use starplex::csr::Csr;
+    /// let g = Graph::from_sorted_rows(Csr { offsets: vec![0, 1, 2], targets: vec![1, 0] });
+    /// assert_eq!(g.n_edges(), 1);
+    /// ```
+    pub fn from_sorted_rows(adj: Csr) -> Graph {
+        debug_assert!((0..adj.n_rows()).all(|v| {
+            let r = adj.row(v);
+            r.windows(2).all(|w| w[0] < w[1])
+                && r.iter().all(|&u| {
+                    u as usize != v && adj.row(u as usize).binary_search(&(v as u32)).is_ok()
+                })
+        }));
+        Graph { adj }
+    }
+
+    /// Number of vertices.
+    ///
+    /// ```
+    /// # use starplex::algo::cliques::Graph;
+    /// assert_eq!(Graph::from_edges(7, &[]).unwrap().n_vertices(), 7);
+    /// ```
+    pub fn n_vertices(&self) -> usize {
+        self.adj.n_rows()
+    }
+
+    /// Number of edges.
+    ///
+    /// ```
+    /// # use starplex::algo::cliques::Graph;
+    /// assert_eq!(Graph::from_edges(3, &[(0, 1), (1, 2)]).unwrap().n_edges(), 2);
+    /// ```
+    pub fn n_edges(&self) -> usize {
+        self.adj.n_refs() / 2
+    }
+
+    /// The neighbours of `v`, ascending.
+    ///
+    /// ```
+    /// # use starplex::algo::cliques::Graph;
+    /// let g = Graph::from_edges(3, &[(0, 1), (1, 2)]).unwrap();
+    /// assert_eq!(g.neighbours(1), &[0, 2]);
+    /// ```
+    pub fn neighbours(&self, v: u32) -> &[u32] {
+        self.adj.row(v as usize)
+    }
+
+    /// Memory held by the adjacency (bytes).
+    ///
+    /// ```
+    /// # use starplex::algo::cliques::Graph;
+    /// assert_eq!(Graph::from_edges(2, &[(0, 1)]).unwrap().bytes(), 4 * (3 + 2));
+    /// ```
+    pub fn bytes(&self) -> usize {
+        self.adj.bytes()
+    }
+}
+
+fn sort_dedup_rows(adj: &mut Csr) {
+    let n = adj.n_rows();
+    let mut w = 0usize;
+    let mut start = 0usize;
+    for v in 0..n {
+        let end = adj.offsets[v + 1] as usize;
+        adj.targets[start..end].sort_unstable();
+        let row_start = w;
+        for i in start..end {
+            let t = adj.targets[i];
+            if w == row_start || adj.targets[w - 1] != t {
+                adj.targets[w] = t;
+                w += 1;
+            }
+        }
+        start = end;
+        adj.offsets[v + 1] = w as u32;
+    }
+    adj.targets.truncate(w);
+}
+
+/// A degeneracy ordering (smallest-last, Matula–Beck): `order[i]` is the i-th vertex; each
+/// vertex has at most `degeneracy` neighbours later in the order. Ties are broken by the
+/// bucket structure only, so the order depends on the graph alone.
+///
+/// ```
+/// use starplex::algo::cliques::{degeneracy_order, Graph};
+/// let g = Graph::from_edges(4, &[(0, 1), (0, 2), (1, 2), (2, 3)]).unwrap();
+/// let (order, d) = degeneracy_order(&g);
+/// assert_eq!(d, 2); // a triangle
+/// assert_eq!(order[0], 3); // the pendant vertex goes first
+/// ```
+pub fn degeneracy_order(g: &Graph) -> (Vec<u32>, usize) {
+    // Batagelj–Zaversnik bucket sort by current degree.
+    let n = g.n_vertices();
+    let mut deg: Vec<u32> = (0..n).map(|v| g.adj.degree(v) as u32).collect();
+    let md = deg.iter().copied().max().unwrap_or(0) as usize;
+    let mut bin = vec![0u32; md + 2];
+    for &d in &deg {
+        bin[d as usize] += 1;
+    }
+    let mut start = 0u32;
+    for b in bin.iter_mut() {
+        let c = *b;
+        *b = start;
+        start += c;
+    }
+    let mut pos = vec![0u32; n];
+    let mut vert = vec![0u32; n];
+    for v in 0..n {
+        let d = deg[v] as usize;
+        pos[v] = bin[d];
+        vert[bin[d] as usize] = v as u32;
+        bin[d] += 1;
+    }
+    for d in (1..=md).rev() {
+        bin[d] = bin[d - 1];
+    }
+    bin[0] = 0;
+    let mut degeneracy = 0usize;
+    for i in 0..n {
+        let v = vert[i] as usize;
+        degeneracy = degeneracy.max(deg[v] as usize);
+        for &u in g.adj.row(v) {
+            let u = u as usize;
+            if deg[u] > deg[v] {
+                let du = deg[u] as usize;
+                let pu = pos[u];
+                let pw = bin[du];
+                let w = vert[pw as usize] as usize;
+                if u != w {
+                    pos[u] = pw;
+                    vert[pu as usize] = w as u32;
+                    pos[w] = pu;
+                    vert[pw as usize] = u as u32;
+                }
+                bin[du] += 1;
+                deg[u] -= 1;
+            }
+        }
+    }
+    (vert, degeneracy)
+}
+
+/// Options of [`maximal_cliques`].
+///
+/// ```
+/// use starplex::algo::cliques::CliqueOptions;
+/// let o = CliqueOptions { max_dim: Some(3), ..Default::default() };
+/// assert_eq!(o.max_bytes, u64::MAX);
+/// ```
+#[derive(Clone, Copy)]
+pub struct CliqueOptions<'a> {
+    /// Keep the K-skeleton: cliques of more than K + 1 vertices are replaced by their
+    /// (K+1)-subsets (each listed once). `None`: every maximal clique.
+    pub max_dim: Option<usize>,
+    /// Refuse (with an estimate) when the output's vertex references would take more bytes.
+    pub max_bytes: u64,
+    /// Called with the number of start vertices finished since the last call (progress bars).
+    pub progress: Option<&'a (dyn Fn(u64) + Sync)>,
+}
+
+impl Default for CliqueOptions<'_> {
+    fn default() -> Self {
+        CliqueOptions {
+            max_dim: None,
+            max_bytes: u64::MAX,
+            progress: None,
+        }
+    }
+}
+
+/// Cliques grouped by size, each block a flat array of `size`-vertex rows, ascending within a
+/// row and lexicographically sorted across rows.
+///
+/// ```
+/// use starplex::algo::cliques::{maximal_cliques, CliqueOptions, Graph};
+/// let g = Graph::from_edges(3, &[(0, 1), (1, 2), (0, 2)]).unwrap();
+/// let c = maximal_cliques(&g, &CliqueOptions::default()).unwrap();
+/// assert_eq!(c.blocks, vec![(3, vec![0, 1, 2])]);
+/// assert_eq!(c.count_by_size(), vec![(3, 1)]);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Cliques {
+    /// `(size, rows)` with size ascending, sizes ≥ 2 only.
+    pub blocks: Vec<(usize, Vec<u32>)>,
+}
+
+impl Cliques {
+    /// Number of cliques.
+    ///
+    /// ```
+    /// # use starplex::algo::cliques::Cliques;
+    /// assert_eq!(Cliques { blocks: vec![(2, vec![0, 1, 1, 2])] }.count(), 2);
+    /// ```
+    pub fn count(&self) -> usize {
+        self.blocks.iter().map(|(s, v)| v.len() / s).sum()
+    }
+
+    /// `(size, count)` per block.
+    ///
+    /// ```
+    /// # use starplex::algo::cliques::Cliques;
+    /// assert_eq!(Cliques { blocks: vec![(2, vec![0, 1, 1, 2])] }.count_by_size(), vec![(2, 2)]);
+    /// ```
+    pub fn count_by_size(&self) -> Vec<(usize, usize)> {
+        self.blocks.iter().map(|(s, v)| (*s, v.len() / s)).collect()
+    }
+
+    /// Every clique as its own vector, in the canonical order (for tests and small outputs).
+    ///
+    /// ```
+    /// # use starplex::algo::cliques::Cliques;
+    /// assert_eq!(Cliques { blocks: vec![(2, vec![0, 1])] }.to_vecs(), vec![vec![0, 1]]);
+    /// ```
+    pub fn to_vecs(&self) -> Vec<Vec<u32>> {
+        self.blocks
+            .iter()
+            .flat_map(|(s, v)| v.chunks_exact(*s).map(|c| c.to_vec()))
+            .collect()
+    }
+}
+
+type Bits = Vec<u64>;
+
+#[inline]
+fn bit_set(b: &mut [u64], i: usize) {
+    b[i >> 6] |= 1 << (i & 63);
+}
+
+#[inline]
+fn bit_clear(b: &mut [u64], i: usize) {
+    b[i >> 6] &= !(1 << (i & 63));
+}
+
+fn ones(b: &[u64]) -> impl Iterator<Item = usize> + '_ {
+    b.iter().enumerate().flat_map(|(w, &word)| {
+        let mut x = word;
+        std::iter::from_fn(move || {
+            if x == 0 {
+                return None;
+            }
+            let t = x.trailing_zeros() as usize;
+            x &= x - 1;
+            Some(w * 64 + t)
+        })
+    })
+}
+
+/// Shared state of one enumeration: output budget and abort flag.
+struct Budget {
+    refs: AtomicU64,
+    found: AtomicU64,
+    max_refs: u64,
+    stop: AtomicBool,
+}
+
+impl Budget {
+    /// Accounts for one more clique of `size` vertices; false once over budget.
+    #[inline]
+    fn take(&self, size: usize) -> bool {
+        self.found.fetch_add(1, Ordering::Relaxed);
+        let r = self.refs.fetch_add(size as u64, Ordering::Relaxed) + size as u64;
+        if r > self.max_refs {
+            self.stop.store(true, Ordering::Relaxed);
+            return false;
+        }
+        true
+    }
+}
+
+/// One start vertex's neighbourhood as a bit matrix: local index i is `local[i]`.
+struct Local {
+    local: Vec<u32>,
+    words: usize,
+    adj: Vec<u64>, // local.len() rows of `words` words
+}
+
+impl Local {
+    fn row(&self, i: usize) -> &[u64] {
+        &self.adj[i * self.words..(i + 1) * self.words]
+    }
+}
+
+/// Per-thread output: one flat array per clique size.
+#[derive(Default)]
+struct Sink {
+    by_size: Vec<Vec<u32>>,
+}
+
+impl Sink {
+    fn push(&mut self, clique: &mut [u32]) {
+        clique.sort_unstable();
+        let s = clique.len();
+        if self.by_size.len() <= s {
+            self.by_size.resize_with(s + 1, Vec::new);
+        }
+        self.by_size[s].extend_from_slice(clique);
+    }
+    fn merge(mut self, other: Sink) -> Sink {
+        if self.by_size.len() < other.by_size.len() {
+            self.by_size.resize_with(other.by_size.len(), Vec::new);
+        }
+        for (s, v) in other.by_size.into_iter().enumerate() {
+            if self.by_size[s].is_empty() {
+                self.by_size[s] = v;
+            } else {
+                self.by_size[s].extend_from_slice(&v);
+            }
+        }
+        self
+    }
+}
+
+/// The maximal cliques of `g` (of at least two vertices), or with `max_dim` the maximal
+/// simplices of the K-skeleton of its flag complex; canonical order (see the module docs).
+///
+/// ```
+/// use starplex::algo::cliques::{maximal_cliques, CliqueOptions, Graph};
+/// // K4: one maximal clique; its 1-skeleton is its 6 edges, its 2-skeleton its 4 triangles
+/// let k4 = Graph::from_edges(4, &[(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]).unwrap();
+/// assert_eq!(maximal_cliques(&k4, &CliqueOptions::default()).unwrap().to_vecs(), vec![vec![0, 1, 2, 3]]);
+/// let o = CliqueOptions { max_dim: Some(2), ..Default::default() };
+/// assert_eq!(maximal_cliques(&k4, &o).unwrap().count_by_size(), vec![(3, 4)]);
+/// ```
+///
+/// # Errors
+/// [`GraphError::OverBudget`] when the output would need more than `opts.max_bytes`.
+pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, GraphError> {
+    let n = g.n_vertices();
+    let (order, _) = degeneracy_order(g);
+    let mut rank = vec![0u32; n];
+    for (i, &v) in order.iter().enumerate() {
+        rank[v as usize] = i as u32;
+    }
+    let budget = Budget {
+        refs: AtomicU64::new(0),
+        found: AtomicU64::new(0),
+        max_refs: opts.max_bytes / 4,
+        stop: AtomicBool::new(false),
+    };
+    let done = AtomicUsize::new(0);
+    let k = opts.max_dim;
+    if k == Some(0) {
+        return Ok(Cliques::default());
+    }
+    // Work per vertex is very uneven; small chunks keep both cores busy, and the result does
+    // not depend on how the vertices are split.
+    let sink = order
+        .par_iter()
+        .with_min_len(64)
+        .fold(Sink::default, |mut sink, &v| {
+            if budget.stop.load(Ordering::Relaxed) {
+                return sink;
+            }
+            from_vertex(g, &rank, v, k, &budget, &mut sink);
+            if !budget.stop.load(Ordering::Relaxed) {
+                done.fetch_add(1, Ordering::Relaxed);
+                if let Some(p) = opts.progress {
+                    p(1);
+                }
+            }
+            sink
+        })
+        .reduce(Sink::default, Sink::merge);
+    if budget.stop.load(Ordering::Relaxed) {
+        let found = budget.found.load(Ordering::Relaxed);
+        let refs = budget.refs.load(Ordering::Relaxed);
+        let d = done.load(Ordering::Relaxed).max(1) as f64;
+        let scale = (n as f64 / d).max(1.0);
+        return Err(GraphError::OverBudget {
+            found,
+            found_refs: refs,
+            done: done.load(Ordering::Relaxed) as u64,
+            total: n as u64,
+            estimate: (found as f64 * scale) as u64,
+            estimate_bytes: (refs as f64 * 4.0 * scale) as u64,
+            budget_bytes: opts.max_bytes,
+        });
+    }
+    let mut blocks = Vec::new();
+    for (s, flat) in sink.by_size.into_iter().enumerate() {
+        if s < 2 || flat.is_empty() {
+            continue;
+        }
+        blocks.push((s, sort_rows(flat, s)));
+    }
+    Ok(Cliques { blocks })
+}
+
+/// Sorts the `s`-vertex rows of `flat` lexicographically.
+fn sort_rows(flat: Vec<u32>, s: usize) -> Vec<u32> {
+    let m = flat.len() / s;
+    let mut idx: Vec<u32> = (0..m as u32).collect();
+    idx.par_sort_unstable_by(|&a, &b| {
+        flat[a as usize * s..(a as usize + 1) * s].cmp(&flat[b as usize * s..(b as usize + 1) * s])
+    });
+    let mut out = Vec::with_capacity(flat.len());
+    for i in idx {
+        out.extend_from_slice(&flat[i as usize * s..(i as usize + 1) * s]);
+    }
+    out
+}
+
+/// Lists the cliques whose earliest vertex (in the degeneracy order) is `v`.
+fn from_vertex(
+    g: &Graph,
+    rank: &[u32],
+    v: u32,
+    k: Option<usize>,
+    budget: &Budget,
+    sink: &mut Sink,
+) {
+    let nb = g.neighbours(v);
+    if nb.is_empty() {
+        return; // an isolated vertex: a clique of one, not listed
+    }
+    let rv = rank[v as usize];
+    if nb.iter().all(|&u| rank[u as usize] < rv) {
+        return; // no later neighbour: every clique through v starts at an earlier vertex
+    }
+    let m = nb.len();
+    let words = m.div_ceil(64);
+    let mut loc = Local {
+        local: nb.to_vec(),
+        words,
+        adj: vec![0u64; m * words],
+    };
+    // local adjacency by merging sorted rows
+    for i in 0..m {
+        let row = g.neighbours(nb[i]);
+        let (mut a, mut b) = (0usize, 0usize);
+        while a < row.len() && b < m {
+            match row[a].cmp(&nb[b]) {
+                std::cmp::Ordering::Less => a += 1,
+                std::cmp::Ordering::Greater => b += 1,
+                std::cmp::Ordering::Equal => {
+                    loc.adj[i * words + (b >> 6)] |= 1 << (b & 63);
+                    a += 1;
+                    b += 1;
+                }
+            }
+        }
+    }
+    let mut p: Bits = vec![0; words];
+    let mut x: Bits = vec![0; words];
+    for (i, &u) in nb.iter().enumerate() {
+        if rank[u as usize] > rv {
+            bit_set(&mut p, i);
+        } else {
+            bit_set(&mut x, i);
+        }
+    }
+    let mut r = vec![v];
+    match k {
+        None => bk_pivot(&loc, &mut r, p, x, usize::MAX, budget, sink),
+        Some(k) => {
+            // maximal cliques of at most k vertices ...
+            bk_pivot(&loc, &mut r, p.clone(), x, k, budget, sink);
+            // ... and every clique of k + 1 vertices, from its earliest vertex
+            k_cliques(&loc, &mut r, &p, k + 1, budget, sink);
+        }
+    }
+}
+
+/// Bron–Kerbosch with Tomita's pivot on the local bit matrix. Cliques of more than `limit`
+/// vertices are not reported (nor searched for).
+fn bk_pivot(
+    loc: &Local,
+    r: &mut Vec<u32>,
+    mut p: Bits,
+    mut x: Bits,
+    limit: usize,
+    budget: &Budget,
+    sink: &mut Sink,
+) {
+    if budget.stop.load(Ordering::Relaxed) {
+        return;
+    }
+    let p_empty = p.iter().all(|&w| w == 0);
+    if p_empty {
+        if x.iter().all(|&w| w == 0) && r.len() <= limit && budget.take(r.len()) {
+            let mut c = r.clone();
+            sink.push(&mut c);
+        }
+        return;
+    }
+    if r.len() >= limit {
+        return; // only larger cliques below
+    }
+    // pivot: the vertex of P ∪ X with the most neighbours in P
+    let mut best = usize::MAX;
+    let mut best_n = -1i64;
+    for (a, b) in [(&p, true), (&x, false)] {
+        let _ = b;
+        for u in ones(a) {
+            let c: u32 = loc
+                .row(u)
+                .iter()
+                .zip(p.iter())
+                .map(|(r, q)| (r & q).count_ones())
+                .sum();
+            if c as i64 > best_n {
+                best_n = c as i64;
+                best = u;
+            }
+        }
+    }
+    let pivot_row = loc.row(best);
+    let cand: Vec<usize> = p
+        .iter()
+        .zip(pivot_row)
+        .enumerate()
+        .flat_map(|(w, (&q, &nr))| {
+            let mut m = q & !nr;
+            std::iter::from_fn(move || {
+                if m == 0 {
+                    return None;
+                }
+                let t = m.trailing_zeros() as usize;
+                m &= m - 1;
+                Some(w * 64 + t)
+            })
+        })
+        .collect();
+    for w in cand {
+        let row = loc.row(w);
+        let p2: Bits = p.iter().zip(row).map(|(a, b)| a & b).collect();
+        let x2: Bits = x.iter().zip(row).map(|(a, b)| a & b).collect();
+        r.push(loc.local[w]);
+        bk_pivot(loc, r, p2, x2, limit, budget, sink);
+        r.pop();
+        bit_clear(&mut p, w);
+        bit_set(&mut x, w);
+    }
+}
+
+/// Every clique of `size` vertices that extends `r` by vertices of `p`, each once (candidates in
+/// increasing local index).
+fn k_cliques(
+    loc: &Local,
+    r: &mut Vec<u32>,
+    p: &[u64],
+    size: usize,
+    budget: &Budget,
+    sink: &mut Sink,
+) {
+    if budget.stop.load(Ordering::Relaxed) {
+        return;
+    }
+    if r.len() == size {
+        if budget.take(size) {
+            let mut c = r.clone();
+            sink.push(&mut c);
+        }
+        return;
+    }
+    let need = size - r.len();
+    let avail: u32 = p.iter().map(|w| w.count_ones()).sum();
+    if (avail as usize) < need {
+        return;
+    }
+    let mut rest = p.to_vec();
+    for w in ones(p).collect::<Vec<_>>() {
+        bit_clear(&mut rest, w);
+        let row = loc.row(w);
+        let p2: Bits = rest.iter().zip(row).map(|(a, b)| a & b).collect();
+        r.push(loc.local[w]);
+        k_cliques(loc, r, &p2, size, budget, sink);
+        r.pop();
+        if budget.stop.load(Ordering::Relaxed) {
+            return;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Naive maximal cliques: every vertex subset that is a clique and has no common neighbour.
+    pub(crate) fn brute(n: usize, edges: &[(u32, u32)], max_dim: Option<usize>) -> Vec<Vec<u32>> {
+        let mut adj = vec![vec![false; n]; n];
+        for &(a, b) in edges {
+            adj[a as usize][b as usize] = true;
+            adj[b as usize][a as usize] = true;
+        }
+        let mut out = Vec::new();
+        for mask in 1u32..(1 << n) {
+            let vs: Vec<u32> = (0..n as u32).filter(|&i| mask >> i & 1 == 1).collect();
+            if vs.len() < 2 {
+                continue;
+            }
+            let clique = vs
+                .iter()
+                .all(|&a| vs.iter().all(|&b| a == b || adj[a as usize][b as usize]));
+            if !clique {
+                continue;
+            }
+            let maximal = (0..n as u32)
+                .filter(|i| !vs.contains(i))
+                .all(|c| !vs.iter().all(|&a| adj[a as usize][c as usize]));
+            let keep = match max_dim {
+                None => maximal,
+                Some(k) => vs.len() == k + 1 || (vs.len() <= k && maximal),
+            };
+            if keep {
+                out.push(vs);
+            }
+        }
+        out.sort_by(|a, b| (a.len(), a).cmp(&(b.len(), b)));
+        out
+    }
+
+    fn random_graph(n: usize, p: f64, seed: u64) -> Vec<(u32, u32)> {
+        let mut s = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let mut e = Vec::new();
+        for a in 0..n as u32 {
+            for b in a + 1..n as u32 {
+                s = s
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                if ((s >> 33) as f64 / (1u64 << 31) as f64) < p {
+                    e.push((b, a));
+                }
+            }
+        }
+        e
+    }
+
+    #[test]
+    fn equals_brute_force_on_random_graphs() {
+        for seed in 0..200u64 {
+            let n = 1 + (seed % 13) as usize;
+            let p = [0.2, 0.5, 0.8, 0.95][(seed % 4) as usize];
+            let e = random_graph(n, p, seed);
+            let g = Graph::from_edges(n, &e).unwrap();
+            for k in [None, Some(0), Some(1), Some(2), Some(3), Some(5)] {
+                let o = CliqueOptions {
+                    max_dim: k,
+                    ..Default::default()
+                };
+                let got = maximal_cliques(&g, &o).unwrap().to_vecs();
+                assert_eq!(got, brute(n, &e, k), "seed {seed} n {n} k {k:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn thread_count_does_not_change_the_output() {
+        let e = random_graph(300, 0.1, 7);
+        let g = Graph::from_edges(300, &e).unwrap();
+        let run = |t: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .unwrap()
+                .install(|| maximal_cliques(&g, &CliqueOptions::default()).unwrap())
+        };
+        let one = run(1);
+        assert!(one.count() > 100);
+        for t in [2, 3, 5] {
+            assert_eq!(run(t), one);
+        }
+    }
+
+    #[test]
+    fn over_budget_is_refused_with_an_estimate() {
+        let e = random_graph(200, 0.3, 3);
+        let g = Graph::from_edges(200, &e).unwrap();
+        let o = CliqueOptions {
+            max_bytes: 400,
+            ..Default::default()
+        };
+        let err = maximal_cliques(&g, &o).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                GraphError::OverBudget {
+                    budget_bytes: 400,
+                    ..
+                }
+            ),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn bad_edges_are_named() {
+        assert_eq!(
+            Graph::from_edges(3, &[(0, 1), (2, 2)]).unwrap_err(),
+            GraphError::SelfLoop { edge: 1, vertex: 2 }
+        );
+        assert!(matches!(
+            Graph::from_edges(3, &[(0, 3)]).unwrap_err(),
+            GraphError::VertexOutOfRange {
+                edge: 0,
+                vertex: 3,
+                n_vertices: 3
+            }
+        ));
+    }
+}

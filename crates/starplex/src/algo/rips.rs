@@ -1,0 +1,541 @@
+//! Complexes from data: the Vietoris–Rips complex of a point cloud and the flag complex of a
+//! graph, each stored by its maximal simplices (the maximal cliques of the graph, see
+//! [`crate::algo::cliques`]) as an ordinary [`IndexedComplex`], so every reader of a complex
+//! (`info`, `stellar`, `query`, `homology`, ...) works on it.
+//!
+//! The neighbourhood graph of a point cloud joins two points at Euclidean distance ≤ ε. It is
+//! found with a kd-tree (kiddo) for ambient dimensions 1 to 8, and by a sweep along the axis of
+//! largest extent above (kd-trees lose their edge there). Either way every candidate pair is
+//! decided by the same exact test, `Σ (a_i - b_i)² ≤ ε²` in `f64`, which is scipy's
+//! `cKDTree.query_pairs` test, so the graph does not depend on the search structure.
+//!
+//! ```
+//! use starplex::algo::rips::{rips_complex, RipsOptions};
+//! // four corners of a unit square: at ε = 1 the 4-cycle, at ε = 1.5 the full tetrahedron
+//! let pts = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+//! let r = rips_complex(&pts, 2, 1.0, &RipsOptions::default()).unwrap();
+//! assert_eq!((r.complex.n_cells(), r.n_edges), (4, 4));
+//! let r = rips_complex(&pts, 2, 1.5, &RipsOptions::default()).unwrap();
+//! assert_eq!(r.complex.dim(), Some(3));
+//! ```
+use kiddo::{ImmutableKdTree, SquaredEuclidean};
+use rayon::prelude::*;
+
+use crate::algo::cliques::{maximal_cliques, CliqueOptions, Cliques, Graph, GraphError};
+use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
+use crate::complex::{ComplexError, IndexedComplex, MAX_AMBIENT_DIM};
+use crate::csr::Csr;
+
+/// Why a Rips or flag complex could not be built.
+///
+/// ```
+/// use starplex::algo::rips::{rips_complex, RipsError, RipsOptions};
+/// let e = rips_complex(&[0.0, 1.0], 1, f64::NAN, &RipsOptions::default()).unwrap_err();
+/// assert!(matches!(e, RipsError::BadScale(_)));
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RipsError {
+    /// The scale is not a positive finite number.
+    #[error("the scale must be a positive finite distance, got {0}")]
+    BadScale(f64),
+    /// Points with a non-finite coordinate, a wrong array length, or a bad dimension.
+    #[error(transparent)]
+    Complex(#[from] ComplexError),
+    /// The graph or the enumeration (over budget, too many ids).
+    #[error(transparent)]
+    Graph(#[from] GraphError),
+    /// A maximal simplex larger than starplex cells can be.
+    #[error(
+        "a maximal simplex has {vertices} vertices, above the supported simplex dimension \
+         {MAX_SIMPLEX_DIM}; keep a skeleton with max_dim"
+    )]
+    CliqueTooLarge {
+        /// Its vertex count.
+        vertices: usize,
+    },
+    /// The neighbourhood graph alone would exceed the memory budget.
+    #[error(
+        "the neighbourhood graph would exceed the memory budget of {budget_bytes} bytes: about \
+         {estimate_edges} edges ({estimate_bytes} bytes), extrapolated from {sampled} sampled \
+         points; use a smaller scale"
+    )]
+    GraphOverBudget {
+        /// Extrapolated edge count.
+        estimate_edges: u64,
+        /// Extrapolated bytes (12 per edge while building).
+        estimate_bytes: u64,
+        /// Points sampled.
+        sampled: u64,
+        /// The budget.
+        budget_bytes: u64,
+    },
+    /// Too few points to define a nearest-neighbour scale.
+    #[error("the nearest-neighbour scale needs at least two points, got {0}")]
+    TooFewPoints(usize),
+}
+
+/// Options of [`rips_complex`] and [`flag_complex`].
+///
+/// ```
+/// use starplex::algo::rips::RipsOptions;
+/// assert_eq!(RipsOptions::default().max_dim, None);
+/// ```
+#[derive(Clone, Copy, Default)]
+pub struct RipsOptions<'a> {
+    /// Options of the clique enumeration (`max_dim`, memory budget, progress).
+    pub cliques: CliqueOptions<'a>,
+    /// Shortcut for `cliques.max_dim` (either one set is used).
+    pub max_dim: Option<usize>,
+}
+
+/// A complex built from data, with the numbers a summary reports.
+///
+/// ```
+/// use starplex::algo::rips::flag_complex;
+/// let f = flag_complex(3, &[(0, 1), (1, 2), (0, 2)], &Default::default()).unwrap();
+/// assert_eq!((f.n_edges, f.complex.n_cells()), (3, 1));
+/// ```
+#[derive(Clone, Debug)]
+pub struct Built {
+    /// The complex: vertices are the points (or graph vertices), top cells the maximal simplices
+    /// in canonical order (by size, then lexicographically).
+    pub complex: IndexedComplex,
+    /// Edges of the neighbourhood graph.
+    pub n_edges: usize,
+    /// `(simplex dimension, count)` of the maximal simplices.
+    pub by_dim: Vec<(usize, usize)>,
+}
+
+/// The Vietoris–Rips complex at scale `eps` of `coords` (flat, `dim` coordinates per point):
+/// its maximal simplices, or with a `max_dim` those of its skeleton.
+///
+/// ```
+/// use starplex::algo::rips::{rips_complex, RipsOptions};
+/// // three collinear points 1 apart: two edges at ε = 1, one triangle at ε = 2
+/// let pts = [0.0, 1.0, 2.0];
+/// assert_eq!(rips_complex(&pts, 1, 1.0, &RipsOptions::default()).unwrap().by_dim, vec![(1, 2)]);
+/// assert_eq!(rips_complex(&pts, 1, 2.0, &RipsOptions::default()).unwrap().by_dim, vec![(2, 1)]);
+/// ```
+///
+/// # Errors
+/// A scale that is not positive and finite, non-finite coordinates, an output over the budget
+/// (with an estimate), a maximal simplex above dimension 64.
+pub fn rips_complex(
+    coords: &[f64],
+    dim: usize,
+    eps: f64,
+    opts: &RipsOptions,
+) -> Result<Built, RipsError> {
+    check_points(coords, dim)?;
+    if !(eps.is_finite() && eps > 0.0) {
+        return Err(RipsError::BadScale(eps));
+    }
+    let g = neighbourhood_graph_within(coords, dim, eps, opts.cliques.max_bytes)?;
+    complex_of(coords.to_vec(), dim, &g, opts)
+}
+
+/// The flag complex of the graph on `n` vertices with these edges. The vertices have one
+/// coordinate, their id (an abstract complex has no geometry; the id line keeps every format
+/// and every structure able to hold it).
+///
+/// ```
+/// use starplex::algo::rips::flag_complex;
+/// let f = flag_complex(5, &[(0, 1), (1, 2), (2, 0), (3, 2)], &Default::default()).unwrap();
+/// assert_eq!(f.by_dim, vec![(1, 1), (2, 1)]);
+/// assert_eq!(f.complex.n_isolated_vertices(), 1); // vertex 4
+/// ```
+///
+/// # Errors
+/// Self-loops or ids out of range (naming the edge), an output over the budget.
+pub fn flag_complex(
+    n: usize,
+    edges: &[(u32, u32)],
+    opts: &RipsOptions,
+) -> Result<Built, RipsError> {
+    let g = Graph::from_edges(n, edges)?;
+    let coords: Vec<f64> = (0..n).map(|i| i as f64).collect();
+    complex_of(coords, 1, &g, opts)
+}
+
+/// The complex whose top cells are the cliques of `g` (see [`maximal_cliques`]).
+///
+/// ```
+/// use starplex::algo::cliques::Graph;
+/// use starplex::algo::rips::complex_of;
+/// let g = Graph::from_edges(2, &[(0, 1)]).unwrap();
+/// let b = complex_of(vec![0.0, 1.0], 1, &g, &Default::default()).unwrap();
+/// assert_eq!(b.complex.n_cells(), 1);
+/// ```
+///
+/// # Errors
+/// As [`rips_complex`].
+pub fn complex_of(
+    coords: Vec<f64>,
+    dim: usize,
+    g: &Graph,
+    opts: &RipsOptions,
+) -> Result<Built, RipsError> {
+    let mut co = opts.cliques;
+    if opts.max_dim.is_some() {
+        co.max_dim = opts.max_dim;
+    }
+    let cl = maximal_cliques(g, &co)?;
+    complex_from_cliques(coords, dim, g.n_edges(), cl)
+}
+
+fn complex_from_cliques(
+    coords: Vec<f64>,
+    dim: usize,
+    n_edges: usize,
+    cl: Cliques,
+) -> Result<Built, RipsError> {
+    let by_dim = cl
+        .count_by_size()
+        .iter()
+        .map(|&(s, c)| (s - 1, c))
+        .collect();
+    let mut blocks = Vec::with_capacity(cl.blocks.len());
+    for (s, flat) in cl.blocks {
+        let kind = CellKind::simplex(s - 1).ok_or(RipsError::CliqueTooLarge { vertices: s })?;
+        blocks.push((kind, flat.into()));
+    }
+    let complex = IndexedComplex::from_parts(dim, coords.into(), blocks)?;
+    Ok(Built {
+        complex,
+        n_edges,
+        by_dim,
+    })
+}
+
+fn check_points(coords: &[f64], dim: usize) -> Result<(), RipsError> {
+    if dim == 0 || dim > MAX_AMBIENT_DIM {
+        return Err(ComplexError::BadAmbientDim(dim).into());
+    }
+    if !coords.len().is_multiple_of(dim) {
+        return Err(ComplexError::WrongCoordinateCount {
+            vertex: (coords.len() / dim) as u64,
+            expected: dim,
+            got: coords.len() % dim,
+        }
+        .into());
+    }
+    if let Some(i) = coords.iter().position(|x| !x.is_finite()) {
+        return Err(ComplexError::NonFiniteCoordinate {
+            vertex: (i / dim) as u64,
+            axis: i % dim,
+            value: coords[i],
+        }
+        .into());
+    }
+    if coords.len() / dim >= u32::MAX as usize {
+        return Err(GraphError::TooLarge {
+            what: "vertices",
+            count: (coords.len() / dim) as u64,
+        }
+        .into());
+    }
+    Ok(())
+}
+
+#[inline]
+fn dist2(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+}
+
+/// The ε-neighbourhood graph of the points: `i ~ j` when `Σ (p_i - p_j)² ≤ ε²`.
+///
+/// ```
+/// use starplex::algo::rips::neighbourhood_graph;
+/// let g = neighbourhood_graph(&[0.0, 0.0, 3.0, 4.0, 10.0, 0.0], 2, 5.0).unwrap();
+/// assert_eq!(g.neighbours(0), &[1]); // at distance exactly 5: joined
+/// assert_eq!(g.neighbours(2), &[] as &[u32]);
+/// ```
+///
+/// # Errors
+/// Bad coordinates or scale (as [`rips_complex`]), more than 2^32 adjacency entries.
+pub fn neighbourhood_graph(coords: &[f64], dim: usize, eps: f64) -> Result<Graph, RipsError> {
+    neighbourhood_graph_within(coords, dim, eps, u64::MAX)
+}
+
+/// Bytes per edge while the graph is built (later-neighbour rows, then both directions).
+const BYTES_PER_EDGE: u64 = 12;
+
+/// [`neighbourhood_graph`] that first estimates the edge count from a sample of points and
+/// refuses when the graph would take more than `max_bytes`.
+///
+/// ```
+/// use starplex::algo::rips::{neighbourhood_graph_within, RipsError};
+/// let pts: Vec<f64> = (0..1000).map(|i| i as f64).collect();
+/// let e = neighbourhood_graph_within(&pts, 1, 1e6, 10_000).unwrap_err();
+/// assert!(matches!(e, RipsError::GraphOverBudget { .. }));
+/// ```
+///
+/// # Errors
+/// As [`neighbourhood_graph`]; [`RipsError::GraphOverBudget`].
+pub fn neighbourhood_graph_within(
+    coords: &[f64],
+    dim: usize,
+    eps: f64,
+    max_bytes: u64,
+) -> Result<Graph, RipsError> {
+    check_points(coords, dim)?;
+    if !(eps.is_finite() && eps > 0.0) {
+        return Err(RipsError::BadScale(eps));
+    }
+    let n = coords.len() / dim;
+    // rows of later neighbours, each sorted
+    let rows: Vec<Vec<u32>> = match dim {
+        1 => later_kd::<1>(coords, eps, max_bytes)?,
+        2 => later_kd::<2>(coords, eps, max_bytes)?,
+        3 => later_kd::<3>(coords, eps, max_bytes)?,
+        4 => later_kd::<4>(coords, eps, max_bytes)?,
+        5 => later_kd::<5>(coords, eps, max_bytes)?,
+        6 => later_kd::<6>(coords, eps, max_bytes)?,
+        7 => later_kd::<7>(coords, eps, max_bytes)?,
+        8 => later_kd::<8>(coords, eps, max_bytes)?,
+        _ => later_sweep(coords, dim, eps, max_bytes)?,
+    };
+    let total: u64 = rows.iter().map(|r| 2 * r.len() as u64).sum();
+    if total >= u32::MAX as u64 {
+        return Err(GraphError::TooLarge {
+            what: "adjacency entries",
+            count: total,
+        }
+        .into());
+    }
+    // Row v receives its earlier neighbours at their own (earlier) iterations, ascending, then
+    // its later ones, ascending: every row comes out sorted.
+    let adj = Csr::from_fn(n, |push| {
+        for (i, r) in rows.iter().enumerate() {
+            for &j in r {
+                push(i as u32, j);
+                push(j, i as u32);
+            }
+        }
+    });
+    Ok(Graph::from_sorted_rows(adj))
+}
+
+/// Later neighbours of every point by a kd-tree in `K` dimensions.
+fn later_kd<const K: usize>(
+    coords: &[f64],
+    eps: f64,
+    max_bytes: u64,
+) -> Result<Vec<Vec<u32>>, RipsError> {
+    let pts: Vec<[f64; K]> = coords
+        .chunks_exact(K)
+        .map(|c| {
+            let mut a = [0.0; K];
+            a.copy_from_slice(c);
+            a
+        })
+        .collect();
+    // kiddo pads its stems with f64::MAX, so a coordinate equal to it is left to the sweep
+    let tree: ImmutableKdTree<f64, K> = match kd_tree(&pts) {
+        Some(t) => t,
+        None => return later_sweep(coords, K, eps, max_bytes),
+    };
+    let e2 = eps * eps;
+    // a slightly larger search radius; the exact test below decides
+    let search = e2 * (1.0 + 1e-9) + f64::MIN_POSITIVE;
+    check_sample(pts.len(), max_bytes, |i| {
+        tree.query(&pts[i])
+            .within::<SquaredEuclidean<f64>>(search)
+            .unsorted()
+            .execute()
+            .len()
+            .saturating_sub(1)
+    })?;
+    Ok(pts
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let found = tree
+                .query(p)
+                .within::<SquaredEuclidean<f64>>(search)
+                .unsorted()
+                .execute();
+            let mut r: Vec<u32> = found
+                .iter()
+                .map(|q| q.item)
+                .filter(|&j| j as usize > i && dist2(p, &pts[j as usize]) <= e2)
+                .collect();
+            r.sort_unstable();
+            r
+        })
+        .collect())
+}
+
+/// Refuses, before the graph is built, when the degrees of a stride sample of points
+/// extrapolate to more than `max_bytes` of graph.
+fn check_sample(
+    n: usize,
+    max_bytes: u64,
+    degree: impl Fn(usize) -> usize + Sync,
+) -> Result<(), RipsError> {
+    if max_bytes == u64::MAX || n == 0 {
+        return Ok(());
+    }
+    let s = n.min(1000);
+    let step = n / s;
+    let sum: u64 = (0..s)
+        .into_par_iter()
+        .map(|k| degree(k * step) as u64)
+        .sum();
+    let est_edges = (sum as f64 / s as f64 * n as f64 / 2.0) as u64;
+    let est_bytes = est_edges.saturating_mul(BYTES_PER_EDGE);
+    if est_bytes > max_bytes {
+        return Err(RipsError::GraphOverBudget {
+            estimate_edges: est_edges,
+            estimate_bytes: est_bytes,
+            sampled: s as u64,
+            budget_bytes: max_bytes,
+        });
+    }
+    Ok(())
+}
+
+/// Later neighbours of every point by a sweep along the axis of largest extent.
+fn later_sweep(
+    coords: &[f64],
+    dim: usize,
+    eps: f64,
+    max_bytes: u64,
+) -> Result<Vec<Vec<u32>>, RipsError> {
+    let n = coords.len() / dim;
+    let p = |i: usize| &coords[i * dim..(i + 1) * dim];
+    let axis = (0..dim)
+        .max_by(|&a, &b| {
+            let ext = |ax: usize| {
+                let (lo, hi) = (0..n).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), i| {
+                    (l.min(p(i)[ax]), h.max(p(i)[ax]))
+                });
+                hi - lo
+            };
+            ext(a).total_cmp(&ext(b))
+        })
+        .unwrap_or(0);
+    let mut by: Vec<u32> = (0..n as u32).collect();
+    by.sort_by(|&a, &b| p(a as usize)[axis].total_cmp(&p(b as usize)[axis]));
+    let e2 = eps * eps;
+    check_sample(n, max_bytes, |i| {
+        (0..n)
+            .filter(|&j| j != i && dist2(p(i), p(j)) <= e2)
+            .count()
+    })?;
+    let mut rows: Vec<Vec<u32>> = (0..n).into_par_iter().map(|_| Vec::new()).collect();
+    let pairs: Vec<Vec<(u32, u32)>> = (0..n)
+        .into_par_iter()
+        .map(|s| {
+            let i = by[s] as usize;
+            let xi = p(i)[axis];
+            let mut out = Vec::new();
+            for &j in &by[s + 1..] {
+                let j = j as usize;
+                if p(j)[axis] - xi > eps {
+                    break;
+                }
+                if dist2(p(i), p(j)) <= e2 {
+                    out.push((i.min(j) as u32, i.max(j) as u32));
+                }
+            }
+            out
+        })
+        .collect();
+    for (a, b) in pairs.into_iter().flatten() {
+        rows[a as usize].push(b);
+    }
+    rows.par_iter_mut().for_each(|r| r.sort_unstable());
+    Ok(rows)
+}
+
+/// The median distance from a point to its nearest other point (numpy's median: the mean of
+/// the two middle values for an even count), the scale `--eps-nn F` multiplies.
+///
+/// ```
+/// use starplex::algo::rips::median_nn_distance;
+/// // points at 0, 1, 3, 7: nearest-neighbour distances 1, 1, 2, 4
+/// assert_eq!(median_nn_distance(&[0.0, 1.0, 3.0, 7.0], 1).unwrap(), 1.5);
+/// ```
+///
+/// # Errors
+/// Fewer than two points; bad coordinates.
+pub fn median_nn_distance(coords: &[f64], dim: usize) -> Result<f64, RipsError> {
+    check_points(coords, dim)?;
+    let n = coords.len() / dim;
+    if n < 2 {
+        return Err(RipsError::TooFewPoints(n));
+    }
+    let mut d: Vec<f64> = match dim {
+        1 => nn_kd::<1>(coords),
+        2 => nn_kd::<2>(coords),
+        3 => nn_kd::<3>(coords),
+        4 => nn_kd::<4>(coords),
+        5 => nn_kd::<5>(coords),
+        6 => nn_kd::<6>(coords),
+        7 => nn_kd::<7>(coords),
+        8 => nn_kd::<8>(coords),
+        _ => nn_brute(coords, dim),
+    };
+    d.par_sort_unstable_by(f64::total_cmp);
+    let m = if n % 2 == 1 {
+        d[n / 2].sqrt()
+    } else {
+        0.5 * (d[n / 2 - 1].sqrt() + d[n / 2].sqrt())
+    };
+    Ok(m)
+}
+
+/// Squared distance from each point to its nearest other point.
+fn nn_kd<const K: usize>(coords: &[f64]) -> Vec<f64> {
+    let pts: Vec<[f64; K]> = coords
+        .chunks_exact(K)
+        .map(|c| {
+            let mut a = [0.0; K];
+            a.copy_from_slice(c);
+            a
+        })
+        .collect();
+    let Some(tree) = kd_tree(&pts) else {
+        return nn_brute(coords, K);
+    };
+    let two = std::num::NonZero::new(2usize).expect("2 is not zero");
+    pts.par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let r = tree
+                .query(p)
+                .nearest_n::<SquaredEuclidean<f64>>(two)
+                .execute();
+            // the point itself is at distance 0 (as is a duplicate): take the other one
+            r.iter()
+                .find(|q| q.item as usize != i)
+                .map(|q| dist2(p, &pts[q.item as usize]))
+                .unwrap_or(f64::INFINITY)
+        })
+        .collect()
+}
+
+/// Squared nearest-neighbour distances by comparing every pair (above 8 dimensions).
+fn nn_brute(coords: &[f64], dim: usize) -> Vec<f64> {
+    let n = coords.len() / dim;
+    (0..n)
+        .into_par_iter()
+        .map(|i| {
+            let a = &coords[i * dim..(i + 1) * dim];
+            (0..n)
+                .filter(|&j| j != i)
+                .map(|j| dist2(a, &coords[j * dim..(j + 1) * dim]))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect()
+}
+
+/// A kd-tree of the points, or `None` where kiddo cannot hold them (no point, a coordinate
+/// equal to `f64::MAX`, which kiddo uses as padding).
+fn kd_tree<const K: usize>(pts: &[[f64; K]]) -> Option<ImmutableKdTree<f64, K>> {
+    if pts.is_empty() || pts.iter().any(|p| p.contains(&f64::MAX)) {
+        return None;
+    }
+    ImmutableKdTree::new_from_slice(pts).ok()
+}

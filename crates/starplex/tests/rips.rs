@@ -1,0 +1,347 @@
+//! Complexes from data: the Rips complex against brute force on random point clouds in
+//! dimensions 2–8 (and above, the sweep path), against the `vr_*` datasets (scipy cKDTree +
+//! networkx maximal cliques), for any thread count; the Sierpinski generator against the
+//! datasets' numpy generator.
+mod common_data;
+
+use std::path::{Path, PathBuf};
+
+use starplex::algo::rips::{rips_complex, RipsOptions};
+use starplex::gen::sierpinski::{sierpinski, SierpinskiOptions};
+use starplex::io::{self, ReadOptions};
+
+/// Every maximal vertex set of pairwise distance ≤ eps (squared test, as the library and
+/// scipy), of at least 2 vertices; with `k`, all (k+1)-cliques and maximal ones of ≤ k vertices.
+fn brute(pts: &[f64], dim: usize, eps: f64, k: Option<usize>) -> Vec<Vec<u32>> {
+    let n = pts.len() / dim;
+    let p = |i: usize| &pts[i * dim..(i + 1) * dim];
+    let adj = |a: usize, b: usize| {
+        p(a).iter()
+            .zip(p(b))
+            .map(|(x, y)| (x - y) * (x - y))
+            .sum::<f64>()
+            <= eps * eps
+    };
+    let mut out = Vec::new();
+    for mask in 1u32..(1 << n) {
+        let vs: Vec<usize> = (0..n).filter(|&i| mask >> i & 1 == 1).collect();
+        if vs.len() < 2 || !vs.iter().all(|&a| vs.iter().all(|&b| a == b || adj(a, b))) {
+            continue;
+        }
+        let maximal = (0..n)
+            .filter(|c| !vs.contains(c))
+            .all(|c| !vs.iter().all(|&a| adj(a, c)));
+        let keep = match k {
+            None => maximal,
+            Some(k) => vs.len() == k + 1 || (vs.len() <= k && maximal),
+        };
+        if keep {
+            out.push(vs.iter().map(|&v| v as u32).collect());
+        }
+    }
+    out.sort_by(|a: &Vec<u32>, b| (a.len(), a).cmp(&(b.len(), b)));
+    out
+}
+
+fn cells(k: &starplex::complex::IndexedComplex) -> Vec<Vec<u32>> {
+    k.cells().map(|c| c.vertices.to_vec()).collect()
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: 300,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x51b5),
+        failure_persistence: None,
+        ..proptest::prelude::ProptestConfig::default()
+    })]
+
+    /// 300 random clouds of up to 12 points in dimensions 2–8 (integer grids make ties at
+    /// exactly eps common), every scale from sparse to complete, with and without a skeleton.
+    #[test]
+    fn rips_equals_brute_force(
+        dim in 2usize..=8,
+        raw in proptest::collection::vec(0u8..6, 16..=96),
+        eps_step in 1u32..12,
+        k in proptest::option::of(0usize..5),
+        grid in proptest::bool::ANY,
+    ) {
+        let n = (raw.len() / dim).clamp(1, 12);
+        let pts: Vec<f64> = raw[..n * dim]
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| if grid { x as f64 } else { x as f64 + (i as f64 * 0.6180339887).fract() })
+            .collect();
+        let eps = eps_step as f64 * 0.75;
+        let o = RipsOptions { max_dim: k, ..Default::default() };
+        let got = rips_complex(&pts, dim, eps, &o).unwrap();
+        proptest::prop_assert_eq!(cells(&got.complex), brute(&pts, dim, eps, k));
+        proptest::prop_assert_eq!(got.complex.n_vertices(), n);
+    }
+}
+
+/// Above 8 dimensions the graph comes from a sweep instead of a kd-tree.
+#[test]
+fn high_dimensions_use_the_sweep_and_agree() {
+    for (dim, seed) in [(9usize, 1u64), (12, 2), (20, 3)] {
+        let mut s = seed;
+        let pts: Vec<f64> = (0..11 * dim)
+            .map(|_| {
+                s = s
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (s >> 40) as f64 / (1u64 << 24) as f64
+            })
+            .collect();
+        for eps in [0.9, 1.2, 1.5] {
+            let got = rips_complex(&pts, dim, eps, &RipsOptions::default()).unwrap();
+            assert_eq!(
+                cells(&got.complex),
+                brute(&pts, dim, eps, None),
+                "dim {dim} eps {eps}"
+            );
+        }
+    }
+}
+
+/// `name`'s point file and meta JSON: the shared small sets, or `$STARPLEX_DATA/SIZE/NAME/`.
+fn find(name: &str, size: &str) -> Option<(PathBuf, serde_json::Value, PathBuf)> {
+    let mut dirs = vec![common_data::datasets_dir().join(size)];
+    if let Ok(d) = std::env::var("STARPLEX_DATA") {
+        dirs.push(Path::new(&d).join(size).join(name));
+    }
+    for d in dirs {
+        let off = d.join(format!("{name}.off"));
+        let meta = d.join(format!("{name}.meta.json"));
+        let spx = d.join(format!("{name}.spx"));
+        if off.is_file() && meta.is_file() && spx.is_file() {
+            let m = serde_json::from_str(&std::fs::read_to_string(meta).ok()?).ok()?;
+            return Some((off, m, spx));
+        }
+    }
+    None
+}
+
+/// The Rips complex of the dataset's points at its eps has exactly the dataset's maximal
+/// simplices, in its order (networkx cliques sorted by size, then vertices).
+fn check_vr(name: &str, size: &str, required: bool) {
+    let Some((off, meta, spx)) = find(name, size) else {
+        assert!(!required, "{name}: dataset not found (CI=true)");
+        eprintln!("SKIPPED {name}: dataset not found");
+        return;
+    };
+    let pts = io::points::read_points(&off).unwrap();
+    let eps = meta["eps"].as_f64().unwrap();
+    let want = io::read(&spx, &ReadOptions::default()).unwrap().complex;
+    let got = rips_complex(&pts.coords, pts.dim, eps, &RipsOptions::default()).unwrap();
+    assert_eq!(
+        got.n_edges as u64,
+        meta["n_graph_edges"].as_u64().unwrap(),
+        "{name}"
+    );
+    assert_eq!(got.complex.n_vertices(), want.n_vertices(), "{name}");
+    assert_eq!(got.complex.coords(), want.coords(), "{name}");
+    assert_eq!(got.complex.n_cells(), want.n_cells(), "{name}");
+    assert!(
+        got.complex
+            .cells()
+            .zip(want.cells())
+            .all(|(a, b)| a.vertices == b.vertices),
+        "{name}: cells differ"
+    );
+    // any thread count gives the same complex
+    for t in [1, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(t)
+            .build()
+            .unwrap();
+        let again = pool
+            .install(|| rips_complex(&pts.coords, pts.dim, eps, &RipsOptions::default()))
+            .unwrap();
+        assert_eq!(again.complex, got.complex, "{name}, {t} threads");
+    }
+}
+
+#[test]
+fn vr_kitten_s_equals_the_networkx_oracle() {
+    check_vr("vr_kitten_s", "small", common_data::data_required());
+}
+
+#[test]
+fn vr_building_m_equals_the_networkx_oracle() {
+    // medium data is not beside the checkout in CI: checked when STARPLEX_DATA has it
+    check_vr("vr_building_m", "medium", false);
+}
+
+/// The generator reproduces the dataset sierp5_xs (numpy PCG64 stream, seed 3) exactly.
+#[test]
+fn sierpinski_equals_the_datasets_generator() {
+    let dir = common_data::datasets_dir().join("small");
+    let (spx, meta) = (dir.join("sierp5_xs.spx"), dir.join("sierp5_xs.meta.json"));
+    if !spx.is_file() || !meta.is_file() {
+        assert!(
+            !common_data::data_required(),
+            "sierp5_xs not found (CI=true)"
+        );
+        eprintln!("SKIPPED sierp5_xs: dataset not found");
+        return;
+    }
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(meta).unwrap()).unwrap();
+    let r = &m["recipe"];
+    let o = SierpinskiOptions {
+        dim: r["dim"].as_u64().unwrap() as usize,
+        p: r["p"].as_f64().unwrap(),
+        seed: r["seed"].as_u64().unwrap(),
+        target: r["target"].as_u64().unwrap() as usize,
+        max_levels: 60,
+    };
+    let s = sierpinski(&o).unwrap();
+    let want = io::read(&spx, &ReadOptions::default()).unwrap().complex;
+    assert_eq!(s.levels as u64, m["levels"].as_u64().unwrap());
+    assert_eq!(s.complex.n_vertices(), want.n_vertices());
+    // the file has 10 significant digits (`%.10g`): 0.25048828125 is written 0.2504882812
+    let (a, b) = (s.complex.coords(), want.coords());
+    if let Some(i) = (0..a.len()).find(|&i| (a[i] - b[i]).abs() > 1e-9 * (1.0 + b[i].abs())) {
+        panic!(
+            "coordinate {i}: {} vs {}",
+            s.complex.coords()[i],
+            want.coords()[i]
+        );
+    }
+    if let Some(c) = (0..s.complex.n_cells()).find(|&c| {
+        let c = starplex::ids::CellId(c as u32);
+        s.complex.cell(c).vertices != want.cell(c).vertices
+    }) {
+        let c = starplex::ids::CellId(c as u32);
+        panic!(
+            "cell {c:?}: {:?} vs {:?}",
+            s.complex.cell(c).vertices,
+            want.cell(c).vertices
+        );
+    }
+}
+
+/// Each triangle -> 3 quads reproduces quad_elephant from tri_elephant (0 subdivisions).
+#[test]
+fn quads_equal_the_datasets_generator() {
+    let dir = common_data::datasets_dir().join("small");
+    let (tri, quad) = (dir.join("tri_elephant.spx"), dir.join("quad_elephant.spx"));
+    if !tri.is_file() || !quad.is_file() {
+        assert!(
+            !common_data::data_required(),
+            "tri/quad_elephant not found (CI=true)"
+        );
+        eprintln!("SKIPPED quad_elephant: dataset not found");
+        return;
+    }
+    let t = io::read(&tri, &ReadOptions::default()).unwrap().complex;
+    let want = io::read(&quad, &ReadOptions::default()).unwrap().complex;
+    let got = starplex::gen::refine::triangles_to_quads(&t).unwrap();
+    assert_eq!(got.n_vertices(), want.n_vertices());
+    assert!(got
+        .cells()
+        .zip(want.cells())
+        .all(|(a, b)| a.vertices == b.vertices));
+    let close = got
+        .coords()
+        .iter()
+        .zip(want.coords())
+        .all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + b.abs())); // the file has 10 digits
+    assert!(close, "coordinates differ");
+}
+
+/// Midpoint subdivision reproduces tri_armadillo_x16 (CGAL's armadillo, 2 levels) when the
+/// generated data is at hand (`STARPLEX_DATA`, medium; not beside the checkout in CI).
+#[test]
+fn subdivision_equals_the_datasets_generator() {
+    let Ok(data) = std::env::var("STARPLEX_DATA") else {
+        eprintln!("SKIPPED tri_armadillo_x16: STARPLEX_DATA not set");
+        return;
+    };
+    let data = Path::new(&data);
+    let src = data.join("cgal/data/meshes/armadillo.off");
+    let want = data.join("medium/tri_armadillo_x16/tri_armadillo_x16.spx");
+    if !src.is_file() || !want.is_file() {
+        eprintln!("SKIPPED tri_armadillo_x16: files not found");
+        return;
+    }
+    let t = io::read(&src, &ReadOptions::default()).unwrap().complex;
+    let want = io::read(&want, &ReadOptions::default()).unwrap().complex;
+    let got = starplex::gen::refine::subdivide_triangles(&t, 2).unwrap();
+    assert_eq!(got.n_vertices(), want.n_vertices());
+    assert_eq!(got.n_cells(), want.n_cells());
+    assert!(got
+        .cells()
+        .zip(want.cells())
+        .all(|(a, b)| a.vertices == b.vertices));
+    let close = got
+        .coords()
+        .iter()
+        .zip(want.coords())
+        .all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + b.abs()));
+    assert!(close, "coordinates differ");
+}
+
+/// A `.npy` file as numpy writes it (format 1.0), C and Fortran order, float64 and int32.
+#[test]
+fn npy_points_are_read_in_either_order() {
+    fn npy(descr: &str, fortran: bool, shape: (usize, usize), data: &[u8]) -> Vec<u8> {
+        let mut h = format!(
+            "{{'descr': '{descr}', 'fortran_order': {}, 'shape': ({}, {}), }}",
+            if fortran { "True" } else { "False" },
+            shape.0,
+            shape.1
+        );
+        while (10 + h.len() + 1) % 64 != 0 {
+            h.push(' ');
+        }
+        h.push('\n');
+        let mut out = b"\x93NUMPY\x01\x00".to_vec();
+        out.extend_from_slice(&(h.len() as u16).to_le_bytes());
+        out.extend_from_slice(h.as_bytes());
+        out.extend_from_slice(data);
+        out
+    }
+    let dir = std::env::temp_dir().join(format!("starplex-npy-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let rows = [[0.0f64, 1.0, 2.0], [3.0, 4.0, 5.5]];
+    let c: Vec<u8> = rows
+        .iter()
+        .flatten()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    let f: Vec<u8> = (0..3)
+        .flat_map(|j| (0..2).map(move |i| rows[i][j]))
+        .flat_map(|x: f64| x.to_le_bytes())
+        .collect();
+    let i: Vec<u8> = [0i32, 1, 2, 3, 4, 5]
+        .iter()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    for (name, bytes, want) in [
+        (
+            "c.npy",
+            npy("<f8", false, (2, 3), &c),
+            vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.5],
+        ),
+        (
+            "f.npy",
+            npy("<f8", true, (2, 3), &f),
+            vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.5],
+        ),
+        (
+            "i.npy",
+            npy("<i4", false, (3, 2), &i),
+            vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0],
+        ),
+    ] {
+        let p = dir.join(name);
+        std::fs::write(&p, bytes).unwrap();
+        let pc = io::points::read_points(&p).unwrap();
+        assert_eq!(pc.coords, want, "{name}");
+        assert_eq!(pc.dim, if name == "i.npy" { 2 } else { 3 });
+    }
+    let bad = dir.join("bad.npy");
+    std::fs::write(&bad, b"not numpy").unwrap();
+    assert!(io::points::read_points(&bad).is_err());
+}
