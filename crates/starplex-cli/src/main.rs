@@ -17,6 +17,7 @@ mod cmd_query;
 mod cmd_stellar;
 mod cmd_validate;
 mod common;
+mod export;
 
 /// Topology of meshes and complexes.
 #[derive(Parser, Debug)]

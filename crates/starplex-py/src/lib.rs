@@ -258,15 +258,15 @@ fn arr2<'py, T: numpy::Element>(
     Ok(PyArray2::from_owned_array(py, a).into_any())
 }
 
-/// A CSR answer as `(offsets int64, values uint32)`, the values shaped `(n, width)` when
-/// `width > 1`.
+/// A CSR answer as `(offsets int64, values uint32)`: values are ids (1-D, `width` 0) or
+/// simplices of `width` vertices (shape `(n, width)`), offsets count rows.
 fn csr_out<'py>(py: Python<'py>, c: Csr, width: usize) -> PyResult<Bound<'py, PyAny>> {
     let offsets: Vec<i64> = c
         .offsets
         .iter()
         .map(|&o| (o / width.max(1) as u64) as i64)
         .collect();
-    let values = if width > 1 {
+    let values = if width > 0 {
         arr2(py, c.values, width)?
     } else {
         arr1(py, c.values)
@@ -274,9 +274,9 @@ fn csr_out<'py>(py: Python<'py>, c: Csr, width: usize) -> PyResult<Bound<'py, Py
     Ok(PyTuple::new(py, [arr1(py, offsets), values])?.into_any())
 }
 
-/// Row 0 of a one-item answer.
+/// Row 0 of a one-item answer (ids: `width` 0; simplices: `(n, width)`).
 fn row_out<'py>(py: Python<'py>, c: Csr, width: usize) -> PyResult<Bound<'py, PyAny>> {
-    if width > 1 {
+    if width > 0 {
         arr2(py, c.values, width)
     } else {
         Ok(arr1(py, c.values))
@@ -287,6 +287,20 @@ fn row_out<'py>(py: Python<'py>, c: Csr, width: usize) -> PyResult<Bound<'py, Py
 
 /// A complex: vertices with coordinates and top cells (simplices of any dimension, quads,
 /// hexahedra, prisms, pyramids), cell ids in input order.
+///
+/// `Complex(points, cells)`: `points` an `(n, d)` array of numbers; `cells` an `(m, k)` integer
+/// array (k vertices: a (k-1)-simplex), a list of such arrays, a list of `(kind, array)` pairs
+/// or a dict `{kind: array}` with kinds `line`, `tri`, `quad`, `tet`, `pyramid`, `prism`, `hex`,
+/// `simplex_D`. Duplicate cells and cells that are faces of others are errors unless
+/// `drop_duplicates` / `drop_faces`.
+///
+/// >>> import numpy as np, starplex
+/// >>> c = starplex.Complex(np.eye(3), [[0, 1, 2]])
+/// >>> c.n_vertices, c.n_cells, c.dim
+/// (3, 1, 2)
+/// >>> q = starplex.Complex(np.zeros((6, 3)), {"quad": [[0, 1, 2, 3]], "tri": [[2, 3, 4]], "line": [[4, 5]]})
+/// >>> [k for k, _ in q.cell_blocks]
+/// ['quad', 'tri', 'line']
 #[pyclass(frozen, module = "starplex._starplex")]
 struct Complex {
     k: Arc<IndexedComplex>,
@@ -568,7 +582,7 @@ fn faces_out<'py>(
         c.values.extend(x.iter().map(|v| v.0));
         c.offsets.push(c.values.len() as u64);
     }
-    csr_out(py, c, 1)
+    csr_out(py, c, 0)
 }
 
 fn report_dict(py: Python<'_>, r: ValidationReport) -> PyResult<Bound<'_, PyDict>> {
@@ -631,7 +645,14 @@ fn report_dict(py: Python<'_>, r: ValidationReport) -> PyResult<Bound<'_, PyDict
     Ok(d)
 }
 
-/// Reads a complex from a file (format from `format`, the extension or the content).
+/// Reads a complex from a file (format from `format`, the extension or the content). Bad
+/// files raise ValueError naming the file, line and problem; missing ones OSError.
+///
+/// >>> import starplex, tempfile, os
+/// >>> p = os.path.join(tempfile.mkdtemp(), "t.off")
+/// >>> _ = open(p, "w").write("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+/// >>> starplex.read(p).cells.tolist()
+/// [[0, 1, 2]]
 #[pyfunction]
 #[pyo3(signature = (path, *, format = None, simplices = false, drop_faces = false, drop_duplicates = false))]
 fn read(
@@ -751,13 +772,13 @@ impl Structure {
         match sel {
             Sel::One(i) => {
                 let c = py.detach(|| batch::gather(s, r, &[i])).map_err(query_err)?;
-                row_out(py, c, 1)
+                row_out(py, c, 0)
             }
             Sel::Many(items) => {
                 let c = py
                     .detach(|| batch::gather(s, r, &items))
                     .map_err(query_err)?;
-                csr_out(py, c, 1)
+                csr_out(py, c, 0)
             }
         }
     }
@@ -808,7 +829,16 @@ impl Structure {
 
 #[pymethods]
 impl Structure {
-    /// Top cells incident to each vertex.
+    /// Top cells incident to each vertex: an int gives a uint32 array, an array of ids or
+    /// None (every vertex) a CSR pair `(offsets, values)`.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> s = starplex.IaStar(starplex.Complex(np.eye(4)[:, :2], [[0, 1, 2], [1, 3, 2]]))
+    /// >>> s.vt(2).tolist()
+    /// [0, 1]
+    /// >>> off, val = s.vt([0, 3])
+    /// >>> off.tolist(), val.tolist()
+    /// ([0, 1, 2], [0, 1])
     #[pyo3(signature = (ids = None))]
     fn vt<'py>(
         &self,
@@ -848,7 +878,14 @@ impl Structure {
         self.relation(py, Relation::Tt, ids)
     }
 
-    /// Link of each vertex, level by level.
+    /// Link of each vertex, level by level: for an int, a list whose entry p is the
+    /// `(n_p, p + 1)` array of the link's p-simplices; for many ids, entry p is a CSR pair
+    /// with `(N_p, p + 1)` values.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> s = starplex.SimplexTree(starplex.Complex(np.eye(3), [[0, 1, 2]]))
+    /// >>> [a.tolist() for a in s.link(0)]
+    /// [[[1], [2]], [[1, 2]]]
     #[pyo3(signature = (ids = None))]
     fn link<'py>(
         &self,
@@ -868,7 +905,14 @@ impl Structure {
         self.levels(py, false, ids)
     }
 
-    /// The q-faces of each simplex (default: every top cell).
+    /// The q-faces of each simplex (default: every top cell): `simplices` an `(m, k)` array
+    /// (CSR answer with `(N, q + 1)` values), a 1-D array of vertices, or one int.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> s = starplex.IncidenceGraph(starplex.Complex(np.eye(3), [[0, 1, 2]]))
+    /// >>> off, faces = s.boundary(q=1)
+    /// >>> faces.tolist()
+    /// [[0, 1], [0, 2], [1, 2]]
     #[pyo3(signature = (simplices = None, q = 0))]
     fn boundary<'py>(
         &self,
@@ -889,7 +933,14 @@ impl Structure {
         })
     }
 
-    /// The q-cofaces of each simplex (default: every vertex).
+    /// The q-cofaces of each simplex (default: every vertex), as `boundary`.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> s = starplex.Is(starplex.Complex(np.eye(3), [[0, 1, 2]]))
+    /// >>> s.coboundary(0, q=1).tolist()
+    /// [[0, 1], [0, 2]]
+    /// >>> s.coboundary(np.array([[0, 1]]), q=2)[1].tolist()
+    /// [[0, 1, 2]]
     #[pyo3(signature = (simplices = None, q = 1))]
     fn coboundary<'py>(
         &self,
@@ -904,7 +955,12 @@ impl Structure {
         })
     }
 
-    /// The simplices adjacent to each simplex (default: every vertex).
+    /// The simplices adjacent to each simplex (default: every vertex), as `boundary`.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> s = starplex.Hasse(starplex.Complex(np.eye(4)[:, :2], [[0, 1, 2], [1, 3, 2]]))
+    /// >>> s.adjacency(np.array([[0, 1, 2]]))[1].tolist()
+    /// [[1, 2, 3]]
     #[pyo3(signature = (simplices = None))]
     fn adjacency<'py>(
         &self,
@@ -917,6 +973,10 @@ impl Structure {
     }
 
     /// Every p-simplex, a `(n_p, p + 1)` uint32 array.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> starplex.SimplexTree(starplex.Complex(np.eye(3), [[0, 1, 2]])).faces(1).tolist()
+    /// [[0, 1], [0, 2], [1, 2]]
     fn faces<'py>(&self, py: Python<'py>, p: usize) -> PyResult<Bound<'py, PyAny>> {
         let s = self.s.as_ref();
         let v = py.detach(|| batch::faces(s, p)).map_err(query_err)?;

@@ -464,6 +464,7 @@ mod tests {
     use crate::cell::CellKind;
     use crate::complex::IndexedComplex;
     use crate::topo::naive::VtIndex;
+    use crate::topo::TopCells;
 
     fn strip(n: u32) -> IndexedComplex {
         // a strip of 2n triangles over 2(n+1) vertices
