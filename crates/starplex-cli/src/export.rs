@@ -236,9 +236,9 @@ pub fn write(
                 let mut arrays: Vec<(String, Array)> = Vec::new();
                 if let Plan::Faces = p {
                     let f = s.f_vector().map_err(qerr)?;
-                    for dim in 0..f.len() {
+                    for (dim, &n) in f.iter().enumerate() {
                         let v = batch::faces(s, dim).map_err(qerr)?;
-                        counts.1 += f[dim];
+                        counts.1 += n;
                         arrays.push((format!("faces_{dim}"), Array::U32(v, dim + 1)));
                     }
                 } else {
@@ -428,10 +428,9 @@ fn write_npz(w: &mut dyn Write, arrays: Vec<(String, Array)>) -> Result<(), IoEr
         z.start_file(format!("{name}.npy"), opts).map_err(zerr)?;
         match a {
             Array::U32(v, width) => {
-                let shape: Vec<u64> = if width > 0 {
-                    vec![(v.len() / width) as u64, width as u64]
-                } else {
-                    vec![v.len() as u64]
+                let shape: Vec<u64> = match v.len().checked_div(width) {
+                    Some(rows) => vec![rows as u64, width as u64],
+                    None => vec![v.len() as u64],
                 };
                 let mut nw = npyz::WriteOptions::<u32>::new()
                     .default_dtype()

@@ -186,10 +186,12 @@ fn answer<S: Queries + ?Sized>(
             out.extend(sc.verts.iter().map(|v| v.0));
         }
         Relation::Tv => {
+            sc.verts.clear(); // top_cell_vertices appends
             s.top_cell_vertices(CellId(i), &mut sc.verts);
             out.extend(sc.verts.iter().map(|v| v.0));
         }
         Relation::Tt => {
+            sc.verts.clear();
             s.top_cell_vertices(CellId(i), &mut sc.verts);
             let kind = s.top_cell_kind(CellId(i));
             let d = kind.dim();
