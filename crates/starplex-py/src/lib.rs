@@ -546,6 +546,20 @@ impl Complex {
         Ok(d)
     }
 
+    /// The top cells of every vertex, straight from the complex (no structure to build): the
+    /// CSR pair `(offsets int64, values uint32)`, cell ids ascending. The fastest whole-mesh VT.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> off, cells = starplex.Complex(np.eye(4)[:, :2], [[0, 1, 2], [1, 3, 2]]).vt()
+    /// >>> off.tolist(), cells.tolist()
+    /// ([0, 1, 3, 5, 6], [0, 0, 1, 0, 1, 1])
+    fn vt<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let k = &self.k;
+        let c = py.detach(|| k.vertex_cells());
+        let offsets: Vec<i64> = c.offsets.iter().map(|&o| o as i64).collect();
+        Ok(PyTuple::new(py, [arr1(py, offsets), arr1(py, c.targets)])?.into_any())
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<starplex.Complex: {} vertices in {}D, {} top cells>",

@@ -103,7 +103,7 @@ def test_answers_equal_the_command_line(loaded, cli):
         ids = [str(q["vertex"]) for q in queries]
         for sname in structures_for(o):
             out = subprocess.run(
-                [cli, "-q", "query", str(p), "--structure", CLI_NAME[sname], "--relation", "vt", "vv", "link", "--json", "--vertex", *ids],
+                [cli, "--quiet", "query", str(p), "--structure", CLI_NAME[sname], "--relation", "vt", "vv", "link", "--json", "--vertex", *ids],
                 capture_output=True,
                 text=True,
                 check=True,
@@ -129,8 +129,44 @@ def test_every_vertex_vt_equals_tv_transposed(loaded):
         off, vals = s.vt()
         assert off.dtype == np.int64 and vals.dtype == np.uint32
         assert len(off) == c.n_vertices + 1 and off[-1] == len(vals)
+        coff, cvals = c.vt()  # straight from the complex: the same CSR
+        assert np.array_equal(coff, off) and np.array_equal(cvals, vals), name
         toff, tv = s.tv()
         cell_of = np.repeat(np.arange(c.n_cells), np.diff(toff))
         order = np.lexsort((cell_of, tv))
         assert np.array_equal(vals, cell_of[order]), name
         assert np.array_equal(np.diff(off), np.bincount(tv, minlength=c.n_vertices)), name
+
+
+def test_cli_export_reads_back_equal_to_python(loaded, cli, tmp_path):
+    """`query --all --out` (.npz, .jsonl) holds what the Python calls return."""
+    for name, (p, c, o) in loaded.items():
+        if name not in ("tri_elephant", "mixed_plate_s", "tet_elephant"):
+            continue
+        s = starplex.IaStar(c)
+        for rel, method in (("vt", s.vt), ("vv", s.vv)):
+            out = tmp_path / f"{name}-{rel}.npz"
+            subprocess.run([cli, "--quiet", "query", str(p), "--structure", "ia-star", "--relation", rel,
+                            "--all", "--out", str(out)], check=True)
+            z = np.load(out)
+            off, vals = method()
+            assert np.array_equal(z["offsets"], off) and np.array_equal(z["values"], vals), (name, rel)
+            assert np.array_equal(z["ids"], np.arange(c.n_vertices)), name
+            jl = tmp_path / f"{name}-{rel}.jsonl"
+            subprocess.run([cli, "--quiet", "query", str(p), "--structure", "ia-star", "--relation", rel,
+                            "--all", "--out", str(jl)], check=True)
+            with open(jl) as fh:
+                for v, line in enumerate(fh):
+                    assert json.loads(line)["vertex"] == v
+            assert v == c.n_vertices - 1
+        if name == "tri_elephant":
+            out = tmp_path / "link.npz"
+            subprocess.run([cli, "--quiet", "query", str(p), "--relation", "link", "--all", "--out", str(out)], check=True)
+            z = np.load(out)
+            link = s.link()
+            for lvl, (off, vals) in enumerate(link):
+                assert np.array_equal(z[f"offsets_{lvl}"], off) and np.array_equal(z[f"values_{lvl}"], vals)
+            out = tmp_path / "faces.npz"
+            subprocess.run([cli, "--quiet", "query", str(p), "--relation", "pfaces", "--all", "--out", str(out)], check=True)
+            z = np.load(out)
+            assert [z[f"faces_{d}"].shape[0] for d in range(3)] == o["f_vector"]

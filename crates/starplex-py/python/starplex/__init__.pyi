@@ -66,6 +66,8 @@ class Complex:
     @property
     def cell_blocks(self) -> List[Tuple[str, IdArray]]:
         """[(kind, (m, k) uint32 array)] in cell-id order."""
+    def vt(self) -> CSR:
+        """VT of every vertex straight from the complex (no structure built)."""
     def write(self, path: Path, format: Optional[str] = None) -> None:
         """Writes atomically; lossy writes (tetrahedra to OFF, ...) raise ValueError."""
     def info(self, *, max_faces: Optional[int] = None, betti: bool = False) -> Dict[str, Any]:
