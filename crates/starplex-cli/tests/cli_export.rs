@@ -9,7 +9,7 @@ use serde_json::Value;
 /// A 3x3 grid of squares split into triangles (16 vertices, 18 triangles) with a dangling edge
 /// to a 17th vertex (not pure).
 fn mesh(dir: &Path) -> PathBuf {
-    let mut s = String::from("SPX 1\n3 17 3\n");
+    let mut s = String::from("SPX 1\n3 17 19\n");
     for y in 0..4 {
         for x in 0..4 {
             s += &format!("{x} {y} 0\n");
@@ -24,11 +24,10 @@ fn mesh(dir: &Path) -> PathBuf {
             tris.push([a, a + 5, a + 4]);
         }
     }
-    s += &format!("tri {}\n", tris.len());
     for t in &tris {
-        s += &format!("{} {} {}\n", t[0], t[1], t[2]);
+        s += &format!("tri 3 {} {} {}\n", t[0], t[1], t[2]);
     }
-    s += "line 1\n15 16\n";
+    s += "line 2 15 16\n";
     let p = dir.join("grid.spx");
     std::fs::write(&p, s).unwrap();
     p
@@ -62,7 +61,7 @@ fn read_npz(p: &Path) -> std::collections::BTreeMap<String, (Vec<u64>, Vec<i128>
     let mut out = std::collections::BTreeMap::new();
     for i in 0..z.len() {
         let mut e = z.by_index(i).unwrap();
-        let name = e.name().trim_end_matches(".npy").to_string();
+        let name = e.name().unwrap().trim_end_matches(".npy").to_string();
         let mut bytes = Vec::new();
         e.read_to_end(&mut bytes).unwrap();
         let npy = npyz::NpyFile::new(&bytes[..]).unwrap();
