@@ -42,7 +42,7 @@ def main():
         problems = []
         t0 = time.time()
         cmd = [BIN, '--quiet', 'query', spx, '--structure', structure,
-               '--relation', 'link' if simplicial else 'vv', '--json', '--vertex']
+               '--relation', 'vt', 'vv', 'link' if simplicial else 'vv', '--json', '--vertex']
         cmd += [str(q['vertex']) for q in qs]
         p = subprocess.run(cmd, capture_output=True, text=True)
         if p.returncode != 0:

@@ -84,22 +84,32 @@ pub enum RelationKind {
     IaStar,
 }
 
-#[derive(clap::Args, Debug)]
+#[derive(clap::Args, Debug, Clone)]
 pub struct QueryArgs {
     #[command(flatten)]
     pub input: InputArgs,
     /// Data structure.
     #[arg(long, value_enum, default_value = "ia-star")]
     pub structure: StructureKind,
-    /// Relation.
-    #[arg(long, value_enum, default_value = "vt")]
-    pub relation: RelationKind,
+    /// Relation. With --vertex --json, the objects hold the vertex and what the relations
+    /// name (repeat it, or list several, for more: --relation vt vv link).
+    #[arg(long, value_enum, num_args = 1.., default_value = "vt")]
+    pub relation: Vec<RelationKind>,
     /// Stellar tree bucket threshold k_V (used by the Stellar tree only).
     #[arg(long)]
     pub kv: Option<usize>,
     /// Vertices to query (input ids).
     #[arg(long, num_args = 1..)]
     pub vertex: Vec<u32>,
+    /// A file of vertex ids to query (white space or commas between them; `-`: standard input).
+    #[arg(long)]
+    pub vertex_file: Option<std::path::PathBuf>,
+    /// Write every answer to this file: .jsonl (one object per item, streamed), .npz (CSR
+    /// `offsets` and `values` arrays with the item `ids`; per level `offsets_P`/`values_P` for
+    /// link and star, `faces_P` for pfaces) or .csv (one line per item and answer element).
+    /// With --all: every vertex (every top cell for adj and ia-star, every simplex for pfaces).
+    #[arg(long)]
+    pub out: Option<std::path::PathBuf>,
     /// The batched query over the whole complex (sizes and time).
     #[arg(long)]
     pub all: bool,
@@ -312,13 +322,31 @@ pub fn try_run_all(
 }
 
 pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
+    let mut a_vertex = a.vertex.clone();
+    if let Some(f) = &a.vertex_file {
+        a_vertex.extend(crate::export::read_ids(f)?);
+    }
+    let relation = a.relation[0];
+    if a.relation.len() > 1 && (a.all || a.out.is_some()) {
+        return Err(CliError::Input(
+            "--all and --out answer one relation at a time".into(),
+            Some("pass one --relation".into()),
+        ));
+    }
+    if let Some(out) = &a.out {
+        crate::export::OutFormat::from_path(out)?;
+    }
+    let a = &QueryArgs {
+        vertex: a_vertex,
+        ..a.clone()
+    };
     if a.kv.is_some() && a.structure != StructureKind::Stellar && !ctx.quiet {
         eprintln!("note: --kv is used by the Stellar tree only");
     }
     if a.vertex.is_empty() && !a.all {
         return Err(CliError::Input(
             "nothing to query".into(),
-            Some("pass --vertex ID ... or --all".into()),
+            Some("pass --vertex ID ..., --vertex-file FILE or --all".into()),
         ));
     }
     let saved = starplex::stellar::is_saved_tree(&a.input.file);
@@ -339,42 +367,76 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
         None => Box::new(crate::cmd_stellar::load_saved_tree(ctx, &a.input.file)?),
     };
     let build_s = t.elapsed().as_secs_f64();
+    if let Some(out) = &a.out {
+        let t = Instant::now();
+        let items = (!a.all).then_some(&a.vertex[..]);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(a.threads.max(1))
+            .build()
+            .map_err(|e| CliError::Other(e.to_string()))?;
+        let (n, total) = pool.install(|| crate::export::write(s.as_ref(), relation, items, out))?;
+        let secs = t.elapsed().as_secs_f64();
+        if a.json {
+            println!(
+                "{}",
+                serde_json::json!({
+                    "structure": a.structure.name(),
+                    "relation": format!("{relation:?}").to_lowercase(),
+                    "out": out.display().to_string(),
+                    "build_s": build_s,
+                    "items": n,
+                    "total_size": total,
+                    "write_s": secs,
+                    "threads": a.threads,
+                })
+            );
+        } else if !ctx.quiet {
+            eprintln!(
+                "{}: {n} items, {total} answers ({:?}) in {secs:.3} s",
+                out.display(),
+                relation
+            );
+        }
+        return Ok(());
+    }
     if !a.vertex.is_empty() {
         let mut objs = Vec::new();
         for &v in &a.vertex {
             let mut o = vertex_object(s.as_ref(), VertexId(v))?;
             let (mut cells, mut verts) = (Vec::new(), Vec::new());
-            match a.relation {
-                RelationKind::Star => {
-                    let st = s.star(&[VertexId(v)]).map_err(qerr)?;
-                    o["star_f_vector"] = serde_json::json!(st.f_vector());
-                }
-                RelationKind::Pfaces => {
-                    let mut co = Vec::new();
-                    for q in 1..s.f_vector().map_err(qerr)?.len() {
-                        s.coboundary(&[VertexId(v)], q, &mut verts).map_err(qerr)?;
-                        co.push(verts.len() / (q + 1));
+            for &rel in &a.relation {
+                match rel {
+                    RelationKind::Star => {
+                        let st = s.star(&[VertexId(v)]).map_err(qerr)?;
+                        o["star_f_vector"] = serde_json::json!(st.f_vector());
                     }
-                    o["coboundary_sizes"] = serde_json::json!(co);
+                    RelationKind::Pfaces => {
+                        let mut co = Vec::new();
+                        for q in 1..s.f_vector().map_err(qerr)?.len() {
+                            s.coboundary(&[VertexId(v)], q, &mut verts).map_err(qerr)?;
+                            co.push(verts.len() / (q + 1));
+                        }
+                        o["coboundary_sizes"] = serde_json::json!(co);
+                    }
+                    RelationKind::Adj => {
+                        s.adjacent(&[VertexId(v)], &mut verts).map_err(qerr)?;
+                        o["adjacent"] =
+                            serde_json::json!(verts.iter().map(|w| w.0).collect::<Vec<_>>());
+                    }
+                    RelationKind::IaStar => {
+                        s.vertex_top_cells(VertexId(v), &mut cells);
+                        o["n_incident_top_cells"] = serde_json::json!(cells.len());
+                    }
+                    _ => {}
                 }
-                RelationKind::Adj => {
-                    s.adjacent(&[VertexId(v)], &mut verts).map_err(qerr)?;
-                    o["adjacent"] =
-                        serde_json::json!(verts.iter().map(|w| w.0).collect::<Vec<_>>());
-                }
-                RelationKind::IaStar => {
-                    s.vertex_top_cells(VertexId(v), &mut cells);
-                    o["n_incident_top_cells"] = serde_json::json!(cells.len());
-                }
-                _ => {}
             }
-            objs.push(o);
+            objs.push(filter(o, &a.relation));
         }
         if a.json {
             println!("{}", serde_json::Value::Array(objs));
         } else {
             for o in &objs {
-                let key = match a.relation {
+                let key = match relation {
                     RelationKind::Vt | RelationKind::IaStar => "incident_top_cells",
                     RelationKind::Vv => "vv",
                     RelationKind::Link => "link_maximal_simplices",
@@ -383,20 +445,20 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
                     RelationKind::Adj => "adjacent",
                 };
                 println!("vertex {}: {} = {}", o["vertex"], key, o[key]);
-                if a.relation == RelationKind::Link {
+                if relation == RelationKind::Link {
                     println!("  link f-vector = {}", o["link_f_vector"]);
                 }
             }
         }
     }
     if a.all {
-        let (items, total, secs) = run_all(s.as_ref(), a.relation, a.threads)?;
+        let (items, total, secs) = run_all(s.as_ref(), relation, a.threads)?;
         if a.json {
             println!(
                 "{}",
                 serde_json::json!({
                     "structure": a.structure.name(),
-                    "relation": format!("{:?}", a.relation).to_lowercase(),
+                    "relation": format!("{relation:?}").to_lowercase(),
                     "build_s": build_s,
                     "items": items,
                     "total_size": total,
@@ -409,10 +471,37 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
                 "{} on {}: built in {build_s:.3} s; {:?} over {items} items: {total} results in {secs:.3} s ({} thread(s))",
                 a.structure.name(),
                 a.input.file.display(),
-                a.relation,
+                relation,
                 a.threads
             );
         }
     }
     Ok(())
+}
+
+/// The keys of one vertex's JSON object that `--relation` asks for.
+fn keys(r: RelationKind) -> &'static [&'static str] {
+    match r {
+        RelationKind::Vt => &["incident_top_cells"],
+        RelationKind::Vv => &["vv"],
+        RelationKind::Link => &["link_f_vector", "link_maximal_simplices"],
+        RelationKind::Star => &["star_f_vector"],
+        RelationKind::Pfaces => &["coboundary_sizes"],
+        RelationKind::Adj => &["adjacent"],
+        RelationKind::IaStar => &["incident_top_cells", "n_incident_top_cells"],
+    }
+}
+
+/// One vertex's object with the vertex and the keys the relations name.
+fn filter(o: serde_json::Value, rels: &[RelationKind]) -> serde_json::Value {
+    let mut m = serde_json::Map::new();
+    m.insert("vertex".into(), o["vertex"].clone());
+    for r in rels {
+        for k in keys(*r) {
+            if let Some(v) = o.get(*k) {
+                m.insert((*k).into(), v.clone());
+            }
+        }
+    }
+    serde_json::Value::Object(m)
 }

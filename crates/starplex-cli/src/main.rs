@@ -19,6 +19,7 @@ mod cmd_rips;
 mod cmd_stellar;
 mod cmd_validate;
 mod common;
+mod export;
 
 /// Topology of meshes and complexes.
 #[derive(Parser, Debug)]

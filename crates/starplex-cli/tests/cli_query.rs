@@ -53,6 +53,8 @@ fn every_structure_answers_the_oracle_vertex_queries() {
                 "--structure",
                 s,
                 "--relation",
+                "vt",
+                "vv",
                 if simplicial { "link" } else { "vv" },
                 "--json",
             ]);

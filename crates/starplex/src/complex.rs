@@ -698,6 +698,38 @@ impl IndexedComplex {
         })
     }
 
+    /// [`from_parts`](Self::from_parts) followed by the checks of [`ComplexBuilder::build`]:
+    /// duplicate top cells and top cells that are faces of others are errors, or dropped as
+    /// `opts` asks. The path for cell arrays handed over whole (the Python bindings).
+    ///
+    /// ```
+    /// use starplex::complex::{BuildOptions, IndexedComplex};
+    /// use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0]);
+    /// let twice = vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2, 2, 1, 0]))];
+    /// let opts = BuildOptions::default();
+    /// assert!(IndexedComplex::from_parts_checked(2, coords.clone(), twice.clone(), &opts).is_err());
+    /// let opts = BuildOptions { drop_duplicates: true, ..Default::default() };
+    /// let (k, report) = IndexedComplex::from_parts_checked(2, coords, twice, &opts).unwrap();
+    /// assert_eq!((k.n_cells(), report.dropped_duplicates), (1, 1));
+    /// ```
+    ///
+    /// # Errors
+    /// Everything [`from_parts`](Self::from_parts) refuses, then the first duplicate or face
+    /// cell not dropped by `opts`.
+    pub fn from_parts_checked(
+        ambient_dim: usize,
+        coords: Buf<f64>,
+        blocks: Vec<(CellKind, Buf<u32>)>,
+        opts: &BuildOptions,
+    ) -> Result<(IndexedComplex, BuildReport), ComplexError> {
+        let k = IndexedComplex::from_parts(ambient_dim, coords, blocks)?;
+        if opts.trust_maximality {
+            return Ok((k, BuildReport::default()));
+        }
+        k.check_maximality(opts)
+    }
+
     /// Number of coordinates per vertex.
     ///
     /// ```

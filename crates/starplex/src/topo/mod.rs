@@ -82,6 +82,7 @@
 use crate::cell::CellKind;
 use crate::ids::{CellId, SimplexId, VertexId};
 
+pub mod batch;
 pub mod from_tops;
 pub mod generic;
 pub mod link;

@@ -1,0 +1,456 @@
+//! `query ... --out FILE`: every answer written as `.jsonl` (streamed, one object per item),
+//! `.npz` (CSR `offsets` / `values` arrays and the item `ids`) or `.csv` (one line per item and
+//! answer element). The answers come from `starplex::topo::batch`, the same code as the Python
+//! bindings.
+use std::io::Write;
+use std::path::Path;
+
+use starplex::io::{output, IoErrorKind};
+use starplex::topo::batch::{self, Csr, Relation};
+use starplex::topo::{Queries, QueryError};
+
+use crate::cmd_query::RelationKind;
+use crate::common::CliError;
+
+/// Items answered (and held in memory) per block of a streamed output.
+const BLOCK: usize = 1 << 16;
+
+/// The output formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutFormat {
+    Jsonl,
+    Npz,
+    Csv,
+}
+
+impl OutFormat {
+    pub fn from_path(p: &Path) -> Result<OutFormat, CliError> {
+        match p.extension().and_then(|e| e.to_str()) {
+            Some("jsonl") => Ok(OutFormat::Jsonl),
+            Some("npz") => Ok(OutFormat::Npz),
+            Some("csv") => Ok(OutFormat::Csv),
+            _ => Err(CliError::Input(
+                format!("{}: --out writes .jsonl, .npz or .csv", p.display()),
+                Some("name the output file with one of these extensions".into()),
+            )),
+        }
+    }
+}
+
+/// Reads vertex ids from a file (`-`: standard input): integers separated by white space or
+/// commas.
+pub fn read_ids(p: &Path) -> Result<Vec<u32>, CliError> {
+    let text = if p.as_os_str() == "-" {
+        let mut s = String::new();
+        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s)
+            .map_err(|e| CliError::Input(format!("standard input: {e}"), None))?;
+        s
+    } else {
+        std::fs::read_to_string(p)
+            .map_err(|e| CliError::Input(format!("{}: {e}", p.display()), None))?
+    };
+    let mut out = Vec::new();
+    for (ln, line) in text.lines().enumerate() {
+        for tok in line
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|t| !t.is_empty())
+        {
+            let v: u32 = tok.parse().map_err(|_| {
+                CliError::Input(
+                    format!(
+                        "{}:{}: '{tok}' is not a vertex id",
+                        if p.as_os_str() == "-" {
+                            "standard input".to_string()
+                        } else {
+                            p.display().to_string()
+                        },
+                        ln + 1
+                    ),
+                    None,
+                )
+            })?;
+            out.push(v);
+        }
+    }
+    Ok(out)
+}
+
+fn qerr(e: QueryError) -> IoErrorKind {
+    IoErrorKind::Parse(e.to_string())
+}
+
+/// What one relation is over: vertices, top cells or levels.
+enum Plan {
+    /// Ids per item (vt, vv, adjacent tops).
+    Ids(Relation),
+    /// Simplices per item, level by level (link, star).
+    Levels { link: bool },
+    /// The simplices adjacent to each top cell (rows of the cell's size).
+    AdjTops,
+    /// The vertices adjacent to each vertex through an edge (R_{0,0}).
+    AdjVertices,
+    /// Every p-simplex of every level.
+    Faces,
+}
+
+fn plan(r: RelationKind, all: bool) -> Result<Plan, CliError> {
+    Ok(match r {
+        RelationKind::Vt => Plan::Ids(Relation::Vt),
+        RelationKind::Vv => Plan::Ids(Relation::Vv),
+        RelationKind::Link => Plan::Levels { link: true },
+        RelationKind::Star => Plan::Levels { link: false },
+        RelationKind::Adj if all => Plan::AdjTops,
+        RelationKind::Adj => Plan::AdjVertices,
+        RelationKind::IaStar if all => Plan::Ids(Relation::Tt),
+        RelationKind::Pfaces if all => Plan::Faces,
+        RelationKind::IaStar | RelationKind::Pfaces => {
+            return Err(CliError::Input(
+                "--out with --relation ia-star or pfaces needs --all".into(),
+                None,
+            ))
+        }
+    })
+}
+
+/// The key of the item and of the answer in `.jsonl` / `.csv`.
+fn names(r: RelationKind, all: bool) -> (&'static str, &'static str) {
+    match r {
+        RelationKind::Vt => ("vertex", "incident_top_cells"),
+        RelationKind::Vv => ("vertex", "vv"),
+        RelationKind::Link => ("vertex", "link"),
+        RelationKind::Star => ("vertex", "star"),
+        RelationKind::Adj if all => ("cell", "adjacent"),
+        RelationKind::Adj => ("vertex", "adjacent"),
+        RelationKind::IaStar => ("cell", "adjacent_top_cells"),
+        RelationKind::Pfaces => ("dim", "simplex"),
+    }
+}
+
+/// Writes relation `r` of `items` (None: every vertex or top cell) to `out`. Returns the number
+/// of items and of answer elements (ids or simplices).
+pub fn write(
+    s: &(dyn Queries + Sync),
+    r: RelationKind,
+    items: Option<&[u32]>,
+    out: &Path,
+) -> Result<(u64, u64), CliError> {
+    let fmt = OutFormat::from_path(out)?;
+    let all = items.is_none();
+    let p = plan(r, all)?;
+    let n_items = match &p {
+        Plan::Ids(rel) => rel.n_items(s),
+        Plan::AdjTops => s.n_top_cells(),
+        Plan::Faces => 0,
+        _ => s.n_vertices(),
+    };
+    let owned;
+    let items: &[u32] = match items {
+        Some(v) => {
+            let what = if matches!(p, Plan::Ids(Relation::Tt) | Plan::AdjTops) {
+                "cell"
+            } else {
+                "vertex"
+            };
+            batch::check_items(v, n_items, what).map_err(|m| CliError::Input(m, None))?;
+            v
+        }
+        None => {
+            owned = batch::all(n_items);
+            &owned
+        }
+    };
+    let (item_key, answer_key) = names(r, all);
+    let mut counts = (0u64, 0u64);
+    let tops = |chunk: &[u32]| -> Result<(Vec<u32>, Vec<usize>), QueryError> {
+        // the top cells' vertices, and each cell's size
+        let c = batch::gather(s, Relation::Tv, chunk)?;
+        let w = (0..c.n_rows()).map(|i| c.row(i).len()).collect();
+        Ok((c.values, w))
+    };
+    // one block of answers: (per-level CSR, the width of one simplex per row or level)
+    let answer_block = |chunk: &[u32]| -> Result<(Vec<Csr>, Widths), QueryError> {
+        Ok(match &p {
+            Plan::Ids(rel) => (vec![batch::gather(s, *rel, chunk)?], Widths::Ids),
+            Plan::Levels { link } => (batch::levels(s, *link, chunk)?, Widths::Levels),
+            Plan::AdjVertices => (vec![batch::adjacent(s, chunk, 1)?], Widths::Fixed(1)),
+            Plan::AdjTops => {
+                let (tv, w) = tops(chunk)?;
+                if let Some(&k) = w.first().filter(|&&k| w.iter().all(|&x| x == k)) {
+                    // one size of cell (the usual case): one batched call
+                    return Ok((vec![batch::adjacent(s, &tv, k)?], Widths::PerRow(w)));
+                }
+                // cells of mixed sizes, one at a time
+                let mut rows: Vec<Vec<u32>> = vec![Vec::new(); chunk.len()];
+                let mut start = 0;
+                for (i, &k) in w.iter().enumerate() {
+                    let a = batch::adjacent(s, &tv[start..start + k], k)?;
+                    rows[i] = a.values;
+                    start += k;
+                }
+                let mut c = Csr {
+                    offsets: vec![0],
+                    values: Vec::new(),
+                };
+                for r in rows {
+                    c.values.extend(r);
+                    c.offsets.push(c.values.len() as u64);
+                }
+                (vec![c], Widths::PerRow(w))
+            }
+            Plan::Faces => unreachable!("levels are written whole"),
+        })
+    };
+    output::write_with(out, |w| {
+        match fmt {
+            OutFormat::Jsonl | OutFormat::Csv => {
+                let csv = fmt == OutFormat::Csv;
+                if csv {
+                    writeln!(w, "{item_key},{answer_key}")?;
+                }
+                if let Plan::Faces = p {
+                    let f = s.f_vector().map_err(qerr)?;
+                    for dim in 0..f.len() {
+                        let mut err = Ok(());
+                        s.for_each_simplex(dim, &mut |x| {
+                            if err.is_ok() {
+                                counts.1 += 1;
+                                err = write_simplex_line(w, csv, dim, x);
+                            }
+                        })
+                        .map_err(qerr)?;
+                        err?;
+                    }
+                    return Ok(());
+                }
+                for chunk in items.chunks(BLOCK) {
+                    let (lv, widths) = answer_block(chunk).map_err(qerr)?;
+                    for (j, &item) in chunk.iter().enumerate() {
+                        counts.0 += 1;
+                        write_item(w, csv, item_key, answer_key, item, j, &lv, &widths)?;
+                    }
+                    counts.1 += lv.iter().map(|c| c.values.len() as u64).sum::<u64>();
+                }
+                Ok(())
+            }
+            OutFormat::Npz => {
+                let mut arrays: Vec<(String, Array)> = Vec::new();
+                if let Plan::Faces = p {
+                    let f = s.f_vector().map_err(qerr)?;
+                    for (dim, &n) in f.iter().enumerate() {
+                        let v = batch::faces(s, dim).map_err(qerr)?;
+                        counts.1 += n;
+                        arrays.push((format!("faces_{dim}"), Array::U32(v, dim + 1)));
+                    }
+                } else {
+                    let (lv, widths) = answer_block(items).map_err(qerr)?;
+                    counts.0 = items.len() as u64;
+                    arrays.push(("ids".into(), Array::U32(items.to_vec(), 0)));
+                    let single = lv.len() == 1 && !matches!(widths, Widths::Levels);
+                    for (p, c) in lv.into_iter().enumerate() {
+                        counts.1 += c.values.len() as u64;
+                        let (sfx, width) = match &widths {
+                            Widths::Levels => (format!("_{p}"), p + 1),
+                            Widths::Fixed(k) => (String::new(), *k),
+                            _ => (String::new(), 0),
+                        };
+                        let div = width.max(1) as u64;
+                        let off: Vec<i64> = c.offsets.iter().map(|&o| (o / div) as i64).collect();
+                        let key = if single { String::new() } else { sfx };
+                        arrays.push((format!("offsets{key}"), Array::I64(off)));
+                        arrays.push((format!("values{key}"), Array::U32(c.values, width)));
+                    }
+                    if let Widths::PerRow(_) = widths {
+                        // adjacent simplices of mixed sizes: offsets count vertex ids
+                        arrays.push(("values_are_flat_vertex_lists".into(), Array::I64(vec![1])));
+                    }
+                }
+                write_npz(w, arrays)
+            }
+        }
+    })?;
+    if matches!(fmt, OutFormat::Npz) && all {
+        counts.0 = items.len() as u64;
+    }
+    Ok(counts)
+}
+
+/// How the values of a block split into simplices.
+enum Widths {
+    /// Plain ids.
+    Ids,
+    /// Level p holds simplices of p + 1 ids.
+    Levels,
+    /// Simplices of k ids.
+    Fixed(usize),
+    /// Row i holds simplices of `w[i]` ids.
+    PerRow(Vec<usize>),
+}
+
+fn json_simplices(v: &[u32], k: usize) -> String {
+    let mut s = String::from("[");
+    for (i, c) in v.chunks(k.max(1)).enumerate() {
+        if i > 0 {
+            s.push(',');
+        }
+        s.push_str(&json_ids(c));
+    }
+    s.push(']');
+    s
+}
+
+fn json_ids(v: &[u32]) -> String {
+    let mut s = String::with_capacity(v.len() * 7 + 2);
+    s.push('[');
+    for (i, x) in v.iter().enumerate() {
+        if i > 0 {
+            s.push(',');
+        }
+        s.push_str(&x.to_string());
+    }
+    s.push(']');
+    s
+}
+
+fn space_ids(v: &[u32]) -> String {
+    v.iter()
+        .map(|x| x.to_string())
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn write_simplex_line(
+    w: &mut dyn Write,
+    csv: bool,
+    dim: usize,
+    x: &[starplex::ids::VertexId],
+) -> Result<(), IoErrorKind> {
+    let ids: Vec<u32> = x.iter().map(|v| v.0).collect();
+    if csv {
+        writeln!(w, "{dim},{}", space_ids(&ids))?;
+    } else {
+        writeln!(w, "{{\"dim\":{dim},\"simplex\":{}}}", json_ids(&ids))?;
+    }
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn write_item(
+    w: &mut dyn Write,
+    csv: bool,
+    item_key: &str,
+    answer_key: &str,
+    item: u32,
+    j: usize,
+    lv: &[Csr],
+    widths: &Widths,
+) -> Result<(), IoErrorKind> {
+    match widths {
+        Widths::Ids => {
+            let row = lv[0].row(j);
+            if csv {
+                for x in row {
+                    writeln!(w, "{item},{x}")?;
+                }
+            } else {
+                writeln!(
+                    w,
+                    "{{\"{item_key}\":{item},\"{answer_key}\":{}}}",
+                    json_ids(row)
+                )?;
+            }
+        }
+        Widths::Fixed(_) | Widths::PerRow(_) => {
+            let k = match widths {
+                Widths::Fixed(k) => *k,
+                Widths::PerRow(ws) => ws[j],
+                _ => 1,
+            };
+            let row = lv[0].row(j);
+            if csv {
+                for c in row.chunks(k.max(1)) {
+                    writeln!(w, "{item},{}", space_ids(c))?;
+                }
+            } else {
+                writeln!(
+                    w,
+                    "{{\"{item_key}\":{item},\"{answer_key}\":{}}}",
+                    json_simplices(row, k)
+                )?;
+            }
+        }
+        Widths::Levels => {
+            if csv {
+                for (p, c) in lv.iter().enumerate() {
+                    for x in c.row(j).chunks(p + 1) {
+                        writeln!(w, "{item},{}", space_ids(x))?;
+                    }
+                }
+            } else {
+                let levels: Vec<String> = lv
+                    .iter()
+                    .enumerate()
+                    .map(|(p, c)| json_simplices(c.row(j), p + 1))
+                    .collect();
+                // trailing empty levels are left out, as in a SimplexSet
+                let n = levels.iter().rposition(|l| l != "[]").map_or(0, |i| i + 1);
+                writeln!(
+                    w,
+                    "{{\"{item_key}\":{item},\"{answer_key}\":[{}]}}",
+                    levels[..n].join(",")
+                )?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One array of an `.npz`.
+enum Array {
+    /// uint32 values, shaped `(n, width)` when `width > 0`.
+    U32(Vec<u32>, usize),
+    /// int64 values, 1-D.
+    I64(Vec<i64>),
+}
+
+/// Writes `arrays` as an uncompressed `.npz` (a zip of `.npy` files), streamed.
+fn write_npz(w: &mut dyn Write, arrays: Vec<(String, Array)>) -> Result<(), IoErrorKind> {
+    use npyz::WriterBuilder;
+    let zerr = |e: zip::result::ZipError| IoErrorKind::Os(std::io::Error::other(e.to_string()));
+    let mut z = zip::ZipWriter::new_stream(w);
+    for (name, a) in arrays {
+        let bytes = match &a {
+            Array::U32(v, _) => v.len() as u64 * 4,
+            Array::I64(v) => v.len() as u64 * 8,
+        };
+        let opts = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Stored)
+            .large_file(bytes > (1u64 << 31));
+        z.start_file(format!("{name}.npy"), opts).map_err(zerr)?;
+        match a {
+            Array::U32(v, width) => {
+                let shape: Vec<u64> = match v.len().checked_div(width) {
+                    Some(rows) => vec![rows as u64, width as u64],
+                    None => vec![v.len() as u64],
+                };
+                let mut nw = npyz::WriteOptions::<u32>::new()
+                    .default_dtype()
+                    .shape(&shape)
+                    .writer(&mut z)
+                    .begin_nd()?;
+                nw.extend(v)?;
+                nw.finish()?;
+            }
+            Array::I64(v) => {
+                let mut nw = npyz::WriteOptions::<i64>::new()
+                    .default_dtype()
+                    .shape(&[v.len() as u64])
+                    .writer(&mut z)
+                    .begin_nd()?;
+                nw.extend(v)?;
+                nw.finish()?;
+            }
+        }
+    }
+    z.finish().map_err(zerr)?;
+    Ok(())
+}

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# CI for the Python package: a venv made here (numpy, pytest, maturin), one release build of
+# the extension installed with pip (the README's install command), clippy on the binding, pytest.
+# Runs from anywhere; uses $STARPLEX_VENV (default target/ci-venv, git-ignored) and python3.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+VENV=${STARPLEX_VENV:-target/ci-venv}
+if [ ! -x "$VENV/bin/python" ]; then
+    python3 -m venv "$VENV"
+fi
+export PATH="$PWD/$VENV/bin:$PATH"   # maturin's build backend calls `maturin` by name
+python -m pip install -q numpy pytest "maturin>=1.9,<2"
+export PYO3_PYTHON="$PWD/$VENV/bin/python"
+cargo clippy -p starplex-py --all-targets -- -D warnings
+python -m pip install -q --no-build-isolation ./crates/starplex-py
+# the tests compare with the command line built by `cargo test` (target/debug/starplex)
+python -m pytest -q crates/starplex-py/tests

@@ -1,0 +1,516 @@
+//! Batched answers: one relation asked of many items (vertices, top cells, simplices), gathered
+//! into compressed-sparse-row arrays. The one home of "every answer as arrays", used by
+//! `starplex query --all --out` and by the Python bindings.
+//!
+//! Row `i` of a [`Csr`] is `values[offsets[i]..offsets[i + 1]]`. Work is split into fixed chunks
+//! of items answered in parallel and joined in item order, so the arrays do not depend on the
+//! number of threads.
+//!
+//! ```
+//! use starplex::complex::IndexedComplex;
+//! use starplex::{buf::Buf, cell::CellKind};
+//! use starplex::tds::iastar::IaStar;
+//! use starplex::topo::batch::{self, Relation};
+//! // two triangles sharing the edge 1-2
+//! let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
+//! let cells = vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2, 1, 3, 2]))];
+//! let k = IndexedComplex::from_parts(2, coords, cells).unwrap();
+//! let s = IaStar::new(&k).unwrap();
+//! let vt = batch::gather(&s, Relation::Vt, &batch::all(4)).unwrap();
+//! assert_eq!(vt.offsets, [0, 1, 3, 5, 6]);
+//! assert_eq!(vt.values, [0, 0, 1, 0, 1, 1]);
+//! ```
+use rayon::prelude::*;
+
+use super::{generic, Queries, QueryError, SimplexSet};
+use crate::ids::{CellId, VertexId};
+
+/// Items answered per parallel task.
+const CHUNK: usize = 2048;
+
+/// A ragged answer in compressed-sparse-row form.
+///
+/// ```
+/// use starplex::topo::batch::Csr;
+/// let c = Csr { offsets: vec![0, 2, 2, 3], values: vec![5, 6, 7] };
+/// assert_eq!(c.row(0), &[5, 6]);
+/// assert_eq!(c.n_rows(), 3);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Csr {
+    /// `n_rows + 1` offsets into `values`, starting at 0.
+    pub offsets: Vec<u64>,
+    /// The rows, concatenated.
+    pub values: Vec<u32>,
+}
+
+impl Csr {
+    /// The number of rows.
+    ///
+    /// ```
+    /// use starplex::topo::batch::Csr;
+    /// assert_eq!(Csr { offsets: vec![0], values: vec![] }.n_rows(), 0);
+    /// ```
+    pub fn n_rows(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// Row `i`.
+    ///
+    /// ```
+    /// use starplex::topo::batch::Csr;
+    /// let c = Csr { offsets: vec![0, 1], values: vec![9] };
+    /// assert_eq!(c.row(0), &[9]);
+    /// ```
+    pub fn row(&self, i: usize) -> &[u32] {
+        &self.values[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+
+    fn append(&mut self, other: Csr) {
+        let base = self.values.len() as u64;
+        self.offsets
+            .extend(other.offsets.iter().skip(1).map(|o| o + base));
+        self.values.extend(other.values);
+    }
+}
+
+/// A relation asked of one item; the item is a vertex id unless said otherwise.
+///
+/// ```
+/// use starplex::topo::batch::Relation;
+/// assert_eq!(Relation::Vt.item(), "vertex");
+/// assert_eq!(Relation::Tt.item(), "cell");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Relation {
+    /// Top cells incident to a vertex (ids).
+    Vt,
+    /// Vertices adjacent to a vertex (ids).
+    Vv,
+    /// The vertices of a top cell (the item is a top cell id).
+    Tv,
+    /// Top cells of the same dimension sharing a facet with a top cell (the item is a top cell
+    /// id; the IA* adjacency, non-manifold facets included).
+    Tt,
+}
+
+impl Relation {
+    /// What the items are: `"vertex"` or `"cell"`.
+    ///
+    /// ```
+    /// use starplex::topo::batch::Relation;
+    /// assert_eq!(Relation::Tv.item(), "cell");
+    /// ```
+    pub fn item(self) -> &'static str {
+        match self {
+            Relation::Vt | Relation::Vv => "vertex",
+            Relation::Tv | Relation::Tt => "cell",
+        }
+    }
+
+    /// How many items the structure has (vertices or top cells).
+    ///
+    /// ```
+    /// use starplex::complex::IndexedComplex;
+    /// use starplex::{buf::Buf, cell::CellKind, topo::naive::VtIndex};
+    /// use starplex::topo::batch::Relation;
+    /// let k = IndexedComplex::from_parts(1, Buf::from(vec![0.0, 1.0]),
+    ///     vec![(CellKind::Simplex(1), Buf::from(vec![0, 1]))]).unwrap();
+    /// assert_eq!(Relation::Vt.n_items(&VtIndex::new(&k)), 2);
+    /// assert_eq!(Relation::Tt.n_items(&VtIndex::new(&k)), 1);
+    /// ```
+    pub fn n_items<S: Queries + ?Sized>(self, s: &S) -> usize {
+        match self.item() {
+            "vertex" => s.n_vertices(),
+            _ => s.n_top_cells(),
+        }
+    }
+}
+
+/// Scratch space of one worker.
+#[derive(Default)]
+struct Scratch {
+    cells: Vec<CellId>,
+    verts: Vec<VertexId>,
+    facet: Vec<VertexId>,
+}
+
+/// The items `0..n`.
+///
+/// ```
+/// assert_eq!(starplex::topo::batch::all(3), [0, 1, 2]);
+/// ```
+pub fn all(n: usize) -> Vec<u32> {
+    (0..n as u32).collect()
+}
+
+/// Checks that every item is below `n`.
+///
+/// ```
+/// use starplex::topo::batch::check_items;
+/// assert!(check_items(&[0, 2], 3, "vertex").is_ok());
+/// assert_eq!(check_items(&[0, 3], 3, "vertex").unwrap_err(),
+///     "vertex 3 out of range (the complex has 3 vertices)");
+/// ```
+///
+/// # Errors
+/// The first item out of range, in the command line's words.
+pub fn check_items(items: &[u32], n: usize, what: &str) -> Result<(), String> {
+    match items.iter().find(|&&i| i as usize >= n) {
+        None => Ok(()),
+        Some(i) => Err(format!(
+            "{what} {i} out of range (the complex has {n} {})",
+            if what == "vertex" {
+                "vertices"
+            } else {
+                "cells"
+            }
+        )),
+    }
+}
+
+fn answer<S: Queries + ?Sized>(
+    s: &S,
+    r: Relation,
+    i: u32,
+    sc: &mut Scratch,
+    out: &mut Vec<u32>,
+) -> Result<(), QueryError> {
+    match r {
+        Relation::Vt => {
+            s.vertex_top_cells(VertexId(i), &mut sc.cells);
+            out.extend(sc.cells.iter().map(|c| c.0));
+        }
+        Relation::Vv => {
+            s.vertex_neighbours(VertexId(i), &mut sc.verts);
+            out.extend(sc.verts.iter().map(|v| v.0));
+        }
+        Relation::Tv => {
+            sc.verts.clear(); // top_cell_vertices appends
+            s.top_cell_vertices(CellId(i), &mut sc.verts);
+            out.extend(sc.verts.iter().map(|v| v.0));
+        }
+        Relation::Tt => {
+            sc.verts.clear();
+            s.top_cell_vertices(CellId(i), &mut sc.verts);
+            let kind = s.top_cell_kind(CellId(i));
+            let d = kind.dim();
+            if d == 0 {
+                return Ok(());
+            }
+            let start = out.len();
+            let tv = std::mem::take(&mut sc.verts);
+            let mut err = Ok(());
+            kind.for_each_oriented_facet(|l, _| {
+                if err.is_err() {
+                    return;
+                }
+                sc.facet.clear();
+                sc.facet.extend(l.iter().map(|&x| tv[x as usize]));
+                match s.top_star(&sc.facet, &mut sc.cells) {
+                    Ok(()) => out.extend(
+                        sc.cells
+                            .iter()
+                            .filter(|&&c| c.0 != i && s.top_cell_kind(c).dim() == d)
+                            .map(|c| c.0),
+                    ),
+                    Err(e) => err = Err(e),
+                }
+            });
+            sc.verts = tv;
+            err?;
+            out[start..].sort_unstable();
+        }
+    }
+    Ok(())
+}
+
+/// Relation `r` of every item in `items`, as CSR rows in the order of `items`. Items must be in
+/// range (see [`check_items`]). Parallel over chunks of items on the current rayon pool.
+///
+/// ```
+/// use starplex::complex::IndexedComplex;
+/// use starplex::{buf::Buf, cell::CellKind, topo::naive::VtIndex};
+/// use starplex::topo::batch::{gather, Relation};
+/// let k = IndexedComplex::from_parts(2, Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0]),
+///     vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2, 1, 3, 2]))]).unwrap();
+/// let tt = gather(&VtIndex::new(&k), Relation::Tt, &[0, 1]).unwrap();
+/// assert_eq!((tt.row(0), tt.row(1)), (&[1][..], &[0][..]));
+/// ```
+///
+/// # Errors
+/// The structure's own error (e.g. a relation it cannot answer).
+pub fn gather<S: Queries + Sync + ?Sized>(
+    s: &S,
+    r: Relation,
+    items: &[u32],
+) -> Result<Csr, QueryError> {
+    gather_with(items, |i, sc, out| answer(s, r, i, sc, out))
+}
+
+/// The vertices of simplices in `simplices` (flat, `width` ids each) that relation `f` gives, as
+/// CSR rows: the common frame of [`boundary`], [`coboundary`] and [`adjacent`].
+fn gather_simplices<F>(simplices: &[u32], width: usize, f: F) -> Result<Csr, QueryError>
+where
+    F: Fn(&[VertexId], &mut Vec<VertexId>) -> Result<(), QueryError> + Sync,
+{
+    if width == 0 {
+        return Ok(Csr {
+            offsets: vec![0],
+            values: Vec::new(),
+        });
+    }
+    let n = simplices.len() / width;
+    let items = all(n);
+    gather_with(&items, |i, sc, out| {
+        let s = &simplices[i as usize * width..(i as usize + 1) * width];
+        sc.facet.clear();
+        sc.facet.extend(s.iter().map(|&v| VertexId(v)));
+        f(&sc.facet, &mut sc.verts)?;
+        out.extend(sc.verts.iter().map(|v| v.0));
+        Ok(())
+    })
+}
+
+/// The q-faces of each simplex (flat, `width` vertex ids each): rows of `q + 1` ids.
+///
+/// ```
+/// use starplex::complex::IndexedComplex;
+/// use starplex::{buf::Buf, cell::CellKind, tds::iastar::IaStar};
+/// use starplex::topo::batch::boundary;
+/// let k = IndexedComplex::from_parts(2, Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0]),
+///     vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2]))]).unwrap();
+/// let b = boundary(&IaStar::new(&k).unwrap(), &[0, 1, 2], 3, 1).unwrap();
+/// assert_eq!(b.row(0).len(), 6); // three edges, two ids each
+/// ```
+///
+/// # Errors
+/// A simplex not in the complex, or the structure's own error.
+pub fn boundary<S: Queries + Sync + ?Sized>(
+    s: &S,
+    simplices: &[u32],
+    width: usize,
+    q: usize,
+) -> Result<Csr, QueryError> {
+    gather_simplices(simplices, width, |x, out| s.boundary(x, q, out))
+}
+
+/// The q-cofaces of each simplex: rows of `q + 1` ids.
+///
+/// ```
+/// use starplex::complex::IndexedComplex;
+/// use starplex::{buf::Buf, cell::CellKind, tds::iastar::IaStar};
+/// use starplex::topo::batch::coboundary;
+/// let k = IndexedComplex::from_parts(2, Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0]),
+///     vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2]))]).unwrap();
+/// let c = coboundary(&IaStar::new(&k).unwrap(), &[0], 1, 1).unwrap();
+/// assert_eq!(c.row(0), &[0, 1, 0, 2]);
+/// ```
+///
+/// # Errors
+/// A simplex not in the complex, or the structure's own error.
+pub fn coboundary<S: Queries + Sync + ?Sized>(
+    s: &S,
+    simplices: &[u32],
+    width: usize,
+    q: usize,
+) -> Result<Csr, QueryError> {
+    gather_simplices(simplices, width, |x, out| s.coboundary(x, q, out))
+}
+
+/// The simplices adjacent to each simplex (same dimension): rows of `width` ids each.
+///
+/// ```
+/// use starplex::complex::IndexedComplex;
+/// use starplex::{buf::Buf, cell::CellKind, tds::iastar::IaStar};
+/// use starplex::topo::batch::adjacent;
+/// let k = IndexedComplex::from_parts(2, Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0]),
+///     vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2]))]).unwrap();
+/// let a = adjacent(&IaStar::new(&k).unwrap(), &[0], 1).unwrap();
+/// assert_eq!(a.row(0), &[1, 2]);
+/// ```
+///
+/// # Errors
+/// A simplex not in the complex, or the structure's own error.
+pub fn adjacent<S: Queries + Sync + ?Sized>(
+    s: &S,
+    simplices: &[u32],
+    width: usize,
+) -> Result<Csr, QueryError> {
+    gather_simplices(simplices, width, |x, out| s.adjacent(x, out))
+}
+
+/// Star or link of many vertices, level by level: entry `p` is a CSR whose row `i` holds the
+/// p-simplices (`p + 1` ids each, flat) of item `i`'s answer.
+///
+/// ```
+/// use starplex::complex::IndexedComplex;
+/// use starplex::{buf::Buf, cell::CellKind, tds::iastar::IaStar};
+/// use starplex::topo::batch::levels;
+/// let k = IndexedComplex::from_parts(2, Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0]),
+///     vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2]))]).unwrap();
+/// let link = levels(&IaStar::new(&k).unwrap(), true, &[0]).unwrap();
+/// assert_eq!(link[1].row(0), &[1, 2]); // the link of vertex 0 is the edge 1-2
+/// ```
+///
+/// # Errors
+/// The structure's own error (a CP star has no link, a star over the budget, ...).
+pub fn levels<S: Queries + Sync + ?Sized>(
+    s: &S,
+    link: bool,
+    items: &[u32],
+) -> Result<Vec<Csr>, QueryError> {
+    let parts: Vec<Vec<Csr>> = items
+        .par_chunks(CHUNK)
+        .map(|chunk| {
+            let mut lv: Vec<Csr> = Vec::new();
+            for (j, &v) in chunk.iter().enumerate() {
+                let set: SimplexSet = if link {
+                    generic::link(s, &[VertexId(v)])?
+                } else {
+                    s.star(&[VertexId(v)])?
+                };
+                while lv.len() < set.levels.len() {
+                    lv.push(Csr {
+                        offsets: vec![0; j + 1],
+                        values: Vec::new(),
+                    });
+                }
+                for (p, l) in lv.iter_mut().enumerate() {
+                    if let Some(x) = set.levels.get(p) {
+                        l.values.extend(x.iter().map(|v| v.0));
+                    }
+                    l.offsets.push(l.values.len() as u64);
+                }
+            }
+            Ok(lv)
+        })
+        .collect::<Result<_, QueryError>>()?;
+    let mut out: Vec<Csr> = Vec::new();
+    let mut done = 0usize;
+    for (part, chunk) in parts.into_iter().zip(items.chunks(CHUNK)) {
+        while out.len() < part.len() {
+            out.push(Csr {
+                offsets: vec![0; done + 1],
+                values: Vec::new(),
+            });
+        }
+        let mut part = part.into_iter();
+        for l in out.iter_mut() {
+            match part.next() {
+                Some(p) => l.append(p),
+                None => {
+                    let last = *l.offsets.last().unwrap_or(&0);
+                    l.offsets.extend(std::iter::repeat_n(last, chunk.len()));
+                }
+            }
+        }
+        done += chunk.len();
+    }
+    Ok(out)
+}
+
+/// Every p-simplex of the complex, flat (`p + 1` ids each), in the structure's order.
+///
+/// ```
+/// use starplex::complex::IndexedComplex;
+/// use starplex::{buf::Buf, cell::CellKind, tds::iastar::IaStar};
+/// use starplex::topo::batch::faces;
+/// let k = IndexedComplex::from_parts(2, Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0]),
+///     vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2]))]).unwrap();
+/// assert_eq!(faces(&IaStar::new(&k).unwrap(), 1).unwrap().len(), 6);
+/// ```
+///
+/// # Errors
+/// The structure's own error (CP cells, over the budget).
+pub fn faces<S: Queries + ?Sized>(s: &S, p: usize) -> Result<Vec<u32>, QueryError> {
+    let mut out = Vec::new();
+    s.for_each_simplex(p, &mut |x| out.extend(x.iter().map(|v| v.0)))?;
+    Ok(out)
+}
+
+fn gather_with<F>(items: &[u32], f: F) -> Result<Csr, QueryError>
+where
+    F: Fn(u32, &mut Scratch, &mut Vec<u32>) -> Result<(), QueryError> + Sync,
+{
+    let parts: Vec<Csr> = items
+        .par_chunks(CHUNK)
+        .map_init(Scratch::default, |sc, chunk| {
+            let mut c = Csr {
+                offsets: Vec::with_capacity(chunk.len() + 1),
+                values: Vec::new(),
+            };
+            c.offsets.push(0);
+            for &i in chunk {
+                f(i, sc, &mut c.values)?;
+                c.offsets.push(c.values.len() as u64);
+            }
+            Ok(c)
+        })
+        .collect::<Result<_, QueryError>>()?;
+    let mut out = Csr {
+        offsets: Vec::with_capacity(items.len() + 1),
+        values: Vec::with_capacity(parts.iter().map(|p| p.values.len()).sum()),
+    };
+    out.offsets.push(0);
+    for p in parts {
+        out.append(p);
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::buf::Buf;
+    use crate::cell::CellKind;
+    use crate::complex::IndexedComplex;
+    use crate::topo::naive::VtIndex;
+    use crate::topo::TopCells;
+
+    fn strip(n: u32) -> IndexedComplex {
+        // a strip of 2n triangles over 2(n+1) vertices
+        let mut coords = Vec::new();
+        for i in 0..=n {
+            coords.extend([i as f64, 0.0, i as f64, 1.0]);
+        }
+        let mut cells = Vec::new();
+        for i in 0..n {
+            let (a, b, c, d) = (2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 3);
+            cells.extend([a, c, b, b, c, d]);
+        }
+        IndexedComplex::from_parts(
+            2,
+            Buf::from(coords),
+            vec![(CellKind::Simplex(2), Buf::from(cells))],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn gather_equals_one_by_one_across_chunks() {
+        let k = strip(3000);
+        let s = VtIndex::new(&k);
+        let items = all(s.n_vertices());
+        for r in [Relation::Vt, Relation::Vv, Relation::Tv, Relation::Tt] {
+            let n = r.n_items(&s);
+            let c = gather(&s, r, &items[..n]).unwrap();
+            assert_eq!(c.n_rows(), n);
+            for i in [0, 1, CHUNK - 1, CHUNK, n - 1] {
+                let one = gather(&s, r, &[i as u32]).unwrap();
+                assert_eq!(c.row(i), one.row(0), "{r:?} item {i}");
+            }
+        }
+        let lk = levels(&s, true, &items).unwrap();
+        assert_eq!(lk.len(), 2);
+        for l in &lk {
+            assert_eq!(l.n_rows(), items.len());
+        }
+        for i in [0usize, CHUNK + 5, items.len() - 1] {
+            let one = levels(&s, true, &[i as u32]).unwrap();
+            for p in 0..2 {
+                assert_eq!(lk[p].row(i), one[p].row(0), "link level {p} of {i}");
+            }
+        }
+    }
+}
