@@ -6,7 +6,14 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 VENV=${STARPLEX_VENV:-target/ci-venv}
 if [ ! -x "$VENV/bin/python" ]; then
-    python3 -m venv "$VENV"
+    if ! python3 -m venv "$VENV"; then
+        # a bare Debian/Ubuntu has python3 without its venv module: install it when we can
+        rm -rf "$VENV"
+        if command -v apt-get >/dev/null && [ "$(id -u)" = 0 ]; then
+            apt-get update -q && apt-get install -y -q python3-venv
+        fi
+        python3 -m venv "$VENV"
+    fi
 fi
 export PATH="$PWD/$VENV/bin:$PATH"   # maturin's build backend calls `maturin` by name
 python -m pip install -q numpy pytest "maturin>=1.9,<2"
