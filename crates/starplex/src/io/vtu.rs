@@ -198,10 +198,10 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
                     Some(attr(&e, "encoding", path, pos)?.unwrap_or_else(|| "raw".into()));
                 break;
             }
-            Event::Start(e) => {
+            Event::Start(ref e) | Event::Empty(ref e) => {
                 let name = e.local_name().as_ref().to_string();
                 open(
-                    &e,
+                    e,
                     &name,
                     pos,
                     path,
@@ -210,21 +210,12 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
                     &mut pieces,
                     &mut current,
                 )?;
-                stack.push(name);
-            }
-            Event::Empty(e) => {
-                let name = e.local_name().as_ref().to_string();
-                open(
-                    &e,
-                    &name,
-                    pos,
-                    path,
-                    &stack,
-                    &mut header,
-                    &mut pieces,
-                    &mut current,
-                )?;
-                close(&name, &mut pieces, &mut current);
+                if matches!(ev, Event::Start(_)) {
+                    stack.push(name);
+                } else {
+                    // <X/> opens and closes
+                    close(&name, &mut pieces, &mut current);
+                }
             }
             Event::End(e) => {
                 let name = e.local_name().as_ref().to_string();
