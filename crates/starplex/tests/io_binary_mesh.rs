@@ -336,7 +336,7 @@ fn vtu_errors_say_what_and_where() {
     assert!(bad(&cells("0 1 7", "3", "5")).contains("point 7, out of range"));
     assert!(bad(&cells("0 1 -2", "3", "5")).contains("negative"));
     assert!(bad(&cells("0 1 2", "4", "5")).contains("offsets must grow"));
-    assert!(bad(&cells("0 1 2", "3", "42")).contains("type 42 is not supported"));
+    assert!(bad(&cells("0 1 2", "3", "42")).contains("type 42 (polyhedron) is not supported"));
     assert!(bad(&cells("0 1 2", "3", "10")).contains("needs 4 points"));
     assert!(bad(&cells("0 1 x", "3", "5")).contains("'x' is not a Int32 value"));
     assert!(bad(&head(&da("connectivity", "Int32", "0 1 2"))).contains("no offsets"));

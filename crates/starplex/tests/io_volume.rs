@@ -254,7 +254,7 @@ fn what_each_format_changes_is_what_the_docs_say() {
     assert_eq!(r.complex.n_vertices(), 5);
     assert_eq!(
         r.notes,
-        vec!["dropped 1 VTK vertex cells (type 1); their points stay as vertices"]
+        vec!["dropped 1 VTK vertex cells (types 1, 2); their points stay as vertices"]
     );
     let r = round_trip(Format::Gmsh, &with_vertex_cell);
     assert_eq!(r.complex.n_cells(), 1);
@@ -580,7 +580,7 @@ fn broken_inputs_fail_with_their_line() {
         (Format::Vtk, format!("{V_HEAD}CELLS 1 6\n4 0 1 2 3\nCELL_TYPES 1\n10\n"), 11, "6 numbers"),
         (Format::Vtk, format!("{V_HEAD}CELLS 1 5\n4 0 1 2 4\nCELL_TYPES 1\n10\n"), 11, "out of range"),
         (Format::Vtk, format!("{V_HEAD}CELLS 1 5\n4 0 1 1 3\nCELL_TYPES 1\n10\n"), 11, "more than once"),
-        (Format::Vtk, format!("{V_HEAD}CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n7\n"), 13, "VTK cell type 7 (polygon)"),
+        (Format::Vtk, format!("{V_HEAD}CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n42\n"), 13, "VTK cell type 42 (polyhedron) is not supported"),
         (Format::Vtk, format!("{V_HEAD}CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n10\n"), 13, "needs 4 points"),
         (Format::Vtk, format!("{V_HEAD}CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 2\n10\n10\n"), 12, "CELL_TYPES counts 2"),
         (Format::Vtk, format!("{V_HEAD}CELLS 1 5\n4 0 1 2 3\n"), 10, "no CELL_TYPES"),
@@ -805,4 +805,38 @@ fn dataset_mixed_plate_vtk_and_msh_match_the_spx() {
             assert!(r.notes.is_empty(), "{:?}", r.notes);
         }
     }
+}
+
+#[test]
+fn legacy_vtk_reads_polygons_pixels_strips_and_poly_lines() {
+    // a pentagon (fan of 3 triangles), a pixel (a quad in starplex's corner order), a 5-point
+    // strip (3 triangles) and a 3-point poly-line (2 edges), disjoint
+    let text =
+        "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 17 double\n\
+                0 0 0\n1 0 0\n1.5 1 0\n0.5 2 0\n-0.5 1 0\n\
+                3 0 0\n4 0 0\n3 1 0\n4 1 0\n\
+                6 0 0\n6 1 0\n7 0 0\n7 1 0\n8 0 0\n\
+                10 0 0\n11 0 0\n12 0 0\n\
+                CELLS 4 21\n5 0 1 2 3 4\n4 5 6 7 8\n5 9 10 11 12 13\n3 14 15 16\n\
+                CELL_TYPES 4\n7\n8\n6\n4\n";
+    let r = vtk::read_from(text.as_bytes(), "p.vtk".as_ref(), &ReadOptions::default()).unwrap();
+    let k = &r.complex;
+    let count = |kind| k.cells().filter(|c| c.kind == kind).count();
+    assert_eq!(count(CellKind::Simplex(2)), 3 + 3);
+    assert_eq!(count(CellKind::Simplex(1)), 2);
+    assert!(k
+        .cells()
+        .any(|c| c.kind == CellKind::Quad && c.vertices == [5, 6, 8, 7]));
+    assert_eq!(r.notes.len(), 3, "{:?}", r.notes);
+    // a polygon of two points is an error naming the cell
+    let bad = text
+        .replace("3 14 15 16", "2 14 15")
+        .replace("CELLS 4 21", "CELLS 4 20")
+        .replace("\n4\n", "\n7\n");
+    let e = vtk::read_from(bad.as_bytes(), "p.vtk".as_ref(), &ReadOptions::default()).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("cell 3: VTK cell type 7 (polygon) needs at least 3 points"),
+        "{e}"
+    );
 }

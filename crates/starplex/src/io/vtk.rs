@@ -8,9 +8,10 @@
 //!
 //! Read: the classic layout (`CELLS n size` followed by `k v_0 .. v_{k-1}` per cell) and the
 //! layout of version 5.x (`CELLS n_offsets n_connectivity`, `OFFSETS type`, `CONNECTIVITY type`),
-//! with cell types 1 (vertex: dropped with a note, the point stays), 3 (line), 5 (triangle),
-//! 9 (quad), 10 (tetra), 12 (hexahedron), 13 (wedge) and 14 (pyramid); any other type is an
-//! error naming it. `POINT_DATA`, `CELL_DATA`, `FIELD` and `METADATA` blocks are skipped. VTK's
+//! with the linear cell types 1 to 14 (one table shared with `.vtu`): vertex and poly-vertex
+//! cells are dropped with a note (their points stay), poly-lines become edges, triangle strips
+//! triangles, polygons triangles, quads or fans of triangles, pixels and voxels quads and
+//! hexahedra in starplex's corner order; any other type is an error naming it. `POINT_DATA`, `CELL_DATA`, `FIELD` and `METADATA` blocks are skipped. VTK's
 //! vertex order is starplex's, so cells are kept as written. Points always have 3 coordinates,
 //! so the complex read has ambient dimension 3.
 //!
@@ -38,7 +39,7 @@ use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::CellKind;
-use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
+use crate::complex::{check_cell, ComplexBuilder, ComplexError, IndexedComplex};
 
 /// The VTK cell type of a kind (`None` for kinds legacy VTK has no linear cell for).
 ///
@@ -103,6 +104,157 @@ fn vtk_type_name(t: u64) -> &'static str {
         21..=37 => "a quadratic or higher-order cell",
         42 => "polyhedron",
         _ => "an unknown type",
+    }
+}
+
+/// Why a cell of VTK type `ty` cannot list `n` points (`None`: it can): the one table of the cell
+/// types starplex reads, for legacy and XML VTK.
+pub(crate) fn arity_error(ty: u64, n: u64) -> Option<String> {
+    let name = vtk_type_name(ty);
+    let need = |k: u64| {
+        (n != k)
+            .then(|| format!("VTK cell type {ty} ({name}) needs {k} points, the cell lists {n}"))
+    };
+    let at_least = |k: u64| {
+        (n < k).then(|| {
+            format!("VTK cell type {ty} ({name}) needs at least {k} points, the cell lists {n}")
+        })
+    };
+    match ty {
+        1 => need(1),
+        2 => at_least(1),
+        3 => need(2),
+        4 => at_least(2),
+        5 => need(3),
+        6 | 7 => at_least(3),
+        8..=10 => need(4),
+        11 | 12 => need(8),
+        13 => need(6),
+        14 => need(5),
+        _ => Some(format!(
+            "VTK cell type {ty} ({name}) is not supported (starplex reads the linear types 1 to 14)"
+        )),
+    }
+}
+
+/// Why a VTK cell could not be pushed.
+#[derive(Debug)]
+pub(crate) enum PushError {
+    /// The type or its point count.
+    Cell(String),
+    /// The builder refused the cell (repeated or out-of-range vertex, too many cells).
+    Complex(ComplexError),
+}
+
+impl std::fmt::Display for PushError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PushError::Cell(m) => f.write_str(m),
+            PushError::Complex(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+/// Counts of VTK cells changed on the way in.
+#[derive(Default)]
+pub(crate) struct CellStats {
+    vertex_cells: u64,
+    fanned: u64,
+    fan_tris: u64,
+    strips: u64,
+    strip_tris: u64,
+    polylines: u64,
+    polyline_edges: u64,
+}
+
+impl CellStats {
+    /// The notes saying what changed.
+    pub(crate) fn notes(&self, notes: &mut Vec<String>) {
+        if self.vertex_cells > 0 {
+            notes.push(format!(
+                "dropped {} VTK vertex cells (types 1, 2); their points stay as vertices",
+                self.vertex_cells
+            ));
+        }
+        if self.fanned > 0 {
+            notes.push(format!(
+                "fan-triangulated {} polygons with more than 4 vertices into {} triangles",
+                self.fanned, self.fan_tris
+            ));
+        }
+        if self.strips > 0 {
+            notes.push(format!(
+                "split {} triangle strips into {} triangles",
+                self.strips, self.strip_tris
+            ));
+        }
+        if self.polylines > 0 {
+            notes.push(format!(
+                "split {} poly-lines into {} edges",
+                self.polylines, self.polyline_edges
+            ));
+        }
+    }
+}
+
+/// Pushes the cell of VTK type `ty` on `v` (reordering pixels and voxels, splitting poly-lines,
+/// strips and polygons of more than 4 points, dropping vertex cells), or says why not.
+pub(crate) fn push_cell(
+    b: &mut ComplexBuilder,
+    st: &mut CellStats,
+    ty: u64,
+    v: &[u32],
+) -> Result<(), PushError> {
+    let n = v.len();
+    if let Some(m) = arity_error(ty, n as u64) {
+        return Err(PushError::Cell(m));
+    }
+    let mut push =
+        |kind: CellKind, v: &[u32]| b.push_cell(kind, v).map(|_| ()).map_err(PushError::Complex);
+    match ty {
+        1 | 2 => {
+            st.vertex_cells += 1;
+            Ok(())
+        }
+        4 if n > 2 => {
+            st.polylines += 1;
+            st.polyline_edges += n as u64 - 1;
+            v.windows(2).try_for_each(|w| push(CellKind::Simplex(1), w))
+        }
+        3 | 4 => push(CellKind::Simplex(1), v),
+        6 => {
+            if n > 3 {
+                st.strips += 1;
+                st.strip_tris += n as u64 - 2;
+            }
+            (0..n - 2).try_for_each(|i| {
+                // keep the strip's orientation: every other triangle is flipped back
+                let t = if i % 2 == 0 {
+                    [v[i], v[i + 1], v[i + 2]]
+                } else {
+                    [v[i + 1], v[i], v[i + 2]]
+                };
+                push(CellKind::Simplex(2), &t)
+            })
+        }
+        7 if n == 4 => push(CellKind::Quad, v),
+        7 if n > 4 => {
+            st.fanned += 1;
+            st.fan_tris += n as u64 - 2;
+            (1..n - 1).try_for_each(|j| push(CellKind::Simplex(2), &[v[0], v[j], v[j + 1]]))
+        }
+        5 | 7 => push(CellKind::Simplex(2), v),
+        8 => push(CellKind::Quad, &[v[0], v[1], v[3], v[2]]),
+        11 => push(
+            CellKind::Hex,
+            &[v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]],
+        ),
+        _ => match kind_of_vtk_type(ty) {
+            Some(kind) => push(kind, v),
+            None => Err(PushError::Cell(format!(
+                "VTK cell type {ty} is not supported"
+            ))),
+        },
     }
 }
 
@@ -285,13 +437,17 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
 ///
 /// ```
 /// use starplex::io::{vtk, ReadOptions};
-/// // Cell type 7 (a polygon) is not read.
+/// // Cell type 42 (a polyhedron) is not read: the error names the line.
 /// let text = "# vtk DataFile Version 4.2\np\nASCII\nDATASET UNSTRUCTURED_GRID\n\
-///             POINTS 3 double\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n7\n";
+///             POINTS 3 double\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n42\n";
 /// let e = vtk::read_from(text.as_bytes(), "m.vtk".as_ref(), &ReadOptions::default()).unwrap_err();
 /// assert!(e.to_string().starts_with("m.vtk:10:"), "{e}");
-/// let tri = text.replace("CELL_TYPES 1\n7", "CELL_TYPES 1\n5");
-/// assert!(vtk::read_from(tri.as_bytes(), "m.vtk".as_ref(), &ReadOptions::default()).is_ok());
+/// // a triangle, and a polygon of 3 points, are triangles
+/// for t in ["5", "7"] {
+///     let tri = text.replace("CELL_TYPES 1\n42", &format!("CELL_TYPES 1\n{t}"));
+///     let r = vtk::read_from(tri.as_bytes(), "m.vtk".as_ref(), &ReadOptions::default()).unwrap();
+///     assert_eq!(r.complex.n_cells(), 1);
+/// }
 /// ```
 ///
 /// # Errors
@@ -342,7 +498,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut ends: Vec<u64> = Vec::new();
     let mut cells_line = 0u64;
     let mut have_cells = false;
-    let mut types: Option<Vec<CellKind>> = None;
+    let mut types: Option<Vec<u64>> = None;
     let mut notes = Vec::new();
     if binary {
         w.set_binary();
@@ -403,7 +559,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 let mut kinds = Vec::with_capacity(tys.len());
                 let mut start = 0u64;
                 for (i, (&ty, &end)) in tys.iter().zip(ends.iter()).enumerate() {
-                    let kind = cell_kind(i, ty, end - start).map_err(|m| {
+                    let kind = cell_type(i, ty, end - start).map_err(|m| {
                         IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), m)
                     })?;
                     start = end;
@@ -478,7 +634,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 let mut start = 0u64;
                 for (i, &end) in ends.iter().enumerate() {
                     let ty = w.u64("a cell type")?;
-                    let kind = cell_kind(i, ty, end - start).map_err(|m| w.err(m))?;
+                    let kind = cell_type(i, ty, end - start).map_err(|m| w.err(m))?;
                     start = end;
                     kinds.push(kind);
                 }
@@ -519,26 +675,20 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             "the file has CELLS but no CELL_TYPES section (it is truncated)",
         ));
     }
-    let mut n_vertex_cells = 0usize;
+    let mut stats = CellStats::default();
     if let Some(kinds) = types {
         let mut start = 0usize;
-        for (&kind, &end) in kinds.iter().zip(ends.iter()) {
+        for (i, (&ty, &end)) in kinds.iter().zip(ends.iter()).enumerate() {
             let end = end as usize;
             let verts = &conn[start..end];
             start = end;
-            if kind == CellKind::Simplex(0) {
-                n_vertex_cells += 1;
-                continue;
-            }
-            b.push_cell(kind, verts)
-                .map_err(|e| IoError::new(path, e))?;
+            push_cell(&mut b, &mut stats, ty, verts).map_err(|e| match e {
+                PushError::Complex(e) => IoError::new(path, e),
+                PushError::Cell(m) => IoError::parse(path, None, format!("cell {i}: {m}")),
+            })?;
         }
     }
-    if n_vertex_cells > 0 {
-        notes.push(format!(
-            "dropped {n_vertex_cells} VTK vertex cells (type 1); their points stay as vertices"
-        ));
-    }
+    stats.notes(&mut notes);
     let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
     push_build_notes(&mut notes, &report);
     Ok(ReadResult {
@@ -548,22 +698,12 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     })
 }
 
-/// The kind of cell `i` of VTK type `ty` listing `n` points, or why not.
-fn cell_kind(i: usize, ty: u64, n: u64) -> Result<CellKind, String> {
-    let Some(kind) = kind_of_vtk_type(ty) else {
-        return Err(format!(
-            "cell {i}: VTK cell type {ty} ({}) is not supported (starplex reads types 1, 3, 5, 9, 10, 12, 13, 14)",
-            vtk_type_name(ty)
-        ));
-    };
-    if n != kind.n_vertices() as u64 {
-        return Err(format!(
-            "cell {i}: VTK cell type {ty} ({}) needs {} points, the cell lists {n}",
-            vtk_type_name(ty),
-            kind.n_vertices(),
-        ));
+/// VTK type `ty` of cell `i` listing `n` points, or why it cannot be read.
+fn cell_type(i: usize, ty: u64, n: u64) -> Result<u64, String> {
+    match arity_error(ty, n) {
+        Some(m) => Err(format!("cell {i}: {m}")),
+        None => Ok(ty),
     }
-    Ok(kind)
 }
 
 /// Bytes of one value of a binary legacy VTK data type (`None`: not an integer or float type

@@ -47,7 +47,7 @@ use base64::Engine as _;
 use quick_xml::events::{BytesStart, Event};
 
 use super::medit::push_build_notes;
-use super::vtk::vtk_type;
+use super::vtk::{push_cell, vtk_type, CellStats};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::CellKind;
 use crate::complex::{ComplexBuilder, IndexedComplex};
@@ -393,7 +393,7 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
                     _ => 7,
                 };
                 push_cell(&mut b, &mut stats, ty, &verts)
-                    .map_err(|m| perr(path, conn.pos, format!("<{sec}> cell {i}: {m}")))?;
+                    .map_err(|e| perr(path, conn.pos, format!("<{sec}> cell {i}: {e}")))?;
             }
         }
         for a in &piece.arrays {
@@ -945,144 +945,6 @@ fn inflate_blocks(hv: &[u64], comp: &[u8]) -> Result<Vec<u8>, String> {
         }
     }
     Ok(out)
-}
-
-/// Counts of cells changed on the way in.
-#[derive(Default)]
-struct CellStats {
-    vertex_cells: u64,
-    fanned: u64,
-    fan_tris: u64,
-    strips: u64,
-    strip_tris: u64,
-    polylines: u64,
-    polyline_edges: u64,
-}
-
-impl CellStats {
-    fn notes(&self, notes: &mut Vec<String>) {
-        if self.vertex_cells > 0 {
-            notes.push(format!(
-                "dropped {} VTK vertex cells; their points stay as vertices",
-                self.vertex_cells
-            ));
-        }
-        if self.fanned > 0 {
-            notes.push(format!(
-                "fan-triangulated {} polygons with more than 4 vertices into {} triangles",
-                self.fanned, self.fan_tris
-            ));
-        }
-        if self.strips > 0 {
-            notes.push(format!(
-                "split {} triangle strips into {} triangles",
-                self.strips, self.strip_tris
-            ));
-        }
-        if self.polylines > 0 {
-            notes.push(format!(
-                "split {} poly-lines into {} edges",
-                self.polylines, self.polyline_edges
-            ));
-        }
-    }
-}
-
-/// Pushes the cell of VTK type `ty` on `v` (reordering pixels and voxels, splitting poly-lines,
-/// strips and large polygons), or says why not.
-fn push_cell(b: &mut ComplexBuilder, st: &mut CellStats, ty: u64, v: &[u32]) -> Result<(), String> {
-    let n = v.len();
-    let mut push =
-        |kind: CellKind, v: &[u32]| b.push_cell(kind, v).map(|_| ()).map_err(|e| e.to_string());
-    let need = |k: usize| {
-        if n == k {
-            Ok(())
-        } else {
-            Err(format!(
-                "VTK cell type {ty} needs {k} points, the cell lists {n}"
-            ))
-        }
-    };
-    match ty {
-        1 | 2 => {
-            st.vertex_cells += 1;
-            Ok(())
-        }
-        3 => {
-            need(2)?;
-            push(CellKind::Simplex(1), v)
-        }
-        4 => {
-            if n < 2 {
-                return Err(format!("a poly-line needs 2 points, it lists {n}"));
-            }
-            if n == 2 {
-                return push(CellKind::Simplex(1), v);
-            }
-            st.polylines += 1;
-            st.polyline_edges += n as u64 - 1;
-            for w in v.windows(2) {
-                push(CellKind::Simplex(1), w)?;
-            }
-            Ok(())
-        }
-        5 => {
-            need(3)?;
-            push(CellKind::Simplex(2), v)
-        }
-        6 => {
-            if n < 3 {
-                return Err(format!("a triangle strip needs 3 points, it lists {n}"));
-            }
-            if n > 3 {
-                st.strips += 1;
-                st.strip_tris += n as u64 - 2;
-            }
-            for i in 0..n - 2 {
-                // keep the strip's orientation: every other triangle is flipped back
-                let t = if i % 2 == 0 {
-                    [v[i], v[i + 1], v[i + 2]]
-                } else {
-                    [v[i + 1], v[i], v[i + 2]]
-                };
-                push(CellKind::Simplex(2), &t)?;
-            }
-            Ok(())
-        }
-        7 => match n {
-            0..=2 => Err(format!("a polygon needs 3 points, it lists {n}")),
-            3 => push(CellKind::Simplex(2), v),
-            4 => push(CellKind::Quad, v),
-            _ => {
-                st.fanned += 1;
-                st.fan_tris += n as u64 - 2;
-                for j in 1..n - 1 {
-                    push(CellKind::Simplex(2), &[v[0], v[j], v[j + 1]])?;
-                }
-                Ok(())
-            }
-        },
-        8 => {
-            need(4)?;
-            push(CellKind::Quad, &[v[0], v[1], v[3], v[2]])
-        }
-        11 => {
-            need(8)?;
-            push(
-                CellKind::Hex,
-                &[v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]],
-            )
-        }
-        _ => {
-            let Some(kind) = super::vtk::kind_of_vtk_type(ty) else {
-                return Err(format!(
-                    "VTK cell type {ty} is not supported (starplex reads types 1 to 14: linear cells)"
-                ));
-            };
-            need(kind.n_vertices())?;
-            push(kind, v)
-        }
-    }
 }
 
 /// Refuses what `.vtu` cannot hold (more than 3 coordinates, simplices of dimension 4 and more)
