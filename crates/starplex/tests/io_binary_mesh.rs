@@ -342,4 +342,12 @@ fn vtu_errors_say_what_and_where() {
     assert!(bad(&head(&da("connectivity", "Int32", "0 1 2"))).contains("no offsets"));
     let ok = vtu::read_bytes(cells("0 1 2", "3", "5").as_bytes(), "g.vtu".as_ref(), &o).unwrap();
     assert_eq!(ok.complex.n_cells(), 1);
+    // dataset-level field data (ParaView writes the time there) is not part of the mesh
+    let with_field = cells("0 1 2", "3", "5").replace(
+        "<UnstructuredGrid>",
+        "<UnstructuredGrid><FieldData><DataArray type=\"Float64\" Name=\"TimeValue\" \
+         NumberOfTuples=\"1\" format=\"ascii\">0.5</DataArray></FieldData>",
+    );
+    let r = vtu::read_bytes(with_field.as_bytes(), "f.vtu".as_ref(), &o).unwrap();
+    assert_eq!(r.complex, ok.complex);
 }

@@ -522,8 +522,10 @@ fn open<'a>(
             });
         }
         "DataArray" => {
-            if pieces.is_empty() {
-                return Err(perr(path, pos, "<DataArray> outside a <Piece>"));
+            if pieces.is_empty() || !stack.iter().any(|n| n == "Piece") {
+                // dataset-level <FieldData> (time values, names): not part of the mesh
+                *current = None;
+                return Ok(());
             }
             let section = stack.last().cloned().unwrap_or_default();
             let n_comp = match attr(e, "NumberOfComponents", path, pos)? {
