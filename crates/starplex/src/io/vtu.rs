@@ -1046,30 +1046,8 @@ pub fn write_vtu(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKin
     writeln!(w, "  <AppendedData encoding=\"raw\">")?;
     w.write_all(b"   _")?;
     write_points(w, k, sizes[0])?;
-    // connectivity
-    w.write_all(&conn_bytes.to_le_bytes())?;
-    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
-    for b in k.blocks() {
-        for &v in b.vertices.iter() {
-            buf.extend_from_slice(&(v as i64).to_le_bytes());
-            flush_if_full(w, &mut buf)?;
-        }
-    }
-    w.write_all(&buf)?;
-    buf.clear();
-    // offsets
-    w.write_all(&(8 * n_cells).to_le_bytes())?;
-    let mut end = 0i64;
-    for b in k.blocks() {
-        let n = b.kind.n_vertices() as i64;
-        for _ in 0..b.len() {
-            end += n;
-            buf.extend_from_slice(&end.to_le_bytes());
-            flush_if_full(w, &mut buf)?;
-        }
-    }
-    w.write_all(&buf)?;
-    buf.clear();
+    write_cells(w, k, |_| true, conn_bytes, n_cells)?;
+    let mut buf: Vec<u8> = Vec::new();
     // types
     w.write_all(&n_cells.to_le_bytes())?;
     for b in k.blocks() {
@@ -1150,31 +1128,43 @@ pub fn write_vtp(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKin
     writeln!(w, "  <AppendedData encoding=\"raw\">")?;
     w.write_all(b"   _")?;
     write_points(w, k, sizes[0])?;
-    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
     for (g, &(c, r)) in groups.iter().zip(&stats) {
-        w.write_all(&(8 * r).to_le_bytes())?;
-        for b in k.blocks().iter().filter(|b| g.contains(&b.kind)) {
-            for &v in b.vertices.iter() {
-                buf.extend_from_slice(&(v as i64).to_le_bytes());
-                flush_if_full(w, &mut buf)?;
-            }
-        }
-        w.write_all(&buf)?;
-        buf.clear();
-        w.write_all(&(8 * c).to_le_bytes())?;
-        let mut end = 0i64;
-        for b in k.blocks().iter().filter(|b| g.contains(&b.kind)) {
-            let n = b.kind.n_vertices() as i64;
-            for _ in 0..b.len() {
-                end += n;
-                buf.extend_from_slice(&end.to_le_bytes());
-                flush_if_full(w, &mut buf)?;
-            }
-        }
-        w.write_all(&buf)?;
-        buf.clear();
+        write_cells(w, k, |kind| g.contains(&kind), 8 * r, c)?;
     }
     finish_appended(w)
+}
+
+/// Writes the `connectivity` and `offsets` arrays (each after its header) of the blocks of `k`
+/// whose kind `keep` accepts: `conn_bytes` bytes of vertex ids, `n_cells` end offsets.
+fn write_cells(
+    w: &mut dyn Write,
+    k: &IndexedComplex,
+    keep: impl Fn(CellKind) -> bool,
+    conn_bytes: u64,
+    n_cells: u64,
+) -> Result<(), IoErrorKind> {
+    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+    w.write_all(&conn_bytes.to_le_bytes())?;
+    for b in k.blocks().iter().filter(|b| keep(b.kind)) {
+        for &v in b.vertices.iter() {
+            buf.extend_from_slice(&(v as i64).to_le_bytes());
+            flush_if_full(w, &mut buf)?;
+        }
+    }
+    w.write_all(&buf)?;
+    buf.clear();
+    w.write_all(&(8 * n_cells).to_le_bytes())?;
+    let mut end = 0i64;
+    for b in k.blocks().iter().filter(|b| keep(b.kind)) {
+        let n = b.kind.n_vertices() as i64;
+        for _ in 0..b.len() {
+            end += n;
+            buf.extend_from_slice(&end.to_le_bytes());
+            flush_if_full(w, &mut buf)?;
+        }
+    }
+    w.write_all(&buf)?;
+    Ok(())
 }
 
 /// Offsets of consecutive arrays of `sizes` bytes, each after its 8-byte header.
