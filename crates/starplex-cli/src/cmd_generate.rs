@@ -116,7 +116,7 @@ pub fn run(ctx: &Ctx, a: &GenerateArgs) -> Result<(), CliError> {
             if to.is_none() && io::Format::from_path(out) == Some(io::Format::Off) {
                 to = Some(io::Format::OffSimplices);
             }
-            let o = starplex::gen::sierpinski::SierpinskiOptions {
+            let o = starplex::generate::sierpinski::SierpinskiOptions {
                 dim: *dim,
                 p: *p,
                 seed: *seed,
@@ -124,7 +124,7 @@ pub fn run(ctx: &Ctx, a: &GenerateArgs) -> Result<(), CliError> {
                 max_levels: *max_levels,
             };
             let s = common::with_spinner(ctx, "generating", || {
-                starplex::gen::sierpinski::sierpinski(&o)
+                starplex::generate::sierpinski::sierpinski(&o)
             })
             .map_err(|e| CliError::Input(format!("generate sierpinski: {e}"), None))?;
             common::with_spinner(ctx, "writing", || io::write(out, &s.complex, to))?;
@@ -148,7 +148,7 @@ pub fn run(ctx: &Ctx, a: &GenerateArgs) -> Result<(), CliError> {
             let to = common::output_format_for(to.as_deref(), out)?;
             let r = common::load(ctx, input)?;
             let k = common::with_spinner(ctx, "subdividing", || {
-                starplex::gen::refine::subdivide_triangles(&r.complex, *levels)
+                starplex::generate::refine::subdivide_triangles(&r.complex, *levels)
             })
             .map_err(|e| CliError::Input(format!("{}: {e}", input.file.display()), None))?;
             common::with_spinner(ctx, "writing", || io::write(out, &k, to))?;
@@ -168,9 +168,9 @@ pub fn run(ctx: &Ctx, a: &GenerateArgs) -> Result<(), CliError> {
             let r = common::load(ctx, input)?;
             let k = common::with_spinner(ctx, "refining", || {
                 if quads {
-                    starplex::gen::refine::triangles_to_quads(&r.complex)
+                    starplex::generate::refine::triangles_to_quads(&r.complex)
                 } else {
-                    starplex::gen::refine::tets_to_hexes(&r.complex)
+                    starplex::generate::refine::tets_to_hexes(&r.complex)
                 }
             })
             .map_err(|e| CliError::Input(format!("{}: {e}", input.file.display()), None))?;
@@ -188,14 +188,13 @@ pub fn run(ctx: &Ctx, a: &GenerateArgs) -> Result<(), CliError> {
         }
     };
     let to = common::output_format_for(to.as_deref(), out)?;
-    let k = common::with_spinner(ctx, "generating", || starplex::gen::kuhn_grid(cubes)).map_err(
-        |e| {
+    let k = common::with_spinner(ctx, "generating", || starplex::generate::kuhn_grid(cubes))
+        .map_err(|e| {
             CliError::Input(
                 format!("generate grid {cubes:?}: {e}"),
                 Some("use fewer cubes: cells and vertices are numbered with 32 bits".into()),
             )
-        },
-    )?;
+        })?;
     common::with_spinner(ctx, "writing", || io::write(out, &k, to))?;
     if !ctx.quiet {
         eprintln!(

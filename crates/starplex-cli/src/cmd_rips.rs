@@ -103,13 +103,13 @@ pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
     let to = out_format(&a.build)?;
     let max_bytes = budget(&a.build)?;
     for (flag, v) in [("--eps", a.eps), ("--eps-nn", a.eps_nn)] {
-        if let Some(x) = v {
-            if !(x.is_finite() && x > 0.0) {
-                return Err(CliError::Input(
-                    format!("{flag} {x}: the scale must be a positive finite number"),
-                    None,
-                ));
-            }
+        if let Some(x) = v
+            && !(x.is_finite() && x > 0.0)
+        {
+            return Err(CliError::Input(
+                format!("{flag} {x}: the scale must be a positive finite number"),
+                None,
+            ));
         }
     }
     let pc = common::with_spinner(ctx, "reading points", || io::points::read_points(&a.points))?;

@@ -31,7 +31,7 @@ pub mod buf;
 pub mod cell;
 pub mod complex;
 pub mod csr;
-pub mod gen;
+pub mod generate;
 pub mod hasse;
 pub mod ids;
 pub mod io;

@@ -30,11 +30,11 @@ pub fn data_required() -> bool {
 pub fn small_datasets() -> Vec<(String, PathBuf, serde_json::Value)> {
     let mut found: std::collections::BTreeMap<String, PathBuf> = Default::default();
     let mut dirs = vec![datasets_dir().join("small")];
-    if let Ok(d) = std::env::var("STARPLEX_DATA") {
-        if let Ok(rd) = std::fs::read_dir(Path::new(&d).join("small")) {
-            for e in rd.flatten() {
-                dirs.push(e.path());
-            }
+    if let Ok(d) = std::env::var("STARPLEX_DATA")
+        && let Ok(rd) = std::fs::read_dir(Path::new(&d).join("small"))
+    {
+        for e in rd.flatten() {
+            dirs.push(e.path());
         }
     }
     for d in dirs {

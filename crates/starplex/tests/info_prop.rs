@@ -53,7 +53,7 @@ fn brute(k: &IndexedComplex) -> (Vec<u64>, Option<(u64, u64)>, u64) {
     let comps = label
         .iter()
         .enumerate()
-        .filter(|(i, &l)| *i as u32 == l)
+        .filter(|&(ref i, &l)| *i as u32 == l)
         .count() as u64;
     (f, boundary, comps)
 }

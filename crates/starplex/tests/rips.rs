@@ -7,7 +7,7 @@ mod common_data;
 use std::path::{Path, PathBuf};
 
 use starplex::algo::rips::{rips_complex, RipsOptions};
-use starplex::gen::sierpinski::{sierpinski, SierpinskiOptions};
+use starplex::generate::sierpinski::{sierpinski, SierpinskiOptions};
 use starplex::io::{self, ReadOptions};
 
 /// Every maximal vertex set of pairwise distance ≤ eps (squared test, as the library and
@@ -236,7 +236,7 @@ fn quads_equal_the_datasets_generator() {
     }
     let t = io::read(&tri, &ReadOptions::default()).unwrap().complex;
     let want = io::read(&quad, &ReadOptions::default()).unwrap().complex;
-    let got = starplex::gen::refine::triangles_to_quads(&t).unwrap();
+    let got = starplex::generate::refine::triangles_to_quads(&t).unwrap();
     assert_eq!(got.n_vertices(), want.n_vertices());
     assert!(got
         .cells()
@@ -267,7 +267,7 @@ fn subdivision_equals_the_datasets_generator() {
     }
     let t = io::read(&src, &ReadOptions::default()).unwrap().complex;
     let want = io::read(&want, &ReadOptions::default()).unwrap().complex;
-    let got = starplex::gen::refine::subdivide_triangles(&t, 2).unwrap();
+    let got = starplex::generate::refine::subdivide_triangles(&t, 2).unwrap();
     assert_eq!(got.n_vertices(), want.n_vertices());
     assert_eq!(got.n_cells(), want.n_cells());
     assert!(got

@@ -16,7 +16,7 @@ use starplex::algo::simplify::{
 };
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
-use starplex::gen::kuhn_grid;
+use starplex::generate::kuhn_grid;
 use starplex::hasse::Hasse;
 use starplex::ids::VertexId;
 

@@ -100,7 +100,7 @@ impl VertexIndex {
             let moved: Vec<(u32, u32)> = self
                 .sparse
                 .iter()
-                .filter(|(&k, _)| (k as usize) < new_len)
+                .filter(|&(&k, _)| (k as usize) < new_len)
                 .map(|(&k, &v)| (k, v))
                 .collect();
             for (k, v) in moved {

@@ -183,13 +183,12 @@ impl<L: Levels> Hasse<L> {
         }
         for n in self.maximal_simplices() {
             let mut vs: Vec<u32> = self.vertices(n).iter().map(|v| index[&v.0]).collect();
-            if let Some(o) = orientation {
-                if o.dim == n.dim as usize
-                    && o.signs.get(n.id.index()) == Some(&-1)
-                    && vs.len() >= 2
-                {
-                    vs.swap(0, 1);
-                }
+            if let Some(o) = orientation
+                && o.dim == n.dim as usize
+                && o.signs.get(n.id.index()) == Some(&-1)
+                && vs.len() >= 2
+            {
+                vs.swap(0, 1);
             }
             b.push_cell(CellKind::Simplex(n.dim as u8), &vs)?;
         }

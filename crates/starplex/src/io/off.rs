@@ -232,12 +232,12 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         )));
     }
     let nv = nv as usize;
-    if let Some(d) = dim_decl {
-        if d == 0 || d > MAX_AMBIENT_DIM as u64 {
-            return Err(at_counts(format!(
-                "dimension {d} is outside 1..={MAX_AMBIENT_DIM}"
-            )));
-        }
+    if let Some(d) = dim_decl
+        && (d == 0 || d > MAX_AMBIENT_DIM as u64)
+    {
+        return Err(at_counts(format!(
+            "dimension {d} is outside 1..={MAX_AMBIENT_DIM}"
+        )));
     }
 
     // ---- vertices ----

@@ -376,13 +376,13 @@ pub fn read_edges_from(
         let id = |s: &str| -> Result<u32, IoError> {
             match s.parse::<u64>() {
                 Ok(v) if v < u32::MAX as u64 - 1 => {
-                    if let Some(n) = n_vertices {
-                        if v as usize >= n {
-                            return Err(at(format!(
-                                "vertex id {v} out of range ({n} vertices, ids 0..{})",
-                                n.saturating_sub(1)
-                            )));
-                        }
+                    if let Some(n) = n_vertices
+                        && v as usize >= n
+                    {
+                        return Err(at(format!(
+                            "vertex id {v} out of range ({n} vertices, ids 0..{})",
+                            n.saturating_sub(1)
+                        )));
                     }
                     Ok(v as u32)
                 }

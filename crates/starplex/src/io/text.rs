@@ -201,10 +201,10 @@ impl<'p, R: BufRead> LineReader<'p, R> {
             self.offset += n as u64;
             self.no += 1;
             let mut end = self.buf.len();
-            if let Some(c) = self.comment {
-                if let Some(p) = memchr::memchr(c, &self.buf[..end]) {
-                    end = p;
-                }
+            if let Some(c) = self.comment
+                && let Some(p) = memchr::memchr(c, &self.buf[..end])
+            {
+                end = p;
             }
             while end > 0 && (self.buf[end - 1] == b'\n' || is_space(self.buf[end - 1])) {
                 end -= 1;

@@ -565,10 +565,10 @@ fn open<'a>(
 
 /// Handles a closing tag.
 fn close<'a>(name: &str, pieces: &mut [Piece<'a>], current: &mut Option<ArraySpec<'a>>) {
-    if name == "DataArray" {
-        if let (Some(a), Some(p)) = (current.take(), pieces.last_mut()) {
-            p.arrays.push(a);
-        }
+    if name == "DataArray"
+        && let (Some(a), Some(p)) = (current.take(), pieces.last_mut())
+    {
+        p.arrays.push(a);
     }
 }
 

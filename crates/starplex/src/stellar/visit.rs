@@ -381,11 +381,11 @@ impl LeafCache {
     /// assert_eq!(*c.get(&t, LeafId(2)), t.expand_leaf(LeafId(2)));
     /// ```
     pub fn get(&mut self, t: &StellarTree, l: LeafId) -> Arc<ExpandedLeaf> {
-        if let Some(c) = &mut self.cache {
-            if let Some(e) = c.get(&l.0) {
-                self.hits += 1;
-                return e.clone();
-            }
+        if let Some(c) = &mut self.cache
+            && let Some(e) = c.get(&l.0)
+        {
+            self.hits += 1;
+            return e.clone();
         }
         self.misses += 1;
         let e = Arc::new(t.expand_leaf(l));

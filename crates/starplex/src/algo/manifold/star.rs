@@ -22,10 +22,12 @@ pub(super) fn star_tests<S: StarCells + ?Sized>(
     if star.is_empty() {
         return if d == 0 { Manifold } else { NonManifold };
     }
-    if fast && d == 3 && star.all_tets() {
-        if let Some(r) = super::tets::star_tests_tets(v, star, &mut s.tet, edges_out) {
-            return r;
-        }
+    if fast
+        && d == 3
+        && star.all_tets()
+        && let Some(r) = super::tets::star_tests_tets(v, star, &mut s.tet, edges_out)
+    {
+        return r;
     }
     // edges at v: (w, local cell index)
     s.ew.clear();

@@ -12,7 +12,7 @@
 //!
 //! ```
 //! use starplex::algo::simplify::{simplify, SimplifyOptions, Mode, Target, summary};
-//! use starplex::gen::kuhn_grid;
+//! use starplex::generate::kuhn_grid;
 //! let ball = kuhn_grid(&[3, 3, 3]).unwrap(); // 162 tetrahedra filling a cube
 //! let opts = SimplifyOptions { mode: Some(Mode::Homology), ..Default::default() };
 //! let (point, report) = simplify(&ball, &opts).unwrap();
@@ -216,8 +216,8 @@ pub struct SimplifyReport {
 ///
 /// ```
 /// use starplex::algo::simplify::{default_mode, Mode};
-/// assert_eq!(default_mode(&starplex::gen::kuhn_grid(&[1, 1, 1]).unwrap()), Mode::Qem);
-/// assert_eq!(default_mode(&starplex::gen::kuhn_grid(&[1, 1, 1, 1]).unwrap()), Mode::Homology);
+/// assert_eq!(default_mode(&starplex::generate::kuhn_grid(&[1, 1, 1]).unwrap()), Mode::Qem);
+/// assert_eq!(default_mode(&starplex::generate::kuhn_grid(&[1, 1, 1, 1]).unwrap()), Mode::Homology);
 /// ```
 pub fn default_mode(k: &IndexedComplex) -> Mode {
     let d = k.dim();
@@ -233,7 +233,7 @@ pub fn default_mode(k: &IndexedComplex) -> Mode {
 ///
 /// ```
 /// use starplex::algo::simplify::{simplify, SimplifyOptions, Target};
-/// use starplex::gen::kuhn_grid;
+/// use starplex::generate::kuhn_grid;
 /// let sq = kuhn_grid(&[4, 4]).unwrap(); // 32 triangles in a square
 /// let opts = SimplifyOptions { target: Target { ratio: Some(0.25), ..Default::default() }, ..Default::default() };
 /// let (k, r) = simplify(&sq, &opts).unwrap();
@@ -263,20 +263,20 @@ pub fn simplify(
     let mode = opts.mode.unwrap_or_else(|| default_mode(k));
     let mut target = opts.target;
     let n_tops = k.n_cells() + k.n_isolated_vertices();
-    if let Some(f) = target.faces {
-        if f > n_tops {
-            return Err(SimplifyError::BadTarget(format!(
-                "{f} faces asked, the complex has {n_tops} top cells"
-            )));
-        }
+    if let Some(f) = target.faces
+        && f > n_tops
+    {
+        return Err(SimplifyError::BadTarget(format!(
+            "{f} faces asked, the complex has {n_tops} top cells"
+        )));
     }
-    if let Some(v) = target.vertices {
-        if v > k.n_vertices() {
-            return Err(SimplifyError::BadTarget(format!(
-                "{v} vertices asked, the complex has {}",
-                k.n_vertices()
-            )));
-        }
+    if let Some(v) = target.vertices
+        && v > k.n_vertices()
+    {
+        return Err(SimplifyError::BadTarget(format!(
+            "{v} vertices asked, the complex has {}",
+            k.n_vertices()
+        )));
     }
     if let Some(r) = target.ratio {
         if !(0.0..=1.0).contains(&r) {
@@ -333,7 +333,7 @@ pub fn simplify(
 /// The topology of a complex, as reported before and after simplification.
 ///
 /// ```
-/// let s = starplex::algo::simplify::summary(&starplex::gen::kuhn_grid(&[1, 1]).unwrap());
+/// let s = starplex::algo::simplify::summary(&starplex::generate::kuhn_grid(&[1, 1]).unwrap());
 /// assert_eq!(s.f_vector, Some(vec![4, 5, 2]));
 /// assert_eq!((s.euler_characteristic, s.boundary_faces), (Some(1), 4));
 /// ```
@@ -360,7 +360,7 @@ pub struct TopologySummary {
 /// Computes the [`TopologySummary`] of `k` with `algo::homology` and `algo::validate`.
 ///
 /// ```
-/// let s = starplex::algo::simplify::summary(&starplex::gen::kuhn_grid(&[2, 2, 2]).unwrap());
+/// let s = starplex::algo::simplify::summary(&starplex::generate::kuhn_grid(&[2, 2, 2]).unwrap());
 /// assert_eq!(s.betti, Some(vec![1, 0, 0, 0]));
 /// assert_eq!(s.non_manifold_vertices, 0);
 /// ```

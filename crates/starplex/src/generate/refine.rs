@@ -10,7 +10,7 @@
 //! ```
 //! use starplex::cell::CellKind;
 //! use starplex::complex::IndexedComplex;
-//! use starplex::gen::refine::{tets_to_hexes, triangles_to_quads};
+//! use starplex::generate::refine::{tets_to_hexes, triangles_to_quads};
 //! let tri = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
 //!                                      vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
 //! let q = triangles_to_quads(&tri).unwrap();
@@ -26,7 +26,7 @@ use crate::complex::{ComplexError, IndexedComplex};
 /// Why a refinement cannot run.
 ///
 /// ```
-/// use starplex::gen::refine::RefineError;
+/// use starplex::generate::refine::RefineError;
 /// assert_eq!(RefineError::WrongKind { want: "triangles", cell: 3 }.to_string(),
 ///            "cell 3 is not one of the triangles this refinement takes");
 /// ```
@@ -95,7 +95,7 @@ fn check_size(n: u128, what: &'static str) -> Result<(), ComplexError> {
 /// ```
 /// # use starplex::cell::CellKind;
 /// # use starplex::complex::IndexedComplex;
-/// # use starplex::gen::refine::triangles_to_quads;
+/// # use starplex::generate::refine::triangles_to_quads;
 /// let two = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1., 1., 1.].into(),
 ///     vec![(CellKind::Simplex(2), vec![0, 1, 2, 1, 3, 2].into())]).unwrap();
 /// let q = triangles_to_quads(&two).unwrap();
@@ -149,7 +149,7 @@ pub fn triangles_to_quads(k: &IndexedComplex) -> Result<IndexedComplex, RefineEr
 /// ```
 /// # use starplex::cell::CellKind;
 /// # use starplex::complex::IndexedComplex;
-/// # use starplex::gen::refine::tets_to_hexes;
+/// # use starplex::generate::refine::tets_to_hexes;
 /// use starplex::algo::info::{info, InfoOptions};
 /// let tet = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.].into(),
 ///                                      vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
@@ -240,7 +240,7 @@ pub fn tets_to_hexes(k: &IndexedComplex) -> Result<IndexedComplex, RefineError> 
 /// ```
 /// # use starplex::cell::CellKind;
 /// # use starplex::complex::IndexedComplex;
-/// use starplex::gen::refine::subdivide_triangles;
+/// use starplex::generate::refine::subdivide_triangles;
 /// let tri = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
 ///                                      vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
 /// let s = subdivide_triangles(&tri, 2).unwrap();

@@ -11,7 +11,7 @@
 //!
 //! ```
 //! use starplex::algo::info::{info, InfoOptions};
-//! let k = starplex::gen::kuhn_grid(&[2, 3]).unwrap();
+//! let k = starplex::generate::kuhn_grid(&[2, 3]).unwrap();
 //! assert_eq!((k.n_vertices(), k.n_cells()), (12, 12));
 //! let s = info(&k, &InfoOptions::default());
 //! assert_eq!(s.euler_characteristic, Some(1));
@@ -32,9 +32,9 @@ pub mod sierpinski;
 /// arrays would not fit in memory (checked before allocating).
 ///
 /// ```
-/// let k = starplex::gen::kuhn_grid(&[1, 1, 1]).unwrap();
+/// let k = starplex::generate::kuhn_grid(&[1, 1, 1]).unwrap();
 /// assert_eq!((k.n_vertices(), k.n_cells()), (8, 6)); // a cube into 6 tetrahedra
-/// assert!(starplex::gen::kuhn_grid(&[100_000, 100_000, 100_000]).is_err());
+/// assert!(starplex::generate::kuhn_grid(&[100_000, 100_000, 100_000]).is_err());
 /// ```
 pub fn kuhn_grid(cubes: &[usize]) -> Result<IndexedComplex, ComplexError> {
     let d = cubes.len();

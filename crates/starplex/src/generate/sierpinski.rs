@@ -11,7 +11,7 @@
 //! their sorted endpoint pairs), until at least `target` simplices remain.
 //!
 //! ```
-//! use starplex::gen::sierpinski::{sierpinski, SierpinskiOptions};
+//! use starplex::generate::sierpinski::{sierpinski, SierpinskiOptions};
 //! let s = sierpinski(&SierpinskiOptions { dim: 2, p: 0.35, seed: 1, target: 10, max_levels: 60 }).unwrap();
 //! assert!(s.complex.n_cells() >= 10);
 //! assert_eq!(s.complex.ambient_dim(), 2);
@@ -81,7 +81,7 @@ fn seed_sequence_state(seed: u64) -> [u64; 4] {
 /// numpy's `PCG64` bit generator (with its 32-bit half-word buffer).
 ///
 /// ```
-/// use starplex::gen::sierpinski::NumpyPcg64;
+/// use starplex::generate::sierpinski::NumpyPcg64;
 /// let mut r = NumpyPcg64::new(1);
 /// let x = r.random();
 /// assert!((0.0..1.0).contains(&x));
@@ -99,7 +99,7 @@ impl NumpyPcg64 {
     /// `numpy.random.default_rng(seed)`'s generator.
     ///
     /// ```
-    /// # use starplex::gen::sierpinski::NumpyPcg64;
+    /// # use starplex::generate::sierpinski::NumpyPcg64;
     /// assert_eq!(NumpyPcg64::new(5).next_u64(), NumpyPcg64::new(5).next_u64());
     /// ```
     pub fn new(seed: u64) -> NumpyPcg64 {
@@ -124,7 +124,7 @@ impl NumpyPcg64 {
     /// The next 64-bit output.
     ///
     /// ```
-    /// # use starplex::gen::sierpinski::NumpyPcg64;
+    /// # use starplex::generate::sierpinski::NumpyPcg64;
     /// let mut r = NumpyPcg64::new(0);
     /// assert_ne!(r.next_u64(), r.next_u64());
     /// ```
@@ -138,7 +138,7 @@ impl NumpyPcg64 {
     /// The next 32-bit output (low half of a 64-bit one, then its high half).
     ///
     /// ```
-    /// # use starplex::gen::sierpinski::NumpyPcg64;
+    /// # use starplex::generate::sierpinski::NumpyPcg64;
     /// let (mut a, mut b) = (NumpyPcg64::new(2), NumpyPcg64::new(2));
     /// let w = a.next_u64();
     /// assert_eq!((b.next_u32(), b.next_u32()), (w as u32, (w >> 32) as u32));
@@ -155,7 +155,7 @@ impl NumpyPcg64 {
     /// `Generator.random()`: a double in [0, 1).
     ///
     /// ```
-    /// # use starplex::gen::sierpinski::NumpyPcg64;
+    /// # use starplex::generate::sierpinski::NumpyPcg64;
     /// assert!(NumpyPcg64::new(3).random() < 1.0);
     /// ```
     pub fn random(&mut self) -> f64 {
@@ -165,7 +165,7 @@ impl NumpyPcg64 {
     /// `Generator.integers(n)` for `1 <= n <= 2^32` (Lemire's bounded method on 32-bit words).
     ///
     /// ```
-    /// # use starplex::gen::sierpinski::NumpyPcg64;
+    /// # use starplex::generate::sierpinski::NumpyPcg64;
     /// assert!(NumpyPcg64::new(4).integers(6) < 6);
     /// ```
     pub fn integers(&mut self, n: u64) -> u64 {
@@ -194,7 +194,7 @@ impl NumpyPcg64 {
 /// Parameters of [`sierpinski`] (the datasets' recipe keys).
 ///
 /// ```
-/// use starplex::gen::sierpinski::SierpinskiOptions;
+/// use starplex::generate::sierpinski::SierpinskiOptions;
 /// let o = SierpinskiOptions::default();
 /// assert_eq!((o.p, o.seed, o.max_levels), (0.35, 1, 60));
 /// ```
@@ -236,7 +236,7 @@ pub struct Sierpinski {
 /// The probabilistic Sierpinski filtering (see the module docs).
 ///
 /// ```
-/// use starplex::gen::sierpinski::{sierpinski, SierpinskiOptions};
+/// use starplex::generate::sierpinski::{sierpinski, SierpinskiOptions};
 /// let o = SierpinskiOptions { dim: 3, target: 50, ..Default::default() };
 /// let s = sierpinski(&o).unwrap();
 /// assert!(s.complex.n_cells() >= 50 && s.levels > 1);
