@@ -178,6 +178,35 @@ def corpus(out):
         vtk_written(out)
 
 
+def attributes(out):
+    """The mixed mesh with point and cell data of every kind (int and float scalars, float
+    vectors), written by meshio as .vtu (ascii, base64 zlib) and legacy .vtk (4.2 and 5.1, ascii
+    and binary); `mixed_attrs.json` holds the expected columns (cells in file order)."""
+    m = mixed()
+    n_cells = sum(len(b.data) for b in m.cells)
+    cell_ids = np.arange(n_cells)
+    split = np.cumsum([len(b.data) for b in m.cells])[:-1]
+    m.point_data = {"height": m.points[:, 2].copy(),
+                    "label": (np.arange(len(m.points)) % 5).astype(np.int32),
+                    "velocity": np.stack([m.points[:, 1], -m.points[:, 0],
+                                          np.zeros(len(m.points))], axis=1)}
+    m.cell_data = {"material": [x.astype(np.int32) for x in np.split(cell_ids * 10 + 1, split)],
+                   "quality": [x / 8.0 for x in np.split(cell_ids.astype(float), split)]}
+    ref = {"vertex": {k: np.asarray(v).reshape(len(m.points), -1).tolist()
+                      for k, v in m.point_data.items()},
+           "cell": {k: np.concatenate(v).reshape(n_cells, -1).tolist()
+                    for k, v in m.cell_data.items()}}
+    with open(os.path.join(out, "mixed_attrs.json"), "w") as f:
+        json.dump(ref, f)
+    meshio.vtu.write(os.path.join(out, "attrs_ascii.vtu"), m, binary=False)
+    meshio.vtu.write(os.path.join(out, "attrs_b64_zlib.vtu"), m, binary=True, compression="zlib")
+    from meshio.vtk import _vtk_42, _vtk_51
+    for mod, ver in [(_vtk_42, "42"), (_vtk_51, "51")]:
+        for binary in [True, False]:
+            name = "attrs_%s_%s.vtk" % (ver, "bin" if binary else "ascii")
+            mod.write(os.path.join(out, name), m, binary=binary)
+
+
 def vtk_written(out):
     """The same mesh written by VTK itself (its default: appended raw zlib; inline binary; ascii;
     lz4 is left out) and the poly data surface re-written by VTK."""
@@ -321,5 +350,8 @@ if __name__ == "__main__":
         meshio.gmsh.write(sys.argv[3], m, fmt_version="4.1", binary=True)
         from meshio.vtk import _vtk_42
         _vtk_42.write(sys.argv[4], m, binary=True)
+    elif len(sys.argv) > 1 and sys.argv[1] == "--attributes":
+        attributes(sys.argv[2] if len(sys.argv) > 2 else OUT)
     else:
         corpus(sys.argv[1] if len(sys.argv) > 1 else OUT)
+        attributes(sys.argv[1] if len(sys.argv) > 1 else OUT)

@@ -33,6 +33,7 @@ pub fn run(ctx: &Ctx, a: &ConvertArgs) -> Result<(), CliError> {
     let convert_err = |e: surface::SurfaceError| {
         CliError::Input(format!("{}: {e}", a.input.file.display()), None)
     };
+    let attrs = k.attributes().clone();
     if a.boundary {
         let (b, report) = surface::boundary(&k).map_err(convert_err)?;
         if !ctx.quiet && report.ignored_lower_cells > 0 {
@@ -47,6 +48,26 @@ pub fn run(ctx: &Ctx, a: &ConvertArgs) -> Result<(), CliError> {
         k = surface::triangulate(&k).map_err(convert_err)?;
     }
     common::with_spinner(ctx, "writing", || io::write(&a.output, &k, to))?;
+    if !attrs.is_empty() && !ctx.quiet {
+        let names: Vec<&str> = attrs
+            .vertex
+            .iter()
+            .chain(&attrs.cell)
+            .map(|c| c.name.as_str())
+            .collect();
+        let format = to.or_else(|| io::Format::from_path(&a.output));
+        if a.boundary || a.triangulate {
+            eprintln!(
+                "note: the attributes {} are not carried through --boundary/--triangulate",
+                names.join(", ")
+            );
+        } else if format.is_some_and(|f| !f.holds_attributes()) {
+            eprintln!(
+                "note: the attributes {} are not written: this format cannot hold them (write .vtu or .vtk to keep them)",
+                names.join(", ")
+            );
+        }
+    }
     if !ctx.quiet {
         eprintln!(
             "wrote {} ({} vertices, {} cells)",

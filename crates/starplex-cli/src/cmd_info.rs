@@ -4,6 +4,7 @@ use std::time::Instant;
 
 use serde_json::{json, Value};
 use starplex::algo::info::{face_visits, info, Info, InfoOptions};
+use starplex::attr::{Attribute, Attributes};
 
 use crate::common::{self, CliError, Ctx, InputArgs};
 
@@ -53,6 +54,9 @@ pub fn run(ctx: &Ctx, a: &InfoArgs) -> Result<(), CliError> {
             Some(Err(e)) => v["betti_z2_skipped"] = json!(e.to_string()),
             None => {}
         }
+        if !k.attributes().is_empty() {
+            v["attributes"] = attributes_json(k.attributes());
+        }
         if !r.notes.is_empty() {
             v["notes"] = json!(r.notes);
         }
@@ -73,8 +77,50 @@ pub fn run(ctx: &Ctx, a: &InfoArgs) -> Result<(), CliError> {
             Some(Err(e)) => println!("  Betti numbers (Z/2) skipped: {e}"),
             None => {}
         }
+        for (label, cols) in [
+            ("vertex attributes", &k.attributes().vertex),
+            ("cell attributes", &k.attributes().cell),
+        ] {
+            if !cols.is_empty() {
+                let parts: Vec<String> = cols.iter().map(attribute_label).collect();
+                println!("  {label:<19} {}", parts.join(", "));
+            }
+        }
     }
     Ok(())
+}
+
+/// `name (int)`, `velocity (float x3)`, with the value range.
+fn attribute_label(a: &Attribute) -> String {
+    let comps = if a.components > 1 {
+        format!(" x{}", a.components)
+    } else {
+        String::new()
+    };
+    let range = match a.range() {
+        Some((lo, hi)) => format!(" in [{lo}, {hi}]"),
+        None => String::new(),
+    };
+    format!("{} ({}{comps}{range})", a.name, a.values.type_name())
+}
+
+/// The attribute columns as JSON: `{"vertex": [{name, type, components, min, max}], "cell": [..]}`.
+pub fn attributes_json(a: &Attributes) -> Value {
+    let cols = |cols: &[Attribute]| -> Vec<Value> {
+        cols.iter()
+            .map(|c| {
+                let r = c.range();
+                json!({
+                    "name": c.name,
+                    "type": c.values.type_name(),
+                    "components": c.components,
+                    "min": r.map(|x| x.0),
+                    "max": r.map(|x| x.1),
+                })
+            })
+            .collect()
+    };
+    json!({"vertex": cols(&a.vertex), "cell": cols(&a.cell)})
 }
 
 pub fn to_json(s: &Info) -> Value {

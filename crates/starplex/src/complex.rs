@@ -28,6 +28,7 @@
 //! let err = b.build(&BuildOptions::default()).unwrap_err();
 //! assert_eq!(err.to_string(), "cell 0: vertex 1 appears more than once (degenerate cell)");
 //! ```
+use crate::attr::{AttrError, Attributes};
 use crate::buf::Buf;
 use crate::cell::{CellKind, CellKindError};
 use crate::csr::Csr;
@@ -152,6 +153,9 @@ pub enum ComplexError {
         /// What is wrong.
         source: CellKindError,
     },
+    /// An attribute column that does not fit the complex.
+    #[error(transparent)]
+    Attribute(#[from] AttrError),
 }
 
 /// A run of cells of one kind, in input order.
@@ -273,6 +277,7 @@ pub struct IndexedComplex {
     coords: Buf<f64>,
     blocks: Vec<CellBlock>,
     n_cells: u32,
+    attrs: Attributes,
 }
 
 /// Options of [`ComplexBuilder::build`].
@@ -343,6 +348,7 @@ pub struct ComplexBuilder {
     coords: Vec<f64>,
     blocks: Vec<(CellKind, Vec<u32>)>,
     n_cells: u64,
+    attrs: Attributes,
 }
 
 impl ComplexBuilder {
@@ -365,6 +371,7 @@ impl ComplexBuilder {
             coords: Vec::new(),
             blocks: Vec::new(),
             n_cells: 0,
+            attrs: Attributes::default(),
         })
     }
 
@@ -487,6 +494,28 @@ impl ComplexBuilder {
         Ok(CellId(id as u32))
     }
 
+    /// Sets the attributes of the complex being built (one item per vertex pushed, one per cell
+    /// pushed: checked by [`build`](Self::build), which also drops the items of the cells it
+    /// drops).
+    ///
+    /// ```
+    /// use starplex::attr::{Attribute, Attributes};
+    /// use starplex::complex::{BuildOptions, ComplexBuilder};
+    /// use starplex::cell::CellKind;
+    /// let mut b = ComplexBuilder::new(1).unwrap();
+    /// for x in [0.0, 1.0, 2.0] { b.push_vertex(&[x]).unwrap(); }
+    /// b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// b.push_cell(CellKind::Simplex(0), &[1]).unwrap(); // a face: dropped below
+    /// b.push_cell(CellKind::Simplex(1), &[1, 2]).unwrap();
+    /// b.set_attributes(Attributes { vertex: vec![], cell: vec![Attribute::int("t", 1, vec![10, 11, 12])] });
+    /// let opts = BuildOptions { drop_face_cells: true, ..Default::default() };
+    /// let (k, _) = b.build(&opts).unwrap();
+    /// assert_eq!(k.attributes().cell[0], Attribute::int("t", 1, vec![10, 12]));
+    /// ```
+    pub fn set_attributes(&mut self, attrs: Attributes) {
+        self.attrs = attrs;
+    }
+
     /// Checks everything and returns the complex.
     ///
     /// ```
@@ -528,10 +557,12 @@ impl ComplexBuilder {
             coords: Buf::Owned(self.coords),
             n_cells: self.n_cells as u32,
             blocks,
+            attrs: self.attrs,
         };
         for c in k.cells() {
             check_cell(c.id.0 as u64, c.vertices, n_vertices)?;
         }
+        k.attrs.check(n_vertices, k.n_cells())?;
         if opts.trust_maximality {
             return Ok((k, BuildReport::default()));
         }
@@ -695,6 +726,7 @@ impl IndexedComplex {
             coords,
             blocks: out,
             n_cells: first as u32,
+            attrs: Attributes::default(),
         })
     }
 
@@ -728,6 +760,58 @@ impl IndexedComplex {
             return Ok((k, BuildReport::default()));
         }
         k.check_maximality(opts)
+    }
+
+    /// The vertex and cell attributes (empty unless a reader or the user set some).
+    ///
+    /// ```
+    /// use starplex::attr::{Attribute, Attributes};
+    /// use starplex::complex::IndexedComplex;
+    /// use starplex::cell::CellKind;
+    /// let mut k = IndexedComplex::from_parts(1, vec![0.0, 1.0].into(),
+    ///     vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// assert!(k.attributes().is_empty());
+    /// let a = Attributes { vertex: vec![], cell: vec![Attribute::int("tag", 1, vec![4])] };
+    /// k.set_attributes(a).unwrap();
+    /// assert_eq!(k.attributes().cell[0].name, "tag");
+    /// ```
+    pub fn attributes(&self) -> &Attributes {
+        &self.attrs
+    }
+
+    /// Replaces the attributes, after checking that each column has one item per vertex or per
+    /// cell.
+    ///
+    /// ```
+    /// use starplex::attr::{Attribute, Attributes};
+    /// use starplex::complex::IndexedComplex;
+    /// use starplex::cell::CellKind;
+    /// let mut k = IndexedComplex::from_parts(1, vec![0.0, 1.0].into(),
+    ///     vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// let two_cells = Attributes { vertex: vec![], cell: vec![Attribute::int("t", 1, vec![1, 2])] };
+    /// assert!(k.set_attributes(two_cells).is_err());
+    /// assert!(k.attributes().is_empty()); // unchanged
+    /// ```
+    ///
+    /// # Errors
+    /// [`ComplexError::Attribute`] naming the first column that does not fit.
+    pub fn set_attributes(&mut self, attrs: Attributes) -> Result<(), ComplexError> {
+        attrs.check(self.n_vertices(), self.n_cells())?;
+        self.attrs = attrs;
+        Ok(())
+    }
+
+    /// Removes and returns the attributes.
+    ///
+    /// ```
+    /// use starplex::complex::IndexedComplex;
+    /// use starplex::cell::CellKind;
+    /// let mut k = IndexedComplex::from_parts(1, vec![0.0, 1.0].into(),
+    ///     vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+    /// assert!(k.take_attributes().is_empty());
+    /// ```
+    pub fn take_attributes(&mut self) -> Attributes {
+        std::mem::take(&mut self.attrs)
     }
 
     /// Number of coordinates per vertex.
@@ -1178,11 +1262,14 @@ impl IndexedComplex {
         }
         let mut b = ComplexBuilder::new(self.ambient_dim)?;
         b.coords = self.coords.to_vec();
+        let mut kept: Vec<u32> = Vec::new();
         for c in self.cells() {
             if !drop[c.id.index()] {
                 b.push_cell(c.kind, c.vertices)?;
+                kept.push(c.id.0);
             }
         }
+        b.attrs = self.attrs.gather_cells(&kept);
         let (k, _) = b.build(&BuildOptions {
             trust_maximality: true,
             ..BuildOptions::default()

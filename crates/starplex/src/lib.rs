@@ -27,6 +27,7 @@
 #![warn(missing_docs)]
 
 pub mod algo;
+pub mod attr;
 pub mod buf;
 pub mod cell;
 pub mod complex;

@@ -7,6 +7,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use starplex::attr::{AttrTarget, AttrValues};
 use starplex::cell::CellKind;
 use starplex::complex::IndexedComplex;
 use starplex::io::{self, gmsh, vtk, vtu, Format, Location, ReadOptions};
@@ -142,8 +143,11 @@ fn binary_files_read_the_reference_mesh() {
         ("vtk_appended_zlib.vtu", "mixed_b64.vtu"),
         ("vtk_surface.vtp", "surface.vtp"),
     ] {
-        let kb = io::read(&data(b), &ReadOptions::default()).unwrap().complex;
-        let ka = io::read(&data(a), &ReadOptions::default()).unwrap().complex;
+        // (the geometry and cells: attributes are compared in io_attributes.rs)
+        let mut kb = io::read(&data(b), &ReadOptions::default()).unwrap().complex;
+        let mut ka = io::read(&data(a), &ReadOptions::default()).unwrap().complex;
+        kb.take_attributes();
+        ka.take_attributes();
         assert_eq!(kb, ka, "{b} vs {a}");
     }
     // VTK's ascii writer keeps 6 digits (and puts InformationKey elements in data arrays): the
@@ -164,12 +168,13 @@ fn binary_files_read_the_reference_mesh() {
 }
 
 #[test]
-fn binary_vtk_notes_the_attributes_it_skips() {
+fn binary_vtk_reads_its_point_data() {
     let r = io::read(&data("mixed_51_bin.vtk"), &ReadOptions::default()).unwrap();
-    assert_eq!(
-        r.notes,
-        ["binary attribute data (POINT_DATA/CELL_DATA/FIELD) was not read"]
-    );
+    assert!(r.notes.is_empty(), "{:?}", r.notes);
+    let k = &r.complex;
+    let h = k.attributes().get(AttrTarget::Vertex, "height").unwrap();
+    let z: Vec<f64> = k.coords().chunks_exact(3).map(|p| p[2]).collect();
+    assert_eq!(h.values, AttrValues::Float(z));
 }
 
 fn read_bytes(name: &str, b: &[u8]) -> Result<io::ReadResult, io::IoError> {
@@ -255,13 +260,19 @@ fn binary_errors_name_a_byte() {
 }
 
 #[test]
-fn vtu_notes_the_data_arrays_it_skips_and_vtp_reads_every_section() {
+fn vtu_reads_its_point_data_and_vtp_reads_every_section() {
     let r = io::read(&data("mixed_app_raw.vtu"), &ReadOptions::default()).unwrap();
     assert_eq!(r.format, Format::Vtu);
-    assert_eq!(
-        r.notes,
-        ["ignored the data arrays PointData 'height' (attributes are not read yet)"]
-    );
+    assert!(r.notes.is_empty(), "{:?}", r.notes);
+    let h = r
+        .complex
+        .attributes()
+        .get(AttrTarget::Vertex, "height")
+        .unwrap();
+    // written as Float32: the heights within single precision
+    for (x, p) in (0..h.n_items()).zip(r.complex.coords().chunks_exact(3)) {
+        assert!((h.values.get_f64(x) - p[2]).abs() < 1e-6 * p[2].abs().max(1.0));
+    }
     // two pieces: a vertex (dropped), a 3-edge poly-line, a 6-point strip (4 triangles), a
     // triangle; a pentagon (3 triangles) and a quad
     let r = io::read(&data("surface.vtp"), &ReadOptions::default()).unwrap();

@@ -446,8 +446,20 @@ fn vtk_5_layout_with_data_sections_reads_like_the_classic_one() {
     let classic = "# vtk DataFile Version 4.2\nclassic\nASCII\nDATASET UNSTRUCTURED_GRID\n\
                    POINTS 5 float\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n\
                    CELLS 2 9\n4 0 1 2 3\n3 1 2 4\nCELL_TYPES 2\n10\n5\n";
-    let a = read_bytes(Format::Vtk, v5.as_bytes()).unwrap();
+    let mut a = read_bytes(Format::Vtk, v5.as_bytes()).unwrap();
     let b = read_bytes(Format::Vtk, classic.as_bytes()).unwrap();
+    // the data sections are attributes; the vertex cell (type 1) is dropped with its data
+    use starplex::attr::{AttrValues, Attribute};
+    let attrs = a.complex.take_attributes();
+    let names = |c: &[Attribute]| c.iter().map(|a| a.name.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&attrs.vertex), ["h", "vel"]);
+    assert_eq!(names(&attrs.cell), ["ids", "w", "q"]);
+    assert_eq!(attrs.cell[0].values, AttrValues::Int(vec![7, 8]));
+    assert_eq!(
+        attrs.cell[1].values,
+        AttrValues::Float(vec![1.0, 2.0, 3.0, 4.0])
+    );
+    assert_eq!(attrs.vertex[1].components, 3);
     assert_eq!(a.complex, b.complex);
     assert_eq!(a.complex.n_cells(), 2);
     assert_eq!(a.notes.len(), 1, "{:?}", a.notes);

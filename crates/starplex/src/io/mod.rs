@@ -269,6 +269,17 @@ impl Format {
         !matches!(self, Format::Tri | Format::Ts | Format::Sierp | Format::Hex)
     }
 
+    /// Whether files of this format carry vertex and cell attributes (VTK point and cell data).
+    ///
+    /// ```
+    /// use starplex::io::Format;
+    /// assert!(Format::Vtu.holds_attributes());
+    /// assert!(!Format::Off.holds_attributes());
+    /// ```
+    pub fn holds_attributes(self) -> bool {
+        matches!(self, Format::Vtk | Format::Vtu | Format::Vtp)
+    }
+
     /// The names of the formats starplex writes, space-separated (for hints and help).
     ///
     /// ```

@@ -2,8 +2,8 @@
 //!
 //! Binary files (`BINARY`, big-endian as the format says) are read in both layouts: classic
 //! `CELLS` of `int`s (version up to 4.2) and `OFFSETS`/`CONNECTIVITY` of `vtktypeint64` or
-//! `vtktypeint32` (version 5.x, meshio's default); `POINTS` of `float` or `double`. Reading stops at
-//! the first `POINT_DATA`, `CELL_DATA` or `FIELD` block (noted: starplex keeps no attributes).
+//! `vtktypeint32` (version 5.x, meshio's default); `POINTS` of `float` or `double`; the
+//! `POINT_DATA` and `CELL_DATA` sections too.
 //! Errors in a binary file name the byte offset instead of the line.
 //!
 //! Read: the classic layout (`CELLS n size` followed by `k v_0 .. v_{k-1}` per cell) and the
@@ -11,7 +11,7 @@
 //! with the linear cell types 1 to 14 (one table shared with `.vtu`): vertex and poly-vertex
 //! cells are dropped with a note (their points stay), poly-lines become edges, triangle strips
 //! triangles, polygons triangles, quads or fans of triangles, pixels and voxels quads and
-//! hexahedra in starplex's corner order; any other type is an error naming it. `POINT_DATA`, `CELL_DATA`, `FIELD` and `METADATA` blocks are skipped. VTK's
+//! hexahedra in starplex's corner order; any other type is an error naming it. The arrays of `POINT_DATA` and `CELL_DATA` (`SCALARS`, `VECTORS`, `NORMALS`, `TENSORS`, `FIELD` arrays, ...) become vertex and cell [attributes](crate::attr); dataset-level `FIELD` data and `METADATA` are skipped. VTK's
 //! vertex order is starplex's, so cells are kept as written. Points always have 3 coordinates,
 //! so the complex read has ambient dimension 3.
 //!
@@ -38,6 +38,7 @@ use super::raw::{get_i32, get_i64, push_f32s, push_f64s, read_records, Endian};
 use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::attr::{AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
 use crate::complex::{check_cell, ComplexBuilder, ComplexError, IndexedComplex};
 
@@ -323,38 +324,177 @@ fn skip_metadata(w: &mut Words<'_, impl BufRead>) -> Result<(), IoError> {
     }
 }
 
-/// Skips a `FIELD name n_arrays` block (the `FIELD` word already read).
-fn skip_field(w: &mut Words<'_, impl BufRead>) -> Result<(), IoError> {
+/// Value type of a legacy VTK data array: bytes per value and kind (`None`: `bit` or unknown).
+fn data_type(ty: &[u8]) -> Option<(usize, NumKind)> {
+    let t = ty.to_ascii_lowercase();
+    Some(match t.as_slice() {
+        b"float" | b"vtktypefloat32" => (4, NumKind::Float),
+        b"double" | b"vtktypefloat64" => (8, NumKind::Float),
+        b"char" | b"signed_char" | b"vtktypeint8" => (1, NumKind::Int),
+        b"unsigned_char" | b"vtktypeuint8" => (1, NumKind::UInt),
+        b"short" | b"vtktypeint16" => (2, NumKind::Int),
+        b"unsigned_short" | b"vtktypeuint16" => (2, NumKind::UInt),
+        b"int" | b"vtktypeint32" => (4, NumKind::Int),
+        b"unsigned_int" | b"vtktypeuint32" => (4, NumKind::UInt),
+        b"long" | b"vtkidtype" | b"vtktypeint64" => (8, NumKind::Int),
+        b"unsigned_long" | b"vtktypeuint64" => (8, NumKind::UInt),
+        _ => return None,
+    })
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum NumKind {
+    Int,
+    UInt,
+    Float,
+}
+
+/// Reads `n` values of type `ty` (the header line already read up to the type; ascii words or,
+/// in a binary file, big-endian bytes after the end of the header line).
+fn read_values(
+    w: &mut Words<'_, impl BufRead>,
+    n: u64,
+    ty: &[u8],
+    binary: bool,
+    what: &str,
+) -> Result<AttrValues, IoError> {
+    let Some((width, kind)) = data_type(ty) else {
+        return Err(w.err(format!(
+            "data type '{}' of {what} is not read (char, short, int, long and their unsigned forms, float, double)",
+            lossy(ty)
+        )));
+    };
+    if !binary {
+        // values are words; floats may be NaN or infinite here (data, not coordinates)
+        let cap = n.min(1 << 20) as usize;
+        if kind == NumKind::Float {
+            let mut v = Vec::with_capacity(cap);
+            for _ in 0..n {
+                let t = w.expect(what)?;
+                match super::text::parse_f64(t) {
+                    Some(x) => v.push(x),
+                    None => {
+                        let m = format!("{what}: '{}' is not a number", lossy(t));
+                        return Err(w.err(m));
+                    }
+                }
+            }
+            return Ok(AttrValues::Float(v));
+        }
+        let mut v = Vec::with_capacity(cap);
+        for _ in 0..n {
+            v.push(w.i64(what)?);
+        }
+        return Ok(AttrValues::Int(v));
+    }
+    w.rest_of_line()?;
+    let mut ints: Vec<i64> = Vec::new();
+    let mut floats: Vec<f64> = Vec::new();
+    read_records(w, n, width, what, |w, c, _| {
+        match (kind, width) {
+            (NumKind::Float, 4) => push_f32s(c, Endian::Big, &mut floats),
+            (NumKind::Float, _) => push_f64s(c, Endian::Big, &mut floats),
+            (NumKind::Int, 1) => ints.extend(c.iter().map(|&b| b as i8 as i64)),
+            (NumKind::UInt, 1) => ints.extend(c.iter().map(|&b| b as i64)),
+            (NumKind::Int, 2) => ints.extend(
+                c.chunks_exact(2)
+                    .map(|x| i16::from_be_bytes([x[0], x[1]]) as i64),
+            ),
+            (NumKind::UInt, 2) => ints.extend(
+                c.chunks_exact(2)
+                    .map(|x| u16::from_be_bytes([x[0], x[1]]) as i64),
+            ),
+            (NumKind::Int, 4) => {
+                ints.extend(c.chunks_exact(4).map(|x| get_i32(x, Endian::Big) as i64))
+            }
+            (NumKind::UInt, 4) => ints.extend(
+                c.chunks_exact(4)
+                    .map(|x| get_i32(x, Endian::Big) as u32 as i64),
+            ),
+            (NumKind::Int, _) => ints.extend(c.chunks_exact(8).map(|x| get_i64(x, Endian::Big))),
+            (NumKind::UInt, _) => {
+                for x in c.chunks_exact(8) {
+                    let u = get_i64(x, Endian::Big) as u64;
+                    ints.push(i64::try_from(u).map_err(|_| {
+                        w.err(format!("{what}: {u} does not fit a 64-bit signed integer"))
+                    })?);
+                }
+            }
+        }
+        Ok(())
+    })?;
+    Ok(if kind == NumKind::Float {
+        AttrValues::Float(floats)
+    } else {
+        AttrValues::Int(ints)
+    })
+}
+
+/// Reads a `FIELD name n_arrays` block (the `FIELD` word already read): its arrays of `n`
+/// tuples become columns (`n` is `None` for dataset-level field data, which is read and dropped).
+fn read_field(
+    w: &mut Words<'_, impl BufRead>,
+    n: Option<u64>,
+    binary: bool,
+    cols: &mut Vec<Attribute>,
+    skipped: &mut Vec<String>,
+) -> Result<(), IoError> {
     w.expect("the field name")?;
     let arrays = w.u64("the number of field arrays")?;
     for _ in 0..arrays {
-        w.expect("a field array name")?;
+        let name = w.expect("a field array name")?.to_vec();
         let comps = w.u64("the number of components")?;
         let tuples = w.u64("the number of tuples")?;
-        w.expect("the data type")?;
-        let n = comps
+        let ty = w.expect("the data type")?.to_vec();
+        let total = comps
             .checked_mul(tuples)
             .ok_or_else(|| w.err(format!("field array size {comps} x {tuples} overflows")))?;
-        skip_values(w, n, "a field value")?;
+        let values = read_values(w, total, &ty, binary, "a field value")?;
         skip_metadata(w)?;
+        match n {
+            Some(n) if tuples == n && (1..=1024).contains(&comps) => cols.push(Attribute {
+                name: String::from_utf8_lossy(&name).into_owned(),
+                components: comps as usize,
+                values,
+            }),
+            Some(n) => skipped.push(format!(
+                "FIELD array '{}' ({tuples} tuples of {comps}, the section has {n} items)",
+                lossy(&name)
+            )),
+            None => {}
+        }
     }
     Ok(())
 }
 
-/// Skips the attributes of a `POINT_DATA n` / `CELL_DATA n` section up to the next section
-/// keyword (left unread) or the end of the file.
-fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoError> {
-    let n3 = n.saturating_mul(3);
+/// Reads the arrays of a `POINT_DATA n` / `CELL_DATA n` section up to the next section keyword
+/// (left unread) or the end of the file: `SCALARS`, `VECTORS`, `NORMALS`, `TENSORS`,
+/// `TEXTURE_COORDINATES`, `GLOBAL_IDS`, `PEDIGREE_IDS` and the arrays of a `FIELD` become
+/// columns of `n` items; `COLOR_SCALARS` and `LOOKUP_TABLE`s are skipped (named in `skipped`).
+fn read_data_section(
+    w: &mut Words<'_, impl BufRead>,
+    n: u64,
+    binary: bool,
+    cols: &mut Vec<Attribute>,
+    skipped: &mut Vec<String>,
+) -> Result<(), IoError> {
+    let add = |cols: &mut Vec<Attribute>, name: Vec<u8>, comps: u64, values: AttrValues| {
+        cols.push(Attribute {
+            name: String::from_utf8_lossy(&name).into_owned(),
+            components: comps as usize,
+            values,
+        });
+    };
     while let Some(word) = w.next_word()?.map(|t| t.to_vec()) {
         let kw = word.to_ascii_uppercase();
-        let values = match kw.as_slice() {
+        match kw.as_slice() {
             b"POINT_DATA" | b"CELL_DATA" | b"POINTS" | b"CELLS" | b"CELL_TYPES" => {
                 w.unread();
                 return Ok(());
             }
             b"SCALARS" => {
-                w.expect("the scalars' name")?;
-                w.expect("the scalars' type")?;
+                let name = w.expect("the scalars' name")?.to_vec();
+                let ty = w.expect("the scalars' type")?.to_vec();
                 // an optional component count, then LOOKUP_TABLE name (required)
                 let mut comps = 1;
                 match w.next_word()?.map(|t| t.to_vec()) {
@@ -362,9 +502,9 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
                         w.expect("the lookup table name")?;
                     }
                     Some(t) => {
-                        comps = super::text::parse_u64(&t).ok_or_else(|| {
+                        comps = super::text::parse_u64(&t).filter(|&c| (1..=64).contains(&c)).ok_or_else(|| {
                             w.err(format!(
-                                "expected the number of components or LOOKUP_TABLE, found '{}'",
+                                "expected the number of components (1 to 64) or LOOKUP_TABLE, found '{}'",
                                 lossy(&t)
                             ))
                         })?;
@@ -373,46 +513,64 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
                     }
                     None => return Err(w.err("unexpected end of file: expected LOOKUP_TABLE")),
                 }
-                n.saturating_mul(comps)
+                let v = read_values(w, n.saturating_mul(comps), &ty, binary, "a scalar value")?;
+                add(cols, name, comps, v);
             }
-            b"VECTORS" | b"NORMALS" => {
-                w.expect("the array name")?;
-                w.expect("the array type")?;
-                n3
-            }
-            b"TENSORS" | b"TENSORS9" => {
-                w.expect("the array name")?;
-                w.expect("the array type")?;
-                n.saturating_mul(9)
-            }
-            b"TENSORS6" => {
-                w.expect("the array name")?;
-                w.expect("the array type")?;
-                n.saturating_mul(6)
+            b"VECTORS" | b"NORMALS" | b"TENSORS" | b"TENSORS9" | b"TENSORS6" | b"GLOBAL_IDS"
+            | b"PEDIGREE_IDS" => {
+                let comps: u64 = match kw.as_slice() {
+                    b"VECTORS" | b"NORMALS" => 3,
+                    b"TENSORS" | b"TENSORS9" => 9,
+                    b"TENSORS6" => 6,
+                    _ => 1,
+                };
+                let name = w.expect("the array name")?.to_vec();
+                let ty = w.expect("the array type")?.to_vec();
+                let v = read_values(w, n.saturating_mul(comps), &ty, binary, "a data value")?;
+                add(cols, name, comps, v);
             }
             b"TEXTURE_COORDINATES" => {
-                w.expect("the array name")?;
+                let name = w.expect("the array name")?.to_vec();
                 let d = w.u64("the texture dimension")?;
-                w.expect("the array type")?;
-                n.saturating_mul(d)
+                if !(1..=3).contains(&d) {
+                    return Err(w.err(format!("texture dimension {d} is not 1, 2 or 3")));
+                }
+                let ty = w.expect("the array type")?.to_vec();
+                let v = read_values(w, n.saturating_mul(d), &ty, binary, "a texture coordinate")?;
+                add(cols, name, d, v);
             }
             b"COLOR_SCALARS" => {
-                w.expect("the array name")?;
+                let name = w.expect("the array name")?.to_vec();
                 let c = w.u64("the number of color values")?;
-                n.saturating_mul(c)
+                if binary {
+                    // unsigned chars
+                    w.rest_of_line()?;
+                    read_records(w, n.saturating_mul(c), 1, "the colour values", |_, _, _| {
+                        Ok(())
+                    })?;
+                } else {
+                    skip_values(w, n.saturating_mul(c), "a colour value")?;
+                }
+                skipped.push(format!("COLOR_SCALARS '{}'", lossy(&name)));
             }
             b"LOOKUP_TABLE" => {
                 w.expect("the lookup table name")?;
-                let s = w.u64("the lookup table size")?;
-                s.saturating_mul(4)
-            }
-            b"GLOBAL_IDS" | b"PEDIGREE_IDS" => {
-                w.expect("the array name")?;
-                w.expect("the array type")?;
-                n
+                let size = w.u64("the lookup table size")?;
+                if binary {
+                    w.rest_of_line()?;
+                    read_records(
+                        w,
+                        size.saturating_mul(4),
+                        1,
+                        "the lookup table",
+                        |_, _, _| Ok(()),
+                    )?;
+                } else {
+                    skip_values(w, size.saturating_mul(4), "a lookup table value")?;
+                }
             }
             b"FIELD" => {
-                skip_field(w)?;
+                read_field(w, Some(n), binary, cols, skipped)?;
                 continue;
             }
             b"METADATA" => {
@@ -427,7 +585,6 @@ fn skip_attributes(w: &mut Words<'_, impl BufRead>, n: u64) -> Result<(), IoErro
                 )))
             }
         };
-        skip_values(w, values, "a data value")?;
         skip_metadata(w)?;
     }
     Ok(())
@@ -500,6 +657,9 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut have_cells = false;
     let mut types: Option<Vec<u64>> = None;
     let mut notes = Vec::new();
+    let mut point_data: Vec<Attribute> = Vec::new();
+    let mut cell_data: Vec<Attribute> = Vec::new();
+    let mut skipped: Vec<String> = Vec::new();
     if binary {
         w.set_binary();
     }
@@ -566,12 +726,6 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                     kinds.push(kind);
                 }
                 types = Some(kinds);
-            }
-            b"POINT_DATA" | b"CELL_DATA" | b"FIELD" | b"METADATA" if binary => {
-                // attribute arrays are not read (starplex keeps no attributes yet); the mesh
-                // sections come before them
-                notes.push("binary attribute data (POINT_DATA/CELL_DATA/FIELD) was not read".into());
-                break;
             }
             b"POINTS" => {
                 if builder.is_some() {
@@ -642,9 +796,21 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             }
             b"POINT_DATA" | b"CELL_DATA" => {
                 let n = w.u64("the data count")?;
-                skip_attributes(&mut w, n)?;
+                let (cols, n_want) = if kw == b"POINT_DATA" {
+                    (&mut point_data, nv as u64)
+                } else {
+                    (&mut cell_data, ends.len() as u64)
+                };
+                if n != n_want {
+                    return Err(w.err(format!(
+                        "{} counts {n} items, the file has {n_want}",
+                        lossy(&word)
+                    )));
+                }
+                read_data_section(&mut w, n, binary, cols, &mut skipped)?;
             }
-            b"FIELD" => skip_field(&mut w)?,
+            // dataset-level field data (time values, ...): not per vertex or cell
+            b"FIELD" => read_field(&mut w, None, binary, &mut Vec::new(), &mut Vec::new())?,
             b"METADATA" => {
                 w.unread();
                 skip_metadata(&mut w)?;
@@ -676,19 +842,29 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         ));
     }
     let mut stats = CellStats::default();
+    let mut origin: Vec<u32> = Vec::new();
     if let Some(kinds) = types {
         let mut start = 0usize;
         for (i, (&ty, &end)) in kinds.iter().zip(ends.iter()).enumerate() {
             let end = end as usize;
             let verts = &conn[start..end];
             start = end;
+            let before = b.n_cells();
             push_cell(&mut b, &mut stats, ty, verts).map_err(|e| match e {
                 PushError::Complex(e) => IoError::new(path, e),
                 PushError::Cell(m) => IoError::parse(path, None, format!("cell {i}: {m}")),
             })?;
+            origin.extend((before..b.n_cells()).map(|_| i as u32));
         }
     }
     stats.notes(&mut notes);
+    if !skipped.is_empty() {
+        notes.push(format!("skipped the data arrays {}", skipped.join(", ")));
+    }
+    b.set_attributes(Attributes {
+        vertex: point_data,
+        cell: cell_data.iter().map(|a| a.gather(&origin)).collect(),
+    });
     let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
     push_build_notes(&mut notes, &report);
     Ok(ReadResult {
@@ -1120,5 +1296,46 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
             writeln!(w, "{t}")?;
         }
     }
+    let attrs = k.attributes();
+    for (sec, cols, n) in [
+        ("POINT_DATA", &attrs.vertex, k.n_vertices()),
+        ("CELL_DATA", &attrs.cell, k.n_cells()),
+    ] {
+        if cols.is_empty() {
+            continue;
+        }
+        writeln!(w, "{sec} {n}")?;
+        writeln!(w, "FIELD FieldData {}", cols.len())?;
+        for a in cols {
+            let ty = match a.values {
+                AttrValues::Int(_) => "long", // 64-bit: what meshio and VTK read in version 4.2 files
+                AttrValues::Float(_) => "double",
+            };
+            writeln!(w, "{} {} {n} {ty}", legacy_name(&a.name), a.components)?;
+            for item in 0..n {
+                for c in 0..a.components {
+                    if c > 0 {
+                        w.write_all(b" ")?;
+                    }
+                    let i = item * a.components + c;
+                    match &a.values {
+                        AttrValues::Int(v) => write!(w, "{}", v[i])?,
+                        AttrValues::Float(v) => write_f64(w, v[i])?,
+                    }
+                }
+                w.write_all(b"\n")?;
+            }
+        }
+    }
     Ok(())
+}
+
+/// An attribute name as one legacy VTK word (whitespace replaced by `_`, empty named `array`).
+fn legacy_name(name: &str) -> String {
+    if name.is_empty() {
+        return "array".into();
+    }
+    name.chars()
+        .map(|c| if c.is_whitespace() { '_' } else { c })
+        .collect()
 }

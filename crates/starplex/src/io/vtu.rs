@@ -8,7 +8,8 @@
 //!   quads like OFF faces, pixels and voxels quads and hexahedra in starplex's corner order);
 //! - poly data: `Verts` (dropped as above), `Lines`, `Strips` and `Polys`.
 //!
-//! Point and cell data arrays are not read yet (they are listed in [`ReadResult::notes`]).
+//! Point and cell data arrays become vertex and cell [attributes](crate::attr) (integers stay
+//! integers; the cells a file cell was split into share its values).
 //! Whatever changed is said in the notes. The parser is `quick-xml` on the XML part of the file;
 //! raw appended data (not XML) is addressed by its offsets.
 //!
@@ -49,6 +50,7 @@ use quick_xml::events::{BytesStart, Event};
 use super::medit::push_build_notes;
 use super::vtk::{push_cell, vtk_type, CellStats};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::attr::{AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
 use crate::complex::{ComplexBuilder, IndexedComplex};
 
@@ -284,8 +286,12 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
     }
     let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
     let mut stats = CellStats::default();
-    let mut skipped_data: Vec<String> = Vec::new();
-    for piece in &pieces {
+    // attributes: the file cell of every cell pushed, the columns as read (file cells)
+    let mut origin: Vec<u32> = Vec::new();
+    let mut n_file_cells: u64 = 0;
+    let mut point_data = DataColumns::default();
+    let mut cell_data = DataColumns::default();
+    for (pi, piece) in pieces.iter().enumerate() {
         let base = b.n_vertices() as u64;
         let find = |section: &str, name: Option<&str>| {
             piece
@@ -392,26 +398,30 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
                     (None, "Strips") => 6,
                     _ => 7,
                 };
+                let before = b.n_cells();
                 push_cell(&mut b, &mut stats, ty, &verts)
                     .map_err(|e| perr(path, conn.pos, format!("<{sec}> cell {i}: {e}")))?;
+                let file_cell = u32::try_from(n_file_cells)
+                    .map_err(|_| perr(path, conn.pos, "more than 2^32 cells in one file"))?;
+                origin.extend((before..b.n_cells()).map(|_| file_cell));
+                n_file_cells += 1;
             }
         }
         for a in &piece.arrays {
-            if a.section == "PointData" || a.section == "CellData" {
-                let label = format!("{} '{}'", a.section, a.name);
-                if !skipped_data.contains(&label) {
-                    skipped_data.push(label);
-                }
-            }
+            let cols = match a.section.as_str() {
+                "PointData" => &mut point_data,
+                "CellData" => &mut cell_data,
+                _ => continue,
+            };
+            let values = decode_attr(a, &header, appended.as_ref(), path)?;
+            cols.push(pi, a, values);
         }
     }
     stats.notes(&mut notes);
-    if !skipped_data.is_empty() {
-        notes.push(format!(
-            "ignored the data arrays {} (attributes are not read yet)",
-            skipped_data.join(", ")
-        ));
-    }
+    let vertex = point_data.finish("PointData", pieces.len(), b.n_vertices(), &mut notes);
+    let file_cells = cell_data.finish("CellData", pieces.len(), n_file_cells as usize, &mut notes);
+    let cell = file_cells.iter().map(|a| a.gather(&origin)).collect();
+    b.set_attributes(Attributes { vertex, cell });
     let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
     push_build_notes(&mut notes, &report);
     Ok(ReadResult {
@@ -423,6 +433,111 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
         },
         notes,
     })
+}
+
+/// The point or cell data arrays of every piece, concatenated by name.
+#[derive(Default)]
+struct DataColumns {
+    /// Name, components, values, pieces seen, byte position of the first.
+    cols: Vec<(String, usize, AttrValues, usize, usize)>,
+    /// Arrays not kept, with the reason.
+    dropped: Vec<String>,
+}
+
+impl DataColumns {
+    /// Adds piece `pi`'s array `a`.
+    fn push(&mut self, pi: usize, a: &ArraySpec<'_>, values: AttrValues) {
+        let name = if a.name.is_empty() {
+            format!("array{}", self.cols.len())
+        } else {
+            a.name.clone()
+        };
+        match self.cols.iter_mut().find(|c| c.0 == name) {
+            None if pi == 0 => self.cols.push((name, a.n_comp, values, 1, a.pos)),
+            None => self.dropped.push(format!("'{name}' (not in every piece)")),
+            Some(c) if c.3 != pi || c.1 != a.n_comp => {
+                self.dropped.push(format!("'{name}' (pieces disagree)"));
+                c.3 = usize::MAX;
+            }
+            Some(c) => {
+                c.3 += 1;
+                match (&mut c.2, values) {
+                    (AttrValues::Int(x), AttrValues::Int(y)) => x.extend(y),
+                    (AttrValues::Float(x), AttrValues::Float(y)) => x.extend(y),
+                    (AttrValues::Float(x), AttrValues::Int(y)) => {
+                        x.extend(y.into_iter().map(|v| v as f64))
+                    }
+                    (x @ AttrValues::Int(_), AttrValues::Float(y)) => {
+                        let AttrValues::Int(xi) = x else {
+                            unreachable!()
+                        };
+                        let mut f: Vec<f64> = xi.iter().map(|&v| v as f64).collect();
+                        f.extend(y);
+                        *x = AttrValues::Float(f);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The columns with one item per each of `n` points or cells; the others are noted.
+    fn finish(
+        self,
+        section: &str,
+        n_pieces: usize,
+        n: usize,
+        notes: &mut Vec<String>,
+    ) -> Vec<Attribute> {
+        let mut dropped = self.dropped;
+        let mut out = Vec::new();
+        for (name, comps, values, seen, _) in self.cols {
+            if seen != n_pieces {
+                if seen != usize::MAX {
+                    dropped.push(format!("'{name}' (not in every piece)"));
+                }
+                continue;
+            }
+            if comps == 0 || values.len() != n.saturating_mul(comps) {
+                dropped.push(format!(
+                    "'{name}' ({} values for {n} items of {comps} components)",
+                    values.len()
+                ));
+                continue;
+            }
+            out.push(Attribute {
+                name,
+                components: comps,
+                values,
+            });
+        }
+        if !dropped.is_empty() {
+            dropped.dedup();
+            notes.push(format!(
+                "ignored the {section} arrays {}",
+                dropped.join(", ")
+            ));
+        }
+        out
+    }
+}
+
+/// Decodes a point or cell data array: integers as integers, floats as floats.
+fn decode_attr(
+    a: &ArraySpec<'_>,
+    h: &Header,
+    app: Option<&Appended<'_>>,
+    path: &Path,
+) -> Result<AttrValues, IoError> {
+    if type_info(&a.ty).is_some_and(|(_, k)| k == Kind::Float) {
+        return decode_f64(a, h, app, path).map(AttrValues::Float);
+    }
+    decode(a, h, app, path, |i, v| match v {
+        Val::I(x) => Ok(x),
+        Val::U(u) => i64::try_from(u)
+            .map_err(|_| format!("value {i} ({u}) does not fit a 64-bit signed integer")),
+        Val::F(x) => Ok(x as i64),
+    })
+    .map(AttrValues::Int)
 }
 
 /// The value of attribute `key` of element `e`.
@@ -1012,7 +1127,9 @@ pub fn write_vtu(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKin
     check(k, false)?;
     let n_cells = k.n_cells() as u64;
     let conn_bytes = 8 * k.n_refs() as u64;
-    let sizes = [24 * k.n_vertices() as u64, conn_bytes, 8 * n_cells, n_cells];
+    let mut sizes = vec![24 * k.n_vertices() as u64, conn_bytes, 8 * n_cells, n_cells];
+    let attrs = k.attributes();
+    sizes.extend(attrs.vertex.iter().chain(&attrs.cell).map(attr_bytes));
     let offsets = appended_offsets(&sizes);
     writeln!(w, "<?xml version=\"1.0\"?>")?;
     writeln!(
@@ -1041,6 +1158,7 @@ pub fn write_vtu(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKin
         offsets[3]
     )?;
     writeln!(w, "      </Cells>")?;
+    data_headers(w, k, &offsets[4..])?;
     writeln!(w, "    </Piece>")?;
     writeln!(w, "  </UnstructuredGrid>")?;
     writeln!(w, "  <AppendedData encoding=\"raw\">")?;
@@ -1056,6 +1174,7 @@ pub fn write_vtu(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKin
         buf.resize(b.len(), t);
         w.write_all(&buf)?;
     }
+    write_data(w, k, None)?;
     finish_appended(w)
 }
 
@@ -1099,6 +1218,8 @@ pub fn write_vtp(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKin
         sizes.push(8 * r);
         sizes.push(8 * c);
     }
+    let attrs = k.attributes();
+    sizes.extend(attrs.vertex.iter().chain(&attrs.cell).map(attr_bytes));
     let offsets = appended_offsets(&sizes);
     writeln!(w, "<?xml version=\"1.0\"?>")?;
     writeln!(
@@ -1123,6 +1244,7 @@ pub fn write_vtp(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKin
         writeln!(w, "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>", offsets[2 + 2 * i])?;
         writeln!(w, "      </{sec}>")?;
     }
+    data_headers(w, k, &offsets[7..])?;
     writeln!(w, "    </Piece>")?;
     writeln!(w, "  </PolyData>")?;
     writeln!(w, "  <AppendedData encoding=\"raw\">")?;
@@ -1131,6 +1253,17 @@ pub fn write_vtp(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKin
     for (g, &(c, r)) in groups.iter().zip(&stats) {
         write_cells(w, k, |kind| g.contains(&kind), 8 * r, c)?;
     }
+    // poly data cells come section by section: their data in that order
+    let order: Vec<u32> = groups
+        .iter()
+        .flat_map(|g| {
+            k.blocks()
+                .iter()
+                .filter(|b| g.contains(&b.kind))
+                .flat_map(|b| b.first..b.first + b.len() as u32)
+        })
+        .collect();
+    write_data(w, k, Some(&order))?;
     finish_appended(w)
 }
 
@@ -1164,6 +1297,77 @@ fn write_cells(
         }
     }
     w.write_all(&buf)?;
+    Ok(())
+}
+
+/// Bytes of an attribute's values in the appended data (8 per value).
+fn attr_bytes(a: &Attribute) -> u64 {
+    8 * a.values.len() as u64
+}
+
+/// The `<PointData>` and `<CellData>` elements of `k`'s attributes, at appended `offsets`.
+fn data_headers(w: &mut dyn Write, k: &IndexedComplex, offsets: &[u64]) -> Result<(), IoErrorKind> {
+    let attrs = k.attributes();
+    let mut at = offsets.iter();
+    for (sec, cols) in [("PointData", &attrs.vertex), ("CellData", &attrs.cell)] {
+        if cols.is_empty() {
+            continue;
+        }
+        writeln!(w, "      <{sec}>")?;
+        for a in cols {
+            let ty = match a.values {
+                AttrValues::Int(_) => "Int64",
+                AttrValues::Float(_) => "Float64",
+            };
+            writeln!(
+                w,
+                "        <DataArray type=\"{ty}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>",
+                quick_xml::escape::escape(a.name.as_str()),
+                a.components,
+                at.next().copied().unwrap_or(0)
+            )?;
+        }
+        writeln!(w, "      </{sec}>")?;
+    }
+    Ok(())
+}
+
+/// Writes the attribute arrays (vertex ones, then cell ones in `cell_order` when given), each
+/// after its header, little-endian.
+fn write_data(
+    w: &mut dyn Write,
+    k: &IndexedComplex,
+    cell_order: Option<&[u32]>,
+) -> Result<(), IoErrorKind> {
+    let attrs = k.attributes();
+    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+    let cells: Vec<Attribute>;
+    let cell_cols: &[Attribute] = match cell_order {
+        Some(o) => {
+            cells = attrs.cell.iter().map(|a| a.gather(o)).collect();
+            &cells
+        }
+        None => &attrs.cell,
+    };
+    for a in attrs.vertex.iter().chain(cell_cols) {
+        w.write_all(&attr_bytes(a).to_le_bytes())?;
+        match &a.values {
+            AttrValues::Int(v) => {
+                for x in v {
+                    buf.extend_from_slice(&x.to_le_bytes());
+                    flush_if_full(w, &mut buf)?;
+                }
+            }
+            AttrValues::Float(v) => {
+                for x in v {
+                    buf.extend_from_slice(&x.to_le_bytes());
+                    flush_if_full(w, &mut buf)?;
+                }
+            }
+        }
+        w.write_all(&buf)?;
+        buf.clear();
+    }
     Ok(())
 }
 
