@@ -183,3 +183,29 @@ fn bad_attribute_sections_are_errors_with_lines() {
         assert!(e.contains(want), "{tail:?}: {e}");
     }
 }
+
+#[test]
+fn gmsh_physical_and_elementary_tags_are_cell_attributes() {
+    // meshio wrote physical 1 everywhere and elementary tag = block number (1..=7, the two
+    // tetrahedra share block 1)
+    let geometrical = AttrValues::Int(vec![1, 1, 2, 3, 4, 5, 6, 7]);
+    for f in [
+        "mixed_22_ascii.msh",
+        "mixed_22_bin.msh",
+        "mixed_41_ascii.msh",
+        "mixed_41_bin.msh",
+    ] {
+        let r = io::read(&data(f), &ReadOptions::default()).unwrap();
+        let a = r.complex.attributes();
+        let g = a.get(AttrTarget::Cell, "gmsh:geometrical").unwrap();
+        assert_eq!(g.values, geometrical, "{f}");
+        match a.get(AttrTarget::Cell, "gmsh:physical") {
+            Some(p) => assert_eq!(p.values, AttrValues::Int(vec![1; 8]), "{f}"),
+            // not read from binary 4.1 $Entities yet, and said so
+            None => assert!(
+                f == "mixed_41_bin.msh" && r.notes.iter().any(|n| n.contains("physical")),
+                "{f}"
+            ),
+        }
+    }
+}

@@ -182,12 +182,23 @@ fn read_bytes(f: Format, data: &[u8]) -> Result<ReadResult, io::IoError> {
 
 fn round_trip(f: Format, k: &IndexedComplex) -> ReadResult {
     let data = write_to_vec(f, k).unwrap_or_else(|e| panic!("{f}: write failed: {e}"));
-    read_bytes(f, &data).unwrap_or_else(|e| {
+    let mut r = read_bytes(f, &data).unwrap_or_else(|e| {
         panic!(
             "{f}: reading back failed: {e}\n{}",
             String::from_utf8_lossy(&data)
         )
-    })
+    });
+    if matches!(f, Format::Gmsh | Format::Gmsh22) && k.attributes().is_empty() {
+        // every gmsh element belongs to a geometric entity: the reader gives its tag
+        // (when it is not 0)
+        let a = r.complex.take_attributes();
+        assert!(a.vertex.is_empty() && a.cell.len() <= 1, "{f}: {a:?}");
+        assert!(
+            a.cell.iter().all(|c| c.name == "gmsh:geometrical"),
+            "{f}: {a:?}"
+        );
+    }
+    r
 }
 
 #[test]
@@ -313,7 +324,10 @@ fn msh22_through_the_dispatcher_writes_version_2_2_and_reads_back() {
     io::write(&target, &k, Format::from_name("msh22")).unwrap();
     let text = std::fs::read_to_string(&target).unwrap();
     assert!(text.starts_with("$MeshFormat\n2.2 0 8\n"), "{text}");
-    let back = io::read(&target, &ReadOptions::default()).unwrap();
+    let mut back = io::read(&target, &ReadOptions::default()).unwrap();
+    // the hexahedron's elementary tag (its entity, of dimension 3 in gmsh 2.2 as starplex writes it)
+    let tags = back.complex.take_attributes();
+    assert_eq!(tags.cell[0].name, "gmsh:geometrical");
     assert_eq!(back.complex, k);
     assert_eq!(back.format, Format::Gmsh);
     io::write(&target, &k, None).unwrap();
@@ -475,8 +489,20 @@ fn gmsh_22_and_41_with_sparse_tags_read_alike() {
                $Elements\n3 4 1 4\n0 1 15 1\n1 100\n2 1 2 1\n2 100 7 55\n3 1 4 2\n3 100 7 55 3000000000\n4 7 100 55 3000000000\n$EndElements\n";
     let v22 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n100 0 0 0\n7 1 0 0\n55 0 1 0\n3000000000 0 0 1\n8 9 9 9\n$EndNodes\n\
                $Elements\n5\n1 15 2 0 1 100\n2 2 2 0 1 100 7 55\n3 4 2 1 1 100 7 55 3000000000\n4 4 3 1 1 0 7 100 55 3000000000\n9 2 0 7 55 3000000000\n$EndElements\n";
-    let a = read_bytes(Format::Gmsh, v41.as_bytes()).unwrap();
-    let b = read_bytes(Format::Gmsh, v22.as_bytes()).unwrap();
+    let mut a = read_bytes(Format::Gmsh, v41.as_bytes()).unwrap();
+    let mut b = read_bytes(Format::Gmsh, v22.as_bytes()).unwrap();
+    // the 2.2 file gives physical tag 1 to the tetrahedron, the 4.1 file's volume has none
+    let (ta, tb) = (a.complex.take_attributes(), b.complex.take_attributes());
+    assert_eq!(ta.cell.len(), 1);
+    assert_eq!(
+        ta.cell[0],
+        starplex::attr::Attribute::int("gmsh:geometrical", 1, vec![1])
+    );
+    assert_eq!(
+        tb.cell[0],
+        starplex::attr::Attribute::int("gmsh:physical", 1, vec![1])
+    );
+    assert_eq!(tb.cell[1], ta.cell[0]);
     assert_eq!(a.complex, b.complex);
     assert_eq!(a.complex.n_cells(), 1);
     assert_eq!(a.complex.n_vertices(), 4);

@@ -54,6 +54,7 @@ use super::raw::{get_i32, get_uint, push_f64s, read_records, Endian};
 use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::attr::{Attribute, Attributes};
 use crate::cell::CellKind;
 use crate::complex::{check_cell, BuildOptions, ComplexBuilder, IndexedComplex};
 
@@ -182,19 +183,71 @@ impl TagMap {
 }
 
 /// What the element pass collects.
+#[derive(Default)]
 struct Elements {
     /// `(kind, flat vertex ids)` runs in file order.
     blocks: Vec<(CellKind, Vec<u32>)>,
     points: usize,
+    /// Physical and elementary (geometrical) tag of every element kept, in file order.
+    physical: Vec<i64>,
+    geometrical: Vec<i64>,
+    /// Whether the file gave physical tags (2.2 tags, 4.1 ascii `$Entities`).
+    has_physical: bool,
 }
 
 impl Elements {
-    fn push(&mut self, kind: CellKind, verts: &[u32]) {
+    /// Adds an element with its physical and elementary tags.
+    fn push(&mut self, kind: CellKind, verts: &[u32], physical: i64, geometrical: i64) {
         match self.blocks.last_mut() {
             Some((k, v)) if *k == kind => v.extend_from_slice(verts),
             _ => self.blocks.push((kind, verts.to_vec())),
         }
+        self.physical.push(physical);
+        self.geometrical.push(geometrical);
     }
+}
+
+/// Physical tag of each geometric entity `(dimension, tag)` (the first one listed), from an
+/// ascii `$Entities` section (the `$Entities` word already read, up to `$EndEntities`).
+fn read_entities(
+    w: &mut Words<'_, impl BufRead>,
+) -> Result<std::collections::HashMap<(u64, i64), i64>, IoError> {
+    let mut map = std::collections::HashMap::new();
+    let mut counts = [0u64; 4];
+    for (d, c) in counts.iter_mut().enumerate() {
+        *c = w.u64(
+            [
+                "the number of points",
+                "the number of curves",
+                "the number of surfaces",
+                "the number of volumes",
+            ][d],
+        )?;
+    }
+    for (dim, &n) in counts.iter().enumerate() {
+        for _ in 0..n {
+            let tag = w.i64("an entity tag")?;
+            // a point has its coordinates, the others a bounding box
+            for _ in 0..if dim == 0 { 3 } else { 6 } {
+                w.f64("an entity coordinate")?;
+            }
+            let n_phys = w.u64("the number of physical tags")?;
+            for i in 0..n_phys {
+                let p = w.i64("a physical tag")?;
+                if i == 0 {
+                    map.insert((dim as u64, tag), p);
+                }
+            }
+            if dim > 0 {
+                let n_bound = w.u64("the number of bounding entities")?;
+                for _ in 0..n_bound {
+                    w.i64("a bounding entity tag")?;
+                }
+            }
+        }
+    }
+    w.keyword("$EndEntities")?;
+    Ok(map)
 }
 
 /// Reads an element's node tags into `verts` (VTK order), checking them.
@@ -307,10 +360,8 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
     let mut tags = TagMap::default();
     let mut coords: Vec<f64> = Vec::new();
     let mut have_nodes = false;
-    let mut elems = Elements {
-        blocks: Vec::new(),
-        points: 0,
-    };
+    let mut elems = Elements::default();
+    let mut entities: Option<std::collections::HashMap<(u64, i64), i64>> = None;
     let mut have_elements = false;
     let mut verts: Vec<u32> = Vec::with_capacity(8);
     while let Some(sec) = w.next_word()?.map(|s| s.to_vec()) {
@@ -340,11 +391,16 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
                 match (bin, v4) {
                     (Some(b), true) => read_elements_41_bin(&mut w, b, &tags, &mut elems)?,
                     (Some(b), false) => read_elements_22_bin(&mut w, b, &tags, &mut elems)?,
-                    (None, true) => read_elements_41(&mut w, &tags, &mut elems, &mut verts)?,
+                    (None, true) => {
+                        elems.has_physical = entities.is_some();
+                        let ent = entities.take().unwrap_or_default();
+                        read_elements_41(&mut w, &tags, &mut elems, &mut verts, &ent)?
+                    }
                     (None, false) => read_elements_22(&mut w, &tags, &mut elems, &mut verts)?,
                 }
                 w.keyword("$EndElements")?;
             }
+            "$Entities" if bin.is_none() && v4 => entities = Some(read_entities(&mut w)?),
             s if s.starts_with('$') && !s.starts_with("$End") && bin.is_some() => {
                 // binary sections ($Entities, $PartitionedEntities, $NodeData, ...) may hold
                 // any byte: skip to the end marker
@@ -403,6 +459,23 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
                 .map_err(|e| IoError::new(path, e))?;
         }
     }
+    let mut attrs = Attributes::default();
+    // (gmsh's entity tags start at 1: all zeros means the file gave none)
+    if elems.has_physical && elems.physical.iter().any(|&t| t != 0) {
+        attrs.cell.push(Attribute::int(
+            "gmsh:physical",
+            1,
+            std::mem::take(&mut elems.physical),
+        ));
+    }
+    if elems.geometrical.iter().any(|&t| t != 0) {
+        attrs.cell.push(Attribute::int(
+            "gmsh:geometrical",
+            1,
+            std::mem::take(&mut elems.geometrical),
+        ));
+    }
+    b.set_attributes(attrs);
     let (complex, report) = b
         .build(&BuildOptions {
             drop_face_cells: true,
@@ -425,6 +498,9 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
     }
     if elems.points > 0 {
         notes.push(format!("dropped {} point elements (type 15)", elems.points));
+    }
+    if v4 && bin.is_some() {
+        notes.push("the physical tags of a binary gmsh 4.1 file are not read yet (its elementary tags are, as gmsh:geometrical)".into());
     }
     if dropped_nodes > 0 {
         notes.push(format!(
@@ -531,6 +607,7 @@ fn read_elements_41(
     tags: &TagMap,
     elems: &mut Elements,
     verts: &mut Vec<u32>,
+    entities: &std::collections::HashMap<(u64, i64), i64>,
 ) -> Result<(), IoError> {
     let n_blocks = w.u64("the number of element blocks")?;
     let n_elems = w.u64("the number of elements")?;
@@ -539,8 +616,9 @@ fn read_elements_41(
     w.u64("the largest element tag")?;
     let mut seen: u64 = 0;
     for _ in 0..n_blocks {
-        w.u64("the entity dimension")?;
-        w.u64("the entity tag")?;
+        let dim = w.u64("the entity dimension")?;
+        let entity = w.i64("the entity tag")?;
+        let physical = entities.get(&(dim, entity)).copied().unwrap_or(0);
         let ty = w.u64("the element type")?;
         let kind = kind_of_gmsh_type(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
         let n = w.u64("the number of elements in the block")?;
@@ -551,7 +629,7 @@ fn read_elements_41(
             if kind == CellKind::Simplex(0) {
                 elems.points += 1;
             } else {
-                elems.push(kind, verts);
+                elems.push(kind, verts, physical, entity);
             }
         }
     }
@@ -576,14 +654,19 @@ fn read_elements_22(
         let ty = w.u64("the element type")?;
         let kind = kind_of_gmsh_type(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
         let n_tags = w.u64("the number of element tags")?;
-        for _ in 0..n_tags {
-            w.i64("an element tag value")?;
+        let mut t = [0i64; 2];
+        for j in 0..n_tags {
+            let x = w.i64("an element tag value")?;
+            if let Some(slot) = t.get_mut(j as usize) {
+                *slot = x;
+            }
         }
         read_element_nodes(w, kind, tags, i, verts)?;
         if kind == CellKind::Simplex(0) {
             elems.points += 1;
         } else {
-            elems.push(kind, verts);
+            elems.has_physical |= n_tags > 0;
+            elems.push(kind, verts, t[0], t[1]);
         }
     }
     Ok(())
@@ -778,6 +861,7 @@ fn read_elements_41_bin(
         let at = w.offset();
         let mut bh = [0u8; 20];
         w.read_raw(&mut bh[..12 + sz], "an element block header")?;
+        let entity = get_i32(&bh[4..], e) as i64;
         let ty = get_i32(&bh[8..], e);
         let n = get_uint(&bh[12..], sz, e);
         let kind = kind_of_gmsh_type(ty as u32 as u64)
@@ -793,7 +877,7 @@ fn read_elements_41_bin(
                 if kind == CellKind::Simplex(0) {
                     elems.points += 1;
                 } else {
-                    elems.push(kind, &verts);
+                    elems.push(kind, &verts, 0, entity);
                 }
             }
             Ok(())
@@ -840,6 +924,7 @@ fn read_elements_22_bin(
                 ),
             ));
         }
+        elems.has_physical |= n_tags > 0;
         let k = kind.n_vertices();
         let rec = (1 + n_tags as usize + k) * 4;
         let skip = (1 + n_tags as usize) * 4;
@@ -852,7 +937,10 @@ fn read_elements_22_bin(
                 if kind == CellKind::Simplex(0) {
                     elems.points += 1;
                 } else {
-                    elems.push(kind, &verts);
+                    let tag = |j: usize| get_i32(&r[4 * (1 + j)..], e) as i64;
+                    let physical = if n_tags > 0 { tag(0) } else { 0 };
+                    let geometrical = if n_tags > 1 { tag(1) } else { 0 };
+                    elems.push(kind, &verts, physical, geometrical);
                 }
             }
             Ok(())
