@@ -35,6 +35,7 @@ pub mod gen;
 pub mod hasse;
 pub mod ids;
 pub mod io;
+pub mod render;
 pub mod stellar;
 pub mod tds;
 pub mod topo;
