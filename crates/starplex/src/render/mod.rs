@@ -952,7 +952,7 @@ fn draw(p: &Prepared, o: &RenderOptions, order: Option<&[u32]>) -> Canvas {
         }
     }
     // markers on top: edges first, then dots
-    let r = (w.min(h) as f32 / 150.0).max(4.0);
+    let r = (w.min(h) as f32 / 120.0).max(5.0);
     for m in &p.markers {
         if let Marker::Edge(e, c, t) = m {
             let t = (*t as f32 * unit * 0.75).round().max(*t as f32) as usize;

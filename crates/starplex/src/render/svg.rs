@@ -89,7 +89,7 @@ pub(crate) fn document(p: &Prepared, o: &RenderOptions, visible: &[u32], cols: &
         );
     }
     let _ = writeln!(s, "</g>");
-    let r = (f64::from(w.min(h)) / 150.0).max(4.0);
+    let r = (f64::from(w.min(h)) / 120.0).max(5.0);
     let _ = writeln!(s, r#"<g id="defects">"#);
     for m in &p.markers {
         if let Marker::Edge(e, c, t) = m {
