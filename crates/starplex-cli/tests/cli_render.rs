@@ -34,23 +34,62 @@ fn s(p: &Path) -> &str {
 fn png_and_svg_are_written() {
     let input = tet_pair();
     let png = dir().join("pair.png");
-    let out = run(&["render", "--quiet", s(&input), "-o", s(&png), "--size", "320x240", "--color", "blocks", "--kv", "2"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = run(&[
+        "render",
+        "--quiet",
+        s(&input),
+        "-o",
+        s(&png),
+        "--size",
+        "320x240",
+        "--color",
+        "blocks",
+        "--kv",
+        "2",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let bytes = std::fs::read(&png).unwrap();
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
     let svg = dir().join("pair.svg");
-    let out = run(&["render", "--quiet", s(&input), "-o", s(&svg), "--clip", "x=0.6", "--edges", "--view", "front"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = run(&[
+        "render",
+        "--quiet",
+        s(&input),
+        "-o",
+        s(&svg),
+        "--clip",
+        "x=0.6",
+        "--edges",
+        "--view",
+        "front",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let doc = std::fs::read_to_string(&svg).unwrap();
     assert!(doc.starts_with("<?xml") && doc.contains(r#"<g id="faces""#));
     // the shortcuts
     let v = dir().join("validate.png");
     let out = run(&["validate", "--quiet", s(&input), "--render", s(&v)]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(std::fs::read(&v).unwrap().starts_with(b"\x89PNG"));
     let t = dir().join("stellar.png");
     let out = run(&["stellar", "--quiet", s(&input), "--render", s(&t)]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(std::fs::read(&t).unwrap().starts_with(b"\x89PNG"));
 }
 
@@ -59,7 +98,10 @@ fn refused(args: &[&str], out_file: &Path, says: &str) {
     let out = run(args);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-    assert!(err.contains(says), "{args:?}: '{err}' does not say '{says}'");
+    assert!(
+        err.contains(says),
+        "{args:?}: '{err}' does not say '{says}'"
+    );
     assert!(!out_file.exists(), "{args:?} wrote {}", out_file.display());
 }
 
@@ -68,15 +110,47 @@ fn bad_input_is_refused() {
     let input = tet_pair();
     let o = dir().join("never.png");
     let (i, op) = (s(&input), s(&o));
-    refused(&["render", i, "-o", op, "--color", "rainbow"], &o, "unknown colour mode");
-    refused(&["render", i, "-o", op, "--color", "label", "region"], &o, "does not read attributes yet");
-    refused(&["render", i, "-o", op, "--color", "field", "temperature"], &o, "does not read attributes yet");
-    refused(&["render", i, "-o", op, "--size", "0x100"], &o, "at least one pixel");
-    refused(&["render", i, "-o", op, "--size", "100000x100000"], &o, "150.0 GB of memory");
-    refused(&["render", i, "-o", op, "--size", "big"], &o, "WIDTHxHEIGHT");
-    refused(&["render", i, "-o", op, "--view", "sideways"], &o, "unknown view");
+    refused(
+        &["render", i, "-o", op, "--color", "rainbow"],
+        &o,
+        "unknown colour mode",
+    );
+    refused(
+        &["render", i, "-o", op, "--color", "label", "region"],
+        &o,
+        "does not read attributes yet",
+    );
+    refused(
+        &["render", i, "-o", op, "--color", "field", "temperature"],
+        &o,
+        "does not read attributes yet",
+    );
+    refused(
+        &["render", i, "-o", op, "--size", "0x100"],
+        &o,
+        "at least one pixel",
+    );
+    refused(
+        &["render", i, "-o", op, "--size", "100000x100000"],
+        &o,
+        "150.0 GB of memory",
+    );
+    refused(
+        &["render", i, "-o", op, "--size", "big"],
+        &o,
+        "WIDTHxHEIGHT",
+    );
+    refused(
+        &["render", i, "-o", op, "--view", "sideways"],
+        &o,
+        "unknown view",
+    );
     refused(&["render", i, "-o", op, "--clip", "w=1"], &o, "AXIS=VALUE");
-    refused(&["render", i, "-o", op, "--clip", "x=-5"], &o, "removed all 2 top cells");
+    refused(
+        &["render", i, "-o", op, "--clip", "x=-5"],
+        &o,
+        "removed all 2 top cells",
+    );
     let jpg = dir().join("never.jpg");
     refused(&["render", i, "-o", s(&jpg)], &jpg, ".png or a .svg");
     let empty = dir().join("empty.off");

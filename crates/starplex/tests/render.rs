@@ -71,7 +71,13 @@ fn the_near_triangle_hides_the_far_one() {
                 (CellKind::Simplex(2), &[3, 4, 5]),
             ],
         );
-        for view in [View::Top, View::Angles { azimuth: 0.0, elevation: 89.0 }] {
+        for view in [
+            View::Top,
+            View::Angles {
+                azimuth: 0.0,
+                elevation: 89.0,
+            },
+        ] {
             let mut o = bare(300, 300, view);
             o.colour = ColorMode::Components;
             let pic = render(&k, &o).unwrap();
@@ -133,17 +139,29 @@ fn defects_are_drawn_where_they_project() {
     let (x, y) = pic.project(&[0.0, 0.0, 0.0]);
     assert_eq!(pic.pixel(x as usize, y as usize), nm_vertex);
     // the marker is big enough to see (more than 50 pixels)
-    assert!(pixels_near(&pic, x, y, 10).iter().filter(|&&p| p == nm_vertex).count() > 50);
+    assert!(
+        pixels_near(&pic, x, y, 10)
+            .iter()
+            .filter(|&&p| p == nm_vertex)
+            .count()
+            > 50
+    );
     // the non-manifold edge: its midpoint is red (non-manifold edge) or violet (in 3 faces)
     let (x, y) = pic.project(&[3.0, 0.5, 0.0]);
     let near = pixels_near(&pic, x, y, 1);
     assert!(
-        near.iter().filter(|&&p| p == 0xE0_00_00 || p == 0xC0_00_FF).count() >= 7,
+        near.iter()
+            .filter(|&&p| p == 0xE0_00_00 || p == 0xC0_00_FF)
+            .count()
+            >= 7,
         "{near:x?}"
     );
     let names: Vec<&str> = pic.summary.defects.iter().map(|d| d.0.as_str()).collect();
     assert!(names.contains(&"non-manifold vertices"));
-    assert!(pic.summary.defects.contains(&("non-manifold edges".into(), 1)));
+    assert!(pic
+        .summary
+        .defects
+        .contains(&("non-manifold edges".into(), 1)));
     // nowhere else: the far corner is background
     assert_eq!(pic.pixel(0, 0), WHITE);
 }
@@ -159,10 +177,16 @@ fn grid(n: u32) -> IndexedComplex {
     let id = |i: u32, j: u32| j * (n + 1) + i;
     for j in 0..n {
         for i in 0..n {
-            b.push_cell(CellKind::Simplex(2), &[id(i, j), id(i + 1, j), id(i + 1, j + 1)])
-                .unwrap();
-            b.push_cell(CellKind::Simplex(2), &[id(i, j), id(i + 1, j + 1), id(i, j + 1)])
-                .unwrap();
+            b.push_cell(
+                CellKind::Simplex(2),
+                &[id(i, j), id(i + 1, j), id(i + 1, j + 1)],
+            )
+            .unwrap();
+            b.push_cell(
+                CellKind::Simplex(2),
+                &[id(i, j), id(i + 1, j + 1), id(i, j + 1)],
+            )
+            .unwrap();
         }
     }
     b.build(&BuildOptions::default()).unwrap().0
@@ -216,15 +240,17 @@ fn svg_face_paths(doc: &str) -> usize {
     loop {
         match r.read_event().expect("the SVG parses as XML") {
             Event::Start(e) => {
-                let is_faces = e.name().as_ref() == b"g"
-                    && e.attributes().flatten().any(|a| a.key.as_ref() == b"id" && &*a.value == b"faces");
+                let is_faces = e.name().as_ref() == "g"
+                    && e.attributes()
+                        .flatten()
+                        .any(|a| a.key.as_ref() == "id" && a.value == "faces");
                 if depth_in_faces > 0 || is_faces {
                     depth_in_faces += 1;
                 }
             }
             Event::End(_) => depth_in_faces = depth_in_faces.saturating_sub(1),
             Event::Empty(e) => {
-                if depth_in_faces > 0 && e.name().as_ref() == b"path" {
+                if depth_in_faces > 0 && e.name().as_ref() == "path" {
                     n += 1;
                 }
             }
@@ -238,7 +264,18 @@ fn svg_face_paths(doc: &str) -> usize {
 #[test]
 fn svg_has_one_path_per_visible_face() {
     let k = cube_surface();
-    for (view, visible) in [(View::Iso, 3), (View::Top, 1), (View::Front, 1), (View::Angles { azimuth: 20.0, elevation: 0.0 }, 2)] {
+    for (view, visible) in [
+        (View::Iso, 3),
+        (View::Top, 1),
+        (View::Front, 1),
+        (
+            View::Angles {
+                azimuth: 20.0,
+                elevation: 0.0,
+            },
+            2,
+        ),
+    ] {
         let o = RenderOptions {
             width: 400,
             height: 300,
@@ -251,7 +288,15 @@ fn svg_has_one_path_per_visible_face() {
     }
     // a flat grid seen from above: every face
     let g = grid(6);
-    let (doc, s) = render_svg(&g, &RenderOptions { width: 500, height: 500, ..Default::default() }).unwrap();
+    let (doc, s) = render_svg(
+        &g,
+        &RenderOptions {
+            width: 500,
+            height: 500,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert_eq!(svg_face_paths(&doc), s.n_faces);
     assert_eq!(s.n_faces, 72);
 }
@@ -280,7 +325,11 @@ fn two_hexes() -> IndexedComplex {
         ]
     };
     let pts: Vec<&[f64]> = p.iter().map(|x| &x[..]).collect();
-    complex(3, &pts, &[(CellKind::Hex, &hex(0)), (CellKind::Hex, &hex(1))])
+    complex(
+        3,
+        &pts,
+        &[(CellKind::Hex, &hex(0)), (CellKind::Hex, &hex(1))],
+    )
 }
 
 #[test]
@@ -290,7 +339,10 @@ fn clipping_opens_the_volume() {
     o.colour = ColorMode::Boundary;
     let whole = render(&k, &o).unwrap();
     assert_eq!(whole.summary.n_faces, 10);
-    o.clip = Some(Clip { axis: 0, value: 1.0 });
+    o.clip = Some(Clip {
+        axis: 0,
+        value: 1.0,
+    });
     let cut = render(&k, &o).unwrap();
     assert_eq!((cut.summary.n_faces, cut.summary.clipped_cells), (6, 1));
     // the face x = 1 is now exposed: its centre shows the cut colour, seen from +x
@@ -298,9 +350,16 @@ fn clipping_opens_the_volume() {
     let side = render(&k, &o).unwrap();
     let (x, y) = side.project(&[1.0, 0.5, 0.5]);
     assert_eq!(side.pixel(x as usize, y as usize), 0xF2_B8_5A);
-    assert!(side.summary.legend.iter().any(|l| l.1 == "faces cut open: 1"));
+    assert!(side
+        .summary
+        .legend
+        .iter()
+        .any(|l| l.1 == "faces cut open: 1"));
     // everything clipped away
-    o.clip = Some(Clip { axis: 0, value: -1.0 });
+    o.clip = Some(Clip {
+        axis: 0,
+        value: -1.0,
+    });
     assert!(matches!(render(&k, &o), Err(RenderError::NothingLeft(2))));
 }
 
@@ -321,9 +380,15 @@ fn inverted_hexes_and_tets_are_found() {
     o.colour = ColorMode::Defects;
     // one against one: the majority rule keeps the first as the reference
     let pic = render(&k2, &o).unwrap();
-    assert!(pic.summary.defects.contains(&("inverted or flat cells".into(), 1)));
+    assert!(pic
+        .summary
+        .defects
+        .contains(&("inverted or flat cells".into(), 1)));
     let pic = render(&k, &o).unwrap();
-    assert!(pic.summary.defects.contains(&("inverted or flat cells".into(), 0)));
+    assert!(pic
+        .summary
+        .defects
+        .contains(&("inverted or flat cells".into(), 0)));
 }
 
 #[test]
@@ -347,9 +412,20 @@ fn lines_dots_and_higher_dimensions() {
         ],
     );
     let pic = render(&k, &bare(200, 200, View::Iso)).unwrap();
-    assert_eq!((pic.summary.n_faces, pic.summary.n_lines, pic.summary.n_points), (10, 1, 1));
+    assert_eq!(
+        (
+            pic.summary.n_faces,
+            pic.summary.n_lines,
+            pic.summary.n_points
+        ),
+        (10, 1, 1)
+    );
     assert!(pic.summary.notes.iter().any(|n| n.contains("2-skeleton")));
-    assert!(pic.summary.notes.iter().any(|n| n.contains("first three coordinates")));
+    assert!(pic
+        .summary
+        .notes
+        .iter()
+        .any(|n| n.contains("first three coordinates")));
     let (x, y) = pic.project(&[2.5, 2.0, 2.0]);
     assert!(pixels_near(&pic, x, y, 1).iter().any(|&p| p != WHITE));
     let (x, y) = pic.project(&[3.0, 3.0, 3.0]);
@@ -359,8 +435,18 @@ fn lines_dots_and_higher_dimensions() {
 #[test]
 fn bad_sizes_and_empty_complexes_are_refused() {
     let k = cube_surface();
-    for (w, h) in [(0, 10), (10, 0), (100_000, 100_000), (16_385, 10), (10_000, 10_000)] {
-        let o = RenderOptions { width: w, height: h, ..Default::default() };
+    for (w, h) in [
+        (0, 10),
+        (10, 0),
+        (100_000, 100_000),
+        (16_385, 10),
+        (10_000, 10_000),
+    ] {
+        let o = RenderOptions {
+            width: w,
+            height: h,
+            ..Default::default()
+        };
         let e = render(&k, &o).unwrap_err();
         assert!(matches!(e, RenderError::Size { .. }), "{w}x{h}");
         assert!(e.to_string().contains("of memory"), "{e}");

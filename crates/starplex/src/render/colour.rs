@@ -47,7 +47,7 @@ fn hsv(h: f64, s: f64, v: f64) -> u32 {
 }
 
 /// The `i`-th categorical colour: hues by the golden angle, three saturation/value levels;
-/// neighbours in `i` are far apart.
+/// neighbours in `i` are far apart, and the first several hundred are distinct.
 pub(crate) fn categorical(i: u32) -> u32 {
     const PHI: f64 = 0.618_033_988_749_895;
     let h = f64::from(i) * PHI;
@@ -57,12 +57,15 @@ pub(crate) fn categorical(i: u32) -> u32 {
         1 => (0.75, 0.80),
         _ => (0.40, 0.70),
     };
-    hsv(h + f64::from(i / 21) * 0.013, s, v)
+    // the low two bits of each channel carry i mod 64, so that near hues stay distinct
+    let c = hsv(h + f64::from(i / 21) * 0.013, s, v) & !0x03_03_03;
+    c | ((i & 3) << 16) | (((i >> 2) & 3) << 8) | ((i >> 4) & 3)
 }
 
 /// `c` with each channel multiplied by `f` (0..=1).
 pub(crate) fn shade(c: u32, f: f32) -> u32 {
-    let ch = |s: u32| ((((c >> s) & 0xFF) as f32 * f).round().clamp(0.0, 255.0)) as u32;
+    let f = f.clamp(0.0, 1.0);
+    let ch = |s: u32| (((c >> s) & 0xFF) as f32 * f + 0.5) as u32;
     (ch(16) << 16) | (ch(8) << 8) | ch(0)
 }
 

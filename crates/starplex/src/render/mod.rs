@@ -878,16 +878,27 @@ fn shaded_colours(p: &Prepared, shading: bool) -> Vec<u32> {
             if !shading {
                 return c;
             }
-            // Newell normal
             let vs = f.verts();
-            let mut nrm = [0.0f64; 3];
-            for i in 0..vs.len() {
-                let a = p.scene.pos[vs[i] as usize];
-                let b = p.scene.pos[vs[(i + 1) % vs.len()] as usize];
-                nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
-                nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
-                nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
-            }
+            let q = |i: usize| p.scene.pos[vs[i] as usize];
+            let (a, b, c3) = (q(0), q(1), q(2));
+            // a triangle's normal, or a quad's (the cross product of its diagonals)
+            let (u, w) = if vs.len() == 4 {
+                let d = q(3);
+                (
+                    [c3[0] - a[0], c3[1] - a[1], c3[2] - a[2]],
+                    [d[0] - b[0], d[1] - b[1], d[2] - b[2]],
+                )
+            } else {
+                (
+                    [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+                    [c3[0] - a[0], c3[1] - a[1], c3[2] - a[2]],
+                )
+            };
+            let nrm = [
+                u[1] * w[2] - u[2] * w[1],
+                u[2] * w[0] - u[0] * w[2],
+                u[0] * w[1] - u[1] * w[0],
+            ];
             let nv = p.cam.rotate(nrm);
             let len = (nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]).sqrt();
             let d = if len > 0.0 {
