@@ -249,11 +249,7 @@ fn svg_face_paths(doc: &str) -> usize {
                 }
             }
             Event::End(_) => depth_in_faces = depth_in_faces.saturating_sub(1),
-            Event::Empty(e) => {
-                if depth_in_faces > 0 && e.name().as_ref() == "path" {
-                    n += 1;
-                }
-            }
+            Event::Empty(e) if depth_in_faces > 0 && e.name().as_ref() == "path" => n += 1,
             Event::Eof => break,
             _ => {}
         }
