@@ -31,6 +31,9 @@ pub struct StellarArgs {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
+    /// Also write a picture of the tree's leaf blocks (OUT.png or OUT.svg; `render --color blocks`).
+    #[arg(long, value_name = "OUT")]
+    pub render: Option<PathBuf>,
 }
 
 /// CPU seconds used by this process so far (user + system, from /proc; `None` elsewhere).
@@ -329,6 +332,22 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
                 );
             }
         }
+    }
+    if let Some(out) = &a.render {
+        let k = k.as_ref().ok_or_else(|| {
+            CliError::Input(
+                "--render needs the mesh file, not a saved tree".into(),
+                None,
+            )
+        })?;
+        crate::cmd_render::shortcut(
+            ctx,
+            k,
+            &a.input.file,
+            out,
+            starplex::render::ColorMode::Blocks,
+            a.kv,
+        )?;
     }
     Ok(())
 }

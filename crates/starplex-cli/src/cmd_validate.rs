@@ -33,6 +33,9 @@ pub struct ValidateArgs {
     /// isolated (vertices), boundary, disconnected, undecided (links not classified, d >= 4).
     #[arg(long, value_delimiter = ',', value_name = "DEFECTS")]
     pub fail_on: Vec<Defect>,
+    /// Also write a picture of the defects (OUT.png or OUT.svg; `render --color defects`).
+    #[arg(long, value_name = "OUT")]
+    pub render: Option<std::path::PathBuf>,
 }
 
 /// A property `validate --fail-on` can fail on.
@@ -256,6 +259,22 @@ pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
                 wanted.push(d);
             }
         }
+    }
+    if let Some(out) = &a.render {
+        let k = k.as_ref().ok_or_else(|| {
+            CliError::Input(
+                "--render needs the mesh file, not a saved tree".into(),
+                None,
+            )
+        })?;
+        crate::cmd_render::shortcut(
+            ctx,
+            k,
+            &a.input.file,
+            out,
+            starplex::render::ColorMode::Defects,
+            a.kv,
+        )?;
     }
     let found = defects_found(&rep, &wanted);
     if !found.is_empty() {

@@ -14,6 +14,7 @@ mod cmd_generate;
 mod cmd_homology;
 mod cmd_info;
 mod cmd_query;
+mod cmd_render;
 mod cmd_rips;
 mod cmd_simplify;
 mod cmd_stellar;
@@ -59,6 +60,9 @@ enum Command {
     Rips(cmd_rips::RipsArgs),
     /// Flag (clique) complex of a graph given as an edge list, stored by its maximal simplices.
     Flag(cmd_rips::FlagArgs),
+    /// A picture (PNG or SVG) of the complex: plain, Stellar blocks, components, defects,
+    /// boundary; clipping plane, wireframe, side-by-side comparison.
+    Render(cmd_render::RenderArgs),
     /// The main job on the bundled sample (what `cargo run --release` does without arguments).
     Demo {
         /// A file to use instead of the bundled sample.
@@ -97,6 +101,7 @@ fn main() -> ExitCode {
         Some(Command::Simplify(a)) => cmd_simplify::run(&ctx, &a),
         Some(Command::Rips(a)) => cmd_rips::run_rips(&ctx, &a),
         Some(Command::Flag(a)) => cmd_rips::run_flag(&ctx, &a),
+        Some(Command::Render(a)) => cmd_render::run(&ctx, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

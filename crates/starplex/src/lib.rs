@@ -36,6 +36,7 @@ pub mod generate;
 pub mod hasse;
 pub mod ids;
 pub mod io;
+pub mod render;
 pub mod stellar;
 pub mod tds;
 pub mod topo;

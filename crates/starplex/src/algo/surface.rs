@@ -20,6 +20,7 @@ use smallvec::SmallVec;
 
 use crate::cell::CellKind;
 use crate::complex::{BuildOptions, ComplexBuilder, ComplexError, IndexedComplex};
+use crate::ids::CellId;
 
 /// Why a conversion cannot be made.
 ///
@@ -60,6 +61,109 @@ pub struct BoundaryReport {
 
 type Key = SmallVec<[u32; 8]>;
 
+/// One face of [`boundary_facets`]: a (d-1)-face in exactly one kept d-cell.
+///
+/// ```
+/// use starplex::algo::surface::Facet;
+/// use starplex::cell::CellKind;
+/// use starplex::ids::CellId;
+/// let f = Facet { cell: CellId(0), kind: CellKind::Simplex(2), vertices: [0, 1, 2].into_iter().collect() };
+/// assert_eq!(f.vertices.len(), 3);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Facet {
+    /// The d-cell it bounds (input numbering).
+    pub cell: CellId,
+    /// Its kind (a (d-1)-simplex, or a triangle or quad of a CP cell).
+    pub kind: CellKind,
+    /// Its vertices (input ids), oriented as induced by `cell`.
+    pub vertices: SmallVec<[u32; 8]>,
+}
+
+/// The (d-1)-faces of the d-dimensional top cells of `k` accepted by `keep` that lie in exactly
+/// one accepted d-cell, oriented as induced by that cell, in order of (cell id, facet): with
+/// `keep` always true, the boundary of the d-cells ([`boundary`] is this plus a renumbering);
+/// with a clipping predicate, the boundary of the kept part (its cut faces included). Top cells
+/// of another dimension are counted in the report and ignored.
+///
+/// ```
+/// use starplex::algo::surface::boundary_facets;
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::ids::CellId;
+/// // two tetrahedra sharing the face 1-2-3
+/// let k = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1., 1., 1., 1.].into(),
+///     vec![(CellKind::Simplex(3), vec![0, 1, 2, 3, 4, 3, 2, 1].into())]).unwrap();
+/// assert_eq!(boundary_facets(&k, 3, |_| true).0.len(), 6);
+/// // keep only the first: its 4 faces, the shared one now exposed
+/// let (f, _) = boundary_facets(&k, 3, |c| c == CellId(0));
+/// assert_eq!(f.len(), 4);
+/// assert!(f.iter().all(|x| x.cell == CellId(0)));
+/// ```
+pub fn boundary_facets(
+    k: &IndexedComplex,
+    d: usize,
+    keep: impl Fn(CellId) -> bool,
+) -> (Vec<Facet>, BoundaryReport) {
+    let mut report = BoundaryReport::default();
+    let mut counts: FxHashMap<Key, u32> = FxHashMap::default();
+    let mut key: Key = SmallVec::new();
+    for b in k.blocks() {
+        if b.kind.dim() != d {
+            report.ignored_lower_cells += b.len();
+            continue;
+        }
+        for i in 0..b.len() {
+            if !keep(CellId(b.first + i as u32)) {
+                continue;
+            }
+            let c = b.cell(i);
+            b.kind.for_each_oriented_facet(|f, _| {
+                key.clear();
+                key.extend(f.iter().map(|&l| c[l as usize]));
+                key.sort_unstable();
+                *counts.entry(key.clone()).or_insert(0) += 1;
+            });
+        }
+    }
+    // the boundary facets, oriented, in (cell, facet) order
+    let mut faces: Vec<Facet> = Vec::new();
+    for b in k.blocks().iter().filter(|b| b.kind.dim() == d) {
+        for i in 0..b.len() {
+            let cell = CellId(b.first + i as u32);
+            if !keep(cell) {
+                continue;
+            }
+            let c = b.cell(i);
+            b.kind.for_each_oriented_facet(|f, sign| {
+                key.clear();
+                key.extend(f.iter().map(|&l| c[l as usize]));
+                let mut sorted = key.clone();
+                sorted.sort_unstable();
+                if counts.get(&sorted) != Some(&1) {
+                    return;
+                }
+                let mut v = key.clone();
+                if sign < 0 && v.len() >= 2 {
+                    v.swap(0, 1);
+                }
+                let kind = match (b.kind, v.len()) {
+                    (CellKind::Simplex(s), _) => CellKind::Simplex(s - 1),
+                    (_, 2) => CellKind::Simplex(1),
+                    (_, 3) => CellKind::Simplex(2),
+                    _ => CellKind::Quad,
+                };
+                faces.push(Facet {
+                    cell,
+                    kind,
+                    vertices: v,
+                });
+            });
+        }
+    }
+    (faces, report)
+}
+
 /// The boundary of `k`: the (d-1)-faces of its d-dimensional top cells (d = `k.dim()`) that lie
 /// in exactly one of them, oriented as induced by that cell (outward for a positively oriented
 /// cell: the VTK facet tables of CP cells, the boundary operator for simplices), in order of
@@ -84,55 +188,16 @@ type Key = SmallVec<[u32; 8]>;
 /// [`SurfaceError::Complex`] if the faces do not make a valid complex (cannot happen for a valid
 /// input; kept so no input can panic).
 pub fn boundary(k: &IndexedComplex) -> Result<(IndexedComplex, BoundaryReport), SurfaceError> {
-    let mut report = BoundaryReport::default();
     let Some(d) = k.dim() else {
         let b = ComplexBuilder::new(k.ambient_dim())?;
-        return Ok((b.build(&BuildOptions::default())?.0, report));
+        return Ok((
+            b.build(&BuildOptions::default())?.0,
+            BoundaryReport::default(),
+        ));
     };
-    let mut counts: FxHashMap<Key, u32> = FxHashMap::default();
-    let mut key: Key = SmallVec::new();
-    for b in k.blocks() {
-        if b.kind.dim() != d {
-            report.ignored_lower_cells += b.len();
-            continue;
-        }
-        for i in 0..b.len() {
-            let c = b.cell(i);
-            b.kind.for_each_oriented_facet(|f, _| {
-                key.clear();
-                key.extend(f.iter().map(|&l| c[l as usize]));
-                key.sort_unstable();
-                *counts.entry(key.clone()).or_insert(0) += 1;
-            });
-        }
-    }
-    // the boundary facets, oriented, in (cell, facet) order
-    let mut faces: Vec<(CellKind, Key)> = Vec::new();
-    for b in k.blocks().iter().filter(|b| b.kind.dim() == d) {
-        for i in 0..b.len() {
-            let c = b.cell(i);
-            b.kind.for_each_oriented_facet(|f, sign| {
-                key.clear();
-                key.extend(f.iter().map(|&l| c[l as usize]));
-                let mut sorted = key.clone();
-                sorted.sort_unstable();
-                if counts.get(&sorted) != Some(&1) {
-                    return;
-                }
-                let mut v = key.clone();
-                if sign < 0 && v.len() >= 2 {
-                    v.swap(0, 1);
-                }
-                let kind = match (b.kind, v.len()) {
-                    (CellKind::Simplex(s), _) => CellKind::Simplex(s - 1),
-                    (_, 2) => CellKind::Simplex(1),
-                    (_, 3) => CellKind::Simplex(2),
-                    _ => CellKind::Quad,
-                };
-                faces.push((kind, v));
-            });
-        }
-    }
+    let (facets, report) = boundary_facets(k, d, |_| true);
+    let mut faces: Vec<(CellKind, Key)> =
+        facets.into_iter().map(|f| (f.kind, f.vertices)).collect();
     let mut new_id = vec![u32::MAX; k.n_vertices()];
     for (_, f) in &faces {
         for &v in f {

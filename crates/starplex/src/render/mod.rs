@@ -1,0 +1,1121 @@
+//! Pictures of a complex, headless: a software rasterizer with a depth buffer and flat shading
+//! (`starplex render`). What is drawn: triangles and quads; the boundary surface of the 3-cells
+//! (tets, hexes, prisms, pyramids, mixed), optionally cut open by a clipping plane; 1-cells as
+//! lines, 0-cells and isolated vertices as dots; higher simplices by their 2-skeleton, all
+//! projected from the first three coordinates. Colours: plain, Stellar leaf blocks, connected
+//! components, defects from [`validate`](crate::algo::validate) drawn on top as markers, and the
+//! boundary. Output: an RGB pixel buffer ([`render`], PNG through [`write_png`] with the `render`
+//! feature) or an SVG document with one path per visible face ([`render_svg`]).
+//!
+//! ```
+//! use starplex::cell::CellKind;
+//! use starplex::complex::IndexedComplex;
+//! use starplex::render::{render, RenderOptions, View};
+//! let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+//!     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+//! let opts = RenderOptions { width: 100, height: 100, view: Some(View::Top), legend: false, ..Default::default() };
+//! let pic = render(&k, &opts).unwrap();
+//! let (x, y) = pic.project(&[0.2, 0.2]); // inside the triangle
+//! assert_ne!(pic.pixel(x as usize, y as usize), 0xFFFFFF); // not the background
+//! ```
+mod camera;
+mod colour;
+mod font;
+mod raster;
+mod scene;
+mod svg;
+
+use crate::algo::components::components;
+use crate::algo::surface::boundary_facets;
+use crate::algo::validate::validate;
+use crate::cell::CellKind;
+use crate::complex::IndexedComplex;
+use crate::ids::LeafId;
+use crate::stellar::{StellarError, StellarOptions, StellarTree};
+use crate::topo::naive::VtIndex;
+
+use camera::Camera;
+use raster::{Canvas, NO_FACE};
+use scene::{Scene, NO_CELL};
+
+/// How faces are coloured.
+///
+/// ```
+/// use starplex::render::ColorMode;
+/// assert_eq!(ColorMode::from_name("blocks"), Some(ColorMode::Blocks));
+/// assert_eq!(ColorMode::Blocks.name(), "blocks");
+/// assert_eq!(ColorMode::from_name("rainbow"), None);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ColorMode {
+    /// One colour, shaded.
+    #[default]
+    Plain,
+    /// One colour per Stellar tree leaf (the leaf of the cell's first vertex in tree order).
+    Blocks,
+    /// One colour per connected component.
+    Components,
+    /// Non-manifold vertices, edges and faces, surface boundary edges, inverted cells, on top.
+    Defects,
+    /// The boundary: surface boundary edges, or the faces opened by the clipping plane.
+    Boundary,
+}
+
+/// The names accepted by [`ColorMode::from_name`].
+pub const COLOR_MODES: &str = "plain blocks components defects boundary";
+
+impl ColorMode {
+    /// The mode of a name in [`COLOR_MODES`].
+    ///
+    /// ```
+    /// assert!(starplex::render::ColorMode::from_name("defects").is_some());
+    /// ```
+    pub fn from_name(s: &str) -> Option<ColorMode> {
+        Some(match s {
+            "plain" => ColorMode::Plain,
+            "blocks" => ColorMode::Blocks,
+            "components" => ColorMode::Components,
+            "defects" => ColorMode::Defects,
+            "boundary" => ColorMode::Boundary,
+            _ => return None,
+        })
+    }
+    /// Its name.
+    ///
+    /// ```
+    /// assert_eq!(starplex::render::ColorMode::Plain.name(), "plain");
+    /// ```
+    pub fn name(self) -> &'static str {
+        match self {
+            ColorMode::Plain => "plain",
+            ColorMode::Blocks => "blocks",
+            ColorMode::Components => "components",
+            ColorMode::Defects => "defects",
+            ColorMode::Boundary => "boundary",
+        }
+    }
+}
+
+/// The direction of view (orthographic, z up).
+///
+/// ```
+/// use starplex::render::View;
+/// assert_eq!(View::from_name("top"), Some(View::Top));
+/// assert_eq!(View::from_name("30,20"), Some(View::Angles { azimuth: 30.0, elevation: 20.0 }));
+/// assert_eq!(View::from_name("diagonal"), None);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum View {
+    /// From (1, -1, 1): x to the right and towards the viewer, z up.
+    Iso,
+    /// From -y: x right, z up.
+    Front,
+    /// From +z: x right, y up.
+    Top,
+    /// From +x: y right, z up.
+    Side,
+    /// From azimuth and elevation in degrees (0, 0 is the side view; -90, 0 the front view).
+    Angles {
+        /// Degrees around z from +x.
+        azimuth: f64,
+        /// Degrees above the xy plane.
+        elevation: f64,
+    },
+}
+
+impl View {
+    /// `iso`, `front`, `top`, `side` or `AZIMUTH,ELEVATION` in degrees.
+    ///
+    /// ```
+    /// assert!(starplex::render::View::from_name("iso").is_some());
+    /// ```
+    pub fn from_name(s: &str) -> Option<View> {
+        Some(match s {
+            "iso" => View::Iso,
+            "front" => View::Front,
+            "top" => View::Top,
+            "side" => View::Side,
+            _ => {
+                let (a, e) = s.split_once(',')?;
+                let (azimuth, elevation) = (a.trim().parse().ok()?, e.trim().parse().ok()?);
+                if !(f64::is_finite(azimuth) && f64::is_finite(elevation)) {
+                    return None;
+                }
+                View::Angles { azimuth, elevation }
+            }
+        })
+    }
+}
+
+/// A clipping plane: top cells whose centroid has coordinate `axis` above `value` are removed,
+/// and the faces of the kept 3-cells that the removal exposes are drawn.
+///
+/// ```
+/// use starplex::render::Clip;
+/// assert_eq!(Clip::parse("y=0.5"), Some(Clip { axis: 1, value: 0.5 }));
+/// assert_eq!(Clip::parse("w=1"), None);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Clip {
+    /// 0 = x, 1 = y, 2 = z (input coordinates).
+    pub axis: usize,
+    /// Cells with centroid coordinate at most this are kept.
+    pub value: f64,
+}
+
+impl Clip {
+    /// `x=V`, `y=V` or `z=V`.
+    ///
+    /// ```
+    /// assert!(starplex::render::Clip::parse("z=-1.5").is_some());
+    /// ```
+    pub fn parse(s: &str) -> Option<Clip> {
+        let (a, v) = s.split_once('=')?;
+        let axis = match a.trim() {
+            "x" | "X" => 0,
+            "y" | "Y" => 1,
+            "z" | "Z" => 2,
+            _ => return None,
+        };
+        let value: f64 = v.trim().parse().ok()?;
+        value.is_finite().then_some(Clip { axis, value })
+    }
+}
+
+/// Options of [`render`] and [`render_svg`].
+///
+/// ```
+/// let o = starplex::render::RenderOptions::default();
+/// assert_eq!((o.width, o.height, o.shading, o.legend), (1024, 768, true, true));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderOptions {
+    /// Picture width in pixels.
+    pub width: u32,
+    /// Picture height in pixels.
+    pub height: u32,
+    /// The view (`None`: top for a flat complex, iso otherwise).
+    pub view: Option<View>,
+    /// Which axis is up (0 = x, 1 = y, 2 = z).
+    pub up: usize,
+    /// How faces are coloured.
+    pub colour: ColorMode,
+    /// Draw the edges of the faces.
+    pub edges: bool,
+    /// Cut the complex open.
+    pub clip: Option<Clip>,
+    /// Flat shading (off: every face in its plain colour).
+    pub shading: bool,
+    /// First line of the caption (e.g. the file name).
+    pub title: Option<String>,
+    /// Draw the caption and the legend.
+    pub legend: bool,
+    /// Bucketing threshold of the Stellar tree for [`ColorMode::Blocks`] (`None`: the default).
+    pub kv: Option<u32>,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions {
+            width: 1024,
+            height: 768,
+            view: None,
+            up: 2,
+            colour: ColorMode::Plain,
+            edges: false,
+            clip: None,
+            shading: true,
+            title: None,
+            legend: true,
+            kv: None,
+        }
+    }
+}
+
+/// Largest accepted width or height.
+pub const MAX_SIDE: u32 = 16384;
+/// Largest accepted number of pixels.
+pub const MAX_PIXELS: u64 = 1 << 26;
+/// Memory per pixel while rendering: colour, depth and face id (4 bytes each) and the encoded
+/// row (3 bytes).
+pub const BYTES_PER_PIXEL: u64 = 15;
+
+/// Why a picture cannot be made.
+///
+/// ```
+/// use starplex::render::{check_size, RenderError};
+/// assert!(matches!(check_size(0, 10), Err(RenderError::Size { .. })));
+/// ```
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// No vertex at all.
+    #[error("the complex is empty: nothing to draw")]
+    Empty,
+    /// The clipping plane removed everything.
+    #[error("the clipping plane removed all {0} top cells: nothing left to draw")]
+    NothingLeft(usize),
+    /// A size of 0 or too large.
+    #[error("picture size {width}x{height}: {reason} (it would need about {} of memory)", human_bytes(*bytes))]
+    Size {
+        /// Width asked.
+        width: u64,
+        /// Height asked.
+        height: u64,
+        /// Memory estimate.
+        bytes: u64,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The Stellar tree for block colours could not be built.
+    #[error("{0}")]
+    Stellar(#[from] StellarError),
+}
+
+fn human_bytes(b: u64) -> String {
+    let b = b as f64;
+    if b >= 1e9 {
+        format!("{:.1} GB", b / 1e9)
+    } else if b >= 1e6 {
+        format!("{:.1} MB", b / 1e6)
+    } else {
+        format!("{:.0} kB", b / 1e3)
+    }
+}
+
+/// Refuses a size of 0, a side above [`MAX_SIDE`] or more than [`MAX_PIXELS`] pixels, with the
+/// memory it would take.
+///
+/// ```
+/// use starplex::render::check_size;
+/// assert!(check_size(1600, 1200).is_ok());
+/// let e = check_size(100_000, 100_000).unwrap_err().to_string();
+/// assert!(e.contains("150.0 GB"), "{e}");
+/// ```
+///
+/// # Errors
+/// [`RenderError::Size`].
+pub fn check_size(width: u64, height: u64) -> Result<(), RenderError> {
+    let bytes = width.saturating_mul(height).saturating_mul(BYTES_PER_PIXEL);
+    let reason = if width == 0 || height == 0 {
+        "a picture needs at least one pixel each way".to_string()
+    } else if width > u64::from(MAX_SIDE) || height > u64::from(MAX_SIDE) {
+        format!("at most {MAX_SIDE} pixels each way")
+    } else if width * height > MAX_PIXELS {
+        format!("at most {MAX_PIXELS} pixels in all")
+    } else {
+        return Ok(());
+    };
+    Err(RenderError::Size {
+        width,
+        height,
+        bytes,
+        reason,
+    })
+}
+
+/// What a picture shows, in numbers.
+///
+/// ```
+/// let s = starplex::render::Summary::default();
+/// assert_eq!(s.n_faces, 0);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Summary {
+    /// Polygons drawn (triangles and quads).
+    pub n_faces: usize,
+    /// Lines drawn (1-cells).
+    pub n_lines: usize,
+    /// Dots drawn (0-cells and isolated vertices).
+    pub n_points: usize,
+    /// Stellar leaves with vertices (blocks) or connected components (components); else 0.
+    pub n_colours: usize,
+    /// Top cells removed by the clipping plane.
+    pub clipped_cells: usize,
+    /// Defect counts (defects colouring), as `(what, count)`.
+    pub defects: Vec<(String, usize)>,
+    /// The caption and legend lines, with their swatch colour (0xRRGGBB) if any.
+    pub legend: Vec<(Option<u32>, String)>,
+    /// What was changed to draw it (projection of higher dimensions, ...).
+    pub notes: Vec<String>,
+}
+
+/// A rendered picture: RGB pixels row by row from the top.
+///
+/// ```
+/// # use starplex::cell::CellKind;
+/// # use starplex::complex::IndexedComplex;
+/// use starplex::render::{render, RenderOptions};
+/// # let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+/// #     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let pic = render(&k, &RenderOptions { width: 64, height: 48, ..Default::default() }).unwrap();
+/// assert_eq!((pic.width, pic.height, pic.pixels.len()), (64, 48, 64 * 48));
+/// assert_eq!(pic.rgb().len(), 64 * 48 * 3);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Picture {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// 0xRRGGBB per pixel.
+    pub pixels: Vec<u32>,
+    /// What it shows.
+    pub summary: Summary,
+    camera: Camera,
+    up: usize,
+    x_offset: f64,
+}
+
+impl Picture {
+    /// The colour at (x, y) (0xRRGGBB); white outside.
+    ///
+    /// ```
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::render::{render, RenderOptions};
+    /// # let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+    /// #     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+    /// let pic = render(&k, &RenderOptions { width: 64, height: 48, ..Default::default() }).unwrap();
+    /// assert_eq!(pic.pixel(1000, 0), 0xFFFFFF);
+    /// ```
+    pub fn pixel(&self, x: usize, y: usize) -> u32 {
+        if x < self.width && y < self.height {
+            self.pixels[y * self.width + x]
+        } else {
+            colour::BACKGROUND
+        }
+    }
+
+    /// Where a point (input coordinates) lands in the picture (pixels, y down).
+    ///
+    /// ```
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::render::{render, RenderOptions, View};
+    /// # let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+    /// #     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+    /// let o = RenderOptions { width: 100, height: 100, view: Some(View::Top), legend: false, ..Default::default() };
+    /// let pic = render(&k, &o).unwrap();
+    /// let (x0, y0) = pic.project(&[0.0, 0.0]);
+    /// let (x1, y1) = pic.project(&[1.0, 0.0]);
+    /// assert!(x1 > x0 && (y1 - y0).abs() < 1e-9);
+    /// ```
+    pub fn project(&self, p: &[f64]) -> (f64, f64) {
+        let g = |a: usize| p.get(a).copied().unwrap_or(0.0);
+        let order = match self.up {
+            0 => [1, 2, 0],
+            1 => [2, 0, 1],
+            _ => [0, 1, 2],
+        };
+        let s = self.camera.project(order.map(g));
+        (s[0] + self.x_offset, s[1])
+    }
+
+    /// The pixels as RGB bytes.
+    ///
+    /// ```
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::render::{render, RenderOptions};
+    /// # let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+    /// #     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+    /// let pic = render(&k, &RenderOptions { width: 8, height: 8, ..Default::default() }).unwrap();
+    /// assert_eq!(pic.rgb()[..3], [255, 255, 255]); // a background corner
+    /// ```
+    pub fn rgb(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(self.pixels.len() * 3);
+        for &p in &self.pixels {
+            out.extend_from_slice(&[(p >> 16) as u8, (p >> 8) as u8, p as u8]);
+        }
+        out
+    }
+
+    /// Two pictures side by side (`self` left), with a one-pixel separator; [`Picture::project`]
+    /// then answers for the left one.
+    ///
+    /// ```
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::complex::IndexedComplex;
+    /// # use starplex::render::{render, RenderOptions};
+    /// # let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+    /// #     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+    /// let a = render(&k, &RenderOptions { width: 30, height: 20, ..Default::default() }).unwrap();
+    /// let b = render(&k, &RenderOptions { width: 40, height: 25, ..Default::default() }).unwrap();
+    /// let ab = a.beside(&b);
+    /// assert_eq!((ab.width, ab.height), (71, 25));
+    /// ```
+    pub fn beside(&self, other: &Picture) -> Picture {
+        let (w, h) = (self.width + 1 + other.width, self.height.max(other.height));
+        let mut pixels = vec![colour::BACKGROUND; w * h];
+        for y in 0..h {
+            for x in 0..w {
+                pixels[y * w + x] = if x < self.width {
+                    self.pixel(x, y)
+                } else if x == self.width {
+                    0x80_80_80
+                } else {
+                    other.pixel(x - self.width - 1, y)
+                };
+            }
+        }
+        let mut summary = self.summary.clone();
+        summary.notes.extend(other.summary.notes.iter().cloned());
+        Picture {
+            width: w,
+            height: h,
+            pixels,
+            summary,
+            camera: self.camera.clone(),
+            up: self.up,
+            x_offset: self.x_offset,
+        }
+    }
+}
+
+/// A defect marker.
+enum Marker {
+    /// At a vertex.
+    Vertex(u32, u32),
+    /// At a point (a cell centroid).
+    At([f64; 3], u32),
+    /// Along an edge, this thick.
+    Edge([u32; 2], u32, usize),
+}
+
+/// Everything decided before drawing.
+struct Prepared {
+    scene: Scene,
+    cam: Camera,
+    face_colour: Vec<u32>,
+    line_colour: Vec<u32>,
+    point_colour: Vec<u32>,
+    markers: Vec<Marker>,
+    summary: Summary,
+    text_scale: usize,
+    caption_rows: usize,
+}
+
+/// Sign of the volume of a tetrahedron (a b c d).
+fn tet_sign(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> i8 {
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
+    let det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+        + u[2] * (v[0] * w[1] - v[1] * w[0]);
+    if det > 0.0 {
+        1
+    } else if det < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// Orientation of a tetrahedron or a hexahedron (all 8 corners agreeing), 0 when flat or
+/// twisted; `None` for other kinds.
+fn cell_sign(kind: CellKind, c: &[u32], pos: &[[f64; 3]]) -> Option<i8> {
+    let p = |i: usize| pos[c[i] as usize];
+    match kind {
+        CellKind::Simplex(3) => Some(tet_sign(p(0), p(1), p(2), p(3))),
+        CellKind::Hex => {
+            const CORNERS: [[usize; 4]; 8] = [
+                [0, 1, 3, 4],
+                [1, 2, 0, 5],
+                [2, 3, 1, 6],
+                [3, 0, 2, 7],
+                [4, 7, 5, 0],
+                [5, 4, 6, 1],
+                [6, 5, 7, 2],
+                [7, 6, 4, 3],
+            ];
+            let s: Vec<i8> = CORNERS
+                .iter()
+                .map(|q| tet_sign(p(q[0]), p(q[1]), p(q[2]), p(q[3])))
+                .collect();
+            Some(if s.iter().all(|&x| x == s[0]) {
+                s[0]
+            } else {
+                0
+            })
+        }
+        _ => None,
+    }
+}
+
+/// The view when none is given: top for a complex flat in z, iso otherwise.
+fn auto_view(pos: &[[f64; 3]]) -> View {
+    let flat = pos.windows(2).all(|w| w[0][2] == w[1][2]);
+    if flat {
+        View::Top
+    } else {
+        View::Iso
+    }
+}
+
+fn thousands(n: usize) -> String {
+    let s = n.to_string();
+    let mut out = String::new();
+    for (i, ch) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(ch);
+    }
+    out
+}
+
+fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderError> {
+    check_size(u64::from(o.width), u64::from(o.height))?;
+    if k.n_vertices() == 0 {
+        return Err(RenderError::Empty);
+    }
+    let scene = scene::build(k, o.clip, o.up, o.colour == ColorMode::Boundary);
+    if scene.faces.is_empty() && scene.lines.is_empty() && scene.points.is_empty() {
+        return Err(RenderError::NothingLeft(scene.clipped_cells));
+    }
+    let mut summary = Summary {
+        n_faces: scene.faces.len(),
+        n_lines: scene.lines.len(),
+        n_points: scene.points.len(),
+        clipped_cells: scene.clipped_cells,
+        notes: scene.notes.clone(),
+        ..Default::default()
+    };
+    let mut caption: Vec<(Option<u32>, String)> = Vec::new();
+    if let Some(t) = &o.title {
+        caption.push((None, t.clone()));
+    }
+    let dim = k.dim().map_or("-".to_string(), |d| d.to_string());
+    caption.push((
+        None,
+        format!(
+            "{} vertices, {} cells, dimension {dim}{}",
+            thousands(k.n_vertices()),
+            thousands(k.n_cells()),
+            if scene.clipped_cells > 0 {
+                format!(", {} cut away", thousands(scene.clipped_cells))
+            } else {
+                String::new()
+            }
+        ),
+    ));
+
+    // per-cell colours
+    let n = k.n_cells();
+    let mut cell_colour: Vec<u32> = vec![colour::PLAIN; n];
+    let mut vertex_colour: Option<Vec<u32>> = None;
+    let mut markers = Vec::new();
+    let mut legend: Vec<(Option<u32>, String)> = Vec::new();
+    match o.colour {
+        ColorMode::Plain => {}
+        ColorMode::Blocks => {
+            let t = StellarTree::build(
+                k,
+                &StellarOptions {
+                    kv: o.kv,
+                    ..Default::default()
+                },
+            )?;
+            let mut leaf_of = vec![0u32; k.n_vertices()];
+            let mut tree_index = vec![0u32; k.n_vertices()];
+            let v_in = t.vertex_to_input();
+            let mut used = 0;
+            for l in 0..t.n_leaves() {
+                let r = t.leaf_vertices(LeafId(l as u32));
+                used += usize::from(!r.is_empty());
+                for tv in r {
+                    leaf_of[v_in[tv as usize] as usize] = l as u32;
+                    tree_index[v_in[tv as usize] as usize] = tv;
+                }
+            }
+            for (c, col) in k.cells().zip(cell_colour.iter_mut()) {
+                let first = c
+                    .vertices
+                    .iter()
+                    .copied()
+                    .min_by_key(|&v| tree_index[v as usize])
+                    .unwrap_or(0);
+                *col = colour::categorical(leaf_of[first as usize]);
+            }
+            vertex_colour = Some(leaf_of.iter().map(|&l| colour::categorical(l)).collect());
+            summary.n_colours = used;
+            legend.push((
+                Some(colour::categorical(0)),
+                format!(
+                    "colour: Stellar tree leaf, {} leaves (kv = {})",
+                    thousands(used),
+                    t.kv()
+                ),
+            ));
+        }
+        ColorMode::Components => {
+            let comp = components(&VtIndex::new(k));
+            for (c, col) in k.cells().zip(cell_colour.iter_mut()) {
+                *col = colour::categorical(comp.label[c.vertices[0] as usize]);
+            }
+            vertex_colour = Some(comp.label.iter().map(|&l| colour::categorical(l)).collect());
+            summary.n_colours = comp.n_components;
+            legend.push((
+                Some(colour::categorical(0)),
+                format!(
+                    "colour: connected component, {} components",
+                    thousands(comp.n_components)
+                ),
+            ));
+        }
+        ColorMode::Boundary => {
+            if k.dim() == Some(2) || (k.dim() == Some(3) && o.clip.is_none()) {
+                let d = k.dim().unwrap_or(2);
+                // the boundary edges of the 2-cells (facets of the 2-cells in one 2-cell)
+                let edges = boundary_facets(k, 2, |_| true).0;
+                let kept = |c: u32| {
+                    o.clip.is_none_or(|p| {
+                        let vs = k.cell(crate::ids::CellId(c)).vertices;
+                        let amb = k.ambient_dim();
+                        p.axis >= amb
+                            || vs
+                                .iter()
+                                .map(|&v| k.coords()[v as usize * amb + p.axis])
+                                .sum::<f64>()
+                                / vs.len() as f64
+                                <= p.value
+                    })
+                };
+                let mut count = 0;
+                for e in edges.iter().filter(|e| kept(e.cell.0)) {
+                    markers.push(Marker::Edge(
+                        [e.vertices[0], e.vertices[1]],
+                        colour::BOUNDARY,
+                        2,
+                    ));
+                    count += 1;
+                }
+                if d == 2 || count > 0 {
+                    legend.push((
+                        Some(colour::BOUNDARY),
+                        format!("boundary edges: {}", thousands(count)),
+                    ));
+                }
+            }
+            let exposed = scene.faces.iter().filter(|f| f.exposed).count();
+            if o.clip.is_some() && k.dim() == Some(3) {
+                legend.push((
+                    Some(colour::PLAIN),
+                    format!("boundary faces: {}", thousands(scene.faces.len() - exposed)),
+                ));
+                legend.push((
+                    Some(colour::EXPOSED),
+                    format!("faces cut open: {}", thousands(exposed)),
+                ));
+            }
+        }
+        ColorMode::Defects => {
+            cell_colour.fill(colour::MUTED);
+            let r = validate(&VtIndex::new(k));
+            let mut push = |name: &str, c: u32, count: usize| {
+                summary.defects.push((name.to_string(), count));
+                if count > 0 {
+                    legend.push((Some(c), format!("{name}: {}", thousands(count))));
+                }
+            };
+            if r.dim == 2 {
+                for f in &r.boundary_faces {
+                    if f.len() == 2 {
+                        markers.push(Marker::Edge([f[0].0, f[1].0], colour::BOUNDARY, 2));
+                    }
+                }
+                push("boundary edges", colour::BOUNDARY, r.boundary_faces.len());
+            }
+            let mut n_nm_faces = 0;
+            for f in &r.faces_in_more_than_two_cells {
+                n_nm_faces += 1;
+                let vs: Vec<u32> = f.iter().map(|v| v.0).collect();
+                for i in 0..vs.len() {
+                    let (a, b) = (vs[i], vs[(i + 1) % vs.len()]);
+                    if vs.len() == 2 && i == 1 {
+                        break;
+                    }
+                    markers.push(Marker::Edge([a, b], colour::NM_FACE, 4));
+                }
+            }
+            let fname = if r.dim == 2 {
+                "edges in more than two faces"
+            } else {
+                "faces in more than two cells"
+            };
+            push(fname, colour::NM_FACE, n_nm_faces);
+            for e in &r.non_manifold_edges {
+                markers.push(Marker::Edge([e[0].0, e[1].0], colour::NM_EDGE, 3));
+            }
+            push(
+                "non-manifold edges",
+                colour::NM_EDGE,
+                r.non_manifold_edges.len(),
+            );
+            for v in &r.non_manifold_vertices {
+                markers.push(Marker::Vertex(v.0, colour::NM_VERTEX));
+            }
+            push(
+                "non-manifold vertices",
+                colour::NM_VERTEX,
+                r.non_manifold_vertices.len(),
+            );
+            // inverted cells: orientation against the majority (or flat)
+            if k.ambient_dim() <= 3 {
+                let signs: Vec<Option<i8>> = k
+                    .cells()
+                    .map(|c| cell_sign(c.kind, c.vertices, &scene.pos))
+                    .collect();
+                let pos = signs.iter().filter(|s| **s == Some(1)).count();
+                let neg = signs.iter().filter(|s| **s == Some(-1)).count();
+                let good = if pos >= neg { 1 } else { -1 };
+                let mut inverted = 0;
+                let any = signs.iter().any(Option::is_some);
+                for (c, s) in k.cells().zip(&signs) {
+                    if matches!(s, Some(x) if *x != good) {
+                        inverted += 1;
+                        cell_colour[c.id.0 as usize] = colour::INVERTED;
+                        let m = c.vertices.len() as f64;
+                        let mut p = [0.0; 3];
+                        for &v in c.vertices {
+                            for (pa, &q) in p.iter_mut().zip(&scene.pos[v as usize]) {
+                                *pa += q / m;
+                            }
+                        }
+                        markers.push(Marker::At(p, colour::INVERTED));
+                    }
+                }
+                if any {
+                    push("inverted or flat cells", colour::INVERTED, inverted);
+                }
+            }
+            if r.is_valid_manifold() && markers.is_empty() {
+                legend.push((None, "no defects found".to_string()));
+            }
+        }
+    }
+    caption.extend(legend);
+    let text_scale = ((f64::from(o.height.min(o.width * 3 / 4)) / 400.0).round() as usize).max(1);
+    let lh = font::line_height(text_scale) as f64;
+    let caption_rows = if o.legend { caption.len() } else { 0 };
+    summary.legend = caption;
+    let (w, h) = (f64::from(o.width), f64::from(o.height));
+    let margin = (0.04 * w.min(h)).max(2.0);
+    let top = margin
+        + if o.legend {
+            lh * caption_rows as f64
+        } else {
+            0.0
+        };
+    let mut rect = [margin, top, w - margin, h - margin];
+    if rect[3] - rect[1] < 0.3 * h {
+        rect = [margin, margin, w - margin, h - margin]; // too small for the caption: overlap
+    }
+    let used = scene.used();
+    let view = o.view.unwrap_or_else(|| {
+        let pts: Vec<[f64; 3]> = used.iter().map(|&v| scene.pos[v as usize]).collect();
+        auto_view(&pts)
+    });
+    let cam = Camera::fit(view, used.iter().map(|&v| scene.pos[v as usize]), rect);
+    let face_colour = scene
+        .faces
+        .iter()
+        .map(|f| {
+            if o.colour == ColorMode::Boundary && f.exposed {
+                colour::EXPOSED
+            } else {
+                cell_colour[f.cell as usize]
+            }
+        })
+        .collect();
+    let plain_lines = o.colour == ColorMode::Plain || o.colour == ColorMode::Defects;
+    let line_colour = scene
+        .lines
+        .iter()
+        .map(|&(c, _)| {
+            if plain_lines {
+                colour::LINE
+            } else {
+                cell_colour[c as usize]
+            }
+        })
+        .collect();
+    let point_colour = scene
+        .points
+        .iter()
+        .map(|&(c, v)| match (&vertex_colour, c) {
+            (Some(vc), NO_CELL) => vc[v as usize],
+            (_, NO_CELL) => colour::LINE,
+            _ if plain_lines => colour::LINE,
+            _ => cell_colour[c as usize],
+        })
+        .collect();
+    Ok(Prepared {
+        scene,
+        cam,
+        face_colour,
+        line_colour,
+        point_colour,
+        markers,
+        summary,
+        text_scale,
+        caption_rows,
+    })
+}
+
+/// Light direction in view coordinates (mostly from the viewer, a little from the upper left).
+const LIGHT: [f64; 3] = [-0.25, 0.35, 0.9];
+
+/// The shaded colour of each face.
+fn shaded_colours(p: &Prepared, shading: bool) -> Vec<u32> {
+    let ln = (LIGHT[0] * LIGHT[0] + LIGHT[1] * LIGHT[1] + LIGHT[2] * LIGHT[2]).sqrt();
+    let l = LIGHT.map(|x| x / ln);
+    p.scene
+        .faces
+        .iter()
+        .zip(&p.face_colour)
+        .map(|(f, &c)| {
+            if !shading {
+                return c;
+            }
+            let vs = f.verts();
+            let q = |i: usize| p.scene.pos[vs[i] as usize];
+            let (a, b, c3) = (q(0), q(1), q(2));
+            // a triangle's normal, or a quad's (the cross product of its diagonals)
+            let (u, w) = if vs.len() == 4 {
+                let d = q(3);
+                (
+                    [c3[0] - a[0], c3[1] - a[1], c3[2] - a[2]],
+                    [d[0] - b[0], d[1] - b[1], d[2] - b[2]],
+                )
+            } else {
+                (
+                    [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+                    [c3[0] - a[0], c3[1] - a[1], c3[2] - a[2]],
+                )
+            };
+            let nrm = [
+                u[1] * w[2] - u[2] * w[1],
+                u[2] * w[0] - u[0] * w[2],
+                u[0] * w[1] - u[1] * w[0],
+            ];
+            let nv = p.cam.rotate(nrm);
+            let len = (nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]).sqrt();
+            let d = if len > 0.0 {
+                ((nv[0] * l[0] + nv[1] * l[1] + nv[2] * l[2]) / len).abs()
+            } else {
+                0.0
+            };
+            colour::shade(c, (0.3 + 0.7 * d) as f32)
+        })
+        .collect()
+}
+
+/// Draws the prepared scene. `order`: the order in which faces are drawn (default: as stored).
+fn draw(p: &Prepared, o: &RenderOptions, order: Option<&[u32]>) -> Canvas {
+    let (w, h) = (o.width as usize, o.height as usize);
+    let mut cv = Canvas::new(w, h, colour::BACKGROUND);
+    let proj: Vec<[f32; 3]> = p
+        .scene
+        .pos
+        .iter()
+        .map(|&q| p.cam.project(q).map(|x| x as f32))
+        .collect();
+    let cols = shaded_colours(p, o.shading);
+    let mut draw_face = |i: usize| {
+        let f = &p.scene.faces[i];
+        let v = f.verts();
+        let (a, b, c) = (
+            proj[v[0] as usize],
+            proj[v[1] as usize],
+            proj[v[2] as usize],
+        );
+        cv.triangle(a, b, c, cols[i], i as u32);
+        if v.len() == 4 {
+            cv.triangle(a, c, proj[v[3] as usize], cols[i], i as u32);
+        }
+    };
+    match order {
+        Some(ord) => ord.iter().for_each(|&i| draw_face(i as usize)),
+        None => (0..p.scene.faces.len()).for_each(draw_face),
+    }
+    let unit = (w.min(h) as f32 / 600.0).max(1.0);
+    let bias = Some(1.5 * unit);
+    for (&(_, e), &c) in p.scene.lines.iter().zip(&p.line_colour) {
+        cv.line(
+            proj[e[0] as usize],
+            proj[e[1] as usize],
+            c,
+            unit.round() as usize,
+            bias,
+        );
+    }
+    for (&(_, v), &c) in p.scene.points.iter().zip(&p.point_colour) {
+        cv.dot(proj[v as usize], 1.5 * unit, c, None, bias);
+    }
+    if o.edges {
+        for f in &p.scene.faces {
+            let v = f.verts();
+            for i in 0..v.len() {
+                let (a, b) = (v[i], v[(i + 1) % v.len()]);
+                cv.line(proj[a as usize], proj[b as usize], colour::WIRE, 1, bias);
+            }
+        }
+    }
+    // markers on top: edges first, then dots
+    let r = (w.min(h) as f32 / 120.0).max(5.0);
+    for m in &p.markers {
+        if let Marker::Edge(e, c, t) = m {
+            let t = (*t as f32 * unit * 0.75).round().max(*t as f32) as usize;
+            cv.line(proj[e[0] as usize], proj[e[1] as usize], *c, t, None);
+        }
+    }
+    for m in &p.markers {
+        match m {
+            Marker::Vertex(v, c) => cv.dot(proj[*v as usize], r, *c, Some(colour::OUTLINE), None),
+            Marker::At(q, c) => {
+                let s = p.cam.project(*q).map(|x| x as f32);
+                cv.dot(s, 0.6 * r, *c, Some(colour::OUTLINE), None);
+            }
+            Marker::Edge(..) => {}
+        }
+    }
+    if o.legend {
+        let ts = p.text_scale;
+        let lh = font::line_height(ts) as i64;
+        let x0 = (0.02 * w.min(h) as f64).max(2.0) as i64;
+        let mut y = x0;
+        for (sw, text) in p.summary.legend.iter().take(p.caption_rows) {
+            let mut x = x0;
+            if let Some(c) = sw {
+                let s = 7 * ts as i64;
+                cv.rect(x - 1, y - 1, x + s + 1, y + s + 1, colour::OUTLINE);
+                cv.rect(x, y, x + s, y + s, *c);
+                x += s + 3 * ts as i64;
+            }
+            font::draw_text(&mut cv, x, y, text, colour::INK, ts);
+            y += lh;
+        }
+    }
+    cv
+}
+
+/// Renders `k` to pixels.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::render::{render, RenderOptions, ColorMode};
+/// let k = IndexedComplex::from_parts(3,
+///     vec![0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.].into(),
+///     vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
+/// let o = RenderOptions { width: 200, height: 150, colour: ColorMode::Defects, ..Default::default() };
+/// let pic = render(&k, &o).unwrap();
+/// assert_eq!(pic.summary.n_faces, 4); // the boundary of the tetrahedron
+/// ```
+///
+/// # Errors
+/// [`RenderError`]: a bad size, an empty complex, everything clipped away, a failed Stellar
+/// tree.
+pub fn render(k: &IndexedComplex, o: &RenderOptions) -> Result<Picture, RenderError> {
+    let p = prepare(k, o)?;
+    let cv = draw(&p, o, None);
+    Ok(Picture {
+        width: cv.w,
+        height: cv.h,
+        pixels: cv.px,
+        summary: p.summary,
+        camera: p.cam,
+        up: o.up,
+        x_offset: 0.0,
+    })
+}
+
+/// Renders `k` as an SVG document: one `<path>` per visible face (in `<g id="faces">`, back to
+/// front), lines, dots, defect markers and the caption. Visible faces are those owning pixels
+/// of the depth-buffered picture of the same size (at least 3, or a quarter of their own
+/// area), so it is meant for small meshes.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::render::{render_svg, RenderOptions};
+/// let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+///     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let (svg, _) = render_svg(&k, &RenderOptions::default()).unwrap();
+/// assert!(svg.starts_with("<?xml") && svg.matches("<path").count() >= 1);
+/// ```
+///
+/// # Errors
+/// As [`render`].
+pub fn render_svg(k: &IndexedComplex, o: &RenderOptions) -> Result<(String, Summary), RenderError> {
+    let p = prepare(k, o)?;
+    // nearest first, so that ties along shared edges go to the nearer face
+    let depth: Vec<f64> = p
+        .scene
+        .faces
+        .iter()
+        .map(|f| {
+            let v = f.verts();
+            v.iter()
+                .map(|&x| p.cam.project(p.scene.pos[x as usize])[2])
+                .sum::<f64>()
+                / v.len() as f64
+        })
+        .collect();
+    let mut order: Vec<u32> = (0..p.scene.faces.len() as u32).collect();
+    order.sort_by(|&a, &b| depth[b as usize].total_cmp(&depth[a as usize]));
+    let cv = draw(&p, o, Some(&order));
+    let mut owned = vec![0usize; p.scene.faces.len()];
+    for &f in &cv.face {
+        if f != NO_FACE {
+            owned[f as usize] += 1;
+        }
+    }
+    let visible: Vec<u32> = order
+        .iter()
+        .rev()
+        .copied()
+        .filter(|&i| {
+            let f = &p.scene.faces[i as usize];
+            let area = svg::projected_area(f.verts(), &p.scene.pos, &p.cam);
+            let n = owned[i as usize];
+            n >= 3 || (n > 0 && n as f64 >= 0.25 * area)
+        })
+        .collect();
+    let cols = shaded_colours(&p, o.shading);
+    let doc = svg::document(&p, o, &visible, &cols);
+    Ok((doc, p.summary))
+}
+
+/// Encodes a picture as PNG (RGB, 8 bits, fast compression).
+///
+/// ```
+/// # use starplex::cell::CellKind;
+/// # use starplex::complex::IndexedComplex;
+/// use starplex::render::{render, write_png, RenderOptions};
+/// # let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+/// #     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let pic = render(&k, &RenderOptions { width: 32, height: 32, ..Default::default() }).unwrap();
+/// let mut bytes = Vec::new();
+/// write_png(&pic, &mut bytes).unwrap();
+/// assert_eq!(&bytes[1..4], b"PNG");
+/// ```
+///
+/// # Errors
+/// The writer's error, or the encoder's.
+#[cfg(feature = "render")]
+pub fn write_png(pic: &Picture, w: &mut dyn std::io::Write) -> Result<(), crate::io::IoErrorKind> {
+    let mut e = png::Encoder::new(w, pic.width as u32, pic.height as u32);
+    e.set_color(png::ColorType::Rgb);
+    e.set_depth(png::BitDepth::Eight);
+    e.set_compression(png::Compression::Fast);
+    let err = |x: png::EncodingError| match x {
+        png::EncodingError::IoError(e) => crate::io::IoErrorKind::Os(e),
+        other => crate::io::IoErrorKind::Parse(format!("PNG: {other}")),
+    };
+    let mut wr = e.write_header().map_err(err)?;
+    wr.write_image_data(&pic.rgb()).map_err(err)?;
+    wr.finish().map_err(err)?;
+    Ok(())
+}
