@@ -515,33 +515,36 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
     type Part = (Vec<u32>, u128, u128, Vec<Cell>);
     let parts: Vec<Part> = (0..nv.div_ceil(CHUNK))
         .into_par_iter()
-        .map_init(Scratch::default, |w, ci| {
-            use std::sync::atomic::Ordering::Relaxed;
-            let lo = ci * CHUNK;
-            let hi = (lo + CHUNK).min(nv);
-            let mut apex = Vec::with_capacity(hi - lo);
-            let (mut est, mut worst) = (0u128, 0u128);
-            let mut out = Vec::new();
-            for v in lo..hi {
-                let p = morse::plan_vertex(s, v as u32, w);
-                if p.apex == EXPLICIT {
-                    est = est.saturating_add(p.estimate);
-                    worst = worst.max(p.estimate);
-                    let e = u64::try_from(p.estimate).unwrap_or(u64::MAX);
-                    if p.estimate > MAX_STAR
-                        || spent.fetch_add(e.min(1 << 40), Relaxed).saturating_add(e) > budget
-                    {
-                        over.store(true, Relaxed);
+        .map_init(
+            || Scratch::new(simplicial),
+            |w, ci| {
+                use std::sync::atomic::Ordering::Relaxed;
+                let lo = ci * CHUNK;
+                let hi = (lo + CHUNK).min(nv);
+                let mut apex = Vec::with_capacity(hi - lo);
+                let (mut est, mut worst) = (0u128, 0u128);
+                let mut out = Vec::new();
+                for v in lo..hi {
+                    let p = morse::plan_vertex(s, v as u32, w);
+                    if p.apex == EXPLICIT {
+                        est = est.saturating_add(p.estimate);
+                        worst = worst.max(p.estimate);
+                        let e = u64::try_from(p.estimate).unwrap_or(u64::MAX);
+                        if p.estimate > MAX_STAR
+                            || spent.fetch_add(e.min(1 << 40), Relaxed).saturating_add(e) > budget
+                        {
+                            over.store(true, Relaxed);
+                        }
                     }
+                    if (p.apex == ALONE || p.apex == EXPLICIT) && !over.load(Relaxed) {
+                        morse::critical_cells(s, v as u32, p.apex, w, &mut out);
+                    }
+                    apex.push(p.apex);
                 }
-                if (p.apex == ALONE || p.apex == EXPLICIT) && !over.load(Relaxed) {
-                    morse::critical_cells(s, v as u32, p.apex, w, &mut out);
-                }
-                apex.push(p.apex);
-            }
-            progress(hi - lo);
-            (apex, est, worst, out)
-        })
+                progress(hi - lo);
+                (apex, est, worst, out)
+            },
+        )
         .collect();
     let est = parts.iter().fold(0u128, |a, p| a.saturating_add(p.1));
     let worst = parts.iter().map(|p| p.2).max().unwrap_or(0);

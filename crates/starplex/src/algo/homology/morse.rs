@@ -44,6 +44,18 @@ pub(crate) struct Scratch {
     general: Vec<Cell>,
     facet_buf: Vec<(Cell, i8)>,
     m: Matching,
+    /// Every top cell is known to be a simplex (their kinds need not be read).
+    simplicial: bool,
+}
+
+impl Scratch {
+    /// Scratch for a complex whose top cells are all simplices when `simplicial`.
+    pub(crate) fn new(simplicial: bool) -> Scratch {
+        Scratch {
+            simplicial,
+            ..Scratch::default()
+        }
+    }
 }
 
 /// Buffers of the greedy matching of one lower star.
@@ -101,7 +113,7 @@ fn read_lower_sets<S: TopCells + VertexStar + ?Sized>(
     let mut estimate: u128 = 0;
     for i in 0..w.cells.len() {
         let c = w.cells[i];
-        let kind = s.top_cell_kind(c);
+        let is_simplex = w.simplicial || s.top_cell_kind(c).is_simplex();
         w.verts.clear();
         s.top_cell_vertices(c, &mut w.verts);
         w.starts.push(w.lower.len());
@@ -109,7 +121,7 @@ fn read_lower_sets<S: TopCells + VertexStar + ?Sized>(
         w.lower
             .extend(w.verts.iter().map(|x| x.0).filter(|&x| x < v));
         let n = w.lower.len() - start;
-        if kind.is_simplex() {
+        if is_simplex {
             let e = if n >= 127 { u128::MAX } else { 1u128 << n };
             estimate = estimate.saturating_add(e);
         } else {
@@ -132,6 +144,8 @@ fn maximal_masks(w: &mut Scratch) -> bool {
     if w.lv.len() > 64 {
         return false;
     }
+    // the maximal masks, kept incrementally (a star has few): a mask inside a kept one is
+    // dropped, kept masks inside a new one are removed (the set, not its order, matters)
     w.tops.clear();
     for i in 0..w.starts.len() - 1 {
         let mut m = 0u64;
@@ -140,21 +154,12 @@ fn maximal_masks(w: &mut Scratch) -> bool {
             let b = w.lv.partition_point(|&y| y < x);
             m |= 1u64 << b;
         }
+        if w.tops.iter().any(|&big| m & !big == 0) {
+            continue;
+        }
+        w.tops.retain(|&small| small & !m != 0);
         w.tops.push(m);
     }
-    // largest first; a distinct mask can only be inside a strictly larger one
-    w.tops
-        .sort_unstable_by_key(|&m| (std::cmp::Reverse(m.count_ones()), m));
-    w.tops.dedup();
-    let mut kept = 0;
-    for i in 0..w.tops.len() {
-        let m = w.tops[i];
-        if w.tops[..kept].iter().all(|&big| m & !big != 0) {
-            w.tops[kept] = m;
-            kept += 1;
-        }
-    }
-    w.tops.truncate(kept);
     true
 }
 
