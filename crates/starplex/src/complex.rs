@@ -1153,18 +1153,31 @@ impl IndexedComplex {
     /// assert!(vc.row(3).is_empty());
     /// ```
     pub fn vertex_cells(&self) -> Csr {
+        // two direct passes (counts, then fill in cell order, so rows come out sorted)
         let nv = self.n_vertices();
-        Csr::from_fn(nv, |emit| {
-            for b in &self.blocks {
-                let n = b.kind.n_vertices();
-                for (i, cell) in b.vertices.chunks_exact(n).enumerate() {
-                    let c = b.first + i as u32;
-                    for &v in cell {
-                        emit(v, c);
-                    }
+        let mut offsets = vec![0u32; nv + 1];
+        for b in &self.blocks {
+            for &v in b.vertices.iter() {
+                offsets[v as usize + 1] += 1;
+            }
+        }
+        for i in 0..nv {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut pos = offsets[..nv].to_vec();
+        let mut targets = vec![0u32; offsets[nv] as usize];
+        for b in &self.blocks {
+            let n = b.kind.n_vertices();
+            for (i, cell) in b.vertices.chunks_exact(n).enumerate() {
+                let c = b.first + i as u32;
+                for &v in cell {
+                    let p = &mut pos[v as usize];
+                    targets[*p as usize] = c;
+                    *p += 1;
                 }
             }
-        })
+        }
+        Csr { offsets, targets }
     }
 
     /// Duplicate cells (same vertex set) and cells that are faces of other cells.

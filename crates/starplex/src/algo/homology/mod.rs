@@ -483,6 +483,9 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
     to_old: Option<&[u32]>,
 ) -> Result<Homology, HomologyError> {
     let nv = s.n_vertices();
+    let simplicial = (0..s.n_top_cells())
+        .into_par_iter()
+        .all(|c| s.top_cell_kind(CellId(c as u32)).is_simplex());
     let dmax = (0..s.n_top_cells())
         .into_par_iter()
         .map(|c| s.top_cell_kind(CellId(c as u32)).dim())
@@ -512,33 +515,36 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
     type Part = (Vec<u32>, u128, u128, Vec<Cell>);
     let parts: Vec<Part> = (0..nv.div_ceil(CHUNK))
         .into_par_iter()
-        .map_init(Scratch::default, |w, ci| {
-            use std::sync::atomic::Ordering::Relaxed;
-            let lo = ci * CHUNK;
-            let hi = (lo + CHUNK).min(nv);
-            let mut apex = Vec::with_capacity(hi - lo);
-            let (mut est, mut worst) = (0u128, 0u128);
-            let mut out = Vec::new();
-            for v in lo..hi {
-                let p = morse::plan_vertex(s, v as u32, w);
-                if p.apex == EXPLICIT {
-                    est = est.saturating_add(p.estimate);
-                    worst = worst.max(p.estimate);
-                    let e = u64::try_from(p.estimate).unwrap_or(u64::MAX);
-                    if p.estimate > MAX_STAR
-                        || spent.fetch_add(e.min(1 << 40), Relaxed).saturating_add(e) > budget
-                    {
-                        over.store(true, Relaxed);
+        .map_init(
+            || Scratch::new(simplicial),
+            |w, ci| {
+                use std::sync::atomic::Ordering::Relaxed;
+                let lo = ci * CHUNK;
+                let hi = (lo + CHUNK).min(nv);
+                let mut apex = Vec::with_capacity(hi - lo);
+                let (mut est, mut worst) = (0u128, 0u128);
+                let mut out = Vec::new();
+                for v in lo..hi {
+                    let p = morse::plan_vertex(s, v as u32, w);
+                    if p.apex == EXPLICIT {
+                        est = est.saturating_add(p.estimate);
+                        worst = worst.max(p.estimate);
+                        let e = u64::try_from(p.estimate).unwrap_or(u64::MAX);
+                        if p.estimate > MAX_STAR
+                            || spent.fetch_add(e.min(1 << 40), Relaxed).saturating_add(e) > budget
+                        {
+                            over.store(true, Relaxed);
+                        }
                     }
+                    if (p.apex == ALONE || p.apex == EXPLICIT) && !over.load(Relaxed) {
+                        morse::critical_cells(s, v as u32, p.apex, w, &mut out);
+                    }
+                    apex.push(p.apex);
                 }
-                if (p.apex == ALONE || p.apex == EXPLICIT) && !over.load(Relaxed) {
-                    morse::critical_cells(s, v as u32, p.apex, w, &mut out);
-                }
-                apex.push(p.apex);
-            }
-            progress(hi - lo);
-            (apex, est, worst, out)
-        })
+                progress(hi - lo);
+                (apex, est, worst, out)
+            },
+        )
         .collect();
     let est = parts.iter().fold(0u128, |a, p| a.saturating_add(p.1));
     let worst = parts.iter().map(|p| p.2).max().unwrap_or(0);
@@ -607,11 +613,23 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
             if cleared.len() != n {
                 cleared = vec![false; n];
             }
+            let no_rows = g.crit[k - 1].is_empty();
+            if k == dmax && simplicial && !opts.generators && !no_rows {
+                if let Some(next) = coboundary_pairs(&g, k, m, &cleared, &comp_labels, &mut rank)? {
+                    essential_rows[k - 1] = next.clone();
+                    cleared = next;
+                    continue;
+                }
+            }
             let cols: Vec<Option<reduce::Column>> = (0..n)
                 .into_par_iter()
                 .map_init(Scratch::default, |w, j| {
                     if cleared[j] {
                         return Ok(None);
+                    }
+                    if no_rows {
+                        // nothing critical below: every Morse boundary is zero
+                        return Ok(Some(Vec::new()));
                     }
                     let col = g.flow(&[(g.crit[k][j].clone(), 1)], m, None, w)?;
                     Ok(Some(col))
@@ -674,6 +692,9 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
             let cols: Vec<Vec<(u32, i64)>> = (0..n)
                 .into_par_iter()
                 .map_init(Scratch::default, |w, j| {
+                    if g.crit[k - 1].is_empty() {
+                        return Ok(Vec::new());
+                    }
                     g.flow(&[(g.crit[k][j].clone(), 1)], 0, None, w)
                 })
                 .collect::<Result<_, _>>()
@@ -777,6 +798,64 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
         components: opts.per_component.then_some(per),
         generators,
     })
+}
+
+/// The pairs of the Morse boundary matrix of dimension `k` found from the other side: the
+/// Morse *coboundary* of every critical (k-1)-cell (gradient paths followed upwards, which on a
+/// manifold's top dimension are single paths, where the boundary flows cover every top cell),
+/// reduced as the anti-transposed matrix (same pairs, hence same ranks). Columns of `cleared`
+/// cells (known to reduce to zero) are left out. Adds the ranks per component to `rank[k]`
+/// and returns the (k-1)-cells that are pivots (to clear in dimension k-1); `None` when the
+/// upward paths exceed a work budget of half the top cells (then the boundary flows are
+/// cheaper; the outcome is the same for any thread count).
+fn coboundary_pairs<S: TopCells + VertexStar + Sync + ?Sized>(
+    g: &Gradient<'_, S>,
+    k: usize,
+    m: i64,
+    cleared: &[bool],
+    comp_labels: &[Vec<u32>],
+    rank: &mut [Vec<u64>],
+) -> Result<Option<Vec<bool>>, HomologyError> {
+    let n = g.crit[k].len();
+    let n_low = g.crit[k - 1].len();
+    let budget = std::sync::atomic::AtomicI64::new((g.s.n_top_cells() as i64 / 2).max(10_000));
+    let rows: Result<Vec<reduce::Column>, morse::CoflowError> = (0..n_low)
+        .into_par_iter()
+        .map_init(Scratch::default, |w, j| {
+            g.coflow(&g.crit[k - 1][j], m, &budget, w)
+        })
+        .collect();
+    let rows = match rows {
+        Ok(r) => r,
+        Err(morse::CoflowError::OverBudget) => return Ok(None),
+        Err(morse::CoflowError::Overflow) => {
+            return Err(HomologyError::Overflow("the Morse coboundary".into()))
+        }
+    };
+    // the anti-transpose: columns are the (k-1)-cells last first, rows the k-cells last first
+    let cols: Vec<Option<reduce::Column>> = rows
+        .iter()
+        .rev()
+        .map(|r| {
+            Some(
+                r.iter()
+                    .rev()
+                    .filter(|&&(t, _)| !cleared[t as usize])
+                    .map(|&(t, c)| (n as u32 - 1 - t, c))
+                    .collect(),
+            )
+        })
+        .collect();
+    let r = reduce::reduce(cols, n, m, false);
+    let mut next = vec![false; n_low];
+    for (j, l) in r.low.iter().enumerate() {
+        if let Some(row) = l {
+            let tau = n - 1 - *row as usize;
+            next[n_low - 1 - j] = true;
+            rank[k][comp_labels[k][tau] as usize] += 1;
+        }
+    }
+    Ok(Some(next))
 }
 
 /// Writes generators as an OBJ file a viewer can show: every vertex of the complex (`v x y z`,

@@ -16,7 +16,7 @@ use std::collections::{BTreeMap, BinaryHeap, VecDeque};
 
 use smallvec::SmallVec;
 
-use super::cells::{cp_lower_star_faces, Cell, Key};
+use super::cells::{cp_lower_star_faces, Cell, Key, Shape};
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
 
@@ -25,14 +25,55 @@ pub(crate) const ALONE: u32 = u32::MAX;
 /// `apex[v]` when L(v) is enumerated.
 pub(crate) const EXPLICIT: u32 = u32::MAX - 1;
 
-/// Scratch buffers of one worker.
+/// Scratch buffers of one worker (reused from vertex to vertex: no allocation per lower star
+/// once they have grown).
 #[derive(Default)]
 pub(crate) struct Scratch {
     cells: Vec<CellId>,
     verts: Vec<VertexId>,
-    /// Lower sets S_c, flat, with offsets.
+    /// Lower vertices of each top cell, flat, with offsets.
     lower: Vec<u32>,
     starts: Vec<usize>,
+    /// The distinct lower vertices of the star, sorted (bit `i` of a mask is `lv[i]`).
+    lv: Vec<u32>,
+    /// Lower sets of the top cells as masks over `lv`.
+    tops: Vec<u64>,
+    /// The cells of L(v) as masks (`v` implied), sorted.
+    masks: Vec<u64>,
+    /// The cells of L(v) when masks do not apply (CP cells, more than 64 lower vertices).
+    general: Vec<Cell>,
+    facet_buf: Vec<(Cell, i8)>,
+    m: Matching,
+    /// Every top cell is known to be a simplex (their kinds need not be read).
+    simplicial: bool,
+}
+
+impl Scratch {
+    /// Scratch for a complex whose top cells are all simplices when `simplicial`.
+    pub(crate) fn new(simplicial: bool) -> Scratch {
+        Scratch {
+            simplicial,
+            ..Scratch::default()
+        }
+    }
+}
+
+/// Buffers of the greedy matching of one lower star.
+#[derive(Default)]
+struct Matching {
+    /// Facets inside L(v) of each cell (CSR).
+    fstart: Vec<u32>,
+    facets: Vec<u32>,
+    /// Cofacets inside L(v) (CSR).
+    ccount: Vec<u32>,
+    cof: Vec<u32>,
+    fill: Vec<u32>,
+    remaining: Vec<u32>,
+    status: Vec<Option<Status>>,
+    time: Vec<u32>,
+    dims: Vec<u8>,
+    pairq: VecDeque<u32>,
+    free: BinaryHeap<std::cmp::Reverse<(u8, u32)>>,
 }
 
 /// What [`plan_vertex`] found.
@@ -58,37 +99,29 @@ fn is_subset(a: &[u32], b: &[u32]) -> bool {
     true
 }
 
-/// Classifies the lower star of `v` (see the module docs) without enumerating it.
-pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
+/// Reads the star of `v`: the lower vertices of every top cell into `w.lower` / `w.starts`
+/// (unsorted within a cell). Returns (any lower vertex, all cells simplices, estimate).
+fn read_lower_sets<S: TopCells + VertexStar + ?Sized>(
     s: &S,
     v: u32,
     w: &mut Scratch,
-) -> VertexPlan {
+) -> (bool, bool, u128) {
     s.vertex_top_cells(VertexId(v), &mut w.cells);
-    if w.cells.is_empty() {
-        return VertexPlan {
-            apex: ALONE,
-            estimate: 1,
-        };
-    }
     w.lower.clear();
     w.starts.clear();
     let mut all_simplices = true;
     let mut estimate: u128 = 0;
-    let mut any_lower = false;
     for i in 0..w.cells.len() {
         let c = w.cells[i];
-        let kind = s.top_cell_kind(c);
+        let is_simplex = w.simplicial || s.top_cell_kind(c).is_simplex();
         w.verts.clear();
         s.top_cell_vertices(c, &mut w.verts);
         w.starts.push(w.lower.len());
         let start = w.lower.len();
         w.lower
             .extend(w.verts.iter().map(|x| x.0).filter(|&x| x < v));
-        w.lower[start..].sort_unstable();
         let n = w.lower.len() - start;
-        any_lower |= n > 0;
-        if kind.is_simplex() {
+        if is_simplex {
             let e = if n >= 127 { u128::MAX } else { 1u128 << n };
             estimate = estimate.saturating_add(e);
         } else {
@@ -97,6 +130,46 @@ pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
         }
     }
     w.starts.push(w.lower.len());
+    (!w.lower.is_empty(), all_simplices, estimate)
+}
+
+/// After [`read_lower_sets`] on simplices: the distinct lower vertices into `w.lv` and the
+/// distinct *maximal* lower sets as masks into `w.tops`. False when there are more than 64
+/// lower vertices (masks do not apply).
+fn maximal_masks(w: &mut Scratch) -> bool {
+    w.lv.clear();
+    w.lv.extend_from_slice(&w.lower);
+    w.lv.sort_unstable();
+    w.lv.dedup();
+    if w.lv.len() > 64 {
+        return false;
+    }
+    // the maximal masks, kept incrementally (a star has few): a mask inside a kept one is
+    // dropped, kept masks inside a new one are removed (the set, not its order, matters)
+    w.tops.clear();
+    for i in 0..w.starts.len() - 1 {
+        let mut m = 0u64;
+        for &x in &w.lower[w.starts[i]..w.starts[i + 1]] {
+            // lv is small and sorted
+            let b = w.lv.partition_point(|&y| y < x);
+            m |= 1u64 << b;
+        }
+        if w.tops.iter().any(|&big| m & !big == 0) {
+            continue;
+        }
+        w.tops.retain(|&small| small & !m != 0);
+        w.tops.push(m);
+    }
+    true
+}
+
+/// Classifies the lower star of `v` (see the module docs) without enumerating it.
+pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
+    s: &S,
+    v: u32,
+    w: &mut Scratch,
+) -> VertexPlan {
+    let (any_lower, all_simplices, estimate) = read_lower_sets(s, v, w);
     if !any_lower {
         return VertexPlan {
             apex: ALONE,
@@ -108,6 +181,20 @@ pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
             apex: EXPLICIT,
             estimate,
         };
+    }
+    if maximal_masks(w) {
+        // a cone iff one vertex is in every maximal lower set: the smallest such is the apex
+        let common = w.tops.iter().fold(u64::MAX, |a, &m| a & m);
+        let apex = if common == 0 {
+            EXPLICIT
+        } else {
+            w.lv[common.trailing_zeros() as usize]
+        };
+        return VertexPlan { apex, estimate };
+    }
+    // more than 64 lower vertices: compare sorted sets
+    for i in 0..w.starts.len() - 1 {
+        w.lower[w.starts[i]..w.starts[i + 1]].sort_unstable();
     }
     let m = w.cells.len();
     let set = |i: usize| &w.lower[w.starts[i]..w.starts[i + 1]];
@@ -161,37 +248,107 @@ pub(crate) enum Status {
 
 /// An enumerated and matched lower star.
 pub(crate) struct LowerStar {
-    /// Sorted by key.
-    pub cells: Vec<Cell>,
+    v: u32,
+    /// Distinct lower vertices (mask form), sorted.
+    lv: Vec<u32>,
+    /// Cells as masks over `lv`, sorted (mask form).
+    masks: Vec<u64>,
+    /// Cells sorted by key (general form; empty in mask form).
+    cells: Vec<Cell>,
     pub status: Vec<Status>,
     pub time: Vec<u32>,
 }
 
 impl LowerStar {
+    fn is_masks(&self) -> bool {
+        self.cells.is_empty()
+    }
+
     pub fn find(&self, key: &[u32]) -> Option<usize> {
-        self.cells
-            .binary_search_by(|c| c.key.as_slice().cmp(key))
-            .ok()
+        if !self.is_masks() {
+            return self
+                .cells
+                .binary_search_by(|c| c.key.as_slice().cmp(key))
+                .ok();
+        }
+        let (&last, rest) = key.split_last()?;
+        if last != self.v {
+            return None;
+        }
+        let mut m = 0u64;
+        for x in rest {
+            m |= 1u64 << self.lv.binary_search(x).ok()?;
+        }
+        self.masks.binary_search(&m).ok()
+    }
+
+    pub fn cell(&self, i: usize) -> Cell {
+        if self.is_masks() {
+            mask_cell(&self.lv, self.masks[i], self.v)
+        } else {
+            self.cells[i].clone()
+        }
     }
 }
 
-/// Enumerates and matches L(v).
-pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
-    s: &S,
-    v: u32,
-    w: &mut Scratch,
-) -> LowerStar {
-    s.vertex_top_cells(VertexId(v), &mut w.cells);
-    let mut cells: Vec<Cell> = Vec::new();
-    let mut lower: Vec<u32> = Vec::new();
+/// The simplex `v ∪ {lv[b] : b in mask}`.
+fn mask_cell(lv: &[u32], mask: u64, v: u32) -> Cell {
+    let mut key: Key = SmallVec::new();
+    let mut m = mask;
+    while m != 0 {
+        key.push(lv[m.trailing_zeros() as usize]);
+        m &= m - 1;
+    }
+    key.push(v);
+    Cell::simplex(key)
+}
+
+/// Enumerates L(v) into `w.masks` (mask form, returns true) or `w.general` (sorted by key), and
+/// its facet relation into `w.m`.
+fn enumerate<S: TopCells + VertexStar + ?Sized>(s: &S, v: u32, w: &mut Scratch) -> bool {
+    let (_, all_simplices, _) = read_lower_sets(s, v, w);
+    w.m.fstart.clear();
+    w.m.facets.clear();
+    w.m.dims.clear();
+    if all_simplices && maximal_masks(w) {
+        let m = &mut w.m;
+        w.masks.clear();
+        for &top in &w.tops {
+            let mut sub = top;
+            loop {
+                w.masks.push(sub);
+                if sub == 0 {
+                    break;
+                }
+                sub = (sub - 1) & top;
+            }
+        }
+        w.masks.sort_unstable();
+        w.masks.dedup();
+        for &c in &w.masks {
+            m.fstart.push(m.facets.len() as u32);
+            m.dims.push(c.count_ones() as u8);
+            let mut r = c;
+            while r != 0 {
+                let f = c & !(r & r.wrapping_neg());
+                r &= r - 1;
+                match w.masks.binary_search(&f) {
+                    Ok(j) => m.facets.push(j as u32),
+                    Err(_) => debug_assert!(false, "facet of a lower-star cell missing"),
+                }
+            }
+        }
+        m.fstart.push(m.facets.len() as u32);
+        return true;
+    }
+    w.general.clear();
     for i in 0..w.cells.len() {
         let c = w.cells[i];
         let kind = s.top_cell_kind(c);
         w.verts.clear();
         s.top_cell_vertices(c, &mut w.verts);
         if kind.is_simplex() {
-            lower.clear();
-            lower.extend(w.verts.iter().map(|x| x.0).filter(|&x| x < v));
+            let lower = &mut w.lower[w.starts[i]..w.starts[i + 1]];
             lower.sort_unstable();
             let n = lower.len();
             for mask in 0u64..(1u64 << n) {
@@ -202,179 +359,183 @@ pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
                     }
                 }
                 key.push(v);
-                cells.push(Cell::simplex(key));
+                w.general.push(Cell::simplex(key));
             }
         } else {
             let g: Vec<u32> = w.verts.iter().map(|x| x.0).collect();
-            cp_lower_star_faces(kind, &g, v, &mut cells);
+            cp_lower_star_faces(kind, &g, v, &mut w.general);
         }
     }
+    let cells = &mut w.general;
     cells.sort_unstable_by(|a, b| a.key.cmp(&b.key));
     cells.dedup_by(|a, b| a.key == b.key);
-    let n = cells.len();
-    // facets inside L(v) (those containing v), and cofacets
-    let mut fstart = Vec::with_capacity(n + 1);
-    let mut facets: Vec<u32> = Vec::new();
-    let mut buf = Vec::new();
-    for c in &cells {
-        fstart.push(facets.len());
-        buf.clear();
-        c.facets(&mut buf);
-        for (f, _) in &buf {
+    let m = &mut w.m;
+    for c in cells.iter() {
+        m.fstart.push(m.facets.len() as u32);
+        m.dims.push(c.dim() as u8);
+        w.facet_buf.clear();
+        c.facets(&mut w.facet_buf);
+        for (f, _) in &w.facet_buf {
             if f.key.contains(&v) {
                 if let Ok(j) = cells.binary_search_by(|x| x.key.as_slice().cmp(&f.key)) {
-                    facets.push(j as u32);
+                    m.facets.push(j as u32);
                 } else {
                     debug_assert!(false, "facet of a lower-star cell missing");
                 }
             }
         }
     }
-    fstart.push(facets.len());
-    let mut ccount = vec![0u32; n + 1];
-    for &f in &facets {
-        ccount[f as usize + 1] += 1;
-    }
-    for i in 0..n {
-        ccount[i + 1] += ccount[i];
-    }
-    let mut cof = vec![0u32; facets.len()];
-    let mut fill = ccount.clone();
-    for i in 0..n {
-        for &f in &facets[fstart[i]..fstart[i + 1]] {
-            cof[fill[f as usize] as usize] = i as u32;
-            fill[f as usize] += 1;
-        }
-    }
-    let mut remaining: Vec<u32> = (0..n).map(|i| (fstart[i + 1] - fstart[i]) as u32).collect();
-    let mut status: Vec<Option<Status>> = vec![None; n];
-    let mut time = vec![0u32; n];
-    let dims: Vec<u8> = cells.iter().map(|c| c.dim() as u8).collect();
-    let mut pairq: VecDeque<u32> = VecDeque::new();
-    let mut free: BinaryHeap<std::cmp::Reverse<(u8, u32)>> = BinaryHeap::new();
-    for i in 0..n {
-        if remaining[i] == 0 {
-            free.push(std::cmp::Reverse((dims[i], i as u32)));
-        } else if remaining[i] == 1 {
-            pairq.push_back(i as u32);
-        }
-    }
-    let mut t = 0u32;
-    let mut done = 0usize;
-    // classify x: update cofaces' counts
-    #[allow(clippy::too_many_arguments)]
-    fn classify(
-        x: usize,
-        remaining: &mut [u32],
-        cof: &[u32],
-        ccount: &[u32],
-        status: &[Option<Status>],
-        pairq: &mut VecDeque<u32>,
-        free: &mut BinaryHeap<std::cmp::Reverse<(u8, u32)>>,
-        dims: &[u8],
-    ) {
-        for &y in &cof[ccount[x] as usize..ccount[x + 1] as usize] {
-            let y = y as usize;
-            remaining[y] -= 1;
-            if status[y].is_some() {
+    m.fstart.push(m.facets.len() as u32);
+    false
+}
+
+impl Matching {
+    /// Classifies `x`: updates the counts of its cofaces.
+    fn classify(&mut self, x: usize) {
+        for k in self.ccount[x] as usize..self.ccount[x + 1] as usize {
+            let y = self.cof[k] as usize;
+            self.remaining[y] -= 1;
+            if self.status[y].is_some() {
                 continue;
             }
-            if remaining[y] == 1 {
-                pairq.push_back(y as u32);
-            } else if remaining[y] == 0 {
-                free.push(std::cmp::Reverse((dims[y], y as u32)));
-                for &z in &cof[ccount[y] as usize..ccount[y + 1] as usize] {
-                    if remaining[z as usize] == 1 && status[z as usize].is_none() {
-                        pairq.push_back(z);
+            if self.remaining[y] == 1 {
+                self.pairq.push_back(y as u32);
+            } else if self.remaining[y] == 0 {
+                self.free.push(std::cmp::Reverse((self.dims[y], y as u32)));
+                for &z in &self.cof[self.ccount[y] as usize..self.ccount[y + 1] as usize] {
+                    if self.remaining[z as usize] == 1 && self.status[z as usize].is_none() {
+                        self.pairq.push_back(z);
                     }
                 }
             }
         }
     }
-    while done < n {
-        while let Some(a) = pairq.pop_front() {
-            let a = a as usize;
-            if status[a].is_some() || remaining[a] != 1 {
-                continue;
-            }
-            let tau = facets[fstart[a]..fstart[a + 1]]
-                .iter()
-                .map(|&f| f as usize)
-                .find(|&f| status[f].is_none());
-            let Some(tau) = tau else { continue };
-            if remaining[tau] != 0 {
-                continue;
-            }
-            status[tau] = Some(Status::Up(a as u32));
-            status[a] = Some(Status::Down(tau as u32));
-            time[tau] = t;
-            time[a] = t;
-            t += 1;
-            done += 2;
-            classify(
-                tau,
-                &mut remaining,
-                &cof,
-                &ccount,
-                &status,
-                &mut pairq,
-                &mut free,
-                &dims,
-            );
-            classify(
-                a,
-                &mut remaining,
-                &cof,
-                &ccount,
-                &status,
-                &mut pairq,
-                &mut free,
-                &dims,
-            );
+
+    /// The greedy matching of the `n` cells whose facets are in `fstart` / `facets` and
+    /// dimensions in `dims`: into `status` and `time`.
+    fn run(&mut self) {
+        let n = self.dims.len();
+        self.ccount.clear();
+        self.ccount.resize(n + 1, 0);
+        for &f in &self.facets {
+            self.ccount[f as usize + 1] += 1;
         }
-        if done >= n {
-            break;
+        for i in 0..n {
+            self.ccount[i + 1] += self.ccount[i];
         }
-        // a critical cell: the lowest-dimensional free unclassified cell
-        let mut g = None;
-        while let Some(std::cmp::Reverse((_, i))) = free.pop() {
-            if status[i as usize].is_none() {
-                g = Some(i as usize);
+        self.cof.clear();
+        self.cof.resize(self.facets.len(), 0);
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.ccount);
+        for i in 0..n {
+            for k in self.fstart[i] as usize..self.fstart[i + 1] as usize {
+                let f = self.facets[k] as usize;
+                self.cof[self.fill[f] as usize] = i as u32;
+                self.fill[f] += 1;
+            }
+        }
+        self.remaining.clear();
+        self.remaining
+            .extend((0..n).map(|i| self.fstart[i + 1] - self.fstart[i]));
+        self.status.clear();
+        self.status.resize(n, None);
+        self.time.clear();
+        self.time.resize(n, 0);
+        self.pairq.clear();
+        self.free.clear();
+        for i in 0..n {
+            if self.remaining[i] == 0 {
+                self.free.push(std::cmp::Reverse((self.dims[i], i as u32)));
+            } else if self.remaining[i] == 1 {
+                self.pairq.push_back(i as u32);
+            }
+        }
+        let mut t = 0u32;
+        let mut done = 0usize;
+        while done < n {
+            while let Some(a) = self.pairq.pop_front() {
+                let a = a as usize;
+                if self.status[a].is_some() || self.remaining[a] != 1 {
+                    continue;
+                }
+                let tau = self.facets[self.fstart[a] as usize..self.fstart[a + 1] as usize]
+                    .iter()
+                    .map(|&f| f as usize)
+                    .find(|&f| self.status[f].is_none());
+                let Some(tau) = tau else { continue };
+                if self.remaining[tau] != 0 {
+                    continue;
+                }
+                self.status[tau] = Some(Status::Up(a as u32));
+                self.status[a] = Some(Status::Down(tau as u32));
+                self.time[tau] = t;
+                self.time[a] = t;
+                t += 1;
+                done += 2;
+                self.classify(tau);
+                self.classify(a);
+            }
+            if done >= n {
                 break;
             }
-        }
-        let Some(g) = g else {
-            debug_assert!(false, "no free cell left in a lower star");
-            break;
-        };
-        status[g] = Some(Status::Critical);
-        time[g] = t;
-        t += 1;
-        done += 1;
-        classify(
-            g,
-            &mut remaining,
-            &cof,
-            &ccount,
-            &status,
-            &mut pairq,
-            &mut free,
-            &dims,
-        );
-        // cofaces of g with one unclassified facet may now pair
-        for &z in &cof[ccount[g] as usize..ccount[g + 1] as usize] {
-            if remaining[z as usize] == 1 && status[z as usize].is_none() {
-                pairq.push_back(z);
+            // a critical cell: the lowest-dimensional free unclassified cell
+            let mut g = None;
+            while let Some(std::cmp::Reverse((_, i))) = self.free.pop() {
+                if self.status[i as usize].is_none() {
+                    g = Some(i as usize);
+                    break;
+                }
+            }
+            let Some(g) = g else {
+                debug_assert!(false, "no free cell left in a lower star");
+                break;
+            };
+            self.status[g] = Some(Status::Critical);
+            self.time[g] = t;
+            t += 1;
+            done += 1;
+            self.classify(g);
+            // cofaces of g with one unclassified facet may now pair
+            for k in self.ccount[g] as usize..self.ccount[g + 1] as usize {
+                let z = self.cof[k];
+                if self.remaining[z as usize] == 1 && self.status[z as usize].is_none() {
+                    self.pairq.push_back(z);
+                }
             }
         }
     }
+}
+
+/// Enumerates and matches L(v) in the scratch buffers; true in mask form.
+fn match_lower_star<S: TopCells + VertexStar + ?Sized>(s: &S, v: u32, w: &mut Scratch) -> bool {
+    let masks = enumerate(s, v, w);
+    w.m.run();
+    masks
+}
+
+/// Enumerates and matches L(v).
+pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
+    s: &S,
+    v: u32,
+    w: &mut Scratch,
+) -> LowerStar {
+    let masks = match_lower_star(s, v, w);
     LowerStar {
-        cells,
-        status: status
-            .into_iter()
+        v,
+        lv: if masks { w.lv.clone() } else { Vec::new() },
+        masks: if masks { w.masks.clone() } else { Vec::new() },
+        cells: if masks {
+            Vec::new()
+        } else {
+            std::mem::take(&mut w.general)
+        },
+        status: w
+            .m
+            .status
+            .iter()
             .map(|s| s.unwrap_or(Status::Critical))
             .collect(),
-        time,
+        time: w.m.time.clone(),
     }
 }
 
@@ -389,10 +550,14 @@ pub(crate) fn critical_cells<S: TopCells + VertexStar + ?Sized>(
     match apex {
         ALONE => out.push(Cell::simplex(SmallVec::from_slice(&[v]))),
         EXPLICIT => {
-            let ls = lower_star(s, v, w);
-            for (c, st) in ls.cells.into_iter().zip(ls.status) {
-                if st == Status::Critical {
-                    out.push(c);
+            let masks = match_lower_star(s, v, w);
+            for (i, st) in w.m.status.iter().enumerate() {
+                if matches!(st, None | Some(Status::Critical)) {
+                    out.push(if masks {
+                        mask_cell(&w.lv, w.masks[i], v)
+                    } else {
+                        w.general[i].clone()
+                    });
                 }
             }
         }
@@ -476,13 +641,27 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
                     },
                     Status::Down(_) => Look::Down,
                     Status::Up(a) => {
-                        let alpha = ls.cells[a as usize].clone();
-                        let mut buf = Vec::new();
-                        alpha.facets(&mut buf);
-                        let sign = buf
-                            .iter()
-                            .find(|(f, _)| f.key == tau.key)
-                            .map_or(1, |(_, s)| *s);
+                        let alpha = ls.cell(a as usize);
+                        let sign = if alpha.shape == Shape::Simplex {
+                            // alpha = tau plus one vertex, at the first differing position
+                            let pos = tau
+                                .key
+                                .iter()
+                                .zip(&alpha.key)
+                                .position(|(x, y)| x != y)
+                                .unwrap_or(tau.key.len());
+                            if pos % 2 == 0 {
+                                1
+                            } else {
+                                -1
+                            }
+                        } else {
+                            let mut buf = Vec::new();
+                            alpha.facets(&mut buf);
+                            buf.iter()
+                                .find(|(f, _)| f.key == tau.key)
+                                .map_or(1, |(_, s)| *s)
+                        };
                         Look::Up {
                             alpha,
                             sign,
@@ -595,6 +774,206 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
         }
         if let Some(ch) = chain {
             ch.retain(|_, (_, c)| *c != 0);
+        }
+        Ok(result.into_iter().filter(|&(_, c)| c != 0).collect())
+    }
+}
+
+/// What the gradient says of a cell, seen from below (for coboundary flows).
+pub(crate) enum CoLook {
+    Critical(u32),
+    /// Paired with a coface: no coboundary path goes through it.
+    Up,
+    /// Paired with the facet `beta`, which has incidence `sign` in the cell; `time` orders paths.
+    Down {
+        beta: Cell,
+        sign: i8,
+        time: u32,
+    },
+}
+
+/// The coboundary flows ran over their shared work budget.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum CoflowError {
+    Overflow,
+    OverBudget,
+}
+
+impl From<Overflow> for CoflowError {
+    fn from(_: Overflow) -> Self {
+        CoflowError::Overflow
+    }
+}
+
+/// Sign of the facet `small` (one vertex less) in the simplex `big`.
+fn facet_sign(small: &[u32], big: &[u32]) -> i8 {
+    let pos = small
+        .iter()
+        .zip(big)
+        .position(|(x, y)| x != y)
+        .unwrap_or(small.len());
+    if pos % 2 == 0 {
+        1
+    } else {
+        -1
+    }
+}
+
+impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
+    /// [`Gradient::look`] from below: for a simplex `tau`.
+    pub fn colook(&self, tau: &Cell, cache: &mut Cache, w: &mut Scratch) -> CoLook {
+        let v = tau.max_vertex();
+        match self.apex[v as usize] {
+            ALONE => match self.crit_index(tau) {
+                Some(i) => CoLook::Critical(i),
+                None => CoLook::Up,
+            },
+            EXPLICIT => {
+                let ls = cache.entry(v).or_insert_with(|| lower_star(self.s, v, w));
+                let Some(i) = ls.find(&tau.key) else {
+                    debug_assert!(false, "cell not in its lower star");
+                    return CoLook::Up;
+                };
+                match ls.status[i] {
+                    Status::Critical => match self.crit_index(tau) {
+                        Some(i) => CoLook::Critical(i),
+                        None => CoLook::Up,
+                    },
+                    Status::Up(_) => CoLook::Up,
+                    Status::Down(b) => {
+                        let beta = ls.cell(b as usize);
+                        let sign = facet_sign(&beta.key, &tau.key);
+                        CoLook::Down {
+                            beta,
+                            sign,
+                            time: ls.time[i],
+                        }
+                    }
+                }
+            }
+            apex => match tau.key.binary_search(&apex) {
+                Ok(pos) => {
+                    let mut key = tau.key.clone();
+                    key.remove(pos);
+                    CoLook::Down {
+                        beta: Cell::simplex(key),
+                        sign: if pos % 2 == 0 { 1 } else { -1 },
+                        time: 0,
+                    }
+                }
+                Err(_) => CoLook::Up,
+            },
+        }
+    }
+
+    /// Appends the cofacets of the simplex `sigma` (all top cells simplices) with the
+    /// incidence of `sigma` in each.
+    fn cofacets(&self, sigma: &Cell, w: &mut Scratch, out: &mut Vec<(Cell, i8)>) {
+        let v = sigma.max_vertex();
+        self.s.vertex_top_cells(VertexId(v), &mut w.cells);
+        w.lower.clear();
+        for i in 0..w.cells.len() {
+            w.verts.clear();
+            self.s.top_cell_vertices(w.cells[i], &mut w.verts);
+            if sigma.key.iter().all(|x| w.verts.iter().any(|y| y.0 == *x)) {
+                w.lower.extend(
+                    w.verts
+                        .iter()
+                        .map(|y| y.0)
+                        .filter(|y| sigma.key.binary_search(y).is_err()),
+                );
+            }
+        }
+        w.lower.sort_unstable();
+        w.lower.dedup();
+        for &x in &w.lower {
+            let pos = sigma.key.partition_point(|&y| y < x);
+            let mut key = sigma.key.clone();
+            key.insert(pos, x);
+            out.push((Cell::simplex(key), if pos % 2 == 0 { 1 } else { -1 }));
+        }
+    }
+
+    /// The Morse coboundary of the critical simplex `sigma` (critical index, coefficient):
+    /// gradient paths followed upwards, cells processed in increasing (largest vertex, time)
+    /// order. Every processed cell takes one unit of `budget`; when the budget shared by all
+    /// flows is exhausted, the flow stops with [`CoflowError::OverBudget`] (the total work
+    /// is then known to exceed it, so the outcome does not depend on the thread count).
+    pub fn coflow(
+        &self,
+        sigma: &Cell,
+        m: i64,
+        budget: &std::sync::atomic::AtomicI64,
+        w: &mut Scratch,
+    ) -> Result<Vec<(u32, i64)>, CoflowError> {
+        use std::sync::atomic::Ordering::Relaxed;
+        type Pending = BTreeMap<(u32, u32, Key), (i64, Cell, i8)>;
+        let mut pending: Pending = BTreeMap::new();
+        let mut result: BTreeMap<u32, i64> = BTreeMap::new();
+        let mut cache: Cache = BTreeMap::new();
+        let mut buf: Vec<(Cell, i8)> = Vec::new();
+        let add = |tau: Cell,
+                   c: i64,
+                   pending: &mut Pending,
+                   result: &mut BTreeMap<u32, i64>,
+                   cache: &mut Cache,
+                   w: &mut Scratch|
+         -> Result<(), Overflow> {
+            match self.colook(&tau, cache, w) {
+                CoLook::Critical(i) => {
+                    let e = result.entry(i).or_insert(0);
+                    *e = add_c(*e, c, m)?;
+                }
+                CoLook::Up => {}
+                CoLook::Down { beta, sign, time } => {
+                    let k = (tau.max_vertex(), time, tau.key);
+                    let e = pending.entry(k).or_insert((0, beta, sign));
+                    e.0 = add_c(e.0, c, m)?;
+                }
+            }
+            Ok(())
+        };
+        self.cofacets(sigma, w, &mut buf);
+        for (t, s) in std::mem::take(&mut buf) {
+            add(t, s as i64, &mut pending, &mut result, &mut cache, w)?;
+        }
+        let mut work = 0i64;
+        while let Some(((v, _, tau_key), (c, beta, sign))) = pending.pop_first() {
+            work += 1;
+            if work == 256 {
+                if budget.fetch_sub(work, Relaxed) - work < 0 {
+                    return Err(CoflowError::OverBudget);
+                }
+                work = 0;
+            }
+            if cache.first_key_value().is_some_and(|(&k, _)| k < v) {
+                cache = cache.split_off(&v);
+            }
+            if c == 0 {
+                continue;
+            }
+            // coefficient of beta cancelling tau
+            let cb = mul_c(-c, sign as i64, m)?;
+            buf.clear();
+            self.cofacets(&beta, w, &mut buf);
+            let cof = std::mem::take(&mut buf);
+            for (t, s) in &cof {
+                if t.key == tau_key {
+                    continue;
+                }
+                add(
+                    t.clone(),
+                    mul_c(cb, *s as i64, m)?,
+                    &mut pending,
+                    &mut result,
+                    &mut cache,
+                    w,
+                )?;
+            }
+            buf = cof;
+        }
+        if budget.fetch_sub(work, Relaxed) - work < 0 {
+            return Err(CoflowError::OverBudget);
         }
         Ok(result.into_iter().filter(|&(_, c)| c != 0).collect())
     }
