@@ -154,10 +154,10 @@ impl Canvas {
                 let d = (ddx * ddx + ddy * ddy).sqrt();
                 if d <= r {
                     self.plot(x, y, p[2], colour, bias);
-                } else if d <= ro {
-                    if let Some(o) = outline {
-                        self.plot(x, y, p[2], o, bias);
-                    }
+                } else if d <= ro
+                    && let Some(o) = outline
+                {
+                    self.plot(x, y, p[2], o, bias);
                 }
             }
         }

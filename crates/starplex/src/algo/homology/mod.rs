@@ -614,12 +614,15 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
                 cleared = vec![false; n];
             }
             let no_rows = g.crit[k - 1].is_empty();
-            if k == dmax && simplicial && !opts.generators && !no_rows {
-                if let Some(next) = coboundary_pairs(&g, k, m, &cleared, &comp_labels, &mut rank)? {
-                    essential_rows[k - 1] = next.clone();
-                    cleared = next;
-                    continue;
-                }
+            if k == dmax
+                && simplicial
+                && !opts.generators
+                && !no_rows
+                && let Some(next) = coboundary_pairs(&g, k, m, &cleared, &comp_labels, &mut rank)?
+            {
+                essential_rows[k - 1] = next.clone();
+                cleared = next;
+                continue;
             }
             let cols: Vec<Option<reduce::Column>> = (0..n)
                 .into_par_iter()
