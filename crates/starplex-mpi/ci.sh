@@ -23,6 +23,8 @@ if [ -n "$need" ]; then
 fi
 # mpirun as root on a machine with fewer cores than ranks
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-cargo build --release -p starplex-cli -p starplex-mpi
-STARPLEX_BIN="$(pwd)/target/release/starplex" \
-    cargo test --release -p starplex-mpi -- --test-threads 1 --nocapture
+# the test profile, as `cargo test` of the workspace: the library and the `starplex` binary
+# built by .ci/run's `cargo test` are reused
+cargo clippy -p starplex-mpi --all-targets -- -D warnings
+cargo test -p starplex-cli --no-run
+cargo test -p starplex-mpi -- --test-threads 1

@@ -127,10 +127,7 @@ where
     let root = w.process_at_rank(0);
     let n = agree(w, counts_of(std::iter::once(v.len())))?[0];
     if w.rank() != 0 {
-        BYTES_SENT.fetch_add(
-            (v.len() * std::mem::size_of::<T>()) as u64,
-            Ordering::Relaxed,
-        );
+        BYTES_SENT.fetch_add(std::mem::size_of_val(v) as u64, Ordering::Relaxed);
         root.gather_into(&n);
         root.gather_varcount_into(v);
         return Ok(None);

@@ -26,8 +26,6 @@ pub struct Merged {
     /// Global ids of the elements this rank owns whose sign is -1 relative to their class's
     /// smallest element (the cells to flip).
     pub negative: Vec<u32>,
-    /// Number of rounds.
-    pub rounds: u32,
 }
 
 /// One rank's elements: global id, owner rank, local class and sign relative to the class root.
@@ -94,10 +92,8 @@ pub fn merge(w: &World, e: &Elements) -> Result<Merged, Failure> {
         .collect();
     let asked = comm::agree(w, asked)?;
     let mut conflict = e.conflict;
-    let mut rounds = 0;
     let mut best: Vec<(u32, i8)> = vec![(u32::MAX, 1); e.n_classes];
     loop {
-        rounds += 1;
         // owners send the labels of the elements others hold
         let reply: Vec<Vec<u32>> = asked
             .iter()
@@ -176,6 +172,5 @@ pub fn merge(w: &World, e: &Elements) -> Result<Merged, Failure> {
         n_classes: comm::sum(w, n_roots),
         conflict: comm::max(w, u64::from(conflict)) > 0,
         negative,
-        rounds,
     })
 }

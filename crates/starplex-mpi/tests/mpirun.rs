@@ -67,33 +67,44 @@ fn small_datasets() -> Vec<PathBuf> {
     found.into_values().collect()
 }
 
-/// Runs `cmd`, killed after `limit`: (status code, stdout, stderr).
+/// Runs `cmd`, killed after `limit`: (status code, stdout, stderr). The pipes are drained by
+/// threads while it runs (a JSON report is larger than a pipe buffer).
 fn run(cmd: &mut Command, limit: Duration) -> (Option<i32>, String, String) {
+    use std::io::Read;
     let mut child = cmd
+        .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .expect("spawn");
+    let drain = |mut r: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut s = String::new();
+            r.read_to_string(&mut s).ok();
+            s
+        })
+    };
+    let out = drain(Box::new(child.stdout.take().expect("stdout")));
+    let err = drain(Box::new(child.stderr.take().expect("stderr")));
     let t0 = Instant::now();
-    loop {
-        if child.try_wait().expect("wait").is_some() {
-            break;
+    let status = loop {
+        if let Some(st) = child.try_wait().expect("wait") {
+            break st;
         }
         if t0.elapsed() > limit {
             child.kill().ok();
-            let out = child.wait_with_output().expect("output");
+            child.wait().ok();
             panic!(
                 "{cmd:?} hung (killed after {limit:?}); stderr: {}",
-                String::from_utf8_lossy(&out.stderr)
+                err.join().unwrap_or_default()
             );
         }
         std::thread::sleep(Duration::from_millis(20));
-    }
-    let out = child.wait_with_output().expect("output");
+    };
     (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
+        status.code(),
+        out.join().unwrap_or_default(),
+        err.join().unwrap_or_default(),
     )
 }
 
@@ -151,7 +162,7 @@ fn info_and_validate_equal_the_single_process_cli() {
     }
     let tmp = std::env::temp_dir().join(format!("starplex-mpi-test-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    let limit = Duration::from_secs(300);
+    let limit = Duration::from_secs(120);
     let mut failures = Vec::new();
     for src in &data {
         let name = src.file_stem().unwrap().to_string_lossy().into_owned();
