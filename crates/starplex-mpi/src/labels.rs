@@ -56,6 +56,25 @@ fn dec(x: u32) -> i8 {
     }
 }
 
+/// An owner receives the label `(l, s)` for its element `i`: keeps the smaller label; the same
+/// label with the other sign is a conflict.
+fn offer(
+    lab: &mut [u32],
+    par: &mut [i8],
+    i: usize,
+    (l, s): (u32, i8),
+    changed: &mut bool,
+    conflict: &mut bool,
+) {
+    if l < lab[i] {
+        lab[i] = l;
+        par[i] = s;
+        *changed = true;
+    } else if l == lab[i] && s != par[i] {
+        *conflict = true;
+    }
+}
+
 /// Merges the local classes of every rank (collective).
 pub fn merge(w: &World, e: &Elements) -> Result<Merged, Failure> {
     let (me, p) = (w.rank() as u32, w.size() as usize);
@@ -129,13 +148,7 @@ pub fn merge(w: &World, e: &Elements) -> Result<Merged, Failure> {
             let c = e.class[i] as usize;
             let (l, s) = (best[c].0, e.sign[i] * best[c].1);
             if e.owner[i] == me {
-                if l < lab[i] {
-                    lab[i] = l;
-                    par[i] = s;
-                    changed = true;
-                } else if l == lab[i] && s != par[i] {
-                    conflict = true;
-                }
+                offer(&mut lab, &mut par, i, (l, s), &mut changed, &mut conflict);
             }
         }
         for (r, ix) in req_idx.iter().enumerate() {
@@ -150,14 +163,8 @@ pub fn merge(w: &World, e: &Elements) -> Result<Merged, Failure> {
         let got = comm::exchange(w, &prop)?;
         for (r, g) in got.iter().enumerate() {
             for (k, &i) in asked[r].iter().enumerate() {
-                let (l, s) = (g[2 * k], dec(g[2 * k + 1]));
-                if l < lab[i] {
-                    lab[i] = l;
-                    par[i] = s;
-                    changed = true;
-                } else if l == lab[i] && s != par[i] {
-                    conflict = true;
-                }
+                let ls = (g[2 * k], dec(g[2 * k + 1]));
+                offer(&mut lab, &mut par, i, ls, &mut changed, &mut conflict);
             }
         }
         if comm::max(w, u64::from(changed)) == 0 {

@@ -16,7 +16,9 @@ use std::time::Instant;
 
 use mpi::traits::Communicator;
 use serde_json::json;
-use starplex::algo::info::{face_visits_of, info, Info, InfoOptions};
+use starplex::algo::info::{
+    apply_face_counts, face_visits_of, info, FaceCounts, Info, InfoOptions,
+};
 use starplex::algo::orientation::orient_walk;
 use starplex::algo::unionfind::UnionFind;
 use starplex::algo::validate::{validate_parts, ValidationReport};
@@ -243,29 +245,20 @@ fn run_info(w: &World, a: &Args, ld: &mut Loaded) -> Result<(), Failure> {
             mine[d + 3] = m.get("quad").copied().unwrap_or(0);
         }
         let all = comm::sums(w, &mine);
-        let mut fv = vec![f.h.n_vertices];
-        fv.extend_from_slice(&all[..d]);
-        s.euler_characteristic = Some(
-            fv.iter()
-                .enumerate()
-                .map(|(i, &x)| if i % 2 == 0 { x as i64 } else { -(x as i64) })
-                .sum(),
-        );
-        if dims.len() == 1 && d >= 1 {
-            s.n_boundary_faces = Some(all[d]);
-            s.n_faces_shared_by_more_than_2_top_cells = Some(all[d + 1]);
-        }
+        let mut per_dim = vec![0u64];
+        per_dim.extend_from_slice(&all[..d]);
+        let counts = FaceCounts {
+            per_dim,
+            boundary: all[d],
+            shared_more_than_2: all[d + 1],
+            tri_faces: all[d + 2],
+            quad_faces: all[d + 3],
+        };
         let simplicial =
             f.h.blocks
                 .iter()
                 .all(|&(k, _, _)| matches!(k, CellKind::Simplex(_)));
-        if d == 3 && !simplicial {
-            let mut m = std::collections::BTreeMap::new();
-            m.insert("tri".to_string(), all[d + 2]);
-            m.insert("quad".to_string(), all[d + 3]);
-            s.faces_by_type = Some(m);
-        }
-        s.f_vector = Some(fv);
+        apply_face_counts(&mut s, &counts, dims.len() == 1, simplicial);
     }
     agree(w, f.check_unchanged())?;
     let info_s = t1.elapsed().as_secs_f64();

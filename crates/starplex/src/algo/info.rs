@@ -230,8 +230,33 @@ pub fn info(k: &IndexedComplex, opts: &InfoOptions) -> Info {
         return out;
     }
     let counts = count_faces(k, opts);
-    let mut f = vec![0u64; dim as usize + 1];
-    f[0] = nv as u64;
+    apply_face_counts(&mut out, &counts, dims.len() == 1, k.is_simplicial());
+    out
+}
+
+/// Sets what follows from the face counts in `out` (whose `n_vertices` and `dim` are set): the
+/// f-vector (`f[0]` is `n_vertices`), the Euler characteristic, the boundary and shared face
+/// counts when every top cell has one dimension (`single_dim`), and the 2-faces by kind for a
+/// 3-dimensional complex that is not `simplicial`. [`info`] ends with it; `starplex-mpi` calls it
+/// with the counts summed over ranks.
+///
+/// ```
+/// use starplex::algo::info::{apply_face_counts, info, FaceCounts, InfoOptions};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let mut s = info(&k, &InfoOptions::default());
+/// let counts = FaceCounts { per_dim: vec![0, 3, 1], boundary: 3, ..Default::default() };
+/// apply_face_counts(&mut s, &counts, true, true);
+/// assert_eq!((s.f_vector, s.euler_characteristic), (Some(vec![3, 3, 1]), Some(1)));
+/// ```
+pub fn apply_face_counts(out: &mut Info, counts: &FaceCounts, single_dim: bool, simplicial: bool) {
+    let dim = out.dim;
+    let mut f = vec![0u64; dim.max(0) as usize + 1];
+    f[0] = out.n_vertices;
     for (i, x) in counts.per_dim.iter().enumerate().skip(1) {
         if i < f.len() {
             f[i] = *x;
@@ -243,18 +268,17 @@ pub fn info(k: &IndexedComplex, opts: &InfoOptions) -> Info {
             .map(|(i, &x)| if i % 2 == 0 { x as i64 } else { -(x as i64) })
             .sum(),
     );
-    if dims.len() == 1 && dim >= 1 {
+    if single_dim && dim >= 1 {
         out.n_boundary_faces = Some(counts.boundary);
         out.n_faces_shared_by_more_than_2_top_cells = Some(counts.shared_more_than_2);
     }
-    if dim == 3 && !k.is_simplicial() {
+    if dim == 3 && !simplicial {
         let mut m = BTreeMap::new();
         m.insert("tri".to_string(), counts.tri_faces);
         m.insert("quad".to_string(), counts.quad_faces);
         out.faces_by_type = Some(m);
     }
     out.f_vector = Some(f);
-    out
 }
 
 /// Upper bound of (cell, proper face of dimension >= 1) pairs: the work of the f-vector pass.
@@ -321,13 +345,24 @@ pub fn components(k: &IndexedComplex) -> usize {
     uf.n_sets()
 }
 
-#[derive(Default)]
-struct FaceCounts {
-    per_dim: Vec<u64>,
-    boundary: u64,
-    shared_more_than_2: u64,
-    tri_faces: u64,
-    quad_faces: u64,
+/// The face counts of the f-vector pass (see [`apply_face_counts`] for an example).
+///
+/// ```
+/// let c = starplex::algo::info::FaceCounts::default();
+/// assert!(c.per_dim.is_empty() && c.boundary == 0);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FaceCounts {
+    /// Distinct faces by dimension (entry 0 unused).
+    pub per_dim: Vec<u64>,
+    /// (d-1)-faces in exactly one top d-cell.
+    pub boundary: u64,
+    /// (d-1)-faces in more than two top d-cells.
+    pub shared_more_than_2: u64,
+    /// Triangular 2-faces.
+    pub tri_faces: u64,
+    /// Quadrilateral 2-faces.
+    pub quad_faces: u64,
 }
 
 fn count_faces(k: &IndexedComplex, opts: &InfoOptions) -> FaceCounts {
