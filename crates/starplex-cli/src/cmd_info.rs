@@ -3,7 +3,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use serde_json::{json, Value};
-use starplex::algo::info::{face_visits, info, Info, InfoOptions};
+use starplex::algo::info::{face_visits, info, InfoOptions};
 use starplex::attr::{Attribute, Attributes};
 
 use crate::common::{self, CliError, Ctx, InputArgs};
@@ -123,78 +123,5 @@ pub fn attributes_json(a: &Attributes) -> Value {
     json!({"vertex": cols(&a.vertex), "cell": cols(&a.cell)})
 }
 
-pub fn to_json(s: &Info) -> Value {
-    json!({
-        "n_vertices": s.n_vertices,
-        "n_isolated_vertices": s.n_isolated_vertices,
-        "ambient_dim": s.ambient_dim,
-        "dim": s.dim,
-        "pure": s.pure,
-        "top_cells": s.top_cells,
-        "n_top_cells": s.n_top_cells,
-        "bbox": s.bbox.as_ref().map(|(lo, hi)| json!([lo, hi])),
-        "f_vector": s.f_vector,
-        "f_vector_estimate": s.f_vector_estimate.map(|e| e.to_string()),
-        "euler_characteristic": s.euler_characteristic,
-        "n_boundary_faces": s.n_boundary_faces,
-        "n_faces_shared_by_more_than_2_top_cells": s.n_faces_shared_by_more_than_2_top_cells,
-        "faces_by_type": s.faces_by_type,
-        "n_connected_components": s.n_connected_components,
-    })
-}
-
-fn print_human(s: &Info, name: &str, load_s: f64, info_s: f64, budget: u128) {
-    println!("{name}");
-    let kinds: Vec<String> = s
-        .top_cells
-        .iter()
-        .map(|(k, n)| format!("{n} {k}"))
-        .collect();
-    println!(
-        "  vertices            {} ({} isolated), ambient dimension {}",
-        s.n_vertices, s.n_isolated_vertices, s.ambient_dim
-    );
-    println!(
-        "  top cells           {} ({})",
-        s.n_top_cells,
-        kinds.join(", ")
-    );
-    println!(
-        "  dimension           {}{}",
-        s.dim,
-        if s.pure { ", pure" } else { ", not pure" }
-    );
-    if let Some((lo, hi)) = &s.bbox {
-        let f = |v: &Vec<f64>| {
-            v.iter()
-                .map(|x| format!("{x:.6}"))
-                .collect::<Vec<_>>()
-                .join(" ")
-        };
-        println!("  bounding box        [{}] .. [{}]", f(lo), f(hi));
-    }
-    match (&s.f_vector, s.f_vector_estimate) {
-        (Some(f), _) => {
-            println!("  f-vector            {f:?}");
-            if let Some(m) = &s.faces_by_type {
-                let parts: Vec<String> = m.iter().map(|(k, n)| format!("{n} {k}")).collect();
-                println!("  2-faces by kind     {}", parts.join(", "));
-            }
-        }
-        (None, Some(e)) => println!(
-            "  f-vector            skipped: about {e} (cell, face) pairs to visit, over the budget of {budget} (raise it with --max-faces)"
-        ),
-        _ => {}
-    }
-    if let Some(x) = s.euler_characteristic {
-        println!("  Euler char.         {x}");
-    }
-    if let Some(b) = s.n_boundary_faces {
-        println!("  boundary faces      {b}");
-    }
-    if let Some(b) = s.n_faces_shared_by_more_than_2_top_cells {
-        println!("  faces in >2 cells   {b}");
-    }
-    println!("  components          {}", s.n_connected_components);
-    println!("  time                read {load_s:.3} s, info {info_s:.3} s");
-}
+pub use starplex_cli::report::info_json as to_json;
+use starplex_cli::report::print_info as print_human;

@@ -2,7 +2,7 @@
 //! Stellar tree; exit status 1 when a defect asked for is found (for scripts and CI).
 use std::time::Instant;
 
-use serde_json::{json, Value};
+use serde_json::json;
 use starplex::algo::validate::ValidationReport;
 
 use crate::cmd_stellar::{build_tree, with_threads};
@@ -90,126 +90,7 @@ pub fn defects_found(r: &ValidationReport, wanted: &[Defect]) -> Vec<String> {
     out
 }
 
-fn ids<T: Clone>(v: &[T], max: usize) -> Vec<T> {
-    v[..v.len().min(max)].to_vec()
-}
-
-pub fn to_json(r: &ValidationReport, max: usize) -> Value {
-    let vids = |v: &[starplex::ids::VertexId]| ids(v, max).iter().map(|x| x.0).collect::<Vec<_>>();
-    let edges = |e: &[[starplex::ids::VertexId; 2]]| {
-        ids(e, max)
-            .iter()
-            .map(|e| [e[0].0, e[1].0])
-            .collect::<Vec<_>>()
-    };
-    let faces = |f: &[Vec<starplex::ids::VertexId>]| {
-        ids(f, max)
-            .iter()
-            .map(|f| f.iter().map(|v| v.0).collect::<Vec<_>>())
-            .collect::<Vec<_>>()
-    };
-    json!({
-        "dim": r.dim,
-        "n_connected_components": r.n_connected_components,
-        "n_boundary_faces": r.boundary_faces.len(),
-        "n_faces_shared_by_more_than_2_top_cells": r.faces_in_more_than_two_cells.len(),
-        "n_non_manifold_vertices": r.non_manifold_vertices.len(),
-        "n_non_manifold_edges": r.non_manifold_edges.len(),
-        "n_unknown_vertices": r.unknown_vertices.len(),
-        "n_unknown_edges": r.unknown_edges.len(),
-        "n_isolated_vertices": r.isolated_vertices.len(),
-        "n_lower_dimensional_cells": r.lower_dimensional_cells.len(),
-        "n_facet_components": r.n_facet_components,
-        "pure": r.pure,
-        "facet_connected": r.facet_connected,
-        "pseudo_manifold": r.pseudo_manifold,
-        "orientable": r.orientable,
-        "n_cells_to_flip": r.cells_to_flip.as_ref().map(|c| c.len()),
-        "orientation_conflict": r.orientation_conflict.map(|(a, b)| [a.0, b.0]),
-        "non_manifold_vertices": vids(&r.non_manifold_vertices),
-        "non_manifold_edges": edges(&r.non_manifold_edges),
-        "unknown_vertices": vids(&r.unknown_vertices),
-        "isolated_vertices": vids(&r.isolated_vertices),
-        "lower_dimensional_cells": ids(&r.lower_dimensional_cells, max).iter().map(|c| c.0).collect::<Vec<_>>(),
-        "boundary_faces": faces(&r.boundary_faces),
-        "faces_shared_by_more_than_2_top_cells": faces(&r.faces_in_more_than_two_cells),
-        "lists_truncated_to": max,
-    })
-}
-
-pub fn print_human(r: &ValidationReport, max: usize) {
-    let yes = |b: bool| if b { "yes" } else { "no" };
-    println!("  components          {}", r.n_connected_components);
-    println!(
-        "  pure                {} ({} isolated vertices, {} lower-dimensional cells)",
-        yes(r.pure),
-        r.isolated_vertices.len(),
-        r.lower_dimensional_cells.len()
-    );
-    println!(
-        "  (d-1)-connected     {} ({} classes of top cells)",
-        yes(r.facet_connected),
-        r.n_facet_components
-    );
-    println!("  pseudo-manifold     {}", yes(r.pseudo_manifold));
-    println!(
-        "  boundary faces      {} ({} faces in more than 2 top cells)",
-        r.boundary_faces.len(),
-        r.faces_in_more_than_two_cells.len()
-    );
-    let show = |v: Vec<String>| {
-        if v.is_empty() {
-            String::new()
-        } else {
-            format!(
-                ": {}{}",
-                v.iter()
-                    .take(max.min(10))
-                    .cloned()
-                    .collect::<Vec<_>>()
-                    .join(" "),
-                if v.len() > 10 { " ..." } else { "" }
-            )
-        }
-    };
-    println!(
-        "  non-manifold        {} vertices{}",
-        r.non_manifold_vertices.len(),
-        show(
-            r.non_manifold_vertices
-                .iter()
-                .map(|v| v.to_string())
-                .collect()
-        )
-    );
-    println!(
-        "                      {} edges{}",
-        r.non_manifold_edges.len(),
-        show(
-            r.non_manifold_edges
-                .iter()
-                .map(|e| format!("{}-{}", e[0], e[1]))
-                .collect()
-        )
-    );
-    if !r.unknown_vertices.is_empty() || !r.unknown_edges.is_empty() {
-        println!(
-            "  undecided (d >= 4)  {} vertices, {} edges",
-            r.unknown_vertices.len(),
-            r.unknown_edges.len()
-        );
-    }
-    match (r.orientable, &r.cells_to_flip, r.orientation_conflict) {
-        (Some(true), Some(f), _) => println!(
-            "  orientable          yes ({} cells to flip for a consistent orientation)",
-            f.len()
-        ),
-        (Some(false), _, Some((a, b))) => {
-            println!("  orientable          no (cells {a} and {b} cannot agree)")
-        }
-        _ => println!("  orientable          undefined (a (d-1)-face in more than two top cells)"),
-    }
-}
+pub use starplex_cli::report::{print_validation as print_human, validation_json as to_json};
 
 pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
     let t0 = Instant::now();

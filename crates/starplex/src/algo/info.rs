@@ -57,6 +57,33 @@ pub struct InfoOptions {
     pub max_faces: u128,
     /// Called with the number of cells just processed (for progress bars).
     pub progress: Option<std::sync::Arc<dyn Fn(u64) + Send + Sync>>,
+    /// When set, the face counts (f-vector entries of dimension >= 1, boundary and shared
+    /// faces, faces by kind) count only the faces whose smallest vertex is in this set: the
+    /// ownership rule of a distributed count (`starplex-mpi`), where each rank holds the full
+    /// star of the vertices it owns. `None` (the default) counts every face.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use fixedbitset::FixedBitSet;
+    /// use starplex::algo::info::{info, InfoOptions};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// // k: the triangles 0-1-2 and 1-3-2; vertex 0 owns 2 edges and 1 triangle, the others the rest
+    /// let part = |vs: &[usize]| {
+    ///     let mut m = FixedBitSet::with_capacity(4);
+    ///     vs.iter().for_each(|&v| m.insert(v));
+    ///     info(&k, &InfoOptions { owned_vertices: Some(Arc::new(m)), ..Default::default() })
+    /// };
+    /// let (a, b) = (part(&[0]), part(&[1, 2, 3]));
+    /// assert_eq!((a.f_vector.unwrap(), b.f_vector.unwrap()), (vec![4, 2, 1], vec![4, 3, 1]));
+    /// assert_eq!(a.n_boundary_faces.unwrap() + b.n_boundary_faces.unwrap(), 4);
+    /// ```
+    pub owned_vertices: Option<std::sync::Arc<fixedbitset::FixedBitSet>>,
 }
 
 impl Default for InfoOptions {
@@ -64,6 +91,7 @@ impl Default for InfoOptions {
         InfoOptions {
             max_faces: 4_000_000_000,
             progress: None,
+            owned_vertices: None,
         }
     }
 }
@@ -72,6 +100,10 @@ impl std::fmt::Debug for InfoOptions {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("InfoOptions")
             .field("max_faces", &self.max_faces)
+            .field(
+                "owned_vertices",
+                &self.owned_vertices.as_ref().map(|m| m.count_ones(..)),
+            )
             .finish()
     }
 }
@@ -198,8 +230,33 @@ pub fn info(k: &IndexedComplex, opts: &InfoOptions) -> Info {
         return out;
     }
     let counts = count_faces(k, opts);
-    let mut f = vec![0u64; dim as usize + 1];
-    f[0] = nv as u64;
+    apply_face_counts(&mut out, &counts, dims.len() == 1, k.is_simplicial());
+    out
+}
+
+/// Sets what follows from the face counts in `out` (whose `n_vertices` and `dim` are set): the
+/// f-vector (`f[0]` is `n_vertices`), the Euler characteristic, the boundary and shared face
+/// counts when every top cell has one dimension (`single_dim`), and the 2-faces by kind for a
+/// 3-dimensional complex that is not `simplicial`. [`info`] ends with it; `starplex-mpi` calls it
+/// with the counts summed over ranks.
+///
+/// ```
+/// use starplex::algo::info::{apply_face_counts, info, FaceCounts, InfoOptions};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let mut s = info(&k, &InfoOptions::default());
+/// let counts = FaceCounts { per_dim: vec![0, 3, 1], boundary: 3, ..Default::default() };
+/// apply_face_counts(&mut s, &counts, true, true);
+/// assert_eq!((s.f_vector, s.euler_characteristic), (Some(vec![3, 3, 1]), Some(1)));
+/// ```
+pub fn apply_face_counts(out: &mut Info, counts: &FaceCounts, single_dim: bool, simplicial: bool) {
+    let dim = out.dim;
+    let mut f = vec![0u64; dim.max(0) as usize + 1];
+    f[0] = out.n_vertices;
     for (i, x) in counts.per_dim.iter().enumerate().skip(1) {
         if i < f.len() {
             f[i] = *x;
@@ -211,18 +268,17 @@ pub fn info(k: &IndexedComplex, opts: &InfoOptions) -> Info {
             .map(|(i, &x)| if i % 2 == 0 { x as i64 } else { -(x as i64) })
             .sum(),
     );
-    if dims.len() == 1 && dim >= 1 {
+    if single_dim && dim >= 1 {
         out.n_boundary_faces = Some(counts.boundary);
         out.n_faces_shared_by_more_than_2_top_cells = Some(counts.shared_more_than_2);
     }
-    if dim == 3 && !k.is_simplicial() {
+    if dim == 3 && !simplicial {
         let mut m = BTreeMap::new();
         m.insert("tri".to_string(), counts.tri_faces);
         m.insert("quad".to_string(), counts.quad_faces);
         out.faces_by_type = Some(m);
     }
     out.f_vector = Some(f);
-    out
 }
 
 /// Upper bound of (cell, proper face of dimension >= 1) pairs: the work of the f-vector pass.
@@ -241,13 +297,25 @@ pub fn info(k: &IndexedComplex, opts: &InfoOptions) -> Info {
 /// assert_eq!(face_visits(&k), 2 * 3);
 /// ```
 pub fn face_visits(k: &IndexedComplex) -> u128 {
-    k.blocks()
-        .iter()
-        .map(|b| {
-            let per: u128 = (1..b.kind.dim())
-                .map(|d| b.kind.n_faces(d))
+    face_visits_of(k.blocks().iter().map(|b| (b.kind, b.len() as u64)))
+}
+
+/// [`face_visits`] from the cell kinds and counts alone (a `.spb` header's blocks).
+///
+/// ```
+/// use starplex::algo::info::face_visits_of;
+/// use starplex::cell::CellKind;
+/// // a tetrahedron has 6 edges and 4 triangles
+/// assert_eq!(face_visits_of([(CellKind::Simplex(3), 2)]), 20);
+/// ```
+pub fn face_visits_of(blocks: impl IntoIterator<Item = (crate::cell::CellKind, u64)>) -> u128 {
+    blocks
+        .into_iter()
+        .map(|(kind, n)| {
+            let per: u128 = (1..kind.dim())
+                .map(|d| kind.n_faces(d))
                 .fold(0u128, |a, x| a.saturating_add(x));
-            per.saturating_mul(b.len() as u128)
+            per.saturating_mul(n as u128)
         })
         .fold(0u128, |a, x| a.saturating_add(x))
 }
@@ -277,13 +345,24 @@ pub fn components(k: &IndexedComplex) -> usize {
     uf.n_sets()
 }
 
-#[derive(Default)]
-struct FaceCounts {
-    per_dim: Vec<u64>,
-    boundary: u64,
-    shared_more_than_2: u64,
-    tri_faces: u64,
-    quad_faces: u64,
+/// The face counts of the f-vector pass (see [`apply_face_counts`] for an example).
+///
+/// ```
+/// let c = starplex::algo::info::FaceCounts::default();
+/// assert!(c.per_dim.is_empty() && c.boundary == 0);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FaceCounts {
+    /// Distinct faces by dimension (entry 0 unused).
+    pub per_dim: Vec<u64>,
+    /// (d-1)-faces in exactly one top d-cell.
+    pub boundary: u64,
+    /// (d-1)-faces in more than two top d-cells.
+    pub shared_more_than_2: u64,
+    /// Triangular 2-faces.
+    pub tri_faces: u64,
+    /// Quadrilateral 2-faces.
+    pub quad_faces: u64,
 }
 
 fn count_faces(k: &IndexedComplex, opts: &InfoOptions) -> FaceCounts {
@@ -304,7 +383,15 @@ fn count_faces(k: &IndexedComplex, opts: &InfoOptions) -> FaceCounts {
             let lo = ci * chunk;
             let hi = (lo + chunk).min(n);
             for c in lo..hi {
-                count_cell(k, &vt, c as u32, dmax, &mut key, &mut acc);
+                count_cell(
+                    k,
+                    &vt,
+                    c as u32,
+                    dmax,
+                    opts.owned_vertices.as_deref(),
+                    &mut key,
+                    &mut acc,
+                );
             }
             if let Some(p) = &opts.progress {
                 p((hi - lo) as u64);
@@ -369,17 +456,27 @@ fn count_cell(
     vt: &Csr,
     c: u32,
     dmax: usize,
+    owned: Option<&fixedbitset::FixedBitSet>,
     key: &mut Vec<u32>,
     acc: &mut FaceCounts,
 ) {
     let cell = k.cell(crate::ids::CellId(c));
     let d = cell.kind.dim();
-    acc.per_dim[d] += 1;
+    // the ownership rule of `InfoOptions::owned_vertices`: a face counts where its smallest
+    // vertex is owned (`key` is sorted)
+    let counts = |key: &[u32]| owned.is_none_or(|m| m.contains(key[0] as usize));
+    let min_v = cell.vertices.iter().copied().min().unwrap_or(0);
+    if counts(&[min_v]) {
+        acc.per_dim[d] += 1;
+    }
     let all_simplices = k.is_simplicial();
     for fd in 1..d {
         let track_boundary = d == dmax && fd + 1 == d;
         cell.kind.for_each_face(fd, |local| {
             crate::cell::canonical_key(cell.vertices, local, key);
+            if !counts(key) {
+                return;
+            }
             // the two least-used vertices of the face (degrees read once)
             let (mut a, mut da, mut b, mut db) = (0u32, u32::MAX, 0u32, u32::MAX);
             for &v in key.iter() {
@@ -462,7 +559,7 @@ fn count_cell(
     if d == 1 && dmax == 1 {
         for &v in cell.vertices {
             let row = vt.row(v as usize);
-            if row.first() == Some(&c) {
+            if row.first() == Some(&c) && counts(&[v]) {
                 match row.len() {
                     1 => acc.boundary += 1,
                     2 => {}

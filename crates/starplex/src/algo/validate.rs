@@ -31,7 +31,7 @@
 //! assert_eq!(check(&idx), Err(Problem::NotFacetConnected { n_classes: 2 }));
 //! ```
 use crate::algo::components::components;
-use crate::algo::manifold::{complex_dim, singularities, Convention};
+use crate::algo::manifold::{complex_dim, singularities_in_dim, Convention};
 use crate::algo::orientation::{orient_tops, Orientation};
 use crate::cell::{listed_sign, oriented_facets_of, CellKind};
 use crate::ids::{CellId, VertexId};
@@ -358,9 +358,46 @@ pub(crate) fn finish_report(
 /// assert_eq!(t.validate(), r);
 /// ```
 pub fn validate<S: TopCells + VertexStar + ?Sized>(s: &S) -> ValidationReport {
+    let d = complex_dim(s);
+    let (mut r, pairs) = validate_parts(s, d);
+    if let Some(d) = d {
+        let nc = s.n_top_cells();
+        let kinds: Vec<CellKind> = (0..nc).map(|c| s.top_cell_kind(CellId(c as u32))).collect();
+        finish_report(&mut r, nc, |c| kinds[c as usize].dim() == d, &pairs);
+    }
+    r
+}
+
+/// The part of [`validate`] that is local to vertex stars, for a complex of dimension `d`:
+/// the report without the facet classes and orientation (`n_facet_components`,
+/// `facet_connected`, `pseudo_manifold`, `orientable`, ... left at their defaults), and the
+/// pairs of top `d`-cells sharing a facet, with the product of the orientations they induce on
+/// it (what [`orient_tops`] propagates). `starplex-mpi` runs it on each rank, where the stars of
+/// the vertices a rank does not own are empty, and merges the classes across ranks.
+///
+/// ```
+/// use starplex::algo::validate::{validate, validate_parts};
+/// use starplex::algo::manifold::complex_dim;
+/// use starplex::topo::naive::VtIndex;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 2, 3]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// // k: the triangles 0-1-2 and 1-2-3, sharing the edge 1-2
+/// let idx = VtIndex::new(&k);
+/// let (r, pairs) = validate_parts(&idx, complex_dim(&idx));
+/// assert_eq!(r.boundary_faces, validate(&idx).boundary_faces);
+/// assert_eq!(pairs, vec![(0, 1, 1)]);
+/// ```
+pub fn validate_parts<S: TopCells + VertexStar + ?Sized>(
+    s: &S,
+    d: Option<usize>,
+) -> (ValidationReport, Vec<(u32, u32, i8)>) {
     let nv = s.n_vertices();
     let nc = s.n_top_cells();
-    let d = complex_dim(s);
     let mut r = ValidationReport {
         dim: d.map_or(-1, |d| d as i64),
         n_connected_components: components(s).n_components as u64,
@@ -378,7 +415,7 @@ pub fn validate<S: TopCells + VertexStar + ?Sized>(s: &S) -> ValidationReport {
             r.dim = 0;
         }
         r.pure = r.isolated_vertices.is_empty();
-        return r;
+        return (r, Vec::new());
     };
     let kinds: Vec<CellKind> = (0..nc).map(|c| s.top_cell_kind(CellId(c as u32))).collect();
     r.lower_dimensional_cells = (0..nc)
@@ -401,7 +438,8 @@ pub fn validate<S: TopCells + VertexStar + ?Sized>(s: &S) -> ValidationReport {
                 }
             }
         });
-        let sing = singularities(s, Convention::Global).expect("global tests do not refuse");
+        let sing =
+            singularities_in_dim(s, Convention::Global, d).expect("global tests do not refuse");
         r.non_manifold_vertices = sing.non_manifold_vertices;
         r.unknown_vertices = sing.unknown_vertices;
         r.non_manifold_edges = sing.non_manifold_edges;
@@ -409,8 +447,7 @@ pub fn validate<S: TopCells + VertexStar + ?Sized>(s: &S) -> ValidationReport {
     }
     r.boundary_faces.sort_unstable();
     r.faces_in_more_than_two_cells.sort_unstable();
-    finish_report(&mut r, nc, |c| kinds[c as usize].dim() == d, &pairs);
-    r
+    (r, pairs)
 }
 
 /// True when the complex is a valid manifold: pseudo-manifold, no non-manifold or undecided

@@ -482,6 +482,45 @@ fn map_file(file: &std::fs::File) -> std::io::Result<memmap2::Mmap> {
     unsafe { memmap2::MmapOptions::new().map(file) }
 }
 
+/// Opens and memory-maps a `.spb` file and checks its header, touching none of its arrays:
+/// for readers of a part of the file (each rank of `starplex-mpi` reads its own byte ranges).
+///
+/// ```
+/// use starplex::io::binary;
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// b.push_vertex(&[1.0]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let path = std::env::temp_dir().join(format!("starplex-doc-spb-open-{}.spb", std::process::id()));
+/// let mut bytes = Vec::new();
+/// binary::write(&mut bytes, &k).unwrap();
+/// std::fs::write(&path, &bytes).unwrap();
+/// let (map, h) = binary::open_mapped(&path).unwrap();
+/// assert_eq!((h.n_vertices, map.len() as u64), (1, h.file_len));
+/// std::fs::remove_file(&path).ok();
+/// ```
+///
+/// # Errors
+/// OS errors and a malformed header (see [`read_header`]).
+pub fn open_mapped(path: &Path) -> Result<(Arc<memmap2::Mmap>, SpbHeader), IoError> {
+    let file = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
+    let len = file.metadata().map_err(|e| IoError::new(path, e))?.len();
+    if len < HEADER_LEN as u64 {
+        let mut head = Vec::new();
+        use std::io::Read;
+        file.take(HEADER_LEN as u64)
+            .read_to_end(&mut head)
+            .map_err(|e| IoError::new(path, e))?;
+        return Err(match read_header(&head, path) {
+            Err(e) => e,
+            Ok(_) => IoError::parse(path, Some(Location::Byte(len)), "truncated .spb header"),
+        });
+    }
+    let map = map_file(&file).map_err(|e| IoError::new(path, e))?;
+    let h = read_header(&map, path)?;
+    Ok((Arc::new(map), h))
+}
+
 /// Reads a `.spb` file by memory-mapping it: coordinates and cell arrays stay in the map
 /// ([`Buf::Mapped`]), nothing is copied.
 ///
@@ -517,24 +556,9 @@ pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
             "reading .spb on a big-endian machine is not supported (the arrays are little-endian); convert to .spx on a little-endian machine",
         ));
     }
-    let file = std::fs::File::open(path).map_err(|e| IoError::new(path, e))?;
-    let len = file.metadata().map_err(|e| IoError::new(path, e))?.len();
-    if len < HEADER_LEN as u64 {
-        let mut head = Vec::new();
-        use std::io::Read;
-        file.take(HEADER_LEN as u64)
-            .read_to_end(&mut head)
-            .map_err(|e| IoError::new(path, e))?;
-        return Err(match read_header(&head, path) {
-            Err(e) => e,
-            Ok(_) => IoError::parse(path, Some(Location::Byte(len)), "truncated .spb header"),
-        });
-    }
-    let map = map_file(&file).map_err(|e| IoError::new(path, e))?;
+    let (map, h) = open_mapped(path)?;
     #[cfg(unix)]
     let _ = map.advise(memmap2::Advice::Sequential);
-    let map = Arc::new(map);
-    let h = read_header(&map, path)?;
     let coords: Buf<f64> = Buf::Mapped {
         map: Arc::clone(&map),
         offset: h.coords_offset as usize,

@@ -548,7 +548,32 @@ pub fn singularities<S: TopCells + VertexStar + ?Sized>(
     s: &S,
     convention: Convention,
 ) -> Result<Singularities, QueryError> {
-    let d = complex_dim(s).unwrap_or(0);
+    singularities_in_dim(s, convention, complex_dim(s).unwrap_or(0))
+}
+
+/// [`singularities`] with the dimension `d` of the complex given: for a part of a larger
+/// complex (one rank of `starplex-mpi`) whose own top cells may all be of lower dimension.
+///
+/// ```
+/// use starplex::algo::manifold::{singularities, singularities_in_dim, Convention};
+/// use starplex::{ids::VertexId, topo::naive::VtIndex};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// for x in 0..3 { b.push_vertex(&[x as f64]).unwrap(); }
+/// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let idx = VtIndex::new(&k);
+/// assert_eq!(singularities_in_dim(&idx, Convention::Global, 2).unwrap(), singularities(&idx, Convention::Global).unwrap());
+/// ```
+///
+/// # Errors
+/// As [`singularities`].
+pub fn singularities_in_dim<S: TopCells + VertexStar + ?Sized>(
+    s: &S,
+    convention: Convention,
+    d: usize,
+) -> Result<Singularities, QueryError> {
     let mut r = Singularities::default();
     let (mut cells, mut buf, mut star) = (Vec::new(), Vec::new(), OwnedStar::default());
     let mut t = StarTester::default();

@@ -1,0 +1,3 @@
+//! The library part of the `starplex` command-line tool: what other front ends (`starplex-mpi`)
+//! print exactly as the CLI does.
+pub mod report;

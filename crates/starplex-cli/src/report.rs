@@ -1,0 +1,239 @@
+//! The output of `starplex info` and `starplex validate` (JSON and human), shared by the CLI and
+//! `starplex-mpi`, whose rank 0 prints exactly what the single-process command prints.
+use serde_json::{json, Value};
+use starplex::algo::info::Info;
+use starplex::algo::validate::ValidationReport;
+
+/// The JSON object of `starplex info --json` (keys as in the dataset oracles), before the
+/// `format`, `timings`, `betti_z2` and `notes` keys the command adds.
+///
+/// ```
+/// use starplex::algo::info::{info, InfoOptions};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let v = starplex_cli::report::info_json(&info(&k, &InfoOptions::default()));
+/// assert_eq!(v["f_vector"], serde_json::json!([3, 3, 1]));
+/// starplex_cli::report::print_info(&info(&k, &InfoOptions::default()), "k", 0.0, 0.0, 1000);
+/// ```
+pub fn info_json(s: &Info) -> Value {
+    json!({
+        "n_vertices": s.n_vertices,
+        "n_isolated_vertices": s.n_isolated_vertices,
+        "ambient_dim": s.ambient_dim,
+        "dim": s.dim,
+        "pure": s.pure,
+        "top_cells": s.top_cells,
+        "n_top_cells": s.n_top_cells,
+        "bbox": s.bbox.as_ref().map(|(lo, hi)| json!([lo, hi])),
+        "f_vector": s.f_vector,
+        "f_vector_estimate": s.f_vector_estimate.map(|e| e.to_string()),
+        "euler_characteristic": s.euler_characteristic,
+        "n_boundary_faces": s.n_boundary_faces,
+        "n_faces_shared_by_more_than_2_top_cells": s.n_faces_shared_by_more_than_2_top_cells,
+        "faces_by_type": s.faces_by_type,
+        "n_connected_components": s.n_connected_components,
+    })
+}
+
+/// Prints the human output of `starplex info` (`name` heads it; `budget` is the f-vector budget
+/// named when the f-vector was skipped). Example: [`info_json`].
+pub fn print_info(s: &Info, name: &str, load_s: f64, info_s: f64, budget: u128) {
+    println!("{name}");
+    let kinds: Vec<String> = s
+        .top_cells
+        .iter()
+        .map(|(k, n)| format!("{n} {k}"))
+        .collect();
+    println!(
+        "  vertices            {} ({} isolated), ambient dimension {}",
+        s.n_vertices, s.n_isolated_vertices, s.ambient_dim
+    );
+    println!(
+        "  top cells           {} ({})",
+        s.n_top_cells,
+        kinds.join(", ")
+    );
+    println!(
+        "  dimension           {}{}",
+        s.dim,
+        if s.pure { ", pure" } else { ", not pure" }
+    );
+    if let Some((lo, hi)) = &s.bbox {
+        let f = |v: &Vec<f64>| {
+            v.iter()
+                .map(|x| format!("{x:.6}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        println!("  bounding box        [{}] .. [{}]", f(lo), f(hi));
+    }
+    match (&s.f_vector, s.f_vector_estimate) {
+        (Some(f), _) => {
+            println!("  f-vector            {f:?}");
+            if let Some(m) = &s.faces_by_type {
+                let parts: Vec<String> = m.iter().map(|(k, n)| format!("{n} {k}")).collect();
+                println!("  2-faces by kind     {}", parts.join(", "));
+            }
+        }
+        (None, Some(e)) => println!(
+            "  f-vector            skipped: about {e} (cell, face) pairs to visit, over the budget of {budget} (raise it with --max-faces)"
+        ),
+        _ => {}
+    }
+    if let Some(x) = s.euler_characteristic {
+        println!("  Euler char.         {x}");
+    }
+    if let Some(b) = s.n_boundary_faces {
+        println!("  boundary faces      {b}");
+    }
+    if let Some(b) = s.n_faces_shared_by_more_than_2_top_cells {
+        println!("  faces in >2 cells   {b}");
+    }
+    println!("  components          {}", s.n_connected_components);
+    println!("  time                read {load_s:.3} s, info {info_s:.3} s");
+}
+
+fn ids<T: Clone>(v: &[T], max: usize) -> Vec<T> {
+    v[..v.len().min(max)].to_vec()
+}
+
+/// The JSON object of `starplex validate --json` before the `timings` and `notes` keys; every
+/// list is cut to its first `max` entries (the counts are complete).
+///
+/// ```
+/// use starplex::algo::validate::validate;
+/// use starplex::topo::naive::VtIndex;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let r = validate(&VtIndex::new(&k));
+/// let v = starplex_cli::report::validation_json(&r, 2);
+/// assert_eq!(v["n_boundary_faces"], 3);
+/// assert_eq!(v["boundary_faces"].as_array().unwrap().len(), 2);
+/// starplex_cli::report::print_validation(&r, 2);
+/// ```
+pub fn validation_json(r: &ValidationReport, max: usize) -> Value {
+    let vids = |v: &[starplex::ids::VertexId]| ids(v, max).iter().map(|x| x.0).collect::<Vec<_>>();
+    let edges = |e: &[[starplex::ids::VertexId; 2]]| {
+        ids(e, max)
+            .iter()
+            .map(|e| [e[0].0, e[1].0])
+            .collect::<Vec<_>>()
+    };
+    let faces = |f: &[Vec<starplex::ids::VertexId>]| {
+        ids(f, max)
+            .iter()
+            .map(|f| f.iter().map(|v| v.0).collect::<Vec<_>>())
+            .collect::<Vec<_>>()
+    };
+    json!({
+        "dim": r.dim,
+        "n_connected_components": r.n_connected_components,
+        "n_boundary_faces": r.boundary_faces.len(),
+        "n_faces_shared_by_more_than_2_top_cells": r.faces_in_more_than_two_cells.len(),
+        "n_non_manifold_vertices": r.non_manifold_vertices.len(),
+        "n_non_manifold_edges": r.non_manifold_edges.len(),
+        "n_unknown_vertices": r.unknown_vertices.len(),
+        "n_unknown_edges": r.unknown_edges.len(),
+        "n_isolated_vertices": r.isolated_vertices.len(),
+        "n_lower_dimensional_cells": r.lower_dimensional_cells.len(),
+        "n_facet_components": r.n_facet_components,
+        "pure": r.pure,
+        "facet_connected": r.facet_connected,
+        "pseudo_manifold": r.pseudo_manifold,
+        "orientable": r.orientable,
+        "n_cells_to_flip": r.cells_to_flip.as_ref().map(|c| c.len()),
+        "orientation_conflict": r.orientation_conflict.map(|(a, b)| [a.0, b.0]),
+        "non_manifold_vertices": vids(&r.non_manifold_vertices),
+        "non_manifold_edges": edges(&r.non_manifold_edges),
+        "unknown_vertices": vids(&r.unknown_vertices),
+        "isolated_vertices": vids(&r.isolated_vertices),
+        "lower_dimensional_cells": ids(&r.lower_dimensional_cells, max).iter().map(|c| c.0).collect::<Vec<_>>(),
+        "boundary_faces": faces(&r.boundary_faces),
+        "faces_shared_by_more_than_2_top_cells": faces(&r.faces_in_more_than_two_cells),
+        "lists_truncated_to": max,
+    })
+}
+
+/// Prints the human output of `starplex validate` (without the file name and time lines).
+/// Example: [`validation_json`].
+pub fn print_validation(r: &ValidationReport, max: usize) {
+    let yes = |b: bool| if b { "yes" } else { "no" };
+    println!("  components          {}", r.n_connected_components);
+    println!(
+        "  pure                {} ({} isolated vertices, {} lower-dimensional cells)",
+        yes(r.pure),
+        r.isolated_vertices.len(),
+        r.lower_dimensional_cells.len()
+    );
+    println!(
+        "  (d-1)-connected     {} ({} classes of top cells)",
+        yes(r.facet_connected),
+        r.n_facet_components
+    );
+    println!("  pseudo-manifold     {}", yes(r.pseudo_manifold));
+    println!(
+        "  boundary faces      {} ({} faces in more than 2 top cells)",
+        r.boundary_faces.len(),
+        r.faces_in_more_than_two_cells.len()
+    );
+    let show = |v: Vec<String>| {
+        if v.is_empty() {
+            String::new()
+        } else {
+            format!(
+                ": {}{}",
+                v.iter()
+                    .take(max.min(10))
+                    .cloned()
+                    .collect::<Vec<_>>()
+                    .join(" "),
+                if v.len() > 10 { " ..." } else { "" }
+            )
+        }
+    };
+    println!(
+        "  non-manifold        {} vertices{}",
+        r.non_manifold_vertices.len(),
+        show(
+            r.non_manifold_vertices
+                .iter()
+                .map(|v| v.to_string())
+                .collect()
+        )
+    );
+    println!(
+        "                      {} edges{}",
+        r.non_manifold_edges.len(),
+        show(
+            r.non_manifold_edges
+                .iter()
+                .map(|e| format!("{}-{}", e[0], e[1]))
+                .collect()
+        )
+    );
+    if !r.unknown_vertices.is_empty() || !r.unknown_edges.is_empty() {
+        println!(
+            "  undecided (d >= 4)  {} vertices, {} edges",
+            r.unknown_vertices.len(),
+            r.unknown_edges.len()
+        );
+    }
+    match (r.orientable, &r.cells_to_flip, r.orientation_conflict) {
+        (Some(true), Some(f), _) => println!(
+            "  orientable          yes ({} cells to flip for a consistent orientation)",
+            f.len()
+        ),
+        (Some(false), _, Some((a, b))) => {
+            println!("  orientable          no (cells {a} and {b} cannot agree)")
+        }
+        _ => println!("  orientable          undefined (a (d-1)-face in more than two top cells)"),
+    }
+}

@@ -1,0 +1,379 @@
+//! The distributed decomposition: the parallel read of a `.spb`, the spatial split of the
+//! vertices, and each rank's local complex (the top cells incident to its vertices, with their
+//! global ids).
+//!
+//! 1. Every rank maps the file and checks its header ([`binary::open_mapped`]); rank `r` reads
+//!    only the `r`-th slice of the coordinate array and the `r`-th slice of the top cells (its
+//!    byte ranges), plus the coordinates of the vertices those cells use.
+//! 2. The bounding box is reduced over ranks; each vertex gets a Morton key (its first three
+//!    coordinates, 21 bits each, ties broken by id). Ranks share a regular sample of their sorted
+//!    keys, and all pick the same `P - 1` splitters: the owner of a vertex is the range its key
+//!    falls in, computable by any rank from the vertex's coordinates.
+//! 3. Rank `r` sends every cell of its slice to the owner of each of its vertices (all-to-all):
+//!    each rank receives the full star of every vertex it owns (owned + ghost cells). A cell is
+//!    *owned* by the owner of its smallest vertex, a face likewise.
+//! 4. Each rank numbers its vertices and cells in increasing global id, so that "smallest
+//!    vertex" and "smallest cell" mean the same locally as globally, and builds an
+//!    [`IndexedComplex`] over them.
+use std::path::Path;
+use std::sync::Arc;
+
+use fixedbitset::FixedBitSet;
+use rustc_hash::FxHashMap;
+use starplex::buf::Buf;
+use starplex::cell::CellKind;
+use starplex::complex::IndexedComplex;
+use starplex::io::binary::{self, SpbHeader};
+
+use mpi::traits::Communicator;
+
+use crate::comm::{self, agree, Failure, World};
+
+/// A `.spb` file mapped by one rank (nothing is read until asked).
+pub struct Spb {
+    map: Arc<memmap2::Mmap>,
+    /// The checked header.
+    pub h: SpbHeader,
+    /// First global cell id of each block, and the total at the end.
+    starts: Vec<u64>,
+    path: String,
+    stamp: (u64, Option<std::time::SystemTime>),
+}
+
+fn stamp(path: &Path) -> Result<(u64, Option<std::time::SystemTime>), String> {
+    let m = std::fs::metadata(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok((m.len(), m.modified().ok()))
+}
+
+impl Spb {
+    /// Maps `path`; text formats are refused with the command that converts them.
+    pub fn open(path: &Path) -> Result<Spb, String> {
+        let name = path.display().to_string();
+        let mut magic = [0u8; 8];
+        {
+            use std::io::Read;
+            let mut f = std::fs::File::open(path).map_err(|e| format!("{name}: {e}"))?;
+            let n = f.read(&mut magic).map_err(|e| format!("{name}: {e}"))?;
+            if n < 8 || magic != binary::MAGIC {
+                return Err(format!(
+                    "{name}: not a .spb file; starplex-mpi reads only the binary format, each rank its own byte ranges: convert it once with `starplex convert {name} {}` first",
+                    path.with_extension("spb").display()
+                ));
+            }
+        }
+        let st = stamp(path)?;
+        let (map, h) = binary::open_mapped(path).map_err(|e| e.to_string())?;
+        let mut starts = Vec::with_capacity(h.blocks.len() + 1);
+        let mut at = 0u64;
+        for &(_, n, _) in &h.blocks {
+            starts.push(at);
+            at += n;
+        }
+        starts.push(at);
+        Ok(Spb {
+            map,
+            h,
+            starts,
+            path: name,
+            stamp: st,
+        })
+    }
+
+    /// An error when the file's length or modification time changed since it was opened.
+    pub fn check_unchanged(&self) -> Result<(), String> {
+        let now = stamp(Path::new(&self.path))?;
+        if now != self.stamp {
+            return Err(format!(
+                "{}: the file changed while it was being read (length or modification time); run again on a file that is not being written",
+                self.path
+            ));
+        }
+        Ok(())
+    }
+
+    /// Coordinates of vertex `v` (checked in range by the caller).
+    pub fn point(&self, v: u32) -> &[f64] {
+        let d = self.h.ambient_dim;
+        let at = self.h.coords_offset as usize + v as usize * d * 8;
+        bytemuck::cast_slice(&self.map[at..at + d * 8])
+    }
+
+    /// The cells `[lo, hi)` of block `b`, as a flat vertex array.
+    fn block_cells(&self, b: usize, lo: u64, hi: u64) -> &[u32] {
+        let (kind, _, off) = self.h.blocks[b];
+        let a = kind.n_vertices();
+        let s = off as usize + lo as usize * a * 4;
+        let e = off as usize + hi as usize * a * 4;
+        bytemuck::cast_slice(&self.map[s..e])
+    }
+
+    /// The block holding global cell `c`.
+    fn block_of(&self, c: u64) -> usize {
+        self.starts.partition_point(|&s| s <= c) - 1
+    }
+}
+
+/// `[n * r / p, n * (r + 1) / p)`: rank `r`'s slice of `n` items.
+pub fn slice(n: u64, r: usize, p: usize) -> (u64, u64) {
+    let f = |i: usize| ((n as u128 * i as u128) / p as u128) as u64;
+    (f(r), f(r + 1))
+}
+
+/// The spatial split every rank agrees on.
+pub struct Split {
+    lo: Vec<f64>,
+    scale: Vec<f64>,
+    splitters: Vec<(u64, u32)>,
+    /// The bounding box of all vertices (`None` without vertices).
+    pub bbox: Option<(Vec<f64>, Vec<f64>)>,
+}
+
+const BITS: u32 = 21;
+
+fn spread(mut x: u64) -> u64 {
+    // 21 bits -> every third bit
+    x &= 0x1f_ffff;
+    x = (x | (x << 32)) & 0x001f_0000_0000_ffff;
+    x = (x | (x << 16)) & 0x001f_0000_ff00_00ff;
+    x = (x | (x << 8)) & 0x100f_00f0_0f00_f00f;
+    x = (x | (x << 4)) & 0x10c3_0c30_c30c_30c3;
+    x = (x | (x << 2)) & 0x1249_2492_4924_9249;
+    x
+}
+
+impl Split {
+    /// The Morton key of a point (its first three coordinates).
+    fn key(&self, p: &[f64]) -> u64 {
+        let mut k = 0u64;
+        for (i, (&x, (&lo, &s))) in p.iter().zip(self.lo.iter().zip(&self.scale)).enumerate() {
+            let q = ((x - lo) * s).clamp(0.0, ((1u64 << BITS) - 1) as f64) as u64;
+            k |= spread(q) << i;
+        }
+        k
+    }
+
+    /// The rank owning vertex `v` at `p`.
+    pub fn owner(&self, v: u32, p: &[f64]) -> usize {
+        let kv = (self.key(p), v);
+        self.splitters.partition_point(|s| *s <= kv)
+    }
+}
+
+/// Agrees on the split: bounding box, Morton keys of this rank's vertex slice, a regular sample.
+pub fn split(w: &World, f: &Spb) -> Result<Split, Failure> {
+    let (rank, p) = (w.rank() as usize, w.size() as usize);
+    let d = f.h.ambient_dim;
+    let (v0, v1) = slice(f.h.n_vertices, rank, p);
+    let (mut lo, mut hi) = (vec![f64::INFINITY; d], vec![f64::NEG_INFINITY; d]);
+    let mut bad = None;
+    for v in v0..v1 {
+        let q = f.point(v as u32);
+        if bad.is_none() && q.iter().any(|x| !x.is_finite()) {
+            bad = Some(format!(
+                "{}: vertex {v} has a coordinate that is not finite",
+                f.path
+            ));
+        }
+        for i in 0..d {
+            lo[i] = lo[i].min(q[i]);
+            hi[i] = hi[i].max(q[i]);
+        }
+    }
+    agree(w, bad.map_or(Ok(()), Err))?;
+    let (lo, hi) = comm::min_max(w, &lo, &hi);
+    let k = d.min(3);
+    let scale: Vec<f64> = (0..k)
+        .map(|i| {
+            let ext = hi[i] - lo[i];
+            if ext > 0.0 {
+                ((1u64 << BITS) - 1) as f64 / ext
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let mut s = Split {
+        lo: lo[..k].to_vec(),
+        scale,
+        splitters: Vec::new(),
+        bbox: (f.h.n_vertices > 0).then(|| (lo.clone(), hi.clone())),
+    };
+    // a regular sample of this rank's sorted keys
+    let mut keys: Vec<(u64, u32)> = (v0..v1)
+        .map(|v| (s.key(f.point(v as u32)), v as u32))
+        .collect();
+    keys.sort_unstable();
+    let per = 64 * p;
+    let mut sample = Vec::with_capacity(2 * per);
+    if !keys.is_empty() {
+        for i in 0..per.min(keys.len()) {
+            let (kk, v) = keys[i * keys.len() / per.min(keys.len())];
+            sample.push(kk);
+            sample.push(v as u64);
+        }
+    }
+    drop(keys);
+    let all = comm::all_gather(w, &sample);
+    let mut all: Vec<(u64, u32)> = all.chunks_exact(2).map(|c| (c[0], c[1] as u32)).collect();
+    all.sort_unstable();
+    s.splitters = (1..p)
+        .filter_map(|i| all.get(i * all.len() / p).copied())
+        .collect();
+    // fewer samples than ranks: the last ranks own nothing
+    while s.splitters.len() < p - 1 {
+        s.splitters.push((u64::MAX, u32::MAX));
+    }
+    Ok(s)
+}
+
+/// What one rank holds: its local complex over owned and ghost cells.
+pub struct Local {
+    /// The local complex (vertices and cells numbered in increasing global id).
+    pub k: IndexedComplex,
+    /// Global id of each local vertex.
+    pub vertex_gid: Vec<u32>,
+    /// Global id of each local cell.
+    pub cell_gid: Vec<u32>,
+    /// Local vertices this rank owns.
+    pub owned: FixedBitSet,
+    /// Owner rank of each local vertex.
+    pub vertex_owner: Vec<u32>,
+    /// Number of local cells this rank owns (those whose smallest vertex it owns).
+    pub n_owned_cells: u64,
+}
+
+impl Local {
+    /// True when this rank owns local cell `c` (it owns the cell's smallest vertex).
+    pub fn owns_cell(&self, c: usize) -> bool {
+        let cell = self.k.cell(starplex::ids::CellId(c as u32));
+        let m = cell.vertices.iter().copied().min().unwrap_or(0);
+        self.owned.contains(m as usize)
+    }
+}
+
+/// Reads this rank's slices, sends every cell to the owners of its vertices, builds the local
+/// complex.
+pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
+    let (rank, p) = (w.rank() as usize, w.size() as usize);
+    let nv = f.h.n_vertices;
+    // owned vertices: each rank tells the owners of its vertex slice
+    let (v0, v1) = slice(nv, rank, p);
+    let mut out: Vec<Vec<u32>> = vec![Vec::new(); p];
+    for v in v0..v1 {
+        out[s.owner(v as u32, f.point(v as u32))].push(v as u32);
+    }
+    let mut owned_gids: Vec<u32> = comm::exchange(w, &out)?.concat();
+    owned_gids.sort_unstable();
+    // cells: [id, block, vertices...] to the owner of each vertex
+    let (c0, c1) = slice(f.h.n_cells, rank, p);
+    let mut out: Vec<Vec<u32>> = vec![Vec::new(); p];
+    let mut bad = None;
+    let mut ranks: Vec<usize> = Vec::with_capacity(8);
+    if c0 < c1 {
+        let (b0, b1) = (f.block_of(c0), f.block_of(c1 - 1));
+        'blocks: for b in b0..=b1 {
+            let (kind, _, _) = f.h.blocks[b];
+            let a = kind.n_vertices();
+            let lo = c0.max(f.starts[b]) - f.starts[b];
+            let hi = c1.min(f.starts[b + 1]) - f.starts[b];
+            let verts = f.block_cells(b, lo, hi);
+            for (i, cv) in verts.chunks_exact(a).enumerate() {
+                let cid = f.starts[b] + lo + i as u64;
+                if let Some(&x) = cv.iter().find(|&&x| x as u64 >= nv) {
+                    bad = Some(format!(
+                        "{}: cell {cid} has vertex {x}, but the file has {nv} vertices",
+                        f.path
+                    ));
+                    break 'blocks;
+                }
+                if (1..a).any(|j| cv[..j].contains(&cv[j])) {
+                    bad = Some(format!("{}: cell {cid} repeats a vertex: {cv:?}", f.path));
+                    break 'blocks;
+                }
+                ranks.clear();
+                ranks.extend(cv.iter().map(|&x| s.owner(x, f.point(x))));
+                ranks.sort_unstable();
+                ranks.dedup();
+                for &r in &ranks {
+                    let o = &mut out[r];
+                    o.push(cid as u32);
+                    o.push(b as u32);
+                    o.extend_from_slice(cv);
+                }
+            }
+        }
+    }
+    agree(w, bad.map_or(Ok(()), Err))?;
+    let got = comm::exchange(w, &out)?;
+    drop(out);
+    // parse the records: (cell id, block, offset of its vertices in `flat`)
+    let mut recs: Vec<(u32, u32, usize, usize)> = Vec::new();
+    for (src, g) in got.iter().enumerate() {
+        let mut i = 0;
+        while i < g.len() {
+            let (cid, b) = (g[i], g[i + 1] as usize);
+            let a = f.h.blocks[b].0.n_vertices();
+            recs.push((cid, b as u32, src, i + 2));
+            i += 2 + a;
+        }
+    }
+    recs.sort_unstable_by_key(|r| r.0);
+    let mut gids: Vec<u32> = owned_gids.clone();
+    for &(_, b, src, at) in &recs {
+        let a = f.h.blocks[b as usize].0.n_vertices();
+        gids.extend_from_slice(&got[src][at..at + a]);
+    }
+    gids.sort_unstable();
+    gids.dedup();
+    let local: FxHashMap<u32, u32> = gids
+        .iter()
+        .enumerate()
+        .map(|(i, &g)| (g, i as u32))
+        .collect();
+    let mut owned = FixedBitSet::with_capacity(gids.len());
+    for g in &owned_gids {
+        owned.insert(local[g] as usize);
+    }
+    // one local block per global block, cells in increasing global id
+    let mut blocks: Vec<(CellKind, Vec<u32>)> =
+        f.h.blocks
+            .iter()
+            .map(|&(k, _, _)| (k, Vec::new()))
+            .collect();
+    let mut cell_gid = Vec::with_capacity(recs.len());
+    for &(cid, b, src, at) in &recs {
+        let a = f.h.blocks[b as usize].0.n_vertices();
+        let dst = &mut blocks[b as usize].1;
+        dst.extend(got[src][at..at + a].iter().map(|g| local[g]));
+        cell_gid.push(cid);
+    }
+    drop(got);
+    let d = f.h.ambient_dim;
+    let mut coords = Vec::with_capacity(gids.len() * d);
+    let mut vertex_owner = Vec::with_capacity(gids.len());
+    for &g in &gids {
+        let q = f.point(g);
+        coords.extend_from_slice(q);
+        vertex_owner.push(s.owner(g, q) as u32);
+    }
+    let blocks: Vec<(CellKind, Buf<u32>)> = blocks
+        .into_iter()
+        .filter(|(_, v)| !v.is_empty())
+        .map(|(k, v)| (k, Buf::Owned(v)))
+        .collect();
+    let k = agree(
+        w,
+        IndexedComplex::from_parts(d, Buf::Owned(coords), blocks)
+            .map_err(|e| format!("{}: {e}", f.path)),
+    )?;
+    let mut l = Local {
+        k,
+        vertex_gid: gids,
+        cell_gid,
+        owned,
+        vertex_owner,
+        n_owned_cells: 0,
+    };
+    l.n_owned_cells = (0..l.k.n_cells()).filter(|&c| l.owns_cell(c)).count() as u64;
+    Ok(l)
+}

@@ -1,0 +1,570 @@
+//! `starplex-mpi`: starplex distributed over MPI ranks.
+//!
+//! ```text
+//! mpirun -np P starplex-mpi info FILE.spb [--json] [--max-faces N] [--stats]
+//! mpirun -np P starplex-mpi validate FILE.spb [--json] [--max-list N] [--stats]
+//! ```
+//!
+//! Rank 0 prints what `starplex info` / `starplex validate` print on the same file (the
+//! timings aside); `--stats` adds one line per rank on stderr (vertices and cells owned and held,
+//! ghost share, bytes sent, peak RSS). Every error, on any rank, ends every rank with status 2
+//! and rank 0 printing it. See the crate's DESIGN section "Distributed (MPI)".
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::time::Instant;
+
+use mpi::traits::Communicator;
+use serde_json::json;
+use starplex::algo::info::{
+    apply_face_counts, face_visits_of, info, FaceCounts, Info, InfoOptions,
+};
+use starplex::algo::orientation::orient_walk;
+use starplex::algo::unionfind::UnionFind;
+use starplex::algo::validate::{validate_parts, ValidationReport};
+use starplex::cell::CellKind;
+use starplex::ids::{CellId, VertexId};
+use starplex::topo::naive::VtIndex;
+use starplex::topo::{TopCells, VertexStar};
+
+mod comm;
+mod dist;
+mod labels;
+
+use comm::{agree, Failure, World};
+use dist::{Local, Spb, Split};
+
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate) FILE.spb [--json] [--max-faces N] [--max-list N] [--stats]";
+
+#[derive(Debug)]
+struct Args {
+    verb: String,
+    file: PathBuf,
+    json: bool,
+    stats: bool,
+    max_faces: u128,
+    max_list: usize,
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut it = std::env::args().skip(1);
+    let mut a = Args {
+        verb: String::new(),
+        file: PathBuf::new(),
+        json: false,
+        stats: false,
+        max_faces: InfoOptions::default().max_faces,
+        max_list: 1000,
+    };
+    let mut pos = Vec::new();
+    while let Some(x) = it.next() {
+        let mut num = |name: &str| -> Result<u128, String> {
+            let v = it.next().ok_or(format!("{name} needs a value\n{USAGE}"))?;
+            v.parse()
+                .map_err(|_| format!("{name}: '{v}' is not a number\n{USAGE}"))
+        };
+        match x.as_str() {
+            "--json" => a.json = true,
+            "--stats" => a.stats = true,
+            "--max-faces" => a.max_faces = num("--max-faces")?,
+            "--max-list" => a.max_list = num("--max-list")? as usize,
+            "-h" | "--help" => return Err(USAGE.to_string()),
+            s if s.starts_with('-') => return Err(format!("unknown option {s}\n{USAGE}")),
+            _ => pos.push(x),
+        }
+    }
+    match pos.as_slice() {
+        [v, f] if v == "info" || v == "validate" => {
+            a.verb = v.clone();
+            a.file = PathBuf::from(f);
+            Ok(a)
+        }
+        [v, _] => Err(format!(
+            "unknown verb '{v}' (this version distributes info and validate)\n{USAGE}"
+        )),
+        _ => Err(USAGE.to_string()),
+    }
+}
+
+fn main() -> ExitCode {
+    let Some(universe) = mpi::initialize() else {
+        eprintln!("error: MPI could not be initialized (run under mpirun)");
+        return ExitCode::from(2);
+    };
+    let w = universe.world();
+    let r = run(&w);
+    let code = match r {
+        Ok(()) => 0,
+        Err(Failure(msg)) => {
+            if w.rank() == 0 {
+                eprintln!("error: {msg}");
+            }
+            2
+        }
+    };
+    drop(universe);
+    ExitCode::from(code)
+}
+
+/// The shared phases: open, agree on the split, distribute.
+struct Loaded {
+    f: Spb,
+    split: Split,
+    l: Local,
+    read_s: f64,
+}
+
+fn run(w: &World) -> Result<(), Failure> {
+    let a = agree(w, parse_args())?;
+    let t0 = Instant::now();
+    let f = agree(w, Spb::open(&a.file))?;
+    let split = dist::split(w, &f)?;
+    let l = dist::distribute(w, &f, &split)?;
+    agree(w, f.check_unchanged())?;
+    let mut ld = Loaded {
+        f,
+        split,
+        l,
+        read_s: t0.elapsed().as_secs_f64(),
+    };
+    match a.verb.as_str() {
+        "info" => run_info(w, &a, &mut ld)?,
+        _ => run_validate(w, &a, &ld)?,
+    }
+    if a.stats {
+        print_stats(w, &ld)?;
+    }
+    Ok(())
+}
+
+/// Connected components of the 1-skeleton (isolated vertices count): local union-find over
+/// the held cells, merged across ranks by the labels of the ghost vertices.
+fn components(w: &World, l: &Local) -> Result<u64, Failure> {
+    let n = l.vertex_gid.len();
+    let mut uf = UnionFind::new(n);
+    for c in l.k.cells() {
+        for &v in &c.vertices[1..] {
+            uf.union(c.vertices[0], v);
+        }
+    }
+    let (class, n_classes) = classes(&mut uf, n);
+    let e = labels::Elements {
+        gid: l.vertex_gid.clone(),
+        owner: l.vertex_owner.clone(),
+        class,
+        n_classes,
+        sign: vec![1; n],
+        conflict: false,
+    };
+    Ok(labels::merge(w, &e)?.n_classes)
+}
+
+/// Dense class ids `0..n` of the sets of `uf`.
+fn classes(uf: &mut UnionFind, n: usize) -> (Vec<u32>, usize) {
+    let mut id = vec![u32::MAX; n];
+    let mut class = Vec::with_capacity(n);
+    let mut next = 0u32;
+    for i in 0..n as u32 {
+        let r = uf.find(i) as usize;
+        if id[r] == u32::MAX {
+            id[r] = next;
+            next += 1;
+        }
+        class.push(id[r]);
+    }
+    (class, next as usize)
+}
+
+fn global_dims(f: &Spb) -> std::collections::BTreeSet<usize> {
+    f.h.blocks.iter().map(|&(k, _, _)| k.dim()).collect()
+}
+
+fn isolated_owned(l: &Local) -> Vec<u32> {
+    let used = l.k.used_vertices();
+    l.owned
+        .ones()
+        .filter(|&v| !used.contains(v))
+        .map(|v| l.vertex_gid[v])
+        .collect()
+}
+
+fn run_info(w: &World, a: &Args, ld: &mut Loaded) -> Result<(), Failure> {
+    let t1 = Instant::now();
+    let (f, l) = (&ld.f, &ld.l);
+    let dims = global_dims(f);
+    let dim = dims.iter().max().map_or(-1, |&d| d as i64);
+    let n_isolated = comm::sum(w, isolated_owned(l).len() as u64);
+    let mut top_cells = std::collections::BTreeMap::new();
+    for &(k, n, _) in &f.h.blocks {
+        *top_cells.entry(k.type_name()).or_insert(0) += n;
+    }
+    let mut s = Info {
+        n_vertices: f.h.n_vertices,
+        n_isolated_vertices: n_isolated,
+        ambient_dim: f.h.ambient_dim as u64,
+        dim,
+        pure: dims.len() == 1 && n_isolated == 0,
+        top_cells,
+        n_top_cells: f.h.n_cells,
+        bbox: ld.split.bbox.clone(),
+        f_vector: None,
+        f_vector_estimate: None,
+        euler_characteristic: None,
+        n_boundary_faces: None,
+        n_faces_shared_by_more_than_2_top_cells: None,
+        faces_by_type: None,
+        n_connected_components: components(w, l)?,
+    };
+    let estimate = face_visits_of(f.h.blocks.iter().map(|&(k, n, _)| (k, n)));
+    if dim < 0 {
+        s.f_vector = Some(vec![]);
+        s.euler_characteristic = Some(0);
+    } else if estimate > a.max_faces {
+        s.f_vector_estimate = Some(estimate);
+    } else {
+        let d = dim as usize;
+        let part = info(
+            &l.k,
+            &InfoOptions {
+                max_faces: u128::MAX,
+                owned_vertices: Some(Arc::new(l.owned.clone())),
+                ..Default::default()
+            },
+        );
+        // [f_1 .. f_d, boundary, shared by > 2, tri faces, quad faces]
+        let mut mine = vec![0u64; d + 4];
+        if let Some(fv) = &part.f_vector {
+            for (i, &x) in fv.iter().enumerate().skip(1).take(d) {
+                mine[i - 1] = x;
+            }
+        }
+        mine[d] = part.n_boundary_faces.unwrap_or(0);
+        mine[d + 1] = part.n_faces_shared_by_more_than_2_top_cells.unwrap_or(0);
+        if let Some(m) = &part.faces_by_type {
+            mine[d + 2] = m.get("tri").copied().unwrap_or(0);
+            mine[d + 3] = m.get("quad").copied().unwrap_or(0);
+        }
+        let all = comm::sums(w, &mine);
+        let mut per_dim = vec![0u64];
+        per_dim.extend_from_slice(&all[..d]);
+        let counts = FaceCounts {
+            per_dim,
+            boundary: all[d],
+            shared_more_than_2: all[d + 1],
+            tri_faces: all[d + 2],
+            quad_faces: all[d + 3],
+        };
+        let simplicial =
+            f.h.blocks
+                .iter()
+                .all(|&(k, _, _)| matches!(k, CellKind::Simplex(_)));
+        apply_face_counts(&mut s, &counts, dims.len() == 1, simplicial);
+    }
+    agree(w, f.check_unchanged())?;
+    let info_s = t1.elapsed().as_secs_f64();
+    if w.rank() == 0 {
+        if a.json {
+            let mut v = starplex_cli::report::info_json(&s);
+            v["format"] = json!(starplex::io::Format::Binary.extension());
+            v["timings"] = json!({"read_s": ld.read_s, "info_s": info_s});
+            print_json(&v);
+        } else {
+            starplex_cli::report::print_info(
+                &s,
+                &a.file.display().to_string(),
+                ld.read_s,
+                info_s,
+                a.max_faces,
+            );
+        }
+    }
+    Ok(())
+}
+
+fn print_json(v: &serde_json::Value) {
+    println!(
+        "{}",
+        serde_json::to_string_pretty(v).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+    );
+}
+
+/// The local complex seen with empty stars at the vertices this rank does not own: a generic
+/// algorithm that visits every vertex's star then sees each owned vertex's full star once and
+/// nothing else, which is the ownership rule (a face is handled by the owner of its smallest
+/// vertex).
+struct OwnedStars<'a> {
+    idx: VtIndex<'a>,
+    owned: &'a fixedbitset::FixedBitSet,
+}
+
+impl TopCells for OwnedStars<'_> {
+    fn n_vertices(&self) -> usize {
+        self.idx.n_vertices()
+    }
+    fn n_top_cells(&self) -> usize {
+        self.idx.n_top_cells()
+    }
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        self.idx.top_cell_kind(c)
+    }
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        self.idx.top_cell_vertices(c, out)
+    }
+}
+
+impl VertexStar for OwnedStars<'_> {
+    fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
+        if self.owned.contains(v.index()) {
+            self.idx.vertex_top_cells(v, out)
+        } else {
+            out.clear()
+        }
+    }
+}
+
+/// Flattens faces as `len, v...` (global ids).
+fn flat_faces(l: &Local, faces: &[Vec<VertexId>]) -> Vec<u32> {
+    let mut out = Vec::new();
+    for f in faces {
+        out.push(f.len() as u32);
+        out.extend(f.iter().map(|v| l.vertex_gid[v.index()]));
+    }
+    out
+}
+
+fn unflat_faces(x: &[u32]) -> Vec<Vec<VertexId>> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < x.len() {
+        let n = x[i] as usize;
+        out.push(x[i + 1..i + 1 + n].iter().map(|&v| VertexId(v)).collect());
+        i += 1 + n;
+    }
+    out.sort_unstable();
+    out
+}
+
+fn vids(x: Vec<u32>) -> Vec<VertexId> {
+    let mut v: Vec<VertexId> = x.into_iter().map(VertexId).collect();
+    v.sort_unstable();
+    v
+}
+
+/// Edges by their first vertex, each vertex's edges in the order they came (the single-process
+/// order: vertices in increasing id, each vertex's edges as its star test lists them).
+fn edges(x: Vec<u32>) -> Vec<[VertexId; 2]> {
+    let mut e: Vec<[VertexId; 2]> = x
+        .chunks_exact(2)
+        .map(|c| [VertexId(c[0]), VertexId(c[1])])
+        .collect();
+    e.sort_by_key(|e| e[0]);
+    e
+}
+
+fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<(), Failure> {
+    let (f, l) = (&ld.f, &ld.l);
+    let t1 = Instant::now();
+    let view = OwnedStars {
+        idx: VtIndex::new(&l.k),
+        owned: &l.owned,
+    };
+    let build_s = t1.elapsed().as_secs_f64();
+    let t2 = Instant::now();
+    let d = global_dims(f).into_iter().max();
+    let (r, pairs) = validate_parts(&view, d);
+    let gv = |v: &VertexId| l.vertex_gid[v.index()];
+    let owned_v = |v: &VertexId| l.owned.contains(v.index());
+    // this rank's share of every list, in global ids
+    let isolated = isolated_owned(l);
+    let lower: Vec<u32> = r
+        .lower_dimensional_cells
+        .iter()
+        .filter(|c| l.owns_cell(c.index()))
+        .map(|c| l.cell_gid[c.index()])
+        .collect();
+    let nm_v: Vec<u32> = r
+        .non_manifold_vertices
+        .iter()
+        .filter(|v| owned_v(v))
+        .map(gv)
+        .collect();
+    let un_v: Vec<u32> = r
+        .unknown_vertices
+        .iter()
+        .filter(|v| owned_v(v))
+        .map(gv)
+        .collect();
+    let edge_list = |es: &[[VertexId; 2]]| -> Vec<u32> {
+        es.iter()
+            .filter(|e| owned_v(&e[0]))
+            .flat_map(|e| [gv(&e[0]), gv(&e[1])])
+            .collect()
+    };
+    let (nm_e, un_e) = (
+        edge_list(&r.non_manifold_edges),
+        edge_list(&r.unknown_edges),
+    );
+    let bnd = flat_faces(l, &r.boundary_faces);
+    let more = flat_faces(l, &r.faces_in_more_than_two_cells);
+    let n_more = comm::sum(w, r.faces_in_more_than_two_cells.len() as u64);
+    let n_components = components(w, l)?;
+    // facet classes and orientation: local walk, then the merge across ranks
+    let mut rep = ValidationReport {
+        dim: d.map_or(if f.h.n_vertices > 0 { 0 } else { -1 }, |d| d as i64),
+        n_connected_components: n_components,
+        ..Default::default()
+    };
+    let mut negative = Vec::new();
+    let mut conflict = false;
+    if let Some(d) = d {
+        let nc = l.k.n_cells();
+        let is_top = |c: u32| l.k.cell(CellId(c)).kind.dim() == d;
+        let walk = orient_walk(nc, is_top, &pairs, |_| 1);
+        let mut uf = UnionFind::new(nc);
+        for &(x, y, _) in &pairs {
+            uf.union(x, y);
+        }
+        let tops: Vec<usize> = (0..nc).filter(|&c| is_top(c as u32)).collect();
+        let (class_all, _) = classes(&mut uf, nc);
+        // classes renumbered over the top cells
+        let mut remap = rustc_hash::FxHashMap::default();
+        let class: Vec<u32> = tops
+            .iter()
+            .map(|&c| {
+                let n = remap.len() as u32;
+                *remap.entry(class_all[c]).or_insert(n)
+            })
+            .collect();
+        let e = labels::Elements {
+            gid: tops.iter().map(|&c| l.cell_gid[c]).collect(),
+            owner: tops
+                .iter()
+                .map(|&c| {
+                    let cell = l.k.cell(CellId(c as u32));
+                    let m = cell.vertices.iter().copied().min().unwrap_or(0);
+                    l.vertex_owner[m as usize]
+                })
+                .collect(),
+            class,
+            n_classes: remap.len(),
+            sign: tops.iter().map(|&c| walk.signs[c]).collect(),
+            conflict: walk.conflict.is_some(),
+        };
+        let m = labels::merge(w, &e)?;
+        rep.n_facet_components = m.n_classes;
+        rep.facet_connected = m.n_classes == 1;
+        negative = m.negative;
+        conflict = m.conflict;
+    }
+    let validate_s = t2.elapsed().as_secs_f64();
+    let gathered = [
+        comm::gather(w, &isolated)?,
+        comm::gather(w, &lower)?,
+        comm::gather(w, &nm_v)?,
+        comm::gather(w, &un_v)?,
+        comm::gather(w, &nm_e)?,
+        comm::gather(w, &un_e)?,
+        comm::gather(w, &bnd)?,
+        comm::gather(w, &more)?,
+        comm::gather(w, &negative)?,
+    ];
+    let unsupported = d.is_some() && n_more == 0 && conflict;
+    agree(
+        w,
+        if unsupported {
+            Err(format!(
+                "{}: the complex is not orientable; starplex-mpi detects this but cannot yet name the pair of cells in conflict that `starplex validate` reports (its depth-first walk is sequential): run `starplex validate` on this file",
+                a.file.display()
+            ))
+        } else {
+            Ok(())
+        },
+    )?;
+    agree(w, f.check_unchanged())?;
+    if w.rank() != 0 {
+        return Ok(());
+    }
+    let [Some(iso), Some(low), Some(nmv), Some(unv), Some(nme), Some(une), Some(bnd), Some(more), Some(neg)] =
+        gathered
+    else {
+        unreachable!("rank 0 holds every gathered list");
+    };
+    rep.isolated_vertices = vids(iso);
+    let mut low = low;
+    low.sort_unstable();
+    rep.lower_dimensional_cells = low.into_iter().map(CellId).collect();
+    rep.non_manifold_vertices = vids(nmv);
+    rep.unknown_vertices = vids(unv);
+    rep.non_manifold_edges = edges(nme);
+    rep.unknown_edges = edges(une);
+    rep.boundary_faces = unflat_faces(&bnd);
+    rep.faces_in_more_than_two_cells = unflat_faces(&more);
+    match d {
+        None => rep.pure = rep.isolated_vertices.is_empty(),
+        Some(_) => {
+            rep.pure = rep.lower_dimensional_cells.is_empty() && rep.isolated_vertices.is_empty();
+            rep.pseudo_manifold =
+                rep.pure && rep.faces_in_more_than_two_cells.is_empty() && rep.facet_connected;
+            if rep.faces_in_more_than_two_cells.is_empty() {
+                rep.orientable = Some(true);
+                let mut neg = neg;
+                neg.sort_unstable();
+                rep.cells_to_flip = Some(neg.into_iter().map(CellId).collect());
+            }
+        }
+    }
+    if a.json {
+        let mut v = starplex_cli::report::validation_json(&rep, a.max_list);
+        v["timings"] = json!({"read_s": ld.read_s, "build_s": build_s, "validate_s": validate_s});
+        print_json(&v);
+    } else {
+        println!("{}", a.file.display());
+        starplex_cli::report::print_validation(&rep, a.max_list);
+        println!(
+            "  time                read {:.3} s, Stellar tree {build_s:.3} s, validation {validate_s:.3} s",
+            ld.read_s
+        );
+    }
+    Ok(())
+}
+
+/// Peak resident set of this process in KiB (`VmHWM`), 0 when unknown.
+fn peak_rss_kib() -> u64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|x| x.parse().ok())
+        })
+        .unwrap_or(0)
+}
+
+fn print_stats(w: &World, ld: &Loaded) -> Result<(), Failure> {
+    let l = &ld.l;
+    let row = [
+        w.rank() as u64,
+        l.owned.count_ones(..) as u64,
+        l.vertex_gid.len() as u64,
+        l.n_owned_cells,
+        l.k.n_cells() as u64,
+        comm::bytes_sent(),
+        peak_rss_kib(),
+    ];
+    if let Some(all) = comm::gather(w, &row)? {
+        eprintln!("rank owned_vertices held_vertices owned_cells held_cells ghost_share bytes_sent peak_rss_kib");
+        for r in all.chunks_exact(row.len()) {
+            let ghost = if r[4] > 0 {
+                (r[4] - r[3]) as f64 / r[4] as f64
+            } else {
+                0.0
+            };
+            eprintln!(
+                "{} {} {} {} {} {:.4} {} {}",
+                r[0], r[1], r[2], r[3], r[4], ghost, r[5], r[6]
+            );
+        }
+    }
+    Ok(())
+}
