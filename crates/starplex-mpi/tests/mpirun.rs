@@ -41,10 +41,10 @@ fn cli_bin() -> Option<PathBuf> {
 
 fn small_datasets() -> Vec<PathBuf> {
     let mut dirs = Vec::new();
-    if let Ok(d) = std::env::var("STARPLEX_DATA") {
-        if let Ok(rd) = std::fs::read_dir(Path::new(&d).join("small")) {
-            dirs.extend(rd.flatten().map(|e| e.path()));
-        }
+    if let Ok(d) = std::env::var("STARPLEX_DATA")
+        && let Ok(rd) = std::fs::read_dir(Path::new(&d).join("small"))
+    {
+        dirs.extend(rd.flatten().map(|e| e.path()));
     }
     let here = Path::new(env!("CARGO_MANIFEST_DIR"));
     if let Some(d) = here
