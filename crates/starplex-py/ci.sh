@@ -19,6 +19,9 @@ export PATH="$PWD/$VENV/bin:$PATH"   # maturin's build backend calls `maturin` b
 python -m pip install -q numpy pytest "maturin>=1.9,<2"
 export PYO3_PYTHON="$PWD/$VENV/bin/python"
 cargo clippy -p starplex-py --all-targets -- -D warnings
-python -m pip install -q --no-build-isolation ./crates/starplex-py
+# the dev profile (its dependencies at opt-level 2, shared with `cargo test`): a release build
+# of the extension took ~5 min of CI; `pip install` without the variable builds in release
+MATURIN_PEP517_ARGS="${MATURIN_PEP517_ARGS:---profile dev}" \
+    python -m pip install -q --no-build-isolation ./crates/starplex-py
 # the tests compare with the command line built by `cargo test` (target/debug/starplex)
 python -m pytest -q crates/starplex-py/tests

@@ -17,8 +17,8 @@ pub struct RenderArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Colouring: plain, blocks (Stellar tree leaves), components, defects (from validate,
-    /// drawn on top), boundary; `label NAME` and `field NAME` need attributes, which starplex
-    /// does not read yet.
+    /// drawn on top), boundary, `label NAME` (a cell attribute, one colour per value), `field
+    /// NAME` (a vertex attribute, a colour ramp; vectors by their length).
     #[arg(long = "color", alias = "colour", num_args = 1..=2, value_names = ["MODE", "NAME"], default_value = "plain")]
     pub color: Vec<String>,
     /// View: iso, front (from -y), top (from +z), side (from +x), or AZIMUTH,ELEVATION in
@@ -60,32 +60,26 @@ fn bad(msg: String, hint: Option<String>) -> CliError {
     CliError::Input(msg, hint)
 }
 
-/// `--color` to a mode (label/field refused: no attributes are read).
-pub fn colour_mode(args: &[String]) -> Result<ColorMode, CliError> {
+/// `--color` to a mode, with the attribute name of `label NAME` / `field NAME`.
+pub fn colour_mode(args: &[String]) -> Result<(ColorMode, Option<String>), CliError> {
     let name = args.first().map(String::as_str).unwrap_or("plain");
-    match name {
-        "label" | "field" => {
-            let what = args.get(1).map_or(String::new(), |n| format!(" {n}"));
-            Err(bad(
-                format!("--color {name}{what}: starplex does not read attributes yet (per-cell labels and per-vertex fields are skipped by every reader), so there is no {name}{what} to colour by"),
-                Some(format!("colour modes available: {COLOR_MODES}")),
-            ))
-        }
-        _ => {
-            let m = ColorMode::from_name(name).ok_or_else(|| {
-                bad(
-                    format!("--color {name}: unknown colour mode"),
-                    Some(format!("colour modes: {COLOR_MODES} (label NAME, field NAME need attributes, not read yet)")),
-                )
-            })?;
-            if let Some(extra) = args.get(1) {
-                return Err(bad(
-                    format!("--color {name} takes no name (got '{extra}')"),
-                    None,
-                ));
-            }
-            Ok(m)
-        }
+    let m = ColorMode::from_name(name).ok_or_else(|| {
+        bad(
+            format!("--color {name}: unknown colour mode"),
+            Some(format!("colour modes: {COLOR_MODES} (label NAME: a cell attribute, field NAME: a vertex attribute)")),
+        )
+    })?;
+    let needs_name = matches!(m, ColorMode::Label | ColorMode::Field);
+    match (needs_name, args.get(1)) {
+        (true, None) => Err(bad(
+            format!("--color {name} needs the attribute's name: --color {name} NAME"),
+            Some("`starplex info FILE` lists the attributes of a file".into()),
+        )),
+        (false, Some(extra)) => Err(bad(
+            format!("--color {name} takes no name (got '{extra}')"),
+            None,
+        )),
+        (_, n) => Ok((m, n.cloned())),
     }
 }
 
@@ -108,7 +102,7 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), CliError> {
 
 /// The options of the render flags (shared with the `--render` shortcuts).
 pub fn options(a: &RenderArgs, title: String) -> Result<RenderOptions, CliError> {
-    let colour = colour_mode(&a.color)?;
+    let (colour, attribute) = colour_mode(&a.color)?;
     let (width, height) = parse_size(&a.size)?;
     let view = match &a.view {
         None => None,
@@ -146,6 +140,7 @@ pub fn options(a: &RenderArgs, title: String) -> Result<RenderOptions, CliError>
         title: Some(a.title.clone().unwrap_or(title)),
         legend: !a.no_legend,
         kv: a.kv,
+        attribute,
     })
 }
 

@@ -118,12 +118,17 @@ fn bad_input_is_refused() {
     refused(
         &["render", i, "-o", op, "--color", "label", "region"],
         &o,
-        "does not read attributes yet",
+        "there is no cell attribute 'region'",
     );
     refused(
         &["render", i, "-o", op, "--color", "field", "temperature"],
         &o,
-        "does not read attributes yet",
+        "there is no vertex attribute 'temperature'",
+    );
+    refused(
+        &["render", i, "-o", op, "--color", "label"],
+        &o,
+        "needs the attribute's name",
     );
     refused(
         &["render", i, "-o", op, "--size", "0x100"],
@@ -156,4 +161,39 @@ fn bad_input_is_refused() {
     let empty = dir().join("empty.off");
     std::fs::write(&empty, "OFF\n0 0 0\n").unwrap();
     refused(&["render", s(&empty), "-o", op], &o, "the complex is empty");
+}
+
+#[test]
+fn labels_and_fields_colour_by_attributes() {
+    // meshio's mixed mesh with cell data `material` and point data `velocity` (a vector)
+    let input = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../starplex/tests/data/io/attrs_b64_zlib.vtu");
+    for (mode, name) in [
+        ("label", "material"),
+        ("field", "velocity"),
+        ("field", "height"),
+    ] {
+        let o = dir().join(format!("attr-{mode}-{name}.png"));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_starplex"))
+            .args([
+                "render",
+                s(&input),
+                "-o",
+                s(&o),
+                "--color",
+                mode,
+                name,
+                "--size",
+                "200x150",
+            ])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let png = std::fs::read(&o).unwrap();
+        assert!(png.starts_with(b"\x89PNG"), "{mode} {name}");
+    }
 }

@@ -62,14 +62,15 @@ def need_data():
 
 
 def starplex_bin():
-    """The command line: $STARPLEX_BIN, else target/{release,debug}/starplex, else PATH."""
+    """The command line: $STARPLEX_BIN, else the newer of target/{release,debug}/starplex (an
+    old release build must not answer for new code), else PATH."""
     b = os.environ.get("STARPLEX_BIN")
     if b:
         return b
-    for prof in ("release", "debug"):
-        p = REPO / "target" / prof / "starplex"
-        if p.is_file():
-            return str(p)
+    built = [REPO / "target" / prof / "starplex" for prof in ("release", "debug")]
+    built = [p for p in built if p.is_file()]
+    if built:
+        return str(max(built, key=lambda p: p.stat().st_mtime))
     return shutil.which("starplex")
 
 

@@ -62,6 +62,24 @@ pub(crate) fn categorical(i: u32) -> u32 {
     c | ((i & 3) << 16) | (((i >> 2) & 3) << 8) | ((i >> 4) & 3)
 }
 
+/// A blue-to-yellow colour ramp (viridis-like) at `t` in 0..=1, for fields.
+pub(crate) fn ramp(t: f64) -> u32 {
+    // a few viridis stops, interpolated linearly
+    const STOPS: [(f64, f64, f64); 5] = [
+        (0.267, 0.005, 0.329),
+        (0.230, 0.322, 0.546),
+        (0.128, 0.567, 0.551),
+        (0.369, 0.789, 0.383),
+        (0.993, 0.906, 0.144),
+    ];
+    let x = t.clamp(0.0, 1.0) * 4.0;
+    let i = (x.floor() as usize).min(3);
+    let f = x - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    let c = |p: f64, q: f64| ((p + (q - p) * f) * 255.0).round().clamp(0.0, 255.0) as u32;
+    (c(a.0, b.0) << 16) | (c(a.1, b.1) << 8) | c(a.2, b.2)
+}
+
 /// `c` with each channel multiplied by `f` (0..=1).
 pub(crate) fn shade(c: u32, f: f32) -> u32 {
     let f = f.clamp(0.0, 1.0);

@@ -59,10 +59,16 @@ pub enum ColorMode {
     Defects,
     /// The boundary: surface boundary edges, or the faces opened by the clipping plane.
     Boundary,
+    /// One colour per value of the cell attribute [`RenderOptions::attribute`] (its first
+    /// component).
+    Label,
+    /// A colour map of the vertex attribute [`RenderOptions::attribute`] (its first component,
+    /// or the length of a vector), faces by the mean of their vertices.
+    Field,
 }
 
 /// The names accepted by [`ColorMode::from_name`].
-pub const COLOR_MODES: &str = "plain blocks components defects boundary";
+pub const COLOR_MODES: &str = "plain blocks components defects boundary label field";
 
 impl ColorMode {
     /// The mode of a name in [`COLOR_MODES`].
@@ -77,6 +83,8 @@ impl ColorMode {
             "components" => ColorMode::Components,
             "defects" => ColorMode::Defects,
             "boundary" => ColorMode::Boundary,
+            "label" => ColorMode::Label,
+            "field" => ColorMode::Field,
             _ => return None,
         })
     }
@@ -92,6 +100,8 @@ impl ColorMode {
             ColorMode::Components => "components",
             ColorMode::Defects => "defects",
             ColorMode::Boundary => "boundary",
+            ColorMode::Label => "label",
+            ColorMode::Field => "field",
         }
     }
 }
@@ -212,6 +222,9 @@ pub struct RenderOptions {
     pub legend: bool,
     /// Bucketing threshold of the Stellar tree for [`ColorMode::Blocks`] (`None`: the default).
     pub kv: Option<u32>,
+    /// The attribute of [`ColorMode::Label`] (a cell attribute) and [`ColorMode::Field`] (a
+    /// vertex attribute).
+    pub attribute: Option<String>,
 }
 
 impl Default for RenderOptions {
@@ -228,6 +241,7 @@ impl Default for RenderOptions {
             title: None,
             legend: true,
             kv: None,
+            attribute: None,
         }
     }
 }
@@ -269,6 +283,16 @@ pub enum RenderError {
     /// The Stellar tree for block colours could not be built.
     #[error("{0}")]
     Stellar(#[from] StellarError),
+    /// `--color label NAME` / `field NAME` with no such attribute.
+    #[error("there is no {target} attribute '{name}' to colour by ({})", if available.is_empty() { format!("the file has no {target} attributes") } else { format!("{target} attributes: {}", available.join(", ")) })]
+    NoAttribute {
+        /// `cell` for labels, `vertex` for fields.
+        target: crate::attr::AttrTarget,
+        /// The name asked.
+        name: String,
+        /// The names there are.
+        available: Vec<String>,
+    },
 }
 
 fn human_bytes(b: u64) -> String {
@@ -707,6 +731,88 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderErro
                     Some(colour::EXPOSED),
                     format!("faces cut open: {}", thousands(exposed)),
                 ));
+            }
+        }
+        ColorMode::Label | ColorMode::Field => {
+            use crate::attr::AttrTarget;
+            let target = if o.colour == ColorMode::Label {
+                AttrTarget::Cell
+            } else {
+                AttrTarget::Vertex
+            };
+            let name = o.attribute.clone().unwrap_or_default();
+            let Some(a) = k.attributes().get(target, &name) else {
+                return Err(RenderError::NoAttribute {
+                    target,
+                    name,
+                    available: k
+                        .attributes()
+                        .of(target)
+                        .iter()
+                        .map(|a| a.name.clone())
+                        .collect(),
+                });
+            };
+            // first component, or the length of a vector field
+            let value = |i: usize| -> f64 {
+                if target == AttrTarget::Vertex && a.components > 1 {
+                    (0..a.components)
+                        .map(|c| a.values.get_f64(i * a.components + c).powi(2))
+                        .sum::<f64>()
+                        .sqrt()
+                } else {
+                    a.values.get_f64(i * a.components)
+                }
+            };
+            if target == AttrTarget::Cell {
+                let mut distinct: Vec<f64> = (0..n).map(value).filter(|x| !x.is_nan()).collect();
+                distinct.sort_by(f64::total_cmp);
+                distinct.dedup();
+                for (c, col) in cell_colour.iter_mut().enumerate() {
+                    let x = value(c);
+                    *col = match distinct.binary_search_by(|d| d.total_cmp(&x)) {
+                        Ok(i) => colour::categorical(i as u32),
+                        Err(_) => colour::MUTED,
+                    };
+                }
+                summary.n_colours = distinct.len();
+                let shown: Vec<String> = distinct.iter().take(12).map(|x| x.to_string()).collect();
+                legend.push((
+                    Some(colour::categorical(0)),
+                    format!(
+                        "colour: cell label {name}, {} values{}",
+                        distinct.len(),
+                        if distinct.len() <= 12 {
+                            format!(" ({})", shown.join(", "))
+                        } else {
+                            String::new()
+                        }
+                    ),
+                ));
+            } else {
+                let vals: Vec<f64> = (0..k.n_vertices()).map(value).collect();
+                let (lo, hi) = vals
+                    .iter()
+                    .filter(|x| x.is_finite())
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                        (a.min(x), b.max(x))
+                    });
+                let span = if hi > lo { hi - lo } else { 1.0 };
+                let map = |x: f64| {
+                    if x.is_finite() {
+                        colour::ramp(((x - lo) / span).clamp(0.0, 1.0))
+                    } else {
+                        colour::MUTED
+                    }
+                };
+                for (c, col) in k.cells().zip(cell_colour.iter_mut()) {
+                    let m = c.vertices.iter().map(|&v| vals[v as usize]).sum::<f64>()
+                        / c.vertices.len() as f64;
+                    *col = map(m);
+                }
+                vertex_colour = Some(vals.iter().map(|&x| map(x)).collect());
+                legend.push((Some(colour::ramp(0.0)), format!("{name} = {lo}")));
+                legend.push((Some(colour::ramp(1.0)), format!("{name} = {hi}")));
             }
         }
         ColorMode::Defects => {
