@@ -270,12 +270,18 @@ pub fn run(ctx: &Ctx, a: &RenderArgs) -> Result<(), CliError> {
 /// given colouring.
 pub fn shortcut(
     ctx: &Ctx,
-    k: &IndexedComplex,
+    k: Option<&IndexedComplex>,
     file: &Path,
     out: &Path,
     colour: ColorMode,
     kv: Option<u32>,
 ) -> Result<(), CliError> {
+    let k = k.ok_or_else(|| {
+        CliError::Input(
+            "--render needs the mesh file, not a saved tree".into(),
+            None,
+        )
+    })?;
     let o = RenderOptions {
         width: 1600,
         height: 1200,

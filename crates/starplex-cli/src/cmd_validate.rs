@@ -142,15 +142,9 @@ pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
         }
     }
     if let Some(out) = &a.render {
-        let k = k.as_ref().ok_or_else(|| {
-            CliError::Input(
-                "--render needs the mesh file, not a saved tree".into(),
-                None,
-            )
-        })?;
         crate::cmd_render::shortcut(
             ctx,
-            k,
+            k.as_ref(),
             &a.input.file,
             out,
             starplex::render::ColorMode::Defects,
