@@ -61,11 +61,14 @@ pub fn run(ctx: &Ctx, a: &ConvertArgs) -> Result<(), CliError> {
                 "note: the attributes {} are not carried through --boundary/--triangulate",
                 names.join(", ")
             );
-        } else if format.is_some_and(|f| !f.holds_attributes()) {
-            eprintln!(
-                "note: the attributes {} are not written: this format cannot hold them (write .vtu or .vtk to keep them)",
-                names.join(", ")
-            );
+        } else if let Some(f) = format {
+            let dropped = f.dropped_attributes(&attrs);
+            if !dropped.is_empty() {
+                eprintln!(
+                    "note: the attributes {} are not written: {f} cannot hold them (write .vtu or .vtk to keep them)",
+                    dropped.join(", ")
+                );
+            }
         }
     }
     if !ctx.quiet {

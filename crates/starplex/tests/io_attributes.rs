@@ -209,3 +209,43 @@ fn gmsh_physical_and_elementary_tags_are_cell_attributes() {
         }
     }
 }
+
+#[test]
+fn medit_references_are_attributes_and_are_written_back() {
+    use starplex::io::medit;
+    let text =
+        "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 2\n0 0 1 0\n\
+                Tetrahedra\n1\n1 2 3 4 7\nTriangles\n1\n1 2 3 0\nEnd\n";
+    let opts = ReadOptions {
+        build: starplex::complex::BuildOptions {
+            drop_face_cells: true,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let k = medit::read_from(text.as_bytes(), "m.mesh".as_ref(), &opts)
+        .unwrap()
+        .complex;
+    // the boundary triangle is dropped with its reference
+    assert_eq!(k.n_cells(), 1);
+    let a = k.attributes();
+    assert_eq!(a.vertex, [Attribute::int("medit:ref", 1, vec![1, 1, 2, 0])]);
+    assert_eq!(a.cell, [Attribute::int("medit:ref", 1, vec![7])]);
+    let mut out = Vec::new();
+    medit::write(&mut out, &k).unwrap();
+    let back = medit::read_from(&out[..], "m.mesh".as_ref(), &ReadOptions::default()).unwrap();
+    assert_eq!(back.complex, k);
+    // no reference other than 0: no attribute
+    let zero = text
+        .replace(" 1\n1 0 0 1", " 0\n1 0 0 0")
+        .replace("0 1 0 2", "0 1 0 0")
+        .replace(" 7\n", " 0\n");
+    let z = medit::read_from(zero.as_bytes(), "m.mesh".as_ref(), &opts)
+        .unwrap()
+        .complex;
+    assert!(z.attributes().is_empty(), "{:?}", z.attributes());
+    assert_eq!(
+        io::Format::Medit.dropped_attributes(k.attributes()),
+        Vec::<String>::new()
+    );
+}

@@ -13,7 +13,8 @@
 //! ```
 //!
 //! The format is free-form: words separated by any whitespace, `#` comments. Keywords are
-//! case-insensitive. References (`ref`) are read and ignored; the writer writes 0. Sections whose
+//! case-insensitive. References (`ref`) are read as the vertex and cell attribute `medit:ref` (when one is not 0) and
+//! written from it (0 without it). Sections whose
 //! layout is known but that carry no cells (`Corners`, `Ridges`, `Required*`, `Normals`,
 //! `Tangents`, `NormalAt*`, `TangentAt*`) are skipped with a note; any other keyword is an error
 //! naming it.
@@ -42,6 +43,7 @@ use std::path::Path;
 use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
 use crate::complex::{check_cell, BuildReport, ComplexBuilder, IndexedComplex};
 
@@ -145,6 +147,8 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut verts: Vec<u32> = Vec::with_capacity(8);
     let mut p = [0.0f64; 3];
     let mut n_cells: u64 = 0;
+    let mut vrefs: Vec<i64> = Vec::new();
+    let mut crefs: Vec<i64> = Vec::new();
     loop {
         let Some(kw) = w.next_word()? else {
             return Err(w.eof("a keyword or 'End'"));
@@ -183,7 +187,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 for x in p[..d].iter_mut() {
                     *x = w.f64("a vertex coordinate")?;
                 }
-                w.i64("the vertex reference")?;
+                vrefs.push(w.i64("the vertex reference")?);
                 b.push_vertex(&p[..d])
                     .map_err(|e| IoError::new(path, e).at(Location::Line(w.line())))?;
             }
@@ -206,7 +210,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                     verts.push(w.index("vertex index", 1, nv)?);
                 }
                 let line = w.line();
-                w.i64("the element reference")?;
+                crefs.push(w.i64("the element reference")?);
                 check_cell(n_cells, &verts, nv)
                     .map_err(|e| IoError::new(path, e).at(Location::Line(line)))?;
                 b.push_cell(kind, &verts)
@@ -242,9 +246,17 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             ),
         ));
     }
-    let Some(b) = builder else {
+    let Some(mut b) = builder else {
         return Err(w.err("the file has no 'Vertices' section"));
     };
+    let mut attrs = Attributes::default();
+    if vrefs.iter().any(|&r| r != 0) {
+        attrs.vertex.push(Attribute::int(REF, 1, vrefs));
+    }
+    if crefs.iter().any(|&r| r != 0) {
+        attrs.cell.push(Attribute::int(REF, 1, crefs));
+    }
+    b.set_attributes(attrs);
     let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
     push_build_notes(&mut notes, &report);
     Ok(ReadResult {
@@ -305,7 +317,22 @@ pub fn check(k: &IndexedComplex) -> Result<(), IoErrorKind> {
     Ok(())
 }
 
-/// Writes `k` as Medit `.mesh` (version 2, references 0).
+/// The attribute name of Medit references.
+pub const REF: &str = "medit:ref";
+
+/// The integer column `medit:ref` of `target`, if `k` has one.
+fn refs(k: &IndexedComplex, target: AttrTarget) -> Option<&[i64]> {
+    match k.attributes().get(target, REF) {
+        Some(Attribute {
+            components: 1,
+            values: AttrValues::Int(v),
+            ..
+        }) => Some(v),
+        _ => None,
+    }
+}
+
+/// Writes `k` as Medit `.mesh` (version 2; references from the `medit:ref` attributes, else 0).
 ///
 /// ```
 /// use starplex::io::{medit, IoErrorKind};
@@ -334,13 +361,15 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     writeln!(w, "Dimension {d}")?;
     writeln!(w, "Vertices")?;
     writeln!(w, "{}", k.n_vertices())?;
-    for p in k.coords().chunks_exact(d) {
+    let vref = refs(k, AttrTarget::Vertex);
+    for (i, p) in k.coords().chunks_exact(d).enumerate() {
         for &x in p {
             write_f64(w, x)?;
             w.write_all(b" ")?;
         }
-        w.write_all(b"0\n")?;
+        writeln!(w, "{}", vref.map_or(0, |r| r[i]))?;
     }
+    let cref = refs(k, AttrTarget::Cell);
     // Medit groups cells by keyword: write each kind's cells in id order.
     let mut line = String::with_capacity(128);
     for (name, kind) in CELL_KEYWORDS {
@@ -362,7 +391,7 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
                 for v in b.cell(i) {
                     let _ = write!(line, "{} ", v + 1);
                 }
-                line.push_str("0\n");
+                let _ = writeln!(line, "{}", cref.map_or(0, |r| r[b.first as usize + i]));
                 w.write_all(line.as_bytes())?;
             }
         }

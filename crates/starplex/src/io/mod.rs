@@ -269,15 +269,41 @@ impl Format {
         !matches!(self, Format::Tri | Format::Ts | Format::Sierp | Format::Hex)
     }
 
-    /// Whether files of this format carry vertex and cell attributes (VTK point and cell data).
+    /// The attributes of `a` that a file of this format cannot hold (`kind name`, e.g.
+    /// `cell material`): none for VTK (`.vtk`, `.vtu`, `.vtp`); Medit keeps only its integer
+    /// `medit:ref` columns; the other formats keep none.
     ///
     /// ```
+    /// use starplex::attr::{Attribute, Attributes};
     /// use starplex::io::Format;
-    /// assert!(Format::Vtu.holds_attributes());
-    /// assert!(!Format::Off.holds_attributes());
+    /// let a = Attributes {
+    ///     vertex: vec![Attribute::float("height", 1, vec![0.5])],
+    ///     cell: vec![Attribute::int("medit:ref", 1, vec![3])],
+    /// };
+    /// assert!(Format::Vtu.dropped_attributes(&a).is_empty());
+    /// assert_eq!(Format::Medit.dropped_attributes(&a), ["vertex height"]);
+    /// assert_eq!(Format::Off.dropped_attributes(&a).len(), 2);
     /// ```
-    pub fn holds_attributes(self) -> bool {
-        matches!(self, Format::Vtk | Format::Vtu | Format::Vtp)
+    pub fn dropped_attributes(self, a: &crate::attr::Attributes) -> Vec<String> {
+        use crate::attr::{AttrTarget, AttrValues};
+        let mut out = Vec::new();
+        for target in [AttrTarget::Vertex, AttrTarget::Cell] {
+            for c in a.of(target) {
+                let kept = match self {
+                    Format::Vtk | Format::Vtu | Format::Vtp => true,
+                    Format::Medit => {
+                        c.name == medit::REF
+                            && c.components == 1
+                            && matches!(c.values, AttrValues::Int(_))
+                    }
+                    _ => false,
+                };
+                if !kept {
+                    out.push(format!("{target} {}", c.name));
+                }
+            }
+        }
+        out
     }
 
     /// The names of the formats starplex writes, space-separated (for hints and help).
