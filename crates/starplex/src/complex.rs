@@ -1087,7 +1087,7 @@ impl IndexedComplex {
         self.blocks.iter().all(|b| b.kind.is_simplex())
     }
 
-    /// Bytes of the complex itself: coordinates plus cell vertex arrays.
+    /// Bytes of the complex itself: coordinates, cell vertex arrays and attribute values.
     ///
     /// ```
     /// # use starplex::complex::IndexedComplex;
@@ -1102,6 +1102,7 @@ impl IndexedComplex {
         8 * self.coords.len()
             + 4 * self.n_refs()
             + std::mem::size_of::<CellBlock>() * self.blocks.len()
+            + self.attrs.bytes()
     }
 
     /// For each vertex, whether any cell uses it.
