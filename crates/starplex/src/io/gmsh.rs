@@ -961,7 +961,10 @@ fn read_elements_22_bin(
 /// let mut out = Vec::new();
 /// gmsh::write(&mut out, &k).unwrap();
 /// assert!(out.starts_with(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"));
-/// let back = gmsh::read_from(&out[..], "m.msh".as_ref(), &ReadOptions::default()).unwrap();
+/// let mut back = gmsh::read_from(&out[..], "m.msh".as_ref(), &ReadOptions::default()).unwrap();
+/// // every gmsh element lies on a geometric entity: its tag comes back as an attribute
+/// let tags = back.complex.take_attributes();
+/// assert_eq!(tags.cell[0].name, "gmsh:geometrical");
 /// assert_eq!(back.complex, k);
 /// let k4 = IndexedComplex::from_parts(4, vec![0.0; 4].into(), vec![]).unwrap();
 /// assert!(matches!(gmsh::write(&mut Vec::new(), &k4), Err(IoErrorKind::CannotWrite { .. })));
@@ -1140,7 +1143,10 @@ fn push_nodes(line: &mut String, kind: CellKind, c: &[u32]) {
 /// let mut out = Vec::new();
 /// gmsh::write_22(&mut out, &k).unwrap();
 /// assert!(out.starts_with(b"$MeshFormat\n2.2 0 8\n"));
-/// let back = gmsh::read_from(&out[..], "t.msh".as_ref(), &ReadOptions::default()).unwrap();
+/// let mut back = gmsh::read_from(&out[..], "t.msh".as_ref(), &ReadOptions::default()).unwrap();
+/// // the elementary tag (1 + the dimension) comes back as the attribute gmsh:geometrical
+/// let tags = back.complex.take_attributes();
+/// assert_eq!(tags.cell[0], starplex::attr::Attribute::int("gmsh:geometrical", 1, vec![4]));
 /// assert_eq!(back.complex, k);
 /// ```
 ///
