@@ -247,7 +247,7 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
                 std::hint::black_box(t.validate());
             });
             let ia_s = phase("iastar_global_s", &mut || {
-                std::hint::black_box(t.iastar().storage_refs());
+                std::hint::black_box(starplex::topo::Storage::refs(&t.iastar()));
             });
             (vt_local_s, vt_s, faces_s, validate_s, ia_s)
         })?;

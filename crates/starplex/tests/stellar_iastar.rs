@@ -9,9 +9,8 @@ use proptest::test_runner::{Config, RngSeed, TestRunner};
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 use starplex::ids::{CellId, LeafId, VertexId};
-use starplex::stellar::iastar::Adjacent;
 use starplex::stellar::{StellarOptions, StellarTree};
-use starplex::topo::VertexStar;
+use starplex::topo::{Adjacent, FacetAdjacency, Storage, VertexStar};
 
 const KINDS: [CellKind; 9] = [
     CellKind::Simplex(1),
@@ -72,6 +71,16 @@ fn check(k: &IndexedComplex, kv: u32) {
     )
     .unwrap();
     let ia = t.iastar();
+    brute_force(k, &ia);
+    if kv == 1 {
+        brute_force(k, &starplex::tds::iastar::IaStar::new(k).unwrap());
+    }
+    local_agrees(&t);
+}
+
+/// Any IA* ([`FacetAdjacency`]) against the definitions: slots, non-manifold facets,
+/// representatives and stars.
+fn brute_force<A: FacetAdjacency + VertexStar>(k: &IndexedComplex, ia: &A) {
     let cells: Vec<_> = k.cells().collect();
     let facets: Vec<Vec<Vec<u32>>> = cells
         .iter()
@@ -85,7 +94,7 @@ fn check(k: &IndexedComplex, kv: u32) {
         .collect();
     for c in &cells {
         let i = c.id.index();
-        assert_eq!(ia.n_slots(c.id), facets[i].len());
+        assert_eq!(ia.n_facet_slots(c.id), facets[i].len());
         for (j, f) in facets[i].iter().enumerate() {
             let others: Vec<u32> = cells
                 .iter()
@@ -93,15 +102,17 @@ fn check(k: &IndexedComplex, kv: u32) {
                 .filter(|o| facets[o.id.index()].contains(f))
                 .map(|o| o.id.0)
                 .collect();
-            match (others.len(), ia.adjacent(c.id, j)) {
+            match (others.len(), ia.facet_adjacent(c.id, j)) {
                 (0, Adjacent::None) => {}
                 (1, Adjacent::Top(u)) => assert_eq!(u.0, others[0]),
                 (n, Adjacent::NmFace(nf)) if n >= 2 => {
                     let mut all = others.clone();
                     all.push(c.id.0);
                     all.sort();
-                    assert_eq!(ia.nm_face_cells(nf), all);
-                    assert_eq!(&ia.nm_face_vertices(nf), f);
+                    let ids = |v: Vec<CellId>| -> Vec<u32> { v.iter().map(|c| c.0).collect() };
+                    assert_eq!(ids(ia.nm_face_cells(nf)), all);
+                    let vs: Vec<u32> = ia.nm_face_vertices(nf).iter().map(|v| v.0).collect();
+                    assert_eq!(&vs, f);
                 }
                 (n, a) => panic!("cell {i} facet {j}: {n} others, got {a:?}"),
             }
@@ -143,7 +154,11 @@ fn check(k: &IndexedComplex, kv: u32) {
             clusters.push(cluster);
         }
         // all top edges, and exactly one representative in each cluster
-        let got = ia.vertex_representatives(VertexId(v));
+        let got: Vec<u32> = ia
+            .vertex_references(VertexId(v))
+            .iter()
+            .map(|c| c.0)
+            .collect();
         assert_eq!(got.len(), want.len() + clusters.len(), "reps of {v}");
         for e in &want {
             assert!(got.contains(e));
@@ -160,19 +175,27 @@ fn check(k: &IndexedComplex, kv: u32) {
         ia.vertex_top_cells(VertexId(v), &mut got);
         assert_eq!(got, vt, "IA* star of {v}");
     }
-    // local IA*: stars of the leaf's own vertices, and the slots it computed agree
+}
+
+/// Local IA*: stars of the leaf's own vertices, and the slots it computed, agree with the
+/// global IA*.
+fn local_agrees(t: &StellarTree) {
+    let ia = t.iastar();
     for l in 0..t.n_leaves() {
         let loc = t.local_iastar(LeafId(l as u32));
         for v in loc.vertices() {
             assert_eq!(loc.star(VertexId(v)), ia.star(VertexId(v)));
             assert_eq!(
-                loc.vertex_representatives(VertexId(v)).len(),
-                ia.vertex_representatives(VertexId(v)).len()
+                loc.vertex_references(VertexId(v)).len(),
+                ia.vertex_references(VertexId(v)).len()
             );
         }
         for c in loc.cells() {
-            for j in 0..loc.n_slots(CellId(c)) {
-                match (loc.adjacent(CellId(c), j), ia.adjacent(CellId(c), j)) {
+            for j in 0..loc.n_facet_slots(CellId(c)) {
+                match (
+                    loc.facet_adjacent(CellId(c), j),
+                    ia.facet_adjacent(CellId(c), j),
+                ) {
                     (Adjacent::NotComputed, _) => {}
                     (Adjacent::NmFace(a), Adjacent::NmFace(b)) => {
                         assert_eq!(loc.nm_face_cells(a), ia.nm_face_cells(b))
@@ -230,7 +253,9 @@ fn storage_anchors_of_the_spec() {
     let anchor = |cells: &[(u8, Vec<u32>)], want: u64| {
         let k = make(3, &pts, cells);
         let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
-        assert_eq!(t.iastar().storage_refs(), want, "{cells:?}");
+        assert_eq!(t.iastar().refs(), want, "{cells:?}");
+        let direct = starplex::tds::iastar::IaStar::new(&k).unwrap();
+        assert_eq!(direct.refs(), want, "{cells:?}");
     };
     let (tri, tet, edge) = (1u8, 3u8, 0u8);
     anchor(&[(tet, vec![0, 1, 2, 3])], 12);
@@ -252,7 +277,6 @@ fn storage_anchors_of_the_spec() {
 /// the same cells and vertices), the same non-manifold facets, the same representatives (all
 /// top edges and the smallest input id of each cluster) and the same reference count.
 fn same_as_direct(k: &IndexedComplex, kv: u32) {
-    use starplex::tds::iastar::{Adj, IaStar as Direct};
     let t = StellarTree::build(
         k,
         &StellarOptions {
@@ -261,45 +285,47 @@ fn same_as_direct(k: &IndexedComplex, kv: u32) {
         },
     )
     .unwrap();
-    let tree = t.iastar();
-    let direct = Direct::new(k).unwrap();
+    same_iastar(
+        k,
+        &t.iastar(),
+        &starplex::tds::iastar::IaStar::new(k).unwrap(),
+    );
+}
+
+/// Two IA*s answer every IA* relation identically (non-manifold facets are compared by their
+/// cells and vertices: their ids may be numbered differently).
+fn same_iastar<A, B>(k: &IndexedComplex, a: &A, b: &B)
+where
+    A: FacetAdjacency + Storage,
+    B: FacetAdjacency + Storage,
+{
     for c in k.cells() {
-        let slots = direct.adjacency(c.id);
-        assert_eq!(tree.n_slots(c.id), slots.len(), "cell {}", c.id.0);
-        for (j, a) in slots.iter().enumerate() {
-            match (tree.adjacent(c.id, j), *a) {
-                (Adjacent::None, Adj::None) => {}
-                (Adjacent::Top(x), Adj::Top(y)) => assert_eq!(x, y),
-                (Adjacent::NmFace(x), Adj::NmFace(y)) => {
-                    let dim = c.kind.dim();
-                    assert_eq!(tree.nm_face_cells(x), direct.nm_face_tops(dim, y));
-                    let vs: Vec<u32> = direct
-                        .nm_face_vertices(dim, y)
-                        .iter()
-                        .map(|v| v.0)
-                        .collect();
-                    assert_eq!(tree.nm_face_vertices(x), vs);
+        assert_eq!(
+            a.n_facet_slots(c.id),
+            b.n_facet_slots(c.id),
+            "cell {}",
+            c.id.0
+        );
+        for j in 0..a.n_facet_slots(c.id) {
+            match (a.facet_adjacent(c.id, j), b.facet_adjacent(c.id, j)) {
+                (Adjacent::NmFace(x), Adjacent::NmFace(y)) => {
+                    assert_eq!(a.nm_face_cells(x), b.nm_face_cells(y));
+                    assert_eq!(a.nm_face_vertices(x), b.nm_face_vertices(y));
                 }
-                (x, y) => panic!("cell {} facet {j}: tree {x:?}, direct {y:?}", c.id.0),
+                (x, y) => assert_eq!(x, y, "cell {} facet {j}", c.id.0),
             }
         }
+        assert_eq!(a.top_adjacent(c.id), b.top_adjacent(c.id));
     }
-    let nm: usize = (0..=k.dim().unwrap_or(0))
-        .map(|d| direct.n_nm_faces(d))
-        .sum();
-    assert_eq!(tree.n_nm_faces(), nm);
+    assert_eq!(a.n_nm_faces(), b.n_nm_faces());
     for v in 0..k.n_vertices() as u32 {
         assert_eq!(
-            tree.vertex_representatives(VertexId(v)),
-            direct.vertex_references(VertexId(v)),
+            a.vertex_references(VertexId(v)),
+            b.vertex_references(VertexId(v)),
             "representatives of {v}"
         );
     }
-    assert_eq!(
-        tree.storage_refs(),
-        starplex::topo::Storage::refs(&direct),
-        "references"
-    );
+    assert_eq!(a.refs(), b.refs(), "references");
 }
 
 #[test]

@@ -9,8 +9,8 @@
 //!   k-cluster (top k-cells around the vertex connected through facets containing it), the
 //!   representative being the cluster's smallest input id.
 //!
-//! The layout differs from the standalone IA* ([`crate::tds::iastar`]) but the content is the
-//! same: the same slot per facet, the same non-manifold facets, the same representatives and
+//! It answers through the one IA* vocabulary, [`FacetAdjacency`] (and [`Storage`]), like the
+//! standalone IA* ([`crate::tds::iastar`]); the layout differs but the content is the same: the same slot per facet, the same non-manifold facets, the same representatives and
 //! the same reference count (checked by `tests/stellar_iastar.rs` on random complexes and the
 //! datasets).
 //!
@@ -18,7 +18,7 @@
 //! # use starplex::complex::{ComplexBuilder, BuildOptions};
 //! # use starplex::cell::CellKind;
 //! use starplex::stellar::{StellarTree, StellarOptions};
-//! use starplex::stellar::iastar::Adjacent;
+//! use starplex::topo::{Adjacent, FacetAdjacency, Storage};
 //! use starplex::ids::{CellId, VertexId};
 //! // the "book": three triangles on edge 01
 //! let mut b = ComplexBuilder::new(3).unwrap();
@@ -29,10 +29,10 @@
 //! let k = b.build(&BuildOptions::default()).unwrap().0;
 //! let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
 //! let ia = t.iastar();
-//! assert_eq!(ia.adjacent(CellId(0), 2), Adjacent::NmFace(0)); // facet 2 = edge 01
-//! assert_eq!(ia.nm_face_cells(0), vec![0, 1, 2]);
-//! assert_eq!(ia.vertex_representatives(VertexId(0)), vec![0]);
-//! assert_eq!(ia.storage_refs(), 26); // the spec's anchor for the book
+//! assert_eq!(ia.facet_adjacent(CellId(0), 2), Adjacent::NmFace(0)); // facet 2 = edge 01
+//! assert_eq!(ia.nm_face_cells(0), vec![CellId(0), CellId(1), CellId(2)]);
+//! assert_eq!(ia.vertex_references(VertexId(0)), vec![CellId(0)]);
+//! assert_eq!(ia.refs(), 26); // the spec's anchor for the book
 //! ```
 use rayon::prelude::*;
 use rustc_hash::FxHashSet;
@@ -42,7 +42,7 @@ use super::{ExpandedLeaf, LeafView, StellarTree};
 use crate::cell::CellKind;
 use crate::csr::Csr;
 use crate::ids::{CellId, LeafId, VertexId};
-use crate::topo::{TopCells, VertexStar};
+use crate::topo::{Adjacent, FacetAdjacency, Storage, TopCells, VertexAdjacency, VertexStar};
 
 /// Slot value: no adjacent top cell across this facet.
 const NONE: u32 = u32::MAX;
@@ -51,40 +51,7 @@ const NOT_LOCAL: u32 = u32::MAX - 1;
 /// Tag of a non-manifold facet reference.
 const NM: u32 = 1 << 31;
 
-/// What lies across one facet of a top cell.
-///
-/// ```
-/// # use starplex::complex::{ComplexBuilder, BuildOptions};
-/// # use starplex::cell::CellKind;
-/// # use starplex::stellar::{StellarTree, StellarOptions};
-/// # let mut b = ComplexBuilder::new(2).unwrap();
-/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-/// # let k = b.build(&BuildOptions::default()).unwrap().0;
-/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-/// use starplex::ids::{CellId, VertexId};
-/// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
-/// use starplex::stellar::iastar::Adjacent;
-/// // facet j omits vertex j: facet 0 of [0, 1, 2] is edge {1,2}, shared with triangle 1
-/// assert_eq!(ia.adjacent(CellId(0), 0), Adjacent::Top(CellId(1)));
-/// assert_eq!(ia.adjacent(CellId(0), 1), Adjacent::None);
-/// // the leaf of vertex 0 does not examine edge {1,2}
-/// let local = t.local_iastar(t.leaf_of_vertex(VertexId(0)).unwrap());
-/// assert_eq!(local.adjacent(CellId(0), 0), Adjacent::NotComputed);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Adjacent {
-    /// No other top cell of the same dimension.
-    None,
-    /// Exactly one other top cell (input id).
-    Top(CellId),
-    /// A non-manifold facet (three or more top cells); its id in [`IaStar::nm_face_cells`].
-    NmFace(u32),
-    /// Local IA* only: the facet has no vertex in the leaf, so it was not examined.
-    NotComputed,
-}
-
+/// Decodes a stored slot (tree numbering).
 fn decode(x: u32) -> Adjacent {
     match x {
         NONE => Adjacent::None,
@@ -207,194 +174,6 @@ impl<'t> IaStar<'t> {
         v.sort_unstable();
         v
     }
-    /// Number of adjacency slots of a covered cell (its facet count for dimension >= 2).
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// use starplex::ids::{CellId, VertexId};
-    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
-    /// assert_eq!(ia.n_slots(CellId(0)), 3); // three edges
-    /// let local = t.local_iastar(t.leaf_of_vertex(VertexId(3)).unwrap());
-    /// assert_eq!(local.n_slots(CellId(0)), 0); // triangle 0 is not in that leaf
-    /// ```
-    pub fn n_slots(&self, c: CellId) -> usize {
-        self.cell_pos(c)
-            .map_or(0, |i| (self.adj_off[i + 1] - self.adj_off[i]) as usize)
-    }
-    /// What lies across facet `j` of cell `c` (`None` for an uncovered cell or bad slot).
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// use starplex::ids::{CellId, VertexId};
-    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
-    /// use starplex::stellar::iastar::Adjacent;
-    /// assert_eq!(ia.adjacent(CellId(1), 1), Adjacent::Top(CellId(0))); // edge {1,2}
-    /// assert_eq!(ia.adjacent(CellId(1), 0), Adjacent::None); // edge {3,2}
-    /// assert_eq!(ia.adjacent(CellId(1), 7), Adjacent::None); // no such slot
-    /// ```
-    pub fn adjacent(&self, c: CellId, j: usize) -> Adjacent {
-        let Some(i) = self.cell_pos(c) else {
-            return Adjacent::None;
-        };
-        let row = &self.adj[self.adj_off[i] as usize..self.adj_off[i + 1] as usize];
-        match row.get(j).map(|&x| decode(x)) {
-            Some(Adjacent::Top(u)) => Adjacent::Top(CellId(self.tree.c_orig[u.index()])),
-            Some(a) => a,
-            None => Adjacent::None,
-        }
-    }
-    /// Number of non-manifold facets.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(3).unwrap();
-    /// # for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]] {
-    /// #     b.push_vertex(&p).unwrap();
-    /// # }
-    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
-    /// let ia = t.iastar(); // the book: three triangles on edge {0,1}
-    /// assert_eq!(ia.n_nm_faces(), 1); // edge {0,1}
-    /// ```
-    pub fn n_nm_faces(&self) -> usize {
-        self.nm_cells.n_rows()
-    }
-    /// Top cells of non-manifold facet `f` (input ids, sorted).
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(3).unwrap();
-    /// # for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]] {
-    /// #     b.push_vertex(&p).unwrap();
-    /// # }
-    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
-    /// let ia = t.iastar(); // the book: three triangles on edge {0,1}
-    /// assert_eq!(ia.nm_face_cells(0), vec![0, 1, 2]);
-    /// ```
-    pub fn nm_face_cells(&self, f: u32) -> Vec<u32> {
-        self.to_input_sorted(self.nm_cells.row(f as usize))
-    }
-    /// Vertices of non-manifold facet `f` (input ids, sorted).
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(3).unwrap();
-    /// # for p in [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]] {
-    /// #     b.push_vertex(&p).unwrap();
-    /// # }
-    /// # for c in [[0, 1, 2], [0, 1, 3], [0, 1, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
-    /// let ia = t.iastar(); // the book: three triangles on edge {0,1}
-    /// assert_eq!(ia.nm_face_vertices(0), vec![0, 1]);
-    /// ```
-    pub fn nm_face_vertices(&self, f: u32) -> Vec<u32> {
-        let mut v: Vec<u32> = self
-            .nm_verts
-            .row(f as usize)
-            .iter()
-            .map(|&w| self.tree.v_orig[w as usize])
-            .collect();
-        v.sort_unstable();
-        v
-    }
-    /// R_{0,1}(v) plus one top k-cell per k-cluster (k >= 2), sorted input ids.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// use starplex::ids::{CellId, VertexId};
-    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
-    /// // one cluster per vertex, represented by its smallest triangle
-    /// assert_eq!(ia.vertex_representatives(VertexId(1)), vec![0]);
-    /// assert_eq!(ia.vertex_representatives(VertexId(3)), vec![1]);
-    /// ```
-    pub fn vertex_representatives(&self, v: VertexId) -> Vec<u32> {
-        self.vertex_pos(v)
-            .map_or(Vec::new(), |i| self.to_input_sorted(self.reps.row(i)))
-    }
-    /// References stored (the spec's paper-faithful count): R_{k,0} + R_{k,k} slots + the
-    /// non-manifold facet lists + R_{0,1} and cluster representatives.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// use starplex::ids::{CellId, VertexId};
-    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
-    /// // 6 vertex refs + 6 adjacency slots + 4 representatives
-    /// assert_eq!(ia.storage_refs(), 16);
-    /// ```
-    pub fn storage_refs(&self) -> u64 {
-        let cell_refs = match &self.cells {
-            None => self.tree.cells.verts.len(),
-            Some(cs) => cs.iter().map(|&c| self.tree.cells.verts(c).len()).sum(),
-        };
-        (cell_refs + self.adj.len() + self.nm_cells.n_refs() + self.reps.n_refs()) as u64
-    }
-    /// Bytes of the arrays this structure adds to the tree.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// use starplex::ids::{CellId, VertexId};
-    /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
-    /// assert!(ia.bytes() >= 4 * 6); // at least the six adjacency slots
-    /// let local = t.local_iastar(t.leaf_of_vertex(VertexId(0)).unwrap());
-    /// assert!(local.bytes() < ia.bytes());
-    /// ```
-    pub fn bytes(&self) -> usize {
-        4 * (self.cells.as_ref().map_or(0, |c| c.len()) + self.adj_off.len() + self.adj.len())
-            + self.nm_cells.bytes()
-            + self.nm_verts.bytes()
-            + self.reps.bytes()
-    }
-
     /// Expands the clusters of `v` through the adjacency slots: the top cells incident to `v`
     /// (needs the cells of the whole star to be covered, true for the global IA* and for the
     /// leaf's own vertices in a local one).
@@ -487,6 +266,100 @@ impl VertexStar for IaStar<'_> {
         *out = self.star(v);
     }
 }
+
+impl FacetAdjacency for IaStar<'_> {
+    /// 0 for a cell the IA* does not cover (a local IA* covers its leaf's cells).
+    fn n_facet_slots(&self, c: CellId) -> usize {
+        self.cell_pos(c)
+            .map_or(0, |i| (self.adj_off[i + 1] - self.adj_off[i]) as usize)
+    }
+    fn facet_adjacent(&self, c: CellId, j: usize) -> Adjacent {
+        let Some(i) = self.cell_pos(c) else {
+            return Adjacent::None;
+        };
+        let row = &self.adj[self.adj_off[i] as usize..self.adj_off[i + 1] as usize];
+        match row.get(j).map(|&x| decode(x)) {
+            Some(Adjacent::Top(u)) => Adjacent::Top(CellId(self.tree.c_orig[u.index()])),
+            Some(a) => a,
+            None => Adjacent::None,
+        }
+    }
+    fn n_nm_faces(&self) -> usize {
+        self.nm_cells.n_rows()
+    }
+    fn nm_face_cells(&self, f: u32) -> Vec<CellId> {
+        if f as usize >= self.nm_cells.n_rows() {
+            return Vec::new();
+        }
+        let cells = self.to_input_sorted(self.nm_cells.row(f as usize));
+        cells.into_iter().map(CellId).collect()
+    }
+    fn nm_face_vertices(&self, f: u32) -> Vec<VertexId> {
+        if f as usize >= self.nm_verts.n_rows() {
+            return Vec::new();
+        }
+        let mut v: Vec<VertexId> = self
+            .nm_verts
+            .row(f as usize)
+            .iter()
+            .map(|&w| VertexId(self.tree.v_orig[w as usize]))
+            .collect();
+        v.sort_unstable();
+        v
+    }
+    /// Empty for a vertex outside a local IA*'s leaf.
+    fn vertex_references(&self, v: VertexId) -> Vec<CellId> {
+        self.vertex_pos(v).map_or(Vec::new(), |i| {
+            let cells = self.to_input_sorted(self.reps.row(i));
+            cells.into_iter().map(CellId).collect()
+        })
+    }
+}
+
+impl Storage for IaStar<'_> {
+    /// The spec's paper-faithful count: R_{k,0} + R_{k,k} slots + the non-manifold facet lists
+    /// + R_{0,1} and cluster representatives.
+    fn refs(&self) -> u64 {
+        let cell_refs = match &self.cells {
+            None => self.tree.cells.verts.len(),
+            Some(cs) => cs.iter().map(|&c| self.tree.cells.verts(c).len()).sum(),
+        };
+        (cell_refs + self.adj.len() + self.nm_cells.n_refs() + self.reps.n_refs()) as u64
+    }
+    /// The arrays this structure adds to the tree (the tree's own cells are not counted).
+    fn bytes(&self) -> u64 {
+        let b = 4
+            * (self.cells.as_ref().map_or(0, |c| c.len()) + self.adj_off.len() + self.adj.len())
+            + self.nm_cells.bytes()
+            + self.nm_verts.bytes()
+            + self.reps.bytes();
+        b as u64
+    }
+}
+
+impl VertexAdjacency for IaStar<'_> {
+    /// The edges of the cells around `v` (a CP cell's face-table edges: a quad's diagonal is
+    /// not an edge); needs `v`'s whole star covered, as [`IaStar::star`].
+    fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>) {
+        out.clear();
+        let mut vs = Vec::new();
+        for c in self.star(v) {
+            vs.clear();
+            self.top_cell_vertices(c, &mut vs);
+            let kind = self.top_cell_kind(c);
+            if kind.is_simplex() {
+                out.extend(vs.iter().copied().filter(|&w| w != v));
+            } else {
+                let raw: Vec<u32> = vs.iter().map(|w| w.0).collect();
+                crate::topo::naive::edge_neighbours(kind, &raw, v.0, |w| out.push(VertexId(w)));
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+}
+
+crate::impl_relations_from_tops!(IaStar<'_>);
 
 /// Whether facet `j` of a cell of `kind` contains local vertex position `p`.
 fn facet_contains(kind: CellKind, j: usize, p: usize) -> bool {
@@ -592,11 +465,11 @@ impl StellarTree {
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
     /// use starplex::ids::{CellId, VertexId};
     /// let ia = t.iastar(); // triangles [0, 1, 2] and [1, 3, 2], one vertex per leaf
-    /// use starplex::stellar::iastar::Adjacent;
-    /// assert_eq!(ia.adjacent(CellId(0), 0), Adjacent::Top(CellId(1)));
+    /// use starplex::topo::{Adjacent, FacetAdjacency, Storage};
+    /// assert_eq!(ia.facet_adjacent(CellId(0), 0), Adjacent::Top(CellId(1)));
     /// // the same structure whatever the leaves
     /// let one_leaf = StellarTree::build(&k, &StellarOptions { kv: Some(0), ..Default::default() }).unwrap();
-    /// assert_eq!(one_leaf.iastar().storage_refs(), ia.storage_refs());
+    /// assert_eq!(one_leaf.iastar().refs(), ia.refs());
     /// ```
     pub fn iastar(&self) -> IaStar<'_> {
         let nc = self.n_top_cells();
@@ -880,6 +753,12 @@ impl StellarTree {
     /// let ia = t.local_iastar(l);
     /// assert_eq!(ia.vertices(), vec![1]);
     /// assert_eq!(ia.star(VertexId(1)).len(), 2);
+    /// // the leaf of vertex 0 does not examine edge {1,2} (facet 0 of triangle [0, 1, 2])
+    /// use starplex::ids::CellId;
+    /// use starplex::topo::{Adjacent, FacetAdjacency};
+    /// let local = t.local_iastar(t.leaf_of_vertex(VertexId(0)).unwrap());
+    /// assert_eq!(local.facet_adjacent(CellId(0), 0), Adjacent::NotComputed);
+    /// assert_eq!(local.facet_adjacent(CellId(0), 1), Adjacent::None);
     /// ```
     pub fn local_iastar(&self, l: LeafId) -> IaStar<'_> {
         let mut e = ExpandedLeaf::default();

@@ -83,10 +83,13 @@ use crate::cell::CellKind;
 use crate::ids::{CellId, SimplexId, VertexId};
 
 pub mod batch;
+mod facets;
 pub mod from_tops;
 pub mod generic;
 pub mod link;
 pub mod naive;
+
+pub use facets::{Adjacent, FacetAdjacency};
 
 /// Default budget of simplices a query may enumerate before refusing with an estimate.
 ///

@@ -7,7 +7,7 @@
 //! non-manifold facet. Clusters and VT walk only the facets that contain the vertex, read from
 //! the table. Complexes with a CP cell are built by the general path (the dimension ≤ 3 fast
 //! path is for simplices only).
-use super::{decode, Adj, Block, Ghost, IaStar, NM_BIT};
+use super::{decode, Block, Ghost, IaStar, Slot, NM_BIT};
 use crate::cell::{binomial, CellKind};
 use crate::csr::Csr;
 use crate::ids::VertexId;
@@ -38,9 +38,9 @@ pub(super) fn for_each_neighbour_at(
             continue;
         }
         match decode(x) {
-            Adj::None => {}
-            Adj::Top(u) => f(u.0),
-            Adj::NmFace(fid) => {
+            Slot::None => {}
+            Slot::Top(u) => f(u.0),
+            Slot::NmFace(fid) => {
                 for &u in ia.nm[kind.dim()].row(fid as usize) {
                     if u != c {
                         f(u)
