@@ -1,16 +1,13 @@
 //! `starplex query FILE --structure S --relation R [--vertex ID ...] [--all]`: one query
-//! interface over every data structure. Written once against the `topo` traits: adding a
-//! structure is one arm of [`build`].
+//! interface over every data structure. Written once against the `topo` traits; the
+//! structures come from the library's registry (`starplex::structures`).
 use std::time::Instant;
 
 use rayon::prelude::*;
 use starplex::complex::IndexedComplex;
 use starplex::ids::{CellId, VertexId};
-use starplex::tds::iastar::IaStar;
-use starplex::tds::ig::IncidenceGraph;
-use starplex::tds::is::Is;
-use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions};
-use starplex::topo::{generic, naive::VtIndex, Queries, QueryError};
+use starplex::structures::{Structure, StructureError, StructureOptions};
+use starplex::topo::{generic, Queries, QueryError};
 
 use crate::common::{self, CliError, Ctx, InputArgs};
 
@@ -44,24 +41,25 @@ impl StructureKind {
         StructureKind::Hasse,
         StructureKind::Stellar,
     ];
+    /// The library's registry entry.
+    pub fn structure(self) -> Structure {
+        match self {
+            StructureKind::Ig => Structure::Ig,
+            StructureKind::Is => Structure::Is,
+            StructureKind::IaStar => Structure::IaStar,
+            StructureKind::SimplexTree => Structure::SimplexTree,
+            StructureKind::Vt => Structure::Vt,
+            StructureKind::Stellar => Structure::Stellar,
+            StructureKind::Hasse => Structure::Hasse,
+        }
+    }
     /// Whether the structure holds CP cells (quads, hexahedra, prisms, pyramids); the others
     /// refuse CP complexes.
     pub fn holds_cp(self) -> bool {
-        !matches!(
-            self,
-            StructureKind::SimplexTree | StructureKind::Is | StructureKind::Hasse
-        )
+        self.structure().holds_cp()
     }
     pub fn name(self) -> &'static str {
-        match self {
-            StructureKind::Ig => "ig",
-            StructureKind::Is => "is",
-            StructureKind::IaStar => "ia-star",
-            StructureKind::SimplexTree => "simplex-tree",
-            StructureKind::Vt => "vt",
-            StructureKind::Stellar => "stellar",
-            StructureKind::Hasse => "hasse",
-        }
+        self.structure().name()
     }
 }
 
@@ -122,53 +120,28 @@ pub struct QueryArgs {
 }
 
 /// A built structure.
-pub type Built<'a> = Box<dyn Queries + Sync + 'a>;
+pub type Built<'a> = starplex::structures::Built<'a>;
 
-/// Builds structure `s` on `k`; the one place that knows the structures.
+/// Builds structure `s` on `k`.
 pub fn build(k: &IndexedComplex, s: StructureKind) -> Result<Built<'_>, CliError> {
     build_with(k, s, None)
 }
 
-/// Builds structure `s` on `k`, with the Stellar tree's bucketing threshold `kv` when given.
+/// Builds structure `s` on `k`, with the Stellar tree's bucketing threshold `kv` when given
+/// (the library's registry, [`Structure::build`]).
 pub fn build_with(
     k: &IndexedComplex,
     s: StructureKind,
     kv: Option<usize>,
 ) -> Result<Built<'_>, CliError> {
-    let limit = 1u128 << 31;
-    // a simplicial-only structure on a CP complex: name the ones that can answer
-    let hint = (!s.holds_cp() && !k.is_simplicial())
-        .then(|| "use --structure ig, ia-star, stellar or vt for CP cells".to_string());
-    let err = |e: String| CliError::Input(e, hint.clone());
-    Ok(match s {
-        StructureKind::Vt => Box::new(VtIndex::new(k)),
-        StructureKind::IaStar => Box::new(IaStar::new(k).map_err(|e| err(e.to_string()))?),
-        StructureKind::SimplexTree => Box::new(
-            SimplexTree::new(
-                k,
-                &SimplexTreeOptions {
-                    label_lists: true,
-                    max_simplices: limit,
-                },
-            )
-            .map_err(|e| err(e.to_string()))?,
-        ),
-        StructureKind::Ig => {
-            Box::new(IncidenceGraph::new(k, limit).map_err(|e| err(e.to_string()))?)
-        }
-        StructureKind::Is => Box::new(Is::new(k, limit).map_err(|e| err(e.to_string()))?),
-        StructureKind::Stellar => {
-            let opts = starplex::stellar::StellarOptions {
-                kv: kv.map(|x| x.min(u32::MAX as usize) as u32),
-                ..Default::default()
-            };
-            Box::new(
-                starplex::stellar::StellarTree::build(k, &opts).map_err(|e| err(e.to_string()))?,
-            )
-        }
-        StructureKind::Hasse => {
-            Box::new(starplex::hasse::HasseQueries::new(k, limit).map_err(|e| err(e.to_string()))?)
-        }
+    let opts = StructureOptions {
+        kv: kv.map(|x| x.min(u32::MAX as usize) as u32),
+        ..Default::default()
+    };
+    s.structure().build(k, &opts).map_err(|e| {
+        let hint = matches!(e, StructureError::NotSimplicial { .. })
+            .then(|| "use --structure ig, ia-star, stellar or vt for CP cells".to_string());
+        CliError::Input(e.to_string(), hint)
     })
 }
 
@@ -253,27 +226,13 @@ pub fn answer_size(
             (verts.len() / tv.len()) as u64
         }
         RelationKind::IaStar => {
-            let mut tv = Vec::new();
-            s.top_cell_vertices(CellId(i), &mut tv);
-            let kind = s.top_cell_kind(CellId(i));
-            let d = kind.dim();
-            let mut n = 0u64;
-            if d >= 2 {
-                // the facets of the kind (a simplex's facet j omits vertex j; a CP cell's
-                // come from its table); the structures with sorted tops are simplicial
-                let mut facets: Vec<Vec<VertexId>> = Vec::new();
-                kind.for_each_oriented_facet(|l, _| {
-                    facets.push(l.iter().map(|&x| tv[x as usize]).collect())
-                });
-                for facet in &facets {
-                    s.top_star(facet, cells)?;
-                    n += cells
-                        .iter()
-                        .filter(|&&c| c.0 != i && s.top_cell_kind(c).dim() == d)
-                        .count() as u64;
-                }
+            // the IA* stores R_{k,k} for k >= 2 only
+            if s.top_cell_kind(CellId(i)).dim() < 2 {
+                return Ok(0);
             }
-            n
+            let (mut facet, mut tops) = (Vec::new(), Vec::new());
+            generic::facet_neighbours(s, CellId(i), &mut facet, cells, &mut tops)?;
+            tops.len() as u64
         }
     })
 }

@@ -38,5 +38,6 @@ pub mod ids;
 pub mod io;
 pub mod render;
 pub mod stellar;
+pub mod structures;
 pub mod tds;
 pub mod topo;

@@ -133,6 +133,7 @@ struct Scratch {
     cells: Vec<CellId>,
     verts: Vec<VertexId>,
     facet: Vec<VertexId>,
+    tops: Vec<CellId>,
 }
 
 /// The items `0..n`.
@@ -191,34 +192,16 @@ fn answer<S: Queries + ?Sized>(
             out.extend(sc.verts.iter().map(|v| v.0));
         }
         Relation::Tt => {
-            sc.verts.clear();
-            s.top_cell_vertices(CellId(i), &mut sc.verts);
-            let kind = s.top_cell_kind(CellId(i));
-            let d = kind.dim();
-            if d == 0 {
-                return Ok(());
-            }
+            sc.tops.clear();
+            super::generic::facet_neighbours(
+                s,
+                CellId(i),
+                &mut sc.facet,
+                &mut sc.cells,
+                &mut sc.tops,
+            )?;
             let start = out.len();
-            let tv = std::mem::take(&mut sc.verts);
-            let mut err = Ok(());
-            kind.for_each_oriented_facet(|l, _| {
-                if err.is_err() {
-                    return;
-                }
-                sc.facet.clear();
-                sc.facet.extend(l.iter().map(|&x| tv[x as usize]));
-                match s.top_star(&sc.facet, &mut sc.cells) {
-                    Ok(()) => out.extend(
-                        sc.cells
-                            .iter()
-                            .filter(|&&c| c.0 != i && s.top_cell_kind(c).dim() == d)
-                            .map(|c| c.0),
-                    ),
-                    Err(e) => err = Err(e),
-                }
-            });
-            sc.verts = tv;
-            err?;
+            out.extend(sc.tops.iter().map(|c| c.0));
             out[start..].sort_unstable();
         }
     }

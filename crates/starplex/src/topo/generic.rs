@@ -18,8 +18,10 @@
 //! assert_eq!(cl.f_vector(), vec![2, 1]);
 //! assert_eq!(generic::skeleton(&idx, 1).unwrap().f_vector(), vec![4, 6]);
 //! ```
-use super::{sorted_simplex, Boundary, Counts, Levels, QueryError, SimplexSet, Star};
-use crate::ids::VertexId;
+use super::{
+    sorted_simplex, Boundary, Counts, Levels, QueryError, SimplexSet, Star, TopCells, TopStar,
+};
+use crate::ids::{CellId, VertexId};
 
 /// The closure of `s`: `s` and all its faces.
 ///
@@ -145,4 +147,58 @@ pub fn euler_characteristic<S: Counts + ?Sized>(st: &S) -> Result<i64, QueryErro
         .enumerate()
         .map(|(p, &x)| if p % 2 == 0 { x as i64 } else { -(x as i64) })
         .sum())
+}
+
+/// R_{k,k} of top cell `c` read from top stars: for each facet of `c` (a simplex's facet j
+/// omits vertex j; a CP cell's come from its table), the other top cells of `c`'s dimension
+/// containing it, appended to `out` in facet order (a cell sharing two facets appears twice).
+/// What an IA* stores, computed from any structure; `facet` and `cells` are scratch.
+///
+/// ```
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// use starplex::ids::CellId;
+/// use starplex::topo::{naive::VtIndex, generic};
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for _ in 0..5 { b.push_vertex(&[0.0, 0.0]).unwrap(); }
+/// for c in [[0, 1, 2], [0, 1, 3], [1, 2, 4]] { b.push_cell(CellKind::Simplex(2), &c).unwrap(); }
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let (mut f, mut cs, mut out) = (Vec::new(), Vec::new(), Vec::new());
+/// generic::facet_neighbours(&VtIndex::new(&k), CellId(0), &mut f, &mut cs, &mut out).unwrap();
+/// assert_eq!(out, [CellId(2), CellId(1)]); // across {1,2}, then across {0,1}
+/// ```
+///
+/// # Errors
+/// The structure's own [`TopStar`] errors.
+pub fn facet_neighbours<S: TopStar + TopCells + ?Sized>(
+    st: &S,
+    c: CellId,
+    facet: &mut Vec<VertexId>,
+    cells: &mut Vec<CellId>,
+    out: &mut Vec<CellId>,
+) -> Result<(), QueryError> {
+    let kind = st.top_cell_kind(c);
+    let d = kind.dim();
+    if d == 0 {
+        return Ok(());
+    }
+    let mut tv = Vec::with_capacity(kind.n_vertices());
+    st.top_cell_vertices(c, &mut tv);
+    let mut err = Ok(());
+    kind.for_each_oriented_facet(|l, _| {
+        if err.is_err() {
+            return;
+        }
+        facet.clear();
+        facet.extend(l.iter().map(|&x| tv[x as usize]));
+        match st.top_star(facet, cells) {
+            Ok(()) => out.extend(
+                cells
+                    .iter()
+                    .filter(|&&u| u != c && st.top_cell_kind(u).dim() == d),
+            ),
+            Err(e) => err = Err(e),
+        }
+    });
+    err
 }
