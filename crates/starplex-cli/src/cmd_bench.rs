@@ -129,10 +129,10 @@ fn ia_star(ctx: &Ctx, a: &SimplexTreeBenchArgs) -> Result<(), CliError> {
     let mut ia = None;
     for _ in 0..a.reps.max(1) {
         drop(ia.take());
-        let (t, c) = (Instant::now(), crate::cmd_bench_hasse::cpu_s());
+        let (t, c) = (Instant::now(), starplex::measure::thread_cpu_seconds());
         let s = IaStar::new(&k).map_err(|e| CliError::Input(e.to_string(), None))?;
         times.push(t.elapsed().as_secs_f64());
-        if let (Some(c0), Some(c1)) = (c, crate::cmd_bench_hasse::cpu_s()) {
+        if let (Some(c0), Some(c1)) = (c, starplex::measure::thread_cpu_seconds()) {
             cpu_times.push(c1 - c0);
         }
         ia = Some(s);

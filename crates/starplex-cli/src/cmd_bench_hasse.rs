@@ -45,16 +45,8 @@ impl<const K: usize> Merge<K, ()> for Mid {
     fn merge(&mut self, _: &[VertexId], _: &[(&[VertexId], &())]) {}
 }
 
-/// CPU time of this thread in seconds (Linux `/proc/thread-self/schedstat`), so numbers stay
-/// meaningful on a loaded machine; `None` elsewhere.
-pub(crate) fn cpu_s() -> Option<f64> {
-    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    let ns: u64 = s.split_whitespace().next()?.parse().ok()?;
-    Some(ns as f64 * 1e-9)
-}
-
 fn cpu_since(c0: Option<f64>) -> Option<f64> {
-    Some(cpu_s()? - c0?)
+    Some(starplex::measure::thread_cpu_seconds()? - c0?)
 }
 
 fn hasse_err(e: starplex::hasse::HasseError) -> CliError {
@@ -70,7 +62,7 @@ pub fn run(ctx: &Ctx, a: &BenchHasseArgs) -> Result<(), CliError> {
     let mut built = None;
     for _ in 0..a.reps.max(1) {
         drop(built.take());
-        let c = cpu_s();
+        let c = starplex::measure::thread_cpu_seconds();
         let t = Instant::now();
         let h: Hasse = Hasse::from_indexed(k).map_err(hasse_err)?;
         walls.push(t.elapsed().as_secs_f64());
@@ -88,7 +80,7 @@ pub fn run(ctx: &Ctx, a: &BenchHasseArgs) -> Result<(), CliError> {
     let bytes = h.topology_bytes();
     let bytes_per_simplex = bytes as f64 / n_simplices.max(1) as f64;
 
-    let (t, c) = (Instant::now(), cpu_s());
+    let (t, c) = (Instant::now(), starplex::measure::thread_cpu_seconds());
     let mut star_total = 0usize;
     for v in h.level(0) {
         star_total += h.star(v).len();
@@ -96,7 +88,7 @@ pub fn run(ctx: &Ctx, a: &BenchHasseArgs) -> Result<(), CliError> {
     let star_all_s = t.elapsed().as_secs_f64();
     let star_all_cpu_s = cpu_since(c);
 
-    let (t, c) = (Instant::now(), cpu_s());
+    let (t, c) = (Instant::now(), starplex::measure::thread_cpu_seconds());
     let mut link_total = 0usize;
     for v in h.level(0) {
         link_total += h.link(v).len();
@@ -113,7 +105,7 @@ pub fn run(ctx: &Ctx, a: &BenchHasseArgs) -> Result<(), CliError> {
     let mut times = Vec::with_capacity(a.collapses);
     let mut refused = 0usize;
     let mut attempts = 0usize;
-    let c = cpu_s();
+    let c = starplex::measure::thread_cpu_seconds();
     while times.len() < a.collapses && h.n_simplices(1) > 0 && attempts < 20 * a.collapses + 100 {
         attempts += 1;
         x = x

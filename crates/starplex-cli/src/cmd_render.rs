@@ -186,7 +186,7 @@ pub fn render_to(
     let kind = picture_kind(out)?;
     let rerr = |e: render::RenderError| bad(format!("render: {e}"), None);
     let t0 = Instant::now();
-    let c0 = crate::cmd_stellar::cpu_seconds();
+    let c0 = starplex::measure::process_cpu_seconds();
     let summary = match kind {
         Kind::Svg => {
             if other.is_some() {
@@ -225,7 +225,7 @@ pub fn render_to(
     }
     if !ctx.quiet {
         let cpu = c0
-            .and_then(|c| Some(crate::cmd_stellar::cpu_seconds()? - c))
+            .and_then(|c| Some(starplex::measure::process_cpu_seconds()? - c))
             .map_or(String::new(), |c| format!(", cpu {c:.2} s"));
         eprintln!(
             "wrote {} ({} faces, {} lines, {} dots; render and write {:.2} s{cpu})",

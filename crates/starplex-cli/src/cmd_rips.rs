@@ -64,13 +64,7 @@ pub struct FlagArgs {
 
 /// A third of MemAvailable (Linux), else 8 GiB.
 fn default_budget() -> u64 {
-    let avail = std::fs::read_to_string("/proc/meminfo").ok().and_then(|s| {
-        s.lines()
-            .find(|l| l.starts_with("MemAvailable:"))
-            .and_then(|l| l.split_whitespace().nth(1))
-            .and_then(|kb| kb.parse::<u64>().ok())
-            .map(|kb| kb * 1024)
-    });
+    let avail = starplex::measure::available_memory();
     avail.map_or(8 << 30, |b| b / 3)
 }
 

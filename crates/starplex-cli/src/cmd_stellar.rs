@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use serde_json::{json, Value};
+use starplex::measure;
 use starplex::stellar::{SplitMode, StellarOptions, StellarStats, StellarTree};
 
 use crate::common::{self, CliError, Ctx, InputArgs};
@@ -34,32 +35,6 @@ pub struct StellarArgs {
     /// Also write a picture of the tree's leaf blocks (OUT.png or OUT.svg; `render --color blocks`).
     #[arg(long, value_name = "OUT")]
     pub render: Option<PathBuf>,
-}
-
-/// CPU seconds used by this process so far (user + system, from /proc; `None` elsewhere).
-/// Less sensitive than wall time to other processes sharing the machine.
-pub fn cpu_seconds() -> Option<f64> {
-    let s = std::fs::read_to_string("/proc/self/stat").ok()?;
-    let rest = &s[s.rfind(')')? + 2..];
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let ut: f64 = f.get(11)?.parse().ok()?;
-    let st: f64 = f.get(12)?.parse().ok()?;
-    Some((ut + st) / 100.0)
-}
-
-/// (VmRSS, VmHWM) of this process in bytes, from /proc (`None` elsewhere).
-fn rss() -> Option<(u64, u64)> {
-    let s = std::fs::read_to_string("/proc/self/status").ok()?;
-    let get = |key: &str| -> Option<u64> {
-        let l = s.lines().find(|l| l.starts_with(key))?;
-        Some(l.split_whitespace().nth(1)?.parse::<u64>().ok()? * 1024)
-    };
-    Some((get("VmRSS:")?, get("VmHWM:")?))
-}
-
-/// Resets the peak-RSS counter (Linux `clear_refs` 5); false when unsupported.
-fn reset_peak() -> bool {
-    std::fs::write("/proc/self/clear_refs", "5").is_ok()
 }
 
 pub fn split_mode(s: &str) -> Result<SplitMode, CliError> {
@@ -179,9 +154,9 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
         Some(common::load(ctx, &a.input)?.complex)
     };
     let read_s = t0.elapsed().as_secs_f64();
-    let rss_loaded = rss().map(|r| r.0);
-    let peak_reset = reset_peak();
-    let c0 = cpu_seconds();
+    let rss_loaded = measure::memory().map(|m| m.resident);
+    let peak_reset = measure::reset_peak();
+    let c0 = measure::process_cpu_seconds();
     let (t, build_s) = with_threads(a.threads, || {
         let t1 = Instant::now();
         let t = match &k {
@@ -190,7 +165,7 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
         };
         (t, t1.elapsed().as_secs_f64())
     })?;
-    let build_cpu = c0.and_then(|c| Some(cpu_seconds()? - c));
+    let build_cpu = c0.and_then(|c| Some(measure::process_cpu_seconds()? - c));
     let t = t?;
     // what the memory ratios are measured against: the indexed complex (or, for a loaded
     // tree, its base complex)
@@ -214,11 +189,11 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
         let mut cpu = serde_json::Map::new();
         let vt_mem: std::sync::Mutex<Option<(u64, u64)>> = std::sync::Mutex::new(None);
         let mut phase = |name: &str, f: &mut dyn FnMut()| -> f64 {
-            let c = cpu_seconds();
+            let c = measure::process_cpu_seconds();
             let t1 = Instant::now();
             f();
             let wall = t1.elapsed().as_secs_f64();
-            if let (Some(a), Some(b)) = (c, cpu_seconds()) {
+            if let (Some(a), Some(b)) = (c, measure::process_cpu_seconds()) {
                 cpu.insert(name.to_string(), json!(b - a));
             }
             wall
@@ -235,7 +210,9 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
                     sum.fetch_add(cells.len() as u64, std::sync::atomic::Ordering::Relaxed);
                 });
             });
-            if let (true, Some(base), Some((_, hwm))) = (peak_reset, rss_loaded, rss()) {
+            if let (true, Some(base), Some(measure::Memory { peak: hwm, .. })) =
+                (peak_reset, rss_loaded, measure::memory())
+            {
                 *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) = Some((base, hwm));
             }
             let faces_s = phase("p_faces_s", &mut || {
@@ -252,7 +229,9 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
             (vt_local_s, vt_s, faces_s, validate_s, ia_s)
         })?;
         timings["vt_local_s"] = json!(vt_local_s);
-        if let (true, Some(base), Some((_, hwm))) = (peak_reset, rss_loaded, rss()) {
+        if let (true, Some(base), Some(measure::Memory { peak: hwm, .. })) =
+            (peak_reset, rss_loaded, measure::memory())
+        {
             timings["memory"] = json!({
                 "complex_bytes": complex_bytes,
                 "rss_after_load": base,

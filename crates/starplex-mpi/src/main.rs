@@ -530,15 +530,7 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<(), Failure> {
 
 /// Peak resident set of this process in KiB (`VmHWM`), 0 when unknown.
 fn peak_rss_kib() -> u64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|x| x.parse().ok())
-        })
-        .unwrap_or(0)
+    starplex::measure::memory().map_or(0, |m| m.peak / 1024)
 }
 
 fn print_stats(w: &World, ld: &Loaded) -> Result<(), Failure> {

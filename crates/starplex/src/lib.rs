@@ -36,6 +36,7 @@ pub mod generate;
 pub mod hasse;
 pub mod ids;
 pub mod io;
+pub mod measure;
 pub mod render;
 pub mod stellar;
 pub mod structures;
