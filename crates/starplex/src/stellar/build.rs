@@ -170,10 +170,10 @@ pub(super) fn build(
         });
     }
     let (uniform, stride) = if mixed || nc == 0 {
-        (255u8, 0u32)
+        (None, 0u32)
     } else {
         let kind = k.blocks()[0].kind;
-        (kind_code(kind), kind.n_vertices() as u32)
+        (Some(kind), kind.n_vertices() as u32)
     };
     let in_cell = |c: u32| {
         let r = k.cell(crate::ids::CellId(c));
@@ -287,7 +287,7 @@ pub(super) fn build(
         c_new[old as usize] = new as u32;
     }
     // reindexed cell store
-    let cells = if uniform != 255 {
+    let cells = if uniform.is_some() {
         let st = stride as usize;
         let mut verts = vec![0u32; k.n_refs()];
         verts
@@ -321,7 +321,7 @@ pub(super) fn build(
             offsets.push(verts.len() as u32);
         }
         CellStore {
-            uniform: 255,
+            uniform: None,
             stride: 0,
             kinds,
             offsets,

@@ -502,8 +502,8 @@ impl StellarTree {
                 nm_verts.offsets.push(nm_verts.targets.len() as u32);
             }
         }
-        let stride = if self.cells.uniform != 255 {
-            n_slots(super::code_kind(self.cells.uniform))
+        let stride = if let Some(kind) = self.cells.uniform {
+            n_slots(kind)
         } else {
             0
         };

@@ -242,8 +242,8 @@ pub(crate) fn code_kind(c: u8) -> CellKind {
 /// offsets.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct CellStore {
-    /// Kind code when every cell has the same kind, else 255.
-    pub uniform: u8,
+    /// The kind of every cell when they all have the same kind (`None`: mixed, see `kinds`).
+    pub uniform: Option<CellKind>,
     /// Vertex count of the uniform kind.
     pub stride: u32,
     /// Per-cell kind codes (mixed only).
@@ -259,10 +259,10 @@ pub(crate) struct CellStore {
 impl CellStore {
     #[inline(always)]
     pub(crate) fn get(&self, i: u32) -> (CellKind, &[u32]) {
-        if self.uniform != 255 {
+        if let Some(kind) = self.uniform {
             let s = self.stride as usize;
             let i = i as usize;
-            (code_kind(self.uniform), &self.verts[i * s..(i + 1) * s])
+            (kind, &self.verts[i * s..(i + 1) * s])
         } else {
             let (a, b) = (
                 self.offsets[i as usize] as usize,
@@ -564,8 +564,8 @@ impl StellarTree {
     /// assert_eq!(t.dim(), Some(2));
     /// ```
     pub fn dim(&self) -> Option<usize> {
-        if self.cells.uniform != 255 {
-            return (self.cells.n > 0).then(|| code_kind(self.cells.uniform).dim());
+        if let Some(kind) = self.cells.uniform {
+            return (self.cells.n > 0).then(|| kind.dim());
         }
         self.cells.kinds.iter().map(|&c| code_kind(c).dim()).max()
     }

@@ -575,12 +575,8 @@ pub(crate) fn face_width(kind: CellKind, p: usize) -> usize {
 impl StellarTree {
     /// Distinct kinds of the top cells.
     pub(crate) fn kinds(&self) -> Vec<CellKind> {
-        if self.cells.uniform != 255 {
-            return if self.cells.n > 0 {
-                vec![super::code_kind(self.cells.uniform)]
-            } else {
-                vec![]
-            };
+        if let Some(kind) = self.cells.uniform {
+            return if self.cells.n > 0 { vec![kind] } else { vec![] };
         }
         let mut seen = [false; 256];
         for &c in &self.cells.kinds {
@@ -942,10 +938,8 @@ impl StellarTree {
     /// assert_eq!(t.face_visits(1), 6);
     /// ```
     pub fn face_visits(&self, p: usize) -> u128 {
-        if self.cells.uniform != 255 {
-            return super::code_kind(self.cells.uniform)
-                .n_faces(p)
-                .saturating_mul(self.cells.n as u128);
+        if let Some(kind) = self.cells.uniform {
+            return kind.n_faces(p).saturating_mul(self.cells.n as u128);
         }
         self.cells
             .kinds
@@ -1406,7 +1400,7 @@ impl VertexStar for StellarTree {
     /// one simplex kind; `None` otherwise (a CP cell holding the vertices of `s` need not have
     /// `s` as a face).
     fn star_has_top_containing(&self, s: &[VertexId]) -> Option<bool> {
-        if self.cells.uniform == 255 || !super::code_kind(self.cells.uniform).is_simplex() {
+        if !self.cells.uniform.is_some_and(|k| k.is_simplex()) {
             return None;
         }
         let mut tv: smallvec::SmallVec<[u32; 8]> = smallvec::SmallVec::new();

@@ -27,7 +27,9 @@ use std::io::Write;
 use std::path::Path;
 
 use super::sre::RUN_FLAG;
-use super::{code_kind, BuildTimings, CellStore, Node, SplitMode, StellarError, StellarTree};
+use super::{
+    code_kind, kind_code, BuildTimings, CellStore, Node, SplitMode, StellarError, StellarTree,
+};
 
 /// The first 8 bytes of a saved Stellar tree.
 ///
@@ -61,6 +63,8 @@ pub fn is_saved_tree(path: &Path) -> bool {
 const MAGIC: &[u8; 8] = SAVED_TREE_MAGIC;
 const VERSION: u64 = 1;
 const N_HEADER: usize = 13;
+/// The header's kind code for a tree whose cells have several kinds (per-cell codes follow).
+const MIXED: u8 = 255;
 
 fn write_arr<T: bytemuck::Pod>(w: &mut dyn Write, a: &[T]) -> std::io::Result<()> {
     let bytes: &[u8] = bytemuck::cast_slice(a);
@@ -109,7 +113,7 @@ impl StellarTree {
                 self.n_leaves() as u64,
                 self.leaf_tops.len() as u64,
                 self.cells.verts.len() as u64,
-                self.cells.uniform as u64,
+                self.cells.uniform.map_or(MIXED, kind_code) as u64,
                 self.cells.stride as u64,
                 0,
             ];
@@ -120,7 +124,7 @@ impl StellarTree {
             write_arr(w, &self.leaf_vstart)?;
             write_arr(w, &self.leaf_toff)?;
             write_arr(w, &self.leaf_tops)?;
-            if self.cells.uniform == 255 {
+            if self.cells.uniform.is_none() {
                 write_arr(w, &self.cells.kinds)?;
                 write_arr(w, &self.cells.offsets)?;
             }
@@ -204,7 +208,7 @@ impl StellarTree {
         let leaf_vstart = r.arr::<u32>(nl + 1)?;
         let leaf_toff = r.arr::<u32>(nl + 1)?;
         let leaf_tops = r.arr::<u32>(ntops)?;
-        let (kinds, offsets) = if uniform == 255 {
+        let (kinds, offsets) = if uniform == MIXED {
             (r.arr::<u8>(nc)?, r.arr::<u32>(nc + 1)?)
         } else {
             (Vec::new(), Vec::new())
@@ -226,7 +230,7 @@ impl StellarTree {
         if !monotone(&leaf_toff, 0, ntops) {
             return Err(err("leaf list offsets are inconsistent".into()));
         }
-        if uniform == 255 {
+        if uniform == MIXED {
             if !monotone(&offsets, 0, nrefs) || kinds.iter().any(|&k| k > 68) {
                 return Err(err("cell offsets or kinds are inconsistent".into()));
             }
@@ -304,7 +308,7 @@ impl StellarTree {
             leaf_toff,
             leaf_tops,
             cells: CellStore {
-                uniform,
+                uniform: (uniform != MIXED).then(|| code_kind(uniform)),
                 stride,
                 kinds,
                 offsets,

@@ -53,14 +53,13 @@ impl StarCells for TreeStar<'_> {
         self.cells.get(self.star[i])
     }
     fn all_tets(&self) -> bool {
-        const TET: u8 = 3;
+        const TET: CellKind = CellKind::Simplex(3);
         match self.cells.uniform {
-            TET => true,
-            255 => self
+            Some(kind) => kind == TET,
+            None => self
                 .star
                 .iter()
-                .all(|&c| self.cells.kinds[c as usize] == TET),
-            _ => false,
+                .all(|&c| self.cells.kinds[c as usize] == super::kind_code(TET)),
         }
     }
 }

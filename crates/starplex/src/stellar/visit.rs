@@ -138,7 +138,7 @@ impl StellarTree {
         off.resize(nloc + 2, 0);
         let offs = &mut off[..];
         let st = &self.cells;
-        if st.uniform != 255 {
+        if st.uniform.is_some() {
             let k = st.stride as usize;
             for &c in cells {
                 let i = c as usize * k;
@@ -161,7 +161,7 @@ impl StellarTree {
         rows.resize(offs[nloc + 1] as usize, 0);
         let out = &mut rows[..];
         // fill using off as cursors (shifted), then restore
-        if st.uniform != 255 {
+        if st.uniform.is_some() {
             let k = st.stride as usize;
             for &c in cells {
                 let x = val(c);
