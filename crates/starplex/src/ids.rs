@@ -97,3 +97,14 @@ id_type!(
     /// A leaf of a Stellar tree.
     LeafId
 );
+id_type!(
+    /// A vertex in a Stellar tree's own numbering (vertices renumbered so that each leaf holds
+    /// a contiguous range), as opposed to the input's [`VertexId`]; the tree's
+    /// `vertex_to_input` / `vertex_from_input` convert.
+    TreeVertexId
+);
+id_type!(
+    /// A top cell in a Stellar tree's own numbering (cells sorted by their leaves), as opposed to
+    /// the input's [`CellId`]; the tree's `cell_to_input` / `cell_from_input` convert.
+    TreeCellId
+);

@@ -7,7 +7,7 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestRunner};
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
-use starplex::ids::{CellId, LeafId, VertexId};
+use starplex::ids::{CellId, LeafId, TreeCellId, VertexId};
 use starplex::stellar::sre::SreIter;
 use starplex::stellar::{SplitMode, StellarOptions, StellarTree};
 use starplex::topo::{link::vertex_link, naive::VtIndex, TopCells, VertexAdjacency, VertexStar};
@@ -299,7 +299,7 @@ fn check(k: &IndexedComplex, kv: u32, threads: usize, split: SplitMode) {
         // permutations are inverse bijections; cells keep their vertices
         for v in 0..nv {
             assert_eq!(
-                t.vertex_to_input()[t.vertex_from_input()[v] as usize] as usize,
+                t.vertex_to_input()[t.vertex_from_input()[v].index()].index(),
                 v
             );
         }
@@ -317,7 +317,7 @@ fn check(k: &IndexedComplex, kv: u32, threads: usize, split: SplitMode) {
             // expanding the compressed list gives exactly the explicit list
             let got: Vec<u32> = SreIter::new(t.leaf_encoded_cells(LeafId(l as u32))).collect();
             let want: Vec<u32> = (0..k.n_cells() as u32)
-                .filter(|&c| t.tree_cell(c).1.iter().any(|v| r.contains(v)))
+                .filter(|&c| t.tree_cell(TreeCellId(c)).1.iter().any(|v| r.contains(v)))
                 .collect();
             assert_eq!(got, want, "leaf {l}");
         }

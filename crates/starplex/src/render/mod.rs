@@ -648,8 +648,8 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderErro
                 let r = t.leaf_vertices(LeafId(l as u32));
                 used += usize::from(!r.is_empty());
                 for tv in r {
-                    leaf_of[v_in[tv as usize] as usize] = l as u32;
-                    tree_index[v_in[tv as usize] as usize] = tv;
+                    leaf_of[v_in[tv as usize].index()] = l as u32;
+                    tree_index[v_in[tv as usize].index()] = tv;
                 }
             }
             for (c, col) in k.cells().zip(cell_colour.iter_mut()) {

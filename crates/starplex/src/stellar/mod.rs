@@ -25,7 +25,7 @@
 //! ```
 use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
-use crate::ids::{CellId, LeafId, NodeId, VertexId};
+use crate::ids::{CellId, LeafId, NodeId, TreeCellId, TreeVertexId, VertexId};
 
 mod build;
 pub mod iastar;
@@ -359,10 +359,10 @@ impl StellarTree {
     /// assert!(t.n_nodes() > t.n_leaves());
     /// // the permutations are inverse to each other
     /// for v in 0..4 {
-    ///     assert_eq!(t.vertex_to_input()[t.vertex_from_input()[v] as usize] as usize, v);
+    ///     assert_eq!(t.vertex_to_input()[t.vertex_from_input()[v].index()].index(), v);
     /// }
     /// let l = t.leaf_of_vertex(VertexId(3)).unwrap();
-    /// assert!(t.leaf_vertices(l).contains(&t.vertex_from_input()[3]));
+    /// assert!(t.leaf_vertices(l).contains(&t.vertex_from_input()[3].0));
     /// let (kind, vs) = t.input_cell(CellId(1));
     /// assert_eq!((kind, vs), (CellKind::Simplex(2), vec![VertexId(1), VertexId(3), VertexId(2)]));
     /// ```
@@ -581,12 +581,13 @@ impl StellarTree {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// let mut ids = t.vertex_to_input().to_vec();
+    /// use starplex::ids::VertexId;
+    /// let mut ids = t.vertex_to_input().to_vec(); // indexed by tree vertex id
     /// ids.sort_unstable();
-    /// assert_eq!(ids, vec![0, 1, 2, 3]); // a permutation of the input ids
+    /// assert_eq!(ids, (0..4).map(VertexId).collect::<Vec<_>>()); // a permutation of the input ids
     /// ```
-    pub fn vertex_to_input(&self) -> &[u32] {
-        &self.v_orig
+    pub fn vertex_to_input(&self) -> &[VertexId] {
+        bytemuck::cast_slice(&self.v_orig)
     }
     /// Permutation input vertex id -> tree vertex id.
     ///
@@ -600,12 +601,14 @@ impl StellarTree {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// for v in 0..4u32 {
-    ///     assert_eq!(t.vertex_to_input()[t.vertex_from_input()[v as usize] as usize], v);
+    /// use starplex::ids::VertexId;
+    /// for v in (0..4).map(VertexId) {
+    ///     let tv = t.vertex_from_input()[v.index()]; // a TreeVertexId
+    ///     assert_eq!(t.vertex_to_input()[tv.index()], v);
     /// }
     /// ```
-    pub fn vertex_from_input(&self) -> &[u32] {
-        &self.v_new
+    pub fn vertex_from_input(&self) -> &[TreeVertexId] {
+        bytemuck::cast_slice(&self.v_new)
     }
     /// Permutation tree cell id -> input cell id.
     ///
@@ -619,12 +622,13 @@ impl StellarTree {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// let mut ids = t.cell_to_input().to_vec();
+    /// use starplex::ids::CellId;
+    /// let mut ids = t.cell_to_input().to_vec(); // indexed by tree cell id
     /// ids.sort_unstable();
-    /// assert_eq!(ids, vec![0, 1]);
+    /// assert_eq!(ids, vec![CellId(0), CellId(1)]);
     /// ```
-    pub fn cell_to_input(&self) -> &[u32] {
-        &self.c_orig
+    pub fn cell_to_input(&self) -> &[CellId] {
+        bytemuck::cast_slice(&self.c_orig)
     }
     /// Permutation input cell id -> tree cell id.
     ///
@@ -638,12 +642,13 @@ impl StellarTree {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// for c in 0..2u32 {
-    ///     assert_eq!(t.cell_to_input()[t.cell_from_input()[c as usize] as usize], c);
+    /// use starplex::ids::CellId;
+    /// for c in [CellId(0), CellId(1)] {
+    ///     assert_eq!(t.cell_to_input()[t.cell_from_input()[c.index()].index()], c);
     /// }
     /// ```
-    pub fn cell_from_input(&self) -> &[u32] {
-        &self.c_new
+    pub fn cell_from_input(&self) -> &[TreeCellId] {
+        bytemuck::cast_slice(&self.c_new)
     }
     /// Tree vertex range of a leaf.
     ///
@@ -700,15 +705,15 @@ impl StellarTree {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// use starplex::ids::LeafId;
+    /// use starplex::ids::{LeafId, TreeVertexId};
     /// for l in 0..4 {
     ///     let r = t.leaf_vertices(LeafId(l));
-    ///     assert_eq!(t.leaf_of_tree_vertex(r.start), LeafId(l));
+    ///     assert_eq!(t.leaf_of_tree_vertex(TreeVertexId(r.start)), LeafId(l));
     /// }
     /// ```
-    pub fn leaf_of_tree_vertex(&self, v: u32) -> LeafId {
+    pub fn leaf_of_tree_vertex(&self, v: TreeVertexId) -> LeafId {
         // last l with leaf_vstart[l] <= v
-        let l = self.leaf_vstart.partition_point(|&s| s <= v) - 1;
+        let l = self.leaf_vstart.partition_point(|&s| s <= v.0) - 1;
         LeafId(l as u32)
     }
     /// The leaf holding an input vertex.
@@ -728,12 +733,12 @@ impl StellarTree {
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
     /// use starplex::ids::VertexId;
     /// let l = t.leaf_of_vertex(VertexId(3)).unwrap();
-    /// assert!(t.leaf_vertices(l).contains(&t.vertex_from_input()[3]));
+    /// assert!(t.leaf_vertices(l).contains(&t.vertex_from_input()[3].0));
     /// assert!(t.leaf_of_vertex(VertexId(4)).is_err());
     /// ```
     pub fn leaf_of_vertex(&self, v: VertexId) -> Result<LeafId, StellarError> {
         let tv = self.tree_vertex(v)?;
-        Ok(self.leaf_of_tree_vertex(tv))
+        Ok(self.leaf_of_tree_vertex(TreeVertexId(tv)))
     }
     pub(crate) fn tree_vertex(&self, v: VertexId) -> Result<u32, StellarError> {
         self.v_new
@@ -756,11 +761,11 @@ impl StellarTree {
     /// let c = t.cell_from_input()[1]; // input triangle [1, 3, 2]
     /// let (kind, vs) = t.tree_cell(c);
     /// assert_eq!(kind, CellKind::Simplex(2));
-    /// let input: Vec<u32> = vs.iter().map(|&v| t.vertex_to_input()[v as usize]).collect();
+    /// let input: Vec<u32> = vs.iter().map(|&v| t.vertex_to_input()[v as usize].0).collect();
     /// assert_eq!(input, vec![1, 3, 2]);
     /// ```
-    pub fn tree_cell(&self, c: u32) -> (CellKind, &[u32]) {
-        self.cells.get(c)
+    pub fn tree_cell(&self, c: TreeCellId) -> (CellKind, &[u32]) {
+        self.cells.get(c.0)
     }
     /// Kind and vertices (input numbering, the kind's vertex order) of an input cell.
     ///

@@ -26,7 +26,7 @@ use rayon::prelude::*;
 use super::{LeafView, StellarError, StellarTree};
 use crate::cell::{faces_of, listed_sign, oriented_facets_of, CellKind};
 use crate::csr::Csr;
-use crate::ids::{CellId, LeafId, VertexId};
+use crate::ids::{CellId, LeafId, TreeVertexId, VertexId};
 use crate::topo::link::{LinkError, VertexLink};
 use crate::topo::naive::edge_neighbours;
 use crate::topo::{TopCells, VertexAdjacency, VertexStar};
@@ -753,7 +753,7 @@ impl StellarTree {
         let mut items: Vec<(u32, u32, usize)> = Vec::with_capacity(vs.len());
         for (i, &v) in vs.iter().enumerate() {
             let tv = self.tree_vertex(v)?;
-            items.push((self.leaf_of_tree_vertex(tv).0, tv, i));
+            items.push((self.leaf_of_tree_vertex(TreeVertexId(tv)).0, tv, i));
         }
         items.sort_unstable();
         let mut e = super::ExpandedLeaf::default();
@@ -1387,7 +1387,7 @@ impl VertexStar for StellarTree {
         let Ok(tv) = self.tree_vertex(v) else {
             return;
         };
-        let l = self.leaf_of_tree_vertex(tv);
+        let l = self.leaf_of_tree_vertex(TreeVertexId(tv));
         for c in super::sre::SreIter::new(self.leaf_encoded_cells(l)) {
             if self.cells.verts(c).contains(&tv) {
                 out.push(CellId(self.c_orig[c as usize]));
@@ -1407,7 +1407,7 @@ impl VertexStar for StellarTree {
         for &v in s {
             tv.push(self.tree_vertex(v).ok()?);
         }
-        let l = self.leaf_of_tree_vertex(*tv.first()?);
+        let l = self.leaf_of_tree_vertex(TreeVertexId(*tv.first()?));
         for c in super::sre::SreIter::new(self.leaf_encoded_cells(l)) {
             let vs = self.cells.verts(c);
             if tv.iter().all(|x| vs.contains(x)) {
@@ -1424,7 +1424,7 @@ impl VertexAdjacency for StellarTree {
         let Ok(tv) = self.tree_vertex(v) else {
             return;
         };
-        let l = self.leaf_of_tree_vertex(tv);
+        let l = self.leaf_of_tree_vertex(TreeVertexId(tv));
         for c in super::sre::SreIter::new(self.leaf_encoded_cells(l)) {
             let (kind, vs) = self.cells.get(c);
             if vs.contains(&tv) {

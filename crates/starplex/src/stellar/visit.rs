@@ -508,7 +508,7 @@ impl<'a> LeafView<'a> {
     /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
     /// let leaf = LeafView { tree: &t, e: &e };
     /// assert_eq!(leaf.tree_vertices(), t.leaf_vertices(leaf.leaf()));
-    /// assert!(leaf.tree_vertices().contains(&t.vertex_from_input()[1]));
+    /// assert!(leaf.tree_vertices().contains(&t.vertex_from_input()[1].0));
     /// ```
     pub fn tree_vertices(&self) -> std::ops::Range<u32> {
         self.e.v_start..self.e.v_end
@@ -553,8 +553,8 @@ impl<'a> LeafView<'a> {
     /// // the leaf of input vertex 1, which is in both triangles
     /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
     /// let leaf = LeafView { tree: &t, e: &e };
-    /// assert!(leaf.owns(t.vertex_from_input()[1]));
-    /// assert!(!leaf.owns(t.vertex_from_input()[0]));
+    /// assert!(leaf.owns(t.vertex_from_input()[1].0));
+    /// assert!(!leaf.owns(t.vertex_from_input()[0].0));
     /// ```
     #[inline]
     pub fn owns(&self, v: u32) -> bool {
@@ -604,7 +604,7 @@ impl<'a> LeafView<'a> {
     /// for &c in leaf.tree_cells() {
     ///     let (kind, vs) = leaf.cell(c);
     ///     assert_eq!(kind, CellKind::Simplex(2));
-    ///     assert!(vs.contains(&t.vertex_from_input()[1]));
+    ///     assert!(vs.contains(&t.vertex_from_input()[1].0));
     /// }
     /// ```
     #[inline]
@@ -628,7 +628,7 @@ impl<'a> LeafView<'a> {
     /// // the leaf of input vertex 1, which is in both triangles
     /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
     /// let leaf = LeafView { tree: &t, e: &e };
-    /// let v = t.vertex_from_input()[1];
+    /// let v = t.vertex_from_input()[1].0;
     /// assert_eq!(leaf.vt_tree(v).len(), 2); // both triangles
     /// ```
     #[inline]
@@ -677,7 +677,7 @@ impl<'a> LeafView<'a> {
     /// // the leaf of input vertex 1, which is in both triangles
     /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
     /// let leaf = LeafView { tree: &t, e: &e };
-    /// let c = t.cell_from_input()[1];
+    /// let c = t.cell_from_input()[1].0;
     /// assert_eq!(leaf.input_cell(c), CellId(1));
     /// ```
     #[inline]
