@@ -13,6 +13,10 @@ Offsets = npt.NDArray[np.int64]
 CSR = Tuple[Offsets, IdArray]
 """(offsets, values): the answer of item i is values[offsets[i]:offsets[i + 1]]."""
 Ids = Union[int, Sequence[int], npt.ArrayLike]
+AttrArray = Union[npt.NDArray[np.int64], npt.NDArray[np.float64]]
+"""An attribute column: (n, components), int64 or float64."""
+DataArg = Optional[Mapping[str, npt.ArrayLike]]
+"""name -> (n,) or (n, components) array of ints or floats."""
 CellsArg = Union[
     npt.ArrayLike,
     Sequence[npt.ArrayLike],
@@ -48,11 +52,30 @@ class Complex:
         *,
         drop_faces: bool = False,
         drop_duplicates: bool = False,
-    ) -> None: ...
+        point_data: DataArg = None,
+        cell_data: DataArg = None,
+    ) -> None:
+        """`point_data` / `cell_data`: one row per vertex / per given cell (cells dropped by
+        `drop_faces` / `drop_duplicates` take their rows along); wrong lengths raise ValueError
+        naming the attribute."""
     @property
     def n_vertices(self) -> int: ...
     @property
     def n_cells(self) -> int: ...
+    @property
+    def point_data(self) -> Dict[str, AttrArray]:
+        """Vertex attributes, name -> (n_vertices, components) array (a new dict of copies:
+        assign a whole dict to change them).
+
+        >>> c.point_data = {"height": c.points[:, 2]}
+        """
+    @point_data.setter
+    def point_data(self, value: DataArg) -> None: ...
+    @property
+    def cell_data(self) -> Dict[str, AttrArray]:
+        """Cell attributes, name -> (n_cells, components) array, in cell id order."""
+    @cell_data.setter
+    def cell_data(self, value: DataArg) -> None: ...
     @property
     def ambient_dim(self) -> int: ...
     @property
@@ -69,7 +92,70 @@ class Complex:
     def vt(self) -> CSR:
         """VT of every vertex straight from the complex (no structure built)."""
     def write(self, path: Path, format: Optional[str] = None) -> None:
-        """Writes atomically; lossy writes (tetrahedra to OFF, ...) raise ValueError."""
+        """Writes atomically; lossy writes (tetrahedra to OFF, ...) raise ValueError.
+        Attributes are written by VTK (all) and Medit (medit:ref); a UserWarning names those
+        a format drops."""
+    def simplify(
+        self,
+        *,
+        mode: Optional[str] = None,
+        ratio: Optional[float] = None,
+        faces: Optional[int] = None,
+        vertices: Optional[int] = None,
+        max_error: Optional[float] = None,
+        keep_manifold: bool = False,
+        lock_boundary: bool = False,
+        report: bool = True,
+    ) -> Tuple[Complex, Dict[str, Any]]:
+        """Edge contraction that keeps the topology (`starplex simplify`): mode "qem" (triangle
+        and tetrahedral meshes, their default) or "homology" (any simplicial complex); stops at
+        the first target reached. Returns the new complex and the report of
+        `simplify --json` (before/after f-vector, Betti numbers, topology_kept, ...).
+
+        >>> small, r = c.simplify(mode="homology", ratio=0.1)
+        >>> r["topology_kept"]
+        True
+        """
+    @overload
+    def render(
+        self,
+        path: None = None,
+        *,
+        size: Union[Tuple[int, int], str, None] = None,
+        color: Union[str, Tuple[str, str], None] = None,
+        view: Optional[str] = None,
+        up: str = "z",
+        edges: bool = False,
+        clip: Optional[str] = None,
+        shading: bool = True,
+        legend: bool = True,
+        title: Optional[str] = None,
+        kv: Optional[int] = None,
+    ) -> bytes: ...
+    @overload
+    def render(
+        self,
+        path: Path,
+        *,
+        size: Union[Tuple[int, int], str, None] = None,
+        color: Union[str, Tuple[str, str], None] = None,
+        view: Optional[str] = None,
+        up: str = "z",
+        edges: bool = False,
+        clip: Optional[str] = None,
+        shading: bool = True,
+        legend: bool = True,
+        title: Optional[str] = None,
+        kv: Optional[int] = None,
+    ) -> None:
+        """A picture (`starplex render`): PNG bytes (path None), or writes a .png / .svg.
+        size (w, h) or "WxH" (default 1024x768); color plain, blocks, components, defects,
+        boundary, ("label", CELL_ATTR) or ("field", VERTEX_ATTR); view iso, front, top, side
+        or "AZ,EL".
+
+        >>> png = c.render(size=(640, 480), color="components")
+        >>> c.render("mesh.png", view="top", edges=True)
+        """
     def info(self, *, max_faces: Optional[int] = None, betti: bool = False) -> Dict[str, Any]:
         """The keys of `starplex info --json` (n_vertices, f_vector, euler_characteristic, ...).
 
@@ -164,10 +250,44 @@ class Is(Structure):
 class Hasse(Structure):
     def __init__(self, c: Complex) -> None: ...
 
+def rips(
+    points: npt.ArrayLike,
+    eps: Optional[float] = None,
+    *,
+    eps_nn: Optional[float] = None,
+    max_dim: Optional[int] = None,
+    max_memory: Optional[float] = None,
+) -> Complex:
+    """Vietoris-Rips complex of an (n, d) point cloud at scale eps (or eps_nn times the
+    median nearest-neighbour distance), by its maximal simplices; max_dim keeps the
+    K-skeleton; max_memory in GiB.
+
+    >>> c = starplex.rips(pts, 0.3, max_dim=2)
+    >>> starplex.SimplexTree(c).f_vector()
+    """
+
+def flag(
+    edges: npt.ArrayLike,
+    n_vertices: Optional[int] = None,
+    *,
+    max_dim: Optional[int] = None,
+    max_memory: Optional[float] = None,
+) -> Complex:
+    """Flag (clique) complex of an (m, 2) edge list; vertices have one coordinate, their id."""
+
 def from_meshio(mesh: Any, **options: Any) -> Complex:
-    """A Complex from a meshio.Mesh (meshio itself is not imported)."""
+    """A Complex from a meshio.Mesh (meshio itself is not imported), with its point_data and
+    cell_data."""
+
+def to_meshio(c: Complex) -> Any:
+    """A meshio.Mesh with point_data and cell_data (imports meshio when called)."""
+
+def to_pyvista(c: Complex) -> Any:
+    """A pyvista.UnstructuredGrid with point_data and cell_data (imports pyvista when
+    called; ImportError with a hint when it is missing)."""
 
 def to_trimesh(c: Complex, **options: Any) -> Any:
-    """A trimesh.Trimesh of a triangle complex (imports trimesh when called)."""
+    """A trimesh.Trimesh of a triangle complex (imports trimesh when called), attributes as
+    vertex_attributes / face_attributes."""
 
 def csr_rows(offsets: Offsets, values: npt.NDArray[Any]) -> List[npt.NDArray[Any]]: ...
