@@ -8,6 +8,7 @@
 #![allow(clippy::useless_conversion)] // pyo3's generated code
 
 mod attrs;
+mod hasse_py;
 mod ops;
 
 use std::path::PathBuf;
@@ -1427,6 +1428,7 @@ fn _starplex(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<IncidenceGraph>()?;
     m.add_class::<Is>()?;
     m.add_class::<Hasse>()?;
+    m.add_class::<hasse_py::HasseComplex>()?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
     m.add_function(wrap_pyfunction!(rips, m)?)?;
     m.add_function(wrap_pyfunction!(flag, m)?)?;

@@ -23,6 +23,7 @@ carrying the messages of the ``starplex`` command line.
 from ._starplex import (  # noqa: F401
     Complex,
     Hasse,
+    HasseComplex,
     IaStar,
     IncidenceGraph,
     Is,
@@ -38,6 +39,7 @@ from ._starplex import (  # noqa: F401
 __all__ = [
     "Complex",
     "Hasse",
+    "HasseComplex",
     "IaStar",
     "IncidenceGraph",
     "Is",

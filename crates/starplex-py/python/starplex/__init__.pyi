@@ -250,6 +250,43 @@ class Is(Structure):
 class Hasse(Structure):
     def __init__(self, c: Complex) -> None: ...
 
+class HasseComplex:
+    """The editable CASC Hasse complex with per-level data as NumPy columns (levels 0-3).
+    Simplices are named by vertex labels; ids are slots (stable under edits of others, freed
+    slots reused). Merges keep the first row (positions: the mean); new simplices have no row
+    (NaN / 0, has_data False).
+
+    >>> h = starplex.HasseComplex(c)          # c.point_data -> level 0, c.cell_data -> top
+    >>> ids, edges = h.simplices(1)
+    >>> h.set_data(1, "length", lengths)      # aligned with simplices(1)
+    >>> h.collapse([3, 7]); h.flip([2, 5]); h.split([0, 1]); h.decimate([4, 5, 6])
+    >>> h.smooth(0.5, 3); k = h.to_complex()
+    """
+
+    def __init__(self, c: Complex) -> None: ...
+    def f_vector(self) -> List[int]: ...
+    def simplices(self, p: int) -> Tuple[IdArray, IdArray]:
+        """(ids, (n_p, p + 1) vertex labels) of the live p-simplices, in id order."""
+    def data(self, p: int) -> Dict[str, AttrArray]:
+        """Level p's columns aligned with simplices(p)."""
+    def has_data(self, p: int) -> npt.NDArray[np.bool_]: ...
+    def set_data(self, p: int, name: str, values: npt.ArrayLike) -> None:
+        """One row per p-simplex in simplices(p) order; replaces a column of that name."""
+    @property
+    def positions(self) -> npt.NDArray[np.float64]:
+        """(n_0, 3) vertex positions in simplices(0) order."""
+    def collapse(self, edge: Ids) -> int:
+        """Link-checked edge collapse; returns the label kept (at the midpoint)."""
+    def flip(self, simplex: Ids) -> List[int]:
+        """Bistellar flip; returns the new simplex's labels."""
+    def split(self, simplex: Ids) -> int:
+        """Stellar split at a new vertex (at the centroid); returns its label."""
+    def decimate(self, simplex: Ids) -> int:
+        """CASC generalized decimation into a new vertex (at the mean); returns its label."""
+    def smooth(self, lam: float = 0.5, iterations: int = 1, fix_boundary: bool = True) -> None: ...
+    def to_complex(self, *, labels: bool = False) -> Complex:
+        """The maximal simplices, vertices renumbered in label order, level 0 as point_data."""
+
 def rips(
     points: npt.ArrayLike,
     eps: Optional[float] = None,
