@@ -230,3 +230,41 @@ def test_render_errors(tmp_path):
         c.render(size=(20, 20), color=("field", "missing"))
     with pytest.raises(OSError):
         c.render(tmp_path / "no" / "such" / "dir" / "m.png", size=(20, 20))
+
+
+# ---------------------------------------------------------------- same as the command line
+
+
+def test_same_answers_as_the_command_line(cli, tmp_path):
+    import subprocess
+
+    def run(*args):
+        return subprocess.run([cli, *map(str, args)], capture_output=True, text=True, check=True)
+
+    c = grid(6)
+    src = tmp_path / "g.spx"
+    c.write(src)
+    # simplify
+    out = tmp_path / "s.spx"
+    import json
+
+    rep = json.loads(run("simplify", src, out, "--mode", "homology", "--faces", 12, "--json").stdout)
+    small, r = c.simplify(mode="homology", faces=12)
+    k = starplex.read(out)
+    assert k.cell_blocks[0][1].tolist() == small.cell_blocks[0][1].tolist()
+    for key in ("mode", "n_contractions", "rounds", "target_faces", "topology_kept"):
+        assert rep[key] == r[key], key
+    assert rep["after"] == r["after"]
+    # rips
+    pts = np.random.default_rng(3).random((30, 3))
+    np.save(tmp_path / "p.npy", pts)
+    run("rips", tmp_path / "p.npy", "--eps", 0.4, "--max-dim", 2, "-o", tmp_path / "r.spx")
+    k = starplex.read(tmp_path / "r.spx")
+    ours = starplex.rips(pts, 0.4, max_dim=2)
+    assert [(n, a.tolist()) for n, a in k.cell_blocks] == [
+        (n, a.tolist()) for n, a in ours.cell_blocks
+    ]
+    # render: the same picture, byte for byte
+    run("render", src, "-o", tmp_path / "g.png", "--size", "80x60", "--color", "components")
+    png = c.render(size=(80, 60), color="components", title="g.spx")
+    assert (tmp_path / "g.png").read_bytes() == png
