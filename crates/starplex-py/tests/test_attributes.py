@@ -165,3 +165,25 @@ def test_to_pyvista():
     assert g.point_data["h"].tolist() == [0.0, 1.0, 2.0, 3.0]
     assert g.cell_data["t"].tolist() == [5, 6]
     assert g.cells_dict[5].tolist() == tris.tolist()  # VTK_TRIANGLE
+
+
+def test_to_pyvista_equals_the_vtu_writer(tmp_path):
+    if importlib.util.find_spec("pyvista") is None:
+        pytest.skip("SKIPPED: pyvista not installed")
+    import pyvista
+
+    pts = np.random.default_rng(0).random((14, 3))
+    c = starplex.Complex(
+        pts,
+        {"hex": [list(range(8))], "prism": [[8, 9, 10, 11, 12, 13]], "tet": [[0, 1, 8, 9]],
+         "pyramid": [[2, 3, 10, 11, 12]]},
+        cell_data={"t": [1, 2, 3, 4]},
+        drop_faces=True,
+    )
+    g = starplex.to_pyvista(c)
+    c.write(tmp_path / "m.vtu")
+    r = pyvista.read(tmp_path / "m.vtu")
+    assert g.celltypes.tolist() == r.celltypes.tolist()
+    assert g.cell_connectivity.tolist() == r.cell_connectivity.tolist()
+    assert np.allclose(g.points, r.points)
+    assert g.cell_data["t"].tolist() == r.cell_data["t"].ravel().tolist()
