@@ -318,7 +318,8 @@ impl HasseComplex {
         Ok(())
     }
 
-    /// Vertex positions, `(n_0, 3)` in `simplices(0)` order.
+    /// Vertex positions, `(n_0, 3)` in `simplices(0)` order (settable; `to_complex` and
+    /// `smooth` use them).
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let d = self.h.level_data::<0>();
@@ -328,6 +329,24 @@ impl HasseComplex {
             .flat_map(|n| d[n.id.0 as usize].pos)
             .collect();
         arr2(py, v, 3)
+    }
+
+    #[setter]
+    fn set_positions(&mut self, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let (v, d) = crate::points_array(value)?;
+        let nodes = self.live(0);
+        if d != 3 || v.len() != nodes.len() * 3 {
+            return Err(value_err(format!(
+                "positions: expected an ({}, 3) array, got {} rows of {d}",
+                nodes.len(),
+                v.len().checked_div(d).unwrap_or(0)
+            )));
+        }
+        let data = self.h.level_data_mut::<0>();
+        for (n, p) in nodes.iter().zip(v.chunks_exact(3)) {
+            data[n.id.0 as usize].pos = [p[0], p[1], p[2]];
+        }
+        Ok(())
     }
 
     /// Collapses the edge `(a, b)` (link condition checked) into one vertex at their midpoint;

@@ -86,6 +86,11 @@ def test_decimate_and_errors():
     labels = h.simplices(0)[1][:, 0].tolist()
     assert h.positions[labels.index(p)].tolist() == [0.5, 1.0, 0.0]
     assert h.data(0)["id"].ravel()[labels.index(p)] in (3, 4)
+    h.positions = h.positions * 2
+    assert h.positions[labels.index(p)].tolist() == [1.0, 2.0, 0.0]
+    assert h.to_complex().points.max() == 4.0
+    with pytest.raises(ValueError, match="positions"):
+        h.positions = np.zeros((3, 3))
     with pytest.raises(ValueError, match="at most 3 coordinates"):
         starplex.HasseComplex(starplex.Complex(np.zeros((3, 4)), [[0, 1, 2]]))
     with pytest.raises(ValueError):

@@ -275,6 +275,8 @@ class HasseComplex:
     @property
     def positions(self) -> npt.NDArray[np.float64]:
         """(n_0, 3) vertex positions in simplices(0) order."""
+    @positions.setter
+    def positions(self, value: npt.ArrayLike) -> None: ...
     def collapse(self, edge: Ids) -> int:
         """Link-checked edge collapse; returns the label kept (at the midpoint)."""
     def flip(self, simplex: Ids) -> List[int]:
