@@ -268,3 +268,36 @@ def test_same_answers_as_the_command_line(cli, tmp_path):
     run("render", src, "-o", tmp_path / "g.png", "--size", "80x60", "--color", "components")
     png = c.render(size=(80, 60), color="components", title="g.spx")
     assert (tmp_path / "g.png").read_bytes() == png
+
+
+def test_threads_share_a_complex_while_its_attributes_change():
+    """simplify / render / rips run without the GIL while another thread sets attributes."""
+    import threading
+
+    c = grid(10)
+    want_png = c.render(size=(60, 40))
+    want_cells = c.simplify(ratio=0.3, report=False)[0].n_cells
+    pts = np.random.default_rng(5).random((50, 3))
+    want_f = starplex.rips(pts, 0.3, max_dim=2).info()["f_vector"]
+    out, errors = [], []
+
+    def work(i):
+        try:
+            for _ in range(3):
+                if i % 3 == 0:
+                    out.append(c.render(size=(60, 40)) == want_png)
+                elif i % 3 == 1:
+                    out.append(c.simplify(ratio=0.3, report=False)[0].n_cells == want_cells)
+                else:
+                    out.append(starplex.rips(pts, 0.3, max_dim=2).info()["f_vector"] == want_f)
+                c.point_data = {"t": np.full(c.n_vertices, i)}
+        except Exception as e:  # noqa: BLE001
+            errors.append(e)
+
+    ts = [threading.Thread(target=work, args=(i,)) for i in range(6)]
+    for t in ts:
+        t.start()
+    for t in ts:
+        t.join()
+    assert errors == [] and out == [True] * 18
+    assert c.point_data["t"].shape == (c.n_vertices, 1)
