@@ -62,15 +62,9 @@ pub struct FlagArgs {
     pub build: BuildArgs,
 }
 
-/// A third of MemAvailable (Linux), else 8 GiB.
-fn default_budget() -> u64 {
-    let avail = starplex::measure::available_memory();
-    avail.map_or(8 << 30, |b| b / 3)
-}
-
 fn budget(b: &BuildArgs) -> Result<u64, CliError> {
     match b.max_memory {
-        None => Ok(default_budget()),
+        None => Ok(rips::default_max_bytes()),
         Some(g) if g.is_finite() && g > 0.0 => Ok((g * (1u64 << 30) as f64) as u64),
         Some(g) => Err(CliError::Input(
             format!("--max-memory {g}: expected a positive number of GiB"),

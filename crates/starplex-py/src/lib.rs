@@ -7,8 +7,12 @@
 //! that does real work releases the GIL.
 #![allow(clippy::useless_conversion)] // pyo3's generated code
 
+mod attrs;
+mod hasse_py;
+mod ops;
+
 use std::path::PathBuf;
-use std::sync::Arc;
+use std::sync::{Arc, RwLock};
 
 use numpy::ndarray::Array2;
 use numpy::{
@@ -16,11 +20,13 @@ use numpy::{
 };
 use pyo3::exceptions::{PyIOError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyInt, PyList, PyString, PyTuple};
+use pyo3::types::{PyBytes, PyDict, PyInt, PyList, PyString, PyTuple};
 
 use starplex::algo::homology::{homology as run_homology, Field, HomologyOptions};
 use starplex::algo::info::{info as run_info, InfoOptions};
+use starplex::algo::simplify::Target;
 use starplex::algo::validate::ValidationReport;
+use starplex::attr::{AttrTarget, Attribute, Attributes};
 use starplex::buf::Buf;
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, IndexedComplex};
@@ -303,22 +309,55 @@ fn row_out<'py>(py: Python<'py>, c: Csr, width: usize) -> PyResult<Bound<'py, Py
 /// ['quad', 'tri', 'line']
 #[pyclass(frozen, module = "starplex._starplex")]
 struct Complex {
-    k: Arc<IndexedComplex>,
+    /// Swapped whole by the attribute setters; every method works on its own `Arc`.
+    k: RwLock<Arc<IndexedComplex>>,
+}
+
+impl Complex {
+    fn wrap(k: IndexedComplex) -> Complex {
+        Complex {
+            k: RwLock::new(Arc::new(k)),
+        }
+    }
+
+    /// Replaces the columns of `target` (checked by the library; unchanged on error).
+    fn set_columns(&self, target: AttrTarget, cols: Vec<Attribute>) -> PyResult<()> {
+        let mut g = self.k.write().unwrap_or_else(|e| e.into_inner());
+        let mut a = g.attributes().clone();
+        match target {
+            AttrTarget::Vertex => a.vertex = cols,
+            AttrTarget::Cell => a.cell = cols,
+        }
+        // checked first, so that a refused column costs no copy of a shared complex
+        a.check(g.n_vertices(), g.n_cells()).map_err(value_err)?;
+        Arc::make_mut(&mut g).set_attributes(a).map_err(value_err)
+    }
+
+    /// The complex now (cheap: an `Arc`).
+    fn k(&self) -> Arc<IndexedComplex> {
+        Arc::clone(&self.k.read().unwrap_or_else(|e| e.into_inner()))
+    }
 }
 
 #[pymethods]
 impl Complex {
     #[new]
-    #[pyo3(signature = (points, cells, *, drop_faces = false, drop_duplicates = false))]
+    #[pyo3(signature = (points, cells, *, drop_faces = false, drop_duplicates = false, point_data = None, cell_data = None))]
     fn new(
         py: Python<'_>,
         points: &Bound<'_, PyAny>,
         cells: &Bound<'_, PyAny>,
         drop_faces: bool,
         drop_duplicates: bool,
+        point_data: Option<&Bound<'_, PyAny>>,
+        cell_data: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let (coords, d) = points_array(points)?;
         let blocks = cell_blocks(cells)?;
+        let attrs = Attributes {
+            vertex: attrs::columns_in(point_data, "point_data")?,
+            cell: attrs::columns_in(cell_data, "cell_data")?,
+        };
         let opts = BuildOptions {
             drop_face_cells: drop_faces,
             drop_duplicates,
@@ -327,40 +366,85 @@ impl Complex {
         let k = py
             .detach(|| {
                 let blocks = blocks.into_iter().map(|(k, v)| (k, Buf::from(v))).collect();
-                IndexedComplex::from_parts_checked(d, Buf::from(coords), blocks, &opts)
+                IndexedComplex::from_parts_with_attributes(
+                    d,
+                    Buf::from(coords),
+                    blocks,
+                    attrs,
+                    &opts,
+                )
             })
             .map_err(value_err)?;
-        Ok(Complex { k: Arc::new(k.0) })
+        Ok(Complex::wrap(k.0))
+    }
+
+    /// The vertex attributes: a dict name -> `(n_vertices, components)` array, int64 or
+    /// float64 (a new dict of copies; assign a whole dict to change them).
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> c = starplex.Complex(np.eye(3), [[0, 1, 2]], point_data={"h": [0.5, 1.5, 2.5]})
+    /// >>> c.point_data["h"].tolist()
+    /// [[0.5], [1.5], [2.5]]
+    /// >>> c.point_data = {"id": np.arange(3)}
+    /// >>> c.point_data["id"].dtype.name
+    /// 'int64'
+    #[getter]
+    fn point_data<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        attrs::columns_out(py, &self.k().attributes().vertex)
+    }
+
+    #[setter]
+    fn set_point_data(&self, value: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+        let cols = attrs::columns_in(value, "point_data")?;
+        self.set_columns(AttrTarget::Vertex, cols)
+    }
+
+    /// The cell attributes (one item per top cell, in cell id order), as `point_data`.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> c = starplex.Complex(np.eye(4)[:, :2], [[0, 1, 2], [1, 3, 2]])
+    /// >>> c.cell_data = {"tag": [7, 9]}
+    /// >>> c.cell_data["tag"].ravel().tolist()
+    /// [7, 9]
+    #[getter]
+    fn cell_data<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        attrs::columns_out(py, &self.k().attributes().cell)
+    }
+
+    #[setter]
+    fn set_cell_data(&self, value: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+        let cols = attrs::columns_in(value, "cell_data")?;
+        self.set_columns(AttrTarget::Cell, cols)
     }
 
     /// Number of vertices.
     #[getter]
     fn n_vertices(&self) -> usize {
-        self.k.n_vertices()
+        self.k().n_vertices()
     }
 
     /// Number of top cells.
     #[getter]
     fn n_cells(&self) -> usize {
-        self.k.n_cells()
+        self.k().n_cells()
     }
 
     /// Coordinates per vertex.
     #[getter]
     fn ambient_dim(&self) -> usize {
-        self.k.ambient_dim()
+        self.k().ambient_dim()
     }
 
     /// Dimension (of the highest cell), None when there are no cells.
     #[getter]
     fn dim(&self) -> Option<usize> {
-        self.k.dim()
+        self.k().dim()
     }
 
     /// The coordinates, an `(n, d)` float64 array (a copy).
     #[getter]
     fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        arr2(py, self.k.coords().to_vec(), self.k.ambient_dim())
+        arr2(py, self.k().coords().to_vec(), self.k().ambient_dim())
     }
 
     /// The cells as `[(kind, (m, k) uint32 array), ...]`, one entry per run of one kind in id
@@ -368,7 +452,7 @@ impl Complex {
     #[getter]
     fn cell_blocks<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let mut out = Vec::new();
-        for b in self.k.blocks() {
+        for b in self.k().blocks() {
             let a = arr2(py, b.vertices.to_vec(), b.kind.n_vertices())?;
             out.push(PyTuple::new(
                 py,
@@ -382,7 +466,8 @@ impl Complex {
     /// of arrays, one per block of `cell_blocks`.
     #[getter]
     fn cells<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let blocks = self.k.blocks();
+        let k = self.k();
+        let blocks = k.blocks();
         if blocks.len() == 1 {
             return arr2(py, blocks[0].vertices.to_vec(), blocks[0].kind.n_vertices());
         }
@@ -393,7 +478,9 @@ impl Complex {
         Ok(PyList::new(py, out)?.into_any())
     }
 
-    /// Writes the complex; the format comes from `format` or the extension.
+    /// Writes the complex; the format comes from `format` or the extension. Attributes are
+    /// written where the format can hold them (VTK `.vtk`/`.vtu`/`.vtp` all, Medit its
+    /// `medit:ref`); a `UserWarning` names the ones a format drops.
     #[pyo3(signature = (path, format = None))]
     fn write(&self, py: Python<'_>, path: PathBuf, format: Option<&str>) -> PyResult<()> {
         let f = match format {
@@ -408,8 +495,20 @@ impl Complex {
                 None => return Err(value_err(format!("{n}: unknown output format"))),
             },
         };
-        let k = &self.k;
-        py.detach(|| io::write(&path, k, f)).map_err(io_err)
+        let k = &self.k();
+        py.detach(|| io::write(&path, k, f)).map_err(io_err)?;
+        if let Some(fmt) = f.or_else(|| Format::from_path(&path)) {
+            let dropped = fmt.dropped_attributes(k.attributes());
+            if !dropped.is_empty() {
+                let msg = format!(
+                    "the attributes {} are not written: {fmt} cannot hold them (write .vtu or .vtk to keep them)",
+                    dropped.join(", ")
+                );
+                let cat = py.get_type::<pyo3::exceptions::PyUserWarning>();
+                py.import("warnings")?.call_method1("warn", (msg, cat, 2))?;
+            }
+        }
+        Ok(())
     }
 
     /// Counts with the keys of `starplex info --json`.
@@ -424,7 +523,7 @@ impl Complex {
         if let Some(m) = max_faces {
             opts.max_faces = m;
         }
-        let k = &self.k;
+        let k = &self.k();
         let (s, b) = py.detach(|| {
             let s = run_info(k, &opts);
             let b = betti.then(|| starplex::algo::homology::betti_z2(k));
@@ -464,6 +563,9 @@ impl Complex {
             },
         )?;
         d.set_item("n_connected_components", s.n_connected_components)?;
+        if !k.attributes().is_empty() {
+            d.set_item("attributes", attrs::summary(py, k.attributes())?)?;
+        }
         match b {
             Some(Ok(b)) => d.set_item("betti_z2", b)?,
             Some(Err(e)) => d.set_item("betti_z2_skipped", e.to_string())?,
@@ -476,7 +578,7 @@ impl Complex {
     /// arrays.
     #[pyo3(signature = (*, kv = None))]
     fn validate<'py>(&self, py: Python<'py>, kv: Option<u32>) -> PyResult<Bound<'py, PyDict>> {
-        let k = &self.k;
+        let k = &self.k();
         let opts = StellarOptions {
             kv,
             ..Default::default()
@@ -502,7 +604,7 @@ impl Complex {
             per_component,
             ..Default::default()
         };
-        let k = &self.k;
+        let k = &self.k();
         let h = py
             .detach(|| run_homology(&VtIndex::new(k), &opts))
             .map_err(value_err)?;
@@ -554,18 +656,139 @@ impl Complex {
     /// >>> off.tolist(), cells.tolist()
     /// ([0, 1, 3, 5, 6], [0, 0, 1, 0, 1, 1])
     fn vt<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let k = &self.k;
+        let k = &self.k();
         let c = py.detach(|| k.vertex_cells());
         let offsets: Vec<i64> = c.offsets.iter().map(|&o| o as i64).collect();
         Ok(PyTuple::new(py, [arr1(py, offsets), arr1(py, c.targets)])?.into_any())
     }
 
+    /// Simplifies by edge contraction that keeps the topology (`starplex simplify`): returns
+    /// `(Complex, report)`, the report a dict with the keys of `simplify --json` (`mode`,
+    /// `n_contractions`, `vertices`, `cells`, `before`/`after` topology, `topology_kept`, ...).
+    ///
+    /// `mode`: `"qem"` (quadric error; triangle and tetrahedral meshes, their default) or
+    /// `"homology"` (link condition, any simplicial complex). Stop at the first target
+    /// reached: `ratio` (fraction of the top cells kept), `faces`, `vertices`, `max_error`
+    /// (qem); none: as far as possible. `keep_manifold` (homology: a manifold stays one),
+    /// `lock_boundary` (qem: boundary vertices stay), `report=False` skips the before/after
+    /// topology (faster). Attributes are not carried.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> pts = np.array([[x, y] for y in range(4) for x in range(4)], dtype=float)
+    /// >>> tris = [[a, a + 1, a + 5] for a in (0, 1, 2, 4, 5, 6, 8, 9, 10)]
+    /// >>> tris += [[a, a + 5, a + 4] for a in (0, 1, 2, 4, 5, 6, 8, 9, 10)]
+    /// >>> c = starplex.Complex(pts, tris)
+    /// >>> small, r = c.simplify(mode="homology", faces=4, keep_manifold=True)
+    /// >>> small.n_cells <= 4, r["topology_kept"], r["after"]["betti_z2"]
+    /// (True, True, [1, 0, 0])
+    #[pyo3(signature = (*, mode = None, ratio = None, faces = None, vertices = None, max_error = None, keep_manifold = false, lock_boundary = false, report = true))]
+    #[allow(clippy::too_many_arguments)]
+    fn simplify<'py>(
+        &self,
+        py: Python<'py>,
+        mode: Option<String>,
+        ratio: Option<f64>,
+        faces: Option<usize>,
+        vertices: Option<usize>,
+        max_error: Option<f64>,
+        keep_manifold: bool,
+        lock_boundary: bool,
+        report: bool,
+    ) -> PyResult<(Complex, Bound<'py, PyDict>)> {
+        let k = self.k();
+        let args = ops::SimplifyArgs {
+            mode,
+            target: Target {
+                faces,
+                vertices,
+                ratio,
+                max_error,
+            },
+            keep_manifold,
+            lock_boundary,
+            report,
+        };
+        let s = py
+            .detach(|| ops::run_simplify(&k, args))
+            .map_err(value_err)?;
+        let d = ops::simplify_report(py, &k, &s)?;
+        Ok((Complex::wrap(s.out), d))
+    }
+
+    /// A picture of the complex (`starplex render`): PNG bytes when `path` is None, else
+    /// writes `path` (`.png`, or `.svg` with one path per visible face) and returns None.
+    ///
+    /// `size` `(width, height)` or `"WxH"`; `color` one of plain, blocks, components, defects,
+    /// boundary, or `("label", NAME)` (a cell attribute) / `("field", NAME)` (a vertex
+    /// attribute); `view` iso, front, top, side or `"AZIMUTH,ELEVATION"` (default: top for a
+    /// flat complex, iso otherwise); `up` x, y or z; `clip` `"x=0.5"`; `kv` the Stellar tree
+    /// threshold of `color="blocks"`. Notes of the renderer come as `UserWarning`s.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> png = starplex.Complex(np.eye(3), [[0, 1, 2]]).render(size=(64, 48))
+    /// >>> png[:4], int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
+    /// (b'\x89PNG', 64, 48)
+    #[pyo3(signature = (path = None, *, size = None, color = None, view = None, up = "z", edges = false, clip = None, shading = true, legend = true, title = None, kv = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        path: Option<PathBuf>,
+        size: Option<&Bound<'py, PyAny>>,
+        color: Option<&Bound<'py, PyAny>>,
+        view: Option<&str>,
+        up: &str,
+        edges: bool,
+        clip: Option<&str>,
+        shading: bool,
+        legend: bool,
+        title: Option<String>,
+        kv: Option<u32>,
+    ) -> PyResult<Option<Bound<'py, PyBytes>>> {
+        let default_size = PyTuple::new(py, [1024u32, 768])?.into_any();
+        let plain = PyString::new(py, "plain").into_any();
+        let o = ops::render_options(
+            size.unwrap_or(&default_size),
+            color.unwrap_or(&plain),
+            view,
+            up,
+            edges,
+            clip,
+            shading,
+            legend,
+            title,
+            kv,
+        )?;
+        let svg = ops::is_svg(path.as_deref())?;
+        let k = self.k();
+        let (bytes, notes) = py
+            .detach(|| ops::render_bytes(&k, &o, svg))
+            .map_err(value_err)?;
+        for n in notes {
+            let cat = py.get_type::<pyo3::exceptions::PyUserWarning>();
+            py.import("warnings")?.call_method1("warn", (n, cat, 2))?;
+        }
+        match path {
+            None => Ok(Some(PyBytes::new(py, &bytes))),
+            Some(p) => {
+                py.detach(|| {
+                    io::output::write_with(&p, |w| {
+                        w.write_all(&bytes)?;
+                        Ok(())
+                    })
+                })
+                .map_err(io_err)?;
+                Ok(None)
+            }
+        }
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<starplex.Complex: {} vertices in {}D, {} top cells>",
-            self.k.n_vertices(),
-            self.k.ambient_dim(),
-            self.k.n_cells()
+            self.k().n_vertices(),
+            self.k().ambient_dim(),
+            self.k().n_cells()
         )
     }
 }
@@ -693,9 +916,67 @@ fn read(
     o.build.drop_face_cells = drop_faces;
     o.build.drop_duplicates = drop_duplicates;
     let r = py.detach(|| io::read(&path, &o)).map_err(io_err)?;
-    Ok(Complex {
-        k: Arc::new(r.complex),
-    })
+    Ok(Complex::wrap(r.complex))
+}
+
+/// The Vietoris-Rips complex of a point cloud (`starplex rips`), stored by its maximal
+/// simplices: `points` an `(n, d)` array; scale `eps` (points at distance <= eps are joined)
+/// or `eps_nn` (a multiple of the median nearest-neighbour distance); `max_dim` keeps the
+/// K-skeleton; `max_memory` the budget in GiB (default: a third of the available memory).
+/// The vertices are the points, in order.
+///
+/// >>> import numpy as np, starplex
+/// >>> square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=float)
+/// >>> starplex.rips(square, 1.0).n_cells, starplex.rips(square, 1.5).dim
+/// (4, 3)
+#[pyfunction]
+#[pyo3(signature = (points, eps = None, *, eps_nn = None, max_dim = None, max_memory = None))]
+fn rips(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    eps: Option<f64>,
+    eps_nn: Option<f64>,
+    max_dim: Option<usize>,
+    max_memory: Option<f64>,
+) -> PyResult<Complex> {
+    let (coords, d) = points_array(points)?;
+    let max_bytes = ops::budget(max_memory)?;
+    let b = py
+        .detach(|| ops::run_rips(&coords, d, eps, eps_nn, max_dim, max_bytes))
+        .map_err(value_err)?;
+    Ok(Complex::wrap(b.complex))
+}
+
+/// The flag (clique) complex of a graph (`starplex flag`): `edges` an `(m, 2)` array of
+/// vertex ids, `n_vertices` (default: the largest id + 1); vertices get one coordinate, their
+/// id. `max_dim` and `max_memory` as `rips`.
+///
+/// >>> import starplex
+/// >>> c = starplex.flag([[0, 1], [1, 2], [2, 0], [2, 3]], n_vertices=5)
+/// >>> [(kind, a.tolist()) for kind, a in c.cell_blocks]
+/// [('line', [[2, 3]]), ('tri', [[0, 1, 2]])]
+#[pyfunction]
+#[pyo3(signature = (edges, n_vertices = None, *, max_dim = None, max_memory = None))]
+fn flag(
+    py: Python<'_>,
+    edges: &Bound<'_, PyAny>,
+    n_vertices: Option<usize>,
+    max_dim: Option<usize>,
+    max_memory: Option<f64>,
+) -> PyResult<Complex> {
+    let (v, shape) = index_array(edges, "edges")?;
+    if !(shape.len() == 2 && shape[1] == 2 || v.is_empty() && shape.len() <= 2) {
+        return Err(value_err(format!(
+            "edges: expected an (m, 2) array of vertex ids, got shape {shape:?}"
+        )));
+    }
+    let pairs: Vec<(u32, u32)> = v.chunks_exact(2).map(|e| (e[0], e[1])).collect();
+    let n = n_vertices.unwrap_or_else(|| v.iter().max().map_or(0, |&m| m as usize + 1));
+    let max_bytes = ops::budget(max_memory)?;
+    let b = py
+        .detach(|| ops::run_flag(n, &pairs, max_dim, max_bytes))
+        .map_err(value_err)?;
+    Ok(Complex::wrap(b.complex))
 }
 
 // ---------------------------------------------------------------- structures
@@ -1065,7 +1346,7 @@ macro_rules! structure_class {
         impl $name {
             #[new]
             fn new(py: Python<'_>, c: PyRef<'_, Complex>) -> PyResult<PyClassInitializer<Self>> {
-                let $k = Arc::clone(&c.k);
+                let $k = c.k();
                 Ok(structure(py, stringify!($name), move || {
                     let b: Box<dyn Queries + Send + Sync> =
                         Box::new($build.map_err(|e| e.to_string())?);
@@ -1122,7 +1403,7 @@ impl StellarTree {
         c: PyRef<'_, Complex>,
         kv: Option<u32>,
     ) -> PyResult<PyClassInitializer<Self>> {
-        let k = Arc::clone(&c.k);
+        let k = c.k();
         Ok(structure(py, "StellarTree", move || {
             let opts = StellarOptions {
                 kv,
@@ -1147,7 +1428,10 @@ fn _starplex(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<IncidenceGraph>()?;
     m.add_class::<Is>()?;
     m.add_class::<Hasse>()?;
+    m.add_class::<hasse_py::HasseComplex>()?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
+    m.add_function(wrap_pyfunction!(rips, m)?)?;
+    m.add_function(wrap_pyfunction!(flag, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -152,7 +152,8 @@ def test_docstring_examples():
     finder = doctest.DocTestFinder()
     runner = doctest.DocTestRunner()
     seen = 0
-    for obj in [starplex.read, starplex.Complex, *STRUCTURES, starplex.Structure]:
+    for obj in [starplex.read, starplex.Complex, *STRUCTURES, starplex.Structure,
+                starplex.rips, starplex.flag, starplex.HasseComplex]:
         for name in [None, *dir(obj)]:
             x = obj if name is None else getattr(obj, name)
             if name and name.startswith("__"):

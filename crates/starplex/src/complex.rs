@@ -755,7 +755,43 @@ impl IndexedComplex {
         blocks: Vec<(CellKind, Buf<u32>)>,
         opts: &BuildOptions,
     ) -> Result<(IndexedComplex, BuildReport), ComplexError> {
-        let k = IndexedComplex::from_parts(ambient_dim, coords, blocks)?;
+        IndexedComplex::from_parts_with_attributes(
+            ambient_dim,
+            coords,
+            blocks,
+            Attributes::default(),
+            opts,
+        )
+    }
+
+    /// [`from_parts_checked`](Self::from_parts_checked) with attributes: one item per given
+    /// vertex and per given cell; cells dropped by `opts` take their items along.
+    ///
+    /// ```
+    /// use starplex::attr::{Attribute, Attributes};
+    /// use starplex::complex::{BuildOptions, IndexedComplex};
+    /// use starplex::{buf::Buf, cell::CellKind};
+    /// let coords = Buf::from(vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0]);
+    /// let twice = vec![(CellKind::Simplex(2), Buf::from(vec![0, 1, 2, 2, 1, 0]))];
+    /// let tags = Attributes { vertex: vec![], cell: vec![Attribute::int("tag", 1, vec![5, 6])] };
+    /// let opts = BuildOptions { drop_duplicates: true, ..Default::default() };
+    /// let (k, _) = IndexedComplex::from_parts_with_attributes(2, coords, twice, tags, &opts).unwrap();
+    /// assert_eq!(k.attributes().cell[0], Attribute::int("tag", 1, vec![5]));
+    /// ```
+    ///
+    /// # Errors
+    /// Everything [`from_parts_checked`](Self::from_parts_checked) refuses, and
+    /// [`ComplexError::Attribute`] naming the first column that does not fit (checked against
+    /// the cells as given, before any is dropped).
+    pub fn from_parts_with_attributes(
+        ambient_dim: usize,
+        coords: Buf<f64>,
+        blocks: Vec<(CellKind, Buf<u32>)>,
+        attrs: Attributes,
+        opts: &BuildOptions,
+    ) -> Result<(IndexedComplex, BuildReport), ComplexError> {
+        let mut k = IndexedComplex::from_parts(ambient_dim, coords, blocks)?;
+        k.set_attributes(attrs)?;
         if opts.trust_maximality {
             return Ok((k, BuildReport::default()));
         }

@@ -13,6 +13,10 @@ Offsets = npt.NDArray[np.int64]
 CSR = Tuple[Offsets, IdArray]
 """(offsets, values): the answer of item i is values[offsets[i]:offsets[i + 1]]."""
 Ids = Union[int, Sequence[int], npt.ArrayLike]
+AttrArray = Union[npt.NDArray[np.int64], npt.NDArray[np.float64]]
+"""An attribute column: (n, components), int64 or float64."""
+DataArg = Optional[Mapping[str, npt.ArrayLike]]
+"""name -> (n,) or (n, components) array of ints or floats."""
 CellsArg = Union[
     npt.ArrayLike,
     Sequence[npt.ArrayLike],
@@ -48,11 +52,30 @@ class Complex:
         *,
         drop_faces: bool = False,
         drop_duplicates: bool = False,
-    ) -> None: ...
+        point_data: DataArg = None,
+        cell_data: DataArg = None,
+    ) -> None:
+        """`point_data` / `cell_data`: one row per vertex / per given cell (cells dropped by
+        `drop_faces` / `drop_duplicates` take their rows along); wrong lengths raise ValueError
+        naming the attribute."""
     @property
     def n_vertices(self) -> int: ...
     @property
     def n_cells(self) -> int: ...
+    @property
+    def point_data(self) -> Dict[str, AttrArray]:
+        """Vertex attributes, name -> (n_vertices, components) array (a new dict of copies:
+        assign a whole dict to change them).
+
+        >>> c.point_data = {"height": c.points[:, 2]}
+        """
+    @point_data.setter
+    def point_data(self, value: DataArg) -> None: ...
+    @property
+    def cell_data(self) -> Dict[str, AttrArray]:
+        """Cell attributes, name -> (n_cells, components) array, in cell id order."""
+    @cell_data.setter
+    def cell_data(self, value: DataArg) -> None: ...
     @property
     def ambient_dim(self) -> int: ...
     @property
@@ -69,7 +92,70 @@ class Complex:
     def vt(self) -> CSR:
         """VT of every vertex straight from the complex (no structure built)."""
     def write(self, path: Path, format: Optional[str] = None) -> None:
-        """Writes atomically; lossy writes (tetrahedra to OFF, ...) raise ValueError."""
+        """Writes atomically; lossy writes (tetrahedra to OFF, ...) raise ValueError.
+        Attributes are written by VTK (all) and Medit (medit:ref); a UserWarning names those
+        a format drops."""
+    def simplify(
+        self,
+        *,
+        mode: Optional[str] = None,
+        ratio: Optional[float] = None,
+        faces: Optional[int] = None,
+        vertices: Optional[int] = None,
+        max_error: Optional[float] = None,
+        keep_manifold: bool = False,
+        lock_boundary: bool = False,
+        report: bool = True,
+    ) -> Tuple[Complex, Dict[str, Any]]:
+        """Edge contraction that keeps the topology (`starplex simplify`): mode "qem" (triangle
+        and tetrahedral meshes, their default) or "homology" (any simplicial complex); stops at
+        the first target reached. Returns the new complex and the report of
+        `simplify --json` (before/after f-vector, Betti numbers, topology_kept, ...).
+
+        >>> small, r = c.simplify(mode="homology", ratio=0.1)
+        >>> r["topology_kept"]
+        True
+        """
+    @overload
+    def render(
+        self,
+        path: None = None,
+        *,
+        size: Union[Tuple[int, int], str, None] = None,
+        color: Union[str, Tuple[str, str], None] = None,
+        view: Optional[str] = None,
+        up: str = "z",
+        edges: bool = False,
+        clip: Optional[str] = None,
+        shading: bool = True,
+        legend: bool = True,
+        title: Optional[str] = None,
+        kv: Optional[int] = None,
+    ) -> bytes: ...
+    @overload
+    def render(
+        self,
+        path: Path,
+        *,
+        size: Union[Tuple[int, int], str, None] = None,
+        color: Union[str, Tuple[str, str], None] = None,
+        view: Optional[str] = None,
+        up: str = "z",
+        edges: bool = False,
+        clip: Optional[str] = None,
+        shading: bool = True,
+        legend: bool = True,
+        title: Optional[str] = None,
+        kv: Optional[int] = None,
+    ) -> None:
+        """A picture (`starplex render`): PNG bytes (path None), or writes a .png / .svg.
+        size (w, h) or "WxH" (default 1024x768); color plain, blocks, components, defects,
+        boundary, ("label", CELL_ATTR) or ("field", VERTEX_ATTR); view iso, front, top, side
+        or "AZ,EL".
+
+        >>> png = c.render(size=(640, 480), color="components")
+        >>> c.render("mesh.png", view="top", edges=True)
+        """
     def info(self, *, max_faces: Optional[int] = None, betti: bool = False) -> Dict[str, Any]:
         """The keys of `starplex info --json` (n_vertices, f_vector, euler_characteristic, ...).
 
@@ -164,10 +250,83 @@ class Is(Structure):
 class Hasse(Structure):
     def __init__(self, c: Complex) -> None: ...
 
+class HasseComplex:
+    """The editable CASC Hasse complex with per-level data as NumPy columns (levels 0-3).
+    Simplices are named by vertex labels; ids are slots (stable under edits of others, freed
+    slots reused). Merges keep the first row (positions: the mean); new simplices have no row
+    (NaN / 0, has_data False).
+
+    >>> h = starplex.HasseComplex(c)          # c.point_data -> level 0, c.cell_data -> top
+    >>> ids, edges = h.simplices(1)
+    >>> h.set_data(1, "length", lengths)      # aligned with simplices(1)
+    >>> h.collapse([3, 7]); h.flip([2, 5]); h.split([0, 1]); h.decimate([4, 5, 6])
+    >>> h.smooth(0.5, 3); k = h.to_complex()
+    """
+
+    def __init__(self, c: Complex) -> None: ...
+    def f_vector(self) -> List[int]: ...
+    def simplices(self, p: int) -> Tuple[IdArray, IdArray]:
+        """(ids, (n_p, p + 1) vertex labels) of the live p-simplices, in id order."""
+    def data(self, p: int) -> Dict[str, AttrArray]:
+        """Level p's columns aligned with simplices(p)."""
+    def has_data(self, p: int) -> npt.NDArray[np.bool_]: ...
+    def set_data(self, p: int, name: str, values: npt.ArrayLike) -> None:
+        """One row per p-simplex in simplices(p) order; replaces a column of that name."""
+    @property
+    def positions(self) -> npt.NDArray[np.float64]:
+        """(n_0, 3) vertex positions in simplices(0) order."""
+    @positions.setter
+    def positions(self, value: npt.ArrayLike) -> None: ...
+    def collapse(self, edge: Ids) -> int:
+        """Link-checked edge collapse; returns the label kept (at the midpoint)."""
+    def flip(self, simplex: Ids) -> List[int]:
+        """Bistellar flip; returns the new simplex's labels."""
+    def split(self, simplex: Ids) -> int:
+        """Stellar split at a new vertex (at the centroid); returns its label."""
+    def decimate(self, simplex: Ids) -> int:
+        """CASC generalized decimation into a new vertex (at the mean); returns its label."""
+    def smooth(self, lam: float = 0.5, iterations: int = 1, fix_boundary: bool = True) -> None: ...
+    def to_complex(self, *, labels: bool = False) -> Complex:
+        """The maximal simplices, vertices renumbered in label order, level 0 as point_data."""
+
+def rips(
+    points: npt.ArrayLike,
+    eps: Optional[float] = None,
+    *,
+    eps_nn: Optional[float] = None,
+    max_dim: Optional[int] = None,
+    max_memory: Optional[float] = None,
+) -> Complex:
+    """Vietoris-Rips complex of an (n, d) point cloud at scale eps (or eps_nn times the
+    median nearest-neighbour distance), by its maximal simplices; max_dim keeps the
+    K-skeleton; max_memory in GiB.
+
+    >>> c = starplex.rips(pts, 0.3, max_dim=2)
+    >>> starplex.SimplexTree(c).f_vector()
+    """
+
+def flag(
+    edges: npt.ArrayLike,
+    n_vertices: Optional[int] = None,
+    *,
+    max_dim: Optional[int] = None,
+    max_memory: Optional[float] = None,
+) -> Complex:
+    """Flag (clique) complex of an (m, 2) edge list; vertices have one coordinate, their id."""
+
 def from_meshio(mesh: Any, **options: Any) -> Complex:
-    """A Complex from a meshio.Mesh (meshio itself is not imported)."""
+    """A Complex from a meshio.Mesh (meshio itself is not imported), with its point_data and
+    cell_data."""
+
+def to_meshio(c: Complex) -> Any:
+    """A meshio.Mesh with point_data and cell_data (imports meshio when called)."""
+
+def to_pyvista(c: Complex) -> Any:
+    """A pyvista.UnstructuredGrid with point_data and cell_data (imports pyvista when
+    called; ImportError with a hint when it is missing)."""
 
 def to_trimesh(c: Complex, **options: Any) -> Any:
-    """A trimesh.Trimesh of a triangle complex (imports trimesh when called)."""
+    """A trimesh.Trimesh of a triangle complex (imports trimesh when called), attributes as
+    vertex_attributes / face_attributes."""
 
 def csr_rows(offsets: Offsets, values: npt.NDArray[Any]) -> List[npt.NDArray[Any]]: ...

@@ -449,6 +449,17 @@ fn later_sweep(
     Ok(rows)
 }
 
+/// The default memory budget of [`CliqueOptions::max_bytes`] for the command line and the
+/// Python package: a third of the available memory (Linux `MemAvailable`), else 8 GiB.
+///
+/// ```
+/// assert!(starplex::algo::rips::default_max_bytes() > 0);
+/// ```
+pub fn default_max_bytes() -> u64 {
+    let avail = crate::measure::available_memory();
+    avail.map_or(8 << 30, |b| b / 3)
+}
+
 /// The median distance from a point to its nearest other point (numpy's median: the mean of
 /// the two middle values for an even count), the scale `--eps-nn F` multiplies.
 ///
