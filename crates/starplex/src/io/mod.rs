@@ -825,7 +825,7 @@ pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> R
 /// Whether `format` can hold `complex` exactly: every cell kind, every dimension, every vertex
 /// (what a reader of the file gets back is the same complex, up to the zero padding of 1- or
 /// 2-dimensional points in formats with 3 coordinates). Every writer runs this check first;
-/// [`write`] runs it before opening the output.
+/// [`write()`] runs it before opening the output.
 ///
 /// ```
 /// use starplex::cell::CellKind;

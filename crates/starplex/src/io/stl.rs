@@ -1,6 +1,6 @@
 //! STL (ascii and binary): reader through `stl_io`, writers of starplex's own.
 //!
-//! Writing ([`write`] ascii, [`write_binary`] binary; formats `stl` and `stl-binary`): one facet
+//! Writing ([`write()`] ascii, [`write_binary`] binary; formats `stl` and `stl-binary`): one facet
 //! per triangle with its unit normal (right-hand rule, zero for a degenerate facet), coordinates
 //! as `f32` (STL has no other type). What a reader gets back is the same triangles in the same
 //! order on vertices numbered by first use; [`check`] refuses what would come back different:

@@ -4,7 +4,7 @@
 //! lines, 0-cells and isolated vertices as dots; higher simplices by their 2-skeleton, all
 //! projected from the first three coordinates. Colours: plain, Stellar leaf blocks, connected
 //! components, defects from [`validate`](crate::algo::validate) drawn on top as markers, and the
-//! boundary. Output: an RGB pixel buffer ([`render`], PNG through [`write_png`] with the `render`
+//! boundary. Output: an RGB pixel buffer ([`render`], PNG through `write_png` with the `render`
 //! feature) or an SVG document with one path per visible face ([`render_svg`]).
 //!
 //! ```

@@ -3,7 +3,7 @@
 //!
 //! Written once against [`TopCells`] + [`VertexStar`], so it runs on every structure that can
 //! give the top cells around a vertex. **Reduce first, then linear algebra on what is left:**
-//! 1. [`morse`] builds a discrete gradient (an acyclic matching) independently in the lower
+//! 1. `morse` builds a discrete gradient (an acyclic matching) independently in the lower
 //!    star of every vertex, generating faces on the fly from the top cells around the vertex
 //!    (nothing is stored per face). Lower stars whose lower link is a cone are matched without
 //!    enumerating them, so a single 40-simplex is answered at once; the few cells left
