@@ -1,0 +1,540 @@
+//! Boundary p-faces of every dimension (simplices and CP cells) and top-cell adjacency across
+//! (d-1)-faces, each face handled in the leaf owning its smallest vertex.
+use rayon::prelude::*;
+
+use super::{face_width, FaceKeys};
+use crate::cell::{faces_of, listed_sign, oriented_facets_of};
+use crate::csr::Csr;
+use crate::ids::LeafId;
+use crate::stellar::{LeafView, StellarError, StellarTree};
+
+/// Default budget of (cell, face) pairs for face extraction.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::stellar::relations::FACE_BUDGET;
+/// // `p_faces` uses this budget
+/// assert_eq!(t.p_faces_with_budget(1, FACE_BUDGET).unwrap(), t.p_faces(1).unwrap());
+/// assert!(t.p_faces_with_budget(1, 1).is_err());
+/// ```
+pub const FACE_BUDGET: u128 = 2_000_000_000;
+
+/// Faces of one dimension: vertex lists (input ids, sorted) and how many top cells contain
+/// each face.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// let edges = t.p_faces(1).unwrap();
+/// assert_eq!(edges.len(), 5);
+/// // the diagonal {1,2} is in both triangles, the other edges in one
+/// let i = (0..edges.len()).find(|&i| edges.faces.row(i) == [1, 2]).unwrap();
+/// assert_eq!(edges.n_cofaces[i], 2);
+/// assert_eq!(edges.n_cofaces.iter().sum::<u32>(), 6);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FaceList {
+    /// Face `i` is `faces.row(i)`.
+    pub faces: Csr,
+    /// Number of top cells (of any dimension) that contain face `i`.
+    pub n_cofaces: Vec<u32>,
+}
+
+impl FaceList {
+    /// Number of faces.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.p_faces(0).unwrap().len(), 4);
+    /// assert_eq!(t.p_faces(2).unwrap().len(), 2);
+    /// ```
+    pub fn len(&self) -> usize {
+        self.n_cofaces.len()
+    }
+    /// True without faces.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::stellar::FaceList;
+    /// assert!(FaceList::default().is_empty());
+    /// assert!(!t.p_faces(1).unwrap().is_empty());
+    /// ```
+    pub fn is_empty(&self) -> bool {
+        self.n_cofaces.is_empty()
+    }
+}
+
+impl StellarTree {
+    /// Upper bound of (cell, p-face) pairs visited by [`p_faces`](Self::p_faces).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.face_visits(1), 6);
+    /// ```
+    pub fn face_visits(&self, p: usize) -> u128 {
+        if let Some(kind) = self.cells.uniform {
+            return kind.n_faces(p).saturating_mul(self.cells.n as u128);
+        }
+        self.cells
+            .kinds
+            .iter()
+            .map(|&c| crate::stellar::code_kind(c).n_faces(p))
+            .fold(0u128, |a, x| a.saturating_add(x))
+    }
+
+    fn check_budget(&self, p: usize, budget: u128) -> Result<(), StellarError> {
+        let est = self.face_visits(p);
+        if est > budget {
+            return Err(StellarError::TooLarge {
+                what: format!("{p}-faces"),
+                estimate: est,
+                budget,
+            });
+        }
+        Ok(())
+    }
+
+    /// Runs `f(view, keys)` for every leaf with the leaf's owned `p`-faces grouped: the
+    /// payload of every entry is the tree id of a top cell containing the face.
+    fn par_face_groups<R: Send>(
+        &self,
+        p: usize,
+        f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
+    ) -> Vec<R> {
+        let w = self
+            .kinds()
+            .iter()
+            .map(|&k| face_width(k, p))
+            .max()
+            .unwrap_or(1);
+        let pool_init = FaceKeys::default;
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(
+                || {
+                    (
+                        crate::stellar::ExpandedLeaf::default(),
+                        pool_init(),
+                        Vec::<u32>::new(),
+                    )
+                },
+                |(e, keys, key), l| {
+                    self.expand_leaf_cells(LeafId(l), e);
+                    keys.clear(w);
+                    keys.set_buckets(Some((e.v_start, e.v_end)));
+                    let view = LeafView { tree: self, e };
+                    for &c in &e.cells {
+                        let (kind, vs) = self.cells.get(c);
+                        if kind.dim() < p {
+                            continue;
+                        }
+                        faces_of(kind, p, |local| {
+                            key.clear();
+                            key.extend(local.iter().map(|&i| vs[i as usize]));
+                            let m = *key.iter().min().expect("faces have vertices");
+                            if view.owns(m) {
+                                key.sort_unstable();
+                                keys.push(key, c as u64);
+                            }
+                        });
+                    }
+                    f(&view, keys)
+                },
+            )
+            .collect()
+    }
+
+    /// Expands only the cell list of a leaf (no VT).
+    pub(crate) fn expand_leaf_cells(&self, l: LeafId, e: &mut crate::stellar::ExpandedLeaf) {
+        let r = self.leaf_vertices(l);
+        e.leaf = l;
+        e.v_start = r.start;
+        e.v_end = r.end;
+        e.cells.clear();
+        crate::stellar::sre::decode(self.leaf_encoded_cells(l), &mut e.cells);
+        e.vt_off.clear();
+        e.vt.clear();
+    }
+
+    /// Every `p`-face (p >= 0) of the complex once, with its number of top cofaces, budget
+    /// [`FACE_BUDGET`] (cell, face) pairs. Faces of CP cells follow their face tables (the
+    /// diagonal of a quad is not an edge). Order: by leaf, then by sorted tree ids.
+    ///
+    /// # Errors
+    /// Over the budget (e.g. the 20-faces of 40-simplices).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let e = t.p_faces(1).unwrap();
+    /// assert_eq!(e.len(), 5);
+    /// assert_eq!(e.n_cofaces.iter().filter(|&&n| n == 2).count(), 1);
+    /// ```
+    pub fn p_faces(&self, p: usize) -> Result<FaceList, StellarError> {
+        self.p_faces_with_budget(p, FACE_BUDGET)
+    }
+
+    /// [`p_faces`](Self::p_faces) with an explicit budget.
+    ///
+    /// # Errors
+    /// Over the budget.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert!(t.p_faces_with_budget(1, 3).is_err());
+    /// ```
+    pub fn p_faces_with_budget(&self, p: usize, budget: u128) -> Result<FaceList, StellarError> {
+        self.check_budget(p, budget)?;
+        let per_leaf: Vec<(Vec<u32>, Vec<u32>, Vec<u32>)> = self.par_face_groups(p, |_, keys| {
+            let mut lens = Vec::new();
+            let mut verts = Vec::new();
+            let mut co = Vec::new();
+            keys.for_each_group(|k, pays| {
+                lens.push(k.len() as u32);
+                let s = verts.len();
+                verts.extend(k.iter().map(|&v| self.v_orig[v as usize]));
+                verts[s..].sort_unstable();
+                co.push(pays.len() as u32);
+            });
+            (lens, verts, co)
+        });
+        let mut offsets = vec![0u32];
+        let mut targets = Vec::new();
+        let mut n_cofaces = Vec::new();
+        for (lens, verts, co) in per_leaf {
+            for l in lens {
+                let last = *offsets.last().expect("non-empty");
+                offsets.push(last + l);
+            }
+            targets.extend_from_slice(&verts);
+            n_cofaces.extend_from_slice(&co);
+        }
+        Ok(FaceList {
+            faces: Csr { offsets, targets },
+            n_cofaces,
+        })
+    }
+
+    /// Number of distinct `p`-faces, without materialising them.
+    ///
+    /// # Errors
+    /// Over the budget [`FACE_BUDGET`].
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.count_p_faces(2).unwrap(), 2);
+    /// ```
+    pub fn count_p_faces(&self, p: usize) -> Result<u64, StellarError> {
+        self.check_budget(p, FACE_BUDGET)?;
+        Ok(self
+            .par_face_groups(p, |_, keys| {
+                let mut n = 0u64;
+                keys.for_each_group(|_, _| n += 1);
+                n
+            })
+            .into_iter()
+            .sum())
+    }
+
+    /// Adjacency of top cells across (k-1)-faces (R_{k,k}, k = the cell's dimension >= 1):
+    /// row `c` (input id) holds the input ids of the other top k-cells sharing a facet with
+    /// `c`, sorted; non-manifold facets (in three or more cells) connect all their cells.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::ids::{CellId, VertexId};
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.top_adjacency().row(1), &[0]);
+    /// ```
+    pub fn top_adjacency(&self) -> Csr {
+        let pairs = self.facet_pairs();
+        let n = self.n_top_cells();
+        let mut csr = Csr::from_fn(n, |emit| {
+            for &(a, b, _) in &pairs {
+                emit(self.c_orig[a as usize], self.c_orig[b as usize]);
+                emit(self.c_orig[b as usize], self.c_orig[a as usize]);
+            }
+        });
+        for i in 0..n {
+            let (s, e) = (csr.offsets[i] as usize, csr.offsets[i + 1] as usize);
+            csr.targets[s..e].sort_unstable();
+        }
+        // dedup rows (two cells may share several facets only in degenerate CP configurations)
+        let mut out = Csr {
+            offsets: vec![0],
+            targets: Vec::with_capacity(csr.targets.len()),
+        };
+        for i in 0..n {
+            let row = csr.row(i);
+            for (j, &x) in row.iter().enumerate() {
+                if j == 0 || row[j - 1] != x {
+                    out.targets.push(x);
+                }
+            }
+            out.offsets.push(out.targets.len() as u32);
+        }
+        out
+    }
+
+    /// All pairs (a, b, relative sign) of tree cells of one dimension sharing a facet; the sign
+    /// is the product of the two induced facet orientations (+1: the cells induce the same
+    /// orientation on the facet, so they are inconsistently oriented).
+    pub(crate) fn facet_pairs(&self) -> Vec<(u32, u32, i8)> {
+        let per_leaf = self.par_facet_groups(|_, key_groups| {
+            let mut out = Vec::new();
+            key_groups.for_each_group(|_, pays| {
+                for i in 0..pays.len() {
+                    for j in i + 1..pays.len() {
+                        let (a, sa) = unpack(pays[i]);
+                        let (b, sb) = unpack(pays[j]);
+                        out.push((a, b, sa * sb));
+                    }
+                }
+            });
+            out
+        });
+        per_leaf.into_iter().flatten().collect()
+    }
+
+    /// Like [`par_face_groups`] for facets: each top k-cell (k >= 1) emits its facets with the
+    /// cell dimension as an extra leading key entry; payload = tree cell id | sign bit.
+    pub(crate) fn par_facet_groups<R: Send>(
+        &self,
+        f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
+    ) -> Vec<R> {
+        self.par_facet_groups_where(1, false, f)
+    }
+
+    /// Facet groups of the cells of dimension >= `min_dim`; with `local`, every facet with a
+    /// vertex in the leaf (the local IA* rule) instead of the facets the leaf owns.
+    pub(crate) fn par_facet_groups_where<R: Send>(
+        &self,
+        min_dim: usize,
+        local_rule: bool,
+        f: impl Fn(&LeafView<'_>, &mut FaceKeys) -> R + Sync + Send,
+    ) -> Vec<R> {
+        let kinds = self.kinds();
+        let fw = kinds
+            .iter()
+            .map(|&k| {
+                if k.dim() >= 1 {
+                    face_width(k, k.dim() - 1)
+                } else {
+                    0
+                }
+            })
+            .max()
+            .unwrap_or(0);
+        // one dimension: the dimension prefix of the keys is implicit
+        let dims: std::collections::BTreeSet<usize> = kinds.iter().map(|k| k.dim()).collect();
+        let uniform_dim = (dims.len() == 1).then(|| *dims.first().expect("one") as u32);
+        let w = if uniform_dim.is_some() { fw } else { fw + 1 };
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(
+                || {
+                    (
+                        crate::stellar::ExpandedLeaf::default(),
+                        FaceKeys::default(),
+                        Vec::<u32>::new(),
+                    )
+                },
+                |(e, keys, key), l| {
+                    self.expand_leaf_cells(LeafId(l), e);
+                    keys.clear(w);
+                    keys.set_prefix(uniform_dim);
+                    if uniform_dim.is_some() && !local_rule {
+                        keys.set_buckets(Some((e.v_start, e.v_end)));
+                    }
+                    let view = LeafView { tree: self, e };
+                    for &c in &e.cells {
+                        let (kind, vs) = self.cells.get(c);
+                        let d = kind.dim();
+                        if d == 0 || d < min_dim {
+                            continue;
+                        }
+                        if uniform_dim.is_some() && kind.is_simplex() && vs.len() <= SIMPLEX_FAST {
+                            simplex_facets(vs, local_rule, &view, |key, j, s| {
+                                keys.push(key, pack(c, j, s))
+                            });
+                            continue;
+                        }
+                        let mut j = 0u64;
+                        oriented_facets_of(kind, |local, sign| {
+                            j += 1;
+                            key.clear();
+                            key.extend(local.iter().map(|&i| vs[i as usize]));
+                            let keep = if local_rule {
+                                key.iter().any(|&v| view.owns(v))
+                            } else {
+                                view.owns(*key.iter().min().expect("facets have vertices"))
+                            };
+                            if !keep {
+                                return;
+                            }
+                            let s = sign * listed_sign(key, !kind.is_simplex() && key.len() >= 3);
+                            key.sort_unstable();
+                            if uniform_dim.is_none() {
+                                key.insert(0, d as u32);
+                            }
+                            keys.push(key, pack(c, j - 1, s));
+                        });
+                    }
+                    f(&view, keys)
+                },
+            )
+            .collect()
+    }
+}
+
+/// Most vertices of a simplex whose facets take [`simplex_facets`].
+const SIMPLEX_FAST: usize = 8;
+
+/// The facets of a simplex kept by [`StellarTree::par_facet_groups_where`]'s rule, each as
+/// `f(sorted vertices, facet index, induced sign relative to the sorted order)`: the vertices
+/// are sorted once, and the facet omitting the k-th smallest vertex (the j-th listed one) has
+/// sign (-1)^k times the parity of the sorting permutation.
+#[inline]
+fn simplex_facets(
+    vs: &[u32],
+    local_rule: bool,
+    view: &LeafView<'_>,
+    mut f: impl FnMut(&[u32], u64, i8),
+) {
+    let n = vs.len();
+    let mut sv = [0u32; SIMPLEX_FAST];
+    let mut si = [0u8; SIMPLEX_FAST];
+    let mut fk = [0u32; SIMPLEX_FAST];
+    if !(2..=SIMPLEX_FAST).contains(&n) {
+        return;
+    }
+    // insertion sort tracking listed positions; the swaps count the inversions
+    let mut swaps = 0usize;
+    for (i, &x) in vs.iter().enumerate() {
+        let mut p = i;
+        while p > 0 && sv[p - 1] > x {
+            sv[p] = sv[p - 1];
+            si[p] = si[p - 1];
+            p -= 1;
+            swaps += 1;
+        }
+        sv[p] = x;
+        si[p] = i as u8;
+    }
+    let parity: i8 = if swaps.is_multiple_of(2) { 1 } else { -1 };
+    let owned = if local_rule {
+        sv[..n].iter().filter(|&&x| view.owns(x)).count()
+    } else {
+        0
+    };
+    for k in 0..n {
+        let keep = if local_rule {
+            owned > view.owns(sv[k]) as usize
+        } else {
+            view.owns(if k == 0 { sv[1] } else { sv[0] })
+        };
+        if !keep {
+            continue;
+        }
+        let mut m = 0;
+        for (i, &x) in sv[..n].iter().enumerate() {
+            if i != k {
+                fk[m] = x;
+                m += 1;
+            }
+        }
+        let sign = if k % 2 == 0 { parity } else { -parity };
+        f(&fk[..n - 1], si[k] as u64, sign);
+    }
+}
+
+/// Payload of a facet record: tree cell id, facet index in the cell, induced sign.
+#[inline]
+pub(crate) fn pack(c: u32, j: u64, sign: i8) -> u64 {
+    c as u64 | (j << 32) | if sign < 0 { 1 << 63 } else { 0 }
+}
+
+/// (tree cell, induced sign) of a facet payload.
+#[inline]
+pub(crate) fn unpack(x: u64) -> (u32, i8) {
+    (x as u32, if x >> 63 == 1 { -1 } else { 1 })
+}
+
+/// Facet index of a facet payload.
+#[inline]
+pub(crate) fn unpack_facet(x: u64) -> u32 {
+    ((x >> 32) & 0x7fff_ffff) as u32
+}
