@@ -120,7 +120,7 @@ pub struct QueryArgs {
 }
 
 /// A built structure.
-pub type Built<'a> = starplex::structures::Built<'a>;
+pub type Built<'a> = starplex::structures::BoxedQueries<'a>;
 
 /// Builds structure `s` on `k`.
 pub fn build(k: &IndexedComplex, s: StructureKind) -> Result<Built<'_>, CliError> {

@@ -112,7 +112,7 @@ pub enum StructureError {
 }
 
 /// A built structure, answering every query.
-pub type Built<'a> = Box<dyn Queries + Sync + 'a>;
+pub type BoxedQueries<'a> = Box<dyn Queries + Sync + 'a>;
 
 impl Structure {
     /// Every structure, in the order `compare` lists them.
@@ -191,7 +191,7 @@ impl Structure {
         self,
         k: &'a IndexedComplex,
         o: &StructureOptions,
-    ) -> Result<Built<'a>, StructureError> {
+    ) -> Result<BoxedQueries<'a>, StructureError> {
         let structure = self.name();
         let err = |reason: String| {
             if !self.holds_cp() && !k.is_simplicial() {

@@ -34,7 +34,7 @@ fn load(name: &str) -> Option<(starplex::complex::IndexedComplex, serde_json::Va
 }
 
 /// Z/2 Betti numbers by column reduction of the boundary matrices.
-fn betti_z2<L: starplex::hasse::Levels>(h: &Hasse<L>) -> Vec<usize> {
+fn betti_z2<L: starplex::hasse::LevelTypes>(h: &Hasse<L>) -> Vec<usize> {
     let d = h.dim().unwrap_or(0);
     let mut ranks = vec![0usize; d + 2];
     for (k, rank_k) in ranks.iter_mut().enumerate().take(d + 1).skip(1) {
@@ -353,7 +353,7 @@ fn conversions_round_trip_and_dot() {
     assert!(h.to_dot(&Default::default()).is_err());
 }
 
-fn simplices<L: starplex::hasse::Levels>(h: &Hasse<L>) -> Vec<Vec<u32>> {
+fn simplices<L: starplex::hasse::LevelTypes>(h: &Hasse<L>) -> Vec<Vec<u32>> {
     let mut v: Vec<Vec<u32>> = h
         .nodes()
         .map(|n| h.vertices(n).iter().map(|x| x.0).collect())

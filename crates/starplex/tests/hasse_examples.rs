@@ -43,14 +43,14 @@ fn link_of_a_set_matches_the_definition() {
     let h = casc_link::example();
     let v = |i: u32| h.vertex(i.into()).unwrap();
     // Lk({3} ∪ {4}) as a set: Cl(St(S)) \ St(Cl(S))
-    let mut s = starplex::hasse::SimplexSet::new();
+    let mut s = starplex::hasse::NodeSet::new();
     s.insert(v(3));
     s.insert(v(4));
     let lk = h.link_of(&s);
     assert_eq!(h.format_set(&lk), "{0} {1} {2} {5} {0,1} {0,5} {1,2} {2,5}");
     // the link of a single simplex through the set version agrees with the fast one
     for n in h.nodes().collect::<Vec<_>>() {
-        let mut one = starplex::hasse::SimplexSet::new();
+        let mut one = starplex::hasse::NodeSet::new();
         one.insert(n);
         assert_eq!(h.link_of(&one), h.link(n), "{:?}", h.vertices(n));
     }

@@ -370,7 +370,7 @@ fn levels_without_data_cost_nothing() {
     assert!(c.data_bytes() >= 3 * 8);
     assert_eq!(a.topology_bytes(), b.topology_bytes());
     assert_eq!(
-        std::mem::size_of::<<((), (), ()) as starplex::hasse::Levels>::Columns>(),
+        std::mem::size_of::<<((), (), ()) as starplex::hasse::LevelTypes>::Columns>(),
         3 * 24
     );
 }

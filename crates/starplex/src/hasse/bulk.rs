@@ -4,7 +4,7 @@
 //! sort per label. Nodes come out in lexicographic order and every up list in one
 //! exactly-sized block, laid out in node order.
 use super::complex::Hasse;
-use super::levels::Levels;
+use super::levels::LevelTypes;
 
 const NO_PARENT: u32 = u32::MAX;
 
@@ -41,7 +41,7 @@ fn prefix(count: &mut [u32]) {
     }
 }
 
-impl<L: Levels> Hasse<L> {
+impl<L: LevelTypes> Hasse<L> {
     /// Builds an empty complex's levels from sorted, non-degenerate simplices given per
     /// dimension (flat arrays, `k + 1` labels per `k`-simplex, `k <= 3`).
     pub(crate) fn bulk_build(&mut self, cells: &[Vec<u32>]) {

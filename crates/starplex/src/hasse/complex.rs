@@ -4,7 +4,7 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use super::arena::UpArena;
-use super::levels::{At, Levels};
+use super::levels::{At, LevelTypes};
 use super::{HasseError, Node};
 use crate::ids::{SimplexId, VertexId};
 
@@ -174,14 +174,14 @@ impl VertexIndex {
 /// assert_eq!(h.up(e).count(), 2);
 /// assert!(h.is_valid());
 /// ```
-pub struct Hasse<L: Levels = ()> {
+pub struct Hasse<L: LevelTypes = ()> {
     pub(crate) levels: Vec<Level>,
     pub(crate) root: VertexIndex,
     pub(crate) data: L::Columns,
     pub(crate) max_label: Option<u32>,
 }
 
-impl<L: Levels> Clone for Hasse<L>
+impl<L: LevelTypes> Clone for Hasse<L>
 where
     L::Columns: Clone,
 {
@@ -195,7 +195,7 @@ where
     }
 }
 
-impl<L: Levels> Default for Hasse<L> {
+impl<L: LevelTypes> Default for Hasse<L> {
     fn default() -> Self {
         Hasse {
             levels: Vec::new(),
@@ -206,7 +206,7 @@ impl<L: Levels> Default for Hasse<L> {
     }
 }
 
-impl<L: Levels> std::fmt::Debug for Hasse<L> {
+impl<L: LevelTypes> std::fmt::Debug for Hasse<L> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Hasse")
             .field("f_vector", &self.f_vector())
@@ -232,7 +232,7 @@ pub(crate) fn sorted_checked(vs: &[VertexId]) -> Result<Verts, HasseError> {
     Ok(s)
 }
 
-impl<L: Levels> Hasse<L> {
+impl<L: LevelTypes> Hasse<L> {
     /// An empty complex.
     ///
     /// ```

@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 
 use super::complex::Hasse;
 use super::edit::Position;
-use super::levels::{At, Levels};
+use super::levels::{At, LevelTypes};
 use super::orient::Orientation;
 use super::{HasseError, Node};
 use crate::cell::CellKind;
@@ -34,7 +34,7 @@ impl Default for DotOptions {
     }
 }
 
-impl<L: Levels> Hasse<L> {
+impl<L: LevelTypes> Hasse<L> {
     /// Builds the complex of an indexed complex's simplicial cells (vertex labels = vertex ids
     /// of `k`; vertices used by no cell are not inserted); data gets default values. Complexes
     /// of dimension at most 3 are built level by level by sorting facets (nodes in

@@ -5,8 +5,8 @@
 use smallvec::SmallVec;
 
 use super::complex::{Hasse, Verts};
-use super::levels::{Levels, MergeAll};
-use super::{HasseError, Node, SimplexSet};
+use super::levels::{LevelTypes, MergeAll};
+use super::{HasseError, Node, NodeSet};
 use crate::ids::{SimplexId, VertexId};
 
 /// The simplices that merge into one new simplex.
@@ -67,7 +67,7 @@ struct RawGroup {
     old: SmallVec<[(usize, u32); 4]>,
 }
 
-impl<L: Levels> Hasse<L> {
+impl<L: LevelTypes> Hasse<L> {
     /// `St(Cl(s))` as sorted, distinct `(dimension, id)` pairs.
     pub(crate) fn neighbourhood_ids(&self, s: Node) -> Vec<(usize, u32)> {
         // Cl(s): breadth-first down, deduplicated per level
@@ -357,7 +357,7 @@ impl<L: Levels> Hasse<L> {
     /// let e = h.find(&[0.into(), 1.into()]).unwrap();
     /// assert_eq!(h.link_condition_violations(e).unwrap().len(), 1);
     /// ```
-    pub fn link_condition_violations(&self, e: Node) -> Option<SimplexSet> {
+    pub fn link_condition_violations(&self, e: Node) -> Option<NodeSet> {
         if e.dim != 1 || !self.contains(e) {
             return None;
         }

@@ -11,7 +11,7 @@
 //! test (robust `orient2d` / `orient3d`) for planar triangle meshes and tetrahedral meshes.
 use super::complex::Hasse;
 use super::decimate::{LinkBufs, LINK_BUFS};
-use super::levels::{At, Levels, MergeAll};
+use super::levels::{At, LevelTypes, MergeAll};
 use super::{HasseError, Node};
 use crate::ids::VertexId;
 
@@ -79,7 +79,7 @@ impl Position for [f64; 3] {
     }
 }
 
-impl<L: Levels> Hasse<L> {
+impl<L: LevelTypes> Hasse<L> {
     /// Checks that the edge `e` can be collapsed without changing the topology (the link
     /// condition, Lemma 5.1 of CASC; Dey et al. for manifolds of any dimension).
     ///

@@ -5,7 +5,7 @@ use robust::{orient2d, orient3d, Coord, Coord3D};
 
 use super::complex::Hasse;
 use super::edit::{EditError, Position};
-use super::levels::{At, Levels};
+use super::levels::{At, LevelTypes};
 use super::Node;
 use crate::ids::VertexId;
 
@@ -29,7 +29,7 @@ fn sign(x: f64) -> i8 {
     }
 }
 
-impl<L: Levels> Hasse<L>
+impl<L: LevelTypes> Hasse<L>
 where
     L: At<0>,
     <L as At<0>>::Data: Position,

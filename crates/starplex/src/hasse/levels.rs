@@ -8,7 +8,7 @@
 //! * Typed access, resolved at compile time: [`At<K>`] gives the column of level `K`, so
 //!   `h.data::<0>(id)` is a slice index, with no downcast and no runtime type check.
 //! * Structural edits (insert, remove, renumber) that only know the dimension at run time go
-//!   through the [`Levels`] trait, whose tuple implementations `match` on the dimension once per
+//!   through the [`LevelTypes`] trait, whose tuple implementations `match` on the dimension once per
 //!   edit, never per data access.
 //! * Decimation carries data through a user callback: implement [`Merge<K, T>`] for each level
 //!   (one generic impl covers all `()` levels), or use [`KeepFirst`] / [`DefaultData`].
@@ -34,11 +34,11 @@ use crate::ids::VertexId;
 /// Implemented for `()` (no data anywhere) and for tuples of 1 to 12 user types.
 ///
 /// ```
-/// use starplex::hasse::Levels;
-/// assert_eq!(<(u8, (), f32) as Levels>::N_LEVELS, 3);
-/// assert_eq!(<() as Levels>::N_LEVELS, 0);
+/// use starplex::hasse::LevelTypes;
+/// assert_eq!(<(u8, (), f32) as LevelTypes>::N_LEVELS, 3);
+/// assert_eq!(<() as LevelTypes>::N_LEVELS, 0);
 /// ```
-pub trait Levels: Sized + 'static {
+pub trait LevelTypes: Sized + 'static {
     /// The columns: a tuple of `Vec`s.
     type Columns: Default;
     /// Number of levels with a declared type (levels past it store nothing).
@@ -62,13 +62,13 @@ pub trait Levels: Sized + 'static {
 /// Typed access to the column of level `K` of a level list.
 ///
 /// ```
-/// use starplex::hasse::{At, Levels};
-/// let mut cols = <(u8, f32) as Levels>::Columns::default();
-/// <(u8, f32) as Levels>::push_default(&mut cols, 1);
+/// use starplex::hasse::{At, LevelTypes};
+/// let mut cols = <(u8, f32) as LevelTypes>::Columns::default();
+/// <(u8, f32) as LevelTypes>::push_default(&mut cols, 1);
 /// <(u8, f32) as At<1>>::column_mut(&mut cols)[0] = 2.0;
 /// assert_eq!(<(u8, f32) as At<1>>::column(&cols), &[2.0]);
 /// ```
-pub trait At<const K: usize>: Levels {
+pub trait At<const K: usize>: LevelTypes {
     /// The user type stored at level `K`.
     type Data;
     /// The column of level `K`.
@@ -140,17 +140,17 @@ impl<const K: usize, T: Default> Merge<K, T> for DefaultData {
 /// time, and stages the result.
 ///
 /// ```
-/// use starplex::hasse::{KeepFirst, Levels, MergeAll};
+/// use starplex::hasse::{KeepFirst, LevelTypes, MergeAll};
 /// use starplex::ids::VertexId;
-/// let mut cols = <(i32,) as Levels>::Columns::default();
-/// <(i32,) as Levels>::push_default(&mut cols, 0);
+/// let mut cols = <(i32,) as LevelTypes>::Columns::default();
+/// <(i32,) as LevelTypes>::push_default(&mut cols, 0);
 /// cols.0[0] = 5;
-/// let mut staged = <(i32,) as Levels>::Columns::default();
+/// let mut staged = <(i32,) as LevelTypes>::Columns::default();
 /// let v = [VertexId(3)];
 /// MergeAll::<(i32,)>::stage(&mut KeepFirst, &cols, &mut staged, 0, &v, &[(&v, 0)]);
 /// assert_eq!(staged.0, vec![5]);
 /// ```
-pub trait MergeAll<L: Levels> {
+pub trait MergeAll<L: LevelTypes> {
     /// Calls the level-`dim` merge on the data of `old` (vertex tuples and ids in `cols`) and
     /// pushes the result onto `staged`.
     fn stage(
@@ -189,19 +189,19 @@ pub trait Visit<const K: usize, T> {
 /// expanded).
 ///
 /// ```
-/// use starplex::hasse::{Levels, Node, Visit, VisitAll};
+/// use starplex::hasse::{LevelTypes, Node, Visit, VisitAll};
 /// struct Count(usize);
 /// impl Visit<0, u8> for Count {
 ///     fn visit(&mut self, _: Node, _: &u8) -> bool { self.0 += 1; true }
 /// }
-/// let mut cols = <(u8,) as Levels>::Columns::default();
-/// <(u8,) as Levels>::push_default(&mut cols, 0);
+/// let mut cols = <(u8,) as LevelTypes>::Columns::default();
+/// <(u8,) as LevelTypes>::push_default(&mut cols, 0);
 /// let mut c = Count(0);
 /// assert!(VisitAll::<(u8,)>::visit_node(&mut c, &cols, Node::new(0, 0.into())));
 /// assert!(VisitAll::<(u8,)>::visit_node(&mut c, &cols, Node::new(1, 0.into())));
 /// assert_eq!(c.0, 1);
 /// ```
-pub trait VisitAll<L: Levels> {
+pub trait VisitAll<L: LevelTypes> {
     /// Dispatches `s` to the visitor of its level.
     fn visit_node(&mut self, cols: &L::Columns, s: Node) -> bool;
 }
@@ -212,7 +212,7 @@ impl<V> VisitAll<()> for V {
     }
 }
 
-impl Levels for () {
+impl LevelTypes for () {
     type Columns = ();
     const N_LEVELS: usize = 0;
     #[inline]
@@ -251,7 +251,7 @@ macro_rules! impl_levels {
         }
     };
     ($n:expr; $($K:tt $T:ident),+) => {
-        impl<$($T: Default + 'static),+> Levels for ($($T,)+) {
+        impl<$($T: Default + 'static),+> LevelTypes for ($($T,)+) {
             type Columns = ($(Vec<$T>,)+);
             const N_LEVELS: usize = $n;
             #[inline]
@@ -313,8 +313,8 @@ macro_rules! impl_levels {
         {
             fn stage(
                 &mut self,
-                cols: &<($($T,)+) as Levels>::Columns,
-                staged: &mut <($($T,)+) as Levels>::Columns,
+                cols: &<($($T,)+) as LevelTypes>::Columns,
+                staged: &mut <($($T,)+) as LevelTypes>::Columns,
                 dim: usize,
                 new: &[VertexId],
                 old: &[(&[VertexId], u32)],
@@ -336,7 +336,7 @@ macro_rules! impl_levels {
             VV: $(Visit<$K, $T> +)+
         {
             #[inline]
-            fn visit_node(&mut self, cols: &<($($T,)+) as Levels>::Columns, s: Node) -> bool {
+            fn visit_node(&mut self, cols: &<($($T,)+) as LevelTypes>::Columns, s: Node) -> bool {
                 match s.dim as usize {
                     $($K => <VV as Visit<$K, $T>>::visit(self, s, &cols.$K[s.id.index()]),)+
                     _ => true,

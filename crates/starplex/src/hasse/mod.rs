@@ -4,7 +4,7 @@
 //! vertex removed) and up to its cofaces (keyed by the vertex added). On top of that: search
 //! and up/down traversal (Alg. 2 of the CASC paper), insertion with all faces (Alg. 1), removal
 //! of a star, neighbours by shared face or coface (Alg. 3), k-rings, breadth-first visitors,
-//! star / closure / link as [`SimplexSet`]s with set algebra, generalized decimation (Def. 4.1,
+//! star / closure / link as [`NodeSet`]s with set algebra, generalized decimation (Def. 4.1,
 //! Alg. 4) with a data callback, local edits (bistellar flips, stellar splits, link-checked
 //! collapse, Laplacian smoothing), orientation (Alg. 5) and surface geometry.
 //!
@@ -14,7 +14,7 @@
 //! Access is `h.data::<K>(id)`: the trait [`At<K>`] resolves the column at compile time, so an
 //! access is a plain slice index: no downcast, no `Any`, no runtime type check. `()` levels and
 //! dimensions past the tuple store nothing. Structural edits, which know the dimension only at
-//! run time, call [`Levels`] methods that `match` on it once per edit (macro-generated for tuples
+//! run time, call [`LevelTypes`] methods that `match` on it once per edit (macro-generated for tuples
 //! of up to 12 types; any dimension of complex is allowed, data is typed on the first 12).
 //! Decimation hands the data of the simplices that merge to a user callback implementing
 //! [`Merge<K, T>`] per level (checked at compile time through [`MergeAll`]).
@@ -83,10 +83,10 @@ pub use complex::{Hasse, MAX_INSERT_VERTICES};
 pub use convert::DotOptions;
 pub use decimate::{DecimationGroup, DecimationPlan};
 pub use edit::{EditError, Position};
-pub use levels::{At, DefaultData, KeepFirst, Levels, Merge, MergeAll, Visit, VisitAll};
+pub use levels::{At, DefaultData, KeepFirst, LevelTypes, Merge, MergeAll, Visit, VisitAll};
 pub use orient::{Orientation, SurfaceGeometry};
 pub use queries::HasseQueries;
-pub use sets::{SimplexMap, SimplexSet};
+pub use sets::{NodeMap, NodeSet};
 
 use crate::ids::{SimplexId, VertexId};
 

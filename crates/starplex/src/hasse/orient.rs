@@ -4,7 +4,7 @@
 //! eq. 9-10) over positions stored on vertices.
 use super::complex::Hasse;
 use super::edit::Position;
-use super::levels::{At, Levels};
+use super::levels::{At, LevelTypes};
 use super::Node;
 use crate::algo::unionfind::UnionFind;
 use crate::complex::IndexedComplex;
@@ -82,7 +82,7 @@ fn parity(v: &[u32]) -> i8 {
     s
 }
 
-impl<L: Levels> Hasse<L> {
+impl<L: LevelTypes> Hasse<L> {
     /// Alg. 5: the sign of the incidence `a → b` (`b = a ∪ {v}`) by the boundary morphism
     /// (eq. 7): `(-1)^i` where `i` is the position of `v` in `b`'s sorted vertices. `None` when
     /// `a` is not a facet of `b`.

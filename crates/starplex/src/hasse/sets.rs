@@ -3,17 +3,17 @@
 use std::collections::{BTreeMap, VecDeque};
 
 use super::complex::Hasse;
-use super::levels::Levels;
+use super::levels::LevelTypes;
 use super::Node;
 use crate::ids::{SimplexId, VertexId};
 
 /// A set of simplices of one complex, kept per dimension as sorted id lists (like CASC's
-/// `SimplexSet`, one set per level). Ids are those of the complex when the set was made:
+/// `NodeSet`, one set per level). Ids are those of the complex when the set was made:
 /// ids stay valid while the complex is edited, except that the slot of a removed simplex is
 /// reused by a later insertion and [`Hasse::compact`] renumbers everything.
 ///
 /// ```
-/// use starplex::hasse::{Hasse, SimplexSet};
+/// use starplex::hasse::{Hasse, NodeSet};
 /// let mut h: Hasse = Hasse::new();
 /// h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
 /// let a = h.star(h.vertex(0.into()).unwrap());
@@ -24,15 +24,15 @@ use crate::ids::{SimplexId, VertexId};
 /// assert_eq!(a.difference(&b).len(), 2);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
-pub struct SimplexSet {
+pub struct NodeSet {
     levels: Vec<Vec<SimplexId>>,
 }
 
-impl SimplexSet {
+impl NodeSet {
     /// The empty set.
     ///
     /// ```
-    /// assert!(starplex::hasse::SimplexSet::new().is_empty());
+    /// assert!(starplex::hasse::NodeSet::new().is_empty());
     /// ```
     pub fn new() -> Self {
         Self::default()
@@ -44,7 +44,7 @@ impl SimplexSet {
             l.sort_unstable();
             l.dedup();
         }
-        let mut s = SimplexSet { levels };
+        let mut s = NodeSet { levels };
         s.trim();
         s
     }
@@ -58,8 +58,8 @@ impl SimplexSet {
     /// Adds a simplex; returns whether it was new.
     ///
     /// ```
-    /// use starplex::hasse::{Node, SimplexSet};
-    /// let mut s = SimplexSet::new();
+    /// use starplex::hasse::{Node, NodeSet};
+    /// let mut s = NodeSet::new();
     /// assert!(s.insert(Node::new(1, 4.into())));
     /// assert!(!s.insert(Node::new(1, 4.into())));
     /// assert!(s.contains(Node::new(1, 4.into())));
@@ -82,8 +82,8 @@ impl SimplexSet {
     /// Removes a simplex; returns whether it was there.
     ///
     /// ```
-    /// use starplex::hasse::{Node, SimplexSet};
-    /// let mut s = SimplexSet::new();
+    /// use starplex::hasse::{Node, NodeSet};
+    /// let mut s = NodeSet::new();
     /// s.insert(Node::new(0, 1.into()));
     /// assert!(s.remove(Node::new(0, 1.into())));
     /// assert!(s.is_empty());
@@ -105,7 +105,7 @@ impl SimplexSet {
     /// Membership.
     ///
     /// ```
-    /// assert!(!starplex::hasse::SimplexSet::new().contains(starplex::hasse::Node::new(0, 0.into())));
+    /// assert!(!starplex::hasse::NodeSet::new().contains(starplex::hasse::Node::new(0, 0.into())));
     /// ```
     pub fn contains(&self, n: Node) -> bool {
         self.levels
@@ -116,7 +116,7 @@ impl SimplexSet {
     /// Number of simplices.
     ///
     /// ```
-    /// assert_eq!(starplex::hasse::SimplexSet::new().len(), 0);
+    /// assert_eq!(starplex::hasse::NodeSet::new().len(), 0);
     /// ```
     pub fn len(&self) -> usize {
         self.levels.iter().map(|l| l.len()).sum()
@@ -125,7 +125,7 @@ impl SimplexSet {
     /// True when empty.
     ///
     /// ```
-    /// assert!(starplex::hasse::SimplexSet::new().is_empty());
+    /// assert!(starplex::hasse::NodeSet::new().is_empty());
     /// ```
     pub fn is_empty(&self) -> bool {
         self.levels.iter().all(|l| l.is_empty())
@@ -134,8 +134,8 @@ impl SimplexSet {
     /// The ids of dimension `k`, sorted.
     ///
     /// ```
-    /// use starplex::hasse::{Node, SimplexSet};
-    /// let mut s = SimplexSet::new();
+    /// use starplex::hasse::{Node, NodeSet};
+    /// let mut s = NodeSet::new();
     /// s.insert(Node::new(2, 9.into()));
     /// assert_eq!(s.level(2), &[9.into()]);
     /// assert!(s.level(0).is_empty());
@@ -147,8 +147,8 @@ impl SimplexSet {
     /// Every simplex, by dimension then id.
     ///
     /// ```
-    /// use starplex::hasse::{Node, SimplexSet};
-    /// let mut s = SimplexSet::new();
+    /// use starplex::hasse::{Node, NodeSet};
+    /// let mut s = NodeSet::new();
     /// s.insert(Node::new(1, 0.into()));
     /// s.insert(Node::new(0, 3.into()));
     /// assert_eq!(s.iter().next(), Some(Node::new(0, 3.into())));
@@ -188,7 +188,7 @@ impl SimplexSet {
             }
             levels.push(r);
         }
-        let mut s = SimplexSet { levels };
+        let mut s = NodeSet { levels };
         s.trim();
         s
     }
@@ -196,10 +196,10 @@ impl SimplexSet {
     /// Set union.
     ///
     /// ```
-    /// use starplex::hasse::{Node, SimplexSet};
-    /// let mut a = SimplexSet::new();
+    /// use starplex::hasse::{Node, NodeSet};
+    /// let mut a = NodeSet::new();
     /// a.insert(Node::new(0, 0.into()));
-    /// let mut b = SimplexSet::new();
+    /// let mut b = NodeSet::new();
     /// b.insert(Node::new(1, 0.into()));
     /// assert_eq!(a.union(&b).len(), 2);
     /// ```
@@ -210,10 +210,10 @@ impl SimplexSet {
     /// Set intersection.
     ///
     /// ```
-    /// use starplex::hasse::{Node, SimplexSet};
-    /// let mut a = SimplexSet::new();
+    /// use starplex::hasse::{Node, NodeSet};
+    /// let mut a = NodeSet::new();
     /// a.insert(Node::new(0, 0.into()));
-    /// assert_eq!(a.intersection(&SimplexSet::new()), SimplexSet::new());
+    /// assert_eq!(a.intersection(&NodeSet::new()), NodeSet::new());
     /// ```
     pub fn intersection(&self, o: &Self) -> Self {
         self.merge(o, false, false, true)
@@ -222,10 +222,10 @@ impl SimplexSet {
     /// Set difference `self \ o`.
     ///
     /// ```
-    /// use starplex::hasse::{Node, SimplexSet};
-    /// let mut a = SimplexSet::new();
+    /// use starplex::hasse::{Node, NodeSet};
+    /// let mut a = NodeSet::new();
     /// a.insert(Node::new(0, 0.into()));
-    /// assert_eq!(a.difference(&a), SimplexSet::new());
+    /// assert_eq!(a.difference(&a), NodeSet::new());
     /// ```
     pub fn difference(&self, o: &Self) -> Self {
         self.merge(o, true, false, false)
@@ -234,8 +234,8 @@ impl SimplexSet {
     /// True when every simplex of `self` is in `o`.
     ///
     /// ```
-    /// use starplex::hasse::SimplexSet;
-    /// assert!(SimplexSet::new().is_subset(&SimplexSet::new()));
+    /// use starplex::hasse::NodeSet;
+    /// assert!(NodeSet::new().is_subset(&NodeSet::new()));
     /// ```
     pub fn is_subset(&self, o: &Self) -> bool {
         self.difference(o).is_empty()
@@ -243,11 +243,11 @@ impl SimplexSet {
 }
 
 /// A map from simplices, keyed by their vertex tuples (so it survives renumbering), ordered by
-/// dimension then lexicographically. CASC's `SimplexMap`; decimation plans use it.
+/// dimension then lexicographically. CASC's `NodeMap`; decimation plans use it.
 ///
 /// ```
-/// use starplex::hasse::SimplexMap;
-/// let mut m: SimplexMap<&str> = SimplexMap::new();
+/// use starplex::hasse::NodeMap;
+/// let mut m: NodeMap<&str> = NodeMap::new();
 /// m.insert(&[2.into(), 1.into()], "edge");
 /// m.insert(&[5.into()], "vertex");
 /// assert_eq!(m.get(&[1.into(), 2.into()]), Some(&"edge"));
@@ -255,23 +255,23 @@ impl SimplexSet {
 /// assert_eq!(keys, vec![1, 2]);
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SimplexMap<T> {
+pub struct NodeMap<T> {
     map: BTreeMap<(usize, Vec<VertexId>), T>,
 }
 
-impl<T> Default for SimplexMap<T> {
+impl<T> Default for NodeMap<T> {
     fn default() -> Self {
-        SimplexMap {
+        NodeMap {
             map: BTreeMap::new(),
         }
     }
 }
 
-impl<T> SimplexMap<T> {
+impl<T> NodeMap<T> {
     /// An empty map.
     ///
     /// ```
-    /// assert!(starplex::hasse::SimplexMap::<u8>::new().is_empty());
+    /// assert!(starplex::hasse::NodeMap::<u8>::new().is_empty());
     /// ```
     pub fn new() -> Self {
         Self::default()
@@ -286,7 +286,7 @@ impl<T> SimplexMap<T> {
     /// Inserts or replaces; returns the old value.
     ///
     /// ```
-    /// let mut m = starplex::hasse::SimplexMap::new();
+    /// let mut m = starplex::hasse::NodeMap::new();
     /// assert_eq!(m.insert(&[1.into()], 1), None);
     /// assert_eq!(m.insert(&[1.into()], 2), Some(1));
     /// ```
@@ -297,7 +297,7 @@ impl<T> SimplexMap<T> {
     /// The value at a simplex.
     ///
     /// ```
-    /// let m = starplex::hasse::SimplexMap::<u8>::new();
+    /// let m = starplex::hasse::NodeMap::<u8>::new();
     /// assert_eq!(m.get(&[0.into()]), None);
     /// ```
     pub fn get(&self, vs: &[VertexId]) -> Option<&T> {
@@ -307,7 +307,7 @@ impl<T> SimplexMap<T> {
     /// The value at a simplex, inserted with `f` when missing.
     ///
     /// ```
-    /// let mut m = starplex::hasse::SimplexMap::<Vec<u8>>::new();
+    /// let mut m = starplex::hasse::NodeMap::<Vec<u8>>::new();
     /// m.entry_or_insert_with(&[0.into()], Vec::new).push(3);
     /// assert_eq!(m.get(&[0.into()]), Some(&vec![3]));
     /// ```
@@ -318,7 +318,7 @@ impl<T> SimplexMap<T> {
     /// Number of entries.
     ///
     /// ```
-    /// assert_eq!(starplex::hasse::SimplexMap::<u8>::new().len(), 0);
+    /// assert_eq!(starplex::hasse::NodeMap::<u8>::new().len(), 0);
     /// ```
     pub fn len(&self) -> usize {
         self.map.len()
@@ -327,7 +327,7 @@ impl<T> SimplexMap<T> {
     /// True when empty.
     ///
     /// ```
-    /// assert!(starplex::hasse::SimplexMap::<u8>::new().is_empty());
+    /// assert!(starplex::hasse::NodeMap::<u8>::new().is_empty());
     /// ```
     pub fn is_empty(&self) -> bool {
         self.map.is_empty()
@@ -336,7 +336,7 @@ impl<T> SimplexMap<T> {
     /// Entries by dimension then vertex tuple.
     ///
     /// ```
-    /// let mut m = starplex::hasse::SimplexMap::new();
+    /// let mut m = starplex::hasse::NodeMap::new();
     /// m.insert(&[0.into()], 'a');
     /// assert_eq!(m.iter().count(), 1);
     /// ```
@@ -348,7 +348,7 @@ impl<T> SimplexMap<T> {
 /// Two frontiers of a breadth-first walk: (node, largest added vertex).
 pub(crate) type Frontier = (Vec<(u32, u32)>, Vec<(u32, u32)>);
 
-impl<L: Levels> Hasse<L> {
+impl<L: LevelTypes> Hasse<L> {
     /// The vertex tuples of a set, by dimension then lexicographically.
     ///
     /// ```
@@ -357,7 +357,7 @@ impl<L: Levels> Hasse<L> {
     /// let s = h.closure(h.find(&[1.into(), 3.into()]).unwrap());
     /// assert_eq!(h.set_to_vertex_lists(&s), vec![vec![1], vec![3], vec![1, 3]]);
     /// ```
-    pub fn set_to_vertex_lists(&self, s: &SimplexSet) -> Vec<Vec<u32>> {
+    pub fn set_to_vertex_lists(&self, s: &NodeSet) -> Vec<Vec<u32>> {
         let mut out: Vec<Vec<u32>> = s
             .iter()
             .map(|n| self.vertices(n).iter().map(|v| v.0).collect())
@@ -373,7 +373,7 @@ impl<L: Levels> Hasse<L> {
     /// let e = h.insert(&[0.into(), 1.into()]).unwrap();
     /// assert_eq!(h.format_set(&h.closure(e)), "{0} {1} {0,1}");
     /// ```
-    pub fn format_set(&self, s: &SimplexSet) -> String {
+    pub fn format_set(&self, s: &NodeSet) -> String {
         self.set_to_vertex_lists(s)
             .iter()
             .map(|v| {
@@ -391,9 +391,9 @@ impl<L: Levels> Hasse<L> {
     /// h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
     /// assert_eq!(h.star(h.vertex(0.into()).unwrap()).len(), 4);
     /// ```
-    pub fn star(&self, s: Node) -> SimplexSet {
+    pub fn star(&self, s: Node) -> NodeSet {
         let ids = self.star_ids(s);
-        SimplexSet::from_levels(
+        NodeSet::from_levels(
             ids.into_iter()
                 .map(|l| l.into_iter().map(SimplexId).collect())
                 .collect(),
@@ -407,14 +407,14 @@ impl<L: Levels> Hasse<L> {
     /// let t = h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
     /// assert_eq!(h.closure(t).len(), 7);
     /// ```
-    pub fn closure(&self, s: Node) -> SimplexSet {
-        let mut set = SimplexSet::new();
+    pub fn closure(&self, s: Node) -> NodeSet {
+        let mut set = NodeSet::new();
         set.insert(s);
         self.close_down(&mut set);
         set
     }
 
-    fn close_down(&self, set: &mut SimplexSet) {
+    fn close_down(&self, set: &mut NodeSet) {
         for k in (1..set.levels.len()).rev() {
             let mut add: Vec<SimplexId> = Vec::new();
             for &i in &set.levels[k] {
@@ -435,10 +435,10 @@ impl<L: Levels> Hasse<L> {
     /// let lk = h.link(h.vertex(0.into()).unwrap());
     /// assert_eq!(h.format_set(&lk), "{1} {2} {1,2}");
     /// ```
-    pub fn link(&self, s: Node) -> SimplexSet {
+    pub fn link(&self, s: Node) -> NodeSet {
         let mut out = Vec::new();
         self.link_ids_into(s, &mut out, &mut Default::default());
-        SimplexSet::from_levels(out)
+        NodeSet::from_levels(out)
     }
 
     /// The link as unsorted ids per level into a reused buffer (each link simplex once).
@@ -495,12 +495,12 @@ impl<L: Levels> Hasse<L> {
     /// ```
     /// let mut h: starplex::hasse::Hasse = starplex::hasse::Hasse::new();
     /// h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
-    /// let mut s = starplex::hasse::SimplexSet::new();
+    /// let mut s = starplex::hasse::NodeSet::new();
     /// s.insert(h.vertex(0.into()).unwrap());
     /// s.insert(h.vertex(1.into()).unwrap());
     /// assert_eq!(h.star_of(&s).len(), 6);
     /// ```
-    pub fn star_of(&self, set: &SimplexSet) -> SimplexSet {
+    pub fn star_of(&self, set: &NodeSet) -> NodeSet {
         let mut levels: Vec<Vec<SimplexId>> = Vec::new();
         for n in set.iter() {
             let st = self.star_ids(n);
@@ -511,7 +511,7 @@ impl<L: Levels> Hasse<L> {
                 levels[k].extend(l.into_iter().map(SimplexId));
             }
         }
-        SimplexSet::from_levels(levels)
+        NodeSet::from_levels(levels)
     }
 
     /// The closure of a set: the union of the closures of its members.
@@ -519,11 +519,11 @@ impl<L: Levels> Hasse<L> {
     /// ```
     /// let mut h: starplex::hasse::Hasse = starplex::hasse::Hasse::new();
     /// let t = h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
-    /// let mut s = starplex::hasse::SimplexSet::new();
+    /// let mut s = starplex::hasse::NodeSet::new();
     /// s.insert(t);
     /// assert_eq!(h.closure_of(&s).len(), 7);
     /// ```
-    pub fn closure_of(&self, set: &SimplexSet) -> SimplexSet {
+    pub fn closure_of(&self, set: &NodeSet) -> NodeSet {
         let mut s = set.clone();
         self.close_down(&mut s);
         s
@@ -534,11 +534,11 @@ impl<L: Levels> Hasse<L> {
     /// ```
     /// let mut h: starplex::hasse::Hasse = starplex::hasse::Hasse::new();
     /// h.insert(&[0.into(), 1.into(), 2.into()]).unwrap();
-    /// let mut s = starplex::hasse::SimplexSet::new();
+    /// let mut s = starplex::hasse::NodeSet::new();
     /// s.insert(h.vertex(0.into()).unwrap());
     /// assert_eq!(h.link_of(&s), h.link(h.vertex(0.into()).unwrap()));
     /// ```
-    pub fn link_of(&self, set: &SimplexSet) -> SimplexSet {
+    pub fn link_of(&self, set: &NodeSet) -> NodeSet {
         let a = self.closure_of(&self.star_of(set));
         let b = self.star_of(&self.closure_of(set));
         a.difference(&b)
@@ -594,8 +594,8 @@ impl<L: Levels> Hasse<L> {
     /// assert_eq!(h.k_ring(v, 1).len(), 2);
     /// assert_eq!(h.k_ring(v, 2).len(), 3);
     /// ```
-    pub fn k_ring(&self, s: Node, k: usize) -> SimplexSet {
-        let mut set = SimplexSet::new();
+    pub fn k_ring(&self, s: Node, k: usize) -> NodeSet {
+        let mut set = NodeSet::new();
         set.insert(s);
         let mut frontier = vec![s];
         for _ in 0..k {
@@ -623,7 +623,7 @@ impl<L: Levels> Hasse<L> {
     /// assert_eq!(dims, vec![0, 1, 1, 2]);
     /// ```
     pub fn visit_bfs_up(&self, s: Node, mut visit: impl FnMut(Node) -> bool) {
-        let mut seen = SimplexSet::new();
+        let mut seen = NodeSet::new();
         let mut q = VecDeque::from([s]);
         seen.insert(s);
         while let Some(n) = q.pop_front() {
@@ -696,7 +696,7 @@ impl<L: Levels> Hasse<L> {
     /// assert_eq!(n, 7);
     /// ```
     pub fn visit_bfs_down(&self, s: Node, mut visit: impl FnMut(Node) -> bool) {
-        let mut seen = SimplexSet::new();
+        let mut seen = NodeSet::new();
         let mut q = VecDeque::from([s]);
         seen.insert(s);
         while let Some(n) = q.pop_front() {

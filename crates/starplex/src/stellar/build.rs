@@ -6,8 +6,8 @@ use rayon::prelude::*;
 
 use super::sre::{self, RUN_FLAG};
 use super::{
-    default_kv, kind_code, BuildTimings, CellStore, Node, SplitMode, StellarError, StellarOptions,
-    StellarTree,
+    default_kv, kind_code, BuildTimings, CellStore, SplitMode, StellarError, StellarOptions,
+    StellarTree, TreeNode,
 };
 use crate::complex::IndexedComplex;
 
@@ -92,10 +92,10 @@ pub(super) fn build(
     let mut leaf_vstart: Vec<u32> = Vec::new();
     collect_leaves(&root, &mut leaf_vstart);
     leaf_vstart.push(nv as u32);
-    let mut nodes: Vec<Node> = Vec::new();
+    let mut nodes: Vec<TreeNode> = Vec::new();
     {
         let (a, b) = root.range();
-        nodes.push(Node {
+        nodes.push(TreeNode {
             v_start: a,
             v_end: b,
             first: 0,
@@ -115,7 +115,7 @@ pub(super) fn build(
                     for c in ch {
                         let (a, b) = c.range();
                         queue.push_back((nodes.len(), c));
-                        nodes.push(Node {
+                        nodes.push(TreeNode {
                             v_start: a,
                             v_end: b,
                             first: 0,

@@ -83,7 +83,7 @@ fn decode(x: u32) -> Adjacent {
 /// assert_eq!((local.cells(), local.vertices()), (vec![1], vec![3]));
 /// ```
 #[derive(Clone, Debug)]
-pub struct IaStar<'t> {
+pub struct StellarIaStar<'t> {
     tree: &'t StellarTree,
     /// Covered tree cells (sorted) for a local IA*; `None`: all.
     cells: Option<Vec<u32>>,
@@ -99,7 +99,7 @@ pub struct IaStar<'t> {
     reps: Csr,
 }
 
-impl<'t> IaStar<'t> {
+impl<'t> StellarIaStar<'t> {
     fn cell_pos(&self, c: CellId) -> Option<usize> {
         let t = *self.tree.c_new.get(c.index())?;
         match &self.cells {
@@ -241,7 +241,7 @@ impl<'t> IaStar<'t> {
     }
 }
 
-impl TopCells for IaStar<'_> {
+impl TopCells for StellarIaStar<'_> {
     fn n_vertices(&self) -> usize {
         self.tree.n_vertices()
     }
@@ -261,13 +261,13 @@ impl TopCells for IaStar<'_> {
     }
 }
 
-impl VertexStar for IaStar<'_> {
+impl VertexStar for StellarIaStar<'_> {
     fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
         *out = self.star(v);
     }
 }
 
-impl FacetAdjacency for IaStar<'_> {
+impl FacetAdjacency for StellarIaStar<'_> {
     /// 0 for a cell the IA* does not cover (a local IA* covers its leaf's cells).
     fn n_facet_slots(&self, c: CellId) -> usize {
         self.cell_pos(c)
@@ -316,7 +316,7 @@ impl FacetAdjacency for IaStar<'_> {
     }
 }
 
-impl Storage for IaStar<'_> {
+impl Storage for StellarIaStar<'_> {
     /// The spec's paper-faithful count: R_{k,0} + R_{k,k} slots + the non-manifold facet lists
     /// + R_{0,1} and cluster representatives.
     fn refs(&self) -> u64 {
@@ -337,9 +337,9 @@ impl Storage for IaStar<'_> {
     }
 }
 
-impl VertexAdjacency for IaStar<'_> {
+impl VertexAdjacency for StellarIaStar<'_> {
     /// The edges of the cells around `v` (a CP cell's face-table edges: a quad's diagonal is
-    /// not an edge); needs `v`'s whole star covered, as [`IaStar::star`].
+    /// not an edge); needs `v`'s whole star covered, as [`StellarIaStar::star`].
     fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>) {
         out.clear();
         let mut vs = Vec::new();
@@ -359,7 +359,7 @@ impl VertexAdjacency for IaStar<'_> {
     }
 }
 
-crate::impl_relations_from_tops!(IaStar<'_>);
+crate::impl_relations_from_tops!(StellarIaStar<'_>);
 
 /// Whether facet `j` of a cell of `kind` contains local vertex position `p`.
 fn facet_contains(kind: CellKind, j: usize, p: usize) -> bool {
@@ -471,7 +471,7 @@ impl StellarTree {
     /// let one_leaf = StellarTree::build(&k, &StellarOptions { kv: Some(0), ..Default::default() }).unwrap();
     /// assert_eq!(one_leaf.iastar().refs(), ia.refs());
     /// ```
-    pub fn iastar(&self) -> IaStar<'_> {
+    pub fn iastar(&self) -> StellarIaStar<'_> {
         let nc = self.n_top_cells();
         let pieces: Vec<Pieces> =
             self.par_facet_groups_where(2, false, |_, keys| group_pieces_unordered(keys));
@@ -555,7 +555,7 @@ impl StellarTree {
             }
             reps.targets.extend_from_slice(&data);
         }
-        IaStar {
+        StellarIaStar {
             tree: self,
             cells: None,
             adj_off: off,
@@ -760,7 +760,7 @@ impl StellarTree {
     /// assert_eq!(local.facet_adjacent(CellId(0), 0), Adjacent::NotComputed);
     /// assert_eq!(local.facet_adjacent(CellId(0), 1), Adjacent::None);
     /// ```
-    pub fn local_iastar(&self, l: LeafId) -> IaStar<'_> {
+    pub fn local_iastar(&self, l: LeafId) -> StellarIaStar<'_> {
         let mut e = ExpandedLeaf::default();
         self.expand_leaf_into(l, &mut e);
         let view = LeafView { tree: self, e: &e };
@@ -847,7 +847,7 @@ impl StellarTree {
             reps.offsets.push(reps.targets.len() as u32);
         }
         let cells = std::mem::take(&mut e.cells);
-        IaStar {
+        StellarIaStar {
             tree: self,
             cells: Some(cells),
             adj_off: off,
@@ -879,7 +879,10 @@ impl StellarTree {
     /// assert!(per_leaf.iter().all(|&(nv, _)| nv == 1));
     /// assert_eq!(per_leaf.iter().map(|&(_, nc)| nc).sum::<usize>(), 6);
     /// ```
-    pub fn par_local_iastar<R: Send>(&self, f: impl Fn(&IaStar<'_>) -> R + Sync + Send) -> Vec<R> {
+    pub fn par_local_iastar<R: Send>(
+        &self,
+        f: impl Fn(&StellarIaStar<'_>) -> R + Sync + Send,
+    ) -> Vec<R> {
         (0..self.n_leaves() as u32)
             .into_par_iter()
             .map(|l| f(&self.local_iastar(LeafId(l))))

@@ -177,7 +177,7 @@ pub enum StellarError {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C)]
-pub struct Node {
+pub struct TreeNode {
     /// First vertex (tree numbering) of the block.
     pub v_start: u32,
     /// One past the last vertex of the block.
@@ -300,7 +300,7 @@ pub struct StellarTree {
     pub(crate) kv: u32,
     pub(crate) split: SplitMode,
     pub(crate) bbox: (Vec<f64>, Vec<f64>),
-    pub(crate) nodes: Vec<Node>,
+    pub(crate) nodes: Vec<TreeNode>,
     /// `leaf_vstart[l]..leaf_vstart[l+1]` are the vertices of leaf `l` (tree numbering).
     pub(crate) leaf_vstart: Vec<u32>,
     /// `leaf_toff[l]..leaf_toff[l+1]` is leaf `l`'s SRE list in `leaf_tops`.
@@ -509,7 +509,7 @@ impl StellarTree {
     /// assert_eq!((nodes[0].v_start, nodes[0].v_end), (0, 4)); // the root covers every vertex
     /// assert_eq!(nodes.iter().filter(|n| n.n_children == 0).count(), t.n_leaves());
     /// ```
-    pub fn nodes(&self) -> &[Node] {
+    pub fn nodes(&self) -> &[TreeNode] {
         &self.nodes
     }
     /// One node.
@@ -528,7 +528,7 @@ impl StellarTree {
     /// assert_eq!(t.node(NodeId(0)), t.nodes()[0]);
     /// assert_eq!(t.node(NodeId(0)).n_children, 4);
     /// ```
-    pub fn node(&self, n: NodeId) -> Node {
+    pub fn node(&self, n: NodeId) -> TreeNode {
         self.nodes[n.index()]
     }
     /// Time of each build phase.

@@ -28,7 +28,7 @@ use std::path::Path;
 
 use super::sre::RUN_FLAG;
 use super::{
-    code_kind, kind_code, BuildTimings, CellStore, Node, SplitMode, StellarError, StellarTree,
+    code_kind, kind_code, BuildTimings, CellStore, SplitMode, StellarError, StellarTree, TreeNode,
 };
 
 /// The first 8 bytes of a saved Stellar tree.
@@ -204,7 +204,7 @@ impl StellarTree {
         let stride = lim(h[11], "stride", 65)? as u32;
         let lo = r.arr::<f64>(amb)?;
         let hi = r.arr::<f64>(amb)?;
-        let nodes = r.arr::<Node>(nn)?;
+        let nodes = r.arr::<TreeNode>(nn)?;
         let leaf_vstart = r.arr::<u32>(nl + 1)?;
         let leaf_toff = r.arr::<u32>(nl + 1)?;
         let leaf_tops = r.arr::<u32>(ntops)?;

@@ -71,7 +71,7 @@ pub struct EncodingStorage {
 /// assert!(s.in_memory_bytes > 0);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Storage {
+pub struct StorageStats {
     /// Base indexed complex: references of the top cells.
     pub base_refs: u64,
     /// Base indexed complex bytes: 8 per coordinate plus 4 per reference.
@@ -132,7 +132,7 @@ pub struct StellarStats {
     /// Mean top cells per leaf.
     pub leaf_mean_cells: f64,
     /// Storage.
-    pub storage: Storage,
+    pub storage: StorageStats,
 }
 
 impl StellarTree {
@@ -176,7 +176,7 @@ impl StellarTree {
             refs: hier_refs + lists,
             bytes: hier_bytes + 4 * lists,
         };
-        let in_memory_bytes = (std::mem::size_of::<super::Node>() * self.nodes.len()
+        let in_memory_bytes = (std::mem::size_of::<super::TreeNode>() * self.nodes.len()
             + 4 * (self.leaf_vstart.len() + self.leaf_toff.len() + self.leaf_tops.len())
             + self.cells.bytes()
             + 4 * (self.v_orig.len() + self.v_new.len() + self.c_orig.len() + self.c_new.len()))
@@ -206,7 +206,7 @@ impl StellarTree {
             } else {
                 0.0
             },
-            storage: Storage {
+            storage: StorageStats {
                 base_refs,
                 base_bytes: 8 * nv * self.ambient_dim as u64 + 4 * base_refs,
                 explicit: enc(nv + sum_t),

@@ -4,7 +4,7 @@
 //!
 //! Both IA* builders implement [`FacetAdjacency`]: the standalone one
 //! ([`crate::tds::iastar::IaStar`]) and the one generated from a Stellar tree, globally or for
-//! one leaf ([`crate::stellar::iastar::IaStar`]). They answer identically (held equal by
+//! one leaf ([`crate::stellar::iastar::StellarIaStar`]). They answer identically (held equal by
 //! `tests/stellar_iastar.rs`), in input numbering.
 //!
 //! Slot `j` of a simplex is the facet that omits its `j`-th vertex; a CP cell's slots follow
