@@ -38,7 +38,7 @@
 
 use rustc_hash::FxHashMap;
 
-use super::link_condition::{link_condition, LinkMode, LinkScratch};
+use super::link_condition::{link_condition, region_condition, LinkMode, LinkScratch};
 use super::tops::TopSimplices;
 use super::{Progress, SimplifyError, Target};
 
@@ -283,7 +283,9 @@ pub fn qem_dimension(w: &TopSimplices) -> Option<usize> {
 
 /// Simplifies a triangle or tetrahedral mesh by quadric error until the target (faces = top
 /// simplices, vertices, or the error bound) is reached or no edge can be contracted.
-/// `lock_boundary` keeps boundary vertices where they are and never removes one.
+/// `lock_boundary` keeps boundary vertices where they are and never removes one; so are the
+/// locked vertices ([`TopSimplices::set_locked`]), and an edge between two such vertices is never
+/// contracted.
 ///
 /// ```
 /// use starplex::algo::simplify::{TopSimplices, Target, qem::simplify_qem};
@@ -391,6 +393,10 @@ pub fn simplify_qem(
             }
         }
     }
+    // vertices that neither move nor disappear: the locked ones, and the boundary if asked
+    let mut locked: Vec<bool> = (0..n as u32)
+        .map(|v| w.is_locked(v) || (lock_boundary && boundary[v as usize]))
+        .collect();
     let eps = 1e-6 * total_area / surface.len().max(1) as f64;
     let eps = if eps > 0.0 && eps.is_finite() {
         eps
@@ -408,15 +414,15 @@ pub fn simplify_qem(
     let mut stats = QemStats::default();
     let mut sum_err = 0.0;
 
-    let candidate = |a: u32, b: u32, quad: &[Quadric], pos: &[[f64; 3]], boundary: &[bool]| {
-        let (ba, bb) = (boundary[a as usize], boundary[b as usize]);
+    let candidate = |a: u32, b: u32, quad: &[Quadric], pos: &[[f64; 3]], locked: &[bool]| {
+        let (la, lb) = (locked[a as usize], locked[b as usize]);
         let q = quad[a as usize].sum(&quad[b as usize]);
         let (pa, pb) = (pos[a as usize], pos[b as usize]);
-        let p = if lock_boundary && ba && bb {
+        let p = if la && lb {
             return None;
-        } else if lock_boundary && ba {
+        } else if la {
             pa
-        } else if lock_boundary && bb {
+        } else if lb {
             pb
         } else if let Some(x) = q.optimum() {
             x
@@ -443,7 +449,7 @@ pub fn simplify_qem(
                     nb: &mut Vec<u32>,
                     quad: &[Quadric],
                     pos: &[[f64; 3]],
-                    boundary: &[bool],
+                    locked: &[bool],
                     stamp: &[u32]| {
         let mut all = std::mem::take(&mut heap.0);
         all.clear();
@@ -453,7 +459,7 @@ pub fn simplify_qem(
             }
             w.neighbours_into(a, nb);
             for &b in nb.iter().filter(|&&b| b > a) {
-                if let Some((cost, _)) = candidate(a, b, quad, pos, boundary) {
+                if let Some((cost, _)) = candidate(a, b, quad, pos, locked) {
                     all.push(Entry::new(cost, a, b, stamp));
                 }
             }
@@ -465,7 +471,7 @@ pub fn simplify_qem(
     'rounds: while last_round_contracted && !target.reached(w) {
         stats.rounds += 1;
         last_round_contracted = false;
-        push_all(&mut heap, w, &mut nb, &quad, &pos, &boundary, &stamp);
+        push_all(&mut heap, w, &mut nb, &quad, &pos, &locked, &stamp);
         while let Some(e) = heap.pop() {
             if target.reached(w) {
                 break 'rounds;
@@ -474,19 +480,17 @@ pub fn simplify_qem(
             if !w.is_alive(a) || !w.is_alive(b) || !e.fresh(&stamp) {
                 continue;
             }
-            let Some((cost, p)) = candidate(a, b, &quad, &pos, &boundary) else {
+            let Some((cost, p)) = candidate(a, b, &quad, &pos, &locked) else {
                 continue;
             };
             if target.max_error.is_some_and(|m| cost > m) {
                 break 'rounds;
             }
-            // the survivor: the boundary vertex when the boundary is locked, else the smaller id
-            let (s, t) = if lock_boundary && boundary[b as usize] {
-                (b, a)
-            } else {
-                (a, b)
-            };
-            if !link_condition(w, s, t, LinkMode::Manifold, &mut scratch) {
+            // the survivor: the locked vertex if there is one, else the smaller id
+            let (s, t) = if locked[b as usize] { (b, a) } else { (a, b) };
+            if !link_condition(w, s, t, LinkMode::Manifold, &mut scratch)
+                || !region_condition(w, s, t, &mut scratch)
+            {
                 stats.refused_link += 1;
                 continue;
             }
@@ -498,7 +502,7 @@ pub fn simplify_qem(
             pos[s as usize] = p;
             let qs = quad[s as usize].sum(&quad[t as usize]);
             quad[s as usize] = qs;
-            boundary[s as usize] |= boundary[t as usize];
+            locked[s as usize] |= locked[t as usize];
             stamp[s as usize] = stamp[s as usize].wrapping_add(1);
             stamp[t as usize] = stamp[t as usize].wrapping_add(1);
             stats.n_contractions += 1;
@@ -510,7 +514,7 @@ pub fn simplify_qem(
             }
             w.neighbours_into(s, &mut nb);
             for &x in &nb {
-                if let Some((c, _)) = candidate(s, x, &quad, &pos, &boundary) {
+                if let Some((c, _)) = candidate(s, x, &quad, &pos, &locked) {
                     heap.push(Entry::new(c, s.min(x), s.max(x), &stamp));
                 }
             }
