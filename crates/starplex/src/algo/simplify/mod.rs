@@ -345,7 +345,10 @@ pub fn simplify(
         for v in interface {
             w.set_locked(v, true);
         }
-        w.set_cell_labels(labels);
+        // one region (every label id 0): the region test is the whole complex's
+        if labels.iter().any(|&l| l != 0) {
+            w.set_cell_labels(labels);
+        }
     }
     let locked_vertices = w.n_locked();
     let progress = opts.progress.as_deref();
