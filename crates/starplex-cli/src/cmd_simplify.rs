@@ -1,15 +1,21 @@
 //! `starplex simplify IN OUT [--mode homology|qem] [--ratio R | --faces N | --vertices N |
-//! --max-error E] [--lock-boundary] [--json]`: edge contraction that keeps the topology, with
+//! --max-error E] [--lock-boundary] [--keep-labels NAME | --ignore-labels] [--keep-vertices FILE]
+//! [--keep-vertex-attribute NAME] [--json]`: edge contraction that keeps the topology, with
 //! a before/after report (f-vector, Euler characteristic, Betti numbers, non-manifold simplices,
-//! boundary faces). Nothing is written when the input or the target is bad.
+//! boundary faces, a sampled Hausdorff estimate, the labels kept). Vertex and cell attributes
+//! are carried to the output (the surviving vertices' and cells' own values). Nothing is
+//! written when the input or the target is bad.
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
 use serde_json::{json, Value};
+use starplex::algo::simplify::hausdorff::hausdorff_estimate;
 use starplex::algo::simplify::{
-    simplify, summary, Mode, SimplifyError, SimplifyOptions, Target, TopologySummary,
+    default_label_attribute, simplify, summary, Mode, SimplifyError, SimplifyOptions, Target,
+    TopologySummary,
 };
+use starplex::attr::AttrTarget;
 use starplex::io;
 
 use crate::common::{self, CliError, Ctx, InputArgs};
@@ -46,6 +52,22 @@ pub struct SimplifyArgs {
     /// condition); qem always does.
     #[arg(long)]
     pub keep_manifold: bool,
+    /// Keep the regions of this cell attribute (a label): vertices on the interface between
+    /// two labels neither move nor disappear, so every region keeps its topology and the
+    /// interfaces stay where they are. Default: gmsh:physical or medit:ref when the input has
+    /// one (the report says which); --ignore-labels turns that off.
+    #[arg(long, value_name = "NAME")]
+    pub keep_labels: Option<String>,
+    /// Do not keep the default label attribute's regions.
+    #[arg(long, conflicts_with = "keep_labels")]
+    pub ignore_labels: bool,
+    /// Vertices (ids from 0, separated by white space or commas; `-` for standard input)
+    /// that are never removed nor moved.
+    #[arg(long, value_name = "FILE")]
+    pub keep_vertices: Option<PathBuf>,
+    /// Vertices whose value of this vertex attribute is not 0 are never removed nor moved.
+    #[arg(long, value_name = "NAME")]
+    pub keep_vertex_attribute: Option<String>,
     /// Skip the before/after topology (Betti numbers, validation): faster on big meshes.
     #[arg(long)]
     pub no_report: bool,
@@ -102,6 +124,39 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
     let before =
         (!a.no_report).then(|| common::with_spinner(ctx, "topology before", || summary(k)));
     let before_s = t_before.elapsed().as_secs_f64();
+    let keep_labels = match (&a.keep_labels, a.ignore_labels) {
+        (Some(n), _) => Some(n.clone()),
+        (None, false) => default_label_attribute(k.attributes()).map(str::to_string),
+        (None, true) => None,
+    };
+    let mut keep_vertices = match &a.keep_vertices {
+        Some(f) => crate::export::read_ids(f)?,
+        None => Vec::new(),
+    };
+    if let Some(n) = &a.keep_vertex_attribute {
+        let col = k.attributes().get(AttrTarget::Vertex, n).ok_or_else(|| {
+            let names: Vec<&str> = k
+                .attributes()
+                .vertex
+                .iter()
+                .map(|a| a.name.as_str())
+                .collect();
+            CliError::Input(
+                format!("{name}: --keep-vertex-attribute {n}: no vertex attribute of that name"),
+                Some(if names.is_empty() {
+                    "the input has no vertex attribute".into()
+                } else {
+                    format!("its vertex attributes: {}", names.join(", "))
+                }),
+            )
+        })?;
+        let c = col.components;
+        keep_vertices.extend(
+            (0..k.n_vertices())
+                .filter(|&v| (v * c..(v + 1) * c).any(|i| col.values.get_f64(i) != 0.0))
+                .map(|v| v as u32),
+        );
+    }
     let total = (k.n_vertices() as u64).max(1);
     let pb = common::progress_bar(ctx, total, "simplify");
     let pb2 = pb.clone();
@@ -116,6 +171,8 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
         lock_boundary: a.lock_boundary,
         keep_manifold: a.keep_manifold,
         progress: Some(Arc::new(move |n| pb2.inc(n))),
+        keep_labels,
+        keep_vertices,
     };
     let res = simplify(k, &opts);
     pb.finish_and_clear();
@@ -130,6 +187,9 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
                 k.n_cells()
             )),
             SimplifyError::NotAMesh => Some("pass --mode homology".into()),
+            SimplifyError::UnknownLabel { .. } => {
+                Some("name a cell attribute (`starplex info` lists them)".into())
+            }
             _ => None,
         };
         CliError::Input(format!("{name}: {e}"), hint)
@@ -137,8 +197,19 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
     let t_after = Instant::now();
     let after =
         (!a.no_report).then(|| common::with_spinner(ctx, "topology after", || summary(&out)));
+    let hausdorff = if a.no_report {
+        None
+    } else {
+        common::with_spinner(ctx, "Hausdorff estimate", || hausdorff_estimate(k, &out))
+    };
     let after_s = t_after.elapsed().as_secs_f64();
     common::with_spinner(ctx, "writing", || io::write(&a.output, &out, to))?;
+    let labels_available: Vec<&str> = k
+        .attributes()
+        .cell
+        .iter()
+        .map(|a| a.name.as_str())
+        .collect();
     if a.json {
         let mut v = json!({
             "input": name,
@@ -158,6 +229,26 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
             v["max_error"] = json!(report.max_error);
             v["mean_error"] = json!(report.mean_error);
         }
+        v["labels_kept"] = json!(report.kept_labels);
+        v["labels_available"] = json!(labels_available);
+        v["locked_vertices"] = json!(report.locked_vertices);
+        v["attributes"] = json!({
+            "vertex": out.attributes().vertex.iter().map(|a| &a.name).collect::<Vec<_>>(),
+            "cell": out.attributes().cell.iter().map(|a| &a.name).collect::<Vec<_>>(),
+        });
+        v["hausdorff"] = match &hausdorff {
+            None => Value::Null,
+            Some(h) => json!({
+                "estimate": "sampled: every surface vertex of one mesh to the closest triangle of the other",
+                "input_to_output": h.a_to_b,
+                "output_to_input": h.b_to_a,
+                "max": h.max(),
+                "mean_input_to_output": h.mean_a_to_b,
+                "mean_output_to_input": h.mean_b_to_a,
+                "samples": h.n_samples,
+                "input_diagonal": h.diagonal,
+            }),
+        };
         if let (Some(b), Some(f)) = (&before, &after) {
             v["topology_kept"] = json!(
                 b.betti == f.betti
@@ -185,6 +276,29 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
         );
         if let (Some(m), Some(e)) = (report.max_error, report.mean_error) {
             println!("  quadric error       max {m:.3e}, mean {e:.3e}");
+        }
+        if let Some(h) = &hausdorff {
+            println!(
+                "  Hausdorff (est.)    {:.3e} (input->output {:.3e}, output->input {:.3e}; {:.3}% of the diagonal)",
+                h.max(),
+                h.a_to_b,
+                h.b_to_a,
+                100.0 * h.max() / h.diagonal.max(f64::MIN_POSITIVE)
+            );
+        }
+        match (&report.kept_labels, labels_available.is_empty()) {
+            (Some(l), _) => println!(
+                "  labels              {l} kept ({} interface/kept vertices locked)",
+                report.locked_vertices
+            ),
+            (None, true) => {}
+            (None, false) => println!(
+                "  labels              not kept (cell attributes: {})",
+                labels_available.join(", ")
+            ),
+        }
+        if report.kept_labels.is_none() && report.locked_vertices > 0 {
+            println!("  kept vertices       {}", report.locked_vertices);
         }
         if let (Some(b), Some(f)) = (&before, &after) {
             println!("  f-vector            {:?} -> {:?}", b.f_vector, f.f_vector);

@@ -17,7 +17,7 @@
 //! ```
 use fixedbitset::FixedBitSet;
 
-use super::link_condition::{link_condition, LinkMode, LinkScratch};
+use super::link_condition::{link_condition, region_condition, LinkMode, LinkScratch};
 use super::tops::TopSimplices;
 use super::{Progress, Target};
 
@@ -118,7 +118,9 @@ pub struct ContractStats {
 }
 
 /// Contracts edges that pass the link condition, in rounds, until nothing contracts or the
-/// target (faces = tops, or vertices) is reached. `mode` [`LinkMode::Manifold`] also keeps a
+/// target (faces = tops, or vertices) is reached. A locked vertex
+/// ([`TopSimplices::set_locked`]) is never removed: it absorbs its unlocked neighbours, and an
+/// edge between two locked vertices is never contracted. `mode` [`LinkMode::Manifold`] also keeps a
 /// manifold (with boundary) a manifold of the same dimension. `progress` is called with the
 /// number of contractions made.
 ///
@@ -158,8 +160,16 @@ pub fn contract_homology(
                 if touched.contains(b as usize) {
                     continue;
                 }
-                if link_condition(w, a, b, mode, &mut scratch) {
-                    w.contract(a, b);
+                // a locked vertex survives; two locked ones are never merged
+                let (s, t) = match (w.is_locked(a), w.is_locked(b)) {
+                    (true, true) => continue,
+                    (false, true) => (b, a),
+                    _ => (a, b),
+                };
+                if link_condition(w, s, t, mode, &mut scratch)
+                    && region_condition(w, s, t, &mut scratch)
+                {
+                    w.contract(s, t);
                     touched.insert(a as usize);
                     touched.insert(b as usize);
                     stats.n_contractions += 1;

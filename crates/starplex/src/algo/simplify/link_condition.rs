@@ -60,6 +60,7 @@ pub struct LinkScratch {
     sa: Vec<Top>,
     sb: Vec<Top>,
     tau: Vec<u32>,
+    filtered: Vec<u32>,
 }
 
 /// The tops of the (extended) star of `v`: the real ones, and in `Manifold` mode each boundary
@@ -74,8 +75,28 @@ pub struct LinkScratch {
 /// assert!(st[1..].iter().all(|t| t.contains(&OMEGA)));
 /// ```
 pub fn extended_star(w: &TopSimplices, v: u32, mode: LinkMode, out: &mut Vec<Top>) {
+    extended_star_in(w, v, mode, None, out, &mut Vec::new());
+}
+
+/// [`extended_star`] in the region of the tops labelled `region` ([`TopSimplices::label`]),
+/// or in the whole complex for `None`.
+fn extended_star_in(
+    w: &TopSimplices,
+    v: u32,
+    mode: LinkMode,
+    region: Option<u32>,
+    out: &mut Vec<Top>,
+    filtered: &mut Vec<u32>,
+) {
     out.clear();
-    let star = w.star(v);
+    let star = match region {
+        None => w.star(v),
+        Some(r) => {
+            filtered.clear();
+            filtered.extend(w.star(v).iter().copied().filter(|&t| w.label(t) == Some(r)));
+            &filtered[..]
+        }
+    };
     for &t in star {
         out.push(w.top(t).into());
     }
@@ -124,12 +145,49 @@ pub fn link_condition(
     mode: LinkMode,
     scratch: &mut LinkScratch,
 ) -> bool {
+    link_condition_in(w, a, b, mode, None, scratch)
+}
+
+/// The top-based link condition of `ab` in the region of the tops labelled `region`
+/// ([`TopSimplices::set_cell_labels`]): the subcomplex of those tops, closed in
+/// [`LinkMode::Manifold`] by a cone over *its* boundary (the facets in exactly one of its tops,
+/// so the interfaces with other labels count as boundary). `None`: the whole complex, as
+/// [`link_condition`]. The simplifiers test it, in `Manifold` mode, for the region of the
+/// removed vertex when labels are kept: the region keeps its topology, and its boundary (the
+/// interfaces included) is neither pinched nor stripped of a face.
+///
+/// ```
+/// use starplex::algo::simplify::{TopSimplices, link_condition::{link_condition, link_condition_in, LinkMode, LinkScratch}};
+/// // a hexagon fanned from its centre 6; three triangles labelled 7, three labelled 8
+/// let fan: Vec<Vec<u32>> = (0..6).map(|i| vec![6, i, (i + 1) % 6]).collect();
+/// let mut w = TopSimplices::from_tops(7, &fan).unwrap();
+/// w.set_cell_labels(vec![7, 7, 7, 8, 8, 8]);
+/// let mut s = LinkScratch::default();
+/// // 6-1 is fine in the disk, but joins two boundary vertices of region 7 through its inside
+/// assert!(link_condition(&w, 6, 1, LinkMode::Manifold, &mut s));
+/// assert!(!link_condition_in(&w, 6, 1, LinkMode::Manifold, Some(7), &mut s));
+/// // 6-0 lies on the interface: a boundary edge of region 7
+/// assert!(link_condition_in(&w, 6, 0, LinkMode::Manifold, Some(7), &mut s));
+/// ```
+pub fn link_condition_in(
+    w: &TopSimplices,
+    a: u32,
+    b: u32,
+    mode: LinkMode,
+    region: Option<u32>,
+    scratch: &mut LinkScratch,
+) -> bool {
     if a == b || !w.is_alive(a) || !w.is_alive(b) {
         return false;
     }
-    let LinkScratch { sa, sb, tau } = scratch;
-    extended_star(w, a, mode, sa);
-    extended_star(w, b, mode, sb);
+    let LinkScratch {
+        sa,
+        sb,
+        tau,
+        filtered,
+    } = scratch;
+    extended_star_in(w, a, mode, region, sa, filtered);
+    extended_star_in(w, b, mode, region, sb, filtered);
     // the tops through ab come first in the check below
     let mut any_edge = false;
     for s in sa.iter() {
@@ -154,6 +212,28 @@ pub fn link_condition(
         }
     }
     true
+}
+
+/// When the tops are labelled ([`TopSimplices::set_cell_labels`]): the extended link condition
+/// of `s t` ([`link_condition_in`], [`LinkMode::Manifold`]) in the region of the label of the
+/// removed vertex `t`'s first top; true without labels. The simplifiers call it after
+/// [`link_condition`].
+///
+/// ```
+/// use starplex::algo::simplify::{TopSimplices, link_condition::{region_condition, LinkScratch}};
+/// let fan: Vec<Vec<u32>> = (0..6).map(|i| vec![6, i, (i + 1) % 6]).collect();
+/// let mut w = TopSimplices::from_tops(7, &fan).unwrap();
+/// let mut s = LinkScratch::default();
+/// assert!(region_condition(&w, 6, 1, &mut s)); // no labels
+/// w.set_cell_labels(vec![7, 7, 7, 8, 8, 8]);
+/// assert!(!region_condition(&w, 6, 1, &mut s));
+/// ```
+pub fn region_condition(w: &TopSimplices, s: u32, t: u32, scratch: &mut LinkScratch) -> bool {
+    if !w.has_labels() {
+        return true;
+    }
+    let region = w.star(t).first().and_then(|&x| w.label(x));
+    region.is_none() || link_condition_in(w, s, t, LinkMode::Manifold, region, scratch)
 }
 
 /// The link condition by its definition: every simplex of `Lk(a) ∩ Lk(b)` enumerated and looked

@@ -24,6 +24,7 @@
 //! assert_eq!(report.mode, Mode::Homology);
 //! ```
 pub mod contract;
+pub mod hausdorff;
 pub mod link_condition;
 pub mod qem;
 pub mod tops;
@@ -86,6 +87,22 @@ pub enum SimplifyError {
     /// The simplified complex could not be assembled.
     #[error("building the simplified complex: {0}")]
     Complex(ComplexError),
+    /// `keep_labels` names no cell attribute of the complex.
+    #[error("--keep-labels {name}: the complex has no cell attribute of that name (it has: {available})")]
+    UnknownLabel {
+        /// The name asked.
+        name: String,
+        /// The cell attributes present, comma-separated (or "none").
+        available: String,
+    },
+    /// A vertex of `keep_vertices` out of range.
+    #[error("kept vertex {vertex}: the complex has {n_vertices} vertices (ids from 0)")]
+    BadVertex {
+        /// The id given.
+        vertex: u64,
+        /// Vertices of the complex.
+        n_vertices: usize,
+    },
 }
 
 /// The two modes.
@@ -184,6 +201,16 @@ pub struct SimplifyOptions {
     pub keep_manifold: bool,
     /// Called with the number of contractions just made.
     pub progress: Option<Arc<Progress>>,
+    /// Keep the regions of this cell attribute (a label such as `gmsh:physical` or
+    /// `medit:ref`; see [`default_label_attribute`]): every vertex whose star holds cells of two
+    /// different values (the label interface, which is a boundary in its own right) is locked
+    /// like the boundary under `lock_boundary` — it neither moves nor disappears — so every
+    /// contraction stays inside one region, and every contraction also passes the extended
+    /// link condition within its region. This keeps the topology of each region and of the
+    /// interfaces (see [`label_interface_vertices`]).
+    pub keep_labels: Option<String>,
+    /// Vertices (input ids) never removed nor moved.
+    pub keep_vertices: Vec<u32>,
 }
 
 /// What [`simplify`] did.
@@ -209,6 +236,10 @@ pub struct SimplifyReport {
     /// Seconds spent simplifying (building the working structure and writing it back
     /// included).
     pub time_s: f64,
+    /// The cell attribute whose regions were kept (`keep_labels`), if any.
+    pub kept_labels: Option<String>,
+    /// Vertices locked by the label interfaces and `keep_vertices` (not the boundary).
+    pub locked_vertices: usize,
 }
 
 /// The mode [`simplify`] picks when none is given: QEM for a pure triangle mesh or a pure
@@ -300,10 +331,32 @@ pub fn simplify(
         }
     }
     let mut w = TopSimplices::from_complex(k)?;
+    for &v in &opts.keep_vertices {
+        if v as usize >= k.n_vertices() {
+            return Err(SimplifyError::BadVertex {
+                vertex: v as u64,
+                n_vertices: k.n_vertices(),
+            });
+        }
+        w.set_locked(v, true);
+    }
+    if let Some(name) = &opts.keep_labels {
+        let (labels, interface) = label_regions(k, name)?;
+        for v in interface {
+            w.set_locked(v, true);
+        }
+        // one region (every label id 0): the region test is the whole complex's
+        if labels.iter().any(|&l| l != 0) {
+            w.set_cell_labels(labels);
+        }
+    }
+    let locked_vertices = w.n_locked();
     let progress = opts.progress.as_deref();
     let mut report = SimplifyReport {
         mode,
         target_faces: target.faces,
+        kept_labels: opts.keep_labels.clone(),
+        locked_vertices,
         ..Default::default()
     };
     match mode {
@@ -325,9 +378,143 @@ pub fn simplify(
             report.mean_error = Some(s.mean_error);
         }
     }
-    let (out, _) = w.to_complex()?;
+    let (mut out, map) = w.to_complex()?;
+    let attrs = k.attributes();
+    if !attrs.is_empty() {
+        // vertex columns: the surviving vertices' own values; cell columns: each output cell
+        // has the values of the input cell it is the image of
+        let vertices: Vec<u32> = (0..map.len() as u32)
+            .filter(|&v| map[v as usize].is_some())
+            .collect();
+        let cells: Vec<u32> = w
+            .cell_origins()
+            .into_iter()
+            .map(|o| o.unwrap_or(0))
+            .collect();
+        let carried = crate::attr::Attributes {
+            vertex: attrs.gather_vertices(&vertices).vertex,
+            cell: attrs.gather_cells(&cells).cell,
+        };
+        out.set_attributes(carried)
+            .map_err(SimplifyError::Complex)?;
+    }
     report.time_s = t0.elapsed().as_secs_f64();
     Ok((out, report))
+}
+
+/// The label attributes [`default_label_attribute`] looks for, in order.
+pub const LABEL_ATTRIBUTES: [&str; 2] = ["gmsh:physical", "medit:ref"];
+
+/// The cell attribute that labels regions, when the complex has one: the first of
+/// [`LABEL_ATTRIBUTES`] (`gmsh:physical`, `medit:ref`) present as a cell attribute.
+///
+/// ```
+/// use starplex::algo::simplify::default_label_attribute;
+/// use starplex::attr::{Attribute, Attributes};
+/// let mut a = Attributes::default();
+/// assert_eq!(default_label_attribute(&a), None);
+/// a.cell.push(Attribute::int("medit:ref", 1, vec![1, 2]));
+/// assert_eq!(default_label_attribute(&a), Some("medit:ref"));
+/// ```
+pub fn default_label_attribute(attrs: &crate::attr::Attributes) -> Option<&'static str> {
+    LABEL_ATTRIBUTES
+        .into_iter()
+        .find(|n| attrs.get(crate::attr::AttrTarget::Cell, n).is_some())
+}
+
+/// The vertices on a label interface: those whose star holds top cells of two different
+/// values of the cell attribute `name` (all components compared; floats bit for bit). These are
+/// the vertices `keep_labels` locks.
+///
+/// How `keep_labels` keeps each region's topology: an edge `ab` with `b` unlocked has all of
+/// `St(b)` in one region `L`; every other region is untouched, and the contraction must pass,
+/// besides the link condition in the whole complex, the extended link condition in `L` alone
+/// ([`link_condition::region_condition`]: `L` closed by a cone over its own boundary, which
+/// contains the interfaces). The plain link condition in `L` alone is not enough: a triangle
+/// of `L` with one side on an interface and one on the mesh boundary would fold onto its
+/// interface side, and `L` would lose that side (a test in `tests/simplify_labels.rs` found it).
+///
+/// ```
+/// use starplex::algo::simplify::label_interface_vertices;
+/// use starplex::attr::{Attribute, Attributes};
+/// use starplex::generate::kuhn_grid;
+/// use starplex::ids::VertexId;
+/// let mut k = kuhn_grid(&[2, 1]).unwrap(); // 4 triangles over the squares [0,1] and [1,2]
+/// // label 1 left of x = 1, 2 right of it
+/// let labels: Vec<i64> = k.cells()
+///     .map(|c| if c.vertices.iter().all(|&v| k.point(VertexId(v))[0] <= 1.0) { 1 } else { 2 })
+///     .collect();
+/// k.set_attributes(Attributes { vertex: vec![], cell: vec![Attribute::int("tag", 1, labels)] }).unwrap();
+/// assert_eq!(label_interface_vertices(&k, "tag").unwrap().len(), 2); // the middle edge
+/// assert!(label_interface_vertices(&k, "nope").is_err());
+/// ```
+///
+/// # Errors
+/// [`SimplifyError::UnknownLabel`] when there is no such cell attribute.
+pub fn label_interface_vertices(k: &IndexedComplex, name: &str) -> Result<Vec<u32>, SimplifyError> {
+    Ok(label_regions(k, name)?.1)
+}
+
+/// One label id per cell (equal values, equal ids) and the interface vertices.
+fn label_regions(k: &IndexedComplex, name: &str) -> Result<(Vec<u32>, Vec<u32>), SimplifyError> {
+    use crate::attr::{AttrTarget, AttrValues};
+    let attrs = k.attributes();
+    let Some(col) = attrs.get(AttrTarget::Cell, name) else {
+        let names: Vec<&str> = attrs.cell.iter().map(|a| a.name.as_str()).collect();
+        return Err(SimplifyError::UnknownLabel {
+            name: name.into(),
+            available: if names.is_empty() {
+                "none".into()
+            } else {
+                names.join(", ")
+            },
+        });
+    };
+    // one u32 per cell: equal values, equal ids
+    let c = col.components;
+    let label: Vec<u32> = match (&col.values, c) {
+        (AttrValues::Int(v), 1) => {
+            let mut ids = rustc_hash::FxHashMap::default();
+            v.iter()
+                .map(|x| {
+                    let n = ids.len() as u32;
+                    *ids.entry(*x).or_insert(n)
+                })
+                .collect()
+        }
+        _ => {
+            let mut ids: rustc_hash::FxHashMap<Vec<u64>, u32> = Default::default();
+            (0..k.n_cells())
+                .map(|i| {
+                    let key: Vec<u64> = (i * c..(i + 1) * c)
+                        .map(|j| match &col.values {
+                            AttrValues::Int(v) => v[j] as u64,
+                            AttrValues::Float(v) => v[j].to_bits(),
+                        })
+                        .collect();
+                    let n = ids.len() as u32;
+                    *ids.entry(key).or_insert(n)
+                })
+                .collect()
+        }
+    };
+    let mut first = vec![u32::MAX; k.n_vertices()];
+    let mut on = vec![false; k.n_vertices()];
+    for cell in k.cells() {
+        let l = label[cell.id.0 as usize];
+        for &v in cell.vertices {
+            let f = &mut first[v as usize];
+            if *f == u32::MAX {
+                *f = l;
+            } else if *f != l {
+                on[v as usize] = true;
+            }
+        }
+    }
+    let interface = (0..k.n_vertices() as u32)
+        .filter(|&v| on[v as usize])
+        .collect();
+    Ok((label, interface))
 }
 
 /// The topology of a complex, as reported before and after simplification.

@@ -31,6 +31,9 @@ use crate::topo::TopCells;
 /// One top simplex: its vertices in the given order (inline up to a tetrahedron).
 pub type Top = SmallVec<[u32; 4]>;
 
+/// The origin of a top that is no input cell (an isolated vertex).
+const NO_ORIGIN: u32 = u32::MAX;
+
 /// A simplicial complex stored by its top simplices, editable by edge contraction.
 ///
 /// Vertex ids are those of the input for the whole life of the structure (a contracted vertex
@@ -46,8 +49,13 @@ pub type Top = SmallVec<[u32; 4]>;
 #[derive(Clone, Debug)]
 pub struct TopSimplices {
     tops: Vec<Top>,
+    /// Per top: the input top it is the image of (`NO_ORIGIN` for an added vertex top).
+    origin: Vec<u32>,
     vt: Vec<SmallVec<[u32; 8]>>,
     alive_v: Vec<bool>,
+    locked: Vec<bool>,
+    /// Per input top (by origin): its label, when labels are kept (empty otherwise).
+    labels: Vec<u32>,
     n_alive_tops: usize,
     n_alive_v: usize,
     /// Coordinates, `stride` numbers a vertex (empty when there are none).
@@ -88,6 +96,7 @@ impl TopSimplices {
             return Err(SimplifyError::Empty);
         }
         let mut tops = Vec::with_capacity(s.n_top_cells() + 1);
+        let mut origin = Vec::with_capacity(s.n_top_cells() + 1);
         let mut buf = Vec::new();
         let mut used = vec![false; n];
         for c in 0..s.n_top_cells() {
@@ -106,10 +115,12 @@ impl TopSimplices {
                 used[v as usize] = true;
             }
             tops.push(t);
+            origin.push(c.0);
         }
         for (v, &u) in used.iter().enumerate() {
             if !u {
                 tops.push(SmallVec::from_slice(&[v as u32]));
+                origin.push(NO_ORIGIN);
             }
         }
         let coords = if stride == 0 {
@@ -117,7 +128,7 @@ impl TopSimplices {
         } else {
             coords.to_vec()
         };
-        Ok(Self::assemble(n, tops, coords, stride))
+        Ok(Self::assemble(n, tops, origin, coords, stride))
     }
 
     /// Builds the structure from an indexed complex (its coordinates included).
@@ -183,15 +194,24 @@ impl TopSimplices {
             }
             out.push(t.iter().copied().collect());
         }
+        let mut origin: Vec<u32> = (0..out.len() as u32).collect();
         for (v, &u) in used.iter().enumerate() {
             if !u {
                 out.push(SmallVec::from_slice(&[v as u32]));
+                origin.push(NO_ORIGIN);
             }
         }
-        Ok(Self::assemble(n_vertices, out, Vec::new(), 0))
+        Ok(Self::assemble(n_vertices, out, origin, Vec::new(), 0))
     }
 
-    fn assemble(n: usize, tops: Vec<Top>, coords: Vec<f64>, stride: usize) -> TopSimplices {
+    fn assemble(
+        n: usize,
+        tops: Vec<Top>,
+        origin: Vec<u32>,
+        coords: Vec<f64>,
+        stride: usize,
+    ) -> TopSimplices {
+        debug_assert_eq!(tops.len(), origin.len());
         let mut vt: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];
         for (i, t) in tops.iter().enumerate() {
             for &v in t {
@@ -201,8 +221,11 @@ impl TopSimplices {
         TopSimplices {
             n_alive_tops: tops.len(),
             tops,
+            origin,
             vt,
             alive_v: vec![true; n],
+            locked: vec![false; n],
+            labels: Vec::new(),
             n_alive_v: n,
             coords,
             stride,
@@ -253,6 +276,92 @@ impl TopSimplices {
     /// ```
     pub fn is_alive(&self, v: u32) -> bool {
         self.alive_v.get(v as usize).copied().unwrap_or(false)
+    }
+
+    /// Locks vertex `v` (or unlocks it): the simplifiers ([`contract_homology`] and
+    /// [`simplify_qem`]) never remove a locked vertex nor move it, and never contract an edge
+    /// between two locked vertices. [`contract`](Self::contract) itself does not look at locks.
+    ///
+    /// [`contract_homology`]: super::contract::contract_homology
+    /// [`simplify_qem`]: super::qem::simplify_qem
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(2, &[vec![0, 1]]).unwrap();
+    /// w.set_locked(1, true);
+    /// assert!(w.is_locked(1) && !w.is_locked(0));
+    /// assert!(!w.is_locked(9)); // out of range: not locked
+    /// ```
+    pub fn set_locked(&mut self, v: u32, locked: bool) {
+        if let Some(x) = self.locked.get_mut(v as usize) {
+            *x = locked;
+        }
+    }
+
+    /// True when vertex `v` is locked ([`set_locked`](Self::set_locked)).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(2, &[vec![0, 1]]).unwrap();
+    /// assert!(!w.is_locked(0));
+    /// ```
+    pub fn is_locked(&self, v: u32) -> bool {
+        self.locked.get(v as usize).copied().unwrap_or(false)
+    }
+
+    /// Labels the input tops (one value per input top, by its [`origin`](Self::origin)), so
+    /// that the simplifiers keep the regions of each label
+    /// ([`link_condition_in`](super::link_condition::link_condition_in)); an empty vector
+    /// removes the labels. Lock the vertices on the interfaces too
+    /// ([`set_locked`](Self::set_locked)) to keep the interfaces in place.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![1, 2, 3]]).unwrap();
+    /// w.set_cell_labels(vec![5, 6]);
+    /// assert_eq!((w.label(0), w.label(1)), (Some(5), Some(6)));
+    /// assert!(w.has_labels());
+    /// ```
+    pub fn set_cell_labels(&mut self, labels: Vec<u32>) {
+        self.labels = labels;
+    }
+
+    /// True when the tops are labelled ([`set_cell_labels`](Self::set_cell_labels)).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// assert!(!TopSimplices::from_tops(2, &[vec![0, 1]]).unwrap().has_labels());
+    /// ```
+    pub fn has_labels(&self) -> bool {
+        !self.labels.is_empty()
+    }
+
+    /// The label of top `t`: that of the input top it is the image of (`None` without labels,
+    /// for a vertex top added for an isolated vertex, or past the labels given).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(3, &[vec![0, 1], vec![1, 2]]).unwrap();
+    /// w.set_cell_labels(vec![1, 2]);
+    /// w.contract(1, 0); // the edge 1-2 is unchanged, 0-1 became the vertex 1, dominated
+    /// assert_eq!(w.tops().count(), 1);
+    /// assert_eq!(w.label(1), Some(2));
+    /// ```
+    pub fn label(&self, t: u32) -> Option<u32> {
+        self.origin(t)
+            .and_then(|o| self.labels.get(o as usize).copied())
+    }
+
+    /// Number of locked vertices.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(3, &[vec![0, 1, 2]]).unwrap();
+    /// w.set_locked(2, true);
+    /// assert_eq!(w.n_locked(), 1);
+    /// ```
+    pub fn n_locked(&self) -> usize {
+        self.locked.iter().filter(|&&l| l).count()
     }
 
     /// The vertices of top `t` (empty for a removed top).
@@ -376,7 +485,9 @@ impl TopSimplices {
         }
         let st_b = std::mem::take(&mut self.vt[b as usize]);
         let mut images: Vec<Top> = Vec::with_capacity(st_b.len());
+        let mut image_origin: Vec<u32> = Vec::with_capacity(st_b.len());
         for &t in &st_b {
+            image_origin.push(self.origin[t as usize]);
             let mut top = std::mem::take(&mut self.tops[t as usize]);
             self.n_alive_tops -= 1;
             for &v in &top {
@@ -431,13 +542,14 @@ impl TopSimplices {
                 remove_from(&mut self.vt[v as usize], u);
             }
         }
-        for (t, k) in images.into_iter().zip(keep) {
+        for ((t, k), o) in images.into_iter().zip(keep).zip(image_origin) {
             if k {
                 let id = self.tops.len() as u32;
                 for &v in &t {
                     self.vt[v as usize].push(id);
                 }
                 self.tops.push(t);
+                self.origin.push(o);
                 self.n_alive_tops += 1;
             }
         }
@@ -521,6 +633,45 @@ impl TopSimplices {
         };
         let (k, _) = b.build(&opts).map_err(SimplifyError::Complex)?;
         Ok((k, map))
+    }
+
+    /// The input top that top `t` is the image of (through any number of contractions): the
+    /// cell id of the input for [`from_structure`](Self::from_structure) and
+    /// [`from_complex`](Self::from_complex), the list position for
+    /// [`from_tops`](Self::from_tops); `None` for a vertex top added for an isolated vertex
+    /// or an unknown id. Cell attributes follow their cells this way.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![1, 3, 2]]).unwrap();
+    /// w.contract(1, 0); // [0, 1, 2] becomes the edge [1, 2], dominated by [1, 3, 2]
+    /// let t = (0..8).find(|&t| w.top(t) == [1, 3, 2]).unwrap();
+    /// assert_eq!(w.origin(t), Some(1));
+    /// ```
+    pub fn origin(&self, t: u32) -> Option<u32> {
+        self.origin
+            .get(t as usize)
+            .copied()
+            .filter(|&o| o != NO_ORIGIN)
+    }
+
+    /// The origins ([`origin`](Self::origin)) of the cells that
+    /// [`to_complex`](Self::to_complex) writes, in its cell order (alive tops of at least two
+    /// vertices, in id order): gather the input's cell attributes with them.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(4, &[vec![0, 1], vec![1, 2], vec![2, 3]]).unwrap();
+    /// w.contract(1, 2);
+    /// assert_eq!(w.cell_origins(), vec![Some(0), Some(2)]);
+    /// ```
+    pub fn cell_origins(&self) -> Vec<Option<u32>> {
+        self.tops
+            .iter()
+            .zip(&self.origin)
+            .filter(|(t, _)| t.len() >= 2)
+            .map(|(_, &o)| (o != NO_ORIGIN).then_some(o))
+            .collect()
     }
 
     /// The alive tops as sorted vertex lists, the list sorted (for comparisons in tests).
