@@ -48,6 +48,10 @@ pub(crate) fn run_simplify(k: &IndexedComplex, a: SimplifyArgs) -> Result<Simpli
         target: a.target,
         lock_boundary: a.lock_boundary,
         keep_manifold: a.keep_manifold,
+        // as the command line: a gmsh/Medit label attribute is kept by default
+        keep_labels: starplex::algo::simplify::default_label_attribute(k.attributes())
+            .map(str::to_string),
+        keep_vertices: Vec::new(),
         progress: None,
     };
     let (out, report) = simplify(k, &opts).map_err(|e| {
