@@ -41,4 +41,5 @@ pub mod render;
 pub mod stellar;
 pub mod structures;
 pub mod tds;
+pub mod testkit;
 pub mod topo;

@@ -309,13 +309,8 @@ mod tests {
     /// random mixed complexes of dimension ≤ 3 with dense and sparse labels.
     #[test]
     fn bulk_build_equals_insertion() {
-        let mut x = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut rng = crate::testkit::XorShift::new(0x9E37_79B9_7F4A_7C15);
+        let mut next = |m: u64| rng.below(m);
         for case in 0..300 {
             let nv = 4 + next(30) as u32;
             let scale = if case % 3 == 0 { 100_003 } else { 1 };

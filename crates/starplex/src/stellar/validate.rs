@@ -269,13 +269,8 @@ mod tests {
     /// triangles.
     #[test]
     fn tet_short_cut_equals_generic() {
-        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
-        let mut next = |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut rng = crate::testkit::XorShift::new(0x2545_F491_4F6C_DD1D);
+        let mut next = |m: u64| rng.below(m);
         // non-manifold vertices, manifold vertices, non-manifold edges met
         let mut seen_kinds = [0usize; 3];
         for case in 0..300 {

@@ -435,13 +435,8 @@ mod tests {
 
     #[test]
     fn bucket_sort_equals_sort() {
-        let mut x: u64 = 12345;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut rng = crate::testkit::XorShift::new(12345);
+        let mut next = || rng.next_u64();
         for n in [0usize, 1, 63, 64, 500, 3000] {
             let v: Vec<(u64, u64)> = (0..n)
                 .map(|_| {

@@ -1,14 +1,10 @@
 use super::*;
 use crate::complex::{BuildOptions, ComplexBuilder};
 
-/// A seeded xorshift generator: `next(m)` is in `0..m`.
-fn xorshift(mut x: u64) -> impl FnMut(u64) -> u64 {
-    move |m| {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        x % m
-    }
+/// A seeded generator: `next(m)` is in `0..m`.
+fn xorshift(seed: u64) -> impl FnMut(u64) -> u64 {
+    let mut rng = crate::testkit::XorShift::new(seed);
+    move |m| rng.below(m)
 }
 
 /// The two builds hold the same structure: references, per-vertex references,
