@@ -1,5 +1,5 @@
 //! The CASC complex behind the shared query interface: see [`HasseQueries`].
-use super::{Hasse, HasseError, Node};
+use super::{Hasse, HasseError, LevelTypes, Node};
 use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::ids::{CellId, SimplexId, VertexId};
@@ -180,30 +180,42 @@ impl HasseQueries {
     }
 
     fn node(&self, s: &[VertexId]) -> Result<(Vec<VertexId>, Node), QueryError> {
-        let s = sorted_simplex(s)?;
-        match self.h.find(&s) {
-            Some(n) => Ok((s, n)),
-            None => Err(QueryError::NotInComplex(s.iter().map(|v| v.0).collect())),
-        }
+        node_of(&self.h, s)
     }
 
-    /// Ids per level of the star of `n`, refused over the budget.
     fn star_ids(&self, n: Node) -> Result<Vec<Vec<u32>>, QueryError> {
-        let ids = self.h.star_ids(n);
-        let total: u128 = ids.iter().map(|l| l.len() as u128).sum();
-        if total > DEFAULT_BUDGET {
-            return Err(QueryError::TooLarge {
-                what: format!("star of {:?}", self.h.vertices(n)),
-                estimate: total,
-                budget: DEFAULT_BUDGET,
-            });
-        }
-        Ok(ids)
+        star_ids(&self.h, n)
     }
+}
 
-    fn push_vertices(&self, d: usize, i: u32, out: &mut Vec<VertexId>) {
-        out.extend_from_slice(self.h.vertices(Node::new(d as u32, SimplexId(i))));
+/// The node of simplex `s` (sorted), or why not.
+fn node_of<L: LevelTypes>(
+    h: &Hasse<L>,
+    s: &[VertexId],
+) -> Result<(Vec<VertexId>, Node), QueryError> {
+    let s = sorted_simplex(s)?;
+    match h.find(&s) {
+        Some(n) => Ok((s, n)),
+        None => Err(QueryError::NotInComplex(s.iter().map(|v| v.0).collect())),
     }
+}
+
+/// Ids per level of the star of `n`, refused over the budget.
+fn star_ids<L: LevelTypes>(h: &Hasse<L>, n: Node) -> Result<Vec<Vec<u32>>, QueryError> {
+    let ids = h.star_ids(n);
+    let total: u128 = ids.iter().map(|l| l.len() as u128).sum();
+    if total > DEFAULT_BUDGET {
+        return Err(QueryError::TooLarge {
+            what: format!("star of {:?}", h.vertices(n)),
+            estimate: total,
+            budget: DEFAULT_BUDGET,
+        });
+    }
+    Ok(ids)
+}
+
+fn push_vertices<L: LevelTypes>(h: &Hasse<L>, d: usize, i: u32, out: &mut Vec<VertexId>) {
+    out.extend_from_slice(h.vertices(Node::new(d as u32, SimplexId(i))));
 }
 
 impl TopCells for HasseQueries {
@@ -248,19 +260,14 @@ impl VertexStar for HasseQueries {
 }
 
 impl VertexAdjacency for HasseQueries {
-    /// The keys of the vertex's up list (sorted by construction).
     fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>) {
-        out.clear();
-        if let Some(n) = self.h.vertex(v) {
-            out.extend(self.h.up_keyed(n).map(|(w, _)| w));
-            out.sort_unstable();
-        }
+        self.h.vertex_neighbours(v, out)
     }
 }
 
 impl Counts for HasseQueries {
     fn f_vector(&self) -> Result<Vec<u64>, QueryError> {
-        Ok(self.h.f_vector().into_iter().map(|x| x as u64).collect())
+        Counts::f_vector(&self.h)
     }
 }
 
@@ -271,7 +278,7 @@ impl SimplexVertices for HasseQueries {
     fn simplex_vertices(&self, s: SimplexId, out: &mut Vec<VertexId>) {
         out.clear();
         let d = self.offset.partition_point(|&o| o <= s.0) - 1;
-        self.push_vertices(d, s.0 - self.offset[d], out);
+        push_vertices(&self.h, d, s.0 - self.offset[d], out);
     }
     fn find_simplex(&self, verts: &[VertexId]) -> Option<SimplexId> {
         let (_, n) = self.node(verts).ok()?;
@@ -280,24 +287,13 @@ impl SimplexVertices for HasseQueries {
 }
 
 impl Boundary for HasseQueries {
-    /// q = p-1 by one down step; lower q by the combinatorial faces of the node's (stored,
-    /// sorted) vertices, which the diagram guarantees are all present.
     fn boundary(
         &self,
         s: &[VertexId],
         q: usize,
         out: &mut Vec<VertexId>,
     ) -> Result<(), QueryError> {
-        let (s, n) = self.node(s)?;
-        out.clear();
-        if q + 2 == s.len() {
-            for f in self.h.down(n) {
-                out.extend_from_slice(self.h.vertices(f));
-            }
-            sort_flat(out, q + 1);
-            return Ok(());
-        }
-        boundary_of_sorted(&s, q, DEFAULT_BUDGET, out)
+        self.h.boundary(s, q, out)
     }
 }
 
@@ -308,56 +304,19 @@ impl Coboundary for HasseQueries {
         q: usize,
         out: &mut Vec<VertexId>,
     ) -> Result<(), QueryError> {
-        out.clear();
-        let (s, n) = self.node(s)?;
-        if q < s.len() {
-            return Ok(());
-        }
-        if q == s.len() {
-            for c in self.h.up(n) {
-                out.extend_from_slice(self.h.vertices(c));
-            }
-        } else if let Some(l) = self.star_ids(n)?.get(q) {
-            for &i in l {
-                self.push_vertices(q, i, out);
-            }
-        }
-        sort_flat(out, q + 1);
-        Ok(())
+        self.h.coboundary(s, q, out)
     }
 }
 
 impl Adjacency for HasseQueries {
-    /// Alg. 3 of CASC: down to every facet, up to its other cofaces; for a vertex, VV.
     fn adjacent(&self, s: &[VertexId], out: &mut Vec<VertexId>) -> Result<(), QueryError> {
-        let (s, n) = self.node(s)?;
-        out.clear();
-        if s.len() == 1 {
-            self.vertex_neighbours(s[0], out);
-            return Ok(());
-        }
-        for m in self.h.neighbours_by_face(n) {
-            out.extend_from_slice(self.h.vertices(m));
-        }
-        sort_flat(out, s.len());
-        Ok(())
+        self.h.adjacent(s, out)
     }
 }
 
 impl Star for HasseQueries {
     fn star(&self, s: &[VertexId]) -> Result<SimplexSet, QueryError> {
-        let (_, n) = self.node(s)?;
-        let mut set = SimplexSet::default();
-        for (d, l) in self.star_ids(n)?.iter().enumerate() {
-            let mut buf = Vec::new();
-            for &i in l {
-                buf.clear();
-                self.push_vertices(d, i, &mut buf);
-                set.insert(&buf);
-            }
-        }
-        set.normalize();
-        Ok(set)
+        Star::star(&self.h, s)
     }
 }
 
@@ -403,5 +362,155 @@ impl Storage for HasseQueries {
             + 8 * self.cell_node.len()
             + self.top_of.iter().map(|t| 4 * t.len()).sum::<usize>()
             + 4 * self.offset.len()) as u64
+    }
+}
+
+// The vertex-list relations, answered by any Hasse complex whatever its level data
+// (`HasseQueries` adds the top-cell numbering on top of them).
+
+impl<L: LevelTypes> VertexAdjacency for Hasse<L> {
+    /// The keys of the vertex's up list (sorted by construction).
+    fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>) {
+        out.clear();
+        if let Some(n) = self.vertex(v) {
+            out.extend(self.up_keyed(n).map(|(w, _)| w));
+            out.sort_unstable();
+        }
+    }
+}
+
+impl<L: LevelTypes> Counts for Hasse<L> {
+    fn f_vector(&self) -> Result<Vec<u64>, QueryError> {
+        Ok(Hasse::f_vector(self)
+            .into_iter()
+            .map(|x| x as u64)
+            .collect())
+    }
+}
+
+impl<L: LevelTypes> Boundary for Hasse<L> {
+    /// q = p-1 by one down step; lower q by the combinatorial faces of the node's (stored,
+    /// sorted) vertices, which the diagram guarantees are all present.
+    fn boundary(
+        &self,
+        s: &[VertexId],
+        q: usize,
+        out: &mut Vec<VertexId>,
+    ) -> Result<(), QueryError> {
+        let (s, n) = node_of(self, s)?;
+        out.clear();
+        if q + 2 == s.len() {
+            for f in Hasse::down(self, n) {
+                out.extend_from_slice(self.vertices(f));
+            }
+            sort_flat(out, q + 1);
+            return Ok(());
+        }
+        boundary_of_sorted(&s, q, DEFAULT_BUDGET, out)
+    }
+}
+
+impl<L: LevelTypes> Coboundary for Hasse<L> {
+    fn coboundary(
+        &self,
+        s: &[VertexId],
+        q: usize,
+        out: &mut Vec<VertexId>,
+    ) -> Result<(), QueryError> {
+        out.clear();
+        let (s, n) = node_of(self, s)?;
+        if q < s.len() {
+            return Ok(());
+        }
+        if q == s.len() {
+            for c in Hasse::up(self, n) {
+                out.extend_from_slice(self.vertices(c));
+            }
+        } else if let Some(l) = star_ids(self, n)?.get(q) {
+            for &i in l {
+                push_vertices(self, q, i, out);
+            }
+        }
+        sort_flat(out, q + 1);
+        Ok(())
+    }
+}
+
+impl<L: LevelTypes> Adjacency for Hasse<L> {
+    /// Alg. 3 of CASC: down to every facet, up to its other cofaces; for a vertex, VV.
+    fn adjacent(&self, s: &[VertexId], out: &mut Vec<VertexId>) -> Result<(), QueryError> {
+        let (s, n) = node_of(self, s)?;
+        out.clear();
+        if s.len() == 1 {
+            VertexAdjacency::vertex_neighbours(self, s[0], out);
+            return Ok(());
+        }
+        for m in self.neighbours_by_face(n) {
+            out.extend_from_slice(self.vertices(m));
+        }
+        sort_flat(out, s.len());
+        Ok(())
+    }
+}
+
+impl<L: LevelTypes> Star for Hasse<L> {
+    fn star(&self, s: &[VertexId]) -> Result<SimplexSet, QueryError> {
+        let (_, n) = node_of(self, s)?;
+        let mut set = SimplexSet::default();
+        for (d, l) in star_ids(self, n)?.iter().enumerate() {
+            let mut buf = Vec::new();
+            for &i in l {
+                buf.clear();
+                push_vertices(self, d, i, &mut buf);
+                set.insert(&buf);
+            }
+        }
+        set.normalize();
+        Ok(set)
+    }
+}
+
+impl<L: LevelTypes> Levels for Hasse<L> {
+    /// Lexicographic order, as every structure of the suite (a level not in that order, after
+    /// edits, is sorted on the fly).
+    ///
+    /// ```
+    /// use starplex::hasse::Hasse;
+    /// use starplex::ids::VertexId;
+    /// use starplex::topo::{generic, Boundary, Levels};
+    /// let mut h: Hasse<(f64, (), u8)> = Hasse::new();
+    /// h.insert(&[VertexId(0), VertexId(1), VertexId(2)]).unwrap();
+    /// // any Hasse complex, whatever its data per level, answers the shared queries
+    /// assert_eq!(generic::euler_characteristic(&h).unwrap(), 1);
+    /// let mut edges = Vec::new();
+    /// h.for_each_simplex(1, &mut |e| edges.push(e.to_vec())).unwrap();
+    /// assert_eq!(edges.len(), 3);
+    /// let mut out = Vec::new();
+    /// h.boundary(&[VertexId(0), VertexId(1), VertexId(2)], 0, &mut out).unwrap();
+    /// assert_eq!(out, [VertexId(0), VertexId(1), VertexId(2)]);
+    /// ```
+    fn for_each_simplex(&self, p: usize, f: &mut dyn FnMut(&[VertexId])) -> Result<(), QueryError> {
+        let mut prev: Option<&[VertexId]> = None;
+        let sorted = self.level(p).all(|n| {
+            let v = self.vertices(n);
+            let ok = prev.is_none_or(|q| q < v);
+            prev = Some(v);
+            ok
+        });
+        if sorted {
+            for n in self.level(p) {
+                f(self.vertices(n));
+            }
+            return Ok(());
+        }
+        let mut all = Vec::with_capacity(self.n_simplices(p) * (p + 1));
+        for n in self.level(p) {
+            all.extend_from_slice(self.vertices(n));
+        }
+        sort_flat(&mut all, p + 1);
+        for t in all.chunks_exact(p + 1) {
+            f(t);
+        }
+        Ok(())
     }
 }
