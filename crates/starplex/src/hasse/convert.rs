@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use super::complex::Hasse;
 use super::edit::Position;
 use super::levels::{At, LevelTypes};
-use super::orient::Orientation;
+use super::orient::HasseOrientation;
 use super::{HasseError, Node};
 use crate::cell::CellKind;
 use crate::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
@@ -164,7 +164,7 @@ impl<L: LevelTypes> Hasse<L> {
         &self,
         ambient_dim: usize,
         mut coord: impl FnMut(Node) -> Vec<f64>,
-        orientation: Option<&Orientation>,
+        orientation: Option<&HasseOrientation>,
     ) -> Result<(IndexedComplex, Vec<VertexId>), HasseError> {
         let mut b = ComplexBuilder::new(ambient_dim)?;
         let mut order: Vec<(u32, u32)> = self

@@ -84,7 +84,7 @@ pub use convert::DotOptions;
 pub use decimate::{DecimationGroup, DecimationPlan};
 pub use edit::{EditError, Position};
 pub use levels::{At, DefaultData, KeepFirst, LevelTypes, Merge, MergeAll, Visit, VisitAll};
-pub use orient::{Orientation, SurfaceGeometry};
+pub use orient::{HasseOrientation, SurfaceGeometry};
 pub use queries::HasseQueries;
 pub use sets::{NodeMap, NodeSet};
 

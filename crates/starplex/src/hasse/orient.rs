@@ -26,7 +26,7 @@ use crate::ids::{SimplexId, VertexId};
 /// assert_eq!(o.signs, vec![1, -1]);
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Orientation {
+pub struct HasseOrientation {
     /// Dimension of the simplices oriented.
     pub dim: usize,
     /// One sign per top simplex, by id (0 at freed slots).
@@ -196,9 +196,9 @@ impl<L: LevelTypes> Hasse<L> {
     /// }
     /// assert!(!h.orient(None).orientable);
     /// ```
-    pub fn orient(&self, initial: Option<&[i8]>) -> Orientation {
+    pub fn orient(&self, initial: Option<&[i8]>) -> HasseOrientation {
         let Some(d) = self.dim() else {
-            return Orientation {
+            return HasseOrientation {
                 dim: 0,
                 signs: Vec::new(),
                 orientable: true,
@@ -237,7 +237,7 @@ impl<L: LevelTypes> Hasse<L> {
         let walk = crate::algo::orientation::orient_walk(n, |c| !dead(c), &pairs, seed);
         let (signs, orientable, components) =
             (walk.signs, walk.conflict.is_none(), walk.n_components);
-        Orientation {
+        HasseOrientation {
             dim: d,
             signs,
             orientable,
@@ -321,7 +321,7 @@ impl<L: LevelTypes> Hasse<L> {
     /// let g = h.surface_geometry(&o);
     /// assert!((g.signed_volume - 1.0 / 6.0).abs() < 1e-12);
     /// ```
-    pub fn surface_geometry(&self, o: &Orientation) -> SurfaceGeometry
+    pub fn surface_geometry(&self, o: &HasseOrientation) -> SurfaceGeometry
     where
         L: At<0>,
         <L as At<0>>::Data: Position,
@@ -353,7 +353,7 @@ impl<L: LevelTypes> Hasse<L> {
     /// let o = h.orient(None);
     /// assert_eq!(h.vertex_normal(h.vertex(0.into()).unwrap(), &o), [0.0, 0.0, 1.0]);
     /// ```
-    pub fn vertex_normal(&self, v: Node, o: &Orientation) -> [f64; 3]
+    pub fn vertex_normal(&self, v: Node, o: &HasseOrientation) -> [f64; 3]
     where
         L: At<0>,
         <L as At<0>>::Data: Position,
@@ -383,7 +383,7 @@ impl<L: LevelTypes> Hasse<L> {
     /// let b = h.vertex_tangent(h.vertex(0.into()).unwrap(), &o);
     /// assert_eq!((b[0][1], b[1][0]), (0.5, -0.5));
     /// ```
-    pub fn vertex_tangent(&self, v: Node, o: &Orientation) -> [[f64; 3]; 3]
+    pub fn vertex_tangent(&self, v: Node, o: &HasseOrientation) -> [[f64; 3]; 3]
     where
         L: At<0>,
         <L as At<0>>::Data: Position,
