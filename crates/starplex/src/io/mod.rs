@@ -271,7 +271,8 @@ impl Format {
 
     /// The attributes of `a` that a file of this format cannot hold (`kind name`, e.g.
     /// `cell material`): none for VTK (`.vtk`, `.vtu`, `.vtp`); Medit keeps only its integer
-    /// `medit:ref` columns; the other formats keep none.
+    /// `medit:ref` columns; PLY keeps those [`ply::dropped`] does not name; the other formats
+    /// keep none.
     ///
     /// ```
     /// use starplex::attr::{Attribute, Attributes};
@@ -286,6 +287,9 @@ impl Format {
     /// ```
     pub fn dropped_attributes(self, a: &crate::attr::Attributes) -> Vec<String> {
         use crate::attr::{AttrTarget, AttrValues};
+        if self == Format::Ply {
+            return ply::dropped(a, ply::PlyEncoding::default());
+        }
         let mut out = Vec::new();
         for target in [AttrTarget::Vertex, AttrTarget::Cell] {
             for c in a.of(target) {

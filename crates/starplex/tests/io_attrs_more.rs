@@ -1,0 +1,318 @@
+//! Attributes of PLY (extra vertex, face and edge properties), OFF/COFF colours and gmsh
+//! `$NodeData`/`$ElementData`, read from files written by independent tools
+//! (`scripts/make_attr_corpus.py`, reference columns in `more_attrs.json`), written back by
+//! starplex's writers, and never a panic on truncated or corrupted input.
+use std::path::PathBuf;
+
+use starplex::attr::{AttrTarget, AttrValues, Attribute, Attributes};
+use starplex::cell::CellKind;
+use starplex::complex::IndexedComplex;
+use starplex::io::{self, ply, Format, ReadOptions};
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/io")
+        .join(name)
+}
+
+fn reference() -> serde_json::Value {
+    let text = std::fs::read_to_string(data("more_attrs.json")).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+/// Checks every column the reference gives for `file` against `k` (and that `k` has no other).
+fn check(k: &IndexedComplex, file: &str, what: &str) {
+    let r = &reference()[file];
+    assert!(r.is_object(), "{file} is not in more_attrs.json");
+    for (target, key) in [(AttrTarget::Vertex, "vertex"), (AttrTarget::Cell, "cell")] {
+        let cols = r[key].as_object().unwrap();
+        let names: Vec<&str> = k
+            .attributes()
+            .of(target)
+            .iter()
+            .map(|a| a.name.as_str())
+            .collect();
+        assert_eq!(names.len(), cols.len(), "{what}: {key} columns {names:?}");
+        for (name, rows) in cols {
+            let a = k
+                .attributes()
+                .get(target, name)
+                .unwrap_or_else(|| panic!("{what}: no {key} attribute '{name}' in {names:?}"));
+            let rows = rows.as_array().unwrap();
+            assert_eq!(a.n_items(), rows.len(), "{what}: {name}");
+            let comps = rows[0].as_array().unwrap().len();
+            assert_eq!(a.components, comps, "{what}: {name}");
+            let want: Vec<f64> = rows
+                .iter()
+                .flat_map(|r| {
+                    r.as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|x| x.as_f64().unwrap_or(f64::NAN))
+                })
+                .collect();
+            let is_int = rows[0][0].is_i64() || rows[0][0].is_u64();
+            match &a.values {
+                AttrValues::Int(v) => {
+                    assert!(is_int, "{what}: {name} read as integers");
+                    let got: Vec<f64> = v.iter().map(|&x| x as f64).collect();
+                    assert_eq!(got, want, "{what}: {name}");
+                }
+                AttrValues::Float(v) => {
+                    assert!(!is_int, "{what}: {name} read as floats");
+                    for (g, w) in v.iter().zip(&want) {
+                        assert!(
+                            (g.is_nan() && w.is_nan()) || (g - w).abs() <= 1e-6 * w.abs().max(1.0),
+                            "{what}: {name}: {g} vs {w}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn files_with(ext: &str) -> Vec<String> {
+    let mut v: Vec<String> = reference()
+        .as_object()
+        .unwrap()
+        .keys()
+        .filter(|k| k.ends_with(ext))
+        .cloned()
+        .collect();
+    v.sort();
+    assert!(!v.is_empty(), "no {ext} file in more_attrs.json");
+    v
+}
+
+// ---------------------------------------------------------------- PLY
+
+#[test]
+fn ply_properties_written_by_trimesh_and_meshio_are_attributes() {
+    for f in files_with(".ply") {
+        let r = io::read(&data(&f), &ReadOptions::default()).unwrap_or_else(|e| panic!("{f}: {e}"));
+        check(&r.complex, &f, &f);
+    }
+}
+
+#[test]
+fn ply_edge_elements_are_edges_with_their_properties() {
+    let r = io::read(&data("hand_be.ply"), &ReadOptions::default()).unwrap();
+    let k = &r.complex;
+    let kinds: Vec<CellKind> = k.cells().map(|c| c.kind).collect();
+    assert_eq!(
+        kinds,
+        [
+            CellKind::Simplex(2),
+            CellKind::Simplex(2),
+            CellKind::Simplex(1)
+        ]
+    );
+    assert!(r.notes.iter().any(|n| n.contains("NaN")), "{:?}", r.notes);
+}
+
+#[test]
+fn ply_attributes_survive_both_encodings() {
+    for f in ["trimesh_ascii.ply", "trimesh_binary.ply", "meshio_bin.ply"] {
+        let k = io::read(&data(f), &ReadOptions::default()).unwrap().complex;
+        assert!(Format::Ply.dropped_attributes(k.attributes()).is_empty());
+        for enc in [
+            ply::PlyEncoding::Ascii,
+            ply::PlyEncoding::BinaryLittleEndian,
+        ] {
+            let mut out = Vec::new();
+            ply::write_with(&mut out, &k, enc).unwrap();
+            let back = ply::read_from(
+                &out[..],
+                out.len() as u64,
+                "b.ply".as_ref(),
+                &ReadOptions::default(),
+            )
+            .unwrap();
+            assert_eq!(back.complex, k, "{f} {enc:?}");
+            assert_eq!(back.complex.attributes(), k.attributes(), "{f} {enc:?}");
+            check(&back.complex, f, &format!("{f} written {enc:?}"));
+        }
+    }
+}
+
+/// A quad and a triangle with columns of every kind PLY holds and of kinds it cannot hold.
+fn surface_with_columns() -> IndexedComplex {
+    let mut k = IndexedComplex::from_parts(
+        3,
+        vec![0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0., 2., 0., 0.].into(),
+        vec![
+            (CellKind::Quad, vec![0, 1, 2, 3].into()),
+            (CellKind::Simplex(2), vec![1, 4, 2].into()),
+        ],
+    )
+    .unwrap();
+    let a = Attributes {
+        vertex: vec![
+            Attribute::float("normal", 3, (0..15).map(|i| i as f64 * 0.25).collect()),
+            Attribute::int("big", 1, vec![1 << 40, 0, 0, 0, 0]),
+            Attribute::int("neg", 1, vec![-5, 3, 70000, 0, 1]),
+            Attribute::float("x", 1, vec![0.0; 5]),
+            Attribute::float("has space", 1, vec![0.0; 5]),
+            Attribute::float("w", 1, vec![f64::NAN, 1.0, 2.0, 3.0, f64::INFINITY]),
+            Attribute::int("u", 1, vec![u32::MAX as i64, 0, 1, 2, 3]),
+        ],
+        cell: vec![
+            Attribute::int("rgb", 3, vec![255, 0, 0, 0, 255, 0]),
+            Attribute::float("vertex_indices", 1, vec![0.0; 2]),
+        ],
+    };
+    k.set_attributes(a).unwrap();
+    k
+}
+
+#[test]
+fn ply_writes_every_column_it_can_and_says_which_it_drops() {
+    let k = surface_with_columns();
+    let dropped = Format::Ply.dropped_attributes(k.attributes());
+    assert_eq!(
+        dropped,
+        [
+            "vertex big",
+            "vertex x",
+            "vertex has space",
+            "cell vertex_indices"
+        ]
+    );
+    for enc in [
+        ply::PlyEncoding::Ascii,
+        ply::PlyEncoding::BinaryLittleEndian,
+    ] {
+        let gone = ply::dropped(k.attributes(), enc);
+        let mut out = Vec::new();
+        ply::write_with(&mut out, &k, enc).unwrap();
+        let back = ply::read_from(
+            &out[..],
+            out.len() as u64,
+            "b.ply".as_ref(),
+            &ReadOptions::default(),
+        )
+        .unwrap()
+        .complex;
+        for (target, cols) in [
+            (AttrTarget::Vertex, &k.attributes().vertex),
+            (AttrTarget::Cell, &k.attributes().cell),
+        ] {
+            for a in cols {
+                let got = back.attributes().get(target, &a.name);
+                if gone.contains(&format!("{target} {}", a.name)) {
+                    assert!(got.is_none(), "{enc:?}: {target} {} written", a.name);
+                } else {
+                    let got = got.unwrap_or_else(|| panic!("{enc:?}: {target} {} lost", a.name));
+                    assert_eq!(got.components, a.components);
+                    assert_eq!(got.values.type_name(), a.values.type_name());
+                    for i in 0..a.values.len() {
+                        let (x, y) = (got.values.get_f64(i), a.values.get_f64(i));
+                        assert!(x == y || (x.is_nan() && y.is_nan()), "{} {x} {y}", a.name);
+                    }
+                }
+            }
+        }
+        let n_kept = back.attributes().vertex.len() + back.attributes().cell.len();
+        assert_eq!(n_kept + gone.len(), 9, "{enc:?}");
+    }
+    // ascii has no NaN or infinity
+    assert_eq!(
+        ply::dropped(k.attributes(), ply::PlyEncoding::Ascii),
+        [
+            "vertex big",
+            "vertex x",
+            "vertex has space",
+            "vertex w",
+            "cell vertex_indices"
+        ]
+    );
+}
+
+#[test]
+fn ply_grouping_rule_is_exact() {
+    // a_0 a_1 of one type: one column a; b_0 then b_1 of two types: two columns; c_0 with a
+    // property c: not grouped
+    let text = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n\
+                property float a_0\nproperty float a_1\nproperty int b_0\nproperty float b_1\n\
+                property int c\nproperty int c_0\nproperty int c_1\nend_header\n0 0 1 2 3 4 5 6 7\n";
+    let k = ply::read_from(
+        text.as_bytes(),
+        text.len() as u64,
+        "g.ply".as_ref(),
+        &ReadOptions::default(),
+    )
+    .unwrap()
+    .complex;
+    let names: Vec<(&str, usize)> = k
+        .attributes()
+        .vertex
+        .iter()
+        .map(|a| (a.name.as_str(), a.components))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            ("a", 2),
+            ("b_0", 1),
+            ("b_1", 1),
+            ("c", 1),
+            ("c_0", 1),
+            ("c_1", 1)
+        ]
+    );
+    assert_eq!(
+        k.attributes().vertex[0].values,
+        AttrValues::Float(vec![1.0, 2.0])
+    );
+}
+
+#[test]
+fn ply_with_attributes_never_panics_when_cut_or_corrupted() {
+    let mut files: Vec<(String, Vec<u8>)> =
+        ["trimesh_ascii.ply", "trimesh_binary.ply", "hand_be.ply"]
+            .iter()
+            .map(|f| (f.to_string(), std::fs::read(data(f)).unwrap()))
+            .collect();
+    let k = surface_with_columns();
+    for enc in [
+        ply::PlyEncoding::Ascii,
+        ply::PlyEncoding::BinaryLittleEndian,
+    ] {
+        let mut out = Vec::new();
+        ply::write_with(&mut out, &k, enc).unwrap();
+        files.push((format!("own_{enc:?}.ply"), out));
+    }
+    let mut seed = 0x5eed_u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    let opts = ReadOptions::default();
+    for (name, full) in &files {
+        let binary = !name.contains("ascii") && !name.contains("Ascii");
+        for cut in 0..full.len() {
+            let r = ply::read_from(&full[..cut], cut as u64, name.as_ref(), &opts);
+            match r {
+                Err(e) => assert!(e.to_string().starts_with(name.as_str()), "{e}"),
+                Ok(_) => assert!(!binary, "{name} cut at {cut} read fine"),
+            }
+        }
+        for _ in 0..300 {
+            let mut b = full.clone();
+            for _ in 0..1 + next() % 4 {
+                let i = (next() % b.len() as u64) as usize;
+                b[i] = next() as u8;
+            }
+            if let Err(e) = ply::read_from(&b[..], b.len() as u64, name.as_ref(), &opts) {
+                assert!(e.to_string().starts_with(name.as_str()), "{e}");
+                assert!(
+                    e.location.is_some() || matches!(e.kind, io::IoErrorKind::Complex(_)),
+                    "{e}"
+                );
+            }
+        }
+    }
+}
