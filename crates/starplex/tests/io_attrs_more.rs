@@ -316,3 +316,25 @@ fn ply_with_attributes_never_panics_when_cut_or_corrupted() {
         }
     }
 }
+
+/// starplex's own output of the corpus files, for `scripts/check_attrs_more.py` (meshio and
+/// trimesh read them back): written to `$STARPLEX_ATTR_OUT` when set, else to a temporary
+/// directory (which checks that every write succeeds).
+#[test]
+fn own_outputs_for_independent_readers() {
+    let dir = match std::env::var_os("STARPLEX_ATTR_OUT") {
+        Some(d) => PathBuf::from(d),
+        None => std::env::temp_dir().join(format!("starplex-attr-out-{}", std::process::id())),
+    };
+    std::fs::create_dir_all(&dir).unwrap();
+    let k = io::read(&data("trimesh_binary.ply"), &ReadOptions::default())
+        .unwrap()
+        .complex;
+    io::write(&dir.join("out_bin.ply"), &k, None).unwrap();
+    let mut out = Vec::new();
+    ply::write_with(&mut out, &k, ply::PlyEncoding::Ascii).unwrap();
+    std::fs::write(dir.join("out_ascii.ply"), out).unwrap();
+    if std::env::var_os("STARPLEX_ATTR_OUT").is_none() {
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
