@@ -338,3 +338,157 @@ fn own_outputs_for_independent_readers() {
         std::fs::remove_dir_all(&dir).ok();
     }
 }
+
+// ---------------------------------------------------------------- OFF
+
+const COFF: &str = "COFF\n6 3 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n1 1 0 0 0 255 255\n\
+                    0 1 0 9 9 9 0\n2 0 0 1 2 3 4\n2 1 0 5 6 7 8\n\
+                    3 1 4 5 0.5 0 0\n5 0 1 2 3 4 0 0.25 1\n2 3 5 1 1 1\n";
+
+#[test]
+fn coff_colours_are_attributes_and_are_written_back() {
+    use starplex::io::off;
+    let opts = ReadOptions::default();
+    let r = off::read_from(COFF.as_bytes(), "c.off".as_ref(), &opts).unwrap();
+    let k = &r.complex;
+    // the pentagon is 3 triangles sharing its colour
+    assert_eq!(k.n_cells(), 5);
+    let a = k.attributes();
+    assert_eq!(a.vertex[0].name, "color");
+    assert_eq!(a.vertex[0].components, 4);
+    assert!(matches!(a.vertex[0].values, AttrValues::Int(_)));
+    assert_eq!(
+        a.cell,
+        [Attribute::float(
+            "color",
+            3,
+            vec![0.5, 0., 0., 0., 0.25, 1., 0., 0.25, 1., 0., 0.25, 1., 1., 1., 1.]
+        )]
+    );
+    assert!(Format::Off.dropped_attributes(a).is_empty());
+    let mut out = Vec::new();
+    off::write(&mut out, k).unwrap();
+    let text = String::from_utf8(out.clone()).unwrap();
+    assert!(text.starts_with("COFF\n"), "{text}");
+    let back = off::read_from(&out[..], "c.off".as_ref(), &opts)
+        .unwrap()
+        .complex;
+    assert_eq!(&back, k);
+    assert_eq!(back.attributes(), k.attributes());
+    // a 2D complex with vertex colours is written as CnOFF (the dimension in the header)
+    let mut flat = IndexedComplex::from_parts(
+        2,
+        vec![0., 0., 1., 0., 0., 1.].into(),
+        vec![(CellKind::Simplex(2), vec![0, 1, 2].into())],
+    )
+    .unwrap();
+    flat.set_attributes(Attributes {
+        vertex: vec![Attribute::float("color", 3, vec![1.0; 9])],
+        cell: vec![Attribute::int("color", 1, vec![7])],
+    })
+    .unwrap();
+    let mut out = Vec::new();
+    off::write(&mut out, &flat).unwrap();
+    let back = off::read_from(&out[..], "c.off".as_ref(), &opts)
+        .unwrap()
+        .complex;
+    assert_eq!(back, flat);
+    assert_eq!(back.attributes(), flat.attributes());
+    // what OFF cannot hold is named, and not written
+    let mut odd = flat.clone();
+    odd.set_attributes(Attributes {
+        vertex: vec![Attribute::float("normal", 2, vec![0.0; 6])],
+        cell: vec![Attribute::float("color", 1, vec![f64::NAN])],
+    })
+    .unwrap();
+    assert_eq!(
+        Format::Off.dropped_attributes(odd.attributes()),
+        ["vertex normal", "cell color"]
+    );
+    let mut out = Vec::new();
+    off::write(&mut out, &odd).unwrap();
+    let back = off::read_from(&out[..], "c.off".as_ref(), &opts)
+        .unwrap()
+        .complex;
+    assert!(back.attributes().is_empty());
+}
+
+#[test]
+fn coff_never_panics_when_cut_or_corrupted() {
+    use starplex::io::off;
+    let opts = ReadOptions::default();
+    let full = COFF.as_bytes();
+    for cut in 0..full.len() {
+        if let Err(e) = off::read_from(&full[..cut], "c.off".as_ref(), &opts) {
+            assert!(e.to_string().starts_with("c.off"), "{e}");
+        }
+    }
+    let mut seed = 0x0ff_u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    for _ in 0..2000 {
+        let mut b = full.to_vec();
+        for _ in 0..1 + next() % 4 {
+            let i = (next() % b.len() as u64) as usize;
+            b[i] = b"0123456789 .-\nCOFFnan"[(next() % 21) as usize];
+        }
+        if let Err(e) = off::read_from(&b[..], "c.off".as_ref(), &opts) {
+            assert!(e.to_string().starts_with("c.off"), "{e}");
+        }
+    }
+}
+
+/// CGAL's own test meshes with colours (`$STARPLEX_DATA/cgal/data/meshes`), when present.
+#[test]
+fn cgal_coloured_meshes() {
+    let Some(dir) = std::env::var_os("STARPLEX_DATA")
+        .map(|d| PathBuf::from(d).join("cgal/data/meshes"))
+        .filter(|d| d.join("mesh_with_colors.off").exists())
+    else {
+        eprintln!("skipped: no $STARPLEX_DATA/cgal/data/meshes");
+        return;
+    };
+    // floats with comments, blank lines and a pentagon
+    let r = io::read(&dir.join("mesh_with_colors.off"), &ReadOptions::default()).unwrap();
+    let a = r.complex.attributes();
+    let v = a.get(AttrTarget::Vertex, "color").unwrap();
+    assert_eq!((v.components, v.n_items()), (3, 8));
+    assert_eq!(
+        &v.values,
+        &AttrValues::Float([[0.9, 0., 0.], [0., 0., 0.9]].repeat(4).concat())
+    );
+    let c = a.get(AttrTarget::Cell, "color").unwrap();
+    assert_eq!((c.components, c.n_items()), (3, 6));
+    // uchar RGBA on every vertex of a CGAL COFF
+    let r = io::read(&dir.join("cactus.off"), &ReadOptions::default()).unwrap();
+    let v = r
+        .complex
+        .attributes()
+        .get(AttrTarget::Vertex, "color")
+        .unwrap();
+    assert_eq!(v.components, 4);
+    assert!(matches!(v.values, AttrValues::Int(_)));
+    // PLY with normals, colours, ids, face labels and an edge element with confidences (its
+    // edges are sides of the faces: dropped with the option, with their values)
+    let opts = ReadOptions {
+        build: starplex::complex::BuildOptions {
+            drop_face_cells: true,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let r = io::read(&dir.join("colored_tetra.ply"), &opts).unwrap();
+    let a = r.complex.attributes();
+    let names: Vec<&str> = a.vertex.iter().map(|a| a.name.as_str()).collect();
+    assert_eq!(names, ["nx", "ny", "nz", "red", "green", "blue", "id"]);
+    let names: Vec<&str> = a.cell.iter().map(|a| a.name.as_str()).collect();
+    assert_eq!(names, ["red", "green", "blue", "label", "confidence"]);
+    assert_eq!(
+        a.get(AttrTarget::Cell, "label").unwrap().values,
+        AttrValues::Int(vec![-1, 1, -1, 0])
+    );
+}

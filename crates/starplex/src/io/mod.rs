@@ -271,8 +271,8 @@ impl Format {
 
     /// The attributes of `a` that a file of this format cannot hold (`kind name`, e.g.
     /// `cell material`): none for VTK (`.vtk`, `.vtu`, `.vtp`); Medit keeps only its integer
-    /// `medit:ref` columns; PLY keeps those [`ply::dropped`] does not name; the other formats
-    /// keep none.
+    /// `medit:ref` columns; PLY keeps those [`ply::dropped`] does not name; OFF keeps the
+    /// colours ([`off::holds`]); the other formats keep none.
     ///
     /// ```
     /// use starplex::attr::{Attribute, Attributes};
@@ -283,7 +283,7 @@ impl Format {
     /// };
     /// assert!(Format::Vtu.dropped_attributes(&a).is_empty());
     /// assert_eq!(Format::Medit.dropped_attributes(&a), ["vertex height"]);
-    /// assert_eq!(Format::Off.dropped_attributes(&a).len(), 2);
+    /// assert_eq!(Format::Obj.dropped_attributes(&a).len(), 2);
     /// ```
     pub fn dropped_attributes(self, a: &crate::attr::Attributes) -> Vec<String> {
         use crate::attr::{AttrTarget, AttrValues};
@@ -295,6 +295,7 @@ impl Format {
             for c in a.of(target) {
                 let kept = match self {
                     Format::Vtk | Format::Vtu | Format::Vtp => true,
+                    Format::Off | Format::OffSimplices => off::holds(target, c),
                     Format::Medit => {
                         c.name == medit::REF
                             && c.components == 1
