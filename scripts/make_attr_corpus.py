@@ -4,11 +4,17 @@
 writers, and `more_attrs.json`: for every file, the vertex and cell columns a reader must find
 (name -> rows, cells in file order).
 
+- gmsh: gmsh's own writer (the `gmsh` Python API: a meshed box with the physical volume 5, a
+  node field `temperature` of two time steps (x + 2y at step 0, 10x at step 1) and an element
+  field `flux` of 3 components (tag, 0.5, -1); 2.2 and 4.1, ascii and binary: `gmsh_*.msh`,
+  checked by relation, not listed in the json) and meshio's binary writer (2.2 with a line,
+  4.1 tetrahedra only; meshio 5.3.5's ascii data sections are broken under numpy 2:
+  `np.float64(3.0)`).
 - PLY: trimesh (ascii and binary: uchar colours, a float vertex attribute, an int face
   attribute), meshio (ascii and binary: point data), and a hand-written big-endian file with
   normals, a `{base}_0..` vector, face and `edge` elements with their own properties.
 
-Needs meshio, trimesh and numpy (/work/data/.venv has them).
+Needs meshio, trimesh, gmsh and numpy (/work/data/.venv has them).
 Usage: scripts/make_attr_corpus.py [OUT_DIR]
 """
 import json
@@ -73,9 +79,63 @@ def ply(out, ref):
         "cell": {"label": [[7], [-8], [9]], "crease": [[None], [None], [0.5]]}}
 
 
+def gmsh_files(out, ref):
+    import gmsh
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("b")
+    gmsh.model.occ.addBox(0, 0, 0, 1, 1, 1)
+    gmsh.model.occ.synchronize()
+    gmsh.model.addPhysicalGroup(3, [1], 5)
+    gmsh.option.setNumber("Mesh.MeshSizeMax", 1.0)
+    gmsh.model.mesh.generate(3)
+    ntags, coords, _ = gmsh.model.mesh.getNodes()
+    _, etags, _ = gmsh.model.mesh.getElements(3)
+    t = gmsh.view.add("temperature")
+    gmsh.view.addModelData(t, 0, "b", "NodeData", list(ntags),
+                           [[coords[3 * i] + 2 * coords[3 * i + 1]] for i in range(len(ntags))], time=0.0)
+    gmsh.view.addModelData(t, 1, "b", "NodeData", list(ntags),
+                           [[coords[3 * i] * 10] for i in range(len(ntags))], time=1.0)
+    v = gmsh.view.add("flux")
+    gmsh.view.addModelData(v, 0, "b", "ElementData", list(etags[0]),
+                           [[float(e), 0.5, -1.0] for e in etags[0]])
+    gmsh.option.setNumber("PostProcessing.SaveMesh", 0)
+    for ver in ["2.2", "4.1"]:
+        gmsh.option.setNumber("Mesh.MshFileVersion", float(ver))
+        for binary in [0, 1]:
+            gmsh.option.setNumber("Mesh.Binary", binary)
+            name = os.path.join(out, "gmsh_%s_%s.msh" % (ver.replace(".", ""), "bin" if binary else "ascii"))
+            gmsh.write(name)
+            for view in [t, v]:
+                gmsh.view.write(view, name, append=True)
+    gmsh.finalize()
+
+    pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1], [2, 2, 2], [3, 2, 2]], float)
+    tets = np.array([[0, 1, 2, 3], [1, 2, 3, 4]])
+    for ver, cells, n in [("2.2", [("tetra", tets), ("line", np.array([[5, 6]]))], 7),
+                          ("4.1", [("tetra", tets)], 5)]:
+        nc = sum(len(c) for _, c in cells)
+        pd = {"T": np.arange(n) / 2.0, "vel": np.arange(3.0 * n).reshape(n, 3)}
+        cd = {"mat": np.arange(nc) + 3.0, "gmsh:physical": np.array([1, 2, 7][:nc]),
+              "gmsh:geometrical": np.array([1, 1, 2][:nc])}
+        split = np.cumsum([len(c) for _, c in cells])[:-1]
+        m = meshio.Mesh(pts[:n], cells, point_data=pd,
+                        cell_data={k: np.split(v, split) for k, v in cd.items()})
+        name = "meshio_%s_bin.msh" % ver.replace(".", "")
+        meshio.gmsh.write(os.path.join(out, name), m, fmt_version=ver, binary=True)
+        ref[name] = {"vertex": {k: rows(v, n) for k, v in pd.items()},
+                     "cell": {k: rows(v, nc) for k, v in cd.items()}}
+        if ver == "4.1":
+            # meshio's 4.1 writer drops per-element physical tags (it writes no physical group)
+            # and gives every element of the block the entity tag 1
+            del ref[name]["cell"]["gmsh:physical"]
+            ref[name]["cell"]["gmsh:geometrical"] = [[1]] * nc
+
+
 def main(out):
     ref = {}
     ply(out, ref)
+    gmsh_files(out, ref)
     with open(os.path.join(out, "more_attrs.json"), "w") as f:
         json.dump(ref, f, indent=0)
 

@@ -334,6 +334,11 @@ fn own_outputs_for_independent_readers() {
     let mut out = Vec::new();
     ply::write_with(&mut out, &k, ply::PlyEncoding::Ascii).unwrap();
     std::fs::write(dir.join("out_ascii.ply"), out).unwrap();
+    let k = io::read(&data("meshio_22_bin.msh"), &ReadOptions::default())
+        .unwrap()
+        .complex;
+    io::write(&dir.join("out_22.msh"), &k, Some(Format::Gmsh22)).unwrap();
+    io::write(&dir.join("out_41.msh"), &k, Some(Format::Gmsh)).unwrap();
     if std::env::var_os("STARPLEX_ATTR_OUT").is_none() {
         std::fs::remove_dir_all(&dir).ok();
     }
@@ -491,4 +496,228 @@ fn cgal_coloured_meshes() {
         a.get(AttrTarget::Cell, "label").unwrap().values,
         AttrValues::Int(vec![-1, 1, -1, 0])
     );
+}
+
+// ---------------------------------------------------------------- gmsh
+
+#[test]
+fn gmsh_data_sections_written_by_meshio_are_attributes() {
+    for f in files_with(".msh") {
+        let r = io::read(&data(&f), &ReadOptions::default()).unwrap_or_else(|e| panic!("{f}: {e}"));
+        check(&r.complex, &f, &f);
+    }
+}
+
+/// gmsh's own files: `temperature` = 10 x at the last time step, `flux` = (tag, 0.5, -1), the
+/// physical volume 5 (binary 4.1 included).
+#[test]
+fn gmsh_data_sections_written_by_gmsh_are_attributes() {
+    for f in [
+        "gmsh_22_ascii.msh",
+        "gmsh_22_bin.msh",
+        "gmsh_41_ascii.msh",
+        "gmsh_41_bin.msh",
+    ] {
+        let r = io::read(&data(f), &ReadOptions::default()).unwrap_or_else(|e| panic!("{f}: {e}"));
+        let k = &r.complex;
+        assert!(k.n_cells() > 10, "{f}");
+        let a = k.attributes();
+        let t = a
+            .get(AttrTarget::Vertex, "temperature")
+            .unwrap_or_else(|| panic!("{f}: {a:?}"));
+        assert_eq!((t.components, t.n_items()), (1, k.n_vertices()), "{f}");
+        for v in 0..k.n_vertices() {
+            let x = k.point(starplex::ids::VertexId(v as u32))[0];
+            assert!(
+                (t.values.get_f64(v) - 10.0 * x).abs() < 1e-9,
+                "{f}: vertex {v}"
+            );
+        }
+        assert!(
+            r.notes.iter().any(|n| n.contains("last time step")),
+            "{f}: {:?}",
+            r.notes
+        );
+        let flux = a.get(AttrTarget::Cell, "flux").unwrap();
+        assert_eq!((flux.components, flux.n_items()), (3, k.n_cells()), "{f}");
+        let mut first: Vec<i64> = (0..k.n_cells())
+            .map(|c| {
+                assert_eq!(flux.values.get_f64(3 * c + 1), 0.5);
+                assert_eq!(flux.values.get_f64(3 * c + 2), -1.0);
+                flux.values.get_f64(3 * c) as i64
+            })
+            .collect();
+        first.sort();
+        first.dedup();
+        assert_eq!(first.len(), k.n_cells(), "{f}: element tags");
+        let phys = a
+            .get(AttrTarget::Cell, "gmsh:physical")
+            .unwrap_or_else(|| panic!("{f}: no physical tags"));
+        assert_eq!(phys.values, AttrValues::Int(vec![5; k.n_cells()]), "{f}");
+    }
+}
+
+#[test]
+fn gmsh_writers_write_the_data_back() {
+    use starplex::io::gmsh;
+    let opts = ReadOptions::default();
+    for f in ["meshio_22_bin.msh", "gmsh_41_bin.msh"] {
+        let k = io::read(&data(f), &opts).unwrap().complex;
+        // 2.2: everything (the tags as tags)
+        assert!(
+            Format::Gmsh22.dropped_attributes(k.attributes()).is_empty(),
+            "{f}"
+        );
+        let mut out = Vec::new();
+        gmsh::write_22(&mut out, &k).unwrap();
+        let back = gmsh::read_from(&out[..], "o.msh".as_ref(), &opts)
+            .unwrap()
+            .complex;
+        assert_eq!(back, k, "{f}");
+        assert_eq!(back.attributes(), k.attributes(), "{f}");
+        // 4.1: the data sections; the tags are named as dropped
+        let dropped = Format::Gmsh.dropped_attributes(k.attributes());
+        assert_eq!(
+            dropped,
+            ["cell gmsh:physical", "cell gmsh:geometrical"],
+            "{f}"
+        );
+        let mut out = Vec::new();
+        gmsh::write(&mut out, &k).unwrap();
+        let back = gmsh::read_from(&out[..], "o.msh".as_ref(), &opts)
+            .unwrap()
+            .complex;
+        let (mut b2, mut k2) = (back.clone(), k.clone());
+        b2.take_attributes();
+        k2.take_attributes();
+        assert_eq!(b2, k2, "{f}");
+        assert_eq!(back.attributes().vertex, k.attributes().vertex, "{f}");
+        for a in &k.attributes().cell {
+            if !a.name.starts_with("gmsh:") {
+                assert_eq!(
+                    back.attributes().get(AttrTarget::Cell, &a.name),
+                    Some(a),
+                    "{f}"
+                );
+            }
+        }
+    }
+    // integer columns come back as floats (gmsh data is double); NaN survives
+    let mut k = io::read(&data("meshio_41_bin.msh"), &opts).unwrap().complex;
+    let n = k.n_vertices();
+    let mut a = k.take_attributes();
+    a.vertex = vec![
+        Attribute::int("id", 1, (0..n as i64).collect()),
+        Attribute::float("with space", 2, vec![f64::NAN; 2 * n]),
+    ];
+    k.set_attributes(a).unwrap();
+    let mut out = Vec::new();
+    gmsh::write(&mut out, &k).unwrap();
+    let back = gmsh::read_from(&out[..], "o.msh".as_ref(), &opts)
+        .unwrap()
+        .complex;
+    let id = back.attributes().get(AttrTarget::Vertex, "id").unwrap();
+    assert_eq!(
+        id.values,
+        AttrValues::Float((0..n).map(|x| x as f64).collect())
+    );
+    let ws = back
+        .attributes()
+        .get(AttrTarget::Vertex, "with space")
+        .unwrap();
+    assert!(ws.values.get_f64(0).is_nan() && ws.components == 2);
+}
+
+#[test]
+fn gmsh_data_section_errors_name_the_line() {
+    use starplex::io::gmsh;
+    let head = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n\
+                $EndNodes\n$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n";
+    for (tail, line, want) in [
+        (
+            "$NodeData\n1\n\"T\"\n0\n2\n0\n1\n$EndNodeData\n",
+            17,
+            "2 integer tags",
+        ),
+        ("$NodeData\n1\n\"T\"\n0\n3\n0\n0\n3\n", 17, "0 components"),
+        (
+            "$NodeData\n1\n\"T\"\n0\n3\n0\n1\n3\n1 0\n2 x\n",
+            23,
+            "found 'x'",
+        ),
+        (
+            "$NodeData\n1\n\"T\"\n0\n3\n0\n1\n3\n1 0\n2 1\n",
+            24,
+            "end of file",
+        ),
+        (
+            "$ElementData\n1\n\"T\"\n0\n3\n0\n1\n1\n1 0\n$EndNodeData\n",
+            23,
+            "$EndElementData",
+        ),
+    ] {
+        let text = format!("{head}{tail}");
+        let e = gmsh::read_from(text.as_bytes(), "d.msh".as_ref(), &ReadOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(want), "{tail:?}: {e}");
+        assert!(e.starts_with(&format!("d.msh:{line}:")), "{tail:?}: {e}");
+    }
+    // a data value for a node that is not in the file is ignored, a node without one is NaN
+    let text = format!("{head}$NodeData\n1\n\"T\"\n0\n3\n0\n1\n2\n1 7\n9 8\n$EndNodeData\n");
+    let r = gmsh::read_from(text.as_bytes(), "d.msh".as_ref(), &ReadOptions::default()).unwrap();
+    let t = r.complex.attributes().get(AttrTarget::Vertex, "T").unwrap();
+    assert_eq!(t.values.get_f64(0), 7.0);
+    assert!(t.values.get_f64(1).is_nan() && t.values.get_f64(2).is_nan());
+    assert!(
+        r.notes.iter().any(|n| n.contains("no value")),
+        "{:?}",
+        r.notes
+    );
+}
+
+#[test]
+fn gmsh_with_data_never_panics_when_cut_or_corrupted() {
+    use starplex::io::gmsh;
+    let opts = ReadOptions::default();
+    let mut files: Vec<(String, Vec<u8>, usize)> = Vec::new();
+    for f in ["meshio_22_bin.msh", "meshio_41_bin.msh"] {
+        files.push((f.to_string(), std::fs::read(data(f)).unwrap(), 1));
+    }
+    for f in ["gmsh_22_bin.msh", "gmsh_41_bin.msh", "gmsh_41_ascii.msh"] {
+        files.push((f.to_string(), std::fs::read(data(f)).unwrap(), 211));
+    }
+    let k = io::read(&data("meshio_22_bin.msh"), &opts).unwrap().complex;
+    let mut out = Vec::new();
+    gmsh::write_22(&mut out, &k).unwrap();
+    files.push(("own_22.msh".into(), out, 1));
+    let mut seed = 0x95_u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    for (name, full, step) in &files {
+        for cut in (0..full.len()).step_by(*step) {
+            if let Err(e) = gmsh::read_from(&full[..cut], name.as_ref(), &opts) {
+                assert!(e.to_string().starts_with(name.as_str()), "{e}");
+                assert!(
+                    e.location.is_some() || matches!(e.kind, io::IoErrorKind::Complex(_)),
+                    "{e}"
+                );
+            }
+        }
+        assert!(gmsh::read_from(&full[..full.len() / 2], name.as_ref(), &opts).is_err());
+        for _ in 0..if *step == 1 { 400 } else { 40 } {
+            let mut b = full.clone();
+            for _ in 0..1 + next() % 4 {
+                let i = (next() % b.len() as u64) as usize;
+                b[i] = next() as u8;
+            }
+            if let Err(e) = gmsh::read_from(&b[..], name.as_ref(), &opts) {
+                assert!(e.to_string().starts_with(name.as_str()), "{e}");
+            }
+        }
+    }
 }

@@ -272,7 +272,8 @@ impl Format {
     /// The attributes of `a` that a file of this format cannot hold (`kind name`, e.g.
     /// `cell material`): none for VTK (`.vtk`, `.vtu`, `.vtp`); Medit keeps only its integer
     /// `medit:ref` columns; PLY keeps those [`ply::dropped`] does not name; OFF keeps the
-    /// colours ([`off::holds`]); the other formats keep none.
+    /// colours ([`off::holds`]); gmsh the data sections and, in 2.2, the element tags
+    /// ([`gmsh::holds`]); the other formats keep none.
     ///
     /// ```
     /// use starplex::attr::{Attribute, Attributes};
@@ -296,6 +297,7 @@ impl Format {
                 let kept = match self {
                     Format::Vtk | Format::Vtu | Format::Vtp => true,
                     Format::Off | Format::OffSimplices => off::holds(target, c),
+                    Format::Gmsh | Format::Gmsh22 => gmsh::holds(self, target, c),
                     Format::Medit => {
                         c.name == medit::REF
                             && c.components == 1
