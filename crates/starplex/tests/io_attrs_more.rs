@@ -721,3 +721,163 @@ fn gmsh_with_data_never_panics_when_cut_or_corrupted() {
         }
     }
 }
+
+// ---------------------------------------------------------------- legacy VTK POLYDATA
+
+/// Points 0..7; a quad and a pentagon (POLYGONS, before LINES in the file), a poly-line of 3
+/// points (LINES), a strip of 4 points (TRIANGLE_STRIPS), a vertex (VERTICES).
+fn polydata_ascii(v5: bool) -> String {
+    let head = format!(
+        "# vtk DataFile Version {}\npoly\nASCII\nDATASET POLYDATA\n\
+         POINTS 12 double\n0 0 0 1 0 0 1 1 0 0 1 0 5 0 0 6 0 0 6 1 0 5.5 2 0 5 1 0\n\
+         9 9 9 10 9 9 11 9 9\n",
+        if v5 { "5.1" } else { "4.2" }
+    );
+    let sections = if v5 {
+        "POLYGONS 3 9\nOFFSETS vtktypeint64\n0 4 9\nCONNECTIVITY vtktypeint64\n0 1 2 3 4 5 6 7 8\n\
+         LINES 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n9 10 11\n\
+         VERTICES 2 1\nOFFSETS vtktypeint64\n0 1\nCONNECTIVITY vtktypeint64\n9\n\
+         TRIANGLE_STRIPS 2 4\nOFFSETS vtktypeint64\n0 4\nCONNECTIVITY vtktypeint64\n0 1 3 2\n"
+    } else {
+        "POLYGONS 2 11\n4 0 1 2 3\n5 4 5 6 7 8\nLINES 1 4\n3 9 10 11\nVERTICES 1 2\n1 9\n\
+         TRIANGLE_STRIPS 1 5\n4 0 1 3 2\n"
+    };
+    // cells in VTK order: vertex, line, quad, pentagon, strip
+    let data = "CELL_DATA 5\nSCALARS id int 1\nLOOKUP_TABLE default\n10 20 30 40 50\n\
+                POINT_DATA 12\nSCALARS h double 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7 8 9 10 11\n";
+    format!("{head}{sections}{data}")
+}
+
+#[test]
+fn legacy_vtk_polydata_is_read_with_its_attributes() {
+    use starplex::io::vtk;
+    let opts = ReadOptions {
+        build: starplex::complex::BuildOptions {
+            drop_face_cells: true,
+            drop_duplicates: true,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    for v5 in [false, true] {
+        let text = polydata_ascii(v5);
+        let r = vtk::read_from(text.as_bytes(), "p.vtk".as_ref(), &opts)
+            .unwrap_or_else(|e| panic!("v5 {v5}: {e}"));
+        let k = &r.complex;
+        assert_eq!(k.n_vertices(), 12);
+        // the vertex is dropped; the poly-line gives 2 edges (id 20), the quad (30), the
+        // pentagon 3 triangles (40), the strip 2 triangles (50) that share the quad's vertices
+        let id = k.attributes().get(AttrTarget::Cell, "id").unwrap();
+        let mut got: Vec<(CellKind, i64)> = k
+            .cells()
+            .map(|c| (c.kind, id.values.get_f64(c.id.index()) as i64))
+            .collect();
+        got.sort_by_key(|x| x.1);
+        assert_eq!(
+            got,
+            [
+                (CellKind::Simplex(1), 20),
+                (CellKind::Simplex(1), 20),
+                (CellKind::Quad, 30),
+                (CellKind::Simplex(2), 40),
+                (CellKind::Simplex(2), 40),
+                (CellKind::Simplex(2), 40),
+                (CellKind::Simplex(2), 50),
+                (CellKind::Simplex(2), 50),
+            ],
+            "v5 {v5}"
+        );
+        let h = k.attributes().get(AttrTarget::Vertex, "h").unwrap();
+        assert_eq!(
+            h.values,
+            AttrValues::Float((0..12).map(|x| x as f64).collect())
+        );
+        assert!(r.notes.iter().any(|n| n.contains("vert")), "{:?}", r.notes);
+    }
+}
+
+/// The same poly data in binary (4.2 classic layout, big-endian).
+fn polydata_binary() -> Vec<u8> {
+    let mut b: Vec<u8> =
+        b"# vtk DataFile Version 4.2\npoly\nBINARY\nDATASET POLYDATA\nPOINTS 5 float\n".to_vec();
+    for p in [
+        [0f32, 0., 0.],
+        [1., 0., 0.],
+        [1., 1., 0.],
+        [0., 1., 0.],
+        [3., 3., 3.],
+    ] {
+        for x in p {
+            b.extend_from_slice(&x.to_be_bytes());
+        }
+    }
+    b.extend_from_slice(b"\nLINES 1 3\n");
+    for x in [2i32, 3, 4] {
+        b.extend_from_slice(&x.to_be_bytes());
+    }
+    b.extend_from_slice(b"\nPOLYGONS 1 5\n");
+    for x in [4i32, 0, 1, 2, 3] {
+        b.extend_from_slice(&x.to_be_bytes());
+    }
+    b.extend_from_slice(b"\nCELL_DATA 2\nSCALARS id int 1\nLOOKUP_TABLE default\n");
+    for x in [7i32, 8] {
+        b.extend_from_slice(&x.to_be_bytes());
+    }
+    b.push(b'\n');
+    b
+}
+
+#[test]
+fn binary_polydata_and_its_truncations() {
+    use starplex::io::vtk;
+    let opts = ReadOptions::default();
+    let full = polydata_binary();
+    let k = vtk::read_from(&full[..], "b.vtk".as_ref(), &opts)
+        .unwrap()
+        .complex;
+    let kinds: Vec<CellKind> = k.cells().map(|c| c.kind).collect();
+    assert_eq!(kinds, [CellKind::Simplex(1), CellKind::Quad]);
+    assert_eq!(k.attributes().cell[0].values, AttrValues::Int(vec![7, 8]));
+    let mut seed = 0x77_u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    let ascii: Vec<Vec<u8>> = vec![
+        polydata_ascii(false).into_bytes(),
+        polydata_ascii(true).into_bytes(),
+    ];
+    for (name, f) in [("b.vtk", &full), ("a.vtk", &ascii[0]), ("c.vtk", &ascii[1])] {
+        for cut in 0..f.len() {
+            if let Err(e) = vtk::read_from(&f[..cut], name.as_ref(), &opts) {
+                assert!(e.to_string().starts_with(name), "{e}");
+            }
+        }
+        for _ in 0..500 {
+            let mut b = f.clone();
+            for _ in 0..1 + next() % 4 {
+                let i = (next() % b.len() as u64) as usize;
+                b[i] = next() as u8;
+            }
+            if let Err(e) = vtk::read_from(&b[..], name.as_ref(), &opts) {
+                assert!(e.to_string().starts_with(name), "{e}");
+            }
+        }
+    }
+    // errors name the section
+    let bad = polydata_ascii(false).replace("POLYGONS 2 11\n4 0 1 2 3", "POLYGONS 2 9\n2 0 1");
+    let e = vtk::read_from(bad.as_bytes(), "p.vtk".as_ref(), &opts)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("POLYGONS"), "{e}");
+    let bad = polydata_ascii(false).replace("LINES", "CELLS");
+    let e = vtk::read_from(bad.as_bytes(), "p.vtk".as_ref(), &opts)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("unknown keyword 'CELLS' in a POLYDATA dataset"),
+        "{e}"
+    );
+}

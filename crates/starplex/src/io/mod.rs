@@ -76,7 +76,7 @@ pub enum Format {
     StlBinary,
     /// `.mesh` (Medit).
     Medit,
-    /// `.vtk` (legacy unstructured grid, ascii).
+    /// `.vtk` (legacy unstructured grid, ascii and binary; poly data read).
     Vtk,
     /// `.vtu` (VTK XML unstructured grid; the reader also takes poly data).
     Vtu,
