@@ -204,14 +204,21 @@ struct Elements {
     geometrical: Vec<i64>,
     /// Whether the file gave physical tags (2.2 tags, 4.1 `$Entities`).
     has_physical: bool,
-    /// The element tag of every element kept, in file order.
+    /// The element tag of every element kept, in file order; empty while every tag so far is
+    /// the element's position + 1 (the usual numbering: nothing to store).
     tags: Vec<u64>,
 }
 
 impl Elements {
     /// Adds an element with its physical and elementary tags.
     fn push(&mut self, tag: u64, kind: CellKind, verts: &[u32], physical: i64, geometrical: i64) {
-        self.tags.push(tag);
+        let n = self.physical.len() as u64;
+        if !self.tags.is_empty() || tag != n + 1 {
+            if self.tags.is_empty() {
+                self.tags.extend(1..=n);
+            }
+            self.tags.push(tag);
+        }
         match self.blocks.last_mut() {
             Some((k, v)) if *k == kind => v.extend_from_slice(verts),
             _ => self.blocks.push((kind, verts.to_vec())),
@@ -493,6 +500,7 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
         }
     }
     let mut attrs = Attributes::default();
+    let n_elems = elems.physical.len();
     // (gmsh's entity tags start at 1: all zeros means the file gave none)
     if elems.has_physical && elems.physical.iter().any(|&t| t != 0) {
         attrs.cell.push(Attribute::int(
@@ -509,6 +517,9 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
         ));
     }
     let mut notes = Vec::new();
+    if !data.is_empty() && elems.tags.is_empty() {
+        elems.tags.extend(1..=n_elems as u64);
+    }
     data_attributes(
         data,
         &tags,
