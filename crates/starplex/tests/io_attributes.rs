@@ -199,14 +199,8 @@ fn gmsh_physical_and_elementary_tags_are_cell_attributes() {
         let a = r.complex.attributes();
         let g = a.get(AttrTarget::Cell, "gmsh:geometrical").unwrap();
         assert_eq!(g.values, geometrical, "{f}");
-        match a.get(AttrTarget::Cell, "gmsh:physical") {
-            Some(p) => assert_eq!(p.values, AttrValues::Int(vec![1; 8]), "{f}"),
-            // not read from binary 4.1 $Entities yet, and said so
-            None => assert!(
-                f == "mixed_41_bin.msh" && r.notes.iter().any(|n| n.contains("physical")),
-                "{f}"
-            ),
-        }
+        let p = a.get(AttrTarget::Cell, "gmsh:physical").unwrap();
+        assert_eq!(p.values, AttrValues::Int(vec![1; 8]), "{f}");
     }
 }
 

@@ -170,27 +170,38 @@ fn obj_output_agrees_with_tobj() {
 
 #[test]
 fn ply_reads_other_layouts() {
-    // float/int/uchar coordinates, extra properties, an extra element, `vertex_index`, uint lists,
+    // float/int/uchar coordinates, extra properties, an edge element, `vertex_index`, uint lists,
     // a pentagon (fan-triangulated), comments and CRLF line ends.
     let text = "ply\r\nformat ascii 1.0\r\ncomment hi\r\nelement vertex 5\r\nproperty float x\r\n\
                 property int y\r\nproperty uchar z\r\nproperty float nx\r\nelement edge 1\r\n\
                 property int vertex1\r\nproperty int vertex2\r\nelement face 2\r\n\
                 property uchar intensity\r\nproperty list uint uint vertex_index\r\nend_header\r\n\
-                0.5 0 0 9\r\n1 0 1 9\r\n1 1 2 9\r\n0 1 3 9\r\n-1 2 255 9\r\n0 1\r\n\
+                0.5 0 0 9\r\n1 0 1 9\r\n1 1 2 9\r\n0 1 3 9\r\n-1 2 255 9\r\n2 4\r\n\
                 7 3 0 1 4\r\n1 5 0 1 2 3 4\r\n";
     let p = write_file("layouts.ply", text.as_bytes());
     let r = read(&p).unwrap();
     let k = &r.complex;
     assert_eq!(k.n_vertices(), 5);
     assert_eq!(k.point(starplex::ids::VertexId(4)), &[-1.0, 2.0, 255.0]);
-    // the first triangle, then the pentagon as 3 triangles of a fan at vertex 0
+    // the edge, the first triangle, then the pentagon as 3 triangles of a fan at vertex 0
     let cells: Vec<&[u32]> = k.cells().map(|c| c.vertices).collect();
-    assert_eq!(cells.len(), 4);
-    assert_eq!(cells[0], &[0, 1, 4]);
-    assert_eq!(cells[1], &[0, 1, 2]);
-    assert_eq!(cells[3], &[0, 3, 4]);
+    assert_eq!(cells.len(), 5);
+    assert_eq!(cells[0], &[2, 4]);
+    assert_eq!(cells[1], &[0, 1, 4]);
+    assert_eq!(cells[2], &[0, 1, 2]);
+    assert_eq!(cells[4], &[0, 3, 4]);
+    // the extra properties are attributes (the edge has no intensity: 0)
+    let a = k.attributes();
+    assert_eq!(
+        a.vertex[0],
+        starplex::attr::Attribute::float("nx", 1, vec![9.0; 5])
+    );
+    assert_eq!(
+        a.cell[0],
+        starplex::attr::Attribute::int("intensity", 1, vec![0, 7, 1, 1, 1])
+    );
     let notes = r.notes.join("; ");
-    assert!(notes.contains("ignored element 'edge'"), "{notes}");
+    assert!(!notes.contains("ignored element"), "{notes}");
     assert!(notes.contains("fan-triangulated 1 polygons"), "{notes}");
     // the duplicate triangle (0 1 2 twice) is dropped only with the option
     let text2 = text.replace("1 5 0 1 2 3 4", "1 3 4 0 1");
@@ -207,7 +218,7 @@ fn ply_reads_other_layouts() {
         },
     )
     .unwrap();
-    assert_eq!(r.complex.n_cells(), 1);
+    assert_eq!(r.complex.n_cells(), 2);
     assert!(r.notes.join(" ").contains("dropped 1 duplicate"));
 }
 

@@ -608,7 +608,7 @@ fn broken_inputs_fail_with_their_line() {
         // VTK
         (Format::Vtk, "# vtk DataFile Version 4.2\nt\nBINARY\n".into(), 4, "expected 'DATASET'"),
         (Format::Vtk, "solid x\n".into(), 1, "not a legacy VTK file"),
-        (Format::Vtk, "# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\n".into(), 4, "POLYDATA"),
+        (Format::Vtk, "# vtk DataFile Version 4.2\nt\nASCII\nDATASET STRUCTURED_POINTS\n".into(), 4, "STRUCTURED_POINTS"),
         (Format::Vtk, V_HEAD[..V_HEAD.len() - 6].into(), 9, "unexpected end of file"),
         (Format::Vtk, V_HEAD.replace("POINTS 4", "POINTS 1000000000000"), 5, "32-bit"),
         (Format::Vtk, V_HEAD.replace("POINTS 4", "POINTS 5000000000"), 5, "32-bit"),

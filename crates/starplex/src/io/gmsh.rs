@@ -2,16 +2,25 @@
 //!
 //! Binary files (file type 1) are read in either byte order (the integer 1 after the version
 //! line says which) with `size_t` of 8 or 4 bytes (4.1); node coordinates and element node
-//! lists are read in bulk, a few MB at a time. Sections other than `$Nodes` and `$Elements`
-//! (`$Entities`, `$PartitionedEntities`, `$PhysicalNames`, `$NodeData`, ...) are skipped to their
-//! `$End` marker. Errors in a binary file name the byte offset instead of the line.
+//! lists are read in bulk, a few MB at a time. Errors in a binary file name the byte offset
+//! instead of the line.
 //!
 //! Read: `$MeshFormat`, `$Nodes` and `$Elements` (4.1: entity blocks, node tags in any order and
-//! possibly non-contiguous; 2.2: one node or element per entry, elements with their tag counts);
-//! every other section (`$Entities`, `$PhysicalNames`, `$Periodic`, `$NodeData`, ...) is skipped
-//! up to its `$End` line. Element types 1 (line), 2 (triangle), 3 (quad), 4 (tetrahedron),
-//! 5 (hexahedron), 6 (prism), 7 (pyramid) and 15 (point) are read; others are an error naming
-//! the type.
+//! possibly non-contiguous; 2.2: one node or element per entry, elements with their tag counts),
+//! `$Entities` (4.1, ascii and binary: the physical tag of each entity), `$NodeData` and
+//! `$ElementData`; every other section (`$PhysicalNames`, `$Periodic`, `$ElementNodeData`,
+//! `$InterpolationScheme`, ...) is skipped up to its `$End` line. Element types 1 (line),
+//! 2 (triangle), 3 (quad), 4 (tetrahedron), 5 (hexahedron), 6 (prism), 7 (pyramid) and 15
+//! (point) are read; others are an error naming the type.
+//!
+//! Attributes: the first physical tag and the elementary tag of every element become the cell
+//! [attributes](crate::attr) `gmsh:physical` and `gmsh:geometrical` (absent when the file gives
+//! none, or only zeros). Each `$NodeData` / `$ElementData` section (ascii, or binary with `int`
+//! tags and `double` values) is a float vertex / cell attribute named by its first string tag,
+//! with as many components as its second integer tag says; when several sections share a name
+//! (time steps) the one of the largest time step (first integer tag; the last one among equal
+//! steps) is kept, with a note. Entries for nodes or elements the reader drops are ignored;
+//! vertices or cells without an entry get NaN (noted).
 //!
 //! A gmsh file lists the mesh of every geometric entity: besides the volume cells, the boundary
 //! triangles, quads and lines, and a point element on each geometry vertex. The reader keeps only
@@ -28,7 +37,9 @@
 //!
 //! Write: [`write()`] writes version 4.1 ascii, one geometric entity per dimension in `$Entities`,
 //! one node block, one element block per run of one kind; [`write_22`] writes version 2.2 ascii
-//! (format name `msh22` on the command line: `starplex convert in.spx out.msh --to msh22`).
+//! (format name `msh22` on the command line: `starplex convert in.spx out.msh --to msh22`),
+//! with the `gmsh:physical` and `gmsh:geometrical` columns as element tags. Both write every
+//! other attribute [`holds`] keeps as a `$NodeData` / `$ElementData` section (time step 0).
 //! Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are written as
 //! nodes, which this reader then drops.
 //!
@@ -54,7 +65,7 @@ use super::raw::{get_i32, get_uint, push_f64s, read_records, Endian};
 use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
-use crate::attr::{Attribute, Attributes};
+use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
 use crate::complex::{check_cell, BuildOptions, ComplexBuilder, IndexedComplex};
 
@@ -191,13 +202,23 @@ struct Elements {
     /// Physical and elementary (geometrical) tag of every element kept, in file order.
     physical: Vec<i64>,
     geometrical: Vec<i64>,
-    /// Whether the file gave physical tags (2.2 tags, 4.1 ascii `$Entities`).
+    /// Whether the file gave physical tags (2.2 tags, 4.1 `$Entities`).
     has_physical: bool,
+    /// The element tag of every element kept, in file order; empty while every tag so far is
+    /// the element's position + 1 (the usual numbering: nothing to store).
+    tags: Vec<u64>,
 }
 
 impl Elements {
     /// Adds an element with its physical and elementary tags.
-    fn push(&mut self, kind: CellKind, verts: &[u32], physical: i64, geometrical: i64) {
+    fn push(&mut self, tag: u64, kind: CellKind, verts: &[u32], physical: i64, geometrical: i64) {
+        let n = self.physical.len() as u64;
+        if !self.tags.is_empty() || tag != n + 1 {
+            if self.tags.is_empty() {
+                self.tags.extend(1..=n);
+            }
+            self.tags.push(tag);
+        }
         match self.blocks.last_mut() {
             Some((k, v)) if *k == kind => v.extend_from_slice(verts),
             _ => self.blocks.push((kind, verts.to_vec())),
@@ -364,6 +385,7 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
     let mut entities: Option<std::collections::HashMap<(u64, i64), i64>> = None;
     let mut have_elements = false;
     let mut verts: Vec<u32> = Vec::with_capacity(8);
+    let mut data: Vec<DataSection> = Vec::new();
     while let Some(sec) = w.next_word()?.map(|s| s.to_vec()) {
         let name = String::from_utf8_lossy(&sec[..sec.len().min(60)]).into_owned();
         match name.as_str() {
@@ -389,7 +411,11 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
                 }
                 have_elements = true;
                 match (bin, v4) {
-                    (Some(b), true) => read_elements_41_bin(&mut w, b, &tags, &mut elems)?,
+                    (Some(b), true) => {
+                        elems.has_physical = entities.is_some();
+                        let ent = entities.take().unwrap_or_default();
+                        read_elements_41_bin(&mut w, b, &tags, &mut elems, &ent)?
+                    }
                     (Some(b), false) => read_elements_22_bin(&mut w, b, &tags, &mut elems)?,
                     (None, true) => {
                         elems.has_physical = entities.is_some();
@@ -400,7 +426,21 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
                 }
                 w.keyword("$EndElements")?;
             }
-            "$Entities" if bin.is_none() && v4 => entities = Some(read_entities(&mut w)?),
+            "$Entities" if v4 => {
+                entities = Some(match bin {
+                    None => read_entities(&mut w)?,
+                    Some(b) => read_entities_bin(&mut w, b)?,
+                })
+            }
+            "$NodeData" | "$ElementData" => {
+                let node = name == "$NodeData";
+                data.push(read_data_section(&mut w, bin, node)?);
+                w.keyword(if node {
+                    "$EndNodeData"
+                } else {
+                    "$EndElementData"
+                })?;
+            }
             s if s.starts_with('$') && !s.starts_with("$End") && bin.is_some() => {
                 // binary sections ($Entities, $PartitionedEntities, $NodeData, ...) may hold
                 // any byte: skip to the end marker
@@ -460,6 +500,7 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
         }
     }
     let mut attrs = Attributes::default();
+    let n_elems = elems.physical.len();
     // (gmsh's entity tags start at 1: all zeros means the file gave none)
     if elems.has_physical && elems.physical.iter().any(|&t| t != 0) {
         attrs.cell.push(Attribute::int(
@@ -475,6 +516,19 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
             std::mem::take(&mut elems.geometrical),
         ));
     }
+    let mut notes = Vec::new();
+    if !data.is_empty() && elems.tags.is_empty() {
+        elems.tags.extend(1..=n_elems as u64);
+    }
+    data_attributes(
+        data,
+        &tags,
+        &new_id,
+        b.n_vertices(),
+        &elems.tags,
+        &mut attrs,
+        &mut notes,
+    );
     b.set_attributes(attrs);
     let (complex, report) = b
         .build(&BuildOptions {
@@ -483,7 +537,6 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
             trust_maximality: false,
         })
         .map_err(|e| IoError::new(path, e))?;
-    let mut notes = Vec::new();
     if report.dropped_face_cells > 0 {
         notes.push(format!(
             "dropped {} elements that are faces of other elements (boundary elements)",
@@ -499,9 +552,6 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
     if elems.points > 0 {
         notes.push(format!("dropped {} point elements (type 15)", elems.points));
     }
-    if v4 && bin.is_some() {
-        notes.push("the physical tags of a binary gmsh 4.1 file are not read yet (its elementary tags are, as gmsh:geometrical)".into());
-    }
     if dropped_nodes > 0 {
         notes.push(format!(
             "dropped {dropped_nodes} nodes used by no element (geometry points)"
@@ -512,6 +562,254 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
         format: Format::Gmsh,
         notes,
     })
+}
+
+/// The physical tag of each geometric entity, from a binary 4.1 `$Entities` section (the
+/// `$Entities` word already read, up to its data's end).
+fn read_entities_bin(
+    w: &mut Words<'_, impl BufRead>,
+    b: Bin,
+) -> Result<std::collections::HashMap<(u64, i64), i64>, IoError> {
+    let (sz, e) = (b.size, b.e);
+    w.rest_of_line()?;
+    let mut buf = [0u8; 64];
+    let mut map = std::collections::HashMap::new();
+    w.read_raw(&mut buf[..4 * sz], "the $Entities counts")?;
+    let counts: Vec<u64> = (0..4).map(|i| get_uint(&buf[i * sz..], sz, e)).collect();
+    for (dim, &n) in counts.iter().enumerate() {
+        for _ in 0..n {
+            // tag, then a point's coordinates or a bounding box, then the physical tag count
+            let fixed = 4 + if dim == 0 { 24 } else { 48 };
+            w.read_raw(&mut buf[..fixed], "an entity")?;
+            let tag = get_i32(&buf, e) as i64;
+            w.read_raw(&mut buf[..sz], "the number of physical tags")?;
+            let n_phys = get_uint(&buf, sz, e);
+            for i in 0..n_phys {
+                w.read_raw(&mut buf[..4], "a physical tag")?;
+                if i == 0 {
+                    map.insert((dim as u64, tag), get_i32(&buf, e) as i64);
+                }
+            }
+            if dim > 0 {
+                w.read_raw(&mut buf[..sz], "the number of bounding entities")?;
+                let n_bound = get_uint(&buf, sz, e);
+                for _ in 0..n_bound {
+                    w.read_raw(&mut buf[..4], "a bounding entity tag")?;
+                }
+            }
+        }
+    }
+    w.keyword("$EndEntities")?;
+    Ok(map)
+}
+
+/// One `$NodeData` or `$ElementData` section.
+struct DataSection {
+    node: bool,
+    /// The first string tag (the field's name).
+    name: String,
+    /// The first integer tag (the time step index).
+    step: i64,
+    components: usize,
+    /// Node or element tag of every entry, and its values.
+    tags: Vec<u64>,
+    values: Vec<f64>,
+}
+
+/// A string tag: `"name"` (quotes removed; it may hold spaces) or a bare word.
+fn read_string_tag(w: &mut Words<'_, impl BufRead>) -> Result<String, IoError> {
+    let first = w.expect("a string tag")?.to_vec();
+    let mut s = first;
+    if s.first() == Some(&b'"') && (s.len() == 1 || s.last() != Some(&b'"')) {
+        // a quoted name with spaces: the rest of its line
+        s.extend_from_slice(&w.rest_of_line()?);
+        while s.last().is_some_and(|c| c.is_ascii_whitespace()) {
+            s.pop();
+        }
+    }
+    let t = s.strip_prefix(b"\"").unwrap_or(&s);
+    let t = t.strip_suffix(b"\"").unwrap_or(t);
+    Ok(String::from_utf8_lossy(t).into_owned())
+}
+
+/// Reads a `$NodeData` / `$ElementData` section after its keyword, up to its `$End` line
+/// (not read): string, real and integer tags in ascii, then the entries (ascii, or binary: an
+/// `int` tag, then the doubles; gmsh and meshio write an `int` in 4.1 too).
+fn read_data_section(
+    w: &mut Words<'_, impl BufRead>,
+    bin: Option<Bin>,
+    node: bool,
+) -> Result<DataSection, IoError> {
+    let n_str = w.u64("the number of string tags")?;
+    let mut name = String::new();
+    for i in 0..n_str {
+        let s = read_string_tag(w)?;
+        if i == 0 {
+            name = s;
+        }
+    }
+    let n_real = w.u64("the number of real tags")?;
+    for _ in 0..n_real {
+        w.expect("a real tag")?;
+    }
+    let head = w.line();
+    let n_int = w.u64("the number of integer tags")?;
+    let mut ints = [0i64; 3];
+    for i in 0..n_int {
+        let x = w.i64("an integer tag")?;
+        if let Some(slot) = ints.get_mut(i as usize) {
+            *slot = x;
+        }
+    }
+    let what = if node { "$NodeData" } else { "$ElementData" };
+    if n_int < 3 {
+        return Err(w.err_at(
+            head,
+            format!("{what} has {n_int} integer tags; gmsh gives 3 or more (time step, components, entries)"),
+        ));
+    }
+    let [step, comps, n] = ints;
+    if !(1..=64).contains(&comps) || n < 0 {
+        return Err(w.err_at(
+            head,
+            format!("{what} declares {comps} components and {n} entries"),
+        ));
+    }
+    let (c, n) = (comps as usize, n as u64);
+    let mut sec = DataSection {
+        node,
+        name: if name.is_empty() {
+            what[1..].to_string()
+        } else {
+            name
+        },
+        step,
+        components: c,
+        tags: Vec::new(),
+        values: Vec::new(),
+    };
+    match bin {
+        None => {
+            for _ in 0..n {
+                sec.tags
+                    .push(w.u64(if node { "a node tag" } else { "an element tag" })?);
+                for _ in 0..c {
+                    let tok = w.expect("a data value")?;
+                    match super::text::parse_f64(tok) {
+                        Some(x) => sec.values.push(x),
+                        None => {
+                            let shown =
+                                String::from_utf8_lossy(&tok[..tok.len().min(40)]).into_owned();
+                            return Err(w.err(format!(
+                                "expected a data value (a number), found '{shown}'"
+                            )));
+                        }
+                    }
+                }
+            }
+        }
+        Some(b) => {
+            let tw = 4;
+            w.rest_of_line()?;
+            let rec = tw + 8 * c;
+            read_records(w, n, rec, "data entries", |_, chunk, _| {
+                for r in chunk.chunks_exact(rec) {
+                    sec.tags.push(get_uint(r, tw, b.e));
+                    push_f64s(&r[tw..], b.e, &mut sec.values);
+                }
+                Ok(())
+            })?;
+        }
+    }
+    Ok(sec)
+}
+
+/// Turns the data sections into attributes: per name and kind, the section of the largest
+/// time step (the last of equal steps); entries for nodes or elements that are not kept are
+/// ignored, nodes or elements without an entry get NaN.
+fn data_attributes(
+    data: Vec<DataSection>,
+    node_tags: &TagMap,
+    new_id: &[u32],
+    n_vertices: usize,
+    elem_tags: &[u64],
+    attrs: &mut Attributes,
+    notes: &mut Vec<String>,
+) {
+    let mut chosen: Vec<DataSection> = Vec::new();
+    let mut n_steps = 0usize;
+    for d in data {
+        match chosen
+            .iter_mut()
+            .find(|c| c.node == d.node && c.name == d.name)
+        {
+            Some(c) => {
+                n_steps += 1;
+                if d.step >= c.step {
+                    *c = d;
+                }
+            }
+            None => chosen.push(d),
+        }
+    }
+    if n_steps > 0 {
+        notes.push(format!(
+            "kept the last time step of each data field ({n_steps} earlier sections ignored)"
+        ));
+    }
+    let mut elem_map: Option<TagMap> = None;
+    let mut missing = 0usize;
+    for d in chosen {
+        let c = d.components;
+        let (n, ids): (usize, Vec<Option<u32>>) = if d.node {
+            let ids = d
+                .tags
+                .iter()
+                .map(|&t| {
+                    node_tags
+                        .get(t)
+                        .map(|i| new_id[i as usize])
+                        .filter(|&v| v != u32::MAX)
+                })
+                .collect();
+            (n_vertices, ids)
+        } else {
+            let m = elem_map.get_or_insert_with(|| {
+                let mut m = TagMap::default();
+                for (i, &t) in elem_tags.iter().enumerate() {
+                    m.insert(t, i as u32);
+                }
+                m
+            });
+            (elem_tags.len(), d.tags.iter().map(|&t| m.get(t)).collect())
+        };
+        let mut values = vec![f64::NAN; n * c];
+        let mut filled = vec![false; n];
+        for (j, id) in ids.into_iter().enumerate() {
+            if let Some(i) = id {
+                let i = i as usize;
+                values[i * c..(i + 1) * c].copy_from_slice(&d.values[j * c..(j + 1) * c]);
+                filled[i] = true;
+            }
+        }
+        missing += filled.iter().filter(|f| !**f).count();
+        let a = Attribute::float(d.name, c, values);
+        let list = if d.node {
+            &mut attrs.vertex
+        } else {
+            &mut attrs.cell
+        };
+        if list.iter().any(|x| x.name == a.name) {
+            notes.push(format!("ignored a second data field named '{}'", a.name));
+        } else {
+            list.push(a);
+        }
+    }
+    if missing > 0 {
+        notes.push(format!(
+            "{missing} nodes or elements have no value in a data field (NaN)"
+        ));
+    }
 }
 
 fn add_node(
@@ -623,13 +921,13 @@ fn read_elements_41(
         let kind = kind_of_gmsh_type(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
         let n = w.u64("the number of elements in the block")?;
         for _ in 0..n {
-            w.u64("an element tag")?;
+            let tag = w.u64("an element tag")?;
             read_element_nodes(w, kind, tags, seen, verts)?;
             seen += 1;
             if kind == CellKind::Simplex(0) {
                 elems.points += 1;
             } else {
-                elems.push(kind, verts, physical, entity);
+                elems.push(tag, kind, verts, physical, entity);
             }
         }
     }
@@ -650,7 +948,7 @@ fn read_elements_22(
 ) -> Result<(), IoError> {
     let n = w.u64("the number of elements")?;
     for i in 0..n {
-        w.u64("an element tag")?;
+        let tag = w.u64("an element tag")?;
         let ty = w.u64("the element type")?;
         let kind = kind_of_gmsh_type(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
         let n_tags = w.u64("the number of element tags")?;
@@ -666,7 +964,7 @@ fn read_elements_22(
             elems.points += 1;
         } else {
             elems.has_physical |= n_tags > 0;
-            elems.push(kind, verts, t[0], t[1]);
+            elems.push(tag, kind, verts, t[0], t[1]);
         }
     }
     Ok(())
@@ -846,6 +1144,7 @@ fn read_elements_41_bin(
     b: Bin,
     tags: &TagMap,
     elems: &mut Elements,
+    entities: &std::collections::HashMap<(u64, i64), i64>,
 ) -> Result<(), IoError> {
     let (sz, e) = (b.size, b.e);
     let path = w.path();
@@ -861,6 +1160,7 @@ fn read_elements_41_bin(
         let at = w.offset();
         let mut bh = [0u8; 20];
         w.read_raw(&mut bh[..12 + sz], "an element block header")?;
+        let dim = get_i32(&bh, e) as u32 as u64;
         let entity = get_i32(&bh[4..], e) as i64;
         let ty = get_i32(&bh[8..], e);
         let n = get_uint(&bh[12..], sz, e);
@@ -877,7 +1177,8 @@ fn read_elements_41_bin(
                 if kind == CellKind::Simplex(0) {
                     elems.points += 1;
                 } else {
-                    elems.push(kind, &verts, 0, entity);
+                    let physical = entities.get(&(dim, entity)).copied().unwrap_or(0);
+                    elems.push(get_uint(r, sz, e), kind, &verts, physical, entity);
                 }
             }
             Ok(())
@@ -940,7 +1241,13 @@ fn read_elements_22_bin(
                     let tag = |j: usize| get_i32(&r[4 * (1 + j)..], e) as i64;
                     let physical = if n_tags > 0 { tag(0) } else { 0 };
                     let geometrical = if n_tags > 1 { tag(1) } else { 0 };
-                    elems.push(kind, &verts, physical, geometrical);
+                    elems.push(
+                        get_i32(r, e) as u32 as u64,
+                        kind,
+                        &verts,
+                        physical,
+                        geometrical,
+                    );
                 }
             }
             Ok(())
@@ -1063,6 +1370,74 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
         }
     }
     writeln!(w, "$EndElements")?;
+    write_data(w, k, Format::Gmsh)
+}
+
+/// The names of the attributes that the element tags carry.
+const TAG_NAMES: [&str; 2] = ["gmsh:physical", "gmsh:geometrical"];
+
+/// Whether a gmsh file written as `format` ([`Format::Gmsh`] or [`Format::Gmsh22`]) holds the
+/// attribute `a` of `target`: `gmsh:physical` and `gmsh:geometrical` as the element tags of
+/// version 2.2 (integer cell columns of one component), every other column as a `$NodeData`
+/// or `$ElementData` section (a name without `"` or line breaks, 1 to 64 components, integers
+/// up to 2^53 in magnitude: gmsh data is double, so integer columns read back as floats).
+///
+/// ```
+/// use starplex::attr::{AttrTarget, Attribute};
+/// use starplex::io::{gmsh, Format};
+/// let phys = Attribute::int("gmsh:physical", 1, vec![1, 2]);
+/// assert!(gmsh::holds(Format::Gmsh22, AttrTarget::Cell, &phys));
+/// assert!(!gmsh::holds(Format::Gmsh, AttrTarget::Cell, &phys)); // 4.1 writes one entity per dimension
+/// assert!(gmsh::holds(Format::Gmsh, AttrTarget::Vertex, &Attribute::float("T", 3, vec![0.0; 6])));
+/// ```
+pub fn holds(format: Format, target: AttrTarget, a: &Attribute) -> bool {
+    if TAG_NAMES.contains(&a.name.as_str()) {
+        return format == Format::Gmsh22
+            && target == AttrTarget::Cell
+            && a.components == 1
+            && matches!(a.values, AttrValues::Int(_));
+    }
+    !a.name.contains(['"', '\n', '\r'])
+        && (1..=64).contains(&a.components)
+        && match &a.values {
+            AttrValues::Int(v) => v.iter().all(|x| x.unsigned_abs() <= 1 << 53),
+            AttrValues::Float(_) => true,
+        }
+}
+
+/// Writes every data column `holds` keeps as `$NodeData` / `$ElementData` (time step 0, time
+/// 0.0; node tag = vertex id + 1, element tag = cell id + 1, as the writers number them).
+fn write_data(w: &mut dyn Write, k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
+    let attrs = k.attributes();
+    let mut line: Vec<u8> = Vec::with_capacity(256);
+    for (target, cols, sec) in [
+        (AttrTarget::Vertex, &attrs.vertex, "NodeData"),
+        (AttrTarget::Cell, &attrs.cell, "ElementData"),
+    ] {
+        for a in cols {
+            if TAG_NAMES.contains(&a.name.as_str()) || !holds(format, target, a) {
+                continue;
+            }
+            let c = a.components;
+            let n = a.n_items();
+            writeln!(w, "${sec}\n1\n\"{}\"\n1\n0\n3\n0\n{c}\n{n}", a.name)?;
+            for i in 0..n {
+                use std::io::Write as _;
+                line.clear();
+                write!(line, "{}", i + 1)?;
+                for j in i * c..(i + 1) * c {
+                    line.push(b' ');
+                    match &a.values {
+                        AttrValues::Int(v) => write!(line, "{}", v[j])?,
+                        AttrValues::Float(v) => write_f64(&mut line, v[j])?,
+                    }
+                }
+                line.push(b'\n');
+                w.write_all(&line)?;
+            }
+            writeln!(w, "$End{sec}")?;
+        }
+    }
     Ok(())
 }
 
@@ -1163,18 +1538,28 @@ pub fn write_22(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind
     }
     writeln!(w, "$EndNodes")?;
     writeln!(w, "$Elements\n{}", k.n_cells())?;
+    let tag_col = |name: &str| match k.attributes().get(AttrTarget::Cell, name) {
+        Some(a) if holds(Format::Gmsh22, AttrTarget::Cell, a) => match &a.values {
+            AttrValues::Int(v) => Some(v.as_slice()),
+            AttrValues::Float(_) => None,
+        },
+        _ => None,
+    };
+    let (phys, geom) = (tag_col(TAG_NAMES[0]), tag_col(TAG_NAMES[1]));
     let mut line = String::with_capacity(128);
     for b in k.blocks() {
         let t = gmsh_type(b.kind).unwrap_or(0);
-        let entity = 1 + b.kind.dim();
         for i in 0..b.len() {
             use std::fmt::Write as _;
+            let id = b.first as usize + i;
+            let p = phys.map_or(0, |v| v[id]);
+            let g = geom.map_or(1 + b.kind.dim() as i64, |v| v[id]);
             line.clear();
-            let _ = write!(line, "{} {t} 2 0 {entity}", b.first as usize + i + 1);
+            let _ = write!(line, "{} {t} 2 {p} {g}", id + 1);
             push_nodes(&mut line, b.kind, b.cell(i));
             w.write_all(line.as_bytes())?;
         }
     }
     writeln!(w, "$EndElements")?;
-    Ok(())
+    write_data(w, k, Format::Gmsh22)
 }

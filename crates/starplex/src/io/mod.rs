@@ -76,7 +76,7 @@ pub enum Format {
     StlBinary,
     /// `.mesh` (Medit).
     Medit,
-    /// `.vtk` (legacy unstructured grid, ascii).
+    /// `.vtk` (legacy unstructured grid, ascii and binary; poly data read).
     Vtk,
     /// `.vtu` (VTK XML unstructured grid; the reader also takes poly data).
     Vtu,
@@ -271,7 +271,9 @@ impl Format {
 
     /// The attributes of `a` that a file of this format cannot hold (`kind name`, e.g.
     /// `cell material`): none for VTK (`.vtk`, `.vtu`, `.vtp`); Medit keeps only its integer
-    /// `medit:ref` columns; the other formats keep none.
+    /// `medit:ref` columns; PLY keeps those [`ply::dropped`] does not name; OFF keeps the
+    /// colours ([`off::holds`]); gmsh the data sections and, in 2.2, the element tags
+    /// ([`gmsh::holds`]); the other formats keep none.
     ///
     /// ```
     /// use starplex::attr::{Attribute, Attributes};
@@ -282,15 +284,20 @@ impl Format {
     /// };
     /// assert!(Format::Vtu.dropped_attributes(&a).is_empty());
     /// assert_eq!(Format::Medit.dropped_attributes(&a), ["vertex height"]);
-    /// assert_eq!(Format::Off.dropped_attributes(&a).len(), 2);
+    /// assert_eq!(Format::Obj.dropped_attributes(&a).len(), 2);
     /// ```
     pub fn dropped_attributes(self, a: &crate::attr::Attributes) -> Vec<String> {
         use crate::attr::{AttrTarget, AttrValues};
+        if self == Format::Ply {
+            return ply::dropped(a, ply::PlyEncoding::default());
+        }
         let mut out = Vec::new();
         for target in [AttrTarget::Vertex, AttrTarget::Cell] {
             for c in a.of(target) {
                 let kept = match self {
                     Format::Vtk | Format::Vtu | Format::Vtp => true,
+                    Format::Off | Format::OffSimplices => off::holds(target, c),
+                    Format::Gmsh | Format::Gmsh22 => gmsh::holds(self, target, c),
                     Format::Medit => {
                         c.name == medit::REF
                             && c.components == 1

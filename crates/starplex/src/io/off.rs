@@ -9,8 +9,16 @@
 //! k i_0 ... i_{k-1} [colour]  (n_faces lines)
 //! ```
 //!
-//! * `C`, `N`, `ST` prefixes: vertex lines carry colour, normal or texture values after the
-//!   position; they are ignored.
+//! * `C`, `N`, `ST` prefixes: vertex lines carry normal (`N`), colour (`C`) and texture (`ST`)
+//!   values after the position, in that order. Normals (as many values as coordinates) become
+//!   the float vertex attribute [`NORMAL`]; the colour (the rest of the line: 1 to 4 values,
+//!   e.g. `r g b a`) the vertex attribute [`COLOR`]; texture values are ignored.
+//! * Face colours: the values after a face's indices (1 to 4: a colour-map index, `r g b` or
+//!   `r g b a`) become the cell attribute [`COLOR`] (the triangles of a fanned polygon share
+//!   it). Colours are integers when every value is written as one (`255`), else floats
+//!   (`1.0`, `0.5`). A colour column is kept only when every line has the same number of
+//!   values (0 on every face line: no column); otherwise it is dropped with a note naming the
+//!   first line that differs.
 //! * `n` prefix: a line with the dimension `n` follows the keyword; vertices have `n` coordinates.
 //! * `4` prefix: homogeneous coordinates (one more value per vertex, the position is divided by it).
 //! * Plain `OFF` whose vertex lines do not have 3 values (the Stellar reference's convention for
@@ -44,6 +52,7 @@ use std::path::Path;
 
 use super::text::{parse_f64, parse_u64, write_f64, LineReader, Tokens};
 use super::{Format, IoError, IoErrorKind, Location, PolygonMode, ReadOptions, ReadResult};
+use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
 use crate::complex::{check_cell, ComplexBuilder, ComplexError, IndexedComplex, MAX_AMBIENT_DIM};
 
@@ -250,6 +259,10 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     };
     let mut first_vertex_line = 0u64;
     let mut builder: Option<ComplexBuilder> = None;
+    // N: the values after the position; C: the values after those (the texture coordinates
+    // of ST, last, are taken as part of the colour only when they make it 4 values or fewer)
+    let mut normals = ExtraValues::new("vertex normals");
+    let mut vcolours = ExtraValues::new("vertex colours");
     let mut p: Vec<f64> = Vec::with_capacity(8);
     for i in 0..nv {
         let l = lr.expect_line("a vertex line")?;
@@ -292,6 +305,12 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 *x /= w;
             }
         }
+        if header.normal {
+            normals.push_line(&mut t, p.len(), l.no);
+        }
+        if header.colour {
+            vcolours.push_line(&mut t, usize::MAX, l.no);
+        }
         let b = match &mut builder {
             Some(b) => b,
             None => builder.insert(ComplexBuilder::new(p.len()).map_err(|e| l.err(e.to_string()))?),
@@ -315,6 +334,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut points = 0u64;
     let mut face = 0u64;
     let mut lines = CellLines::default();
+    let mut fcolours = ExtraValues::new("face colours");
     while face < nf {
         let l = lr.expect_line("a face line")?;
         let mut t = l.tokens();
@@ -333,7 +353,8 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         for _ in 0..k {
             verts.push(t.index("face vertex", 0, nv)?);
         }
-        // Anything after the indices is a colour: ignored.
+        // anything after the indices is the face's colour
+        fcolours.push_line(&mut t, usize::MAX, l.no);
         check_distinct(face, &verts, nv, &mut scratch)
             .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
         let mut push = |b: &mut ComplexBuilder, kind: CellKind, v: &[u32]| {
@@ -343,6 +364,12 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             lines.record(id.0 as u64, l.no);
             Ok::<(), IoError>(())
         };
+        let cells = match (opts.polygons, verts.len()) {
+            (PolygonMode::Simplices, _) | (PolygonMode::Polygons, 2..=4) => 1,
+            (PolygonMode::Polygons, 1) => 0,
+            (PolygonMode::Polygons, n) => n - 2,
+        };
+        fcolours.repeat_last(cells);
         match (opts.polygons, verts.len()) {
             (PolygonMode::Simplices, n) => push(&mut b, CellKind::Simplex((n - 1) as u8), &verts)?,
             (PolygonMode::Polygons, 1) => points += 1,
@@ -370,8 +397,19 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         )));
     }
 
-    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
     let mut notes = Vec::new();
+    let mut attrs = Attributes::default();
+    if let Some(a) = normals.column(NORMAL, false, &mut notes) {
+        attrs.vertex.push(a);
+    }
+    if let Some(a) = vcolours.column(COLOR, true, &mut notes) {
+        attrs.vertex.push(a);
+    }
+    if let Some(a) = fcolours.column(COLOR, true, &mut notes) {
+        attrs.cell.push(a);
+    }
+    b.set_attributes(attrs);
+    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
     if split > 0 {
         notes.push(format!(
             "fan-triangulated {split} polygons with more than 4 vertices into {} triangles",
@@ -401,6 +439,114 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         format: Format::Off,
         notes,
     })
+}
+
+/// The name of the colour attributes (vertex colours of `COFF`, face colours).
+///
+/// ```
+/// assert_eq!(starplex::io::off::COLOR, "color");
+/// ```
+pub const COLOR: &str = "color";
+
+/// The name of the vertex normal attribute (`NOFF`).
+///
+/// ```
+/// assert_eq!(starplex::io::off::NORMAL, "normal");
+/// ```
+pub const NORMAL: &str = "normal";
+
+/// Values after the fixed part of a run of lines (colours, normals): one row per line, kept as
+/// long as every line has the same number of numbers (1 to 4 for colours, the dimension for
+/// normals); otherwise the column is dropped with a note.
+struct ExtraValues {
+    what: &'static str,
+    /// Values per line, from the first line.
+    n: Option<usize>,
+    values: Vec<f64>,
+    all_int: bool,
+    /// The first line that broke the rule, and why.
+    broken: Option<(u64, String)>,
+}
+
+impl ExtraValues {
+    fn new(what: &'static str) -> Self {
+        ExtraValues {
+            what,
+            n: None,
+            values: Vec::new(),
+            all_int: true,
+            broken: None,
+        }
+    }
+
+    /// Reads the line's next `want` values (`usize::MAX`: the rest of the line, at most 4).
+    #[inline]
+    fn push_line(&mut self, t: &mut Tokens<'_>, want: usize, line: u64) {
+        if self.broken.is_some() {
+            return;
+        }
+        let start = self.values.len();
+        let mut k = 0;
+        while k < want {
+            let Some(tok) = t.next_token() else { break };
+            let Some(x) = parse_f64(tok) else {
+                self.broken = Some((line, format!("'{}' is not a number", shown(tok, 20))));
+                return;
+            };
+            self.all_int &= tok
+                .iter()
+                .enumerate()
+                .all(|(i, c)| c.is_ascii_digit() || (i == 0 && (*c == b'-' || *c == b'+')));
+            self.values.push(x);
+            k += 1;
+        }
+        let n = self.values.len() - start;
+        let limit = if want == usize::MAX { 4 } else { want };
+        if n > limit || (want != usize::MAX && n > 0 && n < want) {
+            self.broken = Some((line, format!("{n} values")));
+            return;
+        }
+        match self.n {
+            None => self.n = Some(n),
+            Some(m) if m != n => {
+                self.broken = Some((line, format!("{n} values where the first has {m}")));
+            }
+            _ => {}
+        }
+    }
+
+    /// Repeats the last row so that it stands for `cells` cells (0: removes it).
+    fn repeat_last(&mut self, cells: usize) {
+        let Some(n) = self.n.filter(|_| self.broken.is_none()) else {
+            return;
+        };
+        if n == 0 || cells == 1 {
+            return;
+        }
+        let row: smallvec::SmallVec<[f64; 4]> = self.values[self.values.len() - n..].into();
+        self.values.truncate(self.values.len() - n);
+        for _ in 0..cells {
+            self.values.extend_from_slice(&row);
+        }
+    }
+
+    /// The column, if every line had the same number of values (at least one); integers when
+    /// `int_ok` and every value was written as an integer.
+    fn column(self, name: &str, int_ok: bool, notes: &mut Vec<String>) -> Option<Attribute> {
+        if let Some((line, why)) = self.broken {
+            notes.push(format!(
+                "ignored the {}: line {line} has {why} (every line needs the same number)",
+                self.what
+            ));
+            return None;
+        }
+        let n = self.n.filter(|&n| n > 0)?;
+        Some(if int_ok && self.all_int {
+            Attribute::int(name, n, self.values.iter().map(|&x| x as i64).collect())
+        } else {
+            Attribute::float(name, n, self.values)
+        })
+    }
 }
 
 /// The line of every cell pushed so far, kept as runs (cell `c` of a run is on line
@@ -617,7 +763,8 @@ pub fn check_simplices(k: &IndexedComplex) -> Result<(), IoErrorKind> {
     }
 }
 
-/// Writes `k` as plain OFF: `OFF`, the counts, one line of `ambient_dim` coordinates per vertex
+/// Writes `k` as plain OFF (`COFF` when it has a vertex [`COLOR`] column, see [`holds`]; face
+/// colours after each face's indices): `OFF`, the counts, one line of `ambient_dim` coordinates per vertex
 /// (the Stellar reference's convention when the ambient dimension is not 3), then one line
 /// `k i_0 .. i_{k-1}` per cell in cell-id order (so cell ids survive a round trip). A complex
 /// with no vertex and an ambient dimension other than 3 is written as `nOFF` so that its
@@ -671,35 +818,99 @@ pub fn write_simplices(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoEr
     write_faces(w, k)
 }
 
+/// Whether OFF holds the attribute `a` of `target`: the vertex and the cell column named
+/// [`COLOR`] of 1 to 4 components (integers up to 2^53 in magnitude, or finite floats). Vertex
+/// normals are read, not written.
+///
+/// ```
+/// use starplex::attr::{AttrTarget, Attribute};
+/// use starplex::io::off;
+/// assert!(off::holds(AttrTarget::Cell, &Attribute::int("color", 3, vec![255, 0, 0])));
+/// assert!(!off::holds(AttrTarget::Cell, &Attribute::float("color", 3, vec![f64::NAN, 0.0, 0.0])));
+/// assert!(!off::holds(AttrTarget::Vertex, &Attribute::float("normal", 3, vec![0.0, 0.0, 1.0])));
+/// ```
+pub fn holds(target: AttrTarget, a: &Attribute) -> bool {
+    let _ = target;
+    a.name == COLOR
+        && (1..=4).contains(&a.components)
+        && match &a.values {
+            AttrValues::Int(v) => v.iter().all(|x| x.unsigned_abs() <= 1 << 53),
+            AttrValues::Float(v) => v.iter().all(|x| x.is_finite()),
+        }
+}
+
+/// The column of `cols` that OFF writes (see [`holds`]).
+fn colour_column(target: AttrTarget, cols: &[Attribute]) -> Option<&Attribute> {
+    cols.iter().find(|a| holds(target, a))
+}
+
+/// Appends the values of item `i` of `a` (` v` each; floats always with a `.` or an exponent,
+/// so that they read back as floats).
+fn push_values(s: &mut Vec<u8>, a: &Attribute, i: usize) -> std::io::Result<()> {
+    let c = a.components;
+    for j in i * c..(i + 1) * c {
+        s.push(b' ');
+        match &a.values {
+            AttrValues::Int(v) => {
+                use std::io::Write as _;
+                write!(s, "{}", v[j])?
+            }
+            AttrValues::Float(v) => {
+                let at = s.len();
+                write_f64(s, v[j])?;
+                if s[at..].iter().all(|c| c.is_ascii_digit() || *c == b'-') {
+                    s.extend_from_slice(b".0");
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 fn write_faces(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
-    if k.n_vertices() == 0 && k.ambient_dim() != 3 {
-        // No vertex line to carry the dimension: say it in the header.
-        writeln!(w, "nOFF\n{}", k.ambient_dim())?;
+    let d = k.ambient_dim();
+    let vcol = colour_column(AttrTarget::Vertex, &k.attributes().vertex);
+    let fcol = colour_column(AttrTarget::Cell, &k.attributes().cell);
+    let c = if vcol.is_some() { "C" } else { "" };
+    if (k.n_vertices() == 0 || vcol.is_some()) && d != 3 {
+        // No vertex line to carry the dimension, or a COFF whose vertex lines do not: say it
+        // in the header.
+        writeln!(w, "{c}nOFF\n{d}")?;
     } else {
-        writeln!(w, "OFF")?;
+        writeln!(w, "{c}OFF")?;
     }
     writeln!(w, "{} {} 0", k.n_vertices(), k.n_cells())?;
-    for p in k.coords().chunks_exact(k.ambient_dim()) {
-        for (i, &x) in p.iter().enumerate() {
-            if i > 0 {
-                w.write_all(b" ")?;
+    let mut line: Vec<u8> = Vec::with_capacity(128);
+    for (i, p) in k.coords().chunks_exact(d).enumerate() {
+        line.clear();
+        for (j, &x) in p.iter().enumerate() {
+            if j > 0 {
+                line.push(b' ');
             }
-            write_f64(w, x)?;
+            write_f64(&mut line, x)?;
         }
-        w.write_all(b"\n")?;
+        if let Some(a) = vcol {
+            push_values(&mut line, a, i)?;
+        }
+        line.push(b'\n');
+        w.write_all(&line)?;
     }
-    let mut line = String::with_capacity(128);
+    let mut id = 0;
     for b in k.blocks() {
         let n = b.kind.n_vertices();
         for i in 0..b.len() {
-            use std::fmt::Write as _;
+            use std::io::Write as _;
             line.clear();
-            let _ = write!(line, "{n}");
+            write!(line, "{n}")?;
             for v in b.cell(i) {
-                let _ = write!(line, " {v}");
+                write!(line, " {v}")?;
             }
-            line.push('\n');
-            w.write_all(line.as_bytes())?;
+            if let Some(a) = fcol {
+                push_values(&mut line, a, id)?;
+            }
+            id += 1;
+            line.push(b'\n');
+            w.write_all(&line)?;
         }
     }
     Ok(())
@@ -767,11 +978,41 @@ mod tests {
     }
 
     #[test]
-    fn coff_noff_ignore_extras() {
+    fn coff_noff_extras_are_attributes() {
         let text = "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2 10 20 30\n";
         let r = rd(text).unwrap();
         assert_eq!(r.complex.ambient_dim(), 3);
         assert_eq!(r.complex.coords(), &[0., 0., 0., 1., 0., 0., 0., 1., 0.]);
+        let a = r.complex.attributes();
+        assert_eq!(
+            a.vertex,
+            [Attribute::int(
+                COLOR,
+                4,
+                vec![255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255]
+            )]
+        );
+        assert_eq!(a.cell, [Attribute::int(COLOR, 3, vec![10, 20, 30])]);
+        let text =
+            "CNOFF\n3 1 0\n0 0 0 0 0 1 1 .5 1\n1 0 0 0 0 1 1 1 1\n0 1 0 0 0 1 1 1 1\n3 0 1 2\n";
+        let a = rd(text).unwrap().complex.take_attributes();
+        assert_eq!(
+            a.vertex[0],
+            Attribute::float(NORMAL, 3, [0., 0., 1.].repeat(3))
+        );
+        assert_eq!(
+            a.vertex[1],
+            Attribute::float(COLOR, 3, vec![1., 0.5, 1., 1., 1., 1., 1., 1., 1.])
+        );
+        // lines that disagree: no column, a note
+        let text = "COFF\n3 1 0\n0 0 0 1 1 1\n1 0 0 1 1\n0 1 0 1 1 1\n3 0 1 2\n";
+        let r = rd(text).unwrap();
+        assert!(r.complex.attributes().is_empty());
+        assert!(
+            r.notes[0].contains("ignored the vertex colours: line 4 has 2 values"),
+            "{:?}",
+            r.notes
+        );
         let text = "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
         assert_eq!(rd(text).unwrap().complex.ambient_dim(), 3);
         let text =
@@ -821,9 +1062,12 @@ mod tests {
             ]
         );
         assert_eq!(r.complex.cells().next().unwrap().vertices, &[0, 1, 2]);
-        assert_eq!(r.notes.len(), 2, "{:?}", r.notes);
-        assert!(r.notes[0].contains("fan-triangulated 1 polygons"));
-        assert!(r.notes[1].contains("dropped 1 one-vertex faces"));
+        assert_eq!(r.notes.len(), 3, "{:?}", r.notes);
+        // only the quad has a colour: no face colour column, said so
+        assert!(r.notes[0]
+            .contains("ignored the face colours: line 13 has 3 values where the first has 0"));
+        assert!(r.notes[1].contains("fan-triangulated 1 polygons"));
+        assert!(r.notes[2].contains("dropped 1 one-vertex faces"));
     }
 
     #[test]

@@ -1,11 +1,24 @@
 //! PLY (Stanford polygon file), ascii and binary, read through the `ply-rs-bw` parser.
 //!
 //! Reading: the `vertex` element's `x`, `y` (and `z` when present; without it the complex is 2D)
-//! of any scalar type become the coordinates, other vertex properties are ignored; the `face`
-//! element's `vertex_indices` (or `vertex_index`) list of any integer type becomes the cells,
-//! following [`PolygonMode`]: with `Polygons` a face of 3 vertices is a triangle, 4 a quad, more
-//! are fan-triangulated (counted in [`ReadResult::notes`]); with `Simplices` a face of `k`
-//! vertices is a `(k-1)`-simplex. Other elements (`edge`, `material`, ...) are read past and noted.
+//! of any scalar type become the coordinates; the `face` element's `vertex_indices` (or
+//! `vertex_index`) list of any integer type becomes the cells, following [`PolygonMode`]: with
+//! `Polygons` a face of 3 vertices is a triangle, 4 a quad, more are fan-triangulated (counted in
+//! [`ReadResult::notes`]); with `Simplices` a face of `k` vertices is a `(k-1)`-simplex. An `edge`
+//! element with integer `vertex1` and `vertex2` properties gives edges (1-simplices), as OBJ `l`
+//! lines do. Other elements (`material`, ...) are read past and noted.
+//!
+//! Attributes: every other scalar property of the `vertex` element (`nx`, `red`, `quality`, ...)
+//! is a vertex [attribute](crate::attr) of that name, every other scalar property of the `face`
+//! and `edge` elements a cell attribute (one item per cell; the triangles of a fanned polygon
+//! share its values); integer types give [`AttrValues::Int`], `float`/`double` give
+//! [`AttrValues::Float`]. One rule groups properties: a run of consecutive properties
+//! `{base}_0`, `{base}_1`, ..., `{base}_{k-1}` (k >= 2, one type, `base` not itself a property)
+//! is one column `base` of `k` components (what the writer writes for a vector column); `nx ny
+//! nz` or `red green blue` stay separate columns, as in the file. A property of the `face`
+//! element that the `edge` element lacks (or the reverse) is 0 (integer) or NaN (float) on the
+//! other element's cells, with a note. List properties other than the indices are ignored
+//! (noted).
 //!
 //! Before the payload is parsed, the counts declared in the header are compared with the bytes
 //! that follow it (every record needs a minimum number of bytes), so a header declaring 10^12
@@ -13,7 +26,13 @@
 //! (binary payload). Cell ids in index errors are the face's position in the file.
 //!
 //! Writing: triangles and quads only (`binary_little_endian` by default, `ascii` with
-//! [`write_with`]); coordinates as `double` so a round trip is exact.
+//! [`write_with`]); coordinates as `double` so a round trip is exact. Vertex attributes are
+//! written as extra `vertex` properties and cell attributes as extra `face` properties after
+//! `vertex_indices`: integers as `uchar` when every value is in 0..=255 (so `red green blue`
+//! stay colours for other tools), else `int` or `uint`, floats as `double`; a column of `k > 1`
+//! components as `{name}_0` .. `{name}_{k-1}`. Columns PLY cannot hold are left out ([`dropped`]
+//! names them): integers beyond 32 bits, NaN or infinite floats in ascii, names that are not one
+//! word or that clash (`x`, `vertex_indices`, another column's property).
 //!
 //! ```
 //! use starplex::io::{ply, ReadOptions};
@@ -38,6 +57,7 @@ use ply_rs_bw::ply::{
 
 use super::text::write_f64;
 use super::{Format, IoError, IoErrorKind, Location, PolygonMode, ReadOptions, ReadResult};
+use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
 use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
 
@@ -86,9 +106,14 @@ impl<R: BufRead> BufRead for Counting<R> {
     }
 }
 
-/// One vertex record: the coordinates found so far.
+/// Extra scalar values of one record (every PLY scalar type is exact as `f64`), in header order.
+type Extras = smallvec::SmallVec<[f64; 8]>;
+
+/// One vertex record: the coordinates found so far and the other scalar properties, in header
+/// order.
 struct VertexRec {
     p: [f64; 3],
+    extra: Extras,
 }
 
 impl VertexRec {
@@ -98,44 +123,58 @@ impl VertexRec {
             "x" => 0,
             "y" => 1,
             "z" => 2,
-            _ => return PropertyAccessResult::Ignored,
+            _ => {
+                self.extra.push(v);
+                return PropertyAccessResult::Set;
+            }
         };
         self.p[axis] = v;
         PropertyAccessResult::Set
     }
 }
 
-impl PropertyAccess for VertexRec {
-    fn new() -> Self {
-        VertexRec { p: [0.0; 3] }
-    }
-    fn set_char(&mut self, n: &str, v: i8) -> PropertyAccessResult {
-        self.set(n, v as f64)
-    }
-    fn set_uchar(&mut self, n: &str, v: u8) -> PropertyAccessResult {
-        self.set(n, v as f64)
-    }
-    fn set_short(&mut self, n: &str, v: i16) -> PropertyAccessResult {
-        self.set(n, v as f64)
-    }
-    fn set_ushort(&mut self, n: &str, v: u16) -> PropertyAccessResult {
-        self.set(n, v as f64)
-    }
-    fn set_int(&mut self, n: &str, v: i32) -> PropertyAccessResult {
-        self.set(n, v as f64)
-    }
-    fn set_uint(&mut self, n: &str, v: u32) -> PropertyAccessResult {
-        self.set(n, v as f64)
-    }
-    fn set_float(&mut self, n: &str, v: f32) -> PropertyAccessResult {
-        self.set(n, v as f64)
-    }
-    fn set_double(&mut self, n: &str, v: f64) -> PropertyAccessResult {
-        self.set(n, v)
-    }
+/// The scalar setters of a record type, all through its `set(name, f64)`.
+macro_rules! scalar_setters {
+    () => {
+        fn set_char(&mut self, n: &str, v: i8) -> PropertyAccessResult {
+            self.set(n, v as f64)
+        }
+        fn set_uchar(&mut self, n: &str, v: u8) -> PropertyAccessResult {
+            self.set(n, v as f64)
+        }
+        fn set_short(&mut self, n: &str, v: i16) -> PropertyAccessResult {
+            self.set(n, v as f64)
+        }
+        fn set_ushort(&mut self, n: &str, v: u16) -> PropertyAccessResult {
+            self.set(n, v as f64)
+        }
+        fn set_int(&mut self, n: &str, v: i32) -> PropertyAccessResult {
+            self.set(n, v as f64)
+        }
+        fn set_uint(&mut self, n: &str, v: u32) -> PropertyAccessResult {
+            self.set(n, v as f64)
+        }
+        fn set_float(&mut self, n: &str, v: f32) -> PropertyAccessResult {
+            self.set(n, v as f64)
+        }
+        fn set_double(&mut self, n: &str, v: f64) -> PropertyAccessResult {
+            self.set(n, v)
+        }
+    };
 }
 
-/// One face record: its vertex index list, in whichever integer type the file declares.
+impl PropertyAccess for VertexRec {
+    fn new() -> Self {
+        VertexRec {
+            p: [0.0; 3],
+            extra: Extras::new(),
+        }
+    }
+    scalar_setters!();
+}
+
+/// One face record: its vertex index list, in whichever integer type the file declares, and
+/// its other scalar properties in header order.
 #[derive(Default)]
 struct FaceRec {
     i8s: Vec<i8>,
@@ -144,6 +183,7 @@ struct FaceRec {
     u16s: Vec<u16>,
     i32s: Vec<i32>,
     u32s: Vec<u32>,
+    extra: Extras,
 }
 
 #[inline]
@@ -169,6 +209,12 @@ impl FaceRec {
         conv(&self.i32s, out)?;
         conv(&self.u32s, out)
     }
+
+    #[inline]
+    fn set(&mut self, _name: &str, v: f64) -> PropertyAccessResult {
+        self.extra.push(v);
+        PropertyAccessResult::Set
+    }
 }
 
 macro_rules! fill {
@@ -193,6 +239,35 @@ impl PropertyAccess for FaceRec {
     fill!(begin_list_ushort, u16s, u16);
     fill!(begin_list_int, i32s, i32);
     fill!(begin_list_uint, u32s, u32);
+    scalar_setters!();
+}
+
+/// One `edge` record: `vertex1`, `vertex2` and the other scalar properties in header order.
+struct EdgeRec {
+    v: [f64; 2],
+    extra: Extras,
+}
+
+impl EdgeRec {
+    #[inline]
+    fn set(&mut self, name: &str, v: f64) -> PropertyAccessResult {
+        match name {
+            "vertex1" => self.v[0] = v,
+            "vertex2" => self.v[1] = v,
+            _ => self.extra.push(v),
+        }
+        PropertyAccessResult::Set
+    }
+}
+
+impl PropertyAccess for EdgeRec {
+    fn new() -> Self {
+        EdgeRec {
+            v: [0.0; 2],
+            extra: Extras::new(),
+        }
+    }
+    scalar_setters!();
 }
 
 /// Records of elements starplex does not use.
@@ -398,10 +473,58 @@ pub fn read_from(
     let mut nv: Option<usize> = None;
     let mut verts: Vec<u32> = Vec::with_capacity(16);
     let (mut n_fanned, mut n_fan_tris) = (0u64, 0u64);
+    // extra scalar properties: one column of values per vertex property; the cell columns are
+    // the union (by name) of the face and edge properties
+    let vprops = extra_props(vdef, |n| matches!(n, "x" | "y" | "z"), &mut notes);
+    let mut vcols: Vec<Vec<f64>> = vec![Vec::new(); vprops.len()];
+    let mut cprops: Vec<(String, bool)> = Vec::new();
+    let mut cmaps: [Vec<usize>; 2] = [Vec::new(), Vec::new()];
+    let edge_def = header
+        .elements
+        .get("edge")
+        .filter(|d| is_edge_def(d) && d.count > 0);
+    for (m, def) in [header.elements.get("face"), edge_def]
+        .into_iter()
+        .enumerate()
+    {
+        let Some(def) = def else { continue };
+        let props = if m == 0 {
+            extra_props(def, is_index_name, &mut notes)
+        } else {
+            extra_props(def, |n| n == "vertex1" || n == "vertex2", &mut notes)
+        };
+        for (name, is_int) in props {
+            let at = match cprops.iter().position(|(n, _)| *n == name) {
+                Some(at) => {
+                    cprops[at].1 &= is_int;
+                    at
+                }
+                None => {
+                    cprops.push((name, is_int));
+                    cprops.len() - 1
+                }
+            };
+            cmaps[m].push(at);
+        }
+    }
+    let mut ccols: Vec<Vec<f64>> = vec![Vec::new(); cprops.len()];
+    // one row of cell values (fill values where the element has no such property)
+    let push_row = |ccols: &mut [Vec<f64>], map: &[usize], extra: &[f64]| {
+        for (c, (_, is_int)) in ccols.iter_mut().zip(&cprops) {
+            c.push(if *is_int { 0.0 } else { f64::NAN });
+        }
+        for (&c, &v) in map.iter().zip(extra) {
+            if let Some(last) = ccols[c].last_mut() {
+                *last = v;
+            }
+        }
+    };
+    let mut n_edges = 0u64;
     for def in header.elements.values() {
         let kind = match def.name.as_str() {
             "vertex" => 0,
             "face" => 1,
+            "edge" if edge_def.is_some() => 3,
             _ => {
                 notes.push(format!(
                     "ignored element '{}' ({} records)",
@@ -425,6 +548,9 @@ pub fn read_from(
                     let v: VertexRec = read_record(rd, enc, def, &mut line, i, path, loc)?;
                     b.push_vertex(&v.p[..ambient])
                         .map_err(|e| IoError::new(path, e).at(loc))?;
+                    for (c, &x) in vcols.iter_mut().zip(&v.extra) {
+                        c.push(x);
+                    }
                 }
                 1 => {
                     let f: FaceRec = read_record(rd, enc, def, &mut line, i, path, loc)?;
@@ -439,17 +565,22 @@ pub fn read_from(
                         b.push_cell(kind, v)
                             .map_err(|e| IoError::new(path, e).at(loc))
                     };
+                    let mut rows = 1;
                     match opts.polygons {
                         PolygonMode::Polygons => match k {
-                            3 => push(&mut b, CellKind::Simplex(2), &verts)?,
-                            4 => push(&mut b, CellKind::Quad, &verts)?,
+                            3 => {
+                                push(&mut b, CellKind::Simplex(2), &verts)?;
+                            }
+                            4 => {
+                                push(&mut b, CellKind::Quad, &verts)?;
+                            }
                             k if k > 4 => {
                                 for j in 1..k - 1 {
                                     push(&mut b, CellKind::Simplex(2), &[verts[0], verts[j], verts[j + 1]])?;
                                 }
                                 n_fanned += 1;
                                 n_fan_tris += k as u64 - 2;
-                                continue;
+                                rows = k - 2;
                             }
                             _ => {
                                 return Err(here(format!(
@@ -462,9 +593,35 @@ pub fn read_from(
                                 .checked_sub(1)
                                 .and_then(CellKind::simplex)
                                 .ok_or_else(|| here(format!("face {i} has {k} vertices; a simplex needs 1 to 65")))?;
-                            push(&mut b, kind, &verts)?
+                            push(&mut b, kind, &verts)?;
                         }
                     };
+                    if !ccols.is_empty() {
+                        for _ in 0..rows {
+                            push_row(&mut ccols, &cmaps[0], &f.extra);
+                        }
+                    }
+                }
+                3 => {
+                    let e: EdgeRec = read_record(rd, enc, def, &mut line, i, path, loc)?;
+                    verts.clear();
+                    for x in e.v {
+                        // integer types only (checked by is_edge_def): exact in f64
+                        if x < 0.0 {
+                            return Err(here(format!("edge {i}: negative vertex index {x}")));
+                        }
+                        verts.push(x as u32);
+                    }
+                    if let Some(nv) = nv {
+                        check_cell(i as u64, &verts, nv)
+                            .map_err(|e| IoError::new(path, e).at(loc))?;
+                    }
+                    b.push_cell(CellKind::Simplex(1), &verts)
+                        .map_err(|e| IoError::new(path, e).at(loc))?;
+                    if !ccols.is_empty() {
+                        push_row(&mut ccols, &cmaps[1], &e.extra);
+                    }
+                    n_edges += 1;
                 }
                 _ => {
                     let _: Skip = read_record(rd, enc, def, &mut line, i, path, loc)?;
@@ -480,6 +637,14 @@ pub fn read_from(
             "fan-triangulated {n_fanned} polygons of more than 4 vertices into {n_fan_tris} triangles"
         ));
     }
+    let has_faces = header.elements.get("face").is_some_and(|d| d.count > 0);
+    if n_edges > 0 && has_faces && cmaps.iter().any(|m| m.len() < cprops.len()) {
+        notes.push("the 'face' and 'edge' elements do not have the same properties: the values a cell lacks are 0 (integer columns) or NaN (float columns)".into());
+    }
+    b.set_attributes(Attributes {
+        vertex: group_columns(&vprops, vcols),
+        cell: group_columns(&cprops, ccols),
+    });
     let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
     if report.dropped_duplicates > 0 {
         notes.push(format!(
@@ -498,6 +663,89 @@ pub fn read_from(
         format: Format::Ply,
         notes,
     })
+}
+
+/// Whether an `edge` element can be read as edges: integer `vertex1` and `vertex2`.
+fn is_edge_def(def: &ElementDef) -> bool {
+    ["vertex1", "vertex2"].iter().all(|n| {
+        def.properties
+            .get(*n)
+            .is_some_and(|p| matches!(&p.data_type, PropertyType::Scalar(t) if is_int(t)))
+    })
+}
+
+/// The scalar properties of `def` other than those `used` names, in header order, with whether
+/// their type is an integer; list properties other than the used ones are noted as ignored.
+fn extra_props(
+    def: &ElementDef,
+    used: impl Fn(&str) -> bool,
+    notes: &mut Vec<String>,
+) -> Vec<(String, bool)> {
+    let mut out = Vec::new();
+    for p in def.properties.values() {
+        if used(&p.name) {
+            continue;
+        }
+        match &p.data_type {
+            PropertyType::Scalar(t) => out.push((p.name.clone(), is_int(t))),
+            PropertyType::List(..) => notes.push(format!(
+                "ignored list property '{}' of element '{}'",
+                p.name, def.name
+            )),
+        }
+    }
+    out
+}
+
+/// Where the run of properties `{base}_0`, `{base}_1`, ... starting at `props[i]` ends (the
+/// index after it), when it has at least 2 of one type and `base` names no other property.
+fn component_run(props: &[(String, bool)], i: usize) -> Option<(&str, usize)> {
+    let base = props[i].0.strip_suffix("_0")?;
+    if base.is_empty() || props.iter().any(|(n, _)| n == base) {
+        return None;
+    }
+    let mut j = i + 1;
+    while j < props.len()
+        && props[j].1 == props[i].1
+        && props[j]
+            .0
+            .strip_prefix(base)
+            .and_then(|r| r.strip_prefix('_'))
+            == Some((j - i).to_string().as_str())
+    {
+        j += 1;
+    }
+    (j - i >= 2).then_some((base, j))
+}
+
+/// The attribute columns of properties `props` (name, integer type) whose values are `cols`
+/// (one value per item each): one column per property, except that a run of properties
+/// `{base}_0`, `{base}_1`, ... `{base}_{k-1}` (k >= 2, consecutive, of one type, `base` not a
+/// property itself) is one column `base` of `k` components, as the writer writes them.
+fn group_columns(props: &[(String, bool)], cols: Vec<Vec<f64>>) -> Vec<Attribute> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < props.len() {
+        let (name, end) = match component_run(props, i) {
+            Some((base, end)) => (base.to_string(), end),
+            None => (props[i].0.clone(), i + 1),
+        };
+        let c = end - i;
+        let n = cols[i].len();
+        let mut flat = Vec::with_capacity(n * c);
+        for item in 0..n {
+            for col in &cols[i..end] {
+                flat.push(col.get(item).copied().unwrap_or(f64::NAN));
+            }
+        }
+        out.push(if props[i].1 {
+            Attribute::int(name, c, flat.into_iter().map(|x| x as i64).collect())
+        } else {
+            Attribute::float(name, c, flat)
+        });
+        i = end;
+    }
+    out
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -672,6 +920,9 @@ pub fn write_with(
     } else {
         "int"
     };
+    let attrs = k.attributes();
+    let vcols = plan_columns(&attrs.vertex, &["x", "y", "z"], enc);
+    let ccols = plan_columns(&attrs.cell, &["vertex_indices", "vertex_index"], enc);
     let mut h = String::new();
     h.push_str("ply\n");
     h.push_str(match enc {
@@ -686,46 +937,64 @@ pub fn write_with(
     for a in &["x", "y", "z"][..d] {
         h.push_str(&format!("property double {a}\n"));
     }
+    let props = |h: &mut String, cols: &[PlyColumn<'_>]| {
+        for c in cols {
+            for n in &c.names {
+                h.push_str(&format!("property {} {n}\n", c.ty.name()));
+            }
+        }
+    };
+    props(&mut h, &vcols);
     h.push_str(&format!("element face {}\n", k.n_cells()));
-    h.push_str(&format!(
-        "property list uchar {idx_t} vertex_indices\nend_header\n"
-    ));
+    h.push_str(&format!("property list uchar {idx_t} vertex_indices\n"));
+    props(&mut h, &ccols);
+    h.push_str("end_header\n");
     w.write_all(h.as_bytes())?;
     match enc {
         PlyEncoding::Ascii => {
-            for p in k.coords().chunks_exact(d) {
-                for (i, &x) in p.iter().enumerate() {
-                    if i > 0 {
-                        w.write_all(b" ")?;
+            let mut s = Vec::with_capacity(256);
+            for (i, p) in k.coords().chunks_exact(d).enumerate() {
+                s.clear();
+                for (j, &x) in p.iter().enumerate() {
+                    if j > 0 {
+                        s.push(b' ');
                     }
-                    write_f64(w, x)?;
+                    write_f64(&mut s, x)?;
                 }
-                w.write_all(b"\n")?;
+                ascii_values(&mut s, &vcols, i)?;
+                s.push(b'\n');
+                w.write_all(&s)?;
             }
-            let mut s = String::with_capacity(64);
+            let mut id = 0;
             for b in k.blocks() {
                 for i in 0..b.len() {
-                    use std::fmt::Write as _;
+                    use std::io::Write as _;
                     s.clear();
                     let c = b.cell(i);
-                    let _ = write!(s, "{}", c.len());
+                    write!(s, "{}", c.len())?;
                     for v in c {
-                        let _ = write!(s, " {v}");
+                        write!(s, " {v}")?;
                     }
-                    s.push('\n');
-                    w.write_all(s.as_bytes())?;
+                    ascii_values(&mut s, &ccols, id)?;
+                    id += 1;
+                    s.push(b'\n');
+                    w.write_all(&s)?;
                 }
             }
         }
         PlyEncoding::BinaryLittleEndian => {
             let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
-            for &x in k.coords() {
-                buf.extend_from_slice(&x.to_le_bytes());
+            for (i, p) in k.coords().chunks_exact(d).enumerate() {
+                for &x in p {
+                    buf.extend_from_slice(&x.to_le_bytes());
+                }
+                binary_values(&mut buf, &vcols, i);
                 if buf.len() >= 1 << 16 {
                     w.write_all(&buf)?;
                     buf.clear();
                 }
             }
+            let mut id = 0;
             for b in k.blocks() {
                 for i in 0..b.len() {
                     let c = b.cell(i);
@@ -733,6 +1002,8 @@ pub fn write_with(
                     for &v in c {
                         buf.extend_from_slice(&v.to_le_bytes());
                     }
+                    binary_values(&mut buf, &ccols, id);
+                    id += 1;
                     if buf.len() >= 1 << 16 {
                         w.write_all(&buf)?;
                         buf.clear();
@@ -743,4 +1014,197 @@ pub fn write_with(
         }
     }
     Ok(())
+}
+
+/// The PLY type an attribute column is written as.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum PlyType {
+    UChar,
+    Int,
+    UInt,
+    Double,
+}
+
+impl PlyType {
+    fn name(self) -> &'static str {
+        match self {
+            PlyType::UChar => "uchar",
+            PlyType::Int => "int",
+            PlyType::UInt => "uint",
+            PlyType::Double => "double",
+        }
+    }
+}
+
+/// How an attribute column is written: its properties and their type.
+struct PlyColumn<'a> {
+    attr: &'a Attribute,
+    names: Vec<String>,
+    ty: PlyType,
+}
+
+/// The type that holds every value of `a` in `enc` (`None` when none does: integers outside
+/// the 32-bit range; NaN or infinite values in ascii, whose number grammar has neither).
+fn column_type(a: &Attribute, enc: PlyEncoding) -> Option<PlyType> {
+    match &a.values {
+        AttrValues::Int(v) => {
+            let (lo, hi) = (
+                v.iter().copied().min().unwrap_or(0),
+                v.iter().copied().max().unwrap_or(0),
+            );
+            if lo >= 0 && hi <= 255 {
+                Some(PlyType::UChar)
+            } else if lo >= i32::MIN as i64 && hi <= i32::MAX as i64 {
+                Some(PlyType::Int)
+            } else if lo >= 0 && hi <= u32::MAX as i64 {
+                Some(PlyType::UInt)
+            } else {
+                None
+            }
+        }
+        AttrValues::Float(v) => (enc == PlyEncoding::BinaryLittleEndian
+            || v.iter().all(|x| x.is_finite()))
+        .then_some(PlyType::Double),
+    }
+}
+
+/// The columns of `cols` that PLY holds, with their property names: a scalar column is the
+/// property of its name, a column of `k > 1` components the properties `{name}_0` ..
+/// `{name}_{k-1}` (which the reader groups back). A column is left out when its name is not
+/// one PLY word (empty, blank or non-ASCII characters), one of its property names is `reserved`
+/// or taken by an earlier column, its values fit no PLY type ([`column_type`]), or the reader
+/// would not group its properties back into it.
+fn plan_columns<'a>(
+    cols: &'a [Attribute],
+    reserved: &[&str],
+    enc: PlyEncoding,
+) -> Vec<PlyColumn<'a>> {
+    let mut out: Vec<PlyColumn<'a>> = Vec::new();
+    for a in cols {
+        if a.name.is_empty() || !a.name.bytes().all(|c| c.is_ascii_graphic()) || a.components == 0 {
+            continue;
+        }
+        let Some(ty) = column_type(a, enc) else {
+            continue;
+        };
+        let names: Vec<String> = if a.components == 1 {
+            vec![a.name.clone()]
+        } else {
+            (0..a.components)
+                .map(|i| format!("{}_{i}", a.name))
+                .collect()
+        };
+        let taken =
+            |n: &String| reserved.contains(&n.as_str()) || out.iter().any(|c| c.names.contains(n));
+        if names.iter().any(taken) {
+            continue;
+        }
+        out.push(PlyColumn { attr: a, names, ty });
+    }
+    // keep only the columns the reader's grouping gives back (drop the first that it does not,
+    // then look again)
+    loop {
+        let props: Vec<(String, bool)> = out
+            .iter()
+            .flat_map(|c| {
+                c.names
+                    .iter()
+                    .map(move |n| (n.clone(), c.ty != PlyType::Double))
+            })
+            .collect();
+        let mut start = 0;
+        let mut bad = None;
+        for (ci, c) in out.iter().enumerate() {
+            let end = component_run(&props, start).map(|(_, e)| e);
+            let ok = if c.names.len() == 1 {
+                end.is_none()
+            } else {
+                end == Some(start + c.names.len())
+            };
+            if !ok {
+                bad = Some(ci);
+                break;
+            }
+            start += c.names.len();
+        }
+        match bad {
+            Some(ci) => {
+                out.remove(ci);
+            }
+            None => return out,
+        }
+    }
+}
+
+/// The attributes of `a` that PLY written with `enc` does not hold (`kind name`, as
+/// [`Format::dropped_attributes`]); see [`write_with`] for the rules.
+///
+/// ```
+/// use starplex::attr::{Attribute, Attributes};
+/// use starplex::io::ply::{dropped, PlyEncoding};
+/// let a = Attributes {
+///     vertex: vec![Attribute::float("quality", 1, vec![f64::NAN]), Attribute::int("x", 1, vec![1])],
+///     cell: vec![Attribute::int("big", 1, vec![1 << 40]), Attribute::float("normal", 3, vec![0.0; 3])],
+/// };
+/// assert_eq!(dropped(&a, PlyEncoding::BinaryLittleEndian), ["vertex x", "cell big"]);
+/// assert_eq!(dropped(&a, PlyEncoding::Ascii), ["vertex quality", "vertex x", "cell big"]);
+/// ```
+pub fn dropped(a: &Attributes, enc: PlyEncoding) -> Vec<String> {
+    let mut out = Vec::new();
+    for (target, cols, reserved) in [
+        (AttrTarget::Vertex, &a.vertex, &["x", "y", "z"][..]),
+        (
+            AttrTarget::Cell,
+            &a.cell,
+            &["vertex_indices", "vertex_index"][..],
+        ),
+    ] {
+        let kept = plan_columns(cols, reserved, enc);
+        for c in cols {
+            if !kept.iter().any(|k| std::ptr::eq(k.attr, c)) {
+                out.push(format!("{target} {}", c.name));
+            }
+        }
+    }
+    out
+}
+
+/// Appends the values of item `i` of every column, as ascii (` v` each).
+fn ascii_values(s: &mut Vec<u8>, cols: &[PlyColumn<'_>], i: usize) -> std::io::Result<()> {
+    for c in cols {
+        let n = c.names.len();
+        for j in i * n..(i + 1) * n {
+            s.push(b' ');
+            match &c.attr.values {
+                AttrValues::Int(v) => {
+                    use std::io::Write as _;
+                    write!(s, "{}", v[j])?
+                }
+                AttrValues::Float(v) => write_f64(s, v[j])?,
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Appends the values of item `i` of every column, little-endian in the column's type.
+fn binary_values(buf: &mut Vec<u8>, cols: &[PlyColumn<'_>], i: usize) {
+    for c in cols {
+        let n = c.names.len();
+        for j in i * n..(i + 1) * n {
+            match (&c.attr.values, c.ty) {
+                (AttrValues::Int(v), PlyType::UChar) => buf.push(v[j] as u8),
+                (AttrValues::Int(v), PlyType::Int) => {
+                    buf.extend_from_slice(&(v[j] as i32).to_le_bytes())
+                }
+                (AttrValues::Int(v), PlyType::UInt) => {
+                    buf.extend_from_slice(&(v[j] as u32).to_le_bytes())
+                }
+                (AttrValues::Int(v), PlyType::Double) => {
+                    buf.extend_from_slice(&(v[j] as f64).to_le_bytes())
+                }
+                (AttrValues::Float(v), _) => buf.extend_from_slice(&v[j].to_le_bytes()),
+            }
+        }
+    }
 }

@@ -1,4 +1,10 @@
-//! Legacy VTK `.vtk`, `DATASET UNSTRUCTURED_GRID`, ascii and binary.
+//! Legacy VTK `.vtk`, `DATASET UNSTRUCTURED_GRID` and `DATASET POLYDATA`, ascii and binary.
+//!
+//! `POLYDATA` (read only): `POINTS`, then `VERTICES`, `LINES`, `POLYGONS` and `TRIANGLE_STRIPS`
+//! sections in either cell layout (classic `n size` lists, or `OFFSETS`/`CONNECTIVITY` in 5.x),
+//! read as poly-vertex, poly-line, polygon and triangle-strip cells (below); its cells are
+//! numbered section by section in that order, whatever the order in the file, as VTK does, and
+//! `CELL_DATA` follows that numbering.
 //!
 //! Binary files (`BINARY`, big-endian as the format says) are read in both layouts: classic
 //! `CELLS` of `int`s (version up to 4.2) and `OFFSETS`/`CONNECTIVITY` of `vtktypeint64` or
@@ -608,7 +614,7 @@ fn read_data_section(
 /// ```
 ///
 /// # Errors
-/// A missing or malformed header, a dataset other than `UNSTRUCTURED_GRID`,
+/// A missing or malformed header, a dataset other than `UNSTRUCTURED_GRID` and `POLYDATA`,
 /// malformed or non-finite numbers, counts that do not match the data, unsupported cell types,
 /// vertex counts that do not fit the cell type, out-of-range or repeated vertex indices, and the
 /// checks of [`ComplexBuilder::build`](crate::complex::ComplexBuilder::build) under
@@ -641,12 +647,21 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     }
     w.keyword("DATASET")?;
     let ds = w.expect("the dataset type")?.to_vec();
-    if !ds.eq_ignore_ascii_case(b"UNSTRUCTURED_GRID") {
+    let poly = ds.eq_ignore_ascii_case(b"POLYDATA");
+    if !poly && !ds.eq_ignore_ascii_case(b"UNSTRUCTURED_GRID") {
         return Err(w.err(format!(
-            "dataset type '{}' is not supported (starplex reads UNSTRUCTURED_GRID)",
+            "dataset type '{}' is not supported (starplex reads UNSTRUCTURED_GRID and POLYDATA)",
             lossy(&ds)
         )));
     }
+    let ds_name = if poly {
+        "POLYDATA"
+    } else {
+        "UNSTRUCTURED_GRID"
+    };
+    // POLYDATA: the cells of VERTICES, LINES, POLYGONS and TRIANGLE_STRIPS (flat vertex lists
+    // and ends), in that order: VTK numbers the cells (and their CELL_DATA) section by section
+    let mut sections: [Option<(Vec<u32>, Vec<u64>)>; 4] = Default::default();
 
     let mut builder: Option<ComplexBuilder> = None;
     let mut nv = 0usize;
@@ -676,7 +691,49 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 nv = n;
                 builder = Some(b);
             }
-            b"CELLS" if binary => {
+            b"VERTICES" | b"LINES" | b"POLYGONS" | b"TRIANGLE_STRIPS" if poly => {
+                let i = POLY_SECTIONS
+                    .iter()
+                    .position(|(n, _)| n.as_bytes() == kw.as_slice())
+                    .unwrap_or(0);
+                if builder.is_none() {
+                    return Err(w.err(format!("{} before POINTS", POLY_SECTIONS[i].0)));
+                }
+                if sections[i].is_some() {
+                    return Err(w.err(format!("a second {} section", POLY_SECTIONS[i].0)));
+                }
+                let (mut c, mut e) = (Vec::new(), Vec::new());
+                let a = w.u64("the cell count")?;
+                let size = w.u64("the cell list size")?;
+                if binary {
+                    if major >= 5 {
+                        w.keyword("OFFSETS")?;
+                        read_offsets_bin(&mut w, a, size, nv, &mut c, &mut e)?;
+                    } else {
+                        w.rest_of_line()?;
+                        read_classic_bin(&mut w, a, size, nv, &mut c, &mut e)?;
+                    }
+                } else {
+                    if cells_line == 0 {
+                        cells_line = w.line();
+                    }
+                    let next = w.expect("the cells")?;
+                    if next.eq_ignore_ascii_case(b"OFFSETS") {
+                        read_offsets_layout(&mut w, a, size, nv, &mut c, &mut e)?;
+                    } else {
+                        w.unread();
+                        if major >= 5 {
+                            return Err(w.err(format!(
+                                "this file says VTK version {major}, whose {} section starts with OFFSETS",
+                                POLY_SECTIONS[i].0
+                            )));
+                        }
+                        read_classic_layout(&mut w, a, size, nv, &mut c, &mut e)?;
+                    }
+                }
+                sections[i] = Some((c, e));
+            }
+            b"CELLS" if binary && !poly => {
                 if builder.is_none() {
                     return Err(w.err("CELLS before POINTS"));
                 }
@@ -695,7 +752,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                     read_classic_bin(&mut w, a, size, nv, &mut conn, &mut ends)?;
                 }
             }
-            b"CELL_TYPES" if binary => {
+            b"CELL_TYPES" if binary && !poly => {
                 if types.is_some() {
                     return Err(w.err("a second CELL_TYPES section"));
                 }
@@ -746,7 +803,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 nv = n;
                 builder = Some(b);
             }
-            b"CELLS" => {
+            b"CELLS" if !poly => {
                 if builder.is_none() {
                     return Err(w.err("CELLS before POINTS"));
                 }
@@ -770,7 +827,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                     read_classic_layout(&mut w, a, size, nv, &mut conn, &mut ends)?;
                 }
             }
-            b"CELL_TYPES" => {
+            b"CELL_TYPES" if !poly => {
                 if types.is_some() {
                     return Err(w.err("a second CELL_TYPES section"));
                 }
@@ -796,10 +853,15 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             }
             b"POINT_DATA" | b"CELL_DATA" => {
                 let n = w.u64("the data count")?;
+                let n_cells = if poly {
+                    sections.iter().flatten().map(|(_, e)| e.len() as u64).sum()
+                } else {
+                    ends.len() as u64
+                };
                 let (cols, n_want) = if kw == b"POINT_DATA" {
                     (&mut point_data, nv as u64)
                 } else {
-                    (&mut cell_data, ends.len() as u64)
+                    (&mut cell_data, n_cells)
                 };
                 if n != n_want {
                     return Err(w.err(format!(
@@ -826,7 +888,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             }
             _ => {
                 return Err(w.err(format!(
-                    "unknown keyword '{}' in an UNSTRUCTURED_GRID dataset",
+                    "unknown keyword '{}' in a {ds_name} dataset",
                     lossy(&word)
                 )))
             }
@@ -835,6 +897,24 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let Some(mut b) = builder else {
         return Err(w.err("the file has no POINTS section"));
     };
+    if poly {
+        // the sections in VTK's order, as one cell list with the sections' cell types
+        let mut kinds = Vec::new();
+        for ((name, ty), sec) in POLY_SECTIONS.iter().zip(sections) {
+            let Some((c, e)) = sec else { continue };
+            let base = conn.len() as u64;
+            let mut start = 0u64;
+            for &end in &e {
+                let kind = cell_type(ends.len(), *ty, end - start)
+                    .map_err(|m| IoError::parse(path, None, format!("{m} (in {name})")))?;
+                kinds.push(kind);
+                ends.push(base + end);
+                start = end;
+            }
+            conn.extend_from_slice(&c);
+        }
+        types = Some(kinds);
+    }
     if have_cells && types.is_none() {
         return Err(w.err_at(
             cells_line,
@@ -873,6 +953,15 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         notes,
     })
 }
+
+/// The cell sections of a POLYDATA dataset, in VTK's cell order, with the cell type each
+/// section's cells have (poly-vertex, poly-line, polygon, triangle strip).
+const POLY_SECTIONS: [(&str, u64); 4] = [
+    ("VERTICES", 2),
+    ("LINES", 4),
+    ("POLYGONS", 7),
+    ("TRIANGLE_STRIPS", 6),
+];
 
 /// VTK type `ty` of cell `i` listing `n` points, or why it cannot be read.
 fn cell_type(i: usize, ty: u64, n: u64) -> Result<u64, String> {
