@@ -298,6 +298,24 @@ fn check_all(name: &str, k: &IndexedComplex) {
             &m,
             false,
         );
+        same_cells(&format!("{name}/stellar(kv={kv:?})"), k, &t);
+        same_cells(&format!("{name}/stellar-ia*(kv={kv:?})"), k, &t.iastar());
+    }
+    same_cells(&format!("{name}/vt"), k, &VtIndex::new(k));
+    same_cells(&format!("{name}/ia*"), k, &IaStar::new(k).unwrap());
+}
+
+/// A structure that keeps the input's vertex order writes the same complex back.
+fn same_cells<S: starplex::topo::TopCells>(name: &str, k: &IndexedComplex, s: &S) {
+    let back = generic::to_complex(s, k.ambient_dim(), k.coords().to_vec()).unwrap();
+    assert_eq!(back.n_cells(), k.n_cells(), "{name}");
+    for (a, b) in back.cells().zip(k.cells()) {
+        assert_eq!(
+            (a.kind, a.vertices),
+            (b.kind, b.vertices),
+            "{name}: cell {}",
+            b.id.0
+        );
     }
 }
 

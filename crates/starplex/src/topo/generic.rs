@@ -202,3 +202,46 @@ pub fn facet_neighbours<S: TopStar + TopCells + ?Sized>(
     });
     err
 }
+
+/// Writes any structure's top cells back to an [`IndexedComplex`](crate::complex::IndexedComplex)
+/// (cells in the structure's id order, each with the vertex order the structure keeps), on the
+/// given coordinates (`ambient` numbers per vertex, one row per vertex of the structure). The
+/// structures store topology only; the coordinates come from where the complex was read.
+///
+/// ```
+/// use starplex::topo::generic;
+/// use starplex::tds::iastar::IaStar;
+/// let k = starplex::testkit::fixture::book();
+/// let back = generic::to_complex(&IaStar::new(&k).unwrap(), 3, k.coords().to_vec()).unwrap();
+/// assert_eq!(back.n_cells(), 3);
+/// assert_eq!(back.cell(starplex::ids::CellId(2)).vertices, &[0, 1, 4]);
+/// ```
+///
+/// # Errors
+/// The checks of [`IndexedComplex::from_parts`](crate::complex::IndexedComplex::from_parts):
+/// coordinates that do not fit the vertices, non-finite values, vertex ids out of range.
+pub fn to_complex<S: TopCells + ?Sized>(
+    st: &S,
+    ambient: usize,
+    coords: Vec<f64>,
+) -> Result<crate::complex::IndexedComplex, crate::complex::ComplexError> {
+    let mut blocks: Vec<(crate::cell::CellKind, Vec<u32>)> = Vec::new();
+    let mut vs = Vec::new();
+    for c in 0..st.n_top_cells() as u32 {
+        let kind = st.top_cell_kind(CellId(c));
+        vs.clear();
+        st.top_cell_vertices(CellId(c), &mut vs);
+        match blocks.last_mut() {
+            Some((k, b)) if *k == kind => b.extend(vs.iter().map(|v| v.0)),
+            _ => blocks.push((kind, vs.iter().map(|v| v.0).collect())),
+        }
+    }
+    crate::complex::IndexedComplex::from_parts(
+        ambient,
+        crate::buf::Buf::from(coords),
+        blocks
+            .into_iter()
+            .map(|(k, b)| (k, crate::buf::Buf::from(b)))
+            .collect(),
+    )
+}
