@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use serde_json::json;
 use starplex::algo::cliques::CliqueOptions;
-use starplex::algo::rips::{self, Built, RipsOptions};
+use starplex::algo::rips::{self, Built, DistanceMatrix, Metric, RipsOptions};
 use starplex::io::{self, Format};
 
 use crate::common::{self, CliError, Ctx};
@@ -46,8 +46,163 @@ pub struct RipsArgs {
     /// Scale as a multiple F of the median nearest-neighbour distance.
     #[arg(long, value_name = "F", allow_negative_numbers = true)]
     pub eps_nn: Option<f64>,
+    /// Distance between points: euclidean (L2), manhattan (L1), chebyshev (L∞), or
+    /// precomputed: POINTS is an n x n distance matrix (.npy, .csv, .txt; symmetric, zero
+    /// diagonal).
+    #[arg(long, value_enum, default_value_t = MetricArg::Euclidean)]
+    pub metric: MetricArg,
     #[command(flatten)]
     pub build: BuildArgs,
+}
+
+/// `--metric`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MetricArg {
+    /// L2.
+    Euclidean,
+    /// L1.
+    Manhattan,
+    /// L∞.
+    Chebyshev,
+    /// The input is a distance matrix.
+    Precomputed,
+}
+
+impl MetricArg {
+    fn name(self) -> &'static str {
+        match self {
+            MetricArg::Euclidean => "euclidean",
+            MetricArg::Manhattan => "manhattan",
+            MetricArg::Chebyshev => "chebyshev",
+            MetricArg::Precomputed => "precomputed",
+        }
+    }
+}
+
+/// An n x n distance matrix from `.npy` (2-D, float64/float32/int64/int32) or text (`.csv`
+/// with an optional header line, or whitespace columns), validated: errors name the file and
+/// the row and column.
+fn read_distance_matrix(path: &Path) -> Result<DistanceMatrix, CliError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let (rows, cols, vals) = if ext.as_deref() == Some("npy") {
+        read_npy_matrix(path)?
+    } else {
+        read_text_matrix(path)?
+    };
+    DistanceMatrix::new(rows, cols, vals).map_err(|e| {
+        input_error(
+            path,
+            e,
+            Some("--metric precomputed reads a distance matrix"),
+        )
+    })
+}
+
+fn read_npy_matrix(path: &Path) -> Result<(usize, usize, Vec<f64>), CliError> {
+    let bytes = std::fs::read(path).map_err(|e| input_error(path, e, None))?;
+    let bad = |m: String| input_error(path, m, None);
+    let npy = npyz::NpyFile::new(&bytes[..]).map_err(|e| bad(format!("not a .npy file: {e}")))?;
+    let shape = npy.shape().to_vec();
+    let [rows, cols] = shape[..] else {
+        return Err(bad(format!(
+            "expected a 2-D distance matrix, got shape {shape:?}"
+        )));
+    };
+    let (rows, cols) = (rows as usize, cols as usize);
+    let fortran = npy.order() == npyz::Order::Fortran;
+    let type_str = match npy.dtype() {
+        npyz::DType::Plain(t) => t.to_string(),
+        other => return Err(bad(format!("unsupported element type {other:?}"))),
+    };
+    let e = |e: std::io::Error| bad(e.to_string());
+    let flat: Vec<f64> = match &type_str[1..] {
+        "f8" => npy.into_vec::<f64>().map_err(e)?,
+        "f4" => npy
+            .into_vec::<f32>()
+            .map_err(e)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        "i8" => npy
+            .into_vec::<i64>()
+            .map_err(e)?
+            .into_iter()
+            .map(|x| x as f64)
+            .collect(),
+        "i4" => npy
+            .into_vec::<i32>()
+            .map_err(e)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        _ => {
+            return Err(bad(format!(
+                "unsupported element type {type_str} (use float64, float32, int64 or int32)"
+            )))
+        }
+    };
+    if flat.len() != rows * cols {
+        return Err(bad(format!("{} values for shape {shape:?}", flat.len())));
+    }
+    let vals = if fortran {
+        (0..rows * cols)
+            .map(|k| flat[(k % cols) * rows + k / cols])
+            .collect()
+    } else {
+        flat
+    };
+    Ok((rows, cols, vals))
+}
+
+fn read_text_matrix(path: &Path) -> Result<(usize, usize, Vec<f64>), CliError> {
+    let text = std::fs::read_to_string(path).map_err(|e| input_error(path, e, None))?;
+    let mut vals = Vec::new();
+    let (mut rows, mut cols) = (0usize, None);
+    for (ln, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let fields: Vec<&str> = line
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+            .collect();
+        let parsed: Result<Vec<f64>, _> = fields.iter().map(|f| f.parse::<f64>()).collect();
+        let row = match parsed {
+            Ok(r) => r,
+            // a CSV header line
+            Err(_) if rows == 0 && cols.is_none() => {
+                cols = Some(fields.len());
+                continue;
+            }
+            Err(err) => {
+                return Err(CliError::Input(
+                    format!("{}:{}: not a number ({err})", path.display(), ln + 1),
+                    None,
+                ))
+            }
+        };
+        match cols {
+            Some(c) if c != row.len() => {
+                return Err(CliError::Input(
+                    format!(
+                        "{}:{}: {} columns, but the first row has {c} (ragged rows)",
+                        path.display(),
+                        ln + 1,
+                        row.len()
+                    ),
+                    None,
+                ))
+            }
+            _ => cols = Some(row.len()),
+        }
+        vals.extend(row);
+        rows += 1;
+    }
+    Ok((rows, cols.unwrap_or(0), vals))
 }
 
 #[derive(clap::Args, Debug)]
@@ -100,13 +255,44 @@ pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
             ));
         }
     }
-    let pc = common::with_spinner(ctx, "reading points", || io::points::read_points(&a.points))?;
+    let metric = match a.metric {
+        MetricArg::Euclidean => Some(Metric::Euclidean),
+        MetricArg::Manhattan => Some(Metric::Manhattan),
+        MetricArg::Chebyshev => Some(Metric::Chebyshev),
+        MetricArg::Precomputed => None,
+    };
+    // points, or with --metric precomputed a distance matrix
+    let (pc, dm) = match metric {
+        Some(_) => (
+            Some(common::with_spinner(ctx, "reading points", || {
+                io::points::read_points(&a.points)
+            })?),
+            None,
+        ),
+        None => (
+            None,
+            Some(common::with_spinner(
+                ctx,
+                "reading the distance matrix",
+                || read_distance_matrix(&a.points),
+            )?),
+        ),
+    };
+    let (n_points, ambient) = match (&pc, &dm) {
+        (Some(pc), _) => (pc.len(), Some(pc.dim)),
+        (None, Some(d)) => (d.len(), None),
+        (None, None) => unreachable!("points or a matrix were read"),
+    };
     let read_s = t0.elapsed().as_secs_f64();
     let (eps, nn) = match (a.eps, a.eps_nn) {
         (Some(e), _) => (e, None),
         (None, Some(f)) => {
-            let m = rips::median_nn_distance(&pc.coords, pc.dim)
-                .map_err(|e| input_error(&a.points, e, None))?;
+            let m = match (&pc, &dm, metric) {
+                (Some(pc), _, Some(m)) => rips::median_nn_distance_with(&pc.coords, pc.dim, m),
+                (_, Some(d), _) => d.median_nn_distance(),
+                _ => unreachable!("points or a matrix were read"),
+            }
+            .map_err(|e| input_error(&a.points, e, None))?;
             if m <= 0.0 {
                 return Err(input_error(
                     &a.points,
@@ -119,7 +305,7 @@ pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
         }
         (None, None) => unreachable!("clap requires one of --eps, --eps-nn"),
     };
-    let pb = common::progress_bar(ctx, pc.len() as u64, "maximal cliques");
+    let pb = common::progress_bar(ctx, n_points as u64, "maximal cliques");
     let progress = |n: u64| pb.inc(n);
     let opts = RipsOptions {
         cliques: CliqueOptions {
@@ -130,7 +316,11 @@ pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
         max_dim: a.build.max_dim,
     };
     let t1 = Instant::now();
-    let built = rips::rips_complex(&pc.coords, pc.dim, eps, &opts);
+    let built = match (&pc, &dm, metric) {
+        (Some(pc), _, Some(m)) => rips::rips_complex_with(&pc.coords, pc.dim, eps, m, &opts),
+        (_, Some(d), _) => rips::rips_from_distances(d, eps, &opts),
+        _ => unreachable!("points or a matrix were read"),
+    };
     pb.finish_and_clear();
     let built = built.map_err(|e| {
         input_error(
@@ -147,8 +337,9 @@ pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
         built,
         json!({
             "input": a.points.display().to_string(),
-            "n_points": pc.len(),
-            "ambient_dim": pc.dim,
+            "n_points": n_points,
+            "ambient_dim": ambient,
+            "metric": a.metric.name(),
             "eps": eps,
             "median_nn_distance": nn,
         }),

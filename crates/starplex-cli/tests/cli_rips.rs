@@ -219,3 +219,108 @@ fn generators_write_complexes() {
     let o = run(&["generate", "quads", s(&tets), "-o", s(&d.join("never.off"))]);
     refused(&o, "not one of the triangles", &d.join("never.off"));
 }
+
+/// A format-1.0 `.npy` of float64, C order.
+fn npy_f8(rows: usize, cols: usize, v: &[f64]) -> Vec<u8> {
+    let mut h = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
+    while (10 + h.len() + 1) % 64 != 0 {
+        h.push(' ');
+    }
+    h.push('\n');
+    let mut b = b"\x93NUMPY\x01\x00".to_vec();
+    b.extend((h.len() as u16).to_le_bytes());
+    b.extend(h.as_bytes());
+    for x in v {
+        b.extend(x.to_le_bytes());
+    }
+    b
+}
+
+#[test]
+fn rips_metrics_and_precomputed_distances() {
+    let d = dir("metric");
+    let pts = d.join("square.txt");
+    std::fs::write(&pts, "0 0\n1 0\n1 1\n0 1\n").unwrap();
+    let out = d.join("m.spx");
+    let by_dim = |metric: &str, eps: &str| {
+        let o = run(&[
+            "rips",
+            s(&pts),
+            "--eps",
+            eps,
+            "--metric",
+            metric,
+            "-o",
+            s(&out),
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(j["metric"], metric);
+        j["maximal_simplices_by_dim"].clone()
+    };
+    // diagonals: L2 √2, L1 2, L∞ 1
+    assert_eq!(by_dim("euclidean", "1.5")["3"], 1);
+    assert_eq!(by_dim("manhattan", "1.5")["1"], 4);
+    assert_eq!(by_dim("chebyshev", "1")["3"], 1);
+    // the same square's L1 matrix, as CSV with a header and as .npy
+    let m = [
+        0.0, 1.0, 2.0, 1.0, 1.0, 0.0, 1.0, 2.0, 2.0, 1.0, 0.0, 1.0, 1.0, 2.0, 1.0, 0.0,
+    ];
+    let csv = d.join("d.csv");
+    let rows: Vec<String> = m
+        .chunks(4)
+        .map(|r| format!("{},{},{},{}", r[0], r[1], r[2], r[3]))
+        .collect();
+    std::fs::write(&csv, format!("a,b,c,d\n{}\n", rows.join("\n"))).unwrap();
+    let npy = d.join("d.npy");
+    std::fs::write(&npy, npy_f8(4, 4, &m)).unwrap();
+    for f in [&csv, &npy] {
+        let o = run(&[
+            "rips",
+            s(f),
+            "--eps-nn",
+            "1.5",
+            "--metric",
+            "precomputed",
+            "-o",
+            s(&out),
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(j["median_nn_distance"], 1.0);
+        assert_eq!(j["n_points"], 4);
+        assert_eq!(j["maximal_simplices_by_dim"]["1"], 4);
+    }
+    // not a distance matrix: exit 2, the row and column named, nothing written
+    let bad_out = d.join("bad.spx");
+    let cases = [
+        ("0,1,2\n1,0,2\n", "must be square"),
+        (
+            "0 1 2\n1 0 3\n2 3.5 0\n",
+            "row 1 column 2 is 3 but row 2 column 1 is 3.5",
+        ),
+        ("0 1\n1 0.25\n", "row 1 column 1: the diagonal must be 0"),
+        (
+            "0 -1\n-1 0\n",
+            "row 0 column 1: -1 is not a finite non-negative distance",
+        ),
+        ("0 1\n1 0 4\n", "ragged rows"),
+    ];
+    for (i, (text, needle)) in cases.iter().enumerate() {
+        let f = d.join(format!("bad{i}.txt"));
+        std::fs::write(&f, text).unwrap();
+        let o = run(&[
+            "rips",
+            s(&f),
+            "--eps",
+            "1",
+            "--metric",
+            "precomputed",
+            "-o",
+            s(&bad_out),
+        ]);
+        refused(&o, needle, &bad_out);
+    }
+}

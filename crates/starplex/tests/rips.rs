@@ -6,7 +6,9 @@ mod common_data;
 
 use std::path::{Path, PathBuf};
 
-use starplex::algo::rips::{rips_complex, RipsOptions};
+use starplex::algo::rips::{
+    rips_complex, rips_complex_with, rips_from_distances, DistanceMatrix, Metric, RipsOptions,
+};
 use starplex::generate::sierpinski::{sierpinski, SierpinskiOptions};
 use starplex::io::{self, ReadOptions};
 
@@ -15,13 +17,17 @@ use starplex::io::{self, ReadOptions};
 fn brute(pts: &[f64], dim: usize, eps: f64, k: Option<usize>) -> Vec<Vec<u32>> {
     let n = pts.len() / dim;
     let p = |i: usize| &pts[i * dim..(i + 1) * dim];
-    let adj = |a: usize, b: usize| {
+    brute_adj(n, k, |a, b| {
         p(a).iter()
             .zip(p(b))
             .map(|(x, y)| (x - y) * (x - y))
             .sum::<f64>()
             <= eps * eps
-    };
+    })
+}
+
+/// Brute force on `n` vertices for any adjacency test.
+fn brute_adj(n: usize, k: Option<usize>, adj: impl Fn(usize, usize) -> bool) -> Vec<Vec<u32>> {
     let mut out = Vec::new();
     for mask in 1u32..(1 << n) {
         let vs: Vec<usize> = (0..n).filter(|&i| mask >> i & 1 == 1).collect();
@@ -77,6 +83,94 @@ proptest::proptest! {
         proptest::prop_assert_eq!(cells(&got.complex), brute(&pts, dim, eps, k));
         proptest::prop_assert_eq!(got.complex.n_vertices(), n);
     }
+
+    /// L1 and L∞ (kd-tree in 2–8 dimensions, sweep above) and a precomputed distance matrix
+    /// of the same points, against brute force with an independently written distance.
+    #[test]
+    fn metrics_equal_brute_force(
+        dim in 2usize..=10,
+        raw in proptest::collection::vec(0u8..6, 20..=120),
+        eps_step in 1u32..16,
+        k in proptest::option::of(0usize..5),
+        metric in proptest::sample::select(vec![Metric::Manhattan, Metric::Chebyshev, Metric::Euclidean]),
+        grid in proptest::bool::ANY,
+    ) {
+        let n = (raw.len() / dim).clamp(1, 12);
+        let pts: Vec<f64> = raw[..n * dim]
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| if grid { x as f64 } else { x as f64 + (i as f64 * 0.6180339887).fract() })
+            .collect();
+        let eps = eps_step as f64 * 0.75;
+        let p = |i: usize| &pts[i * dim..(i + 1) * dim];
+        let dist = |a: usize, b: usize| -> f64 {
+            let mut acc = 0.0f64;
+            for t in 0..dim {
+                let d = (p(a)[t] - p(b)[t]).abs();
+                match metric {
+                    Metric::Manhattan => acc += d,
+                    Metric::Chebyshev => acc = acc.max(d),
+                    Metric::Euclidean => acc += d * d,
+                }
+            }
+            if metric == Metric::Euclidean { acc.sqrt() } else { acc }
+        };
+        let want = if metric == Metric::Euclidean {
+            brute(&pts, dim, eps, k)
+        } else {
+            brute_adj(n, k, |a, b| dist(a, b) <= eps)
+        };
+        let o = RipsOptions { max_dim: k, ..Default::default() };
+        let got = rips_complex_with(&pts, dim, eps, metric, &o).unwrap();
+        proptest::prop_assert_eq!(cells(&got.complex), want);
+        if metric != Metric::Euclidean {
+            // precomputed: the same matrix, validated; the same complex (ids as coordinates)
+            let flat: Vec<f64> = (0..n * n).map(|x| dist(x / n, x % n)).collect();
+            let d = DistanceMatrix::new(n, n, flat).unwrap();
+            let pre = rips_from_distances(&d, eps, &o).unwrap();
+            proptest::prop_assert_eq!(cells(&pre.complex), cells(&got.complex));
+            proptest::prop_assert_eq!(pre.n_edges, got.n_edges);
+        }
+    }
+}
+
+#[test]
+fn distance_matrix_errors_name_row_and_column() {
+    use starplex::algo::rips::DistanceMatrixError as E;
+    let m = |r, c, v: &[f64]| DistanceMatrix::new(r, c, v.to_vec()).unwrap_err();
+    assert_eq!(m(2, 3, &[0.0; 6]), E::NotSquare { rows: 2, cols: 3 });
+    assert_eq!(
+        m(2, 2, &[0.0; 3]),
+        E::WrongLength {
+            rows: 2,
+            cols: 2,
+            got: 3
+        }
+    );
+    let e = m(3, 3, &[0.0, 1.0, 2.0, 1.0, 0.0, f64::NAN, 2.0, 3.0, 0.0]);
+    assert!(matches!(e, E::BadEntry { row: 1, col: 2, .. }), "{e:?}");
+    assert_eq!(
+        m(2, 2, &[0.0, -1.0, -1.0, 0.0]),
+        E::BadEntry {
+            row: 0,
+            col: 1,
+            value: -1.0
+        }
+    );
+    assert_eq!(
+        m(3, 3, &[0.0, 1.0, 2.0, 1.0, 0.0, 3.0, 2.0, 3.5, 0.0]),
+        E::NotSymmetric {
+            row: 1,
+            col: 2,
+            value: 3.0,
+            transposed: 3.5
+        }
+    );
+    let e = m(2, 2, &[0.0, 1.0, 1.0, 0.5]);
+    assert_eq!(
+        e.to_string(),
+        "row 1 column 1: the diagonal must be 0, got 0.5"
+    );
 }
 
 /// Above 8 dimensions the graph comes from a sweep instead of a kd-tree.

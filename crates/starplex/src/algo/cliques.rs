@@ -418,8 +418,13 @@ impl Budget {
     /// Accounts for one more clique of `size` vertices; false once over budget.
     #[inline]
     fn take(&self, size: usize) -> bool {
-        self.found.fetch_add(1, Ordering::Relaxed);
-        let r = self.refs.fetch_add(size as u64, Ordering::Relaxed) + size as u64;
+        self.take_n(1, size)
+    }
+    /// `count` cliques of `size` vertices at once (one pair of atomic updates).
+    fn take_n(&self, count: usize, size: usize) -> bool {
+        self.found.fetch_add(count as u64, Ordering::Relaxed);
+        let add = (count * size) as u64;
+        let r = self.refs.fetch_add(add, Ordering::Relaxed) + add;
         if r > self.max_refs {
             self.stop.store(true, Ordering::Relaxed);
             return false;
@@ -448,13 +453,18 @@ struct Sink {
 }
 
 impl Sink {
-    fn push(&mut self, clique: &mut [u32]) {
-        clique.sort_unstable();
-        let s = clique.len();
+    /// Appends `clique` plus the optional vertex `last`, sorted in place in the flat array
+    /// (no vector per clique).
+    fn push(&mut self, clique: &[u32], last: Option<u32>) {
+        let s = clique.len() + usize::from(last.is_some());
         if self.by_size.len() <= s {
             self.by_size.resize_with(s + 1, Vec::new);
         }
-        self.by_size[s].extend_from_slice(clique);
+        let v = &mut self.by_size[s];
+        let at = v.len();
+        v.extend_from_slice(clique);
+        v.extend(last);
+        v[at..].sort_unstable();
     }
     fn merge(mut self, other: Sink) -> Sink {
         if self.by_size.len() < other.by_size.len() {
@@ -639,8 +649,7 @@ fn bk_pivot(
     let p_empty = p.iter().all(|&w| w == 0);
     if p_empty {
         if x.iter().all(|&w| w == 0) && r.len() <= limit && budget.take(r.len()) {
-            let mut c = r.clone();
-            sink.push(&mut c);
+            sink.push(r, None);
         }
         return;
     }
@@ -709,14 +718,22 @@ fn k_cliques(
     }
     if r.len() == size {
         if budget.take(size) {
-            let mut c = r.clone();
-            sink.push(&mut c);
+            sink.push(r, None);
         }
         return;
     }
     let need = size - r.len();
     let avail: u32 = p.iter().map(|w| w.count_ones()).sum();
     if (avail as usize) < need {
+        return;
+    }
+    if need == 1 {
+        // the last level: every candidate closes a clique; no recursion, no bit vectors
+        if budget.take_n(avail as usize, size) {
+            for w in ones(p) {
+                sink.push(r, Some(loc.local[w]));
+            }
+        }
         return;
     }
     let mut rest = p.to_vec();

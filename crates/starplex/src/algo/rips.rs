@@ -3,11 +3,14 @@
 //! [`crate::algo::cliques`]) as an ordinary [`IndexedComplex`], so every reader of a complex
 //! (`info`, `stellar`, `query`, `homology`, ...) works on it.
 //!
-//! The neighbourhood graph of a point cloud joins two points at Euclidean distance ≤ ε. It is
-//! found with a kd-tree (kiddo) for ambient dimensions 1 to 8, and by a sweep along the axis of
-//! largest extent above (kd-trees lose their edge there). Either way every candidate pair is
-//! decided by the same exact test, `Σ (a_i - b_i)² ≤ ε²` in `f64`, which is scipy's
-//! `cKDTree.query_pairs` test, so the graph does not depend on the search structure.
+//! The neighbourhood graph of a point cloud joins two points at distance ≤ ε: Euclidean by
+//! default, or L1 / L∞ ([`Metric`], [`rips_complex_with`]), or read from a validated
+//! [`DistanceMatrix`] ([`rips_from_distances`]). Points are searched
+//! with a kd-tree (kiddo, which has L2², L1 and L∞ range queries) for ambient dimensions 1 to
+//! 8, and by a sweep along the axis of largest extent above (kd-trees lose their edge there).
+//! Either way every candidate pair is decided by the same exact test in `f64`: `Σ (a_i - b_i)²
+//! ≤ ε²` (scipy's `cKDTree.query_pairs` test), `Σ |a_i - b_i| ≤ ε` or `max |a_i - b_i| ≤ ε`, so
+//! the graph does not depend on the search structure.
 //!
 //! ```
 //! use starplex::algo::rips::{rips_complex, RipsOptions};
@@ -18,7 +21,7 @@
 //! let r = rips_complex(&pts, 2, 1.5, &RipsOptions::default()).unwrap();
 //! assert_eq!(r.complex.dim(), Some(3));
 //! ```
-use kiddo::{ImmutableKdTree, SquaredEuclidean};
+use kiddo::{Chebyshev, ImmutableKdTree, Manhattan, SquaredEuclidean};
 use rayon::prelude::*;
 
 use crate::algo::cliques::{maximal_cliques, CliqueOptions, Cliques, Graph, GraphError};
@@ -72,6 +75,367 @@ pub enum RipsError {
     /// Too few points to define a nearest-neighbour scale.
     #[error("the nearest-neighbour scale needs at least two points, got {0}")]
     TooFewPoints(usize),
+    /// A precomputed distance matrix that is not one (see [`DistanceMatrix::new`]).
+    #[error(transparent)]
+    DistanceMatrix(#[from] DistanceMatrixError),
+}
+
+/// The distance of [`rips_complex_with`]: two points are joined when it is at most ε.
+///
+/// ```
+/// use starplex::algo::rips::Metric;
+/// let (a, b) = ([0.0, 0.0], [3.0, 4.0]);
+/// assert_eq!(Metric::Euclidean.distance(&a, &b), 5.0);
+/// assert_eq!(Metric::Manhattan.distance(&a, &b), 7.0);
+/// assert_eq!(Metric::Chebyshev.distance(&a, &b), 4.0);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Metric {
+    /// L2, `sqrt(Σ (a_i - b_i)²)`; decided exactly as `Σ (a_i - b_i)² ≤ ε²`.
+    #[default]
+    Euclidean,
+    /// L1, `Σ |a_i - b_i|`.
+    Manhattan,
+    /// L∞, `max |a_i - b_i|`.
+    Chebyshev,
+}
+
+impl Metric {
+    /// The distance between two points.
+    ///
+    /// ```
+    /// use starplex::algo::rips::Metric;
+    /// assert_eq!(Metric::Chebyshev.distance(&[1.0, 5.0], &[2.0, 3.0]), 2.0);
+    /// ```
+    pub fn distance(self, a: &[f64], b: &[f64]) -> f64 {
+        match self {
+            Metric::Euclidean => dist2(a, b).sqrt(),
+            _ => self.key(a, b),
+        }
+    }
+
+    /// The compared value: the squared distance for Euclidean, the distance otherwise.
+    #[inline]
+    fn key(self, a: &[f64], b: &[f64]) -> f64 {
+        match self {
+            Metric::Euclidean => dist2(a, b),
+            Metric::Manhattan => a.iter().zip(b).map(|(x, y)| (x - y).abs()).sum(),
+            Metric::Chebyshev => a
+                .iter()
+                .zip(b)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f64::max),
+        }
+    }
+
+    /// ε as a key.
+    fn key_of(self, eps: f64) -> f64 {
+        match self {
+            Metric::Euclidean => eps * eps,
+            _ => eps,
+        }
+    }
+
+    /// A key as a distance.
+    fn distance_of(self, key: f64) -> f64 {
+        match self {
+            Metric::Euclidean => key.sqrt(),
+            _ => key,
+        }
+    }
+}
+
+/// Why an array is not a distance matrix. Every variant names the offending row and column.
+///
+/// ```
+/// use starplex::algo::rips::{DistanceMatrix, DistanceMatrixError};
+/// let e = DistanceMatrix::new(2, 2, vec![0.0, 1.0, 2.0, 0.0]).unwrap_err();
+/// assert_eq!(e, DistanceMatrixError::NotSymmetric { row: 0, col: 1, value: 1.0, transposed: 2.0 });
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DistanceMatrixError {
+    /// Not n × n.
+    #[error("a distance matrix must be square, got {rows} rows and {cols} columns")]
+    NotSquare {
+        /// Rows.
+        rows: usize,
+        /// Columns.
+        cols: usize,
+    },
+    /// The values do not fill the shape.
+    #[error("{got} values for a {rows} x {cols} matrix")]
+    WrongLength {
+        /// Rows.
+        rows: usize,
+        /// Columns.
+        cols: usize,
+        /// Values given.
+        got: usize,
+    },
+    /// NaN, infinite or negative.
+    #[error("row {row} column {col}: {value} is not a finite non-negative distance")]
+    BadEntry {
+        /// Row.
+        row: usize,
+        /// Column.
+        col: usize,
+        /// The value.
+        value: f64,
+    },
+    /// A point at a non-zero distance from itself.
+    #[error("row {row} column {row}: the diagonal must be 0, got {value}")]
+    NonZeroDiagonal {
+        /// Row (and column).
+        row: usize,
+        /// The value.
+        value: f64,
+    },
+    /// `d[row][col] != d[col][row]`.
+    #[error(
+        "row {row} column {col} is {value} but row {col} column {row} is {transposed}: the matrix \
+         is not symmetric (symmetrize it, e.g. (D + D.T) / 2)"
+    )]
+    NotSymmetric {
+        /// Row.
+        row: usize,
+        /// Column.
+        col: usize,
+        /// `d[row][col]`.
+        value: f64,
+        /// `d[col][row]`.
+        transposed: f64,
+    },
+    /// More points than 32-bit ids.
+    #[error("{0} points: more than 32-bit ids can address")]
+    TooLarge(usize),
+}
+
+/// A validated distance matrix: n × n, finite, non-negative, zero diagonal, exactly symmetric
+/// (row-major).
+///
+/// ```
+/// use starplex::algo::rips::DistanceMatrix;
+/// let d = DistanceMatrix::new(2, 2, vec![0.0, 3.0, 3.0, 0.0]).unwrap();
+/// assert_eq!((d.len(), d.get(0, 1)), (2, 3.0));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct DistanceMatrix {
+    n: usize,
+    d: Vec<f64>,
+}
+
+impl DistanceMatrix {
+    /// Checks a `rows × cols` row-major array.
+    ///
+    /// ```
+    /// use starplex::algo::rips::{DistanceMatrix, DistanceMatrixError};
+    /// let e = DistanceMatrix::new(2, 2, vec![0.0, 1.0, 1.0, 0.5]).unwrap_err();
+    /// assert_eq!(e, DistanceMatrixError::NonZeroDiagonal { row: 1, value: 0.5 });
+    /// ```
+    ///
+    /// # Errors
+    /// [`DistanceMatrixError`], naming the first bad row and column (row-major).
+    pub fn new(rows: usize, cols: usize, d: Vec<f64>) -> Result<Self, DistanceMatrixError> {
+        if rows != cols {
+            return Err(DistanceMatrixError::NotSquare { rows, cols });
+        }
+        if rows.checked_mul(cols) != Some(d.len()) {
+            return Err(DistanceMatrixError::WrongLength {
+                rows,
+                cols,
+                got: d.len(),
+            });
+        }
+        let n = rows;
+        if n >= u32::MAX as usize {
+            return Err(DistanceMatrixError::TooLarge(n));
+        }
+        for i in 0..n {
+            for j in 0..n {
+                let v = d[i * n + j];
+                if !(v.is_finite() && v >= 0.0) {
+                    return Err(DistanceMatrixError::BadEntry {
+                        row: i,
+                        col: j,
+                        value: v,
+                    });
+                }
+                if i == j && v != 0.0 {
+                    return Err(DistanceMatrixError::NonZeroDiagonal { row: i, value: v });
+                }
+                let t = d[j * n + i];
+                if j > i && v != t && t.is_finite() && t >= 0.0 {
+                    return Err(DistanceMatrixError::NotSymmetric {
+                        row: i,
+                        col: j,
+                        value: v,
+                        transposed: t,
+                    });
+                }
+            }
+        }
+        Ok(DistanceMatrix { n, d })
+    }
+
+    /// The distance matrix of points under a metric.
+    ///
+    /// ```
+    /// use starplex::algo::rips::{DistanceMatrix, Metric};
+    /// let d = DistanceMatrix::of_points(&[0.0, 0.0, 3.0, 4.0], 2, Metric::Manhattan);
+    /// assert_eq!(d.get(1, 0), 7.0);
+    /// ```
+    pub fn of_points(coords: &[f64], dim: usize, metric: Metric) -> Self {
+        let n = coords.len() / dim.max(1);
+        let p = |i: usize| &coords[i * dim..(i + 1) * dim];
+        let d = (0..n * n)
+            .map(|k| metric.distance(p(k / n), p(k % n)))
+            .collect();
+        DistanceMatrix { n, d }
+    }
+
+    /// Number of points.
+    ///
+    /// ```
+    /// # use starplex::algo::rips::DistanceMatrix;
+    /// assert!(DistanceMatrix::new(0, 0, vec![]).unwrap().is_empty());
+    /// ```
+    pub fn len(&self) -> usize {
+        self.n
+    }
+
+    /// True without points.
+    ///
+    /// ```
+    /// # use starplex::algo::rips::DistanceMatrix;
+    /// assert_eq!(DistanceMatrix::new(1, 1, vec![0.0]).unwrap().len(), 1);
+    /// ```
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
+
+    /// The distance from `i` to `j`.
+    ///
+    /// ```
+    /// # use starplex::algo::rips::DistanceMatrix;
+    /// assert_eq!(DistanceMatrix::new(1, 1, vec![0.0]).unwrap().get(0, 0), 0.0);
+    /// ```
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        self.d[i * self.n + j]
+    }
+
+    fn row(&self, i: usize) -> &[f64] {
+        &self.d[i * self.n..(i + 1) * self.n]
+    }
+
+    /// The median over points of the distance to the nearest other point (as
+    /// [`median_nn_distance`]).
+    ///
+    /// ```
+    /// # use starplex::algo::rips::DistanceMatrix;
+    /// let d = DistanceMatrix::new(3, 3, vec![0.0, 1.0, 4.0, 1.0, 0.0, 2.0, 4.0, 2.0, 0.0]).unwrap();
+    /// assert_eq!(d.median_nn_distance().unwrap(), 1.0); // nearest: 1, 1, 2
+    /// ```
+    ///
+    /// # Errors
+    /// Fewer than two points.
+    pub fn median_nn_distance(&self) -> Result<f64, RipsError> {
+        if self.n < 2 {
+            return Err(RipsError::TooFewPoints(self.n));
+        }
+        let mut d: Vec<f64> = (0..self.n)
+            .into_par_iter()
+            .map(|i| {
+                self.row(i)
+                    .iter()
+                    .enumerate()
+                    .filter(|&(j, _)| j != i)
+                    .map(|(_, &v)| v)
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect();
+        Ok(median(&mut d, |x| x))
+    }
+
+    /// The graph joining `i` and `j ≠ i` when `d(i, j) ≤ eps`, refused when it would take more
+    /// than `max_bytes`.
+    ///
+    /// ```
+    /// # use starplex::algo::rips::DistanceMatrix;
+    /// let d = DistanceMatrix::new(3, 3, vec![0.0, 1.0, 4.0, 1.0, 0.0, 2.0, 4.0, 2.0, 0.0]).unwrap();
+    /// assert_eq!(d.graph(2.0, u64::MAX).unwrap().n_edges(), 2);
+    /// ```
+    ///
+    /// # Errors
+    /// A bad scale, [`RipsError::GraphOverBudget`] (an exact count, nothing sampled).
+    pub fn graph(&self, eps: f64, max_bytes: u64) -> Result<Graph, RipsError> {
+        if !(eps.is_finite() && eps > 0.0) {
+            return Err(RipsError::BadScale(eps));
+        }
+        let n = self.n;
+        let count: u64 = (0..n)
+            .into_par_iter()
+            .map(|i| self.row(i)[i + 1..].iter().filter(|&&v| v <= eps).count() as u64)
+            .sum();
+        let bytes = count.saturating_mul(BYTES_PER_EDGE);
+        if bytes > max_bytes {
+            return Err(RipsError::GraphOverBudget {
+                estimate_edges: count,
+                estimate_bytes: bytes,
+                sampled: n as u64,
+                budget_bytes: max_bytes,
+            });
+        }
+        if 2 * count >= u32::MAX as u64 {
+            return Err(GraphError::TooLarge {
+                what: "adjacency entries",
+                count: 2 * count,
+            }
+            .into());
+        }
+        let adj = Csr::from_fn(n, |push| {
+            for i in 0..n {
+                for (j, &v) in self.row(i).iter().enumerate() {
+                    if j != i && v <= eps {
+                        push(i as u32, j as u32);
+                    }
+                }
+            }
+        });
+        Ok(Graph::from_sorted_rows(adj))
+    }
+}
+
+/// The Vietoris–Rips complex at scale `eps` of a precomputed distance matrix: `i` and `j` are
+/// joined when `d(i, j) ≤ eps`. As a flag complex, each vertex gets one coordinate, its id.
+///
+/// ```
+/// use starplex::algo::rips::{rips_from_distances, DistanceMatrix};
+/// let d = DistanceMatrix::new(3, 3, vec![0.0, 1.0, 4.0, 1.0, 0.0, 2.0, 4.0, 2.0, 0.0]).unwrap();
+/// assert_eq!(rips_from_distances(&d, 2.0, &Default::default()).unwrap().by_dim, vec![(1, 2)]);
+/// ```
+///
+/// # Errors
+/// As [`rips_complex`].
+pub fn rips_from_distances(
+    d: &DistanceMatrix,
+    eps: f64,
+    opts: &RipsOptions,
+) -> Result<Built, RipsError> {
+    let g = d.graph(eps, opts.cliques.max_bytes)?;
+    let coords: Vec<f64> = (0..d.n).map(|i| i as f64).collect();
+    complex_of(coords, 1, &g, opts)
+}
+
+/// The median of values (numpy's: the mean of the two middle ones for an even count), after
+/// `f` maps each.
+fn median(d: &mut [f64], f: impl Fn(f64) -> f64) -> f64 {
+    d.par_sort_unstable_by(f64::total_cmp);
+    let n = d.len();
+    if n % 2 == 1 {
+        f(d[n / 2])
+    } else {
+        0.5 * (f(d[n / 2 - 1]) + f(d[n / 2]))
+    }
 }
 
 /// Options of [`rips_complex`] and [`flag_complex`].
@@ -126,11 +490,33 @@ pub fn rips_complex(
     eps: f64,
     opts: &RipsOptions,
 ) -> Result<Built, RipsError> {
+    rips_complex_with(coords, dim, eps, Metric::Euclidean, opts)
+}
+
+/// [`rips_complex`] under another [`Metric`].
+///
+/// ```
+/// use starplex::algo::rips::{rips_complex_with, Metric};
+/// // (0,0) and (1,1): Euclidean √2, Manhattan 2, Chebyshev 1
+/// let pts = [0.0, 0.0, 1.0, 1.0];
+/// let edges = |m| rips_complex_with(&pts, 2, 1.5, m, &Default::default()).unwrap().n_edges;
+/// assert_eq!((edges(Metric::Euclidean), edges(Metric::Manhattan), edges(Metric::Chebyshev)), (1, 0, 1));
+/// ```
+///
+/// # Errors
+/// As [`rips_complex`].
+pub fn rips_complex_with(
+    coords: &[f64],
+    dim: usize,
+    eps: f64,
+    metric: Metric,
+    opts: &RipsOptions,
+) -> Result<Built, RipsError> {
     check_points(coords, dim)?;
     if !(eps.is_finite() && eps > 0.0) {
         return Err(RipsError::BadScale(eps));
     }
-    let g = neighbourhood_graph_within(coords, dim, eps, opts.cliques.max_bytes)?;
+    let g = neighbourhood_graph_metric(coords, dim, eps, metric, opts.cliques.max_bytes)?;
     complex_of(coords.to_vec(), dim, &g, opts)
 }
 
@@ -278,6 +664,26 @@ pub fn neighbourhood_graph_within(
     eps: f64,
     max_bytes: u64,
 ) -> Result<Graph, RipsError> {
+    neighbourhood_graph_metric(coords, dim, eps, Metric::Euclidean, max_bytes)
+}
+
+/// [`neighbourhood_graph_within`] under another [`Metric`]: `i ~ j` when `d(p_i, p_j) ≤ ε`.
+///
+/// ```
+/// use starplex::algo::rips::{neighbourhood_graph_metric, Metric};
+/// let g = neighbourhood_graph_metric(&[0.0, 0.0, 3.0, 4.0], 2, 4.0, Metric::Chebyshev, u64::MAX).unwrap();
+/// assert_eq!(g.n_edges(), 1);
+/// ```
+///
+/// # Errors
+/// As [`neighbourhood_graph_within`].
+pub fn neighbourhood_graph_metric(
+    coords: &[f64],
+    dim: usize,
+    eps: f64,
+    metric: Metric,
+    max_bytes: u64,
+) -> Result<Graph, RipsError> {
     check_points(coords, dim)?;
     if !(eps.is_finite() && eps > 0.0) {
         return Err(RipsError::BadScale(eps));
@@ -285,15 +691,15 @@ pub fn neighbourhood_graph_within(
     let n = coords.len() / dim;
     // rows of later neighbours, each sorted
     let rows: Vec<Vec<u32>> = match dim {
-        1 => later_kd::<1>(coords, eps, max_bytes)?,
-        2 => later_kd::<2>(coords, eps, max_bytes)?,
-        3 => later_kd::<3>(coords, eps, max_bytes)?,
-        4 => later_kd::<4>(coords, eps, max_bytes)?,
-        5 => later_kd::<5>(coords, eps, max_bytes)?,
-        6 => later_kd::<6>(coords, eps, max_bytes)?,
-        7 => later_kd::<7>(coords, eps, max_bytes)?,
-        8 => later_kd::<8>(coords, eps, max_bytes)?,
-        _ => later_sweep(coords, dim, eps, max_bytes)?,
+        1 => later_kd::<1>(coords, eps, metric, max_bytes)?,
+        2 => later_kd::<2>(coords, eps, metric, max_bytes)?,
+        3 => later_kd::<3>(coords, eps, metric, max_bytes)?,
+        4 => later_kd::<4>(coords, eps, metric, max_bytes)?,
+        5 => later_kd::<5>(coords, eps, metric, max_bytes)?,
+        6 => later_kd::<6>(coords, eps, metric, max_bytes)?,
+        7 => later_kd::<7>(coords, eps, metric, max_bytes)?,
+        8 => later_kd::<8>(coords, eps, metric, max_bytes)?,
+        _ => later_sweep(coords, dim, eps, metric, max_bytes)?,
     };
     let total: u64 = rows.iter().map(|r| 2 * r.len() as u64).sum();
     if total >= u32::MAX as u64 {
@@ -320,6 +726,7 @@ pub fn neighbourhood_graph_within(
 fn later_kd<const K: usize>(
     coords: &[f64],
     eps: f64,
+    metric: Metric,
     max_bytes: u64,
 ) -> Result<Vec<Vec<u32>>, RipsError> {
     let pts: Vec<[f64; K]> = coords
@@ -333,32 +740,48 @@ fn later_kd<const K: usize>(
     // kiddo pads its stems with f64::MAX, so a coordinate equal to it is left to the sweep
     let tree: ImmutableKdTree<f64, K> = match kd_tree(&pts) {
         Some(t) => t,
-        None => return later_sweep(coords, K, eps, max_bytes),
+        None => return later_sweep(coords, K, eps, metric, max_bytes),
     };
-    let e2 = eps * eps;
-    // a slightly larger search radius; the exact test below decides
+    let e2 = metric.key_of(eps);
+    // a slightly larger search radius (kiddo's own metric: L2², L1 or L∞); the exact test
+    // below decides
     let search = e2 * (1.0 + 1e-9) + f64::MIN_POSITIVE;
+    let within = |p: &[f64; K]| -> Vec<u32> {
+        let q = tree.query(p);
+        match metric {
+            Metric::Euclidean => q
+                .within::<SquaredEuclidean<f64>>(search)
+                .unsorted()
+                .execute()
+                .iter()
+                .map(|q| q.item)
+                .collect(),
+            Metric::Manhattan => q
+                .within::<Manhattan<f64>>(search)
+                .unsorted()
+                .execute()
+                .iter()
+                .map(|q| q.item)
+                .collect(),
+            Metric::Chebyshev => q
+                .within::<Chebyshev<f64>>(search)
+                .unsorted()
+                .execute()
+                .iter()
+                .map(|q| q.item)
+                .collect(),
+        }
+    };
     check_sample(pts.len(), max_bytes, |i| {
-        tree.query(&pts[i])
-            .within::<SquaredEuclidean<f64>>(search)
-            .unsorted()
-            .execute()
-            .len()
-            .saturating_sub(1)
+        within(&pts[i]).len().saturating_sub(1)
     })?;
     Ok(pts
         .par_iter()
         .enumerate()
         .map(|(i, p)| {
-            let found = tree
-                .query(p)
-                .within::<SquaredEuclidean<f64>>(search)
-                .unsorted()
-                .execute();
-            let mut r: Vec<u32> = found
-                .iter()
-                .map(|q| q.item)
-                .filter(|&j| j as usize > i && dist2(p, &pts[j as usize]) <= e2)
+            let mut r: Vec<u32> = within(p)
+                .into_iter()
+                .filter(|&j| j as usize > i && metric.key(p, &pts[j as usize]) <= e2)
                 .collect();
             r.sort_unstable();
             r
@@ -400,6 +823,7 @@ fn later_sweep(
     coords: &[f64],
     dim: usize,
     eps: f64,
+    metric: Metric,
     max_bytes: u64,
 ) -> Result<Vec<Vec<u32>>, RipsError> {
     let n = coords.len() / dim;
@@ -417,10 +841,11 @@ fn later_sweep(
         .unwrap_or(0);
     let mut by: Vec<u32> = (0..n as u32).collect();
     by.sort_by(|&a, &b| p(a as usize)[axis].total_cmp(&p(b as usize)[axis]));
-    let e2 = eps * eps;
+    // every coordinate difference is at most the L1, L2 or L∞ distance
+    let e2 = metric.key_of(eps);
     check_sample(n, max_bytes, |i| {
         (0..n)
-            .filter(|&j| j != i && dist2(p(i), p(j)) <= e2)
+            .filter(|&j| j != i && metric.key(p(i), p(j)) <= e2)
             .count()
     })?;
     let mut rows: Vec<Vec<u32>> = (0..n).into_par_iter().map(|_| Vec::new()).collect();
@@ -435,7 +860,7 @@ fn later_sweep(
                 if p(j)[axis] - xi > eps {
                     break;
                 }
-                if dist2(p(i), p(j)) <= e2 {
+                if metric.key(p(i), p(j)) <= e2 {
                     out.push((i.min(j) as u32, i.max(j) as u32));
                 }
             }
@@ -472,33 +897,46 @@ pub fn default_max_bytes() -> u64 {
 /// # Errors
 /// Fewer than two points; bad coordinates.
 pub fn median_nn_distance(coords: &[f64], dim: usize) -> Result<f64, RipsError> {
+    median_nn_distance_with(coords, dim, Metric::Euclidean)
+}
+
+/// [`median_nn_distance`] under another [`Metric`].
+///
+/// ```
+/// use starplex::algo::rips::{median_nn_distance_with, Metric};
+/// // a unit square's diagonal neighbours do not matter: every nearest distance is 1
+/// let sq = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+/// assert_eq!(median_nn_distance_with(&sq, 2, Metric::Manhattan).unwrap(), 1.0);
+/// ```
+///
+/// # Errors
+/// As [`median_nn_distance`].
+pub fn median_nn_distance_with(
+    coords: &[f64],
+    dim: usize,
+    metric: Metric,
+) -> Result<f64, RipsError> {
     check_points(coords, dim)?;
     let n = coords.len() / dim;
     if n < 2 {
         return Err(RipsError::TooFewPoints(n));
     }
     let mut d: Vec<f64> = match dim {
-        1 => nn_kd::<1>(coords),
-        2 => nn_kd::<2>(coords),
-        3 => nn_kd::<3>(coords),
-        4 => nn_kd::<4>(coords),
-        5 => nn_kd::<5>(coords),
-        6 => nn_kd::<6>(coords),
-        7 => nn_kd::<7>(coords),
-        8 => nn_kd::<8>(coords),
-        _ => nn_brute(coords, dim),
+        1 => nn_kd::<1>(coords, metric),
+        2 => nn_kd::<2>(coords, metric),
+        3 => nn_kd::<3>(coords, metric),
+        4 => nn_kd::<4>(coords, metric),
+        5 => nn_kd::<5>(coords, metric),
+        6 => nn_kd::<6>(coords, metric),
+        7 => nn_kd::<7>(coords, metric),
+        8 => nn_kd::<8>(coords, metric),
+        _ => nn_brute(coords, dim, metric),
     };
-    d.par_sort_unstable_by(f64::total_cmp);
-    let m = if n % 2 == 1 {
-        d[n / 2].sqrt()
-    } else {
-        0.5 * (d[n / 2 - 1].sqrt() + d[n / 2].sqrt())
-    };
-    Ok(m)
+    Ok(median(&mut d, |k| metric.distance_of(k)))
 }
 
 /// Squared distance from each point to its nearest other point.
-fn nn_kd<const K: usize>(coords: &[f64]) -> Vec<f64> {
+fn nn_kd<const K: usize>(coords: &[f64], metric: Metric) -> Vec<f64> {
     let pts: Vec<[f64; K]> = coords
         .chunks_exact(K)
         .map(|c| {
@@ -508,27 +946,44 @@ fn nn_kd<const K: usize>(coords: &[f64]) -> Vec<f64> {
         })
         .collect();
     let Some(tree) = kd_tree(&pts) else {
-        return nn_brute(coords, K);
+        return nn_brute(coords, K, metric);
     };
     let two = std::num::NonZero::new(2usize).expect("2 is not zero");
     pts.par_iter()
         .enumerate()
         .map(|(i, p)| {
-            let r = tree
-                .query(p)
-                .nearest_n::<SquaredEuclidean<f64>>(two)
-                .execute();
+            let q = tree.query(p);
+            let r: Vec<u64> = match metric {
+                Metric::Euclidean => q
+                    .nearest_n::<SquaredEuclidean<f64>>(two)
+                    .execute()
+                    .iter()
+                    .map(|q| q.item as u64)
+                    .collect(),
+                Metric::Manhattan => q
+                    .nearest_n::<Manhattan<f64>>(two)
+                    .execute()
+                    .iter()
+                    .map(|q| q.item as u64)
+                    .collect(),
+                Metric::Chebyshev => q
+                    .nearest_n::<Chebyshev<f64>>(two)
+                    .execute()
+                    .iter()
+                    .map(|q| q.item as u64)
+                    .collect(),
+            };
             // the point itself is at distance 0 (as is a duplicate): take the other one
             r.iter()
-                .find(|q| q.item as usize != i)
-                .map(|q| dist2(p, &pts[q.item as usize]))
+                .find(|&&j| j as usize != i)
+                .map(|&j| metric.key(p, &pts[j as usize]))
                 .unwrap_or(f64::INFINITY)
         })
         .collect()
 }
 
 /// Squared nearest-neighbour distances by comparing every pair (above 8 dimensions).
-fn nn_brute(coords: &[f64], dim: usize) -> Vec<f64> {
+fn nn_brute(coords: &[f64], dim: usize, metric: Metric) -> Vec<f64> {
     let n = coords.len() / dim;
     (0..n)
         .into_par_iter()
@@ -536,7 +991,7 @@ fn nn_brute(coords: &[f64], dim: usize) -> Vec<f64> {
             let a = &coords[i * dim..(i + 1) * dim];
             (0..n)
                 .filter(|&j| j != i)
-                .map(|j| dist2(a, &coords[j * dim..(j + 1) * dim]))
+                .map(|j| metric.key(a, &coords[j * dim..(j + 1) * dim]))
                 .fold(f64::INFINITY, f64::min)
         })
         .collect()
