@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::Path;
 
 use starplex::io::{output, IoErrorKind};
-use starplex::topo::batch::{self, Csr, Relation};
+use starplex::topo::batch::{self, Answers, Relation};
 use starplex::topo::{Queries, QueryError};
 
 use crate::cmd_query::RelationKind;
@@ -168,7 +168,7 @@ pub fn write(
         Ok((c.values, w))
     };
     // one block of answers: (per-level CSR, the width of one simplex per row or level)
-    let answer_block = |chunk: &[u32]| -> Result<(Vec<Csr>, Widths), QueryError> {
+    let answer_block = |chunk: &[u32]| -> Result<(Vec<Answers>, Widths), QueryError> {
         Ok(match &p {
             Plan::Ids(rel) => (vec![batch::gather(s, *rel, chunk)?], Widths::Ids),
             Plan::Levels { link } => (batch::levels(s, *link, chunk)?, Widths::Levels),
@@ -187,7 +187,7 @@ pub fn write(
                     rows[i] = a.values;
                     start += k;
                 }
-                let mut c = Csr {
+                let mut c = Answers {
                     offsets: vec![0],
                     values: Vec::new(),
                 };
@@ -341,7 +341,7 @@ fn write_item(
     answer_key: &str,
     item: u32,
     j: usize,
-    lv: &[Csr],
+    lv: &[Answers],
     widths: &Widths,
 ) -> Result<(), IoErrorKind> {
     match widths {

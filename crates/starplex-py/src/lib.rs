@@ -36,7 +36,7 @@ use starplex::tds::iastar::IaStar as RsIaStar;
 use starplex::tds::ig::IncidenceGraph as RsIg;
 use starplex::tds::is::Is as RsIs;
 use starplex::tds::simplex_tree::{SimplexTree as RsSimplexTree, SimplexTreeOptions};
-use starplex::topo::batch::{self, Csr, Relation};
+use starplex::topo::batch::{self, Answers, Relation};
 use starplex::topo::naive::VtIndex;
 use starplex::topo::{Queries, QueryError};
 
@@ -266,7 +266,7 @@ fn arr2<'py, T: numpy::Element>(
 
 /// A CSR answer as `(offsets int64, values uint32)`: values are ids (1-D, `width` 0) or
 /// simplices of `width` vertices (shape `(n, width)`), offsets count rows.
-fn csr_out<'py>(py: Python<'py>, c: Csr, width: usize) -> PyResult<Bound<'py, PyAny>> {
+fn csr_out<'py>(py: Python<'py>, c: Answers, width: usize) -> PyResult<Bound<'py, PyAny>> {
     let offsets: Vec<i64> = c
         .offsets
         .iter()
@@ -281,7 +281,7 @@ fn csr_out<'py>(py: Python<'py>, c: Csr, width: usize) -> PyResult<Bound<'py, Py
 }
 
 /// Row 0 of a one-item answer (ids: `width` 0; simplices: `(n, width)`).
-fn row_out<'py>(py: Python<'py>, c: Csr, width: usize) -> PyResult<Bound<'py, PyAny>> {
+fn row_out<'py>(py: Python<'py>, c: Answers, width: usize) -> PyResult<Bound<'py, PyAny>> {
     if width > 0 {
         arr2(py, c.values, width)
     } else {
@@ -811,7 +811,7 @@ fn faces_out<'py>(
         let v: Vec<u32> = f.iter().flat_map(|x| x.iter().map(|v| v.0)).collect();
         return arr2(py, v, w);
     }
-    let mut c = Csr {
+    let mut c = Answers {
         offsets: vec![0],
         values: Vec::new(),
     };
@@ -1109,7 +1109,8 @@ impl Structure {
         py: Python<'py>,
         (v, w, one): (Vec<u32>, usize, bool),
         out_width: Option<usize>,
-        f: impl FnOnce(&(dyn Queries + Send + Sync), &[u32], usize) -> Result<Csr, QueryError> + Send,
+        f: impl FnOnce(&(dyn Queries + Send + Sync), &[u32], usize) -> Result<Answers, QueryError>
+            + Send,
     ) -> PyResult<Bound<'py, PyAny>> {
         let s = self.s.as_ref();
         let c = py.detach(|| f(s, &v, w)).map_err(query_err)?;

@@ -125,7 +125,7 @@ fn a_fifo_is_written_through() {
     assert!(st.success());
     assert_eq!(
         output::resolve(&fifo).unwrap(),
-        output::Target::Stream(fifo.clone())
+        output::OutputTarget::Stream(fifo.clone())
     );
     let f2 = fifo.clone();
     let reader = std::thread::spawn(move || std::fs::read(&f2).unwrap());
@@ -150,21 +150,21 @@ fn a_fifo_is_written_through() {
 
 #[test]
 fn standard_streams_and_devices_resolve_to_streams() {
-    use output::Target;
+    use output::OutputTarget;
     for p in ["-", "/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"] {
         assert_eq!(
             output::resolve(Path::new(p)).unwrap(),
-            Target::Stdout,
+            OutputTarget::Stdout,
             "{p}"
         );
     }
     assert_eq!(
         output::resolve(Path::new("/dev/stderr")).unwrap(),
-        Target::Stderr
+        OutputTarget::Stderr
     );
     assert_eq!(
         output::resolve(Path::new("/dev/null")).unwrap(),
-        Target::Stream("/dev/null".into())
+        OutputTarget::Stream("/dev/null".into())
     );
     // writing to /dev/null works and leaves /dev/null a device
     io::write(Path::new("/dev/null"), &tri(), Some(Format::Off)).unwrap();

@@ -11,11 +11,11 @@
 //!   and written straight through (a rename would replace it instead of feeding it).
 //!
 //! ```
-//! use starplex::io::output::{self, Target};
+//! use starplex::io::output::{self, OutputTarget};
 //! use std::path::Path;
-//! assert_eq!(output::resolve(Path::new("-")).unwrap(), Target::Stdout);
-//! assert_eq!(output::resolve(Path::new("/dev/stdout")).unwrap(), Target::Stdout);
-//! assert_eq!(output::resolve(Path::new("/dev/null")).unwrap(), Target::Stream("/dev/null".into()));
+//! assert_eq!(output::resolve(Path::new("-")).unwrap(), OutputTarget::Stdout);
+//! assert_eq!(output::resolve(Path::new("/dev/stdout")).unwrap(), OutputTarget::Stdout);
+//! assert_eq!(output::resolve(Path::new("/dev/null")).unwrap(), OutputTarget::Stream("/dev/null".into()));
 //! let dir = std::env::temp_dir().join(format!("starplex-doc-output-{}", std::process::id()));
 //! std::fs::create_dir_all(&dir).unwrap();
 //! let file = dir.join("a.txt");
@@ -40,12 +40,12 @@ use super::{IoError, IoErrorKind};
 /// Where [`write_with`] sends the bytes for a given path.
 ///
 /// ```
-/// use starplex::io::output::{resolve, Target};
+/// use starplex::io::output::{resolve, OutputTarget};
 /// let p = std::env::temp_dir().join(format!("starplex-doc-target-{}.off", std::process::id()));
-/// assert_eq!(resolve(&p).unwrap(), Target::File(p.clone())); // not there yet: a new file
+/// assert_eq!(resolve(&p).unwrap(), OutputTarget::File(p.clone())); // not there yet: a new file
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Target {
+pub enum OutputTarget {
     /// The process's standard output (`-`, `/dev/stdout`, `/dev/fd/1`, `/proc/self/fd/1`).
     Stdout,
     /// The process's standard error (`/dev/stderr`, `/dev/fd/2`, `/proc/self/fd/2`).
@@ -58,10 +58,10 @@ pub enum Target {
     File(PathBuf),
 }
 
-fn std_stream(p: &Path) -> Option<Target> {
+fn std_stream(p: &Path) -> Option<OutputTarget> {
     match p.to_str()? {
-        "-" | "/dev/stdout" | "/dev/fd/1" | "/proc/self/fd/1" => Some(Target::Stdout),
-        "/dev/stderr" | "/dev/fd/2" | "/proc/self/fd/2" => Some(Target::Stderr),
+        "-" | "/dev/stdout" | "/dev/fd/1" | "/proc/self/fd/1" => Some(OutputTarget::Stdout),
+        "/dev/stderr" | "/dev/fd/2" | "/proc/self/fd/2" => Some(OutputTarget::Stderr),
         _ => None,
     }
 }
@@ -76,9 +76,9 @@ fn is_fd_path(p: &Path) -> bool {
 /// Decides where the bytes for `path` go, following symbolic links (at most 40).
 ///
 /// ```
-/// use starplex::io::output::{resolve, Target};
+/// use starplex::io::output::{resolve, OutputTarget};
 /// use std::path::Path;
-/// assert_eq!(resolve(Path::new("/dev/stderr")).unwrap(), Target::Stderr);
+/// assert_eq!(resolve(Path::new("/dev/stderr")).unwrap(), OutputTarget::Stderr);
 /// // a directory cannot be written
 /// assert!(resolve(&std::env::temp_dir()).is_err());
 /// ```
@@ -86,7 +86,7 @@ fn is_fd_path(p: &Path) -> bool {
 /// # Errors
 /// A directory, a block device, a symbolic link loop, or an OS error while reading links or
 /// metadata (a missing final name is not an error: the file is created).
-pub fn resolve(path: &Path) -> Result<Target, IoError> {
+pub fn resolve(path: &Path) -> Result<OutputTarget, IoError> {
     if let Some(t) = std_stream(path) {
         return Ok(t);
     }
@@ -96,11 +96,13 @@ pub fn resolve(path: &Path) -> Result<Target, IoError> {
             return Ok(t);
         }
         if is_fd_path(&cur) {
-            return Ok(Target::Stream(cur));
+            return Ok(OutputTarget::Stream(cur));
         }
         let meta = match std::fs::symlink_metadata(&cur) {
             Ok(m) => m,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Target::File(cur)),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                return Ok(OutputTarget::File(cur))
+            }
             Err(e) => return Err(IoError::new(path, e)),
         };
         let ft = meta.file_type();
@@ -114,7 +116,7 @@ pub fn resolve(path: &Path) -> Result<Target, IoError> {
             continue;
         }
         if ft.is_file() {
-            return Ok(Target::File(cur));
+            return Ok(OutputTarget::File(cur));
         }
         if ft.is_dir() {
             return Err(IoError::new(
@@ -135,7 +137,7 @@ pub fn resolve(path: &Path) -> Result<Target, IoError> {
             }
         }
         // FIFO, character device, socket
-        return Ok(Target::Stream(cur));
+        return Ok(OutputTarget::Stream(cur));
     }
     Err(IoError::new(
         path,
@@ -174,19 +176,19 @@ pub fn write_with(
     f: impl FnOnce(&mut dyn Write) -> Result<(), IoErrorKind>,
 ) -> Result<(), IoError> {
     match resolve(path)? {
-        Target::Stdout => {
+        OutputTarget::Stdout => {
             let out = std::io::stdout();
             let mut w = std::io::BufWriter::with_capacity(1 << 20, out.lock());
             let r = f(&mut w).and_then(|()| Ok(w.flush()?));
             r.map_err(|k| IoError::new(path, k))
         }
-        Target::Stderr => {
+        OutputTarget::Stderr => {
             let err = std::io::stderr();
             let mut w = std::io::BufWriter::with_capacity(1 << 16, err.lock());
             let r = f(&mut w).and_then(|()| Ok(w.flush()?));
             r.map_err(|k| IoError::new(path, k))
         }
-        Target::Stream(p) => {
+        OutputTarget::Stream(p) => {
             let r = (|| -> Result<(), IoErrorKind> {
                 let meta = std::fs::metadata(&p)?;
                 let file = std::fs::OpenOptions::new()
@@ -200,7 +202,7 @@ pub fn write_with(
             })();
             r.map_err(|k| IoError::new(path, k))
         }
-        Target::File(target) => atomic(path, &target, f),
+        OutputTarget::File(target) => atomic(path, &target, f),
     }
 }
 

@@ -2,7 +2,7 @@
 //! into compressed-sparse-row arrays. The one home of "every answer as arrays", used by
 //! `starplex query --all --out` and by the Python bindings.
 //!
-//! Row `i` of a [`Csr`] is `values[offsets[i]..offsets[i + 1]]`. Work is split into fixed chunks
+//! Row `i` of an [`Answers`] (CSR) is `values[offsets[i]..offsets[i + 1]]`. Work is split into fixed chunks
 //! of items answered in parallel and joined in item order, so the arrays do not depend on the
 //! number of threads.
 //!
@@ -31,25 +31,25 @@ const CHUNK: usize = 2048;
 /// A ragged answer in compressed-sparse-row form.
 ///
 /// ```
-/// use starplex::topo::batch::Csr;
-/// let c = Csr { offsets: vec![0, 2, 2, 3], values: vec![5, 6, 7] };
+/// use starplex::topo::batch::Answers;
+/// let c = Answers { offsets: vec![0, 2, 2, 3], values: vec![5, 6, 7] };
 /// assert_eq!(c.row(0), &[5, 6]);
 /// assert_eq!(c.n_rows(), 3);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Csr {
+pub struct Answers {
     /// `n_rows + 1` offsets into `values`, starting at 0.
     pub offsets: Vec<u64>,
     /// The rows, concatenated.
     pub values: Vec<u32>,
 }
 
-impl Csr {
+impl Answers {
     /// The number of rows.
     ///
     /// ```
-    /// use starplex::topo::batch::Csr;
-    /// assert_eq!(Csr { offsets: vec![0], values: vec![] }.n_rows(), 0);
+    /// use starplex::topo::batch::Answers;
+    /// assert_eq!(Answers { offsets: vec![0], values: vec![] }.n_rows(), 0);
     /// ```
     pub fn n_rows(&self) -> usize {
         self.offsets.len().saturating_sub(1)
@@ -58,15 +58,15 @@ impl Csr {
     /// Row `i`.
     ///
     /// ```
-    /// use starplex::topo::batch::Csr;
-    /// let c = Csr { offsets: vec![0, 1], values: vec![9] };
+    /// use starplex::topo::batch::Answers;
+    /// let c = Answers { offsets: vec![0, 1], values: vec![9] };
     /// assert_eq!(c.row(0), &[9]);
     /// ```
     pub fn row(&self, i: usize) -> &[u32] {
         &self.values[self.offsets[i] as usize..self.offsets[i + 1] as usize]
     }
 
-    fn append(&mut self, other: Csr) {
+    fn append(&mut self, other: Answers) {
         let base = self.values.len() as u64;
         self.offsets
             .extend(other.offsets.iter().skip(1).map(|o| o + base));
@@ -227,18 +227,18 @@ pub fn gather<S: Queries + Sync + ?Sized>(
     s: &S,
     r: Relation,
     items: &[u32],
-) -> Result<Csr, QueryError> {
+) -> Result<Answers, QueryError> {
     gather_with(items, |i, sc, out| answer(s, r, i, sc, out))
 }
 
 /// The vertices of simplices in `simplices` (flat, `width` ids each) that relation `f` gives, as
 /// CSR rows: the common frame of [`boundary`], [`coboundary`] and [`adjacent`].
-fn gather_simplices<F>(simplices: &[u32], width: usize, f: F) -> Result<Csr, QueryError>
+fn gather_simplices<F>(simplices: &[u32], width: usize, f: F) -> Result<Answers, QueryError>
 where
     F: Fn(&[VertexId], &mut Vec<VertexId>) -> Result<(), QueryError> + Sync,
 {
     if width == 0 {
-        return Ok(Csr {
+        return Ok(Answers {
             offsets: vec![0],
             values: Vec::new(),
         });
@@ -274,7 +274,7 @@ pub fn boundary<S: Queries + Sync + ?Sized>(
     simplices: &[u32],
     width: usize,
     q: usize,
-) -> Result<Csr, QueryError> {
+) -> Result<Answers, QueryError> {
     gather_simplices(simplices, width, |x, out| s.boundary(x, q, out))
 }
 
@@ -297,7 +297,7 @@ pub fn coboundary<S: Queries + Sync + ?Sized>(
     simplices: &[u32],
     width: usize,
     q: usize,
-) -> Result<Csr, QueryError> {
+) -> Result<Answers, QueryError> {
     gather_simplices(simplices, width, |x, out| s.coboundary(x, q, out))
 }
 
@@ -319,7 +319,7 @@ pub fn adjacent<S: Queries + Sync + ?Sized>(
     s: &S,
     simplices: &[u32],
     width: usize,
-) -> Result<Csr, QueryError> {
+) -> Result<Answers, QueryError> {
     gather_simplices(simplices, width, |x, out| s.adjacent(x, out))
 }
 
@@ -342,11 +342,11 @@ pub fn levels<S: Queries + Sync + ?Sized>(
     s: &S,
     link: bool,
     items: &[u32],
-) -> Result<Vec<Csr>, QueryError> {
-    let parts: Vec<Vec<Csr>> = items
+) -> Result<Vec<Answers>, QueryError> {
+    let parts: Vec<Vec<Answers>> = items
         .par_chunks(CHUNK)
         .map(|chunk| {
-            let mut lv: Vec<Csr> = Vec::new();
+            let mut lv: Vec<Answers> = Vec::new();
             for (j, &v) in chunk.iter().enumerate() {
                 let set: SimplexSet = if link {
                     generic::link(s, &[VertexId(v)])?
@@ -354,7 +354,7 @@ pub fn levels<S: Queries + Sync + ?Sized>(
                     s.star(&[VertexId(v)])?
                 };
                 while lv.len() < set.levels.len() {
-                    lv.push(Csr {
+                    lv.push(Answers {
                         offsets: vec![0; j + 1],
                         values: Vec::new(),
                     });
@@ -369,11 +369,11 @@ pub fn levels<S: Queries + Sync + ?Sized>(
             Ok(lv)
         })
         .collect::<Result<_, QueryError>>()?;
-    let mut out: Vec<Csr> = Vec::new();
+    let mut out: Vec<Answers> = Vec::new();
     let mut done = 0usize;
     for (part, chunk) in parts.into_iter().zip(items.chunks(CHUNK)) {
         while out.len() < part.len() {
-            out.push(Csr {
+            out.push(Answers {
                 offsets: vec![0; done + 1],
                 values: Vec::new(),
             });
@@ -412,14 +412,14 @@ pub fn faces<S: Queries + ?Sized>(s: &S, p: usize) -> Result<Vec<u32>, QueryErro
     Ok(out)
 }
 
-fn gather_with<F>(items: &[u32], f: F) -> Result<Csr, QueryError>
+fn gather_with<F>(items: &[u32], f: F) -> Result<Answers, QueryError>
 where
     F: Fn(u32, &mut Scratch, &mut Vec<u32>) -> Result<(), QueryError> + Sync,
 {
-    let parts: Vec<Csr> = items
+    let parts: Vec<Answers> = items
         .par_chunks(CHUNK)
         .map_init(Scratch::default, |sc, chunk| {
-            let mut c = Csr {
+            let mut c = Answers {
                 offsets: Vec::with_capacity(chunk.len() + 1),
                 values: Vec::new(),
             };
@@ -431,7 +431,7 @@ where
             Ok(c)
         })
         .collect::<Result<_, QueryError>>()?;
-    let mut out = Csr {
+    let mut out = Answers {
         offsets: Vec::with_capacity(items.len() + 1),
         values: Vec::with_capacity(parts.iter().map(|p| p.values.len()).sum()),
     };
