@@ -102,57 +102,14 @@ fn read_distance_matrix(path: &Path) -> Result<DistanceMatrix, CliError> {
 }
 
 fn read_npy_matrix(path: &Path) -> Result<(usize, usize, Vec<f64>), CliError> {
-    let bytes = std::fs::read(path).map_err(|e| input_error(path, e, None))?;
-    let bad = |m: String| input_error(path, m, None);
-    let npy = npyz::NpyFile::new(&bytes[..]).map_err(|e| bad(format!("not a .npy file: {e}")))?;
-    let shape = npy.shape().to_vec();
+    let (shape, vals) = starplex::io::points::read_npy_array(path)
+        .map_err(|e| CliError::Input(e.to_string(), None))?;
     let [rows, cols] = shape[..] else {
-        return Err(bad(format!(
-            "expected a 2-D distance matrix, got shape {shape:?}"
-        )));
-    };
-    let (rows, cols) = (rows as usize, cols as usize);
-    let fortran = npy.order() == npyz::Order::Fortran;
-    let type_str = match npy.dtype() {
-        npyz::DType::Plain(t) => t.to_string(),
-        other => return Err(bad(format!("unsupported element type {other:?}"))),
-    };
-    let e = |e: std::io::Error| bad(e.to_string());
-    let flat: Vec<f64> = match &type_str[1..] {
-        "f8" => npy.into_vec::<f64>().map_err(e)?,
-        "f4" => npy
-            .into_vec::<f32>()
-            .map_err(e)?
-            .into_iter()
-            .map(f64::from)
-            .collect(),
-        "i8" => npy
-            .into_vec::<i64>()
-            .map_err(e)?
-            .into_iter()
-            .map(|x| x as f64)
-            .collect(),
-        "i4" => npy
-            .into_vec::<i32>()
-            .map_err(e)?
-            .into_iter()
-            .map(f64::from)
-            .collect(),
-        _ => {
-            return Err(bad(format!(
-                "unsupported element type {type_str} (use float64, float32, int64 or int32)"
-            )))
-        }
-    };
-    if flat.len() != rows * cols {
-        return Err(bad(format!("{} values for shape {shape:?}", flat.len())));
-    }
-    let vals = if fortran {
-        (0..rows * cols)
-            .map(|k| flat[(k % cols) * rows + k / cols])
-            .collect()
-    } else {
-        flat
+        return Err(input_error(
+            path,
+            format!("expected a 2-D distance matrix, got shape {shape:?}"),
+            None,
+        ));
     };
     Ok((rows, cols, vals))
 }

@@ -226,6 +226,74 @@ pub fn read_points_from(
     Ok(PointCloud { dim, coords })
 }
 
+/// Reads a NumPy array of float64, float32, int64 or int32 (C or Fortran order): its shape and
+/// its values in row-major (C) order, as `f64`. The one `.npy` reader of point clouds and
+/// distance matrices; values are not checked (the callers do).
+///
+/// ```no_run
+/// let (shape, values) = starplex::io::points::read_npy_array("d.npy".as_ref()).unwrap();
+/// assert_eq!(values.len(), shape.iter().product::<usize>());
+/// ```
+///
+/// # Errors
+/// OS errors, a malformed header, an unsupported element type, a value count that does not fit
+/// the shape.
+pub fn read_npy_array(path: &Path) -> Result<(Vec<usize>, Vec<f64>), IoError> {
+    let bytes = std::fs::read(path).map_err(|e| IoError::new(path, e))?;
+    let bad = |m: String| IoError::parse(path, None, m);
+    let npy = npyz::NpyFile::new(&bytes[..]).map_err(|e| bad(format!("not a .npy file: {e}")))?;
+    let shape: Vec<usize> = npy.shape().iter().map(|&x| x as usize).collect();
+    let fortran = npy.order() == npyz::Order::Fortran;
+    let type_str = match npy.dtype() {
+        npyz::DType::Plain(t) => t.to_string(),
+        other => return Err(bad(format!("unsupported element type {other:?}"))),
+    };
+    let e = |e: std::io::Error| bad(e.to_string());
+    let flat: Vec<f64> = match &type_str[1..] {
+        "f8" => npy.into_vec::<f64>().map_err(e)?,
+        "f4" => npy
+            .into_vec::<f32>()
+            .map_err(e)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        "i8" => npy
+            .into_vec::<i64>()
+            .map_err(e)?
+            .into_iter()
+            .map(|x| x as f64)
+            .collect(),
+        "i4" => npy
+            .into_vec::<i32>()
+            .map_err(e)?
+            .into_iter()
+            .map(f64::from)
+            .collect(),
+        _ => {
+            return Err(bad(format!(
+                "unsupported element type {type_str} (use float64, float32, int64 or int32)"
+            )))
+        }
+    };
+    if flat.len() != shape.iter().product::<usize>() {
+        return Err(bad(format!("{} values for shape {shape:?}", flat.len())));
+    }
+    // Fortran order of a 2-D array: column after column; transpose to rows
+    let values = match (fortran, &shape[..]) {
+        (true, &[rows, cols]) => {
+            let mut c = vec![0.0; flat.len()];
+            for j in 0..cols {
+                for i in 0..rows {
+                    c[i * cols + j] = flat[j * rows + i];
+                }
+            }
+            c
+        }
+        _ => flat,
+    };
+    Ok((shape, values))
+}
+
 /// Reads a 2-D NumPy array (float64, float32 or integers; C or Fortran order), one point per
 /// row.
 ///
@@ -237,64 +305,16 @@ pub fn read_points_from(
 /// OS errors, a malformed header, a shape that is not 2-D, an unsupported element type,
 /// non-finite values.
 pub fn read_npy(path: &Path) -> Result<PointCloud, IoError> {
-    let bytes = std::fs::read(path).map_err(|e| IoError::new(path, e))?;
     let bad = |m: String| IoError::parse(path, None, m);
-    let npy = npyz::NpyFile::new(&bytes[..]).map_err(|e| bad(format!("not a .npy file: {e}")))?;
-    let shape = npy.shape().to_vec();
-    let (rows, cols) = match shape[..] {
-        [r, c] => (r as usize, c as usize),
-        [r] => (r as usize, 1),
+    let (shape, coords) = read_npy_array(path)?;
+    let cols = match shape[..] {
+        [_, c] => c,
+        [_] => 1,
         _ => {
             return Err(bad(format!(
                 "expected a 2-D array (points x coordinates), got shape {shape:?}"
             )))
         }
-    };
-    let fortran = npy.order() == npyz::Order::Fortran;
-    let dtype = npy.dtype();
-    let type_str = match &dtype {
-        npyz::DType::Plain(t) => t.to_string(),
-        other => return Err(bad(format!("unsupported element type {other:?}"))),
-    };
-    let flat: Vec<f64> = match &type_str[1..] {
-        "f8" => npy.into_vec::<f64>().map_err(|e| bad(e.to_string()))?,
-        "f4" => npy
-            .into_vec::<f32>()
-            .map_err(|e| bad(e.to_string()))?
-            .into_iter()
-            .map(f64::from)
-            .collect(),
-        "i8" => npy
-            .into_vec::<i64>()
-            .map_err(|e| bad(e.to_string()))?
-            .into_iter()
-            .map(|x| x as f64)
-            .collect(),
-        "i4" => npy
-            .into_vec::<i32>()
-            .map_err(|e| bad(e.to_string()))?
-            .into_iter()
-            .map(f64::from)
-            .collect(),
-        _ => {
-            return Err(bad(format!(
-                "unsupported element type {type_str} (use float64, float32, int64 or int32)"
-            )))
-        }
-    };
-    if flat.len() != rows * cols {
-        return Err(bad(format!("{} values for shape {shape:?}", flat.len())));
-    }
-    let coords = if fortran {
-        let mut c = vec![0.0; flat.len()];
-        for j in 0..cols {
-            for i in 0..rows {
-                c[i * cols + j] = flat[j * rows + i];
-            }
-        }
-        c
-    } else {
-        flat
     };
     if let Some(i) = coords.iter().position(|x| !x.is_finite()) {
         return Err(bad(format!(
