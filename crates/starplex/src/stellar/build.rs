@@ -11,6 +11,37 @@ use super::{
 };
 use crate::complex::IndexedComplex;
 
+/// The input's top cells, read without a block search when the complex is one block.
+struct InputCells<'a> {
+    k: &'a IndexedComplex,
+    /// (kind, vertices, stride) of the only block.
+    one: Option<(crate::cell::CellKind, &'a [u32], usize)>,
+}
+
+impl<'a> InputCells<'a> {
+    fn new(k: &'a IndexedComplex) -> Self {
+        let one = match k.blocks() {
+            [b] => Some((b.kind, &b.vertices[..], b.kind.n_vertices())),
+            _ => None,
+        };
+        InputCells { k, one }
+    }
+
+    #[inline]
+    fn get(&self, c: u32) -> (crate::cell::CellKind, &'a [u32]) {
+        match self.one {
+            Some((kind, vs, st)) => {
+                let i = c as usize * st;
+                (kind, &vs[i..i + st])
+            }
+            None => {
+                let r = self.k.cell(crate::ids::CellId(c));
+                (r.kind, r.vertices)
+            }
+        }
+    }
+}
+
 /// A subtree while splitting.
 enum T {
     Leaf(u32, u32),
@@ -175,10 +206,8 @@ pub(super) fn build(
         let kind = k.blocks()[0].kind;
         (Some(kind), kind.n_vertices() as u32)
     };
-    let in_cell = |c: u32| {
-        let r = k.cell(crate::ids::CellId(c));
-        (r.kind, r.vertices)
-    };
+    let input = InputCells::new(k);
+    let in_cell = |c: u32| input.get(c);
     // home leaf of every input cell = leaf of its smallest tree vertex = its smallest leaf
     // (leaves own increasing ranges of tree vertices)
     let home: Vec<u32> = (0..nc as u32)
@@ -209,8 +238,9 @@ pub(super) fn build(
         }
     }
     drop(home);
-    {
-        // within each home leaf: sort by (tuple of leaves, kind, input id)
+    // within each home leaf: sort by (tuple of leaves, kind, input id); the runs of equal
+    // tuples make the leaf lists
+    let groups: Vec<Groups> = {
         let mut rest: &mut [u32] = &mut order;
         let mut parts: Vec<&mut [u32]> = Vec::with_capacity(n_leaves);
         for l in 0..n_leaves {
@@ -219,67 +249,14 @@ pub(super) fn build(
             parts.push(a);
             rest = b;
         }
-        parts.par_iter_mut().for_each_init(
-            || {
-                (
-                    Vec::<u32>::new(),
-                    Vec::<(u32, u32, u32, u8)>::new(),
-                    Vec::<(u128, u64)>::new(),
-                )
-            },
-            |(scratch, keyed, packed), part| {
-                if part.len() < 2 {
-                    return;
-                }
-                if part.iter().all(|&c| in_cell(c).1.len() <= 4) {
-                    // the sorted distinct leaves of a cell packed in a u128, padded with 0:
-                    // every leaf after the first is >= 1, so the packed order is the order of
-                    // the tuples (a prefix first)
-                    packed.clear();
-                    for &c in part.iter() {
-                        let (kind, vs) = in_cell(c);
-                        let (t, _) = distinct_leaves::<4>(vs, &leaf_in);
-                        let key = ((t[0] as u128) << 96)
-                            | ((t[1] as u128) << 64)
-                            | ((t[2] as u128) << 32)
-                            | t[3] as u128;
-                        packed.push((key, ((kind_code(kind) as u64) << 32) | c as u64));
-                    }
-                    packed.sort_unstable();
-                    for (dst, k) in part.iter_mut().zip(packed.iter()) {
-                        *dst = k.1 as u32;
-                    }
-                    return;
-                }
-                scratch.clear();
-                keyed.clear();
-                for &c in part.iter() {
-                    let (kind, vs) = in_cell(c);
-                    let s = scratch.len();
-                    scratch.extend(vs.iter().map(|&v| leaf_in[v as usize]));
-                    scratch[s..].sort_unstable();
-                    let mut w = s;
-                    for r in s..scratch.len() {
-                        if r == s || scratch[r] != scratch[w - 1] {
-                            scratch[w] = scratch[r];
-                            w += 1;
-                        }
-                    }
-                    scratch.truncate(w);
-                    keyed.push((c, s as u32, w as u32, kind_code(kind)));
-                }
-                keyed.sort_unstable_by(|a, b| {
-                    scratch[a.1 as usize..a.2 as usize]
-                        .cmp(&scratch[b.1 as usize..b.2 as usize])
-                        .then(a.3.cmp(&b.3))
-                        .then(a.0.cmp(&b.0))
-                });
-                for (dst, k) in part.iter_mut().zip(keyed.iter()) {
-                    *dst = k.0;
-                }
-            },
-        );
-    }
+        parts
+            .into_par_iter()
+            .enumerate()
+            .map_init(SortScratch::default, |sc, (home, part)| {
+                sort_part(home as u32, part, uniform, &in_cell, &leaf_in, sc)
+            })
+            .collect()
+    };
     drop(leaf_in);
     let c_orig = order;
     let mut c_new = vec![0u32; nc];
@@ -333,26 +310,8 @@ pub(super) fn build(
 
     // ---- 4. SRE-compressed leaf lists: stream the cells in tree order (two passes)
     let t3 = Instant::now();
-    // leaf of each tree vertex (temporary)
-    let mut leaf_of = vec![0u32; nv];
-    leaf_of
-        .par_chunks_mut(65_536)
-        .enumerate()
-        .for_each(|(ci, ch)| {
-            let base = (ci * 65_536) as u32;
-            let mut l = leaf_vstart
-                .partition_point(|&s| s <= base)
-                .saturating_sub(1);
-            for (i, x) in ch.iter_mut().enumerate() {
-                let v = base + i as u32;
-                while leaf_vstart[l + 1] <= v {
-                    l += 1;
-                }
-                *x = l as u32;
-            }
-        });
-
-    let (leaf_toff, leaf_tops) = leaf_lists(&cells, &leaf_of, n_leaves);
+    let (leaf_toff, leaf_tops) = leaf_lists(&groups, n_leaves);
+    drop(groups);
     timings.leaf_lists_s = t3.elapsed().as_secs_f64();
 
     Ok(StellarTree {
@@ -373,28 +332,185 @@ pub(super) fn build(
     })
 }
 
-/// Builds every leaf's SRE list from the cells in tree order.
-fn leaf_lists(cells: &CellStore, leaf_of: &[u32], n_leaves: usize) -> (Vec<u32>, Vec<u32>) {
+/// Runs of consecutive tree cells with the same distinct leaves, in tree order: `len[i]` cells
+/// whose leaves (increasing) are `leaves[off[i]..off[i + 1]]`.
+#[derive(Default)]
+struct Groups {
+    len: Vec<u32>,
+    off: Vec<u32>,
+    leaves: Vec<u32>,
+}
+
+impl Groups {
+    /// Appends `len` cells with the distinct leaves `ls` (merged into the last run when equal).
+    fn push(&mut self, len: u32, ls: &[u32]) {
+        if self.off.is_empty() {
+            self.off.push(0);
+        }
+        if let Some(last) = self.len.last_mut() {
+            let s = self.off[self.off.len() - 2] as usize;
+            if self.leaves[s..] == *ls {
+                *last += len;
+                return;
+            }
+        }
+        self.len.push(len);
+        self.leaves.extend_from_slice(ls);
+        self.off.push(self.leaves.len() as u32);
+    }
+
+    fn iter(&self) -> impl Iterator<Item = (u32, &[u32])> + '_ {
+        self.len.iter().enumerate().map(|(i, &n)| {
+            (
+                n,
+                &self.leaves[self.off[i] as usize..self.off[i + 1] as usize],
+            )
+        })
+    }
+}
+
+/// Per-worker buffers of [`sort_part`].
+#[derive(Default)]
+struct SortScratch {
+    scratch: Vec<u32>,
+    keyed: Vec<(u32, u32, u32, u8)>,
+    packed: Vec<(u128, u64)>,
+    packed1: Vec<u128>,
+}
+
+/// The leaves of a packed tuple: `t0` then the non-zero leaves of `rest` (every leaf after the
+/// first is >= 1, so 0 is padding).
+#[inline]
+fn unpack(t0: u32, rest: u128, out: &mut [u32; 4]) -> usize {
+    out[0] = t0;
+    let mut m = 1;
+    for sh in [96u32, 64, 32] {
+        let x = (rest >> sh) as u32;
+        if x != 0 {
+            out[m] = x;
+            m += 1;
+        }
+    }
+    m
+}
+
+/// Sorts the cells of one home leaf (`part`, in input order) by (tuple of distinct leaves,
+/// kind, input id) and returns the runs of equal tuples.
+fn sort_part<'a>(
+    home: u32,
+    part: &mut [u32],
+    uniform: Option<crate::cell::CellKind>,
+    in_cell: &impl Fn(u32) -> (crate::cell::CellKind, &'a [u32]),
+    leaf_in: &[u32],
+    sc: &mut SortScratch,
+) -> Groups {
+    let mut g = Groups::default();
+    let mut ls = [0u32; 4];
+    if uniform.is_some_and(|k| k.n_vertices() <= 4) {
+        // one kind, at most 4 vertices: the cells lying in their home leaf only (tuple
+        // [home], the smallest) keep their input order, which the counting sort kept; the
+        // others are sorted by (the rest of their tuple, input id) packed in one u128 (every
+        // leaf after the home leaf is >= 1, so the packed order is the order of the tuples,
+        // a prefix first)
+        let packed1 = &mut sc.packed1;
+        packed1.clear();
+        let mut w = 0;
+        for i in 0..part.len() {
+            let c = part[i];
+            let (t, m) = distinct_leaves::<4>(in_cell(c).1, leaf_in);
+            if m == 1 {
+                part[w] = c;
+                w += 1;
+            } else {
+                packed1.push(
+                    ((t[1] as u128) << 96) | ((t[2] as u128) << 64) | ((t[3] as u128) << 32) | c as u128,
+                );
+            }
+        }
+        packed1.sort_unstable();
+        if w > 0 {
+            g.push(w as u32, &[home]);
+        }
+        for (dst, &k) in part[w..].iter_mut().zip(packed1.iter()) {
+            *dst = k as u32;
+            let m = unpack(home, k & !0xffff_ffff, &mut ls);
+            g.push(1, &ls[..m]);
+        }
+        return g;
+    }
+    if part.iter().all(|&c| in_cell(c).1.len() <= 4) {
+        // the sorted distinct leaves of a cell packed in a u128, padded with 0
+        let packed = &mut sc.packed;
+        packed.clear();
+        for &c in part.iter() {
+            let (kind, vs) = in_cell(c);
+            let (t, _) = distinct_leaves::<4>(vs, leaf_in);
+            let key = ((t[0] as u128) << 96) | ((t[1] as u128) << 64) | ((t[2] as u128) << 32) | t[3] as u128;
+            packed.push((key, ((kind_code(kind) as u64) << 32) | c as u64));
+        }
+        packed.sort_unstable();
+        for (dst, k) in part.iter_mut().zip(packed.iter()) {
+            *dst = k.1 as u32;
+            let m = unpack(home, k.0 << 32, &mut ls);
+            g.push(1, &ls[..m]);
+        }
+        return g;
+    }
+    let (scratch, keyed) = (&mut sc.scratch, &mut sc.keyed);
+    scratch.clear();
+    keyed.clear();
+    for &c in part.iter() {
+        let (kind, vs) = in_cell(c);
+        let s = scratch.len();
+        scratch.extend(vs.iter().map(|&v| leaf_in[v as usize]));
+        scratch[s..].sort_unstable();
+        let mut w = s;
+        for r in s..scratch.len() {
+            if r == s || scratch[r] != scratch[w - 1] {
+                scratch[w] = scratch[r];
+                w += 1;
+            }
+        }
+        scratch.truncate(w);
+        keyed.push((c, s as u32, w as u32, kind_code(kind)));
+    }
+    keyed.sort_unstable_by(|a, b| {
+        scratch[a.1 as usize..a.2 as usize]
+            .cmp(&scratch[b.1 as usize..b.2 as usize])
+            .then(a.3.cmp(&b.3))
+            .then(a.0.cmp(&b.0))
+    });
+    for (dst, k) in part.iter_mut().zip(keyed.iter()) {
+        *dst = k.0;
+        g.push(1, &scratch[k.1 as usize..k.2 as usize]);
+    }
+    g
+}
+
+/// Builds every leaf's SRE list from the runs of equal leaf tuples, in tree order.
+fn leaf_lists(groups: &[Groups], n_leaves: usize) -> (Vec<u32>, Vec<u32>) {
     const NONE: u32 = u32::MAX;
     // per-leaf open run: (start, len)
     let mut run_start = vec![NONE; n_leaves];
     let mut run_len = vec![0u32; n_leaves];
     let mut cost = vec![0u32; n_leaves + 1];
-    let mut buf: Vec<u32> = Vec::with_capacity(72);
+    let runs = || groups.iter().flat_map(|g| g.iter());
     // pass 1: sizes
-    for c in 0..cells.n {
-        cell_leaves(cells, leaf_of, c, &mut buf, |l| {
+    let mut c = 0u32;
+    for (len, ls) in runs() {
+        for &l in ls {
             let l = l as usize;
             if run_start[l] != NONE && run_start[l] + run_len[l] == c {
-                run_len[l] += 1;
+                run_len[l] += len;
             } else {
                 if run_start[l] != NONE {
                     cost[l + 1] += sre::run_cost(run_len[l]);
                 }
                 run_start[l] = c;
-                run_len[l] = 1;
+                run_len[l] = len;
             }
-        });
+        }
+        c += len;
     }
     for l in 0..n_leaves {
         if run_start[l] != NONE {
@@ -414,19 +530,21 @@ fn leaf_lists(cells: &CellStore, leaf_of: &[u32], n_leaves: usize) -> (Vec<u32>,
         out[p..p + tmp.len()].copy_from_slice(&tmp);
         cursor[l] += tmp.len() as u32;
     };
-    for c in 0..cells.n {
-        cell_leaves(cells, leaf_of, c, &mut buf, |l| {
+    let mut c = 0u32;
+    for (len, ls) in runs() {
+        for &l in ls {
             let l = l as usize;
             if run_start[l] != NONE && run_start[l] + run_len[l] == c {
-                run_len[l] += 1;
+                run_len[l] += len;
             } else {
                 if run_start[l] != NONE {
                     flush(l, run_start[l], run_len[l], &mut out, &mut cursor);
                 }
                 run_start[l] = c;
-                run_len[l] = 1;
+                run_len[l] = len;
             }
-        });
+        }
+        c += len;
     }
     for l in 0..n_leaves {
         if run_start[l] != NONE {
@@ -458,32 +576,6 @@ fn distinct_leaves<const N: usize>(vs: &[u32], leaf_of: &[u32]) -> ([u32; N], us
         m += 1;
     }
     (t, m)
-}
-
-/// Calls `f` on the distinct leaves of cell `c`, increasing.
-#[inline]
-fn cell_leaves(
-    cells: &CellStore,
-    leaf_of: &[u32],
-    c: u32,
-    buf: &mut Vec<u32>,
-    mut f: impl FnMut(u32),
-) {
-    let vs = cells.verts(c);
-    if vs.len() <= 8 {
-        let (t, m) = distinct_leaves::<8>(vs, leaf_of);
-        for &l in &t[..m] {
-            f(l);
-        }
-        return;
-    }
-    buf.clear();
-    buf.extend(vs.iter().map(|&v| leaf_of[v as usize]));
-    buf.sort_unstable();
-    buf.dedup();
-    for &l in buf.iter() {
-        f(l);
-    }
 }
 
 fn collect_leaves(t: &T, out: &mut Vec<u32>) {
