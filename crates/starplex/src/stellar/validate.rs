@@ -52,14 +52,13 @@ impl StarCells for TreeStar<'_> {
     fn cell(&self, i: usize) -> (CellKind, &[u32]) {
         self.cells.get(self.star[i])
     }
-    fn all_tets(&self) -> bool {
-        const TET: CellKind = CellKind::Simplex(3);
+    fn all_of(&self, kind: CellKind) -> bool {
         match self.cells.uniform {
-            Some(kind) => kind == TET,
+            Some(k) => k == kind,
             None => self
                 .star
                 .iter()
-                .all(|&c| self.cells.kinds[c as usize] == super::kind_code(TET)),
+                .all(|&c| self.cells.kinds[c as usize] == super::kind_code(kind)),
         }
     }
 }
@@ -383,6 +382,97 @@ mod tests {
                 seen_kinds[1] += t.n_vertices() - nm;
                 seen_kinds[2] += slow.iter().map(|x| x.2.len()).sum::<usize>();
                 assert_eq!(norm(fast), slow, "case {case} kv {kv}");
+            }
+        }
+        assert!(seen_kinds.iter().all(|&n| n > 100), "{seen_kinds:?}");
+    }
+
+    /// The triangle short cut answers like the generic test, on random (mostly non-manifold)
+    /// sets of triangles, triangulated grids with holes, and stars mixing triangles and edges.
+    #[test]
+    fn tri_short_cut_equals_generic() {
+        let mut rng = crate::testkit::XorShift::new(0x9E37_79B9_7F4A_7C15);
+        let mut next = |m: u64| rng.below(m);
+        let mut seen_kinds = [0usize; 3];
+        for case in 0..300 {
+            let mut b = ComplexBuilder::new(2).unwrap();
+            let mut seen = std::collections::HashSet::new();
+            if case % 3 == 2 {
+                // a 5x5 grid of squares, two triangles each, some removed
+                for i in 0..6 {
+                    for j in 0..6 {
+                        b.push_vertex(&[i as f64, j as f64]).unwrap();
+                    }
+                }
+                let id = |i: u32, j: u32| i * 6 + j;
+                let drop = 1 + next(6);
+                for i in 0..5 {
+                    for j in 0..5 {
+                        for t in [
+                            [id(i, j), id(i + 1, j), id(i + 1, j + 1)],
+                            [id(i, j), id(i + 1, j + 1), id(i, j + 1)],
+                        ] {
+                            if next(drop + 1) != 0 {
+                                b.push_cell(CellKind::Simplex(2), &t).unwrap();
+                            }
+                        }
+                    }
+                }
+            } else {
+                let nv = 4 + next(10) as usize;
+                for i in 0..nv {
+                    let f = i as f64;
+                    b.push_vertex(&[f.sin(), (1.7 * f).cos()]).unwrap();
+                }
+                for _ in 0..1 + next(3 * nv as u64) {
+                    let edge = case % 3 == 1 && next(4) == 0;
+                    let k: u8 = if edge { 2 } else { 3 };
+                    let mut c: Vec<u32> = Vec::new();
+                    while c.len() < k as usize {
+                        let v = next(nv as u64) as u32;
+                        if !c.contains(&v) {
+                            c.push(v);
+                        }
+                    }
+                    let mut key = c.clone();
+                    key.sort_unstable();
+                    if seen.insert(key) {
+                        b.push_cell(CellKind::Simplex(k - 1), &c).unwrap();
+                    }
+                }
+            }
+            let opts = BuildOptions {
+                drop_duplicates: true,
+                drop_face_cells: true,
+                ..Default::default()
+            };
+            let Ok((k, _)) = b.build(&opts) else {
+                continue;
+            };
+            for kv in [0, 2, 5] {
+                let t = StellarTree::build(
+                    &k,
+                    &StellarOptions {
+                        kv: Some(kv),
+                        ..Default::default()
+                    },
+                )
+                .unwrap();
+                let Some(d) = t.dim() else { continue };
+                let norm = |mut r: Vec<(Vec<u32>, Vec<u32>, Vec<[u32; 2]>, Vec<[u32; 2]>)>| {
+                    for x in &mut r {
+                        x.2.sort_unstable();
+                        x.3.sort_unstable();
+                    }
+                    r
+                };
+                let fast = norm(t.par_map_leaves(|view| t.leaf_manifold(view, d, true)));
+                let slow = norm(t.par_map_leaves(|view| t.leaf_manifold(view, d, false)));
+                let nm: usize = slow.iter().map(|x| x.0.len()).sum();
+                seen_kinds[0] += nm;
+                seen_kinds[1] += t.n_vertices() - nm;
+                seen_kinds[2] += slow.iter().map(|x| x.2.len()).sum::<usize>();
+                assert_eq!(fast, slow, "case {case} kv {kv}");
             }
         }
         assert!(seen_kinds.iter().all(|&n| n > 100), "{seen_kinds:?}");

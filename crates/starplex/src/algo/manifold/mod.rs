@@ -57,6 +57,7 @@ use crate::topo::{QueryError, TopCells, VertexStar};
 
 mod star;
 mod tets;
+mod tris;
 
 /// The answer of a manifold test.
 ///
@@ -112,9 +113,19 @@ pub trait StarCells {
     fn is_empty(&self) -> bool {
         self.len() == 0
     }
-    /// True when every cell is a tetrahedron (a structure may know it without looking).
-    fn all_tets(&self) -> bool {
-        (0..self.len()).all(|i| self.cell(i).0 == CellKind::Simplex(3))
+    /// True when every cell is of kind `kind` (a structure may know it without looking).
+    ///
+    /// ```
+    /// use starplex::algo::manifold::{StarCells, OwnedStar};
+    /// use starplex::cell::CellKind;
+    /// let mut s = OwnedStar::default();
+    /// s.push(CellKind::Simplex(2), &[0, 1, 2]);
+    /// assert!(s.all_of(CellKind::Simplex(2)));
+    /// s.push(CellKind::Quad, &[0, 2, 3, 4]);
+    /// assert!(!s.all_of(CellKind::Simplex(2)));
+    /// ```
+    fn all_of(&self, kind: CellKind) -> bool {
+        (0..self.len()).all(|i| self.cell(i).0 == kind)
     }
 }
 
@@ -269,7 +280,7 @@ impl StarTester {
         }
     }
 
-    /// The global convention; `fast` allows the tetrahedral short cut (equal answers, tested).
+    /// The global convention; `fast` allows the tetrahedral and triangular short cuts (equal answers, tested).
     pub(crate) fn test_vertex_global<S: StarCells + ?Sized>(
         &mut self,
         v: u32,

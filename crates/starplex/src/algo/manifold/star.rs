@@ -3,11 +3,12 @@
 //! dimension of the star). Exact up to d = 3 (links of dimension at most 2), necessary
 //! conditions above.
 use super::{Manifoldness, Scratch, StarCells};
+use crate::cell::CellKind;
 use crate::algo::unionfind::{find_in as find, UnionFind};
 use crate::topo::naive::edge_neighbours;
 
 /// Tests vertex `v` with star `star` and every edge `vw` with `w > v`; `fast`
-/// allows the tetrahedral short cut.
+/// allows the tetrahedral and triangular short cuts.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn star_tests<S: StarCells + ?Sized>(
     v: u32,
@@ -24,10 +25,13 @@ pub(super) fn star_tests<S: StarCells + ?Sized>(
     }
     if fast
         && d == 3
-        && star.all_tets()
+        && star.all_of(CellKind::Simplex(3))
         && let Some(r) = super::tets::star_tests_tets(v, star, &mut s.tet, edges_out)
     {
         return r;
+    }
+    if fast && d == 2 && star.all_of(CellKind::Simplex(2)) {
+        return super::tris::star_tests_tris(v, star, &mut s.ew, &mut s.parent, edges_out);
     }
     // edges at v: (w, local cell index)
     s.ew.clear();
