@@ -157,8 +157,14 @@ impl StellarTree {
             offs[i + 1] += offs[i];
         }
         let total = offs[nloc] as usize;
-        rows.clear();
-        rows.resize(offs[nloc + 1] as usize, 0);
+        // every slot below the spill row's end is written once below: no need to zero the
+        // part of the buffer that is reused
+        let need = offs[nloc + 1] as usize;
+        if rows.len() < need {
+            rows.resize(need, 0);
+        } else {
+            rows.truncate(need);
+        }
         let out = &mut rows[..];
         // fill using off as cursors (shifted), then restore
         if st.uniform.is_some() {
