@@ -423,7 +423,10 @@ fn sort_part<'a>(
                 w += 1;
             } else {
                 packed1.push(
-                    ((t[1] as u128) << 96) | ((t[2] as u128) << 64) | ((t[3] as u128) << 32) | c as u128,
+                    ((t[1] as u128) << 96)
+                        | ((t[2] as u128) << 64)
+                        | ((t[3] as u128) << 32)
+                        | c as u128,
                 );
             }
         }
@@ -445,7 +448,10 @@ fn sort_part<'a>(
         for &c in part.iter() {
             let (kind, vs) = in_cell(c);
             let (t, _) = distinct_leaves::<4>(vs, leaf_in);
-            let key = ((t[0] as u128) << 96) | ((t[1] as u128) << 64) | ((t[2] as u128) << 32) | t[3] as u128;
+            let key = ((t[0] as u128) << 96)
+                | ((t[1] as u128) << 64)
+                | ((t[2] as u128) << 32)
+                | t[3] as u128;
             packed.push((key, ((kind_code(kind) as u64) << 32) | c as u64));
         }
         packed.sort_unstable();

@@ -387,6 +387,9 @@ mod tests {
         assert!(seen_kinds.iter().all(|&n| n > 100), "{seen_kinds:?}");
     }
 
+    /// What [`StellarTree::leaf_manifold`] returns for one leaf.
+    type LeafManifold = (Vec<u32>, Vec<u32>, Vec<[u32; 2]>, Vec<[u32; 2]>);
+
     /// The triangle short cut answers like the generic test, on random (mostly non-manifold)
     /// sets of triangles, triangulated grids with holes, and stars mixing triangles and edges.
     #[test]
@@ -459,7 +462,7 @@ mod tests {
                 )
                 .unwrap();
                 let Some(d) = t.dim() else { continue };
-                let norm = |mut r: Vec<(Vec<u32>, Vec<u32>, Vec<[u32; 2]>, Vec<[u32; 2]>)>| {
+                let norm = |mut r: Vec<LeafManifold>| {
                     for x in &mut r {
                         x.2.sort_unstable();
                         x.3.sort_unstable();

@@ -3,8 +3,8 @@
 //! dimension of the star). Exact up to d = 3 (links of dimension at most 2), necessary
 //! conditions above.
 use super::{Manifoldness, Scratch, StarCells};
-use crate::cell::CellKind;
 use crate::algo::unionfind::{find_in as find, UnionFind};
+use crate::cell::CellKind;
 use crate::topo::naive::edge_neighbours;
 
 /// Tests vertex `v` with star `star` and every edge `vw` with `w > v`; `fast`
