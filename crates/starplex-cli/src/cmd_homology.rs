@@ -6,8 +6,9 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use serde_json::{json, Value};
-use starplex::algo::homology::{homology, write_generators_obj, Field, Homology, HomologyOptions};
-use starplex::topo::naive::VtIndex;
+use starplex::algo::homology::{
+    homology_indexed, write_generators_obj, Field, Homology, HomologyOptions,
+};
 
 use crate::common::{self, CliError, Ctx, InputArgs};
 
@@ -90,7 +91,7 @@ pub fn run(ctx: &Ctx, a: &HomologyArgs) -> Result<(), CliError> {
         .build()
         .map_err(|e| CliError::Other(e.to_string()))?;
     let t1 = Instant::now();
-    let h = pool.install(|| homology(&VtIndex::new(k), &opts));
+    let h = pool.install(|| homology_indexed(k, &opts));
     pb.finish_and_clear();
     let h = h.map_err(|e| {
         CliError::Input(

@@ -192,7 +192,7 @@ pub enum VertexOrder {
     Input,
     /// First appearance in the top cells.
     FirstAppearance,
-    /// Breadth-first from the smallest vertex of each component.
+    /// Breadth-first from the first vertex (in first-appearance order) of each component.
     BreadthFirst,
 }
 
@@ -385,7 +385,7 @@ fn alt_sum(b: &[u64]) -> i64 {
 /// # Errors
 /// [`HomologyError::TooLarge`] when the lower stars to enumerate exceed the default budget.
 pub fn betti_z2(k: &IndexedComplex) -> Result<Vec<u64>, HomologyError> {
-    Ok(homology(&VtIndex::new(k), &HomologyOptions::default())?.betti)
+    Ok(homology_indexed(k, &HomologyOptions::default())?.betti)
 }
 
 const CHUNK: usize = 4096;
@@ -420,35 +420,81 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
     s: &S,
     opts: &HomologyOptions,
 ) -> Result<Homology, HomologyError> {
-    let nv = s.n_vertices();
-    // the input order, else the order of first appearance in the cells, else breadth-first
-    let relabel = |to_new: Vec<u32>| {
-        let r = order::Relabeled::new(s, to_new);
-        homology_ordered(&r, opts, Some(&r.to_old))
-    };
-    match opts.order {
-        VertexOrder::Input => return homology_ordered(s, opts, None),
-        VertexOrder::FirstAppearance => return relabel(order::first_appearance_order(s)),
-        VertexOrder::BreadthFirst => return relabel(order::bfs_order(s)),
-        VertexOrder::Auto => {}
+    match choose_order(s, opts.order) {
+        None => homology_ordered(s, opts, None),
+        Some((f, to_old)) => homology_ordered(&f, opts, Some(&to_old)),
     }
+}
+
+/// [`homology`] of an indexed complex, building the vertex → cells relation only when the
+/// input order is kept (a new order is materialised from the cells alone): less memory than
+/// `homology(&VtIndex::new(k), opts)`, the same answer.
+///
+/// ```
+/// use starplex::algo::homology::{homology_indexed, HomologyOptions};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// for t in [[0, 1, 2], [1, 3, 2]] { b.push_cell(CellKind::Simplex(2), &t).unwrap(); }
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// assert_eq!(homology_indexed(&k, &HomologyOptions::default()).unwrap().betti, vec![1, 0, 0]);
+/// ```
+///
+/// # Errors
+/// As [`homology`].
+pub fn homology_indexed(
+    k: &IndexedComplex,
+    opts: &HomologyOptions,
+) -> Result<Homology, HomologyError> {
+    match choose_order(&order::CellsOf(k), opts.order) {
+        None => homology_ordered(&VtIndex::new(k), opts, None),
+        Some((f, to_old)) => homology_ordered(&f, opts, Some(&to_old)),
+    }
+}
+
+/// The vertex order: `None` for the input order, else the complex materialised in the new
+/// order and `to_old`. Auto: the input order unless it has many local minima, then the order
+/// of first appearance in the cells unless that has many too, then breadth-first (over the
+/// first-appearance numbering, whose cells lie close in memory). A complex whose vertex
+/// references overflow 32 bits keeps the input order.
+fn choose_order<S: TopCells + ?Sized>(s: &S, o: VertexOrder) -> Option<(order::Flat, Vec<u32>)> {
+    let nv = s.n_vertices();
     let few = 64 + nv / 1000;
     let t = std::time::Instant::now();
-    let minima = order::local_minima(s);
-    debug_time("local minima", t);
-    if minima > few {
-        let r = order::Relabeled::new(s, order::first_appearance_order(s));
-        let m2 = order::local_minima(&r);
-        debug_time("first-appearance order", t);
-        if m2 <= few {
-            return homology_ordered(&r, opts, Some(&r.to_old));
+    match o {
+        VertexOrder::Input => return None,
+        VertexOrder::Auto => {
+            let minima = order::count_minima(s, None);
+            debug_time("local minima", t);
+            if minima <= few {
+                return None;
+            }
         }
-        drop(r);
-        let to_new = order::bfs_order(s);
-        debug_time("bfs order", t);
-        return relabel(to_new);
+        _ => {}
     }
-    homology_ordered(s, opts, None)
+    let fa = order::first_appearance_order(s);
+    let mut f = order::Flat::new(s, &fa)?;
+    debug_time("first-appearance order", t);
+    let bfs = match o {
+        VertexOrder::FirstAppearance => false,
+        VertexOrder::BreadthFirst => true,
+        _ => order::count_minima(&f, None) > few,
+    };
+    let mut to_old = vec![0u32; nv];
+    if bfs {
+        let b = order::bfs_order(&f);
+        f.relabel(&b);
+        for (old, &x) in fa.iter().enumerate() {
+            to_old[b[x as usize] as usize] = old as u32;
+        }
+        debug_time("breadth-first order", t);
+    } else {
+        for (old, &x) in fa.iter().enumerate() {
+            to_old[x as usize] = old as u32;
+        }
+    }
+    Some((f, to_old))
 }
 
 /// Maps a cell of a relabeled view back to input numbering (sign of the change of orientation).
@@ -566,6 +612,11 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
         crit_lists.push(p.3);
     }
     debug_time("plan and critical cells", t0);
+    if std::env::var_os("STARPLEX_HOMOLOGY_TIMES").is_some() {
+        let explicit = apex.iter().filter(|&&a| a == EXPLICIT).count();
+        let alone = apex.iter().filter(|&&a| a == ALONE).count();
+        eprintln!("homology: {nv} vertices, {explicit} explicit lower stars, {alone} alone");
+    }
     let mut crit: Vec<Vec<Cell>> = vec![Vec::new(); dmax + 1];
     for c in crit_lists.into_iter().flatten() {
         let d = c.dim();

@@ -46,6 +46,10 @@ pub(crate) struct Scratch {
     m: Matching,
     /// Every top cell is known to be a simplex (their kinds need not be read).
     simplicial: bool,
+    /// The star last read by [`plan_vertex`] for an explicit lower star: its vertex, and
+    /// whether `lv` / `tops` hold its maximal masks (so that [`critical_cells`] right after
+    /// does not read the star again).
+    planned: Option<(u32, bool)>,
 }
 
 impl Scratch {
@@ -106,6 +110,7 @@ fn read_lower_sets<S: TopCells + VertexStar + ?Sized>(
     v: u32,
     w: &mut Scratch,
 ) -> (bool, bool, u128) {
+    w.planned = None;
     s.vertex_top_cells(VertexId(v), &mut w.cells);
     w.lower.clear();
     w.starts.clear();
@@ -177,6 +182,7 @@ pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
         };
     }
     if !all_simplices {
+        w.planned = Some((v, false));
         return VertexPlan {
             apex: EXPLICIT,
             estimate,
@@ -186,6 +192,7 @@ pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
         // a cone iff one vertex is in every maximal lower set: the smallest such is the apex
         let common = w.tops.iter().fold(u64::MAX, |a, &m| a & m);
         let apex = if common == 0 {
+            w.planned = Some((v, true));
             EXPLICIT
         } else {
             w.lv[common.trailing_zeros() as usize]
@@ -230,6 +237,7 @@ pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
             estimate,
         };
     }
+    w.planned = Some((v, false));
     VertexPlan {
         apex: EXPLICIT,
         estimate,
@@ -306,11 +314,18 @@ fn mask_cell(lv: &[u32], mask: u64, v: u32) -> Cell {
 /// Enumerates L(v) into `w.masks` (mask form, returns true) or `w.general` (sorted by key), and
 /// its facet relation into `w.m`.
 fn enumerate<S: TopCells + VertexStar + ?Sized>(s: &S, v: u32, w: &mut Scratch) -> bool {
-    let (_, all_simplices, _) = read_lower_sets(s, v, w);
+    // the star just read by `plan_vertex`, or a fresh read
+    let masks = match w.planned.take() {
+        Some((pv, masks)) if pv == v => masks,
+        _ => {
+            let (_, all, _) = read_lower_sets(s, v, w);
+            all && maximal_masks(w)
+        }
+    };
     w.m.fstart.clear();
     w.m.facets.clear();
     w.m.dims.clear();
-    if all_simplices && maximal_masks(w) {
+    if masks {
         let m = &mut w.m;
         w.masks.clear();
         for &top in &w.tops {

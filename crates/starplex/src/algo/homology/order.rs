@@ -1,38 +1,14 @@
 //! The vertex order that drives the lower-star matching. Input numberings are often far from
 //! a good Morse function (a subdivided mesh numbers its old vertices first, so every one of
 //! them is a local minimum), which leaves many critical cells. When the input order has many
-//! local minima the vertices are renumbered in breadth-first order (from the smallest vertex of
-//! each component), where only the roots are local minima; the algorithm then runs on a
-//! relabeled view and maps its answers back.
+//! local minima the vertices are renumbered (first appearance in the cells, else breadth-first,
+//! where only the roots are local minima), the top cells are materialised once in the new
+//! numbering ([`Flat`]), the algorithm runs on that and its answers are mapped back.
 use std::collections::VecDeque;
-
-use rayon::prelude::*;
 
 use crate::cell::CellKind;
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
-
-/// Vertices with no neighbour of smaller id (local minima of the input order).
-pub(crate) fn local_minima<S: TopCells + VertexStar + Sync + ?Sized>(s: &S) -> usize {
-    (0..s.n_vertices() as u32)
-        .into_par_iter()
-        .with_min_len(4096)
-        .map_init(
-            || (Vec::new(), Vec::new()),
-            |(cells, verts), v| {
-                s.vertex_top_cells(VertexId(v), cells);
-                for &c in cells.iter() {
-                    verts.clear();
-                    s.top_cell_vertices(c, verts);
-                    if verts.iter().any(|x| x.0 < v) {
-                        return 0usize;
-                    }
-                }
-                1
-            },
-        )
-        .sum()
-}
 
 /// Appends the edge neighbours of `v` in top cell `c` (all other vertices for a simplex).
 fn neighbours(kind: CellKind, verts: &[VertexId], v: VertexId, out: &mut Vec<u32>) {
@@ -86,49 +62,6 @@ pub(crate) fn bfs_order<S: TopCells + VertexStar + ?Sized>(s: &S) -> Vec<u32> {
     to_new
 }
 
-/// A structure seen through a vertex renumbering.
-pub(crate) struct Relabeled<'a, S: ?Sized> {
-    pub s: &'a S,
-    pub to_new: Vec<u32>,
-    pub to_old: Vec<u32>,
-}
-
-impl<'a, S: ?Sized> Relabeled<'a, S> {
-    pub fn new(s: &'a S, to_new: Vec<u32>) -> Self {
-        let mut to_old = vec![0u32; to_new.len()];
-        for (old, &new) in to_new.iter().enumerate() {
-            to_old[new as usize] = old as u32;
-        }
-        Relabeled { s, to_new, to_old }
-    }
-}
-
-impl<S: TopCells + ?Sized> TopCells for Relabeled<'_, S> {
-    fn n_vertices(&self) -> usize {
-        self.s.n_vertices()
-    }
-    fn n_top_cells(&self) -> usize {
-        self.s.n_top_cells()
-    }
-    fn top_cell_kind(&self, c: CellId) -> CellKind {
-        self.s.top_cell_kind(c)
-    }
-    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
-        let start = out.len();
-        self.s.top_cell_vertices(c, out);
-        for v in &mut out[start..] {
-            *v = VertexId(self.to_new[v.0 as usize]);
-        }
-    }
-}
-
-impl<S: VertexStar + ?Sized> VertexStar for Relabeled<'_, S> {
-    fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
-        self.s
-            .vertex_top_cells(VertexId(self.to_old[v.0 as usize]), out);
-    }
-}
-
 /// Numbering by first appearance in the top cells (a streaming pass): in a mesh whose cells
 /// are listed coherently, a vertex first seen in a cell with older vertices is not a local
 /// minimum. `to_new[old]`; isolated vertices come last.
@@ -154,4 +87,241 @@ pub(crate) fn first_appearance_order<S: TopCells + ?Sized>(s: &S) -> Vec<u32> {
         }
     }
     to_new
+}
+
+/// The top cells of an indexed complex (no vertex → cells relation).
+pub(crate) struct CellsOf<'a>(pub &'a crate::complex::IndexedComplex);
+
+impl TopCells for CellsOf<'_> {
+    fn n_vertices(&self) -> usize {
+        self.0.n_vertices()
+    }
+    fn n_top_cells(&self) -> usize {
+        self.0.n_cells()
+    }
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        self.0.cell(c).kind
+    }
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        out.extend(self.0.cell(c).vertices.iter().map(|&v| VertexId(v)));
+    }
+}
+
+/// Local minima of the order `to_new` (the input order when `None`): vertices with no
+/// incident top cell holding a vertex that comes earlier. One streaming pass over the top
+/// cells (a vertex is not a minimum as soon as a cell holds it and an earlier vertex); no
+/// vertex → cells relation is read.
+pub(crate) fn count_minima<S: TopCells + ?Sized>(s: &S, to_new: Option<&[u32]>) -> usize {
+    let n = s.n_vertices();
+    let mut not_min = vec![false; n];
+    let mut verts = Vec::new();
+    let key = |x: u32| to_new.map_or(x, |t| t[x as usize]);
+    for c in 0..s.n_top_cells() {
+        verts.clear();
+        s.top_cell_vertices(CellId(c as u32), &mut verts);
+        let Some(mn) = verts.iter().map(|x| key(x.0)).min() else {
+            continue;
+        };
+        for x in &verts {
+            if key(x.0) != mn {
+                not_min[x.0 as usize] = true;
+            }
+        }
+    }
+    not_min.iter().filter(|&&b| !b).count()
+}
+
+/// The top cells materialised in a new vertex numbering: vertices renumbered (a simplex lists
+/// its vertices sorted; a CP cell keeps its kind's order), cells renumbered by their smallest
+/// new vertex (a counting sort: the cells around consecutive vertices lie close in memory),
+/// and the vertex → cells relation in the new numbering. Built once, instead of mapping every
+/// vertex read through a relabeled view and looking every cell up in its block.
+pub(crate) struct Flat {
+    n_vertices: usize,
+    n_cells: usize,
+    /// The kind of every cell when they share one.
+    uniform: Option<CellKind>,
+    /// Per-cell kinds otherwise.
+    kinds: Vec<CellKind>,
+    /// Vertices per cell when uniform.
+    arity: usize,
+    /// Cell `c` is `verts[starts[c]..starts[c + 1]]` when not uniform.
+    starts: Vec<u32>,
+    verts: Vec<u32>,
+    vt: crate::csr::Csr,
+}
+
+impl Flat {
+    /// The top cells of `s` in the numbering `to_new`; `None` when the vertex references do
+    /// not fit 32-bit offsets.
+    pub(crate) fn new<S: TopCells + ?Sized>(s: &S, to_new: &[u32]) -> Option<Flat> {
+        let nv = s.n_vertices();
+        let nc = s.n_top_cells();
+        let mut verts: Vec<VertexId> = Vec::new();
+        // kinds, reference count, and the smallest new vertex of every cell (in `slot`)
+        let mut uniform: Option<CellKind> = None;
+        let mut mixed = false;
+        let mut refs = 0u64;
+        let mut count = vec![0u32; nv + 1];
+        let mut slot = vec![0u32; nc];
+        for (c, sl) in slot.iter_mut().enumerate() {
+            let k = s.top_cell_kind(CellId(c as u32));
+            match uniform {
+                None if c == 0 => uniform = Some(k),
+                Some(u) if u != k => mixed = true,
+                _ => {}
+            }
+            verts.clear();
+            s.top_cell_vertices(CellId(c as u32), &mut verts);
+            refs += verts.len() as u64;
+            let mn = verts
+                .iter()
+                .map(|v| to_new[v.0 as usize])
+                .min()
+                .unwrap_or(0);
+            *sl = mn;
+            count[mn as usize + 1] += 1;
+        }
+        if refs >= u32::MAX as u64 {
+            return None;
+        }
+        if mixed {
+            uniform = None;
+        }
+        for i in 0..nv {
+            count[i + 1] += count[i];
+        }
+        // the slot of each cell: a stable counting sort by smallest new vertex
+        for sl in slot.iter_mut() {
+            let mn = *sl as usize;
+            *sl = count[mn];
+            count[mn] += 1;
+        }
+        drop(count);
+        let arity = uniform.map_or(0, |k| k.n_vertices());
+        let (mut kinds, mut starts) = (Vec::new(), Vec::new());
+        if uniform.is_none() {
+            let mut len = vec![0u32; nc + 1];
+            kinds = vec![CellKind::Simplex(0); nc];
+            for (c, &sl) in slot.iter().enumerate() {
+                let k = s.top_cell_kind(CellId(c as u32));
+                len[sl as usize + 1] = k.n_vertices() as u32;
+                kinds[sl as usize] = k;
+            }
+            for i in 0..nc {
+                len[i + 1] += len[i];
+            }
+            starts = len;
+        }
+        let mut flat = vec![0u32; refs as usize];
+        for (c, &sl) in slot.iter().enumerate() {
+            verts.clear();
+            s.top_cell_vertices(CellId(c as u32), &mut verts);
+            let a = if uniform.is_some() {
+                sl as usize * arity
+            } else {
+                starts[sl as usize] as usize
+            };
+            for (d, v) in flat[a..a + verts.len()].iter_mut().zip(&verts) {
+                *d = to_new[v.0 as usize];
+            }
+        }
+        drop(slot);
+        let mut f = Flat {
+            n_vertices: nv,
+            n_cells: nc,
+            uniform,
+            kinds,
+            arity,
+            starts,
+            verts: flat,
+            vt: crate::csr::Csr {
+                offsets: vec![0u32; nv + 1],
+                targets: vec![0u32; refs as usize],
+            },
+        };
+        f.sort_and_index();
+        Some(f)
+    }
+
+    /// Renumbers the vertices in place (`to_new[old]`): cells keep their places, simplices
+    /// are sorted again and the vertex → cells relation is rebuilt in its own buffers.
+    pub(crate) fn relabel(&mut self, to_new: &[u32]) {
+        for v in &mut self.verts {
+            *v = to_new[*v as usize];
+        }
+        self.sort_and_index();
+    }
+
+    /// Sorts the vertices of every simplex and builds the vertex → cells relation (cells in
+    /// increasing order: rows are sorted).
+    fn sort_and_index(&mut self) {
+        for c in 0..self.n_cells {
+            if self.kind(c).is_simplex() {
+                let r = self.range(c);
+                self.verts[r].sort_unstable();
+            }
+        }
+        let off = &mut self.vt.offsets;
+        off.iter_mut().for_each(|x| *x = 0);
+        for &v in &self.verts {
+            off[v as usize + 1] += 1;
+        }
+        for i in 0..self.n_vertices {
+            off[i + 1] += off[i];
+        }
+        let mut fill = off.clone();
+        for c in 0..self.n_cells {
+            for &v in &self.verts[self.range(c)] {
+                self.vt.targets[fill[v as usize] as usize] = c as u32;
+                fill[v as usize] += 1;
+            }
+        }
+    }
+
+    #[inline]
+    fn kind(&self, c: usize) -> CellKind {
+        match self.uniform {
+            Some(k) => k,
+            None => self.kinds[c],
+        }
+    }
+
+    #[inline]
+    fn range(&self, c: usize) -> std::ops::Range<usize> {
+        if self.uniform.is_some() {
+            c * self.arity..(c + 1) * self.arity
+        } else {
+            self.starts[c] as usize..self.starts[c + 1] as usize
+        }
+    }
+}
+
+impl TopCells for Flat {
+    fn n_vertices(&self) -> usize {
+        self.n_vertices
+    }
+    fn n_top_cells(&self) -> usize {
+        self.n_cells
+    }
+    #[inline]
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        self.kind(c.0 as usize)
+    }
+    #[inline]
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        out.extend(
+            self.verts[self.range(c.0 as usize)]
+                .iter()
+                .map(|&v| VertexId(v)),
+        );
+    }
+}
+
+impl VertexStar for Flat {
+    #[inline]
+    fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>) {
+        out.clear();
+        out.extend(self.vt.row(v.index()).iter().map(|&c| CellId(c)));
+    }
 }
