@@ -186,6 +186,60 @@ proptest! {
     }
 }
 
+/// Random pure triangle complexes on `n` vertices (boundaries, non-manifold edges and
+/// vertices, several components): the stars the triangle-only link test handles.
+fn random_triangles() -> impl Strategy<Value = (usize, Vec<Vec<u32>>)> {
+    (4usize..=8).prop_flat_map(|n| {
+        let tri = proptest::collection::btree_set(0..n as u32, 3..=3);
+        (Just(n), proptest::collection::btree_set(tri, 1..=14)).prop_map(|(n, tris)| {
+            (
+                n,
+                tris.into_iter().map(|t| t.into_iter().collect()).collect(),
+            )
+        })
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 300,
+        rng_seed: RngSeed::Fixed(0x7a1),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    /// On 300 random pure triangle complexes, where the top-based test takes its triangle-star
+    /// path: it decides as the definition on every edge, in both modes and both directions,
+    /// also after contractions (the in-place edit of the tops); contracting greedily with the
+    /// extended condition keeps the brute-force Betti numbers.
+    #[test]
+    fn triangle_link_condition_is_the_definition((n, tops) in random_triangles()) {
+        let mut w = TopSimplices::from_tops(n, &tops).unwrap();
+        let before = betti_brute(&w.sorted_tops());
+        let mut scratch = LinkScratch::default();
+        loop {
+            let mut next = None;
+            for (a, b) in edges(&w) {
+                for mode in [LinkMode::Homology, LinkMode::Manifold] {
+                    let full = link_condition_full(&w, a, b, mode, 1 << 24).unwrap();
+                    for (s, t) in [(a, b), (b, a)] {
+                        let fast = link_condition(&w, s, t, mode, &mut scratch);
+                        prop_assert_eq!(fast, full, "{:?} {}-{} of {:?}", mode, s, t, w.sorted_tops());
+                    }
+                    if full && mode == LinkMode::Manifold && next.is_none() {
+                        next = Some((a, b));
+                    }
+                }
+            }
+            let Some((a, b)) = next else { break };
+            prop_assert!(w.contract(a, b));
+            prop_assert_eq!(&betti_brute(&w.sorted_tops()), &before, "after {}-{}", a, b);
+            let st = w.sorted_tops();
+            prop_assert!(TopSimplices::from_tops(n, &st).is_ok(), "{:?}", st);
+        }
+    }
+}
+
 /// Refused contractions that would have changed the homology, built to do so.
 #[test]
 fn refused_contractions_would_change_betti() {

@@ -61,6 +61,22 @@ pub struct LinkScratch {
     sb: Vec<Top>,
     tau: Vec<u32>,
     filtered: Vec<u32>,
+    tri: TriScratch,
+}
+
+/// Buffers of the triangle-star test ([`tri_link_condition`]).
+#[derive(Default, Debug)]
+struct TriScratch {
+    /// Link vertices of a star, two per triangle (sorted to count them).
+    verts: Vec<u32>,
+    /// The link elements of `a` (`b`) not through `b` (`a`), as sorted pairs (ω = [`OMEGA`]).
+    ea: Vec<(u32, u32)>,
+    eb: Vec<(u32, u32)>,
+    /// Their vertices, sorted and deduplicated.
+    va: Vec<u32>,
+    vb: Vec<u32>,
+    /// Lk(ab): the third vertices of the triangles through ab (and ω on a boundary edge).
+    lab: Vec<u32>,
 }
 
 /// The tops of the (extended) star of `v`: the real ones, and in `Manifold` mode each boundary
@@ -180,11 +196,17 @@ pub fn link_condition_in(
     if a == b || !w.is_alive(a) || !w.is_alive(b) {
         return false;
     }
+    if region.is_none()
+        && let Some(answer) = tri_link_condition(w, a, b, mode, &mut scratch.tri)
+    {
+        return answer;
+    }
     let LinkScratch {
         sa,
         sb,
         tau,
         filtered,
+        ..
     } = scratch;
     extended_star_in(w, a, mode, region, sa, filtered);
     extended_star_in(w, b, mode, region, sb, filtered);
@@ -212,6 +234,122 @@ pub fn link_condition_in(
         }
     }
     true
+}
+
+/// The same top-based test specialised to stars made of triangles only (`None` otherwise, and
+/// the general test runs): the usual case of surface simplification, with no face built and no
+/// allocation.
+///
+/// With `s ∋ a`, `t ∋ b` the elements of the (extended) stars not through `ab`, every
+/// intersection `s ∩ t` must lie in a top through `ab`; since `a, b ∉ s ∩ t` and a top through
+/// `ab` is a triangle `abx` (or `abω` on a boundary edge), that means `s ∩ t` is a single
+/// vertex of `Lk(ab) = {x : abx} (∪ {ω})`. So, with the elements written as link edges
+/// (`xy` for the triangle `axy`, `xω` for the boundary edge `ax`), the condition is:
+/// (1) every vertex of a link edge of `a` and of a link edge of `b` is in `Lk(ab)`, and
+/// (2) no link edge of `a` is also one of `b`.
+fn tri_link_condition(
+    w: &TopSimplices,
+    a: u32,
+    b: u32,
+    mode: LinkMode,
+    s: &mut TriScratch,
+) -> Option<bool> {
+    let (sa, sb) = (w.star(a), w.star(b));
+    if sa.iter().chain(sb).any(|&t| w.top(t).len() != 3) {
+        return None;
+    }
+    s.lab.clear();
+    let mut any_edge = false;
+    for &t in sa {
+        let top = w.top(t);
+        if top.contains(&b) {
+            any_edge = true;
+            s.lab
+                .extend(top.iter().copied().filter(|&x| x != a && x != b));
+        }
+    }
+    if !any_edge {
+        return Some(false);
+    }
+    let manifold = mode == LinkMode::Manifold;
+    let ab_boundary = link_elements(w, a, b, manifold, &mut s.verts, &mut s.ea);
+    if ab_boundary {
+        s.lab.push(OMEGA);
+    }
+    link_elements(w, b, a, manifold, &mut s.verts, &mut s.eb);
+    for (e, v) in [(&s.ea, &mut s.va), (&s.eb, &mut s.vb)] {
+        v.clear();
+        v.extend(e.iter().flat_map(|&(x, y)| [x, y]));
+        v.sort_unstable();
+        v.dedup();
+    }
+    // (1): the common vertices are in Lk(ab)
+    let (mut i, mut j) = (0, 0);
+    while i < s.va.len() && j < s.vb.len() {
+        match s.va[i].cmp(&s.vb[j]) {
+            std::cmp::Ordering::Less => i += 1,
+            std::cmp::Ordering::Greater => j += 1,
+            std::cmp::Ordering::Equal => {
+                if !s.lab.contains(&s.va[i]) {
+                    return Some(false);
+                }
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    // (2): no shared link edge
+    Some(!s.ea.iter().any(|e| s.eb.contains(e)))
+}
+
+/// The link edges of `v` not through `other` (its star is made of triangles): `xy` for each
+/// triangle `vxy`, and in `Manifold` mode `xω` for each boundary edge `vx` (in one triangle
+/// of the star). Returns true when `v other` is a boundary edge (in `Manifold` mode).
+fn link_elements(
+    w: &TopSimplices,
+    v: u32,
+    other: u32,
+    manifold: bool,
+    verts: &mut Vec<u32>,
+    out: &mut Vec<(u32, u32)>,
+) -> bool {
+    out.clear();
+    verts.clear();
+    for &t in w.star(v) {
+        let top = w.top(t);
+        let (x, y) = match (top[0] == v, top[1] == v) {
+            (true, _) => (top[1], top[2]),
+            (_, true) => (top[0], top[2]),
+            _ => (top[0], top[1]),
+        };
+        verts.push(x);
+        verts.push(y);
+        if x != other && y != other {
+            out.push((x.min(y), x.max(y)));
+        }
+    }
+    if !manifold {
+        return false;
+    }
+    verts.sort_unstable();
+    let mut boundary_other = false;
+    let mut i = 0;
+    while i < verts.len() {
+        let x = verts[i];
+        let mut j = i + 1;
+        while j < verts.len() && verts[j] == x {
+            j += 1;
+        }
+        if j - i == 1 {
+            if x == other {
+                boundary_other = true;
+            } else {
+                out.push((x, OMEGA));
+            }
+        }
+        i = j;
+    }
+    boundary_other
 }
 
 /// When the tops are labelled ([`TopSimplices::set_cell_labels`]): the extended link condition

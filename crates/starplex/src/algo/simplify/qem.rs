@@ -5,8 +5,8 @@
 //! (the boundary triangles of a tetrahedral mesh), plus, on a surface's boundary edges, planes
 //! through the edge perpendicular to the triangle (weight [`BOUNDARY_WEIGHT`]), plus a tiny
 //! point quadric that makes every system solvable. Edges are contracted cheapest first (a radix
-//! heap with per-vertex stamps for lazy invalidation) to the point minimising the summed
-//! quadric. Every contraction is checked first by
+//! heap; an entry is current when its key equals the recomputed cost) to the point minimising
+//! the summed quadric. Every contraction is checked first by
 //! * the extended link condition ([`LinkMode::Manifold`]): the Betti numbers are kept, no
 //!   non-manifold vertex or edge appears, the boundary stays a manifold with the same loops;
 //! * geometry: no triangle whose normal turns by more than ~78° (cos < 0.2) or becomes
@@ -35,8 +35,6 @@
 //! assert_eq!(s.n_contractions as usize, 25 - w.n_alive_vertices());
 //! assert!(s.mean_error >= 0.0);
 //! ```
-
-use rustc_hash::FxHashMap;
 
 use super::link_condition::{link_condition, region_condition, LinkMode, LinkScratch};
 use super::tops::TopSimplices;
@@ -127,33 +125,36 @@ impl Quadric {
             + 2.0 * q[8] * z
             + q[9]
     }
-    /// The minimiser, when the 3x3 system is well conditioned.
+    /// The minimiser, when the 3x3 system is well conditioned: the symmetric system solved by
+    /// its cofactors (the adjugate of a symmetric matrix is symmetric: six cofactors, one
+    /// determinant test, no copy of the matrix).
     fn optimum(&self) -> Option<[f64; 3]> {
-        let q = &self.0;
-        let m = [[q[0], q[1], q[2]], [q[1], q[4], q[5]], [q[2], q[5], q[7]]];
-        let r = [-q[3], -q[6], -q[8]];
-        let det = det3(m);
-        let scale = q[0].abs() + q[4].abs() + q[7].abs();
+        let [a, b, c, d, e, f, g, h, i, _] = self.0;
+        // | a b c |       | -d |
+        // | b e f | x  =  | -g |
+        // | c f h |       | -i |
+        let c00 = e * h - f * f;
+        let c01 = c * f - b * h;
+        let c02 = b * f - c * e;
+        let det = a * c00 + b * c01 + c * c02;
+        let scale = a.abs() + e.abs() + h.abs();
         if !det.is_finite() || det.abs() <= 1e-12 * scale * scale * scale {
             return None;
         }
-        let col = |i: usize| {
-            let mut mi = m;
-            for (row, ri) in mi.iter_mut().zip(r) {
-                row[i] = ri;
-            }
-            det3(mi) / det
-        };
-        let x = [col(0), col(1), col(2)];
+        let c11 = a * h - c * c;
+        let c12 = b * c - a * f;
+        let c22 = a * e - b * b;
+        let inv = 1.0 / det;
+        let (r0, r1, r2) = (-d, -g, -i);
+        let x = [
+            (c00 * r0 + c01 * r1 + c02 * r2) * inv,
+            (c01 * r0 + c11 * r1 + c12 * r2) * inv,
+            (c02 * r0 + c12 * r1 + c22 * r2) * inv,
+        ];
         x.iter().all(|v| v.is_finite()).then_some(x)
     }
 }
 
-fn det3(m: [[f64; 3]; 3]) -> f64 {
-    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-}
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
@@ -171,22 +172,66 @@ fn normal(p: [[f64; 3]; 3]) -> [f64; 3] {
     cross(sub(p[1], p[0]), sub(p[2], p[0]))
 }
 
-/// A queued edge packed in 128 bits, so the heap compares one integer: the cost as f32 bits
-/// (monotonic for costs >= 0), the two vertices, and 16 bits of each vertex's stamp (a stale
-/// entry that slips through is harmless: its cost and position are recomputed when popped).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-struct Entry(u128);
+/// A queued edge in 12 bytes: a 32-bit key and the two vertices. The key's upper 24 bits are
+/// the cost (its f32 bits without the sign and the 7 lowest mantissa bits: monotonic for
+/// non-negative costs, 2^-16 relative precision), its lower 8 bits 4 bits of each vertex's
+/// stamp (bumped when the vertex survives a contraction). An entry is current when the stamps
+/// match and its cost bits equal those of the edge's cost recomputed when it is popped: every
+/// contraction queues again each edge of the survivor with its new cost and no other edge's
+/// cost changes, so each live edge always has a current entry. The stamps reject most older
+/// entries without recomputing a cost; one that slips through (a stamp wrapped) fails the cost
+/// test, or carries the right cost anyway.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Entry {
+    key: u32,
+    a: u32,
+    b: u32,
+}
+
+impl Entry {
+    fn new(cost: f64, a: u32, b: u32, stamp: &[u8]) -> Entry {
+        let st = (stamp[a as usize] as u32 & 15) << 4 | (stamp[b as usize] as u32 & 15);
+        Entry {
+            key: cost_bits(cost) << 8 | st,
+            a,
+            b,
+        }
+    }
+    /// The stamps still match the vertices'.
+    fn fresh(self, stamp: &[u8]) -> bool {
+        let st = (stamp[self.a as usize] as u32 & 15) << 4 | (stamp[self.b as usize] as u32 & 15);
+        self.key & 0xff == st
+    }
+    /// The cost bits are those of `cost`.
+    fn current(self, cost: f64) -> bool {
+        self.key >> 8 == cost_bits(cost)
+    }
+}
+
+/// The 24 cost bits of a key (NaN last, negatives as 0).
+fn cost_bits(cost: f64) -> u32 {
+    let c = cost as f32;
+    let bits = if c.is_nan() {
+        f32::MAX.to_bits()
+    } else {
+        c.max(0.0).to_bits()
+    };
+    bits >> 7
+}
 
 /// A radix heap over the entries' 32-bit cost keys (Ahuja, Mehlhorn, Orlin, Tarjan): a bucket
 /// per highest bit in which a key differs from the last key popped. Pushes are appends, and an
 /// entry moves to a lower bucket at most 32 times, so the millions of entries of a big mesh are
 /// touched sequentially instead of by the scattered sifts of a binary or 4-ary heap (which took
-/// 28% of the time on tri_armadillo_x16). It needs keys that never go below the last one
-/// popped: a key that would is raised to it, which changes nothing, since every popped entry's
-/// cost is recomputed (it was the smallest in the queue anyway). Entries of one key come out
-/// last in, first out.
+/// 28% of the time on tri_armadillo_x16). A key below the last one popped (a contraction can
+/// make an edge cheaper than the current minimum) goes to bucket 0, the bucket of the keys
+/// equal to the last: it is smaller than everything in the other buckets, so it comes out
+/// next, keeping its own key (entries of bucket 0 come out last in, first out). A bucket that
+/// was emptied by a redistribution gives its memory back when it is large, so the heap's
+/// footprint follows the live entries instead of the largest each bucket ever held.
 struct RadixHeap {
     last: u32,
+    len: usize,
     buckets: [Vec<Entry>; 33],
 }
 
@@ -194,6 +239,7 @@ impl Default for RadixHeap {
     fn default() -> Self {
         RadixHeap {
             last: 0,
+            len: 0,
             buckets: std::array::from_fn(|_| Vec::new()),
         }
     }
@@ -206,60 +252,45 @@ impl RadixHeap {
     /// Empties the heap (keeping the buckets' memory) and starts again from key 0.
     fn clear(&mut self) {
         self.last = 0;
+        self.len = 0;
         for b in &mut self.buckets {
             b.clear();
         }
     }
     fn push(&mut self, e: Entry) {
-        let e = if e.key() < self.last {
-            e.with_key(self.last)
+        let i = if e.key <= self.last {
+            0
         } else {
-            e
+            Self::bucket(e.key, self.last)
         };
-        self.buckets[Self::bucket(e.key(), self.last)].push(e);
+        self.buckets[i].push(e);
+        self.len += 1;
+    }
+    /// Drops the entries `keep` refuses (the stale ones), bucket by bucket, in place.
+    fn retain(&mut self, mut keep: impl FnMut(Entry) -> bool) {
+        for b in &mut self.buckets {
+            b.retain(|&e| keep(e));
+        }
+        self.len = self.buckets.iter().map(Vec::len).sum();
     }
     fn pop(&mut self) -> Option<Entry> {
         if self.buckets[0].is_empty() {
             let i = (1..33).find(|&i| !self.buckets[i].is_empty())?;
             let mut b = std::mem::take(&mut self.buckets[i]);
-            let m = b.iter().map(|e| e.key()).min().unwrap_or(self.last);
+            let m = b.iter().map(|e| e.key).min().unwrap_or(self.last);
             self.last = m;
             for e in b.drain(..) {
-                self.buckets[Self::bucket(e.key(), m)].push(e);
+                self.buckets[Self::bucket(e.key, m)].push(e);
+            }
+            // a large emptied bucket gives its memory back (it refills by pushes)
+            if b.capacity() > 4096 {
+                b = Vec::new();
             }
             self.buckets[i] = b;
         }
-        self.buckets[0].pop()
-    }
-}
-
-impl Entry {
-    fn new(cost: f64, a: u32, b: u32, stamp: &[u32]) -> Entry {
-        let c = cost as f32;
-        let key = if c.is_nan() {
-            f32::MAX.to_bits()
-        } else {
-            c.max(0.0).to_bits()
-        };
-        let st = (stamp[a as usize] & 0xffff) << 16 | (stamp[b as usize] & 0xffff);
-        Entry((key as u128) << 96 | (a as u128) << 64 | (b as u128) << 32 | st as u128)
-    }
-    fn key(self) -> u32 {
-        (self.0 >> 96) as u32
-    }
-    fn with_key(self, key: u32) -> Entry {
-        Entry(self.0 & ((1u128 << 96) - 1) | (key as u128) << 96)
-    }
-    fn a(self) -> u32 {
-        (self.0 >> 64) as u32
-    }
-    fn b(self) -> u32 {
-        (self.0 >> 32) as u32
-    }
-    fn fresh(self, stamp: &[u32]) -> bool {
-        let st = self.0 as u32;
-        (stamp[self.a() as usize] & 0xffff) == st >> 16
-            && (stamp[self.b() as usize] & 0xffff) == st & 0xffff
+        let e = self.buckets[0].pop();
+        self.len -= e.is_some() as usize;
+        e
     }
 }
 
@@ -306,92 +337,85 @@ pub fn simplify_qem(
 ) -> Result<QemStats, SimplifyError> {
     let d = qem_dimension(w).ok_or(SimplifyError::NotAMesh)?;
     let n = w.n_vertices();
-    let mut pos: Vec<[f64; 3]> = (0..n as u32)
-        .map(|v| {
-            let p = w.point(v);
-            [p[0], p[1], p.get(2).copied().unwrap_or(0.0)]
-        })
+    let stride = w.stride;
+    // the positions move to 3D points for the run (the coordinates are written back at the end)
+    let mut pos: Vec<[f64; 3]> = std::mem::take(&mut w.coords)
+        .chunks_exact(stride)
+        .map(|p| [p[0], p[1], p.get(2).copied().unwrap_or(0.0)])
         .collect();
     let mut quad = vec![Quadric::default(); n];
     let mut boundary = vec![false; n];
     // surface triangles: the triangles themselves, or the boundary faces of the tets
-    let mut surface: Vec<[u32; 3]> = Vec::new();
-    if d == 2 {
-        surface.extend(w.tops().map(|t| [t[0], t[1], t[2]]));
-    } else {
-        let mut count: FxHashMap<[u32; 3], (u32, [u32; 3])> = FxHashMap::default();
-        for t in w.tops() {
-            // faces oriented outward for a positive tet (facet i omits vertex i, sign (-1)^i)
-            for (f, flip) in [
-                ([1, 2, 3], false),
-                ([0, 2, 3], true),
-                ([0, 1, 3], false),
-                ([0, 1, 2], true),
-            ] {
-                let mut face = [t[f[0]], t[f[1]], t[f[2]]];
-                if flip {
-                    face.swap(0, 1);
-                }
-                let mut key = face;
-                key.sort_unstable();
-                count.entry(key).or_insert((0, face)).0 += 1;
-            }
-        }
-        let mut faces: Vec<([u32; 3], [u32; 3])> = count
-            .into_iter()
-            .filter(|(_, (c, _))| *c == 1)
-            .map(|(k, (_, f))| (k, f))
-            .collect();
-        faces.sort_unstable();
-        surface.extend(faces.into_iter().map(|(_, f)| f));
-        for f in &surface {
-            for &v in f {
-                boundary[v as usize] = true;
-            }
-        }
-    }
+    let tet_surface = (d == 3).then(|| boundary_faces(w));
     let mut total_area = 0.0;
-    for f in &surface {
+    let mut n_surface = 0usize;
+    let mut add_plane = |f: [u32; 3], quad: &mut [Quadric]| {
         let p = f.map(|v| pos[v as usize]);
         let nrm = normal(p);
         let len = dot(nrm, nrm).sqrt();
         if len > 0.0 {
             let u = nrm.map(|x| x / len);
             let q = Quadric::plane(u, -dot(u, p[0]), len / 2.0);
-            for &v in f {
+            for &v in &f {
                 quad[v as usize].add(&q);
             }
         }
         total_area += len / 2.0;
-    }
-    if d == 2 {
-        // boundary edges: in exactly one triangle
-        let mut count: FxHashMap<(u32, u32), (u32, usize)> = FxHashMap::default();
-        for (i, f) in surface.iter().enumerate() {
-            for k in 0..3 {
-                let (u, v) = (f[k], f[(k + 1) % 3]);
-                count.entry((u.min(v), u.max(v))).or_insert((0, i)).0 += 1;
+        n_surface += 1;
+    };
+    match &tet_surface {
+        Some(faces) => {
+            for &f in faces {
+                add_plane(f, &mut quad);
+                for v in f {
+                    boundary[v as usize] = true;
+                }
             }
         }
-        let mut edges: Vec<((u32, u32), usize)> = count
-            .into_iter()
-            .filter(|(_, (c, _))| *c == 1)
-            .map(|(e, (_, i))| (e, i))
-            .collect();
-        edges.sort_unstable();
-        for ((u, v), i) in edges {
-            boundary[u as usize] = true;
-            boundary[v as usize] = true;
-            let p = surface[i].map(|x| pos[x as usize]);
-            let nrm = normal(p);
-            let e = sub(pos[v as usize], pos[u as usize]);
-            let m = cross(e, nrm);
-            let len = dot(m, m).sqrt();
-            if len > 0.0 {
-                let m = m.map(|x| x / len);
-                let q = Quadric::plane(m, -dot(m, pos[u as usize]), BOUNDARY_WEIGHT * dot(e, e));
-                quad[u as usize].add(&q);
-                quad[v as usize].add(&q);
+        None => {
+            for t in w.tops() {
+                add_plane([t[0], t[1], t[2]], &mut quad);
+            }
+        }
+    }
+    drop(tet_surface);
+    if d == 2 {
+        // boundary edges (in exactly one triangle), in (u, v) order, found from each vertex's
+        // star: no edge table
+        let mut around: Vec<(u32, u32)> = Vec::new();
+        for u in 0..n as u32 {
+            around.clear();
+            for &t in w.star(u) {
+                around.extend(w.top(t).iter().filter(|&&v| v > u).map(|&v| (v, t)));
+            }
+            around.sort_unstable();
+            let mut i = 0;
+            while i < around.len() {
+                let (v, t) = around[i];
+                let mut j = i + 1;
+                while j < around.len() && around[j].0 == v {
+                    j += 1;
+                }
+                let single = j - i == 1;
+                i = j;
+                if !single {
+                    continue;
+                }
+                boundary[u as usize] = true;
+                boundary[v as usize] = true;
+                let tri = w.top(t);
+                let p = [0, 1, 2].map(|k| pos[tri[k] as usize]);
+                let nrm = normal(p);
+                let e = sub(pos[v as usize], pos[u as usize]);
+                let m = cross(e, nrm);
+                let len = dot(m, m).sqrt();
+                if len > 0.0 {
+                    let m = m.map(|x| x / len);
+                    let q =
+                        Quadric::plane(m, -dot(m, pos[u as usize]), BOUNDARY_WEIGHT * dot(e, e));
+                    quad[u as usize].add(&q);
+                    quad[v as usize].add(&q);
+                }
             }
         }
     }
@@ -399,7 +423,7 @@ pub fn simplify_qem(
     let mut locked: Vec<bool> = (0..n as u32)
         .map(|v| w.is_locked(v) || (lock_boundary && boundary[v as usize]))
         .collect();
-    let eps = 1e-6 * total_area / surface.len().max(1) as f64;
+    let eps = 1e-6 * total_area / n_surface.max(1) as f64;
     let eps = if eps > 0.0 && eps.is_finite() {
         eps
     } else {
@@ -409,12 +433,13 @@ pub fn simplify_qem(
         q.add(&Quadric::point(*p, eps));
     }
 
-    let mut stamp = vec![0u32; n];
+    let mut stamp = vec![0u8; n];
     let mut heap = RadixHeap::default();
     let mut nb = Vec::new();
     let mut scratch = LinkScratch::default();
     let mut stats = QemStats::default();
     let mut sum_err = 0.0;
+    let mut unreported = 0u64;
 
     let candidate = |a: u32, b: u32, quad: &[Quadric], pos: &[[f64; 3]], locked: &[bool]| {
         let (la, lb) = (locked[a as usize], locked[b as usize]);
@@ -452,7 +477,7 @@ pub fn simplify_qem(
                     quad: &[Quadric],
                     pos: &[[f64; 3]],
                     locked: &[bool],
-                    stamp: &[u32]| {
+                    stamp: &[u8]| {
         heap.clear();
         for a in 0..n as u32 {
             if !w.is_alive(a) {
@@ -472,17 +497,30 @@ pub fn simplify_qem(
         stats.rounds += 1;
         last_round_contracted = false;
         push_all(&mut heap, w, &mut nb, &quad, &pos, &locked, &stamp);
+        // the queue holds about one entry per live edge at the start of a round; when older
+        // entries make it twice that (the live edges shrink with the vertices), they are
+        // dropped, which bounds the queue's memory
+        let (edges0, verts0) = (heap.len.max(1), w.n_alive_vertices().max(1));
+        let mut compact_at = 2 * edges0 + 4096;
         while let Some(e) = heap.pop() {
+            if heap.len > compact_at {
+                heap.retain(|e| w.is_alive(e.a) && w.is_alive(e.b) && e.fresh(&stamp));
+                let live = edges0 as f64 * w.n_alive_vertices() as f64 / verts0 as f64;
+                compact_at = (2 * live as usize).max(heap.len + heap.len / 2) + 4096;
+            }
             if target.reached(w) {
                 break 'rounds;
             }
-            let (a, b) = (e.a(), e.b());
+            let (a, b) = (e.a, e.b);
             if !w.is_alive(a) || !w.is_alive(b) || !e.fresh(&stamp) {
                 continue;
             }
             let Some((cost, p)) = candidate(a, b, &quad, &pos, &locked) else {
                 continue;
             };
+            if !e.current(cost) {
+                continue; // an older entry of an edge queued again since
+            }
             if target.max_error.is_some_and(|m| cost > m) {
                 break 'rounds;
             }
@@ -504,13 +542,17 @@ pub fn simplify_qem(
             quad[s as usize] = qs;
             locked[s as usize] |= locked[t as usize];
             stamp[s as usize] = stamp[s as usize].wrapping_add(1);
-            stamp[t as usize] = stamp[t as usize].wrapping_add(1);
             stats.n_contractions += 1;
             stats.max_error = stats.max_error.max(cost);
             sum_err += cost;
             last_round_contracted = true;
-            if let Some(pr) = progress {
-                pr(1);
+            // the progress callback in batches (a progress bar's update is not free)
+            unreported += 1;
+            if unreported == 1024
+                && let Some(pr) = progress
+            {
+                pr(unreported);
+                unreported = 0;
             }
             w.neighbours_into(s, &mut nb);
             for &x in &nb {
@@ -520,17 +562,67 @@ pub fn simplify_qem(
             }
         }
     }
+    if unreported > 0
+        && let Some(pr) = progress
+    {
+        pr(unreported);
+    }
     if stats.n_contractions > 0 {
         stats.mean_error = sum_err / stats.n_contractions as f64;
     }
-    let stride = w.stride;
-    for v in 0..n as u32 {
-        if w.is_alive(v) {
-            let p = pos[v as usize];
-            w.set_point(v, &p[..stride]);
+    w.coords = pos
+        .iter()
+        .flat_map(|p| p.iter().copied().take(stride))
+        .collect();
+    Ok(stats)
+}
+
+/// The boundary triangles of a tetrahedral mesh (in one tetrahedron), oriented outward for a
+/// positively oriented tetrahedron, sorted by their sorted vertices. A face is looked up in the
+/// star of its smallest vertex: no face table.
+fn boundary_faces(w: &TopSimplices) -> Vec<[u32; 3]> {
+    let mut faces: Vec<([u32; 3], [u32; 3])> = Vec::new();
+    // each tet once: from its smallest vertex
+    for v in 0..w.n_vertices() as u32 {
+        for &id in w.star(v) {
+            let t = w.top(id);
+            if t.iter().any(|&x| x < v) {
+                continue;
+            }
+            boundary_faces_of(w, id, t, &mut faces);
         }
     }
-    Ok(stats)
+    faces.sort_unstable();
+    faces.into_iter().map(|(_, f)| f).collect()
+}
+
+/// The faces of tet `id` (vertices `t`) in no other tet, as (sorted key, outward face).
+fn boundary_faces_of(w: &TopSimplices, id: u32, t: &[u32], faces: &mut Vec<([u32; 3], [u32; 3])>) {
+    {
+        // facet i omits vertex i, sign (-1)^i
+        for (f, flip) in [
+            ([1, 2, 3], false),
+            ([0, 2, 3], true),
+            ([0, 1, 3], false),
+            ([0, 1, 2], true),
+        ] {
+            let mut face = [t[f[0]], t[f[1]], t[f[2]]];
+            if flip {
+                face.swap(0, 1);
+            }
+            let mut key = face;
+            key.sort_unstable();
+            let shared = w.star(key[0]).iter().any(|&u| {
+                u != id && {
+                    let u = w.top(u);
+                    u.contains(&key[1]) && u.contains(&key[2])
+                }
+            });
+            if !shared {
+                faces.push((key, face));
+            }
+        }
+    }
 }
 
 /// No cell of the star of `s` or `t` (other than those through `st`, which disappear) flips,

@@ -37,7 +37,8 @@ const NO_ORIGIN: u32 = u32::MAX;
 /// A simplicial complex stored by its top simplices, editable by edge contraction.
 ///
 /// Vertex ids are those of the input for the whole life of the structure (a contracted vertex
-/// is marked dead, never renumbered); top ids grow (a changed top gets a new id).
+/// is marked dead, never renumbered); a contraction edits the tops through the removed vertex in
+/// place (a top keeps its id, and its origin, for its whole life; removed tops leave empty slots).
 ///
 /// ```
 /// use starplex::algo::simplify::TopSimplices;
@@ -62,6 +63,25 @@ pub struct TopSimplices {
     pub coords: Vec<f64>,
     /// Numbers per vertex in `coords`.
     pub stride: usize,
+    /// Reused buffers of [`contract`](Self::contract).
+    scratch: ContractScratch,
+}
+
+/// Reused buffers of [`TopSimplices::contract`] (no allocation per contraction).
+#[derive(Clone, Debug, Default)]
+struct ContractScratch {
+    /// The tops through the removed vertex (edited in place into their images).
+    ids: Vec<u32>,
+    /// Per image: its top also held the surviving vertex.
+    had_a: Vec<bool>,
+    /// Per image: not a face of another top.
+    keep: Vec<bool>,
+    /// Tops through the survivor that became a face of an image.
+    swallowed: Vec<u32>,
+    /// Triangle case: the sorted triples of the other tops through the survivor, and of the
+    /// images (an edge image `ax` as `[x, x, x]`).
+    other_keys: Vec<[u32; 3]>,
+    image_keys: Vec<[u32; 3]>,
 }
 
 impl TopSimplices {
@@ -148,11 +168,8 @@ impl TopSimplices {
     /// # Errors
     /// As [`from_structure`](Self::from_structure).
     pub fn from_complex(k: &IndexedComplex) -> Result<TopSimplices, SimplifyError> {
-        Self::from_structure(
-            &crate::topo::naive::VtIndex::new(k),
-            k.coords(),
-            k.ambient_dim(),
-        )
+        // the cells straight from the complex: no vertex -> cells index is built
+        Self::from_structure(&CellsOf(k), k.coords(), k.ambient_dim())
     }
 
     /// Builds the structure from lists of vertices (no coordinates), checking that they are
@@ -229,6 +246,7 @@ impl TopSimplices {
             n_alive_v: n,
             coords,
             stride,
+            scratch: ContractScratch::default(),
         }
     }
 
@@ -483,19 +501,24 @@ impl TopSimplices {
         {
             return false;
         }
+        // Every top through b is edited in place into its image (b -> a, or b dropped when the
+        // top also holds a) and keeps its id and origin; images that are faces of another top
+        // are removed afterwards. The buffers are reused from call to call.
+        let mut sc = std::mem::take(&mut self.scratch);
+        sc.ids.clear();
+        sc.had_a.clear();
+        sc.keep.clear();
+        sc.swallowed.clear();
         let st_b = std::mem::take(&mut self.vt[b as usize]);
-        let mut images: Vec<Top> = Vec::with_capacity(st_b.len());
-        let mut image_origin: Vec<u32> = Vec::with_capacity(st_b.len());
+        // the usual case of a surface: every top through a or b is a triangle
+        let triangles = st_b
+            .iter()
+            .chain(self.vt[a as usize].iter())
+            .all(|&t| self.tops[t as usize].len() == 3);
         for &t in &st_b {
-            image_origin.push(self.origin[t as usize]);
-            let mut top = std::mem::take(&mut self.tops[t as usize]);
-            self.n_alive_tops -= 1;
-            for &v in &top {
-                if v != b {
-                    remove_from(&mut self.vt[v as usize], t);
-                }
-            }
-            if top.contains(&a) {
+            let top = &mut self.tops[t as usize];
+            let had_a = top.contains(&a);
+            if had_a {
                 top.retain(|v| *v != b);
             } else {
                 for v in top.iter_mut() {
@@ -504,56 +527,122 @@ impl TopSimplices {
                     }
                 }
             }
-            images.push(top);
+            sc.ids.push(t);
+            sc.had_a.push(had_a);
         }
         self.alive_v[b as usize] = false;
         self.n_alive_v -= 1;
-        // maximality among the images and the tops through a
-        let keep: Vec<bool> = (0..images.len())
-            .map(|i| {
-                let t = &images[i];
-                let dominated_by_image = images
-                    .iter()
-                    .enumerate()
-                    .any(|(j, u)| j != i && is_subset(t, u) && (t.len() < u.len() || j < i));
-                dominated_by_image
-                    || self.vt[a as usize]
-                        .iter()
-                        .any(|&u| is_subset(t, &self.tops[u as usize]))
-            })
-            .map(|dominated| !dominated)
-            .collect();
-        // tops through a swallowed by an image
-        let swallowed: Vec<u32> = self.vt[a as usize]
-            .iter()
-            .copied()
-            .filter(|&u| {
-                let u = &self.tops[u as usize];
-                images
-                    .iter()
-                    .zip(&keep)
-                    .any(|(t, &k)| k && u.len() < t.len() && is_subset(u, t))
-            })
-            .collect();
-        for u in swallowed {
-            let top = std::mem::take(&mut self.tops[u as usize]);
-            self.n_alive_tops -= 1;
-            for &v in &top {
-                remove_from(&mut self.vt[v as usize], u);
+        if triangles {
+            self.keep_triangle_images(a, &mut sc);
+        } else {
+            self.keep_images(a, &mut sc);
+        }
+        for &u in &sc.swallowed {
+            self.drop_top(u);
+        }
+        for ((&t, &keep), &had_a) in sc.ids.iter().zip(&sc.keep).zip(&sc.had_a) {
+            if !keep {
+                self.drop_top(t);
+            } else if !had_a {
+                self.vt[a as usize].push(t);
             }
         }
-        for ((t, k), o) in images.into_iter().zip(keep).zip(image_origin) {
-            if k {
-                let id = self.tops.len() as u32;
-                for &v in &t {
-                    self.vt[v as usize].push(id);
-                }
-                self.tops.push(t);
-                self.origin.push(o);
-                self.n_alive_tops += 1;
-            }
-        }
+        self.scratch = sc;
         true
+    }
+
+    /// [`contract`](Self::contract)'s maximality test: which images (`sc.ids`, edited in
+    /// place) are no face of another image or of another top through `a` (`sc.keep`), and
+    /// which other tops through `a` became a face of a kept image (`sc.swallowed`).
+    fn keep_images(&self, a: u32, sc: &mut ContractScratch) {
+        // the tops through a that were not through b
+        let others = |u: &u32, ids: &[u32]| !ids.contains(u);
+        for (i, &ti) in sc.ids.iter().enumerate() {
+            let t = &self.tops[ti as usize];
+            let dominated_by_image = sc.ids.iter().enumerate().any(|(j, &u)| {
+                let u = &self.tops[u as usize];
+                j != i && is_subset(t, u) && (t.len() < u.len() || j < i)
+            });
+            let dominated = dominated_by_image
+                || self.vt[a as usize]
+                    .iter()
+                    .filter(|u| others(u, &sc.ids))
+                    .any(|&u| is_subset(t, &self.tops[u as usize]));
+            sc.keep.push(!dominated);
+        }
+        for &u in self.vt[a as usize].iter() {
+            if !others(&u, &sc.ids) {
+                continue;
+            }
+            let ut = &self.tops[u as usize];
+            let swallowed = sc.ids.iter().zip(&sc.keep).any(|(&t, &k)| {
+                let t = &self.tops[t as usize];
+                k && ut.len() < t.len() && is_subset(ut, t)
+            });
+            if swallowed {
+                sc.swallowed.push(u);
+            }
+        }
+    }
+
+    /// [`contract`](Self::contract)'s maximality test when every top through `a` and through
+    /// the removed vertex was a triangle: an image of a triangle through both is an edge `ax`,
+    /// a face of another top exactly when one of the other triangles through `a` holds `x`; an
+    /// image of another triangle is a triangle, a face of another top exactly when it equals
+    /// one (as a set); no other top through `a` can be swallowed (all are triangles). The same
+    /// answers as [`keep_images`](Self::keep_images), by comparing sorted triples.
+    fn keep_triangle_images(&self, a: u32, sc: &mut ContractScratch) {
+        let sorted = |t: &[u32]| {
+            let mut k = [t[0], t[1], t[2]];
+            k.sort_unstable();
+            k
+        };
+        sc.other_keys.clear();
+        for &u in &self.vt[a as usize] {
+            if !sc.ids.contains(&u) {
+                sc.other_keys.push(sorted(&self.tops[u as usize]));
+            }
+        }
+        sc.image_keys.clear();
+        for (i, &t) in sc.ids.iter().enumerate() {
+            let t = &self.tops[t as usize];
+            sc.image_keys.push(if sc.had_a[i] {
+                // the edge a-x, kept as [x, x, x]
+                let x = if t[0] == a { t[1] } else { t[0] };
+                [x; 3]
+            } else {
+                sorted(t)
+            });
+        }
+        for (i, (&k, &edge)) in sc.image_keys.iter().zip(&sc.had_a).enumerate() {
+            let dominated = if edge {
+                let x = k[0];
+                sc.other_keys.iter().any(|o| o.contains(&x))
+                    || sc.image_keys.iter().enumerate().any(|(j, o)| {
+                        if sc.had_a[j] {
+                            j < i && o[0] == x
+                        } else {
+                            o.contains(&x)
+                        }
+                    })
+            } else {
+                sc.other_keys.contains(&k)
+                    || sc.image_keys[..i]
+                        .iter()
+                        .zip(&sc.had_a)
+                        .any(|(o, &e)| !e && *o == k)
+            };
+            sc.keep.push(!dominated);
+        }
+    }
+
+    /// Removes top `t` and its entries in the vertex rows.
+    fn drop_top(&mut self, t: u32) {
+        let top = std::mem::take(&mut self.tops[t as usize]);
+        self.n_alive_tops -= 1;
+        for &v in &top {
+            remove_from(&mut self.vt[v as usize], t);
+        }
     }
 
     /// Moves vertex `v` (no-op without coordinates).
@@ -710,6 +799,25 @@ impl TopSimplices {
     }
 }
 
+/// The cells of an indexed complex as top cells, without the vertex -> cells index of
+/// [`VtIndex`](crate::topo::naive::VtIndex) (only [`TopCells`] is needed here).
+struct CellsOf<'a>(&'a IndexedComplex);
+
+impl TopCells for CellsOf<'_> {
+    fn n_vertices(&self) -> usize {
+        self.0.n_vertices()
+    }
+    fn n_top_cells(&self) -> usize {
+        self.0.n_cells()
+    }
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        self.0.cell(c).kind
+    }
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        out.extend(self.0.cell(c).vertices.iter().map(|&v| VertexId(v)));
+    }
+}
+
 fn remove_from(row: &mut SmallVec<[u32; 8]>, t: u32) {
     if let Some(i) = row.iter().position(|&x| x == t) {
         row.swap_remove(i);
@@ -725,4 +833,89 @@ fn remove_from(row: &mut SmallVec<[u32; 8]>, t: u32) {
 /// ```
 pub fn is_subset(s: &[u32], t: &[u32]) -> bool {
     s.len() <= t.len() && s.iter().all(|v| t.contains(v))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::XorShift;
+
+    /// The triangle maximality test of `contract` decides as the general one, on random pure
+    /// triangle complexes (boundaries, non-manifold edges, duplicates excluded) and every edge,
+    /// also after contractions.
+    #[test]
+    fn triangle_keep_is_the_general_keep() {
+        let mut r = XorShift::new(0x5eed);
+        let mut compared = 0;
+        for _ in 0..400 {
+            let n = 4 + r.below(5) as u32;
+            let mut tris: Vec<Vec<u32>> = Vec::new();
+            for _ in 0..1 + r.below(12) {
+                let mut t: Vec<u32> = Vec::new();
+                while t.len() < 3 {
+                    let v = r.below(n as u64) as u32;
+                    if !t.contains(&v) {
+                        t.push(v);
+                    }
+                }
+                let mut key = t.clone();
+                key.sort_unstable();
+                if !tris.iter().any(|u| {
+                    let mut k = u.clone();
+                    k.sort_unstable();
+                    k == key
+                }) {
+                    tris.push(t);
+                }
+            }
+            let mut w = TopSimplices::from_tops(n as usize, &tris).unwrap();
+            // contract random edges while the stars are all triangles
+            for _ in 0..4 {
+                let edges: Vec<(u32, u32)> = (0..n)
+                    .filter(|&a| w.is_alive(a))
+                    .flat_map(|a| w.neighbours(a).into_iter().map(move |b| (a, b)))
+                    .collect();
+                if edges.is_empty() {
+                    break;
+                }
+                let (a, b) = edges[r.below(edges.len() as u64) as usize];
+                let all_tri = w
+                    .star(a)
+                    .iter()
+                    .chain(w.star(b))
+                    .all(|&t| w.top(t).len() == 3);
+                if all_tri {
+                    // the images, edited as contract does, judged both ways
+                    let mut c = w.clone();
+                    let mut sc = ContractScratch::default();
+                    let st_b = std::mem::take(&mut c.vt[b as usize]);
+                    for &t in &st_b {
+                        let top = &mut c.tops[t as usize];
+                        let had_a = top.contains(&a);
+                        if had_a {
+                            top.retain(|v| *v != b);
+                        } else {
+                            top.iter_mut().filter(|v| **v == b).for_each(|v| *v = a);
+                        }
+                        sc.ids.push(t);
+                        sc.had_a.push(had_a);
+                    }
+                    let mut general = ContractScratch {
+                        ids: sc.ids.clone(),
+                        had_a: sc.had_a.clone(),
+                        ..Default::default()
+                    };
+                    c.keep_triangle_images(a, &mut sc);
+                    c.keep_images(a, &mut general);
+                    assert_eq!(sc.keep, general.keep, "{a}-{b} in {:?}", w.sorted_tops());
+                    assert!(general.swallowed.is_empty());
+                    compared += 1;
+                }
+                assert!(w.contract(a, b));
+                let st = w.sorted_tops();
+                assert!(TopSimplices::from_tops(n as usize, &st).is_ok(), "{st:?}");
+            }
+        }
+        assert!(compared > 200, "{compared}");
+    }
 }
