@@ -35,11 +35,15 @@
 //! other one, VTK's faces outward), so prisms are read as `[0, 2, 1, 3, 5, 4]` of the gmsh nodes
 //! and written back the same way, as gmsh itself does when it exports VTK.
 //!
-//! Write: [`write()`] writes version 4.1 ascii, one geometric entity per dimension in `$Entities`,
-//! one node block, one element block per run of one kind; [`write_22`] writes version 2.2 ascii
-//! (format name `msh22` on the command line: `starplex convert in.spx out.msh --to msh22`),
-//! with the `gmsh:physical` and `gmsh:geometrical` columns as element tags. Both write every
-//! other attribute [`holds`] keeps as a `$NodeData` / `$ElementData` section (time step 0).
+//! Write: [`write()`] writes version 4.1 ascii and [`write_binary`] version 4.1 binary (format
+//! name `msh-binary`): `$Entities` with one geometric entity per `gmsh:geometrical` tag and
+//! dimension, carrying its `gmsh:physical` tag (or, when the two columns disagree, one entity
+//! per physical tag and dimension; without tags, one entity per dimension), one node block, one
+//! element block per run of cells of one kind on one entity; [`write_22`] writes version 2.2
+//! ascii (format name `msh22` on the command line: `starplex convert in.spx out.msh --to
+//! msh22`), with the `gmsh:physical` and `gmsh:geometrical` columns as element tags. All write
+//! every other attribute [`holds`] keeps as a `$NodeData` / `$ElementData` section (time step
+//! 0); [`dropped`] names what a format leaves out.
 //! Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are written as
 //! nodes, which this reader then drops.
 //!
