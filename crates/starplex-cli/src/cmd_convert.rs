@@ -14,7 +14,8 @@ pub struct ConvertArgs {
     /// Output file (format from its extension unless --to is given); `-` is standard output.
     /// A symbolic link is followed (its target is replaced), a FIFO or device written through.
     pub output: PathBuf,
-    /// Output format: spx spb off off-simplices ply obj stl stl-binary mesh vtk msh msh22.
+    /// Output format: spx spb off off-simplices ply obj stl stl-binary mesh vtk vtk-polydata vtu
+    /// vtp msh msh22 msh-binary.
     #[arg(long)]
     pub to: Option<String>,
     /// Write the boundary of the mesh (the faces in exactly one top cell, oriented outward)

@@ -35,11 +35,15 @@
 //! other one, VTK's faces outward), so prisms are read as `[0, 2, 1, 3, 5, 4]` of the gmsh nodes
 //! and written back the same way, as gmsh itself does when it exports VTK.
 //!
-//! Write: [`write()`] writes version 4.1 ascii, one geometric entity per dimension in `$Entities`,
-//! one node block, one element block per run of one kind; [`write_22`] writes version 2.2 ascii
-//! (format name `msh22` on the command line: `starplex convert in.spx out.msh --to msh22`),
-//! with the `gmsh:physical` and `gmsh:geometrical` columns as element tags. Both write every
-//! other attribute [`holds`] keeps as a `$NodeData` / `$ElementData` section (time step 0).
+//! Write: [`write()`] writes version 4.1 ascii and [`write_binary`] version 4.1 binary (format
+//! name `msh-binary`): `$Entities` with one geometric entity per `gmsh:geometrical` tag and
+//! dimension, carrying its `gmsh:physical` tag (or, when the two columns disagree, one entity
+//! per physical tag and dimension; without tags, one entity per dimension), one node block, one
+//! element block per run of cells of one kind on one entity; [`write_22`] writes version 2.2
+//! ascii (format name `msh22` on the command line: `starplex convert in.spx out.msh --to
+//! msh22`), with the `gmsh:physical` and `gmsh:geometrical` columns as element tags. All write
+//! every other attribute [`holds`] keeps as a `$NodeData` / `$ElementData` section (time step
+//! 0); [`dropped`] names what a format leaves out.
 //! Points of ambient dimension 1 or 2 are padded with zeros. Vertices in no cell are written as
 //! nodes, which this reader then drops.
 //!
@@ -1282,22 +1286,207 @@ fn read_elements_22_bin(
 /// more; OS errors of the writer.
 pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     check_writable(k, Format::Gmsh)?;
+    write_41(w, k, false)
+}
+
+/// Writes `k` as gmsh 4.1 binary (file type 1, little-endian, 8-byte `size_t`): the same
+/// sections as [`write()`], with the arrays in binary (format name `msh-binary` on the command
+/// line: `starplex convert in.spx out.msh --to msh-binary`). Data sections have ascii headers
+/// and binary entries (an `int` tag, then the doubles), as gmsh writes them.
+///
+/// ```
+/// use starplex::attr::Attribute;
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{gmsh, ReadOptions};
+/// let mut k = IndexedComplex::from_parts(3, vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.5].into(),
+///     vec![(CellKind::Simplex(2), vec![0, 1, 2, 1, 3, 2].into())]).unwrap();
+/// let mut a = k.take_attributes();
+/// a.cell.push(Attribute::int("gmsh:physical", 1, vec![7, 9]));
+/// k.set_attributes(a).unwrap();
+/// let mut out = Vec::new();
+/// gmsh::write_binary(&mut out, &k).unwrap();
+/// assert!(out.starts_with(b"$MeshFormat\n4.1 1 8\n\x01\0\0\0\n$EndMeshFormat\n"));
+/// let back = gmsh::read_from(&out[..], "b.msh".as_ref(), &ReadOptions::default()).unwrap();
+/// let phys = back.complex.attributes().get(starplex::attr::AttrTarget::Cell, "gmsh:physical");
+/// assert_eq!(phys, Some(&Attribute::int("gmsh:physical", 1, vec![7, 9])));
+/// assert_eq!(back.complex.coords(), k.coords());
+/// ```
+///
+/// # Errors
+/// As [`write()`].
+pub fn write_binary(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check_writable(k, Format::GmshBinary)?;
+    write_41(w, k, true)
+}
+
+/// Values of the 4.1 sections, as ascii words (spaces, one record per line) or binary
+/// little-endian (`size_t` of 8 bytes, `int` of 4), buffered.
+struct Out<'a> {
+    w: &'a mut dyn Write,
+    bin: bool,
+    buf: Vec<u8>,
+    /// At the start of an ascii line (no space before the next word).
+    fresh: bool,
+}
+
+impl Out<'_> {
+    fn sep(&mut self) {
+        if !self.bin && !self.fresh {
+            self.buf.push(b' ');
+        }
+        self.fresh = false;
+    }
+    fn size(&mut self, x: u64) {
+        if self.bin {
+            self.buf.extend_from_slice(&x.to_le_bytes());
+        } else {
+            self.sep();
+            let _ = write!(self.buf, "{x}"); // (writing to a Vec cannot fail)
+        }
+    }
+    fn int(&mut self, x: i32) {
+        if self.bin {
+            self.buf.extend_from_slice(&x.to_le_bytes());
+        } else {
+            self.sep();
+            let _ = write!(self.buf, "{x}"); // (writing to a Vec cannot fail)
+        }
+    }
+    fn real(&mut self, x: f64) -> std::io::Result<()> {
+        if self.bin {
+            self.buf.extend_from_slice(&x.to_le_bytes());
+            Ok(())
+        } else {
+            self.sep();
+            write_f64(&mut self.buf, x)
+        }
+    }
+    /// Ends an ascii record (nothing in binary).
+    fn nl(&mut self) -> std::io::Result<()> {
+        if !self.bin {
+            self.buf.push(b'\n');
+        }
+        self.fresh = true;
+        if self.buf.len() >= 1 << 16 {
+            self.w.write_all(&self.buf)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+    /// Text written as is in both encodings (section keywords, data headers).
+    fn text(&mut self, s: &str) {
+        self.buf.extend_from_slice(s.as_bytes());
+        self.fresh = true;
+    }
+    /// `$End{name}` on a line of its own (after binary data, a line end first, as gmsh does).
+    fn end(&mut self, name: &str) {
+        if self.bin {
+            self.buf.push(b'\n');
+        }
+        self.text(&format!("$End{name}\n"));
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.w.write_all(&self.buf)?;
+        self.buf.clear();
+        Ok(())
+    }
+}
+
+/// The geometric entities of a 4.1 file: the entity tag of every cell, and per dimension the
+/// entities `(tag, physical tag; 0 for none)` in order of first use.
+struct EntityPlan {
+    cell_entity: Vec<i32>,
+    per_dim: [Vec<(i32, i32)>; 4],
+}
+
+/// The `gmsh:physical` and `gmsh:geometrical` columns that a 4.1 file holds (`physical`,
+/// `geometrical`), decided together: physical tags must fit an `int`; geometrical tags must be
+/// in `1..=i32::MAX` and, when physical tags are written, each geometrical tag must go with one
+/// physical tag (in 4.1 the physical tag belongs to the entity, whatever the cells' dimension).
+fn tag_columns_41(a: &Attributes) -> (Option<&[i64]>, Option<&[i64]>) {
+    let col = |name: &str, lo: i64| match a.get(AttrTarget::Cell, name) {
+        Some(c) if c.components == 1 => match &c.values {
+            AttrValues::Int(v) if v.iter().all(|&x| x >= lo && x <= i32::MAX as i64) => {
+                Some(v.as_slice())
+            }
+            _ => None,
+        },
+        _ => None,
+    };
+    let phys = col(TAG_NAMES[0], i32::MIN as i64);
+    let mut geom = col(TAG_NAMES[1], 1);
+    if let (Some(p), Some(g)) = (phys, geom) {
+        let mut seen: FxHashMap<i64, i64> = FxHashMap::default();
+        if g.iter()
+            .zip(p)
+            .any(|(&g, &p)| *seen.entry(g).or_insert(p) != p)
+        {
+            geom = None;
+        }
+    }
+    (phys, geom)
+}
+
+/// One entity per geometrical tag (with its physical tag) when `gmsh:geometrical` is held
+/// ([`tag_columns_41`]), else one entity per physical tag and dimension (tags 1, 2, ... in each
+/// dimension), else one entity per dimension (tag 1). A complex with vertices and no cells has
+/// the point entity 1 for its node block.
+fn plan_entities(k: &IndexedComplex) -> EntityPlan {
+    let (phys, geom) = tag_columns_41(k.attributes());
+    let mut plan = EntityPlan {
+        cell_entity: Vec::with_capacity(k.n_cells()),
+        per_dim: Default::default(),
+    };
+    let mut known: FxHashMap<(usize, i64), i32> = FxHashMap::default();
+    for b in k.blocks() {
+        let d = b.kind.dim();
+        for i in 0..b.len() {
+            let id = b.first as usize + i;
+            let p = phys.map_or(0, |v| v[id]) as i32;
+            let key = match geom {
+                Some(g) => g[id],
+                None => p as i64,
+            };
+            let list = &mut plan.per_dim[d];
+            let tag = *known.entry((d, key)).or_insert_with(|| {
+                let t = match geom {
+                    Some(_) => key as i32,
+                    None => list.len() as i32 + 1,
+                };
+                list.push((t, p));
+                t
+            });
+            plan.cell_entity.push(tag);
+        }
+    }
+    if k.n_cells() == 0 && k.n_vertices() > 0 {
+        plan.per_dim[0].push((1, 0));
+    }
+    plan
+}
+
+/// The 4.1 writer of both encodings.
+fn write_41(w: &mut dyn Write, k: &IndexedComplex, bin: bool) -> Result<(), IoErrorKind> {
     let d = k.ambient_dim();
     let nv = k.n_vertices();
-    let node_dim = k.dim().unwrap_or(0);
-    writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat")?;
-    // One geometric entity (tag 1) per dimension in use, spanning the bounding box: gmsh itself
-    // needs every node and element block to name a declared entity.
-    let mut present = [false; 4];
-    if nv > 0 {
-        present[node_dim] = true;
+    let mut o = Out {
+        w,
+        bin,
+        buf: Vec::with_capacity(1 << 16),
+        fresh: true,
+    };
+    if bin {
+        o.text("$MeshFormat\n4.1 1 8\n");
+        o.int(1);
+        o.text("\n$EndMeshFormat\n");
+    } else {
+        o.text("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
     }
-    for b in k.blocks() {
-        present[b.kind.dim()] = true;
-    }
+    let plan = plan_entities(k);
     let mut lo = [0.0f64; 3];
     let mut hi = [0.0f64; 3];
-    for (i, p) in k.coords().chunks_exact(d).enumerate() {
+    for (i, p) in k.coords().chunks_exact(d.max(1)).enumerate() {
         for a in 0..d {
             if i == 0 || p[a] < lo[a] {
                 lo[a] = p[a];
@@ -1307,95 +1496,160 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
             }
         }
     }
-    writeln!(w, "$Entities")?;
-    let n = |x: bool| x as u8;
-    writeln!(
-        w,
-        "{} {} {} {}",
-        n(present[0]),
-        n(present[1]),
-        n(present[2]),
-        n(present[3])
-    )?;
-    let boxed = |w: &mut dyn Write| -> std::io::Result<()> {
-        for x in lo.iter().chain(hi.iter()) {
-            write_f64(w, *x)?;
-            w.write_all(b" ")?;
-        }
-        Ok(())
-    };
-    if present[0] {
-        w.write_all(b"1 ")?;
-        for x in lo {
-            write_f64(w, x)?;
-            w.write_all(b" ")?;
-        }
-        w.write_all(b"0\n")?;
+    o.text("$Entities\n");
+    for list in &plan.per_dim {
+        o.size(list.len() as u64);
     }
-    for &here in &present[1..] {
-        if here {
-            w.write_all(b"1 ")?;
-            boxed(w)?;
-            w.write_all(b"0 0\n")?;
+    o.nl()?;
+    for (dim, list) in plan.per_dim.iter().enumerate() {
+        for &(tag, phys) in list {
+            o.int(tag);
+            let corners = if dim == 0 {
+                &lo[..]
+            } else {
+                &[lo, hi].concat()[..]
+            };
+            for &x in corners {
+                o.real(x)?;
+            }
+            o.size((phys != 0) as u64);
+            if phys != 0 {
+                o.int(phys);
+            }
+            if dim > 0 {
+                o.size(0); // no bounding entities
+            }
+            o.nl()?;
         }
     }
-    writeln!(w, "$EndEntities")?;
-    writeln!(w, "$Nodes")?;
-    if nv == 0 {
-        writeln!(w, "0 0 0 0")?;
-    } else {
-        writeln!(w, "1 {nv} 1 {nv}")?;
-        writeln!(w, "{node_dim} 1 0 {nv}")?;
-        for i in 1..=nv {
-            writeln!(w, "{i}")?;
+    o.end("Entities");
+    // the nodes: one block, on the first entity of the highest dimension in use
+    o.text("$Nodes\n");
+    match plan
+        .per_dim
+        .iter()
+        .enumerate()
+        .rev()
+        .find(|(_, l)| !l.is_empty())
+    {
+        Some((node_dim, list)) if nv > 0 => {
+            for x in [1, nv as u64, 1, nv as u64] {
+                o.size(x);
+            }
+            o.nl()?;
+            o.int(node_dim as i32);
+            o.int(list[0].0);
+            o.int(0);
+            o.size(nv as u64);
+            o.nl()?;
+            for i in 1..=nv as u64 {
+                o.size(i);
+                o.nl()?;
+            }
+            for p in k.coords().chunks_exact(d.max(1)) {
+                for &x in p {
+                    o.real(x)?;
+                }
+                for _ in d..3 {
+                    o.real(0.0)?;
+                }
+                o.nl()?;
+            }
         }
-        for p in k.coords().chunks_exact(d) {
-            write_xyz(w, p)?;
+        _ => {
+            for _ in 0..4 {
+                o.size(0);
+            }
+            o.nl()?;
         }
     }
-    writeln!(w, "$EndNodes")?;
-    writeln!(w, "$Elements")?;
-    let ne = k.n_cells();
-    writeln!(w, "{} {ne} {} {ne}", k.blocks().len(), ne.min(1))?;
-    let mut line = String::with_capacity(128);
+    o.end("Nodes");
+    // the elements: one block per run of cells of one kind on one entity
+    let mut runs: Vec<(CellKind, i32, usize, usize)> = Vec::new();
     for b in k.blocks() {
-        let t = gmsh_type(b.kind).unwrap_or(0);
-        writeln!(w, "{} 1 {t} {}", b.kind.dim(), b.len())?;
         for i in 0..b.len() {
-            use std::fmt::Write as _;
-            line.clear();
-            let _ = write!(line, "{}", b.first as usize + i + 1);
-            push_nodes(&mut line, b.kind, b.cell(i));
-            w.write_all(line.as_bytes())?;
+            let id = b.first as usize + i;
+            let e = plan.cell_entity[id];
+            match runs.last_mut() {
+                Some((kind, t, _, n)) if *kind == b.kind && *t == e => *n += 1,
+                _ => runs.push((b.kind, e, id, 1)),
+            }
         }
     }
-    writeln!(w, "$EndElements")?;
-    write_data(w, k, Format::Gmsh)
+    let ne = k.n_cells() as u64;
+    o.text("$Elements\n");
+    for x in [runs.len() as u64, ne, ne.min(1), ne] {
+        o.size(x);
+    }
+    o.nl()?;
+    let mut cell = [0u32; 8];
+    for &(kind, e, first, n) in &runs {
+        o.int(kind.dim() as i32);
+        o.int(e);
+        o.int(gmsh_type(kind).unwrap_or(0) as i32);
+        o.size(n as u64);
+        o.nl()?;
+        for id in first..first + n {
+            o.size(id as u64 + 1);
+            let c = k.cell(crate::ids::CellId(id as u32)).vertices;
+            let c = if kind == CellKind::Prism {
+                for (slot, &j) in cell.iter_mut().zip(&PRISM_PERM) {
+                    *slot = c[j];
+                }
+                &cell[..6]
+            } else {
+                c
+            };
+            for &v in c {
+                o.size(v as u64 + 1);
+            }
+            o.nl()?;
+        }
+    }
+    o.end("Elements");
+    o.flush()?;
+    write_data(o.w, k, Format::Gmsh, bin)
 }
 
 /// The names of the attributes that the element tags carry.
 const TAG_NAMES: [&str; 2] = ["gmsh:physical", "gmsh:geometrical"];
 
-/// Whether a gmsh file written as `format` ([`Format::Gmsh`] or [`Format::Gmsh22`]) holds the
-/// attribute `a` of `target`: `gmsh:physical` and `gmsh:geometrical` as the element tags of
-/// version 2.2 (integer cell columns of one component), every other column as a `$NodeData`
-/// or `$ElementData` section (a name without `"` or line breaks, 1 to 64 components, integers
-/// up to 2^53 in magnitude: gmsh data is double, so integer columns read back as floats).
+/// Whether a gmsh file written as `format` ([`Format::Gmsh`], [`Format::GmshBinary`] or
+/// [`Format::Gmsh22`]) can hold the attribute `a` of `target`, looking at `a` alone:
+/// `gmsh:physical` and `gmsh:geometrical` are integer cell columns of one component written as
+/// element tags (2.2, any values) or as geometric entities (4.1: physical tags that fit an
+/// `int`, geometrical tags in `1..=i32::MAX`; [`dropped`] also checks that the two columns
+/// agree); every other column is a `$NodeData` or `$ElementData` section (a name without `"`
+/// or line breaks, 1 to 64 components, integers up to 2^53 in magnitude: gmsh data is double,
+/// so integer columns read back as floats).
 ///
 /// ```
 /// use starplex::attr::{AttrTarget, Attribute};
 /// use starplex::io::{gmsh, Format};
 /// let phys = Attribute::int("gmsh:physical", 1, vec![1, 2]);
 /// assert!(gmsh::holds(Format::Gmsh22, AttrTarget::Cell, &phys));
-/// assert!(!gmsh::holds(Format::Gmsh, AttrTarget::Cell, &phys)); // 4.1 writes one entity per dimension
+/// assert!(gmsh::holds(Format::Gmsh, AttrTarget::Cell, &phys));
+/// let geom = Attribute::int("gmsh:geometrical", 1, vec![0, 2]);
+/// assert!(!gmsh::holds(Format::Gmsh, AttrTarget::Cell, &geom)); // 4.1 entity tags start at 1
 /// assert!(gmsh::holds(Format::Gmsh, AttrTarget::Vertex, &Attribute::float("T", 3, vec![0.0; 6])));
 /// ```
 pub fn holds(format: Format, target: AttrTarget, a: &Attribute) -> bool {
     if TAG_NAMES.contains(&a.name.as_str()) {
-        return format == Format::Gmsh22
-            && target == AttrTarget::Cell
-            && a.components == 1
-            && matches!(a.values, AttrValues::Int(_));
+        if target != AttrTarget::Cell || a.components != 1 {
+            return false;
+        }
+        let AttrValues::Int(v) = &a.values else {
+            return false;
+        };
+        if format == Format::Gmsh22 {
+            return true;
+        }
+        let lo = if a.name == TAG_NAMES[0] {
+            i32::MIN as i64
+        } else {
+            1
+        };
+        return v.iter().all(|&x| x >= lo && x <= i32::MAX as i64);
     }
     !a.name.contains(['"', '\n', '\r'])
         && (1..=64).contains(&a.components)
@@ -1405,11 +1659,49 @@ pub fn holds(format: Format, target: AttrTarget, a: &Attribute) -> bool {
         }
 }
 
+/// The attributes of `a` that a gmsh file written as `format` does not hold (`kind name`, as
+/// [`Format::dropped_attributes`]): those [`holds`] refuses and, in 4.1, a `gmsh:geometrical`
+/// column whose tags do not each go with one physical tag (the writer then numbers the
+/// entities by physical tag instead).
+///
+/// ```
+/// use starplex::attr::{Attribute, Attributes};
+/// use starplex::io::{gmsh, Format};
+/// let a = Attributes {
+///     vertex: vec![],
+///     cell: vec![Attribute::int("gmsh:physical", 1, vec![5, 6]),
+///                Attribute::int("gmsh:geometrical", 1, vec![1, 1])], // entity 1 in two groups
+/// };
+/// assert_eq!(gmsh::dropped(Format::Gmsh, &a), ["cell gmsh:geometrical"]);
+/// assert!(gmsh::dropped(Format::Gmsh22, &a).is_empty()); // 2.2 tags each element
+/// ```
+pub fn dropped(format: Format, a: &Attributes) -> Vec<String> {
+    let four = format != Format::Gmsh22;
+    let (_, geom) = tag_columns_41(a);
+    let mut out = Vec::new();
+    for target in [AttrTarget::Vertex, AttrTarget::Cell] {
+        for c in a.of(target) {
+            let joint =
+                four && target == AttrTarget::Cell && c.name == TAG_NAMES[1] && geom.is_none();
+            if joint || !holds(format, target, c) {
+                out.push(format!("{target} {}", c.name));
+            }
+        }
+    }
+    out
+}
+
 /// Writes every data column `holds` keeps as `$NodeData` / `$ElementData` (time step 0, time
-/// 0.0; node tag = vertex id + 1, element tag = cell id + 1, as the writers number them).
-fn write_data(w: &mut dyn Write, k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
+/// 0.0; node tag = vertex id + 1, element tag = cell id + 1, as the writers number them); in
+/// `bin`, each entry as an `int` tag and its doubles, little-endian.
+fn write_data(
+    w: &mut dyn Write,
+    k: &IndexedComplex,
+    format: Format,
+    bin: bool,
+) -> Result<(), IoErrorKind> {
     let attrs = k.attributes();
-    let mut line: Vec<u8> = Vec::with_capacity(256);
+    let mut line: Vec<u8> = Vec::with_capacity(1 << 16);
     for (target, cols, sec) in [
         (AttrTarget::Vertex, &attrs.vertex, "NodeData"),
         (AttrTarget::Cell, &attrs.cell, "ElementData"),
@@ -1423,17 +1715,39 @@ fn write_data(w: &mut dyn Write, k: &IndexedComplex, format: Format) -> Result<(
             writeln!(w, "${sec}\n1\n\"{}\"\n1\n0\n3\n0\n{c}\n{n}", a.name)?;
             for i in 0..n {
                 use std::io::Write as _;
-                line.clear();
-                write!(line, "{}", i + 1)?;
+                if bin {
+                    line.extend_from_slice(&(i as i32 + 1).to_le_bytes());
+                } else {
+                    write!(line, "{}", i + 1)?;
+                }
                 for j in i * c..(i + 1) * c {
-                    line.push(b' ');
-                    match &a.values {
-                        AttrValues::Int(v) => write!(line, "{}", v[j])?,
-                        AttrValues::Float(v) => write_f64(&mut line, v[j])?,
+                    let x = match &a.values {
+                        AttrValues::Int(v) if bin => v[j] as f64,
+                        AttrValues::Int(v) => {
+                            write!(line, " {}", v[j])?;
+                            continue;
+                        }
+                        AttrValues::Float(v) => v[j],
+                    };
+                    if bin {
+                        line.extend_from_slice(&x.to_le_bytes());
+                    } else {
+                        line.push(b' ');
+                        write_f64(&mut line, x)?;
                     }
                 }
-                line.push(b'\n');
-                w.write_all(&line)?;
+                if !bin {
+                    line.push(b'\n');
+                }
+                if line.len() >= 1 << 16 {
+                    w.write_all(&line)?;
+                    line.clear();
+                }
+            }
+            w.write_all(&line)?;
+            line.clear();
+            if bin {
+                w.write_all(b"\n")?;
             }
             writeln!(w, "$End{sec}")?;
         }
@@ -1561,5 +1875,5 @@ pub fn write_22(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind
         }
     }
     writeln!(w, "$EndElements")?;
-    write_data(w, k, Format::Gmsh22)
+    write_data(w, k, Format::Gmsh22, false)
 }

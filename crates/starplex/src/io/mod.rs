@@ -78,6 +78,9 @@ pub enum Format {
     Medit,
     /// `.vtk` (legacy unstructured grid, ascii and binary; poly data read).
     Vtk,
+    /// `.vtk` written as legacy `POLYDATA` (named `vtk-polydata`: edges as `LINES`, triangles
+    /// and quads as `POLYGONS`; reads as [`Format::Vtk`]).
+    VtkPolyData,
     /// `.vtu` (VTK XML unstructured grid; the reader also takes poly data).
     Vtu,
     /// `.vtp` (VTK XML poly data: points, lines, polygons; the reader also takes unstructured
@@ -87,6 +90,9 @@ pub enum Format {
     Gmsh,
     /// `.msh` written as gmsh 2.2 ascii (named `msh22` or `gmsh22`; reads as [`Format::Gmsh`]).
     Gmsh22,
+    /// `.msh` written as gmsh 4.1 binary (named `msh-binary` or `mshb`; reads as
+    /// [`Format::Gmsh`]).
+    GmshBinary,
     /// `.tri` (Stellar reference: triangles).
     Tri,
     /// `.ts` (Stellar reference: tetrahedra).
@@ -102,12 +108,12 @@ impl Format {
     ///
     /// ```
     /// use starplex::io::Format;
-    /// assert_eq!(Format::ALL.len(), 18);
+    /// assert_eq!(Format::ALL.len(), 20);
     /// let writable: Vec<String> = Format::ALL.iter().filter(|f| f.can_write()).map(|f| f.to_string()).collect();
     /// assert_eq!(writable, ["spx", "spb", "off", "off-simplices", "ply", "obj", "stl", "stl-binary",
-    ///                       "mesh", "vtk", "vtu", "vtp", "msh", "msh22"]);
+    ///                       "mesh", "vtk", "vtk-polydata", "vtu", "vtp", "msh", "msh22", "msh-binary"]);
     /// ```
-    pub const ALL: [Format; 18] = [
+    pub const ALL: [Format; 20] = [
         Format::Spx,
         Format::Binary,
         Format::Off,
@@ -118,10 +124,12 @@ impl Format {
         Format::StlBinary,
         Format::Medit,
         Format::Vtk,
+        Format::VtkPolyData,
         Format::Vtu,
         Format::Vtp,
         Format::Gmsh,
         Format::Gmsh22,
+        Format::GmshBinary,
         Format::Tri,
         Format::Ts,
         Format::Sierp,
@@ -164,10 +172,12 @@ impl Format {
             "stl-binary" | "stlb" => Format::StlBinary,
             "mesh" | "medit" => Format::Medit,
             "vtk" => Format::Vtk,
+            "vtk-polydata" | "vtkp" | "vtk-poly" => Format::VtkPolyData,
             "vtu" => Format::Vtu,
             "vtp" => Format::Vtp,
             "msh" | "gmsh" | "msh4" | "msh41" | "gmsh4" | "gmsh41" => Format::Gmsh,
             "msh2" | "msh22" | "gmsh2" | "gmsh22" => Format::Gmsh22,
+            "msh-binary" | "mshb" | "msh41-binary" | "gmsh-binary" => Format::GmshBinary,
             "tri" => Format::Tri,
             "ts" => Format::Ts,
             "sierp" => Format::Sierp,
@@ -233,7 +243,8 @@ impl Format {
     /// use starplex::io::Format;
     /// assert_eq!(Format::Medit.extension(), "mesh");
     /// assert_eq!(Format::Gmsh22.extension(), "msh");
-    /// let variants = [Format::Gmsh22, Format::OffSimplices, Format::StlBinary];
+    /// let variants = [Format::Gmsh22, Format::GmshBinary, Format::OffSimplices, Format::StlBinary,
+    ///                 Format::VtkPolyData];
     /// for f in Format::ALL.into_iter().filter(|f| !variants.contains(f)) {
     ///     assert_eq!(Format::from_name(f.extension()), Some(f));
     /// }
@@ -247,10 +258,10 @@ impl Format {
             Format::Obj => "obj",
             Format::Stl | Format::StlBinary => "stl",
             Format::Medit => "mesh",
-            Format::Vtk => "vtk",
+            Format::Vtk | Format::VtkPolyData => "vtk",
             Format::Vtu => "vtu",
             Format::Vtp => "vtp",
-            Format::Gmsh | Format::Gmsh22 => "msh",
+            Format::Gmsh | Format::Gmsh22 | Format::GmshBinary => "msh",
             Format::Tri => "tri",
             Format::Ts => "ts",
             Format::Sierp => "sierp",
@@ -272,8 +283,8 @@ impl Format {
     /// The attributes of `a` that a file of this format cannot hold (`kind name`, e.g.
     /// `cell material`): none for VTK (`.vtk`, `.vtu`, `.vtp`); Medit keeps only its integer
     /// `medit:ref` columns; PLY keeps those [`ply::dropped`] does not name; OFF keeps the
-    /// colours ([`off::holds`]); gmsh the data sections and, in 2.2, the element tags
-    /// ([`gmsh::holds`]); the other formats keep none.
+    /// colours ([`off::holds`]); gmsh the data sections and the physical and geometrical tags
+    /// ([`gmsh::dropped`]); the other formats keep none.
     ///
     /// ```
     /// use starplex::attr::{Attribute, Attributes};
@@ -291,13 +302,15 @@ impl Format {
         if self == Format::Ply {
             return ply::dropped(a, ply::PlyEncoding::default());
         }
+        if matches!(self, Format::Gmsh | Format::Gmsh22 | Format::GmshBinary) {
+            return gmsh::dropped(self, a);
+        }
         let mut out = Vec::new();
         for target in [AttrTarget::Vertex, AttrTarget::Cell] {
             for c in a.of(target) {
                 let kept = match self {
-                    Format::Vtk | Format::Vtu | Format::Vtp => true,
+                    Format::Vtk | Format::VtkPolyData | Format::Vtu | Format::Vtp => true,
                     Format::Off | Format::OffSimplices => off::holds(target, c),
-                    Format::Gmsh | Format::Gmsh22 => gmsh::holds(self, target, c),
                     Format::Medit => {
                         c.name == medit::REF
                             && c.components == 1
@@ -334,6 +347,8 @@ impl fmt::Display for Format {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Format::Gmsh22 => f.write_str("msh22"),
+            Format::GmshBinary => f.write_str("msh-binary"),
+            Format::VtkPolyData => f.write_str("vtk-polydata"),
             Format::OffSimplices => f.write_str("off-simplices"),
             Format::StlBinary => f.write_str("stl-binary"),
             _ => f.write_str(self.extension()),
@@ -677,9 +692,9 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
         Format::Obj => obj::read(path, opts),
         Format::Stl | Format::StlBinary => stl::read(path, opts),
         Format::Medit => medit::read(path, opts),
-        Format::Vtk => vtk::read(path, opts),
+        Format::Vtk | Format::VtkPolyData => vtk::read(path, opts),
         Format::Vtu | Format::Vtp => vtu::read(path, opts),
-        Format::Gmsh | Format::Gmsh22 => gmsh::read(path, opts),
+        Format::Gmsh | Format::Gmsh22 | Format::GmshBinary => gmsh::read(path, opts),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             stellar_ref::read(path, format, opts)
         }
@@ -755,9 +770,9 @@ pub fn read_stream(
         }
         Format::Obj => obj::read_from(r, path, opts),
         Format::Medit => medit::read_from(r, path, opts),
-        Format::Vtk => vtk::read_from(r, path, opts),
+        Format::Vtk | Format::VtkPolyData => vtk::read_from(r, path, opts),
         Format::Vtu | Format::Vtp => vtu::read_from(r, path, opts),
-        Format::Gmsh | Format::Gmsh22 => gmsh::read_from(r, path, opts),
+        Format::Gmsh | Format::Gmsh22 | Format::GmshBinary => gmsh::read_from(r, path, opts),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             stellar_ref::read_from(r, path, format, opts)
         }
@@ -819,10 +834,12 @@ pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> R
         Format::StlBinary => atomic_write(path, |w| stl::write_binary(w, complex)),
         Format::Medit => atomic_write(path, |w| medit::write(w, complex)),
         Format::Vtk => atomic_write(path, |w| vtk::write(w, complex)),
+        Format::VtkPolyData => atomic_write(path, |w| vtk::write_polydata(w, complex)),
         Format::Vtu => atomic_write(path, |w| vtu::write_vtu(w, complex)),
         Format::Vtp => atomic_write(path, |w| vtu::write_vtp(w, complex)),
         Format::Gmsh => atomic_write(path, |w| gmsh::write(w, complex)),
         Format::Gmsh22 => atomic_write(path, |w| gmsh::write_22(w, complex)),
+        Format::GmshBinary => atomic_write(path, |w| gmsh::write_binary(w, complex)),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             unreachable!("refused by check_writable")
         }
@@ -861,9 +878,10 @@ pub fn check_writable(complex: &IndexedComplex, format: Format) -> Result<(), Io
         Format::Stl | Format::StlBinary => stl::check(complex, format),
         Format::Medit => medit::check(complex),
         Format::Vtk => vtk::check(complex),
+        Format::VtkPolyData => vtk::check_polydata(complex),
         Format::Vtu => vtu::check(complex, false),
         Format::Vtp => vtu::check(complex, true),
-        Format::Gmsh | Format::Gmsh22 => gmsh::check_writable(complex, format),
+        Format::Gmsh | Format::Gmsh22 | Format::GmshBinary => gmsh::check_writable(complex, format),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => Err(IoErrorKind::CannotWrite {
             format,
             reason: format!(

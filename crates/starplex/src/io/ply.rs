@@ -25,14 +25,14 @@
 //! vertices is an error, not an allocation. Errors carry the line (ascii, header) or byte offset
 //! (binary payload). Cell ids in index errors are the face's position in the file.
 //!
-//! Writing: triangles and quads only (`binary_little_endian` by default, `ascii` with
-//! [`write_with`]); coordinates as `double` so a round trip is exact. Vertex attributes are
-//! written as extra `vertex` properties and cell attributes as extra `face` properties after
-//! `vertex_indices`: integers as `uchar` when every value is in 0..=255 (so `red green blue`
+//! Writing: triangles and quads as `face`s, edges as `edge`s (`binary_little_endian` by
+//! default, `ascii` with [`write_with`]); coordinates as `double` so a round trip is exact.
+//! Vertex attributes are written as extra `vertex` properties and cell attributes as extra
+//! properties of both `face` (after `vertex_indices`) and `edge` (after `vertex1 vertex2`): integers as `uchar` when every value is in 0..=255 (so `red green blue`
 //! stay colours for other tools), else `int` or `uint`, floats as `double`; a column of `k > 1`
 //! components as `{name}_0` .. `{name}_{k-1}`. Columns PLY cannot hold are left out ([`dropped`]
 //! names them): integers beyond 32 bits, NaN or infinite floats in ascii, names that are not one
-//! word or that clash (`x`, `vertex_indices`, another column's property).
+//! word or that clash (`x`, `vertex_indices`, `vertex1`, another column's property).
 //!
 //! ```
 //! use starplex::io::{ply, ReadOptions};
@@ -810,8 +810,9 @@ fn read_record<E: PropertyAccess, R: BufRead>(
     })
 }
 
-/// Refuses complexes that a surface format (PLY, OBJ) cannot hold: anything but triangles and
-/// quads, or an ambient dimension other than 2 and 3.
+/// Refuses complexes that a surface format (PLY, OBJ) cannot hold: anything but triangles,
+/// quads and (PLY only, as its `edge` element) edges, or an ambient dimension other than 2
+/// and 3.
 ///
 /// ```
 /// use starplex::cell::CellKind;
@@ -841,6 +842,7 @@ pub fn check_surface(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKi
     for b in k.blocks() {
         let what = match b.kind {
             CellKind::Simplex(2) | CellKind::Quad => continue,
+            CellKind::Simplex(1) if format == Format::Ply => continue,
             CellKind::Simplex(3) => "a tetrahedral mesh",
             CellKind::Hex => "a hexahedral mesh",
             CellKind::Prism => "a mesh with prisms",
@@ -888,7 +890,10 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
 }
 
 /// Writes `k` as PLY with the given encoding: `double` coordinates, one `face` per triangle or
-/// quad.
+/// quad, one `edge` (`vertex1`, `vertex2`) per edge, the cell attributes on both elements. The
+/// element of the first cell comes first, so a reader gives back the cells in the same order
+/// when `k` lists all its faces before its edges or all its edges before its faces; otherwise
+/// the cells come back grouped by element, each in its order in `k`.
 ///
 /// ```
 /// use starplex::io::{ply, IoErrorKind};
@@ -922,7 +927,13 @@ pub fn write_with(
     };
     let attrs = k.attributes();
     let vcols = plan_columns(&attrs.vertex, &["x", "y", "z"], enc);
-    let ccols = plan_columns(&attrs.cell, &["vertex_indices", "vertex_index"], enc);
+    let ccols = plan_columns(&attrs.cell, CELL_RESERVED, enc);
+    let is_edge = |b: &&crate::complex::CellBlock| b.kind == CellKind::Simplex(1);
+    let n_edges: usize = k.blocks().iter().filter(is_edge).map(|b| b.len()).sum();
+    let n_faces = k.n_cells() - n_edges;
+    // the element of the first cell first, so that a complex listing its edges before its
+    // faces (or only one of them) reads back in the same cell order
+    let edges_first = k.blocks().first().is_some_and(|b| is_edge(&b));
     let mut h = String::new();
     h.push_str("ply\n");
     h.push_str(match enc {
@@ -945,11 +956,34 @@ pub fn write_with(
         }
     };
     props(&mut h, &vcols);
-    h.push_str(&format!("element face {}\n", k.n_cells()));
-    h.push_str(&format!("property list uchar {idx_t} vertex_indices\n"));
-    props(&mut h, &ccols);
+    let elements: &[bool] = match (n_edges > 0, edges_first) {
+        (false, _) => &[false],
+        (true, true) => &[true, false],
+        (true, false) => &[false, true],
+    };
+    for &edges in elements {
+        if edges {
+            h.push_str(&format!("element edge {n_edges}\n"));
+            h.push_str(&format!(
+                "property {idx_t} vertex1\nproperty {idx_t} vertex2\n"
+            ));
+        } else if n_faces > 0 || n_edges == 0 {
+            h.push_str(&format!("element face {n_faces}\n"));
+            h.push_str(&format!("property list uchar {idx_t} vertex_indices\n"));
+        } else {
+            continue;
+        }
+        props(&mut h, &ccols);
+    }
     h.push_str("end_header\n");
     w.write_all(h.as_bytes())?;
+    // the cells of each element, in cell order
+    let cells_of = |edges: bool| {
+        k.blocks()
+            .iter()
+            .filter(move |b| is_edge(b) == edges)
+            .flat_map(|b| (0..b.len()).map(move |i| (b.first as usize + i, b.cell(i))))
+    };
     match enc {
         PlyEncoding::Ascii => {
             let mut s = Vec::with_capacity(256);
@@ -965,18 +999,19 @@ pub fn write_with(
                 s.push(b'\n');
                 w.write_all(&s)?;
             }
-            let mut id = 0;
-            for b in k.blocks() {
-                for i in 0..b.len() {
+            for &edges in elements {
+                for (id, c) in cells_of(edges) {
                     use std::io::Write as _;
                     s.clear();
-                    let c = b.cell(i);
-                    write!(s, "{}", c.len())?;
-                    for v in c {
-                        write!(s, " {v}")?;
+                    if edges {
+                        write!(s, "{} {}", c[0], c[1])?;
+                    } else {
+                        write!(s, "{}", c.len())?;
+                        for v in c {
+                            write!(s, " {v}")?;
+                        }
                     }
                     ascii_values(&mut s, &ccols, id)?;
-                    id += 1;
                     s.push(b'\n');
                     w.write_all(&s)?;
                 }
@@ -994,16 +1029,15 @@ pub fn write_with(
                     buf.clear();
                 }
             }
-            let mut id = 0;
-            for b in k.blocks() {
-                for i in 0..b.len() {
-                    let c = b.cell(i);
-                    buf.push(c.len() as u8);
+            for &edges in elements {
+                for (id, c) in cells_of(edges) {
+                    if !edges {
+                        buf.push(c.len() as u8);
+                    }
                     for &v in c {
                         buf.extend_from_slice(&v.to_le_bytes());
                     }
                     binary_values(&mut buf, &ccols, id);
-                    id += 1;
                     if buf.len() >= 1 << 16 {
                         w.write_all(&buf)?;
                         buf.clear();
@@ -1015,6 +1049,9 @@ pub fn write_with(
     }
     Ok(())
 }
+
+/// Property names of the `face` and `edge` elements that cell columns cannot take.
+const CELL_RESERVED: &[&str] = &["vertex_indices", "vertex_index", "vertex1", "vertex2"];
 
 /// The PLY type an attribute column is written as.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -1153,11 +1190,7 @@ pub fn dropped(a: &Attributes, enc: PlyEncoding) -> Vec<String> {
     let mut out = Vec::new();
     for (target, cols, reserved) in [
         (AttrTarget::Vertex, &a.vertex, &["x", "y", "z"][..]),
-        (
-            AttrTarget::Cell,
-            &a.cell,
-            &["vertex_indices", "vertex_index"][..],
-        ),
+        (AttrTarget::Cell, &a.cell, CELL_RESERVED),
     ] {
         let kept = plan_columns(cols, reserved, enc);
         for c in cols {

@@ -1,6 +1,6 @@
 //! Legacy VTK `.vtk`, `DATASET UNSTRUCTURED_GRID` and `DATASET POLYDATA`, ascii and binary.
 //!
-//! `POLYDATA` (read only): `POINTS`, then `VERTICES`, `LINES`, `POLYGONS` and `TRIANGLE_STRIPS`
+//! `POLYDATA` (written by [`write_polydata`]): `POINTS`, then `VERTICES`, `LINES`, `POLYGONS` and `TRIANGLE_STRIPS`
 //! sections in either cell layout (classic `n size` lists, or `OFFSETS`/`CONNECTIVITY` in 5.x),
 //! read as poly-vertex, poly-line, polygon and triangle-strip cells (below); its cells are
 //! numbered section by section in that order, whatever the order in the file, as VTK does, and
@@ -22,7 +22,9 @@
 //! so the complex read has ambient dimension 3.
 //!
 //! Write: `# vtk DataFile Version 4.2`, classic layout (read by every VTK version, ParaView and
-//! meshio); points of ambient dimension 1 or 2 are padded with zeros.
+//! meshio); points of ambient dimension 1 or 2 are padded with zeros. [`write()`] writes an
+//! `UNSTRUCTURED_GRID`, [`write_polydata`] (format name `vtk-polydata`) a `POLYDATA` of lines
+//! and polygons.
 //!
 //! ```
 //! use starplex::io::{vtk, ReadOptions};
@@ -1345,13 +1347,128 @@ pub fn check(k: &IndexedComplex) -> Result<(), IoErrorKind> {
 /// more; OS errors of the writer.
 pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     check(k)?;
+    write_head(w, k, "UNSTRUCTURED_GRID")?;
+    writeln!(w, "CELLS {} {}", k.n_cells(), k.n_cells() + k.n_refs())?;
+    let mut line = String::with_capacity(128);
+    for b in k.blocks() {
+        for i in 0..b.len() {
+            push_cell_line(&mut line, b.cell(i));
+            w.write_all(line.as_bytes())?;
+        }
+    }
+    writeln!(w, "CELL_TYPES {}", k.n_cells())?;
+    for b in k.blocks() {
+        let t = vtk_type(b.kind).unwrap_or(0);
+        for _ in 0..b.len() {
+            writeln!(w, "{t}")?;
+        }
+    }
+    write_point_cell_data(w, k, None)
+}
+
+/// Refuses what a legacy `POLYDATA` file written by [`write_polydata`] cannot hold: more than 3
+/// coordinates, cells other than edges, triangles and quads.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::vtk;
+/// let tet = IndexedComplex::from_parts(3, vec![0.0; 12].into(),
+///                                      vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
+/// let e = vtk::check_polydata(&tet).unwrap_err().to_string();
+/// assert!(e.contains("POLYDATA holds edges, triangles and quads"), "{e}");
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] with the reason.
+pub fn check_polydata(k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let d = k.ambient_dim();
+    let fail = |reason: String| {
+        Err(IoErrorKind::CannotWrite {
+            format: Format::VtkPolyData,
+            reason,
+        })
+    };
+    if d > 3 {
+        return fail(format!(
+            "VTK points have 3 coordinates, the complex has {d}"
+        ));
+    }
+    for b in k.blocks() {
+        if !matches!(
+            b.kind,
+            CellKind::Simplex(1) | CellKind::Simplex(2) | CellKind::Quad
+        ) {
+            return fail(format!(
+                "POLYDATA holds edges, triangles and quads, not {} cells: write the unstructured grid (--to vtk)",
+                b.kind
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Writes `k` as legacy VTK `DATASET POLYDATA` (version 4.2, ascii, classic layout): edges as
+/// `LINES`, triangles and quads as `POLYGONS`, attributes as in [`write()`]. VTK numbers the
+/// cells of poly data section by section, so `CELL_DATA` lists the edges' values first, then
+/// the polygons'; a reader gives back the edges first, then the polygons, each in their order
+/// in `k` (the same cells when `k` lists its edges first).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{vtk, ReadOptions};
+/// let k = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 0., 1., 0., 2., 2., 0.].into(),
+///     vec![(CellKind::Simplex(1), vec![2, 3].into()), (CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let mut out = Vec::new();
+/// vtk::write_polydata(&mut out, &k).unwrap();
+/// let text = String::from_utf8(out).unwrap();
+/// assert!(text.contains("DATASET POLYDATA\n") && text.contains("LINES 1 3\n2 2 3\nPOLYGONS 1 4\n3 0 1 2\n"));
+/// let back = vtk::read_from(text.as_bytes(), "p.vtk".as_ref(), &ReadOptions::default()).unwrap();
+/// assert_eq!(back.complex, k);
+/// ```
+///
+/// # Errors
+/// [`IoErrorKind::CannotWrite`] (see [`check_polydata`]); OS errors of the writer.
+pub fn write_polydata(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    check_polydata(k)?;
+    write_head(w, k, "POLYDATA")?;
+    // VTK's cell order: the lines, then the polygons
+    let mut order: Vec<u32> = Vec::with_capacity(k.n_cells());
+    let mut line = String::with_capacity(128);
+    for (sec, lines) in [("LINES", true), ("POLYGONS", false)] {
+        let blocks = || {
+            k.blocks()
+                .iter()
+                .filter(move |b| (b.kind == CellKind::Simplex(1)) == lines)
+        };
+        let (n, refs) = blocks().fold((0, 0), |(n, r), b| {
+            (n + b.len(), r + b.len() * (1 + b.kind.n_vertices()))
+        });
+        if n == 0 {
+            continue;
+        }
+        writeln!(w, "{sec} {n} {refs}")?;
+        for b in blocks() {
+            for i in 0..b.len() {
+                order.push(b.first + i as u32);
+                push_cell_line(&mut line, b.cell(i));
+                w.write_all(line.as_bytes())?;
+            }
+        }
+    }
+    write_point_cell_data(w, k, Some(&order))
+}
+
+/// The header and `POINTS` section of a legacy file of dataset type `dataset`.
+fn write_head(w: &mut dyn Write, k: &IndexedComplex, dataset: &str) -> std::io::Result<()> {
     let d = k.ambient_dim();
     writeln!(w, "# vtk DataFile Version 4.2")?;
     writeln!(w, "written by starplex {}", env!("CARGO_PKG_VERSION"))?;
     writeln!(w, "ASCII")?;
-    writeln!(w, "DATASET UNSTRUCTURED_GRID")?;
+    writeln!(w, "DATASET {dataset}")?;
     writeln!(w, "POINTS {} double", k.n_vertices())?;
-    for p in k.coords().chunks_exact(d) {
+    for p in k.coords().chunks_exact(d.max(1)) {
         for (i, &x) in p.iter().enumerate() {
             if i > 0 {
                 w.write_all(b" ")?;
@@ -1363,32 +1480,31 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
         }
         w.write_all(b"\n")?;
     }
-    writeln!(w, "CELLS {} {}", k.n_cells(), k.n_cells() + k.n_refs())?;
-    let mut line = String::with_capacity(128);
-    for b in k.blocks() {
-        let n = b.kind.n_vertices();
-        for i in 0..b.len() {
-            use std::fmt::Write as _;
-            line.clear();
-            let _ = write!(line, "{n}");
-            for v in b.cell(i) {
-                let _ = write!(line, " {v}");
-            }
-            line.push('\n');
-            w.write_all(line.as_bytes())?;
-        }
+    Ok(())
+}
+
+/// `line` = `n v_0 .. v_{n-1}` and a line end.
+fn push_cell_line(line: &mut String, c: &[u32]) {
+    use std::fmt::Write as _;
+    line.clear();
+    let _ = write!(line, "{}", c.len());
+    for v in c {
+        let _ = write!(line, " {v}");
     }
-    writeln!(w, "CELL_TYPES {}", k.n_cells())?;
-    for b in k.blocks() {
-        let t = vtk_type(b.kind).unwrap_or(0);
-        for _ in 0..b.len() {
-            writeln!(w, "{t}")?;
-        }
-    }
+    line.push('\n');
+}
+
+/// `POINT_DATA` and `CELL_DATA` as `FIELD` arrays; the cells' values in `order` (cell ids) when
+/// given, else in cell order.
+fn write_point_cell_data(
+    w: &mut dyn Write,
+    k: &IndexedComplex,
+    order: Option<&[u32]>,
+) -> Result<(), IoErrorKind> {
     let attrs = k.attributes();
-    for (sec, cols, n) in [
-        ("POINT_DATA", &attrs.vertex, k.n_vertices()),
-        ("CELL_DATA", &attrs.cell, k.n_cells()),
+    for (sec, cols, n, order) in [
+        ("POINT_DATA", &attrs.vertex, k.n_vertices(), None),
+        ("CELL_DATA", &attrs.cell, k.n_cells(), order),
     ] {
         if cols.is_empty() {
             continue;
@@ -1401,7 +1517,8 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
                 AttrValues::Float(_) => "double",
             };
             writeln!(w, "{} {} {n} {ty}", legacy_name(&a.name), a.components)?;
-            for item in 0..n {
+            for pos in 0..n {
+                let item = order.map_or(pos, |o| o[pos] as usize);
                 for c in 0..a.components {
                     if c > 0 {
                         w.write_all(b" ")?;
