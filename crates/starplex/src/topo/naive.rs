@@ -66,18 +66,49 @@ impl<'a> VtIndex<'a> {
     }
 }
 
+/// An indexed complex is its list of top cells: it answers [`TopCells`] directly, without a
+/// vertex → cells relation (which [`VtIndex`] adds).
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::{cell::CellKind, ids::{CellId, VertexId}, topo::TopCells};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let mut vs = Vec::new();
+/// TopCells::top_cell_vertices(&k, CellId(1), &mut vs);
+/// assert_eq!(vs, [VertexId(1), VertexId(3), VertexId(2)]);
+/// assert_eq!(TopCells::n_top_cells(&k), 2);
+/// ```
+impl TopCells for IndexedComplex {
+    fn n_vertices(&self) -> usize {
+        IndexedComplex::n_vertices(self)
+    }
+    fn n_top_cells(&self) -> usize {
+        self.n_cells()
+    }
+    fn top_cell_kind(&self, c: CellId) -> CellKind {
+        self.cell(c).kind
+    }
+    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
+        out.extend(self.cell(c).vertices.iter().map(|&v| VertexId(v)));
+    }
+}
+
 impl TopCells for VtIndex<'_> {
     fn n_vertices(&self) -> usize {
-        self.complex.n_vertices()
+        IndexedComplex::n_vertices(self.complex)
     }
     fn n_top_cells(&self) -> usize {
         self.complex.n_cells()
     }
     fn top_cell_kind(&self, c: CellId) -> CellKind {
-        self.complex.cell(c).kind
+        self.complex.top_cell_kind(c)
     }
     fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
-        out.extend(self.complex.cell(c).vertices.iter().map(|&v| VertexId(v)));
+        self.complex.top_cell_vertices(c, out)
     }
 }
 

@@ -447,7 +447,7 @@ pub fn homology_indexed(
     k: &IndexedComplex,
     opts: &HomologyOptions,
 ) -> Result<Homology, HomologyError> {
-    match choose_order(&order::CellsOf(k), opts.order) {
+    match choose_order(k, opts.order) {
         None => homology_ordered(&VtIndex::new(k), opts, None),
         Some((f, to_old)) => homology_ordered(&f, opts, Some(&to_old)),
     }

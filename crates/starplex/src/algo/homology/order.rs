@@ -89,24 +89,6 @@ pub(crate) fn first_appearance_order<S: TopCells + ?Sized>(s: &S) -> Vec<u32> {
     to_new
 }
 
-/// The top cells of an indexed complex (no vertex → cells relation).
-pub(crate) struct CellsOf<'a>(pub &'a crate::complex::IndexedComplex);
-
-impl TopCells for CellsOf<'_> {
-    fn n_vertices(&self) -> usize {
-        self.0.n_vertices()
-    }
-    fn n_top_cells(&self) -> usize {
-        self.0.n_cells()
-    }
-    fn top_cell_kind(&self, c: CellId) -> CellKind {
-        self.0.cell(c).kind
-    }
-    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
-        out.extend(self.0.cell(c).vertices.iter().map(|&v| VertexId(v)));
-    }
-}
-
 /// Local minima of the order `to_new` (the input order when `None`): vertices with no
 /// incident top cell holding a vertex that comes earlier. One streaming pass over the top
 /// cells (a vertex is not a minimum as soon as a cell holds it and an earlier vertex); no

@@ -169,7 +169,7 @@ impl TopSimplices {
     /// As [`from_structure`](Self::from_structure).
     pub fn from_complex(k: &IndexedComplex) -> Result<TopSimplices, SimplifyError> {
         // the cells straight from the complex: no vertex -> cells index is built
-        Self::from_structure(&CellsOf(k), k.coords(), k.ambient_dim())
+        Self::from_structure(k, k.coords(), k.ambient_dim())
     }
 
     /// Builds the structure from lists of vertices (no coordinates), checking that they are
@@ -796,25 +796,6 @@ impl TopSimplices {
             .filter(|&v| self.alive_v[v as usize])
             .map(VertexId)
             .collect()
-    }
-}
-
-/// The cells of an indexed complex as top cells, without the vertex -> cells index of
-/// [`VtIndex`](crate::topo::naive::VtIndex) (only [`TopCells`] is needed here).
-struct CellsOf<'a>(&'a IndexedComplex);
-
-impl TopCells for CellsOf<'_> {
-    fn n_vertices(&self) -> usize {
-        self.0.n_vertices()
-    }
-    fn n_top_cells(&self) -> usize {
-        self.0.n_cells()
-    }
-    fn top_cell_kind(&self, c: CellId) -> CellKind {
-        self.0.cell(c).kind
-    }
-    fn top_cell_vertices(&self, c: CellId, out: &mut Vec<VertexId>) {
-        out.extend(self.0.cell(c).vertices.iter().map(|&v| VertexId(v)));
     }
 }
 
