@@ -626,12 +626,20 @@ pub fn parse_f64(tok: &[u8]) -> Option<f64> {
 /// write_f64(&mut out, 0.1 + 0.2).unwrap();
 /// assert_eq!(out, b"3 0.30000000000000004");
 /// assert_eq!(parse_f64(&out[2..]), Some(0.1 + 0.2)); // reads back exactly
+/// out.clear();
+/// write_f64(&mut out, 1e-300).unwrap(); // tiny and huge values use an exponent
+/// assert_eq!(out, b"1e-300");
 /// ```
 pub fn write_f64(w: &mut dyn std::io::Write, x: f64) -> std::io::Result<()> {
-    if x == x.trunc() && x.abs() < 1e15 {
+    let a = x.abs();
+    if x == x.trunc() && a < 1e15 {
         write!(w, "{}", x as i64)
-    } else {
+    } else if (1e-5..1e16).contains(&a) || !x.is_finite() {
         write!(w, "{x}")
+    } else {
+        // `{}` would print every digit of 1e-300 or 1e300 (hundreds of characters, which some
+        // readers refuse); `{:e}` is the same shortest round-trip digits with an exponent.
+        write!(w, "{x:e}")
     }
 }
 
@@ -651,9 +659,22 @@ mod tests {
 
     #[test]
     fn f64_round_trips_through_write() {
-        for x in [0.0, -1.5, 1e-300, 0.1 + 0.2, 123456789.0, -7.0e20] {
+        for x in [
+            0.0,
+            -1.5,
+            1e-300,
+            0.1 + 0.2,
+            123456789.0,
+            -7.0e20,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            -1.2345678901234567e-7,
+            1e16 + 2.0,
+        ] {
             let mut s = Vec::new();
             write_f64(&mut s, x).unwrap();
+            assert!(s.len() <= 24, "{}", String::from_utf8_lossy(&s));
             assert_eq!(parse_f64(&s), Some(x), "{}", String::from_utf8_lossy(&s));
         }
     }
