@@ -1454,13 +1454,8 @@ mod tests {
 
     #[test]
     fn block_fast_check_agrees_with_check_cell() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut rng = crate::testkit::XorShift::new(0x2545_f491_4f6c_dd1d);
+        let mut next = |m: u64| rng.below(m);
         for n in 1..=10usize {
             for _ in 0..300 {
                 let nv = 1 + next(40) as usize;

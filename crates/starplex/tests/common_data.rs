@@ -25,19 +25,38 @@ pub fn data_required() -> bool {
     std::env::var("CI").is_ok_and(|v| v == "true")
 }
 
-/// Every small dataset we can find: `(name, path to .spx, oracle JSON)`. Looks in
-/// `../shared/datasets/small/` and, when `STARPLEX_DATA` is set, in `$STARPLEX_DATA/small/*/`.
-pub fn small_datasets() -> Vec<(String, PathBuf, serde_json::Value)> {
-    let mut found: std::collections::BTreeMap<String, PathBuf> = Default::default();
-    let mut dirs = vec![datasets_dir().join("small")];
+/// The folders that may hold datasets of `size` (`"small"`, `"medium"`, ...): the shared
+/// `datasets/<size>/` and, when `STARPLEX_DATA` is set, every `$STARPLEX_DATA/<size>/<name>/`.
+pub fn data_dirs(size: &str) -> Vec<PathBuf> {
+    let mut dirs = vec![datasets_dir().join(size)];
     if let Ok(d) = std::env::var("STARPLEX_DATA")
-        && let Ok(rd) = std::fs::read_dir(Path::new(&d).join("small"))
+        && let Ok(rd) = std::fs::read_dir(Path::new(&d).join(size))
     {
-        for e in rd.flatten() {
-            dirs.push(e.path());
-        }
+        let mut more: Vec<PathBuf> = rd.flatten().map(|e| e.path()).collect();
+        more.sort();
+        dirs.extend(more);
     }
-    for d in dirs {
+    dirs
+}
+
+/// The dataset file `file` (e.g. `tri_elephant.off`) of `size`: from the shared datasets, else
+/// from `$STARPLEX_DATA/<size>/<stem>/`. `None` when neither has it.
+pub fn dataset_file(size: &str, file: &str) -> Option<PathBuf> {
+    let stem = file.split('.').next().unwrap_or(file);
+    let shared = datasets_dir().join(size).join(file);
+    if shared.is_file() {
+        return Some(shared);
+    }
+    let d = std::env::var("STARPLEX_DATA").ok()?;
+    let p = Path::new(&d).join(size).join(stem).join(file);
+    p.is_file().then_some(p)
+}
+
+/// `(name, path)` of every `.spx` dataset of `size` we can find, sorted by name, first found
+/// kept (no oracle needed).
+pub fn spx_files(size: &str) -> Vec<(String, PathBuf)> {
+    let mut found: std::collections::BTreeMap<String, PathBuf> = Default::default();
+    for d in data_dirs(size) {
         let Ok(rd) = std::fs::read_dir(&d) else {
             continue;
         };
@@ -49,7 +68,12 @@ pub fn small_datasets() -> Vec<(String, PathBuf, serde_json::Value)> {
             }
         }
     }
-    found
+    found.into_iter().collect()
+}
+
+/// The `.spx` datasets of `size` that have an oracle: `(name, path to .spx, oracle JSON)`.
+pub fn datasets_with_oracle(size: &str) -> Vec<(String, PathBuf, serde_json::Value)> {
+    spx_files(size)
         .into_iter()
         .filter_map(|(name, p)| {
             let o = datasets_dir().join("oracle").join(format!("{name}.json"));
@@ -57,4 +81,15 @@ pub fn small_datasets() -> Vec<(String, PathBuf, serde_json::Value)> {
             Some((name, p, serde_json::from_str(&text).ok()?))
         })
         .collect()
+}
+
+/// Every small dataset we can find: `(name, path to .spx, oracle JSON)`. Looks in
+/// `../shared/datasets/small/` and, when `STARPLEX_DATA` is set, in `$STARPLEX_DATA/small/*/`.
+pub fn small_datasets() -> Vec<(String, PathBuf, serde_json::Value)> {
+    datasets_with_oracle("small")
+}
+
+/// Every medium dataset with an oracle (medium data is built by `get medium`; CI has none).
+pub fn medium_datasets() -> Vec<(String, PathBuf, serde_json::Value)> {
+    datasets_with_oracle("medium")
 }

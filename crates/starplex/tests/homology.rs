@@ -710,30 +710,6 @@ proptest! {
     }
 }
 
-/// Medium datasets: `$STARPLEX_DATA/medium/<name>/<name>.spx` with an oracle.
-fn medium_datasets() -> Vec<(String, std::path::PathBuf, serde_json::Value)> {
-    let Ok(d) = std::env::var("STARPLEX_DATA") else {
-        return vec![];
-    };
-    let mut out = Vec::new();
-    let Ok(rd) = std::fs::read_dir(std::path::Path::new(&d).join("medium")) else {
-        return out;
-    };
-    let mut dirs: Vec<_> = rd.flatten().map(|e| e.path()).collect();
-    dirs.sort();
-    for p in dirs {
-        let name = p.file_name().unwrap().to_string_lossy().into_owned();
-        let spx = p.join(format!("{name}.spx"));
-        let o = common_data::datasets_dir()
-            .join("oracle")
-            .join(format!("{name}.json"));
-        if let (true, Ok(text)) = (spx.is_file(), std::fs::read_to_string(o)) {
-            out.push((name, spx, serde_json::from_str(&text).unwrap()));
-        }
-    }
-    out
-}
-
 #[test]
 fn betti_z2_matches_the_oracles() {
     let sets = common_data::small_datasets();
@@ -745,7 +721,7 @@ fn betti_z2_matches_the_oracles() {
         return;
     }
     let mut checked = 0;
-    for (name, path, o) in sets.into_iter().chain(medium_datasets()) {
+    for (name, path, o) in sets.into_iter().chain(common_data::medium_datasets()) {
         let Some(want) = o.get("betti_z2").and_then(|b| b.as_array()) else {
             continue;
         };

@@ -283,13 +283,8 @@ fn ply_with_attributes_never_panics_when_cut_or_corrupted() {
         ply::write_with(&mut out, &k, enc).unwrap();
         files.push((format!("own_{enc:?}.ply"), out));
     }
-    let mut seed = 0x5eed_u64;
-    let mut next = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    };
+    let mut rng = starplex::testkit::XorShift::new(0x5eed);
+    let mut next = || rng.next_u64();
     let opts = ReadOptions::default();
     for (name, full) in &files {
         let binary = !name.contains("ascii") && !name.contains("Ascii");
@@ -428,13 +423,8 @@ fn coff_never_panics_when_cut_or_corrupted() {
             assert!(e.to_string().starts_with("c.off"), "{e}");
         }
     }
-    let mut seed = 0x0ff_u64;
-    let mut next = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    };
+    let mut rng = starplex::testkit::XorShift::new(0x0ff);
+    let mut next = || rng.next_u64();
     for _ in 0..2000 {
         let mut b = full.to_vec();
         for _ in 0..1 + next() % 4 {
@@ -704,13 +694,8 @@ fn gmsh_with_data_never_panics_when_cut_or_corrupted() {
     let mut out = Vec::new();
     gmsh::write_22(&mut out, &k).unwrap();
     files.push(("own_22.msh".into(), out, 1));
-    let mut seed = 0x95_u64;
-    let mut next = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    };
+    let mut rng = starplex::testkit::XorShift::new(0x95);
+    let mut next = || rng.next_u64();
     for (name, full, step) in &files {
         for cut in (0..full.len()).step_by(*step) {
             if let Err(e) = gmsh::read_from(&full[..cut], name.as_ref(), &opts) {
@@ -851,13 +836,8 @@ fn binary_polydata_and_its_truncations() {
     let kinds: Vec<CellKind> = k.cells().map(|c| c.kind).collect();
     assert_eq!(kinds, [CellKind::Simplex(1), CellKind::Quad]);
     assert_eq!(k.attributes().cell[0].values, AttrValues::Int(vec![7, 8]));
-    let mut seed = 0x77_u64;
-    let mut next = || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    };
+    let mut rng = starplex::testkit::XorShift::new(0x77);
+    let mut next = || rng.next_u64();
     let ascii: Vec<Vec<u8>> = vec![
         polydata_ascii(false).into_bytes(),
         polydata_ascii(true).into_bytes(),

@@ -1,6 +1,7 @@
 //! `.spb` binary format: round trips (mapped, no copy), a table of corrupted files, a byte-mutation
 //! property test (never a panic), and a round trip of every small dataset when `STARPLEX_DATA` is
 //! set.
+mod common_data;
 use std::path::PathBuf;
 
 use proptest::prelude::*;
@@ -338,17 +339,15 @@ proptest! {
 
 #[test]
 fn every_small_dataset_round_trips() {
-    let Ok(data) = std::env::var("STARPLEX_DATA") else {
-        println!(
-            "skipped: STARPLEX_DATA is not set (set it to /work/data to round-trip the datasets)"
+    let sets = common_data::spx_files("small");
+    if sets.is_empty() {
+        assert!(
+            !common_data::data_required(),
+            "no small .spx dataset found (CI=true)"
         );
+        println!("skipped: no small datasets (set STARPLEX_DATA=/work/data to round-trip them)");
         return;
-    };
-    let sets = small_spx_files(std::path::Path::new(&data));
-    assert!(
-        !sets.is_empty(),
-        "STARPLEX_DATA is set but no $STARPLEX_DATA/small/*/*.spx was found"
-    );
+    }
     for (name, spx) in sets {
         let k = io::read(&spx, &ReadOptions::default()).unwrap().complex;
         let p = tmp(&format!("{name}.spb"));
@@ -364,24 +363,4 @@ fn every_small_dataset_round_trips() {
         );
         std::fs::remove_file(&p).ok();
     }
-}
-
-/// `(name, path)` of every `$STARPLEX_DATA/small/*/*.spx`, sorted (no oracle needed here).
-fn small_spx_files(data: &std::path::Path) -> Vec<(String, PathBuf)> {
-    let mut out = Vec::new();
-    for d in std::fs::read_dir(data.join("small"))
-        .into_iter()
-        .flatten()
-        .flatten()
-    {
-        for f in std::fs::read_dir(d.path()).into_iter().flatten().flatten() {
-            let p = f.path();
-            if p.extension().is_some_and(|x| x == "spx") {
-                let name = p.file_stem().unwrap().to_string_lossy().into_owned();
-                out.push((name, p));
-            }
-        }
-    }
-    out.sort();
-    out
 }

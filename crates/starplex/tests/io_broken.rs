@@ -70,15 +70,8 @@ fn fill(row: &Row, nv: &str, nc: &str, x: &str, i: &str) -> String {
 
 /// Deterministic pseudo-random bytes (xorshift), with a few newlines.
 fn garbage(seed: u64, n: usize) -> Vec<u8> {
-    let mut s = seed | 1;
-    (0..n)
-        .map(|_| {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 24) as u8
-        })
-        .collect()
+    let mut rng = starplex::testkit::XorShift::new(seed | 1);
+    (0..n).map(|_| (rng.next_u64() >> 24) as u8).collect()
 }
 
 /// The broken variants of one row (and the valid file, which must read).
@@ -347,11 +340,9 @@ fn mutated_files_never_panic() {
         b"\xff",
         b"\x00",
     ];
-    let mut rng = 0x5eed_u64;
+    let mut rng = starplex::testkit::XorShift::new(0x5eed);
     let mut next = move |n: usize| {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
+        let rng = rng.next_u64();
         (rng % n as u64) as usize
     };
     let mut runs = 0;

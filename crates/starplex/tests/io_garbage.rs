@@ -2,15 +2,9 @@
 //! a panic).
 use starplex::io::{self, Format, ReadOptions};
 
-fn random(n: usize, mut seed: u64) -> Vec<u8> {
-    (0..n)
-        .map(|_| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed as u8
-        })
-        .collect()
+fn random(n: usize, seed: u64) -> Vec<u8> {
+    let mut rng = starplex::testkit::XorShift::new(seed);
+    (0..n).map(|_| rng.next_u64() as u8).collect()
 }
 
 #[test]

@@ -56,14 +56,11 @@ fn corpus(max_len: u64) -> Vec<(PathBuf, Format)> {
     out
 }
 
-struct Rng(u64);
+struct Rng(starplex::testkit::XorShift);
 
 impl Rng {
     fn below(&mut self, n: usize) -> usize {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 % n.max(1) as u64) as usize
+        self.0.below(n.max(1) as u64) as usize
     }
 }
 
@@ -185,7 +182,7 @@ fn every_reader_survives_mutated_corpus_files() {
     std::fs::create_dir_all(&dir).unwrap();
     let keep = dir.join("failures");
     let mut failures = Vec::new();
-    let mut rng = Rng(0x00c0_ffee_1234_5678);
+    let mut rng = Rng(starplex::testkit::XorShift::new(0x00c0_ffee_1234_5678));
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {})); // the panics are reported below, with their input
     let t0 = std::time::Instant::now();

@@ -14,36 +14,19 @@ use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 use starplex::io::{self, off, Format, PolygonMode, ReadOptions};
 
-fn shared_small() -> PathBuf {
-    common_data::datasets_dir().join("small")
-}
-
-/// The dataset file `file` (e.g. `tri_elephant.off`): from the shared datasets, else from
-/// `$STARPLEX_DATA/small/<stem>/`. `None` (with a printed reason) when it cannot be used here.
+/// The dataset file `file` (e.g. `tri_elephant.off`), from the shared datasets or
+/// `$STARPLEX_DATA/small/<stem>/`. `None` (with a printed reason) when it cannot be used here; a
+/// failure when `STARPLEX_DATA` is set (the generated copies hold every format).
 fn dataset(file: &str) -> Option<PathBuf> {
-    let p = shared_small().join(file);
-    if p.exists() {
-        return Some(p);
+    let p = common_data::dataset_file("small", file);
+    if p.is_none() {
+        assert!(
+            std::env::var_os("STARPLEX_DATA").is_none(),
+            "STARPLEX_DATA is set but has no {file}"
+        );
+        println!("SKIPPED: {file} not found (set STARPLEX_DATA=/work/data)");
     }
-    let stem = file.split('.').next().unwrap_or(file);
-    match std::env::var("STARPLEX_DATA") {
-        Ok(d) => {
-            let p = Path::new(&d).join("small").join(stem).join(file);
-            assert!(
-                p.exists(),
-                "STARPLEX_DATA is set but {} does not exist",
-                p.display()
-            );
-            Some(p)
-        }
-        Err(_) => {
-            println!(
-                "SKIPPED: {file} is not in {} and STARPLEX_DATA is not set",
-                shared_small().display()
-            );
-            None
-        }
-    }
+    p
 }
 
 fn read(p: &Path, simplices: bool) -> IndexedComplex {

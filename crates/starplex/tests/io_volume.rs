@@ -2,6 +2,7 @@
 //! complexes, a table of broken inputs (each must fail with its line), and, when `STARPLEX_DATA`
 //! is set, the dataset files against their `.spx`.
 use std::collections::BTreeMap;
+mod common_data;
 use std::path::{Path, PathBuf};
 
 use starplex::cell::CellKind;
@@ -742,14 +743,16 @@ fn orientation(k: &IndexedComplex, kind: CellKind, v: &[u32]) -> f64 {
     }
 }
 
-fn data_dir() -> Option<PathBuf> {
-    match std::env::var("STARPLEX_DATA") {
-        Ok(d) => Some(PathBuf::from(d).join("small")),
-        Err(_) => {
-            println!("skipped: STARPLEX_DATA is not set (point it at the data directory to compare the dataset files)");
-            None
-        }
+/// The small dataset file `file` (shared datasets or `$STARPLEX_DATA`), or `None` with a printed
+/// reason (medium copies with `.mesh`/`.msh`/`.vtk` live only under `$STARPLEX_DATA`).
+fn data_file(file: &str) -> Option<PathBuf> {
+    let p = common_data::dataset_file("small", file);
+    if p.is_none() {
+        println!(
+            "skipped: {file} not found (set STARPLEX_DATA=/work/data to compare the dataset files)"
+        );
     }
+    p
 }
 
 fn read_file(p: &Path) -> ReadResult {
@@ -770,14 +773,12 @@ fn assert_same_points(a: &IndexedComplex, spx: &IndexedComplex, what: &str) {
 
 #[test]
 fn dataset_medit_files_match_their_spx() {
-    let Some(dir) = data_dir() else { return };
     for name in ["mixed_plate_s", "tet_elephant", "hex_knot1", "hexvox_skull"] {
-        let mesh = dir.join(name).join(format!("{name}.mesh"));
-        if !mesh.exists() {
-            println!("skipped {name}: {} is missing", mesh.display());
+        let Some(mesh) = data_file(&format!("{name}.mesh")) else {
             continue;
-        }
-        let spx = read_file(&dir.join(name).join(format!("{name}.spx"))).complex;
+        };
+        let spx =
+            read_file(&common_data::dataset_file("small", &format!("{name}.spx")).unwrap()).complex;
         let r = read_file(&mesh);
         assert!(r.notes.is_empty(), "{name}: {:?}", r.notes);
         assert_same_points(&r.complex, &spx, name);
@@ -788,12 +789,10 @@ fn dataset_medit_files_match_their_spx() {
 
 #[test]
 fn dataset_mixed_plate_vtk_and_msh_match_the_spx() {
-    let Some(dir) = data_dir() else { return };
-    let d = dir.join("mixed_plate_s");
-    if !d.join("mixed_plate_s.msh").exists() {
-        println!("skipped: {} has no mixed_plate_s.msh", d.display());
+    let Some(msh) = data_file("mixed_plate_s.msh") else {
         return;
-    }
+    };
+    let d = msh.parent().unwrap();
     let spx = read_file(&d.join("mixed_plate_s.spx")).complex;
     // The .spx stores gmsh's prism order (meshio's internal one); in VTK's convention those
     // prisms are mirrored. The expected VTK-order cells: every cell of the .spx, prisms mapped

@@ -197,22 +197,12 @@ fn high_dimensions_use_the_sweep_and_agree() {
     }
 }
 
-/// `name`'s point file and meta JSON: the shared small sets, or `$STARPLEX_DATA/SIZE/NAME/`.
+/// `name`'s point file, meta JSON and `.spx`: the shared small sets, or `$STARPLEX_DATA/SIZE/NAME/`.
 fn find(name: &str, size: &str) -> Option<(PathBuf, serde_json::Value, PathBuf)> {
-    let mut dirs = vec![common_data::datasets_dir().join(size)];
-    if let Ok(d) = std::env::var("STARPLEX_DATA") {
-        dirs.push(Path::new(&d).join(size).join(name));
-    }
-    for d in dirs {
-        let off = d.join(format!("{name}.off"));
-        let meta = d.join(format!("{name}.meta.json"));
-        let spx = d.join(format!("{name}.spx"));
-        if off.is_file() && meta.is_file() && spx.is_file() {
-            let m = serde_json::from_str(&std::fs::read_to_string(meta).ok()?).ok()?;
-            return Some((off, m, spx));
-        }
-    }
-    None
+    let file = |ext: &str| common_data::dataset_file(size, &format!("{name}.{ext}"));
+    let (off, meta, spx) = (file("off")?, file("meta.json")?, file("spx")?);
+    let m = serde_json::from_str(&std::fs::read_to_string(meta).ok()?).ok()?;
+    Some((off, m, spx))
 }
 
 /// The Rips complex of the dataset's points at its eps has exactly the dataset's maximal

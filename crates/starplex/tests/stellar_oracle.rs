@@ -16,40 +16,9 @@ fn u64s(v: &Value) -> Vec<u64> {
         .collect()
 }
 
-/// The small datasets via `common_data`; when that finds none (a git worktree sits one level
-/// deeper than the shared directory it expects), the oracles are looked up in
-/// `common_data::datasets_dir()/oracle` for the datasets under `$STARPLEX_DATA`.
-fn datasets() -> Vec<(String, std::path::PathBuf, Value)> {
-    let sets = common_data::small_datasets();
-    if !sets.is_empty() {
-        return sets;
-    }
-    let oracle = common_data::datasets_dir().join("oracle");
-    let mut out = Vec::new();
-    let Ok(d) = std::env::var("STARPLEX_DATA") else {
-        return out;
-    };
-    let Ok(rd) = std::fs::read_dir(std::path::Path::new(&d).join("small")) else {
-        return out;
-    };
-    let mut dirs: Vec<_> = rd.flatten().map(|e| e.path()).collect();
-    dirs.sort();
-    for dir in dirs {
-        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
-        let spx = dir.join(format!("{name}.spx"));
-        let Ok(text) = std::fs::read_to_string(oracle.join(format!("{name}.json"))) else {
-            continue;
-        };
-        if spx.exists() {
-            out.push((name, spx, serde_json::from_str(&text).unwrap()));
-        }
-    }
-    out
-}
-
 #[test]
 fn stellar_matches_the_oracles() {
-    let sets = datasets();
+    let sets = common_data::small_datasets();
     if sets.is_empty() && !common_data::data_required() {
         eprintln!(
             "SKIPPED: no small datasets at {}",

@@ -163,13 +163,8 @@ mod tests {
     /// union, and every root is the smallest member of its set.
     #[test]
     fn slice_union_find_equals_naive_labels() {
-        let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = |m: u64| {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s % m
-        };
+        let mut rng = crate::testkit::XorShift::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = |m: u64| rng.below(m);
         for case in 0..200 {
             let n = 1 + next(60) as usize;
             let mut p: Vec<u32> = (0..n as u32).collect();

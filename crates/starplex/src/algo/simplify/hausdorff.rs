@@ -360,11 +360,9 @@ mod tests {
     #[test]
     fn bvh_matches_brute_force() {
         // a seeded cloud of small triangles and query points
-        let mut s = 0x2545f4914f6cdd1du64;
+        let mut rng = crate::testkit::XorShift::new(0x2545f4914f6cdd1d);
         let mut rnd = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
+            let s = rng.next_u64();
             (s >> 11) as f64 / (1u64 << 53) as f64
         };
         let mut p = Vec::new();
