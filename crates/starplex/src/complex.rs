@@ -136,15 +136,8 @@ pub enum ComplexError {
     #[error("ambient dimension {0} is outside 1..={MAX_AMBIENT_DIM}")]
     BadAmbientDim(usize),
     /// More vertices or cells than 32-bit ids can address.
-    #[error("too many {what}: {count} (starplex ids are 32-bit, at most {max})")]
-    TooLarge {
-        /// `vertices`, `cells` or `references`.
-        what: &'static str,
-        /// The count.
-        count: u64,
-        /// The limit.
-        max: u64,
-    },
+    #[error(transparent)]
+    TooLarge(#[from] crate::limits::TooLarge),
     /// A bad cell kind.
     #[error("cell {cell}: {source}")]
     Kind {
@@ -443,11 +436,10 @@ impl ComplexBuilder {
             });
         }
         if id >= u32::MAX as u64 {
-            return Err(ComplexError::TooLarge {
-                what: "vertices",
-                count: id + 1,
-                max: u32::MAX as u64 - 1,
-            });
+            return Err(ComplexError::TooLarge(crate::limits::TooLarge::ids(
+                "vertices",
+                (id + 1) as u128,
+            )));
         }
         self.coords.extend_from_slice(p);
         Ok(VertexId(id as u32))
@@ -480,11 +472,10 @@ impl ComplexBuilder {
             });
         }
         if id >= u32::MAX as u64 {
-            return Err(ComplexError::TooLarge {
-                what: "cells",
-                count: id + 1,
-                max: u32::MAX as u64 - 1,
-            });
+            return Err(ComplexError::TooLarge(crate::limits::TooLarge::ids(
+                "cells",
+                (id + 1) as u128,
+            )));
         }
         match self.blocks.last_mut() {
             Some((k, v)) if *k == kind => v.extend_from_slice(vertices),
@@ -671,11 +662,9 @@ impl IndexedComplex {
         }
         let nv = coords.len() / ambient_dim;
         if nv >= u32::MAX as usize {
-            return Err(ComplexError::TooLarge {
-                what: "vertices",
-                count: nv as u64,
-                max: u32::MAX as u64 - 1,
-            });
+            return Err(ComplexError::TooLarge(crate::limits::TooLarge::ids(
+                "vertices", nv as u128,
+            )));
         }
         if let Some(i) = coords.iter().position(|x| !x.is_finite()) {
             return Err(ComplexError::NonFiniteCoordinate {
@@ -711,11 +700,10 @@ impl IndexedComplex {
             }
             first += b.len() as u64;
             if first >= u32::MAX as u64 {
-                return Err(ComplexError::TooLarge {
-                    what: "cells",
-                    count: first,
-                    max: u32::MAX as u64 - 1,
-                });
+                return Err(ComplexError::TooLarge(crate::limits::TooLarge::ids(
+                    "cells",
+                    first as u128,
+                )));
             }
             if !b.is_empty() {
                 out.push(b);

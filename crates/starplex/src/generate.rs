@@ -41,10 +41,8 @@ pub fn kuhn_grid(cubes: &[usize]) -> Result<IndexedComplex, ComplexError> {
     if d == 0 || d > 8 || d > MAX_AMBIENT_DIM {
         return Err(ComplexError::BadAmbientDim(d));
     }
-    let too_large = |what: &'static str, count: u128| ComplexError::TooLarge {
-        what,
-        count: count.min(u64::MAX as u128) as u64,
-        max: u32::MAX as u64 - 1,
+    let too_large = |what: &'static str, count: u128| {
+        ComplexError::TooLarge(crate::limits::TooLarge::ids(what, count))
     };
     let nv: u128 = cubes.iter().map(|&n| n as u128 + 1).product();
     if nv >= u32::MAX as u128 {

@@ -32,10 +32,12 @@ pub mod buf;
 pub mod cell;
 pub mod complex;
 pub mod csr;
+pub mod error;
 pub mod generate;
 pub mod hasse;
 pub mod ids;
 pub mod io;
+pub mod limits;
 pub mod measure;
 pub mod render;
 pub mod stellar;
@@ -43,3 +45,5 @@ pub mod structures;
 pub mod tds;
 pub mod testkit;
 pub mod topo;
+
+pub use error::Error;

@@ -378,7 +378,7 @@ fn exploding_work_is_refused_with_an_estimate() {
     let k = simplices(&sphere(&(0..31).collect::<Vec<u32>>()));
     let err = homology(&VtIndex::new(&k), &HomologyOptions::default()).unwrap_err();
     match err {
-        HomologyError::TooLarge(starplex::topo::QueryError::TooLarge { estimate, .. }) => {
+        HomologyError::TooLarge(starplex::limits::TooLarge { estimate, .. }) => {
             assert!(estimate >= 1 << 30, "{estimate}")
         }
         e => panic!("{e:?}"),

@@ -59,13 +59,8 @@ pub enum GraphError {
         n_vertices: u64,
     },
     /// More vertices or adjacency entries than 32-bit ids address.
-    #[error("too many {what}: {count} (starplex ids are 32-bit)")]
-    TooLarge {
-        /// `vertices` or `adjacency entries`.
-        what: &'static str,
-        /// The count.
-        count: u64,
-    },
+    #[error(transparent)]
+    TooLarge(#[from] crate::limits::TooLarge),
     /// The output would exceed the memory budget.
     #[error(
         "the output would exceed the memory budget of {budget_bytes} bytes: {found} simplices \
@@ -117,10 +112,10 @@ impl Graph {
     /// vertices or adjacency entries.
     pub fn from_edges(n: usize, edges: &[(u32, u32)]) -> Result<Graph, GraphError> {
         if n >= u32::MAX as usize {
-            return Err(GraphError::TooLarge {
-                what: "vertices",
-                count: n as u64,
-            });
+            return Err(GraphError::TooLarge(crate::limits::TooLarge::ids(
+                "vertices",
+                (n as u64) as u128,
+            )));
         }
         for (i, &(a, b)) in edges.iter().enumerate() {
             for v in [a, b] {
@@ -140,10 +135,10 @@ impl Graph {
             }
         }
         if 2 * edges.len() as u64 >= u32::MAX as u64 {
-            return Err(GraphError::TooLarge {
-                what: "adjacency entries",
-                count: 2 * edges.len() as u64,
-            });
+            return Err(GraphError::TooLarge(crate::limits::TooLarge::ids(
+                "adjacency entries",
+                (2 * edges.len() as u64) as u128,
+            )));
         }
         let mut adj = Csr::from_fn(n, |push| {
             for &(a, b) in edges {

@@ -206,8 +206,8 @@ pub enum DistanceMatrixError {
         transposed: f64,
     },
     /// More points than 32-bit ids.
-    #[error("{0} points: more than 32-bit ids can address")]
-    TooLarge(usize),
+    #[error(transparent)]
+    TooLarge(#[from] crate::limits::TooLarge),
 }
 
 /// A validated distance matrix: n × n, finite, non-negative, zero diagonal, exactly symmetric
@@ -248,7 +248,7 @@ impl DistanceMatrix {
         }
         let n = rows;
         if n >= u32::MAX as usize {
-            return Err(DistanceMatrixError::TooLarge(n));
+            return Err(crate::limits::TooLarge::ids("points", n as u128).into());
         }
         for i in 0..n {
             for j in 0..n {
@@ -386,10 +386,10 @@ impl DistanceMatrix {
             });
         }
         if 2 * count >= u32::MAX as u64 {
-            return Err(GraphError::TooLarge {
-                what: "adjacency entries",
-                count: 2 * count,
-            }
+            return Err(GraphError::TooLarge(crate::limits::TooLarge::ids(
+                "adjacency entries",
+                (2 * count) as u128,
+            ))
             .into());
         }
         let adj = Csr::from_fn(n, |push| {
@@ -614,10 +614,10 @@ fn check_points(coords: &[f64], dim: usize) -> Result<(), RipsError> {
         .into());
     }
     if coords.len() / dim >= u32::MAX as usize {
-        return Err(GraphError::TooLarge {
-            what: "vertices",
-            count: (coords.len() / dim) as u64,
-        }
+        return Err(GraphError::TooLarge(crate::limits::TooLarge::ids(
+            "vertices",
+            (coords.len() / dim) as u128,
+        ))
         .into());
     }
     Ok(())
@@ -703,10 +703,10 @@ pub fn neighbourhood_graph_metric(
     };
     let total: u64 = rows.iter().map(|r| 2 * r.len() as u64).sum();
     if total >= u32::MAX as u64 {
-        return Err(GraphError::TooLarge {
-            what: "adjacency entries",
-            count: total,
-        }
+        return Err(GraphError::TooLarge(crate::limits::TooLarge::ids(
+            "adjacency entries",
+            total as u128,
+        ))
         .into());
     }
     // Row v receives its earlier neighbours at their own (earlier) iterations, ascending, then
@@ -875,14 +875,14 @@ fn later_sweep(
 }
 
 /// The default memory budget of [`CliqueOptions::max_bytes`] for the command line and the
-/// Python package: a third of the available memory (Linux `MemAvailable`), else 8 GiB.
+/// Python package: [`crate::limits::default_memory_bytes`], a third of the available memory
+/// (Linux `MemAvailable`), else 8 GiB.
 ///
 /// ```
 /// assert!(starplex::algo::rips::default_max_bytes() > 0);
 /// ```
 pub fn default_max_bytes() -> u64 {
-    let avail = crate::measure::available_memory();
-    avail.map_or(8 << 30, |b| b / 3)
+    crate::limits::default_memory_bytes()
 }
 
 /// The median distance from a point to its nearest other point (numpy's median: the mean of

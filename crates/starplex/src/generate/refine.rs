@@ -80,11 +80,9 @@ fn sorted<const N: usize>(mut a: [u32; N]) -> [u32; N] {
 
 fn check_size(n: u128, what: &'static str) -> Result<(), ComplexError> {
     if n >= u32::MAX as u128 {
-        return Err(ComplexError::TooLarge {
-            what,
-            count: n.min(u64::MAX as u128) as u64,
-            max: u32::MAX as u64 - 1,
-        });
+        return Err(ComplexError::TooLarge(crate::limits::TooLarge::ids(
+            what, n,
+        )));
     }
     Ok(())
 }

@@ -273,11 +273,9 @@ pub fn sierpinski(o: &SierpinskiOptions) -> Result<Sierpinski, ComplexError> {
         let m = s.len() / n;
         let children = m as u128 * n as u128;
         if children * n as u128 >= u32::MAX as u128 {
-            return Err(ComplexError::TooLarge {
-                what: "cells",
-                count: children.min(u64::MAX as u128) as u64,
-                max: u32::MAX as u64 - 1,
-            });
+            return Err(ComplexError::TooLarge(crate::limits::TooLarge::ids(
+                "cells", children,
+            )));
         }
         // every (sorted) edge of every simplex, then np.unique's sorted order
         let mut e: Vec<(u32, u32)> = Vec::with_capacity(m * pairs.len());

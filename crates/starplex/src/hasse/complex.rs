@@ -17,12 +17,22 @@ use crate::ids::{SimplexId, VertexId};
 /// let mut h: Hasse = Hasse::new();
 /// let big: Vec<VertexId> = (0..MAX_INSERT_VERTICES as u32 + 1).map(VertexId).collect();
 /// let e = h.insert(&big).unwrap_err();
-/// assert!(matches!(e, HasseError::TooManyFaces { n_vertices: 25, .. }));
+/// assert!(matches!(e, HasseError::TooLarge(t) if t.estimate == (1 << 25) - 1));
 /// assert!(h.insert(&big[..3]).is_ok()); // small simplices are inserted with their faces
 /// ```
 pub const MAX_INSERT_VERTICES: usize = 24;
 
 pub(crate) type Verts = SmallVec<[u32; 8]>;
+
+/// The refusal to insert a simplex of `n` vertices with all its faces.
+pub(crate) fn too_many_faces(n: usize) -> HasseError {
+    HasseError::TooLarge(crate::limits::TooLarge::new(
+        format!("inserting a simplex of {n} vertices with all its faces"),
+        (1u128 << n.min(127)) - 1,
+        (1u128 << MAX_INSERT_VERTICES) - 1,
+        crate::limits::Unit::Simplices,
+    ))
+}
 
 /// The nodes of one dimension `k`: `k + 1` sorted vertex labels and `k + 1` face ids per node
 /// (face `i` is the simplex without vertex `i`), and the up lists in an arena.
@@ -697,7 +707,7 @@ impl<L: LevelTypes> Hasse<L> {
     ///
     /// # Errors
     /// [`HasseError::Degenerate`] for a repeated vertex, [`HasseError::Empty`], and
-    /// [`HasseError::TooManyFaces`] above [`MAX_INSERT_VERTICES`] vertices.
+    /// [`HasseError::TooLarge`] above [`MAX_INSERT_VERTICES`] vertices.
     ///
     /// ```
     /// use starplex::hasse::{Hasse, HasseError};
@@ -710,10 +720,7 @@ impl<L: LevelTypes> Hasse<L> {
     pub fn insert(&mut self, vs: &[VertexId]) -> Result<Node, HasseError> {
         let s = sorted_checked(vs)?;
         if s.len() > MAX_INSERT_VERTICES {
-            return Err(HasseError::TooManyFaces {
-                n_vertices: s.len(),
-                estimate: (1u128 << s.len().min(127)) - 1,
-            });
+            return Err(too_many_faces(s.len()));
         }
         let id = self.insert_sorted(&s);
         Ok(Node::new((s.len() - 1) as u32, SimplexId(id)))

@@ -63,17 +63,17 @@ impl<L: LevelTypes> Hasse<L> {
         let mut per_dim: Vec<Vec<u32>> = vec![Vec::new(); top.min(3) + 1];
         for (cid, c) in k.cells().enumerate() {
             let CellKind::Simplex(d) = c.kind else {
-                return Err(HasseError::NotSimplicial {
-                    cell: cid as u64,
-                    kind: format!("{:?}", c.kind),
-                });
+                return Err(crate::limits::NotSimplicial::new(
+                    cid as u64,
+                    c.kind,
+                    "the Hasse complex",
+                )
+                .with_hint(crate::tds::simplex_tree::CP_STRUCTURES_HINT)
+                .into());
             };
             let d = d as usize;
             if d + 1 > super::MAX_INSERT_VERTICES {
-                return Err(HasseError::TooManyFaces {
-                    n_vertices: d + 1,
-                    estimate: (1u128 << (d + 1).min(127)) - 1,
-                });
+                return Err(super::complex::too_many_faces(d + 1));
             }
             buf.clear();
             buf.extend_from_slice(c.vertices);

@@ -142,13 +142,8 @@ pub enum HasseError {
     #[error("a simplex needs at least one vertex")]
     Empty,
     /// Inserting would create too many faces.
-    #[error("a simplex of {n_vertices} vertices has {estimate} faces; refusing to insert it with all its faces")]
-    TooManyFaces {
-        /// Vertices of the simplex.
-        n_vertices: usize,
-        /// Number of non-empty faces it would need.
-        estimate: u128,
-    },
+    #[error(transparent)]
+    TooLarge(#[from] crate::limits::TooLarge),
     /// The vertex count does not match the level of the data given.
     #[error("data for dimension {expected} given to a simplex of dimension {got}")]
     WrongDimension {
@@ -178,14 +173,18 @@ pub enum HasseError {
         what: String,
     },
     /// A cell of an input complex that is not a simplex.
-    #[error("cell {cell} is a {kind}, not a simplex")]
-    NotSimplicial {
-        /// Cell id.
-        cell: u64,
-        /// Its kind.
-        kind: String,
-    },
+    #[error(transparent)]
+    NotSimplicial(#[from] crate::limits::NotSimplicial),
     /// Building an indexed complex failed.
     #[error(transparent)]
     Complex(#[from] crate::complex::ComplexError),
+}
+
+impl From<crate::tds::simplex_tree::BuildError> for HasseError {
+    fn from(e: crate::tds::simplex_tree::BuildError) -> HasseError {
+        match e {
+            crate::tds::simplex_tree::BuildError::NotSimplicial(e) => HasseError::NotSimplicial(e),
+            crate::tds::simplex_tree::BuildError::TooLarge(e) => HasseError::TooLarge(e),
+        }
+    }
 }

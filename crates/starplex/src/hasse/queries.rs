@@ -3,7 +3,8 @@ use super::{Hasse, HasseError, LevelTypes, Node};
 use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::ids::{CellId, SimplexId, VertexId};
-use crate::tds::simplex_tree::simplex_estimate;
+use crate::limits::{TooLarge, Unit};
+use crate::tds::simplex_tree::{simplex_estimate, BuildError};
 use crate::topo::from_tops::boundary_of_sorted;
 use crate::topo::{
     sort_flat, sorted_simplex, Adjacency, Boundary, Coboundary, Counts, Levels, QueryError,
@@ -73,7 +74,7 @@ impl HasseQueries {
     /// 0-simplices) and the top-cell tables.
     ///
     /// # Errors
-    /// [`HasseError::NotSimplicial`] for a CP cell; [`HasseError::TooManyFaces`] when `k` may
+    /// [`HasseError::NotSimplicial`] for a CP cell; [`HasseError::TooLarge`] when `k` may
     /// have more than `max_simplices` simplices (every face of every top cell, counted before
     /// anything is allocated).
     ///
@@ -85,34 +86,12 @@ impl HasseQueries {
     /// b.push_cell(CellKind::Simplex(40), &(0..41).collect::<Vec<u32>>()).unwrap();
     /// let k = b.build(&BuildOptions::default()).unwrap().0;
     /// let e = starplex::hasse::HasseQueries::new(&k, 1 << 31).unwrap_err();
-    /// assert!(e.to_string().contains("refusing"), "{e}");
+    /// assert!(e.to_string().contains("over the budget of 2147483648"), "{e}");
     /// ```
     pub fn new(k: &IndexedComplex, max_simplices: u128) -> Result<HasseQueries, HasseError> {
-        let est = simplex_estimate(k).map_err(|e| match e {
-            crate::tds::simplex_tree::BuildError::NotSimplicial(c, kind) => {
-                HasseError::NotSimplicial {
-                    cell: c as u64,
-                    kind,
-                }
-            }
-            crate::tds::simplex_tree::BuildError::TooLarge { estimate, .. } => {
-                HasseError::TooManyFaces {
-                    n_vertices: k.n_vertices(),
-                    estimate,
-                }
-            }
-        })?;
+        let est = simplex_estimate(k)?;
         if est > max_simplices {
-            let n_vertices = k
-                .blocks()
-                .iter()
-                .map(|b| b.kind.n_vertices())
-                .max()
-                .unwrap_or(1);
-            return Err(HasseError::TooManyFaces {
-                n_vertices,
-                estimate: est,
-            });
+            return Err(BuildError::too_many(est, max_simplices).into());
         }
         let mut h: Hasse = Hasse::from_indexed(k)?;
         let nv = k.n_vertices();
@@ -205,11 +184,12 @@ fn star_ids<L: LevelTypes>(h: &Hasse<L>, n: Node) -> Result<Vec<Vec<u32>>, Query
     let ids = h.star_ids(n);
     let total: u128 = ids.iter().map(|l| l.len() as u128).sum();
     if total > DEFAULT_BUDGET {
-        return Err(QueryError::TooLarge {
-            what: format!("star of {:?}", h.vertices(n)),
-            estimate: total,
-            budget: DEFAULT_BUDGET,
-        });
+        return Err(QueryError::TooLarge(TooLarge::new(
+            format!("star of {:?}", h.vertices(n)),
+            total,
+            DEFAULT_BUDGET,
+            Unit::Simplices,
+        )));
     }
     Ok(ids)
 }

@@ -133,15 +133,8 @@ pub enum StellarError {
     #[error("a regular 2^n split in ambient dimension {0} would make {1} children per node; use the kD split")]
     RegularTooWide(usize, u128),
     /// An operation whose output would be too large.
-    #[error("{what}: about {estimate} items, over the budget of {budget}")]
-    TooLarge {
-        /// What was asked.
-        what: String,
-        /// Estimated size.
-        estimate: u128,
-        /// The budget.
-        budget: u128,
-    },
+    #[error(transparent)]
+    TooLarge(#[from] crate::limits::TooLarge),
     /// A vertex id out of range.
     #[error("vertex {0} out of range ({1} vertices)")]
     NoSuchVertex(u32, usize),

@@ -24,6 +24,7 @@ use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::csr::Csr;
 use crate::ids::{CellId, SimplexId, VertexId};
+use crate::limits::{TooLarge, Unit};
 use crate::tds::simplex_tree::{all_simplices, child_starts, BuildError, Levels0};
 use crate::topo::{
     sort_flat, sorted_simplex, Adjacency, Boundary, Coboundary, Counts, Levels, QueryError,
@@ -386,11 +387,12 @@ macro_rules! impl_explicit_common {
                 }
                 let est = crate::cell::binomial(raw.len() as u64, q as u64 + 1);
                 if est > DEFAULT_BUDGET {
-                    return Err(QueryError::TooLarge {
-                        what: format!("boundary R_{p},{q}"),
-                        estimate: est,
-                        budget: DEFAULT_BUDGET,
-                    });
+                    return Err(QueryError::TooLarge(TooLarge::new(
+                        format!("boundary R_{p},{q}"),
+                        est,
+                        DEFAULT_BUDGET,
+                        Unit::Simplices,
+                    )));
                 }
                 let ids = self.x.descend(p, i, q);
                 self.x.tuples_of(q, &ids, out);
@@ -503,11 +505,12 @@ impl SimplicialIg {
             level += 1;
             out.extend(next.iter().map(|&x| (level, x)));
             if out.len() as u128 > DEFAULT_BUDGET {
-                return Err(QueryError::TooLarge {
-                    what: "star".into(),
-                    estimate: out.len() as u128,
-                    budget: DEFAULT_BUDGET,
-                });
+                return Err(QueryError::TooLarge(TooLarge::new(
+                    "star",
+                    out.len() as u128,
+                    DEFAULT_BUDGET,
+                    Unit::Simplices,
+                )));
             }
             cur = next;
         }

@@ -22,6 +22,7 @@
 //! assert_eq!(is.n_clusters(&[VertexId(0), VertexId(1)]).unwrap(), 2);
 //! assert_eq!(is.star(&[VertexId(0)]).unwrap().len(), 1 + 5 + 6 + 2);
 //! ```
+use crate::limits::{TooLarge, Unit};
 use rustc_hash::FxHashSet;
 
 use crate::algo::unionfind::UnionFind;
@@ -75,7 +76,7 @@ impl Is {
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
     /// assert!(Is::new(&k, 1000).is_ok());
-    /// assert!(matches!(Is::new(&k, 5), Err(BuildError::TooLarge { limit: 5, .. })));
+    /// assert!(matches!(Is::new(&k, 5), Err(BuildError::TooLarge(t)) if t.budget == 5));
     /// ```
     ///
     /// # Errors
@@ -242,11 +243,12 @@ impl Is {
                 }
             }
             if queue.len() as u128 > DEFAULT_BUDGET {
-                return Err(QueryError::TooLarge {
-                    what: "star".into(),
-                    estimate: queue.len() as u128,
-                    budget: DEFAULT_BUDGET,
-                });
+                return Err(QueryError::TooLarge(TooLarge::new(
+                    "star",
+                    queue.len() as u128,
+                    DEFAULT_BUDGET,
+                    Unit::Simplices,
+                )));
             }
         }
         Ok(queue)

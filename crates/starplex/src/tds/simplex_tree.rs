@@ -34,6 +34,7 @@ use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::csr::Csr;
 use crate::ids::{CellId, SimplexId, VertexId};
+use crate::limits::{NotSimplicial, TooLarge, Unit};
 use crate::topo::from_tops::{boundary_of_sorted, for_each_subset};
 use crate::topo::{
     sort_flat, sorted_simplex, Adjacency, Boundary, Coboundary, Counts, Levels, QueryError,
@@ -53,7 +54,7 @@ use crate::topo::{
 /// # let k = b.build(&BuildOptions::default()).unwrap().0;
 /// // k: the tetrahedron 0-1-2-3
 /// let opts = SimplexTreeOptions { max_simplices: 10, ..Default::default() };
-/// assert_eq!(SimplexTree::new(&k, &opts).unwrap_err(), BuildError::TooLarge { estimate: 19, limit: 10 });
+/// assert_eq!(SimplexTree::new(&k, &opts).unwrap_err(), BuildError::too_many(19, 10 ));
 /// let opts = SimplexTreeOptions { label_lists: true, ..Default::default() };
 /// assert!(SimplexTree::new(&k, &opts).unwrap().has_label_lists());
 /// ```
@@ -85,24 +86,52 @@ impl Default for SimplexTreeOptions {
 /// b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
 /// let k = b.build(&BuildOptions::default()).unwrap().0;
 /// let err = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap_err();
-/// assert_eq!(err, BuildError::NotSimplicial(0, "quad".into()));
+/// assert_eq!(err, BuildError::cp_cell(0, CellKind::Quad));
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum BuildError {
     /// A top cell that is not a simplex.
-    #[error(
-        "cell {0} is a {1}; the structure holds simplicial complexes only (the incidence \
-         graph, IA* and the Stellar tree hold CP cells)"
-    )]
-    NotSimplicial(u32, String),
-    /// Too many simplices.
-    #[error("the complex has up to {estimate} simplices (every face of every top); the limit is {limit}")]
-    TooLarge {
-        /// Upper bound of the simplices.
-        estimate: u128,
-        /// The limit.
-        limit: u128,
-    },
+    #[error(transparent)]
+    NotSimplicial(#[from] NotSimplicial),
+    /// Too many simplices (every face of every top cell, estimated before allocating).
+    #[error(transparent)]
+    TooLarge(#[from] TooLarge),
+}
+
+/// What a simplicial-only structure's [`NotSimplicial`] suggests.
+pub const CP_STRUCTURES_HINT: &str =
+    "the incidence graph, IA* and the Stellar tree hold CP cells (or triangulate first with \
+     `starplex convert --triangulate IN OUT`)";
+
+impl BuildError {
+    /// The refusal of CP cell `cell` of kind `kind` by a simplicial-only structure.
+    ///
+    /// ```
+    /// use starplex::cell::CellKind;
+    /// use starplex::tds::simplex_tree::BuildError;
+    /// let e = BuildError::cp_cell(4, CellKind::Prism);
+    /// assert!(e.to_string().starts_with("cell 4 is a prism: this structure works on simplicial"));
+    /// ```
+    pub fn cp_cell(cell: u32, kind: CellKind) -> BuildError {
+        BuildError::NotSimplicial(
+            NotSimplicial::new(cell as u64, kind, "this structure").with_hint(CP_STRUCTURES_HINT),
+        )
+    }
+
+    /// The refusal of `estimate` simplices over `limit`.
+    ///
+    /// ```
+    /// use starplex::tds::simplex_tree::BuildError;
+    /// assert!(matches!(BuildError::too_many(10, 5), BuildError::TooLarge(t) if t.budget == 5));
+    /// ```
+    pub fn too_many(estimate: u128, limit: u128) -> BuildError {
+        BuildError::TooLarge(TooLarge::new(
+            "the simplices of the complex (every face of every top cell)",
+            estimate,
+            limit,
+            Unit::Simplices,
+        ))
+    }
 }
 
 /// Upper bound of the number of simplices: vertices plus every face of every top.
@@ -127,7 +156,7 @@ pub fn simplex_estimate(k: &IndexedComplex) -> Result<u128, BuildError> {
     let mut est = k.n_vertices() as u128;
     for b in k.blocks() {
         if !b.kind.is_simplex() {
-            return Err(BuildError::NotSimplicial(b.first, b.kind.type_name()));
+            return Err(BuildError::cp_cell(b.first, b.kind));
         }
         let per = (1u128 << (b.kind.dim() + 1).min(126)) - 1;
         est = est.saturating_add(per.saturating_mul(b.len() as u128));
@@ -148,10 +177,7 @@ pub(crate) struct Levels0 {
 pub(crate) fn all_simplices(k: &IndexedComplex, limit: u128) -> Result<Levels0, BuildError> {
     let est = simplex_estimate(k)?;
     if est > limit {
-        return Err(BuildError::TooLarge {
-            estimate: est,
-            limit,
-        });
+        return Err(BuildError::too_many(est, limit));
     }
     let nv = k.n_vertices();
     let dmax = k.dim().unwrap_or(0);
@@ -791,11 +817,12 @@ impl SimplexTree {
             }
         });
         if est > DEFAULT_BUDGET {
-            return Err(QueryError::TooLarge {
-                what: format!("star of {s:?}"),
-                estimate: est,
-                budget: DEFAULT_BUDGET,
-            });
+            return Err(QueryError::TooLarge(TooLarge::new(
+                format!("star of {s:?}"),
+                est,
+                DEFAULT_BUDGET,
+                Unit::Simplices,
+            )));
         }
         let mut buf = Vec::new();
         self.for_each_star_range(&s, &mut |d, lo, hi| {

@@ -24,6 +24,7 @@
 use super::{sort_flat, sorted_simplex, QueryError, SimplexSet, TopCells, VertexStar};
 use crate::cell::binomial;
 use crate::ids::{CellId, VertexId};
+use crate::limits::{TooLarge, Unit};
 
 fn not_in(s: &[VertexId]) -> QueryError {
     QueryError::NotInComplex(s.iter().map(|v| v.0).collect())
@@ -164,11 +165,7 @@ pub fn for_each_subset<T: Copy>(items: &[T], k: usize, buf: &mut Vec<T>, f: &mut
 }
 
 fn too_large(what: String, estimate: u128, budget: u128) -> QueryError {
-    QueryError::TooLarge {
-        what,
-        estimate,
-        budget,
-    }
+    QueryError::TooLarge(TooLarge::new(what, estimate, budget, Unit::Simplices))
 }
 
 /// St(s): every simplex containing `s`.

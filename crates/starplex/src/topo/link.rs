@@ -64,15 +64,8 @@ pub enum LinkError {
     #[error("vertex {0}: its star holds non-simplicial cells; the link is computed for simplicial complexes")]
     NotSimplicial(u32),
     /// Enumerating the link's faces would exceed the budget.
-    #[error("vertex {vertex}: the link has about {estimate} faces, over the budget of {budget}")]
-    TooLarge {
-        /// The vertex.
-        vertex: u32,
-        /// Upper bound of faces to enumerate.
-        estimate: u128,
-        /// The budget.
-        budget: u128,
-    },
+    #[error(transparent)]
+    TooLarge(#[from] crate::limits::TooLarge),
 }
 
 /// The link of `v` with a face-count budget of 50 million.
@@ -99,7 +92,7 @@ pub fn vertex_link<S: TopCells + VertexStar + ?Sized>(
     s: &S,
     v: VertexId,
 ) -> Result<VertexLink, LinkError> {
-    vertex_link_with_budget(s, v, 50_000_000)
+    vertex_link_with_budget(s, v, crate::limits::QUERY_SIMPLICES)
 }
 
 /// The link of `v`, refusing when more than `budget` faces would be enumerated.
@@ -118,7 +111,8 @@ pub fn vertex_link<S: TopCells + VertexStar + ?Sized>(
 /// let idx = VtIndex::new(&k);
 /// assert_eq!(vertex_link_with_budget(&idx, VertexId(1), 100).unwrap().f_vector, vec![3, 2]);
 /// let err = vertex_link_with_budget(&idx, VertexId(1), 2).unwrap_err();
-/// assert_eq!(err, LinkError::TooLarge { vertex: 1, estimate: 6, budget: 2 });
+/// assert_eq!(err.to_string(), "the link of vertex 1: about 6 simplices, over the budget of 2");
+/// assert!(matches!(err, LinkError::TooLarge(t) if t.estimate == 6));
 /// ```
 ///
 /// # Errors
@@ -169,11 +163,12 @@ pub fn link_from_maximal(
         a.saturating_add((1u128 << m.len().min(127)) - 1)
     });
     if estimate > budget {
-        return Err(LinkError::TooLarge {
-            vertex,
+        return Err(LinkError::TooLarge(crate::limits::TooLarge::new(
+            format!("the link of vertex {vertex}"),
             estimate,
             budget,
-        });
+            crate::limits::Unit::Simplices,
+        )));
     }
     maximal.sort();
     maximal.dedup();

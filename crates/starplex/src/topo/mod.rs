@@ -104,9 +104,9 @@ pub use facets::{Adjacent, FacetAdjacency};
 /// b.push_cell(CellKind::Simplex(30), &(0..31).collect::<Vec<u32>>()).unwrap();
 /// let k = b.build(&BuildOptions::default()).unwrap().0;
 /// let err = VtIndex::new(&k).star(&[VertexId(0)]).unwrap_err();
-/// assert!(matches!(err, QueryError::TooLarge { budget: DEFAULT_BUDGET, .. }));
+/// assert!(matches!(err, QueryError::TooLarge(t) if t.budget as u128 == DEFAULT_BUDGET));
 /// ```
-pub const DEFAULT_BUDGET: u128 = 50_000_000;
+pub const DEFAULT_BUDGET: u128 = crate::limits::QUERY_SIMPLICES;
 
 /// Why a query could not be answered.
 ///
@@ -132,15 +132,8 @@ pub enum QueryError {
     #[error("{0:?} is not a simplex of the complex")]
     NotInComplex(Vec<u32>),
     /// The answer would exceed the budget.
-    #[error("{what}: about {estimate} simplices, over the budget of {budget}")]
-    TooLarge {
-        /// What was asked.
-        what: String,
-        /// Upper bound of the simplices to enumerate.
-        estimate: u128,
-        /// The budget.
-        budget: u128,
-    },
+    #[error(transparent)]
+    TooLarge(#[from] crate::limits::TooLarge),
     /// The question is answered for simplicial complexes only.
     #[error("{0}: the complex holds non-simplicial cells; this query needs simplices")]
     NotSimplicial(String),

@@ -33,6 +33,7 @@
 //! let hz = homology(&VtIndex::new(&k), &HomologyOptions { field: Field::Z, ..Default::default() }).unwrap();
 //! assert_eq!((hz.betti, hz.torsion), (vec![1, 0, 1], vec![vec![], vec![], vec![]]));
 //! ```
+use crate::limits::{TooLarge, Unit};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::sync::Arc;
@@ -163,7 +164,10 @@ fn is_prime(p: u64) -> bool {
 pub enum HomologyError {
     /// The work would explode (faces of huge non-cone lower stars).
     #[error(transparent)]
-    TooLarge(#[from] QueryError),
+    TooLarge(TooLarge),
+    /// A relation of the complex could not be read (a CP cell where simplices are needed, ...).
+    #[error(transparent)]
+    Query(QueryError),
     /// Integer coefficients overflowed (Z or Q).
     #[error("integer coefficients overflow in {0}; try a prime field (--field p)")]
     Overflow(String),
@@ -173,6 +177,15 @@ pub enum HomologyError {
     /// A modulus that is not a prime.
     #[error("{0} is not a prime (use 2, a prime p, q or z)")]
     NotPrime(u64),
+}
+
+impl From<QueryError> for HomologyError {
+    fn from(e: QueryError) -> HomologyError {
+        match e {
+            QueryError::TooLarge(t) => HomologyError::TooLarge(t),
+            e => HomologyError::Query(e),
+        }
+    }
 }
 
 /// The vertex order that drives the lower-star matching (the answer never depends on it; the
@@ -226,7 +239,7 @@ impl Default for HomologyOptions {
             field: Field::Z2,
             per_component: false,
             generators: false,
-            max_faces: 4_000_000_000,
+            max_faces: crate::limits::HOMOLOGY_CELLS,
             order: VertexOrder::Auto,
             progress: None,
         }
@@ -390,9 +403,9 @@ pub fn betti_z2(k: &IndexedComplex) -> Result<Vec<u64>, HomologyError> {
 
 const CHUNK: usize = 4096;
 /// Largest single lower star enumerated.
-const MAX_STAR: u128 = 1 << 26;
+const MAX_STAR: u128 = crate::limits::LOWER_STAR_SIMPLICES;
 /// Largest dense remainder of the integer elimination (entries).
-const MAX_DENSE: usize = 50_000_000;
+const MAX_DENSE: usize = crate::limits::DENSE_ENTRIES as usize;
 
 /// Computes the homology of the complex given by `s`.
 ///
@@ -595,15 +608,16 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
     let est = parts.iter().fold(0u128, |a, p| a.saturating_add(p.1));
     let worst = parts.iter().map(|p| p.2).max().unwrap_or(0);
     if est > opts.max_faces || worst > MAX_STAR {
-        return Err(HomologyError::TooLarge(QueryError::TooLarge {
-            what: "homology: cells of the lower stars to enumerate".into(),
-            estimate: est,
-            budget: opts.max_faces.min(if worst > MAX_STAR {
+        return Err(HomologyError::TooLarge(TooLarge::new(
+            "homology: cells of the lower stars to enumerate",
+            est,
+            opts.max_faces.min(if worst > MAX_STAR {
                 MAX_STAR
             } else {
                 u128::MAX
             }),
-        }));
+            Unit::Simplices,
+        )));
     }
     let mut apex: Vec<u32> = Vec::with_capacity(nv);
     let mut crit_lists = Vec::with_capacity(parts.len());
@@ -765,11 +779,12 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
                 smith::IntError::Overflow => {
                     HomologyError::Overflow("the Smith normal form".into())
                 }
-                smith::IntError::TooLarge(n) => HomologyError::TooLarge(QueryError::TooLarge {
-                    what: "homology over Z: dense Smith normal form entries".into(),
-                    estimate: n,
-                    budget: MAX_DENSE as u128,
-                }),
+                smith::IntError::TooLarge(n) => HomologyError::TooLarge(TooLarge::new(
+                    "homology over Z: dense Smith normal form entries",
+                    n,
+                    MAX_DENSE as u128,
+                    Unit::Items,
+                )),
             })?;
             for c in 0..n_comp {
                 rank[k][c] = r.rank[c] as u64;

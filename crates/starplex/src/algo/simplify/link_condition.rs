@@ -26,6 +26,7 @@
 //! let w = TopSimplices::from_tops(3, &[vec![0, 1, 2]]).unwrap();
 //! assert!(link_condition(&w, 0, 1, LinkMode::Homology, &mut LinkScratch::default()));
 //! ```
+use crate::limits::{TooLarge, Unit};
 use rustc_hash::FxHashSet;
 
 use super::tops::{is_subset, Top, TopSimplices};
@@ -404,11 +405,12 @@ pub fn link_condition_full(
         .map(|t| 1u128.checked_shl(t.len() as u32).unwrap_or(u128::MAX))
         .fold(0, |x, y| x.saturating_add(y));
     if faces > budget {
-        return Err(SimplifyError::TooLarge {
-            what: format!("the links of the edge {a}-{b}"),
-            estimate: faces,
+        return Err(SimplifyError::TooLarge(TooLarge::new(
+            format!("the links of the edge {a}-{b}"),
+            faces,
             budget,
-        });
+            Unit::Simplices,
+        )));
     }
     if !sa.iter().any(|s| s.contains(&b) && !s.contains(&OMEGA)) {
         return Ok(false);

@@ -44,7 +44,8 @@ pub type Progress = dyn Fn(u64) + Send + Sync;
 ///
 /// ```
 /// use starplex::algo::simplify::SimplifyError;
-/// let e = SimplifyError::NotSimplicial { cell: 3, kind: "quad".into() };
+/// use starplex::cell::CellKind;
+/// let e = SimplifyError::not_simplicial(3, CellKind::Quad);
 /// assert!(e.to_string().contains("convert --triangulate"));
 /// ```
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -53,13 +54,8 @@ pub enum SimplifyError {
     #[error("the complex is empty: nothing to simplify")]
     Empty,
     /// A CP cell (quad, hexahedron, prism, pyramid).
-    #[error("cell {cell} is a {kind}: simplification works on simplicial complexes; triangulate first with `starplex convert --triangulate IN OUT`")]
-    NotSimplicial {
-        /// The first such cell.
-        cell: u32,
-        /// Its kind.
-        kind: String,
-    },
+    #[error(transparent)]
+    NotSimplicial(#[from] crate::limits::NotSimplicial),
     /// A list given as a top simplex is not one.
     #[error("top {top}: {reason}")]
     BadTop {
@@ -75,15 +71,8 @@ pub enum SimplifyError {
     #[error("bad target: {0}")]
     BadTarget(String),
     /// An enumeration over the budget.
-    #[error("{what}: about {estimate} faces, over the budget of {budget}")]
-    TooLarge {
-        /// What was asked.
-        what: String,
-        /// Estimated size.
-        estimate: u128,
-        /// The budget.
-        budget: u128,
-    },
+    #[error(transparent)]
+    TooLarge(#[from] crate::limits::TooLarge),
     /// The simplified complex could not be assembled.
     #[error("building the simplified complex: {0}")]
     Complex(ComplexError),
@@ -103,6 +92,20 @@ pub enum SimplifyError {
         /// Vertices of the complex.
         n_vertices: usize,
     },
+}
+
+impl SimplifyError {
+    /// Cell `cell` of kind `kind` is not a simplex.
+    ///
+    /// ```
+    /// use starplex::algo::simplify::SimplifyError;
+    /// use starplex::cell::CellKind;
+    /// let e = SimplifyError::not_simplicial(0, CellKind::Hex);
+    /// assert!(e.to_string().starts_with("cell 0 is a hex: simplification works"));
+    /// ```
+    pub fn not_simplicial(cell: u32, kind: crate::cell::CellKind) -> SimplifyError {
+        crate::limits::NotSimplicial::new(cell as u64, kind, "simplification").into()
+    }
 }
 
 /// The two modes.
@@ -286,10 +289,7 @@ pub fn simplify(
         return Err(SimplifyError::Empty);
     }
     if let Some(c) = k.cells().find(|c| !c.kind.is_simplex()) {
-        return Err(SimplifyError::NotSimplicial {
-            cell: c.id.0,
-            kind: c.kind.type_name(),
-        });
+        return Err(SimplifyError::not_simplicial(c.id.0, c.kind));
     }
     let mode = opts.mode.unwrap_or_else(|| default_mode(k));
     let mut target = opts.target;

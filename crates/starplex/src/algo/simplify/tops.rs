@@ -123,10 +123,7 @@ impl TopSimplices {
             let c = CellId(c as u32);
             let kind = s.top_cell_kind(c);
             if !kind.is_simplex() {
-                return Err(SimplifyError::NotSimplicial {
-                    cell: c.0,
-                    kind: kind.type_name(),
-                });
+                return Err(SimplifyError::not_simplicial(c.0, kind));
             }
             buf.clear();
             s.top_cell_vertices(c, &mut buf);

@@ -1,5 +1,6 @@
 //! Boundary p-faces of every dimension (simplices and CP cells) and top-cell adjacency across
 //! (d-1)-faces, each face handled in the leaf owning its smallest vertex.
+use crate::limits::{TooLarge, Unit};
 use rayon::prelude::*;
 
 use super::{face_width, FaceKeys};
@@ -25,7 +26,7 @@ use crate::stellar::{LeafView, StellarError, StellarTree};
 /// assert_eq!(t.p_faces_with_budget(1, FACE_BUDGET).unwrap(), t.p_faces(1).unwrap());
 /// assert!(t.p_faces_with_budget(1, 1).is_err());
 /// ```
-pub const FACE_BUDGET: u128 = 2_000_000_000;
+pub const FACE_BUDGET: u128 = crate::limits::STELLAR_FACES;
 
 /// Faces of one dimension: vertex lists (input ids, sorted) and how many top cells contain
 /// each face.
@@ -125,11 +126,12 @@ impl StellarTree {
     fn check_budget(&self, p: usize, budget: u128) -> Result<(), StellarError> {
         let est = self.face_visits(p);
         if est > budget {
-            return Err(StellarError::TooLarge {
-                what: format!("{p}-faces"),
-                estimate: est,
+            return Err(StellarError::TooLarge(TooLarge::new(
+                format!("{p}-faces"),
+                est,
                 budget,
-            });
+                Unit::Simplices,
+            )));
         }
         Ok(())
     }

@@ -11,6 +11,7 @@ use super::{decode, Block, Ghost, IaStar, Slot, NM_BIT};
 use crate::cell::{binomial, CellKind};
 use crate::csr::Csr;
 use crate::ids::VertexId;
+use crate::limits::{TooLarge, Unit};
 use crate::topo::{from_tops, QueryError, DEFAULT_BUDGET};
 
 /// Local vertex positions of facet `j` of a CP cell (empty for a bad slot).
@@ -316,11 +317,12 @@ pub(super) fn ghost_coboundary(ia: &IaStar, g: Ghost, q: usize) -> Result<Vec<Gh
         .map(|&c| face_bound(ia.block_of(c.0).kind, q))
         .fold(0u128, |a, x| a.saturating_add(x));
     if est > DEFAULT_BUDGET {
-        return Err(QueryError::TooLarge {
-            what: format!("co-boundary R_{},{q}", g.p),
-            estimate: est,
-            budget: DEFAULT_BUDGET,
-        });
+        return Err(QueryError::TooLarge(TooLarge::new(
+            format!("co-boundary R_{},{q}", g.p),
+            est,
+            DEFAULT_BUDGET,
+            Unit::Simplices,
+        )));
     }
     let (mut flat, mut lens) = (Vec::new(), Vec::new());
     for c in cells {

@@ -8,6 +8,7 @@ use crate::cell::{binomial, CellKind};
 use crate::complex::IndexedComplex;
 use crate::csr::Csr;
 use crate::ids::{CellId, SimplexId, VertexId};
+use crate::limits::{TooLarge, Unit};
 use crate::tds::simplex_tree::BuildError;
 use crate::topo::{
     sort_flat, sorted_simplex, Adjacency, Boundary, Coboundary, Counts, Levels, QueryError,
@@ -131,10 +132,7 @@ impl CellGraph {
             }
         }
         if est > limit {
-            return Err(BuildError::TooLarge {
-                estimate: est,
-                limit,
-            });
+            return Err(BuildError::too_many(est, limit));
         }
         let depth = k.dim().map_or(1, |d| d + 1);
         let mut kinds: Vec<(CellKind, KindFaces)> = Vec::new();
@@ -412,11 +410,12 @@ impl CellGraph {
             level += 1;
             out.extend(next.iter().map(|&x| (level, x)));
             if out.len() as u128 > DEFAULT_BUDGET {
-                return Err(QueryError::TooLarge {
-                    what: "star".into(),
-                    estimate: out.len() as u128,
-                    budget: DEFAULT_BUDGET,
-                });
+                return Err(QueryError::TooLarge(TooLarge::new(
+                    "star",
+                    out.len() as u128,
+                    DEFAULT_BUDGET,
+                    Unit::Simplices,
+                )));
             }
             cur = next;
         }
