@@ -1,5 +1,6 @@
 //! Building a Stellar tree: decomposition, vertex reindexing, top-cell reindexing by region
 //! tuples, SRE-compressed leaf lists. The result does not depend on the number of threads.
+use crate::limits::TooLarge;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -70,10 +71,15 @@ pub(super) fn build(
     k: &IndexedComplex,
     opts: &StellarOptions,
 ) -> Result<StellarTree, StellarError> {
-    let nv = k.n_vertices();
     let nc = k.n_cells();
     if nc as u64 >= RUN_FLAG as u64 {
         return Err(StellarError::TooManyCells(nc as u64));
+    }
+    if k.n_refs() >= u32::MAX as usize {
+        return Err(StellarError::TooLarge(TooLarge::ids(
+            "vertex references",
+            k.n_refs() as u128,
+        )));
     }
     let n = k.ambient_dim();
     let split = match opts.split {
@@ -89,14 +95,69 @@ pub(super) fn build(
         SplitMode::Regular => 64,
         _ => (64 * n as u32).min(2048),
     });
-    let coords = k.coords();
+    let ctx = Ctx {
+        coords: k.coords(),
+        n,
+        kv: kv as usize,
+        regular: split == SplitMode::Regular,
+        max_depth,
+    };
     let mut timings = BuildTimings::default();
 
-    // ---- 1. decomposition
     let t0 = Instant::now();
-    let mut lo = vec![f64::INFINITY; n];
-    let mut hi = vec![f64::NEG_INFINITY; n];
-    for p in coords.chunks_exact(n) {
+    let d = decompose(&ctx, k.n_vertices());
+    timings.decomposition_s = t0.elapsed().as_secs_f64();
+
+    let t1 = Instant::now();
+    let mut v = reindex_vertices(d.idx, &d.leaf_vstart);
+    timings.vertex_reindex_s = t1.elapsed().as_secs_f64();
+
+    let t2 = Instant::now();
+    let c = reindex_cells(k, &mut v, d.leaf_vstart.len() - 1);
+    timings.cell_reindex_s = t2.elapsed().as_secs_f64();
+
+    // SRE-compressed leaf lists from the runs of equal leaf tuples
+    let t3 = Instant::now();
+    let (leaf_toff, leaf_tops) = leaf_lists(&c.groups, d.leaf_vstart.len() - 1);
+    drop(c.groups);
+    timings.leaf_lists_s = t3.elapsed().as_secs_f64();
+
+    Ok(StellarTree {
+        ambient_dim: n as u32,
+        kv,
+        split,
+        bbox: d.bbox,
+        nodes: d.nodes,
+        leaf_vstart: d.leaf_vstart,
+        leaf_toff,
+        leaf_tops,
+        cells: c.cells,
+        v_orig: v.v_orig,
+        v_new: v.v_new,
+        c_orig: c.c_orig,
+        c_new: c.c_new,
+        timings,
+    })
+}
+
+/// Phase 1: the spatial decomposition.
+struct Decomposition {
+    /// Bounding box (lower, upper corner).
+    bbox: (Vec<f64>, Vec<f64>),
+    /// Nodes in brood (BFS) order.
+    nodes: Vec<TreeNode>,
+    /// First tree vertex of each leaf (leaves in DFS order), then the vertex count.
+    leaf_vstart: Vec<u32>,
+    /// Input vertex ids, grouped by leaf.
+    idx: Vec<u32>,
+}
+
+/// Splits the vertices (kD or regular) until every leaf has at most k_V of them; flattens the
+/// tree: leaves in DFS order, nodes in brood order.
+fn decompose(ctx: &Ctx, nv: usize) -> Decomposition {
+    let n = ctx.n;
+    let (mut lo, mut hi) = (vec![f64::INFINITY; n], vec![f64::NEG_INFINITY; n]);
+    for p in ctx.coords.chunks_exact(n) {
         for i in 0..n {
             lo[i] = lo[i].min(p[i]);
             hi[i] = hi[i].max(p[i]);
@@ -107,107 +168,124 @@ pub(super) fn build(
         hi.iter_mut().for_each(|x| *x = 0.0);
     }
     let mut idx: Vec<u32> = (0..nv as u32).collect();
-    let ctx = Ctx {
-        coords,
-        n,
-        kv: kv as usize,
-        regular: split == SplitMode::Regular,
-        max_depth,
-    };
-    let root = if kv == 0 || nv <= kv as usize {
+    let root = if ctx.kv == 0 || nv <= ctx.kv {
         T::Leaf(0, nv as u32)
     } else {
-        split_rec(&ctx, &mut idx, 0, lo.clone(), hi.clone(), 0)
+        split_rec(ctx, &mut idx, 0, lo.clone(), hi.clone(), 0)
     };
-    // flatten: leaves in DFS order, nodes in brood (BFS) order
     let mut leaf_vstart: Vec<u32> = Vec::new();
     collect_leaves(&root, &mut leaf_vstart);
     leaf_vstart.push(nv as u32);
-    let mut nodes: Vec<TreeNode> = Vec::new();
-    {
-        let (a, b) = root.range();
-        nodes.push(TreeNode {
+    let nodes = brood_order(&root, &leaf_vstart);
+    Decomposition {
+        bbox: (lo, hi),
+        nodes,
+        leaf_vstart,
+        idx,
+    }
+}
+
+/// The nodes of `root` in brood (BFS) order; a leaf node's `first` is its leaf index.
+fn brood_order(root: &T, leaf_vstart: &[u32]) -> Vec<TreeNode> {
+    let node = |t: &T| {
+        let (a, b) = t.range();
+        TreeNode {
             v_start: a,
             v_end: b,
             first: 0,
             n_children: 0,
-        });
-        let mut queue: std::collections::VecDeque<(usize, &T)> = Default::default();
-        queue.push_back((0, &root));
-        while let Some((id, t)) = queue.pop_front() {
-            match t {
-                T::Leaf(a, _) => {
-                    let l = leaf_vstart.partition_point(|&s| s < *a);
-                    nodes[id].first = l as u32;
-                }
-                T::Inner(_, _, ch) => {
-                    nodes[id].first = nodes.len() as u32;
-                    nodes[id].n_children = ch.len() as u32;
-                    for c in ch {
-                        let (a, b) = c.range();
-                        queue.push_back((nodes.len(), c));
-                        nodes.push(TreeNode {
-                            v_start: a,
-                            v_end: b,
-                            first: 0,
-                            n_children: 0,
-                        });
-                    }
+        }
+    };
+    let mut nodes = vec![node(root)];
+    let mut queue: std::collections::VecDeque<(usize, &T)> = Default::default();
+    queue.push_back((0, root));
+    while let Some((id, t)) = queue.pop_front() {
+        match t {
+            T::Leaf(a, _) => {
+                let l = leaf_vstart.partition_point(|&s| s < *a);
+                nodes[id].first = l as u32;
+            }
+            T::Inner(_, _, ch) => {
+                nodes[id].first = nodes.len() as u32;
+                nodes[id].n_children = ch.len() as u32;
+                for c in ch {
+                    queue.push_back((nodes.len(), c));
+                    nodes.push(node(c));
                 }
             }
         }
     }
-    drop(root);
-    let n_leaves = leaf_vstart.len() - 1;
-    timings.decomposition_s = t0.elapsed().as_secs_f64();
+    nodes
+}
 
-    // ---- 2. vertex reindexing: sort each leaf's range by input id (deterministic, local)
-    let t1 = Instant::now();
-    {
-        let mut rest: &mut [u32] = &mut idx;
-        let mut parts: Vec<&mut [u32]> = Vec::with_capacity(n_leaves);
-        for l in 0..n_leaves {
-            let len = (leaf_vstart[l + 1] - leaf_vstart[l]) as usize;
-            let (a, b) = rest.split_at_mut(len);
-            parts.push(a);
-            rest = b;
-        }
-        parts.par_iter_mut().for_each(|p| p.sort_unstable());
-    }
+/// Phase 2: the tree's vertex numbering.
+struct VertexNumbering {
+    /// Tree vertex → input vertex.
+    v_orig: Vec<u32>,
+    /// Input vertex → tree vertex.
+    v_new: Vec<u32>,
+    /// Input vertex → its leaf (dropped by [`reindex_cells`] once the cells are sorted).
+    leaf_in: Vec<u32>,
+}
+
+/// Sorts each leaf's vertices by input id (deterministic, local) and numbers them in leaf order.
+fn reindex_vertices(mut idx: Vec<u32>, leaf_vstart: &[u32]) -> VertexNumbering {
+    let n_leaves = leaf_vstart.len() - 1;
+    split_by(&mut idx, leaf_vstart)
+        .into_par_iter()
+        .for_each(|p| p.sort_unstable());
     let v_orig = idx;
+    let nv = v_orig.len();
     let mut v_new = vec![0u32; nv];
     for (new, &old) in v_orig.iter().enumerate() {
         v_new[old as usize] = new as u32;
     }
-    // leaf of each input vertex (temporary: dropped before the cell store is made, the
-    // tree-indexed `leaf_of` is made after it)
     let mut leaf_in = vec![0u32; nv];
     for l in 0..n_leaves {
         for t in leaf_vstart[l]..leaf_vstart[l + 1] {
             leaf_in[v_orig[t as usize] as usize] = l as u32;
         }
     }
-    timings.vertex_reindex_s = t1.elapsed().as_secs_f64();
-
-    // ---- 3. top-cell reindexing by region tuples
-    let t2 = Instant::now();
-    // input cells are read from the complex (input numbering) and mapped through v_new
-    let mixed = k.blocks().len() > 1 && k.blocks().iter().any(|b| b.kind != k.blocks()[0].kind);
-    if k.n_refs() >= u32::MAX as usize {
-        return Err(StellarError::TooLarge {
-            what: "vertex references".into(),
-            estimate: k.n_refs() as u128,
-            budget: u32::MAX as u128 - 1,
-        });
+    VertexNumbering {
+        v_orig,
+        v_new,
+        leaf_in,
     }
-    let (uniform, stride) = if mixed || nc == 0 {
-        (None, 0u32)
+}
+
+/// `v` cut into consecutive parts at the offsets `bounds` (`bounds[0] == 0`, last = `v.len()`).
+fn split_by<'a>(mut v: &'a mut [u32], bounds: &[u32]) -> Vec<&'a mut [u32]> {
+    let mut parts = Vec::with_capacity(bounds.len().saturating_sub(1));
+    for w in bounds.windows(2) {
+        let (a, b) = v.split_at_mut((w[1] - w[0]) as usize);
+        parts.push(a);
+        v = b;
+    }
+    parts
+}
+
+/// Phase 3: the tree's cell numbering, the reindexed cell store and the runs of cells with the
+/// same leaves.
+struct CellNumbering {
+    c_orig: Vec<u32>,
+    c_new: Vec<u32>,
+    cells: CellStore,
+    groups: Vec<Groups>,
+}
+
+/// Numbers the cells by home leaf (the leaf of their smallest tree vertex), then within a home
+/// leaf by (tuple of leaves, kind, input id); the runs of equal tuples make the leaf lists.
+fn reindex_cells(k: &IndexedComplex, v: &mut VertexNumbering, n_leaves: usize) -> CellNumbering {
+    let nc = k.n_cells();
+    let mixed = k.blocks().len() > 1 && k.blocks().iter().any(|b| b.kind != k.blocks()[0].kind);
+    let uniform = if mixed || nc == 0 {
+        None
     } else {
-        let kind = k.blocks()[0].kind;
-        (Some(kind), kind.n_vertices() as u32)
+        Some(k.blocks()[0].kind)
     };
     let input = InputCells::new(k);
     let in_cell = |c: u32| input.get(c);
+    let leaf_in = &v.leaf_in;
     // home leaf of every input cell = leaf of its smallest tree vertex = its smallest leaf
     // (leaves own increasing ranges of tree vertices)
     let home: Vec<u32> = (0..nc as u32)
@@ -230,42 +308,45 @@ pub(super) fn build(
         start[l + 1] += start[l];
     }
     let mut order = vec![0u32; nc];
-    {
-        let mut pos = start.clone();
-        for (c, &h) in home.iter().enumerate() {
-            order[pos[h as usize] as usize] = c as u32;
-            pos[h as usize] += 1;
-        }
+    let mut pos = start.clone();
+    for (c, &h) in home.iter().enumerate() {
+        order[pos[h as usize] as usize] = c as u32;
+        pos[h as usize] += 1;
     }
-    drop(home);
-    // within each home leaf: sort by (tuple of leaves, kind, input id); the runs of equal
-    // tuples make the leaf lists
-    let groups: Vec<Groups> = {
-        let mut rest: &mut [u32] = &mut order;
-        let mut parts: Vec<&mut [u32]> = Vec::with_capacity(n_leaves);
-        for l in 0..n_leaves {
-            let len = (start[l + 1] - start[l]) as usize;
-            let (a, b) = rest.split_at_mut(len);
-            parts.push(a);
-            rest = b;
-        }
-        parts
-            .into_par_iter()
-            .enumerate()
-            .map_init(SortScratch::default, |sc, (home, part)| {
-                sort_part(home as u32, part, uniform, &in_cell, &leaf_in, sc)
-            })
-            .collect()
-    };
-    drop(leaf_in);
+    drop((home, pos));
+    let groups: Vec<Groups> = split_by(&mut order, &start)
+        .into_par_iter()
+        .enumerate()
+        .map_init(SortScratch::default, |sc, (home, part)| {
+            sort_part(home as u32, part, uniform, &in_cell, leaf_in, sc)
+        })
+        .collect();
+    drop(std::mem::take(&mut v.leaf_in)); // not needed by the cell store: keep the peak low
     let c_orig = order;
     let mut c_new = vec![0u32; nc];
     for (new, &old) in c_orig.iter().enumerate() {
         c_new[old as usize] = new as u32;
     }
-    // reindexed cell store
-    let cells = if uniform.is_some() {
-        let st = stride as usize;
+    let cells = cell_store(k, &input, uniform, &c_orig, &v.v_new);
+    CellNumbering {
+        c_orig,
+        c_new,
+        cells,
+        groups,
+    }
+}
+
+/// The cells in tree order, their vertices in tree ids.
+fn cell_store(
+    k: &IndexedComplex,
+    input: &InputCells<'_>,
+    uniform: Option<crate::cell::CellKind>,
+    c_orig: &[u32],
+    v_new: &[u32],
+) -> CellStore {
+    let nc = c_orig.len();
+    if let Some(kind) = uniform {
+        let st = kind.n_vertices();
         let mut verts = vec![0u32; k.n_refs()];
         verts
             .par_chunks_mut(st * 4096)
@@ -273,63 +354,38 @@ pub(super) fn build(
             .for_each(|(ci, ch)| {
                 let base = ci * 4096;
                 for (i, dst) in ch.chunks_exact_mut(st).enumerate() {
-                    for (x, &y) in dst.iter_mut().zip(in_cell(c_orig[base + i]).1) {
+                    for (x, &y) in dst.iter_mut().zip(input.get(c_orig[base + i]).1) {
                         *x = v_new[y as usize];
                     }
                 }
             });
-        CellStore {
+        return CellStore {
             uniform,
-            stride,
+            stride: st as u32,
             kinds: Vec::new(),
             offsets: Vec::new(),
             verts,
             n: nc as u32,
-        }
-    } else {
-        let mut kinds = Vec::with_capacity(nc);
-        let mut offsets = Vec::with_capacity(nc + 1);
-        let mut verts = Vec::with_capacity(k.n_refs());
-        offsets.push(0u32);
-        for &old in &c_orig {
-            let (kind, vs) = in_cell(old);
-            kinds.push(kind_code(kind));
-            verts.extend(vs.iter().map(|&v| v_new[v as usize]));
-            offsets.push(verts.len() as u32);
-        }
-        CellStore {
-            uniform: None,
-            stride: 0,
-            kinds,
-            offsets,
-            verts,
-            n: nc as u32,
-        }
-    };
-    timings.cell_reindex_s = t2.elapsed().as_secs_f64();
-
-    // ---- 4. SRE-compressed leaf lists: stream the cells in tree order (two passes)
-    let t3 = Instant::now();
-    let (leaf_toff, leaf_tops) = leaf_lists(&groups, n_leaves);
-    drop(groups);
-    timings.leaf_lists_s = t3.elapsed().as_secs_f64();
-
-    Ok(StellarTree {
-        ambient_dim: n as u32,
-        kv,
-        split,
-        bbox: (lo, hi),
-        nodes,
-        leaf_vstart,
-        leaf_toff,
-        leaf_tops,
-        cells,
-        v_orig,
-        v_new,
-        c_orig,
-        c_new,
-        timings,
-    })
+        };
+    }
+    let mut kinds = Vec::with_capacity(nc);
+    let mut offsets = Vec::with_capacity(nc + 1);
+    let mut verts = Vec::with_capacity(k.n_refs());
+    offsets.push(0u32);
+    for &old in c_orig {
+        let (kind, vs) = input.get(old);
+        kinds.push(kind_code(kind));
+        verts.extend(vs.iter().map(|&v| v_new[v as usize]));
+        offsets.push(verts.len() as u32);
+    }
+    CellStore {
+        uniform: None,
+        stride: 0,
+        kinds,
+        offsets,
+        verts,
+        n: nc as u32,
+    }
 }
 
 /// Runs of consecutive tree cells with the same distinct leaves, in tree order: `len[i]` cells
