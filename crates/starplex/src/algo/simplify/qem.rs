@@ -229,10 +229,17 @@ fn cost_bits(cost: f64) -> u32 {
 /// next, keeping its own key (entries of bucket 0 come out last in, first out). A bucket that
 /// was emptied by a redistribution gives its memory back when it is large, so the heap's
 /// footprint follows the live entries instead of the largest each bucket ever held.
+///
+/// The entries of a round's start (one per edge, nearly all of a round's entries at once) are
+/// not pushed: they are sorted into one exactly sized array ([`fill`](Self::fill)), consumed
+/// from its cheap end and merged with the buckets at each pop, so they are never moved between
+/// buckets nor held twice while a bucket is redistributed.
 struct RadixHeap {
     last: u32,
     len: usize,
     buckets: [Vec<Entry>; 33],
+    /// The round's first entries, by decreasing key (the smallest last).
+    sorted: Vec<Entry>,
 }
 
 impl Default for RadixHeap {
@@ -241,6 +248,7 @@ impl Default for RadixHeap {
             last: 0,
             len: 0,
             buckets: std::array::from_fn(|_| Vec::new()),
+            sorted: Vec::new(),
         }
     }
 }
@@ -256,6 +264,13 @@ impl RadixHeap {
         for b in &mut self.buckets {
             b.clear();
         }
+        self.sorted = Vec::new();
+    }
+    /// Adds the round's first entries (the heap is empty), sorted by decreasing key.
+    fn fill(&mut self, mut entries: Vec<Entry>) {
+        entries.sort_unstable_by_key(|e| std::cmp::Reverse(e.key));
+        self.len += entries.len();
+        self.sorted = entries;
     }
     fn push(&mut self, e: Entry) {
         let i = if e.key <= self.last {
@@ -271,9 +286,27 @@ impl RadixHeap {
         for b in &mut self.buckets {
             b.retain(|&e| keep(e));
         }
-        self.len = self.buckets.iter().map(Vec::len).sum();
+        self.sorted.retain(|&e| keep(e));
+        self.sorted.shrink_to_fit();
+        self.len = self.buckets.iter().map(Vec::len).sum::<usize>() + self.sorted.len();
     }
     fn pop(&mut self) -> Option<Entry> {
+        let k = self.bucket_min();
+        let e = match (self.sorted.last(), k) {
+            (Some(s), Some(k)) if s.key <= k => self.sorted.pop(),
+            (Some(_), None) => self.sorted.pop(),
+            (_, Some(_)) => self.buckets[0].pop(),
+            (None, None) => None,
+        };
+        self.len -= e.is_some() as usize;
+        if self.sorted.capacity() > 2 * self.sorted.len() + 65536 {
+            self.sorted.shrink_to_fit(); // the consumed end gives its memory back
+        }
+        e
+    }
+    /// The key of the next entry of the buckets (bucket 0 filled from the lowest non-empty
+    /// bucket if needed).
+    fn bucket_min(&mut self) -> Option<u32> {
         if self.buckets[0].is_empty() {
             let i = (1..33).find(|&i| !self.buckets[i].is_empty())?;
             let mut b = std::mem::take(&mut self.buckets[i]);
@@ -288,9 +321,7 @@ impl RadixHeap {
             }
             self.buckets[i] = b;
         }
-        let e = self.buckets[0].pop();
-        self.len -= e.is_some() as usize;
-        e
+        self.buckets[0].last().map(|e| e.key)
     }
 }
 
@@ -479,6 +510,8 @@ pub fn simplify_qem(
                     locked: &[bool],
                     stamp: &[u8]| {
         heap.clear();
+        // one entry per edge (the capacity beyond is never touched, and is given back)
+        let mut entries = Vec::new();
         for a in 0..n as u32 {
             if !w.is_alive(a) {
                 continue;
@@ -486,10 +519,12 @@ pub fn simplify_qem(
             w.neighbours_into(a, nb);
             for &b in nb.iter().filter(|&&b| b > a) {
                 if let Some((cost, _)) = candidate(a, b, quad, pos, locked) {
-                    heap.push(Entry::new(cost, a, b, stamp));
+                    entries.push(Entry::new(cost, a, b, stamp));
                 }
             }
         }
+        entries.shrink_to_fit();
+        heap.fill(entries);
     };
 
     let mut last_round_contracted = true;
@@ -570,6 +605,7 @@ pub fn simplify_qem(
     if stats.n_contractions > 0 {
         stats.mean_error = sum_err / stats.n_contractions as f64;
     }
+    drop((heap, quad));
     w.coords = pos
         .iter()
         .flat_map(|p| p.iter().copied().take(stride))

@@ -49,7 +49,8 @@ const NO_ORIGIN: u32 = u32::MAX;
 /// ```
 #[derive(Clone, Debug)]
 pub struct TopSimplices {
-    tops: Vec<Top>,
+    /// The tops, flat ([`FlatTops`]: no allocation or inline header per top).
+    tops: FlatTops,
     /// Per top: the input top it is the image of (`NO_ORIGIN` for an added vertex top).
     origin: Vec<u32>,
     vt: Vec<SmallVec<[u32; 8]>>,
@@ -65,6 +66,92 @@ pub struct TopSimplices {
     pub stride: usize,
     /// Reused buffers of [`contract`](Self::contract).
     scratch: ContractScratch,
+}
+
+/// The top simplices stored flat: every top has a slot in one array, of `width` numbers when
+/// `starts` is empty (a pure complex: a triangle mesh takes 12 bytes and 1 length byte a
+/// triangle instead of a 24-byte inline vector), else of its input length at `starts[t]`.
+/// A top never grows (a contraction replaces or removes a vertex), so it never leaves its slot;
+/// a removed top has length 0.
+#[derive(Clone, Debug, Default)]
+struct FlatTops {
+    verts: Vec<u32>,
+    lens: Vec<u8>,
+    starts: Vec<usize>,
+    width: usize,
+}
+
+impl FlatTops {
+    /// From the tops written one after the other (`verts`, lengths `lens`): equal slots of the
+    /// largest length when the padding costs less than an offset per top.
+    fn new(mut verts: Vec<u32>, lens: Vec<u8>) -> FlatTops {
+        let n = lens.len();
+        let width = lens.iter().copied().max().unwrap_or(0) as usize;
+        let total = verts.len();
+        let mut starts = Vec::new();
+        if (n * width).saturating_sub(total) * 4 <= n * 8 {
+            if total != n * width {
+                // spread the tops to their slots, from the last (a slot starts at or after the
+                // top's packed position)
+                verts.resize(n * width, 0);
+                let mut end = total;
+                for t in (0..n).rev() {
+                    let l = lens[t] as usize;
+                    end -= l;
+                    verts.copy_within(end..end + l, t * width);
+                }
+            }
+        } else {
+            starts.reserve_exact(n);
+            let mut at = 0;
+            for &l in &lens {
+                starts.push(at);
+                at += l as usize;
+            }
+        }
+        FlatTops {
+            verts,
+            lens,
+            starts,
+            width,
+        }
+    }
+    fn len(&self) -> usize {
+        self.lens.len()
+    }
+    #[inline]
+    fn slot(&self, t: usize) -> usize {
+        if self.starts.is_empty() {
+            t * self.width
+        } else {
+            self.starts[t]
+        }
+    }
+    #[inline]
+    fn get(&self, t: usize) -> &[u32] {
+        let s = self.slot(t);
+        &self.verts[s..s + self.lens[t] as usize]
+    }
+    #[inline]
+    fn get_mut(&mut self, t: usize) -> &mut [u32] {
+        let s = self.slot(t);
+        &mut self.verts[s..s + self.lens[t] as usize]
+    }
+    /// Top `t` after the contraction of `b` into `a` (edited in place): `b` dropped when the
+    /// top also holds `a` (returns true), else replaced by `a`.
+    fn contract_in(&mut self, t: usize, a: u32, b: u32) -> bool {
+        let top = self.get_mut(t);
+        let had_a = top.contains(&a);
+        if let Some(i) = top.iter().position(|&v| v == b) {
+            if had_a {
+                top.copy_within(i + 1.., i);
+                self.lens[t] -= 1;
+            } else {
+                top[i] = a;
+            }
+        }
+        had_a
+    }
 }
 
 /// Reused buffers of [`TopSimplices::contract`] (no allocation per contraction).
@@ -115,7 +202,8 @@ impl TopSimplices {
         if n == 0 {
             return Err(SimplifyError::Empty);
         }
-        let mut tops = Vec::with_capacity(s.n_top_cells() + 1);
+        let mut verts = Vec::new();
+        let mut lens = Vec::with_capacity(s.n_top_cells() + 1);
         let mut origin = Vec::with_capacity(s.n_top_cells() + 1);
         let mut buf = Vec::new();
         let mut used = vec![false; n];
@@ -127,16 +215,20 @@ impl TopSimplices {
             }
             buf.clear();
             s.top_cell_vertices(c, &mut buf);
-            let t: Top = buf.iter().map(|v| v.0).collect();
-            for &v in &t {
-                used[v as usize] = true;
+            if c.0 == 0 {
+                verts.reserve_exact(s.n_top_cells() * buf.len());
             }
-            tops.push(t);
+            for &v in &buf {
+                used[v.0 as usize] = true;
+            }
+            verts.extend(buf.iter().map(|v| v.0));
+            lens.push(buf.len() as u8); // at most MAX_SIMPLEX_DIM + 1 = 65 vertices
             origin.push(c.0);
         }
         for (v, &u) in used.iter().enumerate() {
             if !u {
-                tops.push(SmallVec::from_slice(&[v as u32]));
+                verts.push(v as u32);
+                lens.push(1);
                 origin.push(NO_ORIGIN);
             }
         }
@@ -145,7 +237,13 @@ impl TopSimplices {
         } else {
             coords.to_vec()
         };
-        Ok(Self::assemble(n, tops, origin, coords, stride))
+        Ok(Self::assemble(
+            n,
+            FlatTops::new(verts, lens),
+            origin,
+            coords,
+            stride,
+        ))
     }
 
     /// Builds the structure from an indexed complex (its coordinates included).
@@ -192,6 +290,9 @@ impl TopSimplices {
             if t.is_empty() {
                 return Err(bad("no vertex"));
             }
+            if t.len() > crate::cell::MAX_SIMPLEX_DIM + 1 {
+                return Err(bad("dimension too high"));
+            }
             for (j, &v) in t.iter().enumerate() {
                 if v as usize >= n_vertices {
                     return Err(bad("vertex out of range"));
@@ -215,20 +316,28 @@ impl TopSimplices {
                 origin.push(NO_ORIGIN);
             }
         }
-        Ok(Self::assemble(n_vertices, out, origin, Vec::new(), 0))
+        let lens = out.iter().map(|t| t.len() as u8).collect();
+        let verts = out.into_iter().flatten().collect();
+        Ok(Self::assemble(
+            n_vertices,
+            FlatTops::new(verts, lens),
+            origin,
+            Vec::new(),
+            0,
+        ))
     }
 
     fn assemble(
         n: usize,
-        tops: Vec<Top>,
+        tops: FlatTops,
         origin: Vec<u32>,
         coords: Vec<f64>,
         stride: usize,
     ) -> TopSimplices {
         debug_assert_eq!(tops.len(), origin.len());
         let mut vt: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];
-        for (i, t) in tops.iter().enumerate() {
-            for &v in t {
+        for i in 0..tops.len() {
+            for &v in tops.get(i) {
                 vt[v as usize].push(i as u32);
             }
         }
@@ -387,7 +496,11 @@ impl TopSimplices {
     /// assert_eq!(w.top(0), &[2, 0, 1]);
     /// ```
     pub fn top(&self, t: u32) -> &[u32] {
-        self.tops.get(t as usize).map_or(&[], |t| &t[..])
+        if (t as usize) < self.tops.len() {
+            self.tops.get(t as usize)
+        } else {
+            &[]
+        }
     }
 
     /// The ids of the tops containing `v` (in no particular order).
@@ -426,7 +539,13 @@ impl TopSimplices {
     pub fn neighbours_into(&self, v: u32, out: &mut Vec<u32>) {
         out.clear();
         for &t in self.star(v) {
-            out.extend(self.tops[t as usize].iter().copied().filter(|&x| x != v));
+            out.extend(
+                self.tops
+                    .get(t as usize)
+                    .iter()
+                    .copied()
+                    .filter(|&x| x != v),
+            );
         }
         out.sort_unstable();
         out.dedup();
@@ -455,9 +574,10 @@ impl TopSimplices {
     /// ```
     pub fn dim(&self) -> Option<usize> {
         self.tops
+            .lens
             .iter()
-            .filter(|t| !t.is_empty())
-            .map(|t| t.len() - 1)
+            .filter(|&&l| l > 0)
+            .map(|&l| l as usize - 1)
             .max()
     }
 
@@ -469,7 +589,9 @@ impl TopSimplices {
     /// assert_eq!(w.tops().count(), 2);
     /// ```
     pub fn tops(&self) -> impl Iterator<Item = &[u32]> + '_ {
-        self.tops.iter().filter(|t| !t.is_empty()).map(|t| &t[..])
+        (0..self.tops.len())
+            .filter(|&t| self.tops.lens[t] > 0)
+            .map(|t| self.tops.get(t))
     }
 
     /// Contracts the edge `ab` into `a` (`b` disappears; `a` keeps its coordinates, set them
@@ -494,7 +616,7 @@ impl TopSimplices {
         if !self
             .star(b)
             .iter()
-            .any(|&t| self.tops[t as usize].contains(&a))
+            .any(|&t| self.tops.get(t as usize).contains(&a))
         {
             return false;
         }
@@ -511,19 +633,9 @@ impl TopSimplices {
         let triangles = st_b
             .iter()
             .chain(self.vt[a as usize].iter())
-            .all(|&t| self.tops[t as usize].len() == 3);
+            .all(|&t| self.tops.lens[t as usize] == 3);
         for &t in &st_b {
-            let top = &mut self.tops[t as usize];
-            let had_a = top.contains(&a);
-            if had_a {
-                top.retain(|v| *v != b);
-            } else {
-                for v in top.iter_mut() {
-                    if *v == b {
-                        *v = a;
-                    }
-                }
-            }
+            let had_a = self.tops.contract_in(t as usize, a, b);
             sc.ids.push(t);
             sc.had_a.push(had_a);
         }
@@ -555,25 +667,25 @@ impl TopSimplices {
         // the tops through a that were not through b
         let others = |u: &u32, ids: &[u32]| !ids.contains(u);
         for (i, &ti) in sc.ids.iter().enumerate() {
-            let t = &self.tops[ti as usize];
+            let t = self.tops.get(ti as usize);
             let dominated_by_image = sc.ids.iter().enumerate().any(|(j, &u)| {
-                let u = &self.tops[u as usize];
+                let u = self.tops.get(u as usize);
                 j != i && is_subset(t, u) && (t.len() < u.len() || j < i)
             });
             let dominated = dominated_by_image
                 || self.vt[a as usize]
                     .iter()
                     .filter(|u| others(u, &sc.ids))
-                    .any(|&u| is_subset(t, &self.tops[u as usize]));
+                    .any(|&u| is_subset(t, self.tops.get(u as usize)));
             sc.keep.push(!dominated);
         }
         for &u in self.vt[a as usize].iter() {
             if !others(&u, &sc.ids) {
                 continue;
             }
-            let ut = &self.tops[u as usize];
+            let ut = self.tops.get(u as usize);
             let swallowed = sc.ids.iter().zip(&sc.keep).any(|(&t, &k)| {
-                let t = &self.tops[t as usize];
+                let t = self.tops.get(t as usize);
                 k && ut.len() < t.len() && is_subset(ut, t)
             });
             if swallowed {
@@ -597,12 +709,12 @@ impl TopSimplices {
         sc.other_keys.clear();
         for &u in &self.vt[a as usize] {
             if !sc.ids.contains(&u) {
-                sc.other_keys.push(sorted(&self.tops[u as usize]));
+                sc.other_keys.push(sorted(self.tops.get(u as usize)));
             }
         }
         sc.image_keys.clear();
         for (i, &t) in sc.ids.iter().enumerate() {
-            let t = &self.tops[t as usize];
+            let t = self.tops.get(t as usize);
             sc.image_keys.push(if sc.had_a[i] {
                 // the edge a-x, kept as [x, x, x]
                 let x = if t[0] == a { t[1] } else { t[0] };
@@ -635,9 +747,10 @@ impl TopSimplices {
 
     /// Removes top `t` and its entries in the vertex rows.
     fn drop_top(&mut self, t: u32) {
-        let top = std::mem::take(&mut self.tops[t as usize]);
+        let s = self.tops.slot(t as usize);
+        let l = std::mem::take(&mut self.tops.lens[t as usize]) as usize;
         self.n_alive_tops -= 1;
-        for &v in &top {
+        for &v in &self.tops.verts[s..s + l] {
             remove_from(&mut self.vt[v as usize], t);
         }
     }
@@ -753,9 +866,10 @@ impl TopSimplices {
     /// ```
     pub fn cell_origins(&self) -> Vec<Option<u32>> {
         self.tops
+            .lens
             .iter()
             .zip(&self.origin)
-            .filter(|(t, _)| t.len() >= 2)
+            .filter(|&(&l, _)| l >= 2)
             .map(|(_, &o)| (o != NO_ORIGIN).then_some(o))
             .collect()
     }
@@ -868,13 +982,7 @@ mod tests {
                     let mut sc = ContractScratch::default();
                     let st_b = std::mem::take(&mut c.vt[b as usize]);
                     for &t in &st_b {
-                        let top = &mut c.tops[t as usize];
-                        let had_a = top.contains(&a);
-                        if had_a {
-                            top.retain(|v| *v != b);
-                        } else {
-                            top.iter_mut().filter(|v| **v == b).for_each(|v| *v = a);
-                        }
+                        let had_a = c.tops.contract_in(t as usize, a, b);
                         sc.ids.push(t);
                         sc.had_a.push(had_a);
                     }
