@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use serde_json::{json, Value};
 use starplex::algo::homology::{
-    homology_indexed, write_generators_obj, Field, Homology, HomologyOptions,
+    homology_indexed, homology_owned, write_generators_obj, Field, Homology, HomologyOptions,
 };
 
 use crate::common::{self, CliError, Ctx, InputArgs};
@@ -69,7 +69,7 @@ pub fn run(ctx: &Ctx, a: &HomologyArgs) -> Result<(), CliError> {
     let t0 = Instant::now();
     let r = common::load(ctx, &a.input)?;
     let read_s = t0.elapsed().as_secs_f64();
-    let k = &r.complex;
+    let k = r.complex;
     let pb = if k.n_cells() > 200_000 {
         common::progress_bar(ctx, k.n_vertices() as u64, "homology")
     } else {
@@ -91,7 +91,13 @@ pub fn run(ctx: &Ctx, a: &HomologyArgs) -> Result<(), CliError> {
         .build()
         .map_err(|e| CliError::Other(e.to_string()))?;
     let t1 = Instant::now();
-    let h = pool.install(|| homology_indexed(k, &opts));
+    // without generators the complex is not needed afterwards: it is consumed (its cells
+    // renumbered in place, its coordinates freed), which lowers the peak memory
+    let (h, k) = if a.generators.is_some() {
+        (pool.install(|| homology_indexed(&k, &opts)), Some(k))
+    } else {
+        (pool.install(|| homology_owned(k, &opts)), None)
+    };
     pb.finish_and_clear();
     let h = h.map_err(|e| {
         CliError::Input(
@@ -100,7 +106,7 @@ pub fn run(ctx: &Ctx, a: &HomologyArgs) -> Result<(), CliError> {
         )
     })?;
     let homology_s = t1.elapsed().as_secs_f64();
-    if let (Some(f), Some(p)) = (gen_file, &a.generators) {
+    if let (Some(f), Some(p), Some(k)) = (gen_file, &a.generators, &k) {
         let w = std::io::BufWriter::new(f);
         write_generators_obj(k, &h.generators, w).map_err(|e| {
             CliError::Input(

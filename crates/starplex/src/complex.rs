@@ -526,13 +526,20 @@ impl ComplexBuilder {
     /// # Errors
     /// The first problem found, in cell order: an index out of range, a repeated vertex, a
     /// duplicate top cell, a top cell that is a face of another (unless the options drop them).
-    pub fn build(self, opts: &BuildOptions) -> Result<(IndexedComplex, BuildReport), ComplexError> {
+    pub fn build(
+        mut self,
+        opts: &BuildOptions,
+    ) -> Result<(IndexedComplex, BuildReport), ComplexError> {
         let n_vertices = self.n_vertices();
+        // the growth slack of the pushes (up to half of each array) is given back: shrinking
+        // reallocates in place, so this costs no copy and no extra peak
+        self.coords.shrink_to_fit();
         let blocks: Vec<CellBlock> = {
             let mut first = 0u32;
             self.blocks
                 .into_iter()
-                .map(|(kind, v)| {
+                .map(|(kind, mut v)| {
+                    v.shrink_to_fit();
                     let b = CellBlock {
                         kind,
                         first,
@@ -627,6 +634,11 @@ fn block_is_valid(verts: &[u32], n: usize, nv: usize) -> bool {
 }
 
 impl IndexedComplex {
+    /// The cell blocks, consuming the complex (its coordinates and attributes are freed).
+    pub(crate) fn into_blocks(self) -> Vec<CellBlock> {
+        self.blocks
+    }
+
     /// Assembles a complex from parts already checked elsewhere (the binary reader checks
     /// indices itself); cell ids follow the block order.
     ///

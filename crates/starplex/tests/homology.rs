@@ -8,7 +8,7 @@ use std::collections::BTreeSet;
 
 use proptest::prelude::*;
 use starplex::algo::homology::{
-    homology, Field, Homology, HomologyError, HomologyOptions, VertexOrder,
+    homology, homology_owned, Field, Homology, HomologyError, HomologyOptions, VertexOrder,
 };
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
@@ -700,6 +700,8 @@ proptest! {
             let o = HomologyOptions { order, per_component: true, ..Default::default() };
             let h = homology(&VtIndex::new(&k), &o).unwrap();
             prop_assert_eq!(&h.betti, &want);
+            // consuming the complex (cells renumbered in place) changes nothing
+            prop_assert_eq!(&homology_owned(k.clone(), &o).unwrap(), &h);
             let comps = h.components.unwrap();
             prop_assert!(comps.windows(2).all(|w| w[0].first_vertex < w[1].first_vertex));
             let oz = HomologyOptions { order, field: Field::Z, ..Default::default() };
@@ -729,6 +731,12 @@ fn betti_z2_matches_the_oracles() {
         let k = io::read(&path, &ReadOptions::default()).unwrap().complex;
         let got = starplex::algo::homology::betti_z2(&k).unwrap();
         assert_eq!(got, want, "{name}");
+        if k.n_cells() < 100_000 {
+            // the consumed complex (what the CLI runs) gives the same critical cells
+            let o = HomologyOptions::default();
+            let h = starplex::algo::homology::homology_indexed(&k, &o).unwrap();
+            assert_eq!(homology_owned(k, &o).unwrap(), h, "{name}");
+        }
         eprintln!("{name}: betti_z2 {got:?} (oracle)");
         checked += 1;
     }
@@ -764,6 +772,9 @@ fn larger_surfaces_same_answer_for_1_and_2_threads() {
                 let want = if field == Field::Z2 { &want2 } else { &want3 };
                 assert_eq!(&h1.betti, want, "flip {flip} {order:?} {field}");
                 assert_eq!(h1, h2, "flip {flip} {order:?} {field}");
+                // one block of triangles: the in-place renumbering of a consumed complex
+                let ho = threads(2, || homology_owned(k.clone(), &o).unwrap());
+                assert_eq!(h1, ho, "owned, flip {flip} {order:?} {field}");
             }
         }
     }

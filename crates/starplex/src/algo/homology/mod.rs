@@ -466,12 +466,63 @@ pub fn homology_indexed(
     }
 }
 
+/// [`homology_indexed`] consuming the complex: when a new vertex order is chosen, the cells
+/// are renumbered in place and the coordinates freed before the work starts, so the input and
+/// its renumbered copy never coexist (the least memory; the same answer).
+///
+/// ```
+/// use starplex::algo::homology::{homology_owned, HomologyOptions};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// for e in [[0, 1], [1, 3], [3, 2], [2, 0]] { b.push_cell(CellKind::Simplex(1), &e).unwrap(); }
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// assert_eq!(homology_owned(k, &HomologyOptions::default()).unwrap().betti, vec![1, 1]);
+/// ```
+///
+/// # Errors
+/// As [`homology`].
+pub fn homology_owned(
+    k: IndexedComplex,
+    opts: &HomologyOptions,
+) -> Result<Homology, HomologyError> {
+    let Some(fa) = pick_order(&k, opts.order, Some(k.n_refs() as u64)) else {
+        return homology_ordered(&VtIndex::new(&k), opts, None);
+    };
+    let t = std::time::Instant::now();
+    match order::Flat::from_complex(k, &fa) {
+        Some(f) => {
+            debug_time("first-appearance order (in place)", t);
+            let (f, to_old) = finish_order(f, fa, opts.order);
+            homology_ordered(&f, opts, Some(&to_old))
+        }
+        // not reachable: from_complex only refuses what `pick_order` keeps in input order
+        None => Err(HomologyError::TooLarge(QueryError::TooLarge {
+            what: "homology: vertex references".into(),
+            estimate: u32::MAX as u128,
+            budget: u32::MAX as u128,
+        })),
+    }
+}
+
 /// The vertex order: `None` for the input order, else the complex materialised in the new
 /// order and `to_old`. Auto: the input order unless it has many local minima, then the order
 /// of first appearance in the cells unless that has many too, then breadth-first (over the
 /// first-appearance numbering, whose cells lie close in memory). A complex whose vertex
 /// references overflow 32 bits keeps the input order.
 fn choose_order<S: TopCells + ?Sized>(s: &S, o: VertexOrder) -> Option<(order::Flat, Vec<u32>)> {
+    let fa = pick_order(s, o, None)?;
+    let t = std::time::Instant::now();
+    let f = order::Flat::new(s, &fa)?;
+    debug_time("first-appearance order", t);
+    Some(finish_order(f, fa, o))
+}
+
+/// `None` when the input order is kept (asked, few local minima, or more than 2^32 vertex
+/// references: `refs` when known, else counted), else the first-appearance numbering
+/// `to_new[old]`.
+fn pick_order<S: TopCells + ?Sized>(s: &S, o: VertexOrder, refs: Option<u64>) -> Option<Vec<u32>> {
     let nv = s.n_vertices();
     let few = 64 + nv / 1000;
     let t = std::time::Instant::now();
@@ -486,28 +537,57 @@ fn choose_order<S: TopCells + ?Sized>(s: &S, o: VertexOrder) -> Option<(order::F
         }
         _ => {}
     }
-    let fa = order::first_appearance_order(s);
-    let mut f = order::Flat::new(s, &fa)?;
-    debug_time("first-appearance order", t);
+    let refs = refs.unwrap_or_else(|| {
+        let mut verts = Vec::new();
+        (0..s.n_top_cells())
+            .map(|c| {
+                verts.clear();
+                s.top_cell_vertices(CellId(c as u32), &mut verts);
+                verts.len() as u64
+            })
+            .sum()
+    });
+    if refs >= u32::MAX as u64 {
+        return None;
+    }
+    Some(order::first_appearance_order(s))
+}
+
+/// Breadth-first over the first-appearance copy `f` when asked (or, for Auto, when it still
+/// has many local minima); returns the copy in its final numbering and `to_old`.
+fn finish_order(mut f: order::Flat, fa: Vec<u32>, o: VertexOrder) -> (order::Flat, Vec<u32>) {
+    let nv = f.n_vertices();
+    let few = 64 + nv / 1000;
+    let t = std::time::Instant::now();
     let bfs = match o {
         VertexOrder::FirstAppearance => false,
         VertexOrder::BreadthFirst => true,
         _ => order::count_minima(&f, None) > few,
     };
-    let mut to_old = vec![0u32; nv];
+    let mut to_old = fa;
     if bfs {
         let b = order::bfs_order(&f);
-        f.relabel(&b);
-        for (old, &x) in fa.iter().enumerate() {
-            to_old[b[x as usize] as usize] = old as u32;
+        // to_old = (b ∘ fa)^-1, built in the buffer of fa (fa[old] is read before it is
+        // overwritten: the composition is written to `b`'s place first)
+        let mut composed = b.clone();
+        for (old, &x) in to_old.iter().enumerate() {
+            composed[x as usize] = old as u32; // composed = fa^-1 (indexed by fa-number)
         }
+        // to_old[b[y]] = fa^-1[y]
+        for (y, &by) in b.iter().enumerate() {
+            to_old[by as usize] = composed[y];
+        }
+        drop(composed);
+        f.relabel(&b);
         debug_time("breadth-first order", t);
     } else {
-        for (old, &x) in fa.iter().enumerate() {
-            to_old[x as usize] = old as u32;
+        let mut inv = vec![0u32; nv];
+        for (old, &x) in to_old.iter().enumerate() {
+            inv[x as usize] = old as u32;
         }
+        to_old = inv;
     }
-    Some((f, to_old))
+    (f, to_old)
 }
 
 /// Maps a cell of a relabeled view back to input numbering (sign of the change of orientation).

@@ -226,6 +226,80 @@ impl Flat {
         Some(f)
     }
 
+    /// [`Flat::new`] of a complex it consumes: when the complex is one block of owned cells,
+    /// they are renumbered and reordered in place (the same layout as `Flat::new`), and the
+    /// coordinates are freed first, so that the copy and the input never coexist. `None` as
+    /// for `Flat::new`.
+    pub(crate) fn from_complex(k: crate::complex::IndexedComplex, to_new: &[u32]) -> Option<Flat> {
+        let nv = k.n_vertices();
+        let nc = k.n_cells();
+        if k.blocks().len() != 1 || k.n_refs() as u64 >= u32::MAX as u64 {
+            return Flat::new(&k, to_new);
+        }
+        let mut blocks = k.into_blocks();
+        let b = blocks.pop()?;
+        let kind = b.kind;
+        let arity = kind.n_vertices();
+        let mut verts = b.vertices.into_vec();
+        // renumber, and place the cells by a stable counting sort on their smallest new vertex
+        let mut count = vec![0u32; nv + 1];
+        for c in verts.chunks_exact_mut(arity) {
+            let mut mn = u32::MAX;
+            for v in c.iter_mut() {
+                *v = to_new[*v as usize];
+                mn = mn.min(*v);
+            }
+            count[mn as usize + 1] += 1;
+        }
+        for i in 0..nv {
+            count[i + 1] += count[i];
+        }
+        let mut slot: Vec<u32> = verts
+            .chunks_exact(arity)
+            .map(|c| {
+                let mn = c.iter().copied().min().unwrap_or(0) as usize;
+                count[mn] += 1;
+                count[mn] - 1
+            })
+            .collect();
+        drop(count);
+        // apply the permutation cell -> slot in place, cycle by cycle
+        const DONE: u32 = u32::MAX;
+        let mut cur = vec![0u32; arity];
+        for start in 0..nc {
+            if slot[start] == DONE {
+                continue;
+            }
+            cur.copy_from_slice(&verts[start * arity..(start + 1) * arity]);
+            let mut dst = slot[start] as usize;
+            slot[start] = DONE;
+            while dst != start {
+                cur.swap_with_slice(&mut verts[dst * arity..(dst + 1) * arity]);
+                let next = slot[dst] as usize;
+                slot[dst] = DONE;
+                dst = next;
+            }
+            verts[start * arity..(start + 1) * arity].copy_from_slice(&cur);
+        }
+        drop(slot);
+        let refs = verts.len();
+        let mut f = Flat {
+            n_vertices: nv,
+            n_cells: nc,
+            uniform: Some(kind),
+            kinds: Vec::new(),
+            arity,
+            starts: Vec::new(),
+            verts,
+            vt: crate::csr::Csr {
+                offsets: vec![0u32; nv + 1],
+                targets: vec![0u32; refs],
+            },
+        };
+        f.sort_and_index();
+        Some(f)
+    }
+
     /// Renumbers the vertices in place (`to_new[old]`): cells keep their places, simplices
     /// are sorted again and the vertex → cells relation is rebuilt in its own buffers.
     pub(crate) fn relabel(&mut self, to_new: &[u32]) {
