@@ -498,11 +498,10 @@ pub fn homology_owned(
             homology_ordered(&f, opts, Some(&to_old))
         }
         // not reachable: from_complex only refuses what `pick_order` keeps in input order
-        None => Err(HomologyError::TooLarge(QueryError::TooLarge {
-            what: "homology: vertex references".into(),
-            estimate: u32::MAX as u128,
-            budget: u32::MAX as u128,
-        })),
+        None => Err(HomologyError::TooLarge(TooLarge::ids(
+            "homology: vertex references",
+            u32::MAX as u128,
+        ))),
     }
 }
 
