@@ -1213,7 +1213,7 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions, given: Given) -> Result<Prepar
 /// Where the colour bar goes: the legend row after the `row` caption lines, room for the low
 /// label on its left and the high label on its right.
 fn bar_rect(w: usize, h: usize, ts: usize, row: usize) -> [usize; 4] {
-    let x0 = ((0.02 * w.min(h) as f64).max(2.0)) as usize;
+    let x0 = (0.02 * w.min(h) as f64).max(2.0) as usize;
     let y = x0 + row * font::line_height(ts);
     let label = 11 * 6 * ts; // room for a label of 10 characters and a space
     let len = (w / 3)
@@ -1294,9 +1294,8 @@ fn lighting(p: &Prepared, o: &RenderOptions) -> Lit {
             n = n.map(|x| -x);
         }
         for &v in vs {
-            let s = &mut nrm[v as usize];
-            for a in 0..3 {
-                s[a] += n[a];
+            for (s, x) in nrm[v as usize].iter_mut().zip(n) {
+                *s += x;
             }
         }
     }
