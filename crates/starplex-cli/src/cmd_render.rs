@@ -1,11 +1,12 @@
-//! `starplex render FILE -o OUT.png|OUT.svg [--color MODE] [--view V] [--size WxH] [--edges]
-//! [--clip AXIS=VALUE] [--compare OTHER]`: a picture of the complex, headless.
+//! `starplex render FILE -o OUT.png|OUT.svg [--color MODE] [--view V | --camera EYE[,TARGET]]
+//! [--shading flat|smooth|none] [--size WxH] [--edges] [--clip AXIS=VALUE] [--compare OTHER]`:
+//! a picture of the complex, headless.
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use starplex::complex::IndexedComplex;
 use starplex::io::output;
-use starplex::render::{self, Clip, ColorMode, RenderOptions, View, COLOR_MODES};
+use starplex::render::{self, Clip, ColorMode, Eye, Given, RenderOptions, View, COLOR_MODES};
 
 use crate::common::{self, CliError, Ctx, InputArgs};
 
@@ -25,6 +26,17 @@ pub struct RenderArgs {
     /// degrees (default: top for a flat mesh, iso otherwise).
     #[arg(long, allow_hyphen_values = true)]
     pub view: Option<String>,
+    /// A perspective camera instead of --view: the eye EX,EY,EZ and optionally the point looked
+    /// at TX,TY,TZ (default: the centre of the bounding box), in the file's coordinates. The
+    /// target is at the centre of the picture; the field of view is the narrowest that shows
+    /// everything in front of the eye; what is behind the eye is not drawn.
+    #[arg(
+        long,
+        value_name = "EX,EY,EZ[,TX,TY,TZ]",
+        allow_hyphen_values = true,
+        conflicts_with = "view"
+    )]
+    pub camera: Option<String>,
     /// The axis that is up: x, y or z.
     #[arg(long, default_value = "z")]
     pub up: String,
@@ -38,7 +50,11 @@ pub struct RenderArgs {
     /// show the faces of the kept volume cells that the cut exposes.
     #[arg(long, value_name = "AXIS=VALUE", allow_hyphen_values = true)]
     pub clip: Option<String>,
-    /// No shading (every face in its flat colour).
+    /// Shading: flat (one light value per face), smooth (Gouraud: per-vertex normals, the
+    /// area-weighted mean of the faces' normals, interpolated colours) or none.
+    #[arg(long, default_value = "flat", value_parser = ["flat", "smooth", "none"])]
+    pub shading: String,
+    /// No shading (the same as --shading none).
     #[arg(long)]
     pub no_shading: bool,
     /// No caption and legend.
@@ -119,6 +135,15 @@ pub fn options(a: &RenderArgs, title: String) -> Result<RenderOptions, CliError>
         "z" | "Z" => 2,
         u => return Err(bad(format!("--up {u}: expected x, y or z"), None)),
     };
+    let camera = match &a.camera {
+        None => None,
+        Some(c) => Some(Eye::parse(c).ok_or_else(|| {
+            bad(
+                format!("--camera {c}: expected EX,EY,EZ or EX,EY,EZ,TX,TY,TZ (finite numbers)"),
+                None,
+            )
+        })?),
+    };
     let clip = match &a.clip {
         None => None,
         Some(c) => Some(Clip::parse(c).ok_or_else(|| {
@@ -136,7 +161,9 @@ pub fn options(a: &RenderArgs, title: String) -> Result<RenderOptions, CliError>
         colour,
         edges: a.edges,
         clip,
-        shading: !a.no_shading,
+        shading: !a.no_shading && a.shading != "none",
+        smooth: a.shading == "smooth",
+        camera,
         title: Some(a.title.clone().unwrap_or(title)),
         legend: !a.no_legend,
         kv: a.kv,
@@ -175,13 +202,15 @@ fn file_title(p: &Path) -> String {
     )
 }
 
-/// Renders `k` to `out` with `o` (beside `other` if given); prints what was drawn.
+/// Renders `k` to `out` with `o` (beside `other` if given), reusing `given`; prints what was
+/// drawn.
 pub fn render_to(
     ctx: &Ctx,
     k: &IndexedComplex,
     other: Option<(&IndexedComplex, String)>,
     out: &Path,
     o: &RenderOptions,
+    given: Given,
 ) -> Result<(), CliError> {
     let kind = picture_kind(out)?;
     let rerr = |e: render::RenderError| bad(format!("render: {e}"), None);
@@ -192,13 +221,13 @@ pub fn render_to(
             if other.is_some() {
                 return Err(bad("--compare writes PNG only".into(), None));
             }
-            let (doc, summary) = render::render_svg(k, o).map_err(rerr)?;
+            let (doc, summary) = render::render_svg_with(k, o, given).map_err(rerr)?;
             output::write_with(out, |w| Ok(w.write_all(doc.as_bytes())?))?;
             summary
         }
         Kind::Png => {
             let pic = match other {
-                None => render::render(k, o).map_err(rerr)?,
+                None => render::render_with(k, o, given).map_err(rerr)?,
                 Some((k2, title2)) => {
                     let half = RenderOptions {
                         width: o.width.div_ceil(2).max(1),
@@ -263,11 +292,12 @@ pub fn run(ctx: &Ctx, a: &RenderArgs) -> Result<(), CliError> {
         other.as_ref().map(|(k, t)| (k, t.clone())),
         &a.output,
         &o,
+        Given::default(),
     )
 }
 
 /// For the `--render OUT` shortcuts of other commands: the picture with default options and the
-/// given colouring.
+/// given colouring, reusing the command's own results (`given`: its validation or its tree).
 pub fn shortcut(
     ctx: &Ctx,
     k: Option<&IndexedComplex>,
@@ -275,6 +305,7 @@ pub fn shortcut(
     out: &Path,
     colour: ColorMode,
     kv: Option<u32>,
+    given: Given,
 ) -> Result<(), CliError> {
     let k = k.ok_or_else(|| {
         CliError::Input(
@@ -290,5 +321,5 @@ pub fn shortcut(
         title: Some(file_title(file)),
         ..Default::default()
     };
-    render_to(ctx, k, None, out, &o)
+    render_to(ctx, k, None, out, &o, given)
 }

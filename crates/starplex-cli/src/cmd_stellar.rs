@@ -320,6 +320,10 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
             out,
             starplex::render::ColorMode::Blocks,
             a.kv,
+            starplex::render::Given {
+                tree: Some(&t),
+                ..Default::default()
+            },
         )?;
     }
     Ok(())

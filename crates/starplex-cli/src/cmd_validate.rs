@@ -149,6 +149,10 @@ pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
             out,
             starplex::render::ColorMode::Defects,
             a.kv,
+            starplex::render::Given {
+                validation: Some(&rep),
+                ..Default::default()
+            },
         )?;
     }
     let found = defects_found(&rep, &wanted);

@@ -197,3 +197,50 @@ fn labels_and_fields_colour_by_attributes() {
         assert!(png.starts_with(b"\x89PNG"), "{mode} {name}");
     }
 }
+
+#[test]
+fn smooth_shading_and_a_perspective_camera() {
+    let input = tet_pair();
+    let o = dir().join("camera.png");
+    let out = run(&[
+        "render",
+        "--quiet",
+        s(&input),
+        "-o",
+        s(&o),
+        "--size",
+        "200x150",
+        "--shading",
+        "smooth",
+        "--camera",
+        "3,-4,2,0.5,0.5,0.5",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(std::fs::read(&o).unwrap().starts_with(b"\x89PNG"));
+    let never = dir().join("never-camera.png");
+    let (i, n) = (s(&input), s(&never));
+    refused(
+        &["render", i, "-o", n, "--camera", "1,2"],
+        &never,
+        "EX,EY,EZ",
+    );
+    refused(
+        &["render", i, "-o", n, "--camera", "1,1,1,1,1,1"],
+        &never,
+        "eye is the point it looks at",
+    );
+    refused(
+        &["render", i, "-o", n, "--camera", "1,1,1", "--view", "top"],
+        &never,
+        "cannot be used with",
+    );
+    refused(
+        &["render", i, "-o", n, "--shading", "glossy"],
+        &never,
+        "glossy",
+    );
+}

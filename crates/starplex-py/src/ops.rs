@@ -310,6 +310,7 @@ pub(crate) fn render_options(
         legend,
         kv,
         attribute,
+        ..Default::default()
     })
 }
 

@@ -1,8 +1,11 @@
 //! `render` on pixels: covered area, depth order, defect markers where the defect projects,
 //! one colour per Stellar leaf, SVG with one path per visible face, clipping, refused sizes.
+use starplex::attr::{Attribute, Attributes};
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
-use starplex::render::{render, render_svg, Clip, ColorMode, RenderError, RenderOptions, View};
+use starplex::render::{
+    render, render_svg, render_with, Clip, ColorMode, Eye, Given, RenderError, RenderOptions, View,
+};
 
 const WHITE: u32 = 0xFF_FF_FF;
 
@@ -449,4 +452,402 @@ fn bad_sizes_and_empty_complexes_are_refused() {
     }
     let e = render(&complex(3, &[], &[]), &RenderOptions::default()).unwrap_err();
     assert!(matches!(e, RenderError::Empty));
+}
+
+/// Two unit squares side by side: x in [0, 1] (holding vertex 0) and x in [1, 2].
+fn two_quads() -> IndexedComplex {
+    complex(
+        2,
+        &[
+            &[0.0, 0.0],
+            &[1.0, 0.0],
+            &[2.0, 0.0],
+            &[0.0, 1.0],
+            &[1.0, 1.0],
+            &[2.0, 1.0],
+        ],
+        &[
+            (CellKind::Quad, &[0, 1, 4, 3]),
+            (CellKind::Quad, &[1, 2, 5, 4]),
+        ],
+    )
+}
+
+fn close(a: u32, b: u32, tol: i64) -> bool {
+    (0..3).all(|k| {
+        let s = 8 * k;
+        (((a >> s) & 0xFF) as i64 - ((b >> s) & 0xFF) as i64).abs() <= tol
+    })
+}
+
+#[test]
+fn two_labels_show_two_colours_where_their_cells_are() {
+    let mut k = two_quads();
+    let region: Vec<i64> = k
+        .cells()
+        .map(|c| if c.vertices.contains(&0) { 5 } else { 9 })
+        .collect();
+    k.set_attributes(Attributes {
+        vertex: vec![],
+        cell: vec![Attribute::int("region", 1, region)],
+    })
+    .unwrap();
+    let mut o = bare(400, 300, View::Top);
+    o.colour = ColorMode::Label;
+    o.attribute = Some("region".into());
+    o.legend = true;
+    let pic = render(&k, &o).unwrap();
+    let at = |x: f64, y: f64| {
+        let (px, py) = pic.project(&[x, y]);
+        pic.pixel(px as usize, py as usize)
+    };
+    let (left, right) = (at(0.5, 0.5), at(1.5, 0.5));
+    assert_ne!(left, right);
+    assert!(left != WHITE && right != WHITE);
+    // each square is its label's colour all over (no shading)
+    assert_eq!((at(0.1, 0.9), at(0.9, 0.1)), (left, left));
+    assert_eq!((at(1.1, 0.9), at(1.9, 0.1)), (right, right));
+    // the legend lists both, with the colours drawn
+    let swatch = |text: &str| {
+        pic.summary
+            .legend
+            .iter()
+            .find(|l| l.1 == text)
+            .unwrap_or_else(|| panic!("no '{text}' in {:?}", pic.summary.legend))
+            .0
+    };
+    assert_eq!(swatch("region = 5: 1 cells"), Some(left));
+    assert_eq!(swatch("region = 9: 1 cells"), Some(right));
+    assert_eq!(pic.summary.n_colours, 2);
+    // the swatches are in the picture
+    assert!(pic.pixels.iter().filter(|&&p| p == left).count() > 1000);
+    // a name that is not there
+    o.attribute = Some("material".into());
+    let e = render(&k, &o).unwrap_err().to_string();
+    assert!(
+        e.contains("no cell attribute 'material'") && e.contains("region"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_linear_field_shows_the_colour_bar_ends() {
+    let mut k = grid(8);
+    let x: Vec<f64> = (0..k.n_vertices())
+        .map(|v| -2.0 + 0.5 * k.coords()[2 * v]) // -2 at x = 0, 2 at x = 8
+        .collect();
+    k.set_attributes(Attributes {
+        vertex: vec![Attribute::float("temperature", 1, x)],
+        cell: vec![],
+    })
+    .unwrap();
+    let mut o = bare(600, 500, View::Top);
+    o.colour = ColorMode::Field;
+    o.attribute = Some("temperature".into());
+    o.legend = true;
+    let pic = render(&k, &o).unwrap();
+    let bar = pic.summary.colour_bar.clone().expect("a colour bar");
+    assert_eq!((bar.lo, bar.hi), (-2.0, 2.0));
+    let [x0, y0, x1, y1] = bar.rect.expect("drawn");
+    let ym = (y0 + y1) / 2;
+    let (bar_lo, bar_hi) = (pic.pixel(x0, ym), pic.pixel(x1 - 1, ym));
+    assert!(!close(bar_lo, bar_hi, 60));
+    let at = |x: f64, y: f64| {
+        let (px, py) = pic.project(&[x, y]);
+        pic.pixel(px as usize, py as usize)
+    };
+    // the mesh's ends are the bar's ends; its middle is the bar's middle
+    assert!(
+        close(at(0.02, 4.0), bar_lo, 6),
+        "{:06x} {bar_lo:06x}",
+        at(0.02, 4.0)
+    );
+    assert!(
+        close(at(7.98, 4.0), bar_hi, 6),
+        "{:06x} {bar_hi:06x}",
+        at(7.98, 4.0)
+    );
+    let bar_mid = pic.pixel((x0 + x1 - 1) / 2, ym);
+    assert!(
+        close(at(4.0, 4.0), bar_mid, 8),
+        "{:06x} {bar_mid:06x}",
+        at(4.0, 4.0)
+    );
+    // the ends are labelled: dark text pixels left and right of the bar
+    let ink = |xs: std::ops::Range<usize>| {
+        xs.flat_map(|x| (y0..y1).map(move |y| (x, y)))
+            .any(|(x, y)| pic.pixel(x, y) == 0x20_20_20)
+    };
+    assert!(ink(x0.saturating_sub(60)..x0) && ink(x1..x1 + 60));
+    // along a row the colour runs from one end to the other: distinct colours, gradually
+    let (ax, ay) = pic.project(&[0.0, 4.0]);
+    let (bx, _) = pic.project(&[8.0, 4.0]);
+    let row: Vec<u32> = (ax as usize + 1..bx as usize - 1)
+        .map(|x| pic.pixel(x, ay as usize))
+        .collect();
+    assert!(row.windows(2).all(|w| close(w[0], w[1], 8)));
+    let mut d = row.clone();
+    d.sort_unstable();
+    d.dedup();
+    assert!(d.len() > 50, "{} colours", d.len());
+    // no field of that name
+    o.attribute = Some("pressure".into());
+    assert!(matches!(
+        render(&k, &o),
+        Err(RenderError::NoAttribute { .. })
+    ));
+}
+
+#[test]
+fn smooth_shading_hides_the_crease_flat_shading_shows() {
+    // a roof: two quads meeting at a ridge along x = 0
+    let k = complex(
+        3,
+        &[
+            &[-1.0, 0.0, 0.0],
+            &[-1.0, 1.0, 0.0],
+            &[0.0, 0.0, 0.6],
+            &[0.0, 1.0, 0.6],
+            &[1.0, 0.0, 0.0],
+            &[1.0, 1.0, 0.0],
+        ],
+        &[
+            (CellKind::Quad, &[0, 2, 3, 1]),
+            (CellKind::Quad, &[2, 4, 5, 3]),
+        ],
+    );
+    let mut o = bare(400, 300, View::Top);
+    o.shading = true;
+    let flat = render(&k, &o).unwrap();
+    o.smooth = true;
+    let smooth = render(&k, &o).unwrap();
+    let at = |pic: &starplex::render::Picture, x: f64| {
+        let (px, py) = pic.project(&[x, 0.5, 0.0]);
+        pic.pixel(px as usize, py as usize)
+    };
+    // flat: one colour per face, a jump at the ridge
+    assert_eq!(at(&flat, -0.9), at(&flat, -0.1));
+    assert_eq!(at(&flat, 0.9), at(&flat, 0.1));
+    assert!(!close(at(&flat, -0.02), at(&flat, 0.02), 10));
+    // smooth: continuous across the ridge, varying within a face
+    assert!(close(at(&smooth, -0.02), at(&smooth, 0.02), 3));
+    assert!(!close(at(&smooth, 0.9), at(&smooth, 0.1), 5));
+    // at the outer edges smooth and flat agree (the vertex normal is the face's)
+    assert!(close(at(&smooth, -0.99), at(&flat, -0.99), 3));
+    assert!(close(at(&smooth, 0.99), at(&flat, 0.99), 3));
+}
+
+#[test]
+fn a_perspective_camera_looks_at_its_target_and_shrinks_far_things() {
+    // two equal squares on the floor, one near the eye, one far, told apart by their label
+    let mut k = complex(
+        3,
+        &[
+            &[0.0, 0.0, 0.0],
+            &[1.0, 0.0, 0.0],
+            &[1.0, 1.0, 0.0],
+            &[0.0, 1.0, 0.0],
+            &[0.0, 4.0, 0.0],
+            &[1.0, 4.0, 0.0],
+            &[1.0, 5.0, 0.0],
+            &[0.0, 5.0, 0.0],
+        ],
+        &[
+            (CellKind::Quad, &[0, 1, 2, 3]),
+            (CellKind::Quad, &[4, 5, 6, 7]),
+        ],
+    );
+    let near: Vec<i64> = k
+        .cells()
+        .map(|c| i64::from(c.vertices.contains(&0)))
+        .collect();
+    k.set_attributes(Attributes {
+        vertex: vec![],
+        cell: vec![Attribute::int("near", 1, near)],
+    })
+    .unwrap();
+    let mut o = bare(400, 400, View::Top);
+    o.colour = ColorMode::Label;
+    o.attribute = Some("near".into());
+    o.camera = Some(Eye {
+        eye: [0.5, -3.0, 2.0],
+        target: Some([0.5, 2.5, 0.0]),
+    });
+    let pic = render(&k, &o).unwrap();
+    let (tx, ty) = pic.project(&[0.5, 2.5, 0.0]);
+    assert!((tx - 200.0).abs() < 1e-6 && (ty - 200.0).abs() < 1e-6);
+    let colour_of = |p: [f64; 3]| {
+        let (x, y) = pic.project(&p);
+        pic.pixel(x as usize, y as usize)
+    };
+    let (cn, cf) = (colour_of([0.5, 0.5, 0.0]), colour_of([0.5, 4.5, 0.0]));
+    assert!(cn != cf && cn != WHITE && cf != WHITE);
+    let count = |c: u32| pic.pixels.iter().filter(|&&p| p == c).count();
+    assert!(count(cn) > 3 * count(cf), "{} {}", count(cn), count(cf));
+    // the far square is nearer the top of the picture, and narrower
+    let (n0, n1) = (pic.project(&[0.0, 0.0, 0.0]), pic.project(&[1.0, 0.0, 0.0]));
+    let (f0, f1) = (pic.project(&[0.0, 5.0, 0.0]), pic.project(&[1.0, 5.0, 0.0]));
+    assert!(f0.1 < n0.1 && (f1.0 - f0.0) < 0.5 * (n1.0 - n0.0));
+    // everything in the picture (with the margin)
+    for p in [n0, n1, f0, f1] {
+        assert!(p.0 >= 0.0 && p.0 <= 400.0 && p.1 >= 0.0 && p.1 <= 400.0);
+    }
+    // an eye on its target has no direction
+    o.camera = Some(Eye {
+        eye: [0.5, 2.5, 0.0],
+        target: Some([0.5, 2.5, 0.0]),
+    });
+    assert!(matches!(render(&k, &o), Err(RenderError::EyeIsTarget)));
+}
+
+/// One cell of each volume kind, positively oriented (VTK), apart from each other; with
+/// `mirror`, the cell of that kind reflected in x (so inverted).
+fn one_of_each(mirror: Option<CellKind>) -> IndexedComplex {
+    let cells: [(CellKind, Vec<[f64; 3]>); 4] = [
+        (
+            CellKind::Simplex(3),
+            vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]],
+        ),
+        (
+            CellKind::Hex,
+            vec![
+                [0., 0., 0.],
+                [1., 0., 0.],
+                [1., 1., 0.],
+                [0., 1., 0.],
+                [0., 0., 1.],
+                [1., 0., 1.],
+                [1., 1., 1.],
+                [0., 1., 1.],
+            ],
+        ),
+        (
+            CellKind::Prism, // VTK wedge: 0 1 2 turns away from 3 4 5
+            vec![
+                [0., 0., 0.],
+                [0., 1., 0.],
+                [1., 0., 0.],
+                [0., 0., 1.],
+                [0., 1., 1.],
+                [1., 0., 1.],
+            ],
+        ),
+        (
+            CellKind::Pyramid,
+            vec![
+                [0., 0., 0.],
+                [1., 0., 0.],
+                [1., 1., 0.],
+                [0., 1., 0.],
+                [0.5, 0.5, 1.],
+            ],
+        ),
+    ];
+    let mut b = ComplexBuilder::new(3).unwrap();
+    let mut next = 0u32;
+    for (i, (kind, pts)) in cells.iter().enumerate() {
+        let ids: Vec<u32> = (next..next + pts.len() as u32).collect();
+        next += pts.len() as u32;
+        for p in pts {
+            let x = if mirror == Some(*kind) { -p[0] } else { p[0] };
+            b.push_vertex(&[x + 3.0 * i as f64, p[1], p[2]]).unwrap();
+        }
+        b.push_cell(*kind, &ids).unwrap();
+    }
+    b.build(&BuildOptions::default()).unwrap().0
+}
+
+#[test]
+fn inverted_prisms_and_pyramids_are_found() {
+    let mut o = bare(300, 200, View::Iso);
+    o.colour = ColorMode::Defects;
+    let inverted = |k: &IndexedComplex| {
+        render(k, &o)
+            .unwrap()
+            .summary
+            .defects
+            .iter()
+            .find(|d| d.0 == "inverted or flat cells")
+            .map(|d| d.1)
+    };
+    // the four kinds agree on what is positive
+    assert_eq!(inverted(&one_of_each(None)), Some(0));
+    for kind in [
+        CellKind::Simplex(3),
+        CellKind::Hex,
+        CellKind::Prism,
+        CellKind::Pyramid,
+    ] {
+        assert_eq!(inverted(&one_of_each(Some(kind))), Some(1), "{kind:?}");
+    }
+    // a flattened pyramid (apex in the base plane) is flat
+    let k = one_of_each(None);
+    let mut xyz = k.coords().to_vec();
+    let apex = xyz.len() - 1;
+    xyz[apex] = 0.0;
+    let k2 = IndexedComplex::from_parts(
+        3,
+        xyz.into(),
+        k.blocks()
+            .iter()
+            .map(|b| {
+                (
+                    b.kind,
+                    (0..b.len())
+                        .flat_map(|i| b.cell(i).to_vec())
+                        .collect::<Vec<u32>>()
+                        .into(),
+                )
+            })
+            .collect(),
+    )
+    .unwrap();
+    assert_eq!(inverted(&k2), Some(1));
+}
+
+#[test]
+fn a_given_validation_is_used_not_recomputed() {
+    let k = two_quads();
+    let mut fake = starplex::algo::validate::validate(&starplex::topo::naive::VtIndex::new(&k));
+    assert!(fake.non_manifold_vertices.is_empty());
+    fake.non_manifold_vertices.push(starplex::ids::VertexId(4));
+    let mut o = bare(300, 200, View::Top);
+    o.colour = ColorMode::Defects;
+    let pic = render_with(
+        &k,
+        &o,
+        Given {
+            validation: Some(&fake),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(pic
+        .summary
+        .defects
+        .contains(&("non-manifold vertices".into(), 1)));
+    let (x, y) = pic.project(&[1.0, 1.0]);
+    assert!(pixels_near(&pic, x, y, 2).contains(&0xFF_00_80));
+    // and a given tree for blocks
+    let t = starplex::stellar::StellarTree::build(
+        &k,
+        &starplex::stellar::StellarOptions {
+            kv: Some(1),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    o.colour = ColorMode::Blocks;
+    let given = render_with(
+        &k,
+        &o,
+        Given {
+            tree: Some(&t),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    o.kv = Some(1);
+    let built = render(&k, &o).unwrap();
+    assert_eq!(given.pixels, built.pixels);
 }

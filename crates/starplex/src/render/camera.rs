@@ -1,15 +1,21 @@
-//! Orthographic camera: a rotation from the view name (or azimuth/elevation, z up), fitted to
-//! the points it must show.
+//! Cameras: orthographic, with a rotation from the view name (or azimuth/elevation, z up),
+//! fitted to the points it must show; or perspective from an eye point towards a target,
+//! the target at the centre and the field of view just wide enough for the points in front.
 use super::View;
 
-/// A fitted orthographic camera: screen x = `cx + s * (R (p - c)).x`, screen y = `cy - s *
-/// (R (p - c)).y`, depth = `(R (p - c)).z` (larger is nearer to the viewer).
+/// A fitted camera. Orthographic: screen x = `cx + s * (R (p - c)).x`, screen y = `cy - s *
+/// (R (p - c)).y`, depth = `s * (R (p - c)).z` (larger is nearer to the viewer). Perspective
+/// (`c` = the eye, `d` = `-(R (p - c)).z` the distance in front of it): x and y divided by
+/// `d`, depth = `s * d0 / d` (affine on the screen, larger is nearer, about one unit per pixel
+/// at the target's distance `d0`); points closer than `d0 / 1000` project to NaN (dropped).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Camera {
     rot: [[f64; 3]; 3],
     centre: [f64; 3],
     scale: f64,
     screen_centre: [f64; 2],
+    /// `Some(d0)`: perspective, the target at distance `d0` from the eye (`centre`).
+    perspective: Option<f64>,
 }
 
 fn normalize(v: [f64; 3]) -> [f64; 3] {
@@ -45,7 +51,64 @@ pub(crate) fn rotation(view: View) -> [[f64; 3]; 3] {
     [x, y, e]
 }
 
+/// The rows of the rotation looking along `dir` (from the eye towards the target), z up (y up
+/// when looking along z).
+pub(crate) fn look_rotation(dir: [f64; 3]) -> [[f64; 3]; 3] {
+    let e = normalize([-dir[0], -dir[1], -dir[2]]);
+    let up = if e[0].abs() < 1e-9 && e[1].abs() < 1e-9 {
+        [0.0, 1.0, 0.0]
+    } else {
+        [0.0, 0.0, 1.0]
+    };
+    let x = normalize(cross(up, e));
+    let y = cross(e, x);
+    [x, y, e]
+}
+
 impl Camera {
+    /// A perspective camera at `eye` looking at `target` (which lands at the centre of `rect`),
+    /// its field of view just wide enough for the points of `pts` in front of the eye (at most
+    /// about 127 degrees across the shorter side).
+    pub(crate) fn look_at(
+        eye: [f64; 3],
+        target: [f64; 3],
+        pts: impl Iterator<Item = [f64; 3]>,
+        rect: [f64; 4],
+    ) -> Camera {
+        let dir = [0, 1, 2].map(|a| target[a] - eye[a]);
+        let d0 = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+        let mut cam = Camera {
+            rot: look_rotation(dir),
+            centre: eye,
+            scale: 1.0,
+            screen_centre: [0.5 * (rect[0] + rect[2]), 0.5 * (rect[1] + rect[3])],
+            perspective: Some(d0),
+        };
+        let (hw, hh) = (0.5 * (rect[2] - rect[0]), 0.5 * (rect[3] - rect[1]));
+        let near = 1e-3 * d0;
+        let mut f = f64::INFINITY;
+        for p in pts {
+            let v = cam.view(p);
+            let d = -v[2];
+            if d > near {
+                let (x, y) = ((v[0] / d).abs(), (v[1] / d).abs());
+                if x > 0.0 {
+                    f = f.min(hw / x);
+                }
+                if y > 0.0 {
+                    f = f.min(hh / y);
+                }
+            }
+        }
+        let widest = 0.5 * hw.min(hh);
+        cam.scale = if f.is_finite() {
+            f.max(widest)
+        } else {
+            2.0 * hw.min(hh)
+        };
+        cam
+    }
+
     /// A camera for `view` showing every point of `pts` inside the rectangle `rect` = (x0, y0,
     /// x1, y1) of the image.
     pub(crate) fn fit(
@@ -72,6 +135,7 @@ impl Camera {
             centre,
             scale: 1.0,
             screen_centre: [0.0, 0.0],
+            perspective: None,
         };
         let (mut vlo, mut vhi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for p in pts {
@@ -111,11 +175,32 @@ impl Camera {
     /// Screen position (pixels, y down) and depth (pixels, larger is nearer).
     pub(crate) fn project(&self, p: [f64; 3]) -> [f64; 3] {
         let v = self.view(p);
+        if let Some(d0) = self.perspective {
+            let d = -v[2];
+            if d <= 1e-3 * d0 {
+                return [f64::NAN; 3];
+            }
+            return [
+                self.screen_centre[0] + self.scale * v[0] / d,
+                self.screen_centre[1] - self.scale * v[1] / d,
+                self.scale * d0 / d,
+            ];
+        }
         [
             self.screen_centre[0] + self.scale * v[0],
             self.screen_centre[1] - self.scale * v[1],
             self.scale * v[2],
         ]
+    }
+
+    /// The direction from `p` towards the viewer, in view coordinates (unit).
+    pub(crate) fn to_viewer(&self, p: [f64; 3]) -> [f64; 3] {
+        if self.perspective.is_some() {
+            let v = self.view(p);
+            normalize([-v[0], -v[1], -v[2]])
+        } else {
+            [0.0, 0.0, 1.0]
+        }
     }
 
     /// A direction (e.g. a normal) in view coordinates.
@@ -154,5 +239,31 @@ mod tests {
         let b = c.project(pts[1]);
         assert!((a[0] - 10.0).abs() < 1e-9 && (b[0] - 110.0).abs() < 1e-9);
         assert!(a[1] > b[1]); // y up on screen
+    }
+
+    #[test]
+    fn perspective_puts_the_target_in_the_middle_and_shrinks_far_things() {
+        let rect = [0.0, 0.0, 200.0, 100.0];
+        let pts = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        let c = Camera::look_at([0.0, -5.0, 0.5], [0.0, 0.0, 0.5], pts.iter().copied(), rect);
+        let t = c.project([0.0, 0.0, 0.5]);
+        assert!((t[0] - 100.0).abs() < 1e-9 && (t[1] - 50.0).abs() < 1e-9);
+        // a unit step looks longer near the eye than far from it
+        let near = c.project([1.0, -2.0, 0.5])[0] - c.project([0.0, -2.0, 0.5])[0];
+        let far = c.project([1.0, 2.0, 0.5])[0] - c.project([0.0, 2.0, 0.5])[0];
+        assert!(near > 1.5 * far, "{near} {far}");
+        // nearer is larger depth; behind the eye is dropped
+        assert!(c.project([0.0, -2.0, 0.5])[2] > c.project([0.0, 2.0, 0.5])[2]);
+        assert!(c.project([0.0, -6.0, 0.5])[0].is_nan());
+        // every point inside the rectangle
+        for p in pts {
+            let s = c.project(p);
+            assert!(
+                (-1e-9..=200.0 + 1e-9).contains(&s[0]) && (-1e-9..=100.0 + 1e-9).contains(&s[1])
+            );
+        }
+        // looking straight down: still a rotation
+        let r = look_rotation([0.0, 0.0, -1.0]);
+        assert!((cross(r[0], r[1])[2] - r[2][2]).abs() < 1e-12 && (r[2][2] - 1.0).abs() < 1e-12);
     }
 }

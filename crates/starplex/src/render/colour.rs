@@ -87,6 +87,13 @@ pub(crate) fn shade(c: u32, f: f32) -> u32 {
     (ch(16) << 16) | (ch(8) << 8) | ch(0)
 }
 
+/// The mean of some colours, channel by channel.
+pub(crate) fn mean(cs: &[u32]) -> u32 {
+    let n = cs.len().max(1) as u32;
+    let ch = |s: u32| (cs.iter().map(|&c| (c >> s) & 0xFF).sum::<u32>() + n / 2) / n;
+    (ch(16) << 16) | (ch(8) << 8) | ch(0)
+}
+
 /// `#rrggbb`.
 pub(crate) fn hex(c: u32) -> String {
     format!("#{:06x}", c & 0xFF_FF_FF)

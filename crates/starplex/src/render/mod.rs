@@ -1,10 +1,12 @@
-//! Pictures of a complex, headless: a software rasterizer with a depth buffer and flat shading
-//! (`starplex render`). What is drawn: triangles and quads; the boundary surface of the 3-cells
-//! (tets, hexes, prisms, pyramids, mixed), optionally cut open by a clipping plane; 1-cells as
-//! lines, 0-cells and isolated vertices as dots; higher simplices by their 2-skeleton, all
-//! projected from the first three coordinates. Colours: plain, Stellar leaf blocks, connected
-//! components, defects from [`validate`](crate::algo::validate) drawn on top as markers, and the
-//! boundary. Output: an RGB pixel buffer ([`render`], PNG through `write_png` with the `render`
+//! Pictures of a complex, headless: a software rasterizer with a depth buffer and flat or smooth
+//! (Gouraud) shading (`starplex render`), seen along a named direction (orthographic) or from an
+//! eye point ([`Eye`], perspective). What is drawn: triangles and quads; the boundary surface of
+//! the 3-cells (tets, hexes, prisms, pyramids, mixed), optionally cut open by a clipping plane;
+//! 1-cells as lines, 0-cells and isolated vertices as dots; higher simplices by their
+//! 2-skeleton, all projected from the first three coordinates. Colours: plain, Stellar leaf
+//! blocks, connected components, defects from [`validate`](crate::algo::validate) drawn on top
+//! as markers (with inverted cells), the boundary, a cell label attribute (a legend entry per
+//! value) and a vertex field attribute (interpolated, with a colour bar). Output: an RGB pixel buffer ([`render`], PNG through `write_png` with the `render`
 //! feature) or an SVG document with one path per visible face ([`render_svg`]).
 //!
 //! ```
@@ -192,11 +194,56 @@ impl Clip {
     }
 }
 
+/// A perspective camera: the eye, and the point looked at (`None`: the centre of the bounding
+/// box of what is drawn), both in input coordinates. The target lands at the centre of the
+/// picture and the field of view is as narrow as can show everything in front of the eye (at
+/// most about 127 degrees); what is behind the eye (or within 1/1000 of the target's distance
+/// of it) is not drawn.
+///
+/// ```
+/// use starplex::render::Eye;
+/// assert_eq!(Eye::parse("1,2,3"), Some(Eye { eye: [1.0, 2.0, 3.0], target: None }));
+/// assert_eq!(Eye::parse("0,0,5, 0,0,0").unwrap().target, Some([0.0; 3]));
+/// assert_eq!(Eye::parse("1,2"), None);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Eye {
+    /// Where the viewer is.
+    pub eye: [f64; 3],
+    /// What it looks at.
+    pub target: Option<[f64; 3]>,
+}
+
+impl Eye {
+    /// `EX,EY,EZ` or `EX,EY,EZ,TX,TY,TZ` (finite numbers).
+    ///
+    /// ```
+    /// assert!(starplex::render::Eye::parse("1,1,1,0,0,nan").is_none());
+    /// ```
+    pub fn parse(s: &str) -> Option<Eye> {
+        let v: Vec<f64> = s
+            .split(',')
+            .map(|x| x.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+            .collect::<Option<_>>()?;
+        match v.len() {
+            3 => Some(Eye {
+                eye: [v[0], v[1], v[2]],
+                target: None,
+            }),
+            6 => Some(Eye {
+                eye: [v[0], v[1], v[2]],
+                target: Some([v[3], v[4], v[5]]),
+            }),
+            _ => None,
+        }
+    }
+}
+
 /// Options of [`render`] and [`render_svg`].
 ///
 /// ```
 /// let o = starplex::render::RenderOptions::default();
-/// assert_eq!((o.width, o.height, o.shading, o.legend), (1024, 768, true, true));
+/// assert_eq!((o.width, o.height, o.shading, o.smooth, o.legend), (1024, 768, true, false, true));
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderOptions {
@@ -214,8 +261,14 @@ pub struct RenderOptions {
     pub edges: bool,
     /// Cut the complex open.
     pub clip: Option<Clip>,
-    /// Flat shading (off: every face in its plain colour).
+    /// Shading by the light (off: every face in its plain colour).
     pub shading: bool,
+    /// With `shading`: smooth (Gouraud) shading from per-vertex normals (the area-weighted
+    /// mean of the drawn faces' normals, each turned towards the viewer) instead of flat
+    /// shading per face.
+    pub smooth: bool,
+    /// A perspective camera (replaces `view`).
+    pub camera: Option<Eye>,
     /// First line of the caption (e.g. the file name).
     pub title: Option<String>,
     /// Draw the caption and the legend.
@@ -238,6 +291,8 @@ impl Default for RenderOptions {
             edges: false,
             clip: None,
             shading: true,
+            smooth: false,
+            camera: None,
             title: None,
             legend: true,
             kv: None,
@@ -283,6 +338,9 @@ pub enum RenderError {
     /// The Stellar tree for block colours could not be built.
     #[error("{0}")]
     Stellar(#[from] StellarError),
+    /// The camera's eye is its target.
+    #[error("the camera's eye is the point it looks at: no direction of view")]
+    EyeIsTarget,
     /// `--color label NAME` / `field NAME` with no such attribute.
     #[error("there is no {target} attribute '{name}' to colour by ({})", if available.is_empty() { format!("the file has no {target} attributes") } else { format!("{target} attributes: {}", available.join(", ")) })]
     NoAttribute {
@@ -361,6 +419,44 @@ pub struct Summary {
     pub legend: Vec<(Option<u32>, String)>,
     /// What was changed to draw it (projection of higher dimensions, ...).
     pub notes: Vec<String>,
+    /// The colour bar of a field (field colouring).
+    pub colour_bar: Option<ColourBar>,
+}
+
+/// The colour bar of [`ColorMode::Field`]: the ramp from `lo` (left end) to `hi` (right end),
+/// drawn in the legend at `rect` (pixels, `[x0, y0, x1, y1)`; `None` without a legend), with
+/// both ends labelled.
+///
+/// ```
+/// let b = starplex::render::ColourBar { name: "t".into(), lo: 0.0, hi: 1.0, rect: None };
+/// assert!(b.lo < b.hi);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct ColourBar {
+    /// The attribute.
+    pub name: String,
+    /// The smallest finite value (the left end).
+    pub lo: f64,
+    /// The largest finite value (the right end).
+    pub hi: f64,
+    /// Where it is drawn.
+    pub rect: Option<[usize; 4]>,
+}
+
+/// Results computed elsewhere that a picture can reuse instead of computing them again (the
+/// `--render` shortcuts of `validate` and `stellar`). They must be of the same complex: the
+/// validation of [`ColorMode::Defects`], the Stellar tree of [`ColorMode::Blocks`].
+///
+/// ```
+/// let g = starplex::render::Given::default();
+/// assert!(g.validation.is_none() && g.tree.is_none());
+/// ```
+#[derive(Clone, Copy, Default)]
+pub struct Given<'a> {
+    /// `validate` of the complex (input vertex ids).
+    pub validation: Option<&'a crate::algo::validate::ValidationReport>,
+    /// A Stellar tree of the complex.
+    pub tree: Option<&'a StellarTree>,
 }
 
 /// A rendered picture: RGB pixels row by row from the top.
@@ -426,12 +522,9 @@ impl Picture {
     /// ```
     pub fn project(&self, p: &[f64]) -> (f64, f64) {
         let g = |a: usize| p.get(a).copied().unwrap_or(0.0);
-        let order = match self.up {
-            0 => [1, 2, 0],
-            1 => [2, 0, 1],
-            _ => [0, 1, 2],
-        };
-        let s = self.camera.project(order.map(g));
+        let s = self
+            .camera
+            .project(scene::turn([g(0), g(1), g(2)], self.up));
         (s[0] + self.x_offset, s[1])
     }
 
@@ -514,6 +607,9 @@ struct Prepared {
     line_colour: Vec<u32>,
     point_colour: Vec<u32>,
     markers: Vec<Marker>,
+    /// Per-vertex colours of the faces (field colouring): the faces are coloured between their
+    /// corners instead of by `face_colour`.
+    vertex_base: Option<Vec<u32>>,
     summary: Summary,
     text_scale: usize,
     caption_rows: usize,
@@ -535,12 +631,52 @@ fn tet_sign(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> i8 {
     }
 }
 
-/// Orientation of a tetrahedron or a hexahedron (all 8 corners agreeing), 0 when flat or
-/// twisted; `None` for other kinds.
+/// The sign shared by the corner tetrahedra `corners` of a cell, 0 when they disagree (a
+/// twisted cell) or one is flat.
+fn corner_sign(corners: &[[usize; 4]], p: impl Fn(usize) -> [f64; 3]) -> i8 {
+    let s0 = tet_sign(
+        p(corners[0][0]),
+        p(corners[0][1]),
+        p(corners[0][2]),
+        p(corners[0][3]),
+    );
+    if corners[1..]
+        .iter()
+        .all(|q| tet_sign(p(q[0]), p(q[1]), p(q[2]), p(q[3])) == s0)
+    {
+        s0
+    } else {
+        0
+    }
+}
+
+/// Orientation of a 3-cell, +1 for the VTK orientation of its kind (a tetrahedron whose face
+/// 0 1 2 turns, right-handed, towards vertex 3; a hexahedron, pyramid or prism whose faces of
+/// [`CellKind::faces`] point outwards), -1 reversed, 0 when flat or twisted (its corner
+/// tetrahedra disagree: 8 for a hexahedron, 6 for a prism, the 4 base corners of a pyramid);
+/// `None` for other kinds.
 fn cell_sign(kind: CellKind, c: &[u32], pos: &[[f64; 3]]) -> Option<i8> {
     let p = |i: usize| pos[c[i] as usize];
     match kind {
         CellKind::Simplex(3) => Some(tet_sign(p(0), p(1), p(2), p(3))),
+        CellKind::Pyramid => {
+            // at each base corner: the next and the previous base vertex, the apex
+            const CORNERS: [[usize; 4]; 4] =
+                [[0, 1, 3, 4], [1, 2, 0, 4], [2, 3, 1, 4], [3, 0, 2, 4]];
+            Some(corner_sign(&CORNERS, p))
+        }
+        CellKind::Prism => {
+            // the VTK wedge's triangle 0 1 2 turns away from 3 4 5
+            const CORNERS: [[usize; 4]; 6] = [
+                [0, 2, 1, 3],
+                [1, 0, 2, 4],
+                [2, 1, 0, 5],
+                [3, 4, 5, 0],
+                [4, 5, 3, 1],
+                [5, 3, 4, 2],
+            ];
+            Some(corner_sign(&CORNERS, p))
+        }
         CellKind::Hex => {
             const CORNERS: [[usize; 4]; 8] = [
                 [0, 1, 3, 4],
@@ -552,15 +688,7 @@ fn cell_sign(kind: CellKind, c: &[u32], pos: &[[f64; 3]]) -> Option<i8> {
                 [6, 5, 7, 2],
                 [7, 6, 4, 3],
             ];
-            let s: Vec<i8> = CORNERS
-                .iter()
-                .map(|q| tet_sign(p(q[0]), p(q[1]), p(q[2]), p(q[3])))
-                .collect();
-            Some(if s.iter().all(|&x| x == s[0]) {
-                s[0]
-            } else {
-                0
-            })
+            Some(corner_sign(&CORNERS, p))
         }
         _ => None,
     }
@@ -588,7 +716,28 @@ fn thousands(n: usize) -> String {
     out
 }
 
-fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderError> {
+/// A short label of a number for the legend (at most about 5 significant digits).
+fn short(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let a = x.abs();
+    if !(1e-3..1e6).contains(&a) {
+        return format!("{x:.3e}");
+    }
+    let decimals = (4 - a.log10().floor() as i64).clamp(0, 6) as usize;
+    let t = format!("{x:.decimals$}");
+    if t.contains('.') {
+        t.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        t
+    }
+}
+
+/// Labels listed one by one in the legend, at most.
+const MAX_LABELS_LISTED: usize = 12;
+
+fn prepare(k: &IndexedComplex, o: &RenderOptions, given: Given) -> Result<Prepared, RenderError> {
     check_size(u64::from(o.width), u64::from(o.height))?;
     if k.n_vertices() == 0 {
         return Err(RenderError::Empty);
@@ -628,18 +777,26 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderErro
     let n = k.n_cells();
     let mut cell_colour: Vec<u32> = vec![colour::PLAIN; n];
     let mut vertex_colour: Option<Vec<u32>> = None;
+    let mut vertex_base: Option<Vec<u32>> = None;
     let mut markers = Vec::new();
     let mut legend: Vec<(Option<u32>, String)> = Vec::new();
     match o.colour {
         ColorMode::Plain => {}
         ColorMode::Blocks => {
-            let t = StellarTree::build(
-                k,
-                &StellarOptions {
-                    kv: o.kv,
-                    ..Default::default()
-                },
-            )?;
+            let built;
+            let t = match given.tree {
+                Some(t) => t,
+                None => {
+                    built = StellarTree::build(
+                        k,
+                        &StellarOptions {
+                            kv: o.kv,
+                            ..Default::default()
+                        },
+                    )?;
+                    &built
+                }
+            };
             let mut leaf_of = vec![0u32; k.n_vertices()];
             let mut tree_index = vec![0u32; k.n_vertices()];
             let v_in = t.vertex_to_input();
@@ -776,19 +933,45 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderErro
                     };
                 }
                 summary.n_colours = distinct.len();
-                let shown: Vec<String> = distinct.iter().take(12).map(|x| x.to_string()).collect();
+                let mut count = vec![0usize; distinct.len()];
+                let mut unlabelled = 0;
+                for c in 0..n {
+                    let x = value(c);
+                    match distinct.binary_search_by(|d| d.total_cmp(&x)) {
+                        Ok(i) => count[i] += 1,
+                        Err(_) => unlabelled += 1,
+                    }
+                }
                 legend.push((
-                    Some(colour::categorical(0)),
+                    None,
                     format!(
-                        "colour: cell label {name}, {} values{}",
-                        distinct.len(),
-                        if distinct.len() <= 12 {
-                            format!(" ({})", shown.join(", "))
-                        } else {
-                            String::new()
-                        }
+                        "colour: cell label {name}, {} values",
+                        thousands(distinct.len())
                     ),
                 ));
+                for (i, (x, m)) in distinct.iter().zip(&count).enumerate() {
+                    if i == MAX_LABELS_LISTED && distinct.len() > MAX_LABELS_LISTED + 1 {
+                        legend.push((
+                            None,
+                            format!(
+                                "and {} more values ({} cells)",
+                                distinct.len() - i,
+                                thousands(count[i..].iter().sum())
+                            ),
+                        ));
+                        break;
+                    }
+                    legend.push((
+                        Some(colour::categorical(i as u32)),
+                        format!("{name} = {}: {} cells", short(*x), thousands(*m)),
+                    ));
+                }
+                if unlabelled > 0 {
+                    legend.push((
+                        Some(colour::MUTED),
+                        format!("no value (NaN): {} cells", thousands(unlabelled)),
+                    ));
+                }
             } else {
                 let vals: Vec<f64> = (0..k.n_vertices()).map(value).collect();
                 let (lo, hi) = vals
@@ -811,13 +994,39 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderErro
                     *col = map(m);
                 }
                 vertex_colour = Some(vals.iter().map(|&x| map(x)).collect());
-                legend.push((Some(colour::ramp(0.0)), format!("{name} = {lo}")));
-                legend.push((Some(colour::ramp(1.0)), format!("{name} = {hi}")));
+                vertex_base.clone_from(&vertex_colour);
+                let (lo, hi) = if lo <= hi {
+                    (lo, hi)
+                } else {
+                    (f64::NAN, f64::NAN)
+                };
+                legend.push((
+                    None,
+                    format!(
+                        "colour: vertex field {name}{}, from {} to {}",
+                        if a.components > 1 { " (length)" } else { "" },
+                        short(lo),
+                        short(hi)
+                    ),
+                ));
+                summary.colour_bar = Some(ColourBar {
+                    name: name.clone(),
+                    lo,
+                    hi,
+                    rect: None,
+                });
             }
         }
         ColorMode::Defects => {
             cell_colour.fill(colour::MUTED);
-            let r = validate(&VtIndex::new(k));
+            let owned;
+            let r = match given.validation {
+                Some(r) => r,
+                None => {
+                    owned = validate(&VtIndex::new(k));
+                    &owned
+                }
+            };
             let mut push = |name: &str, c: u32, count: usize| {
                 summary.defects.push((name.to_string(), count));
                 if count > 0 {
@@ -904,12 +1113,21 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderErro
     let text_scale = ((f64::from(o.height.min(o.width * 3 / 4)) / 400.0).round() as usize).max(1);
     let lh = font::line_height(text_scale) as f64;
     let caption_rows = if o.legend { caption.len() } else { 0 };
+    let bar_rows = usize::from(o.legend && summary.colour_bar.is_some());
+    if let (Some(bar), true) = (summary.colour_bar.as_mut(), o.legend) {
+        bar.rect = Some(bar_rect(
+            o.width as usize,
+            o.height as usize,
+            text_scale,
+            caption_rows,
+        ));
+    }
     summary.legend = caption;
     let (w, h) = (f64::from(o.width), f64::from(o.height));
     let margin = (0.04 * w.min(h)).max(2.0);
     let top = margin
         + if o.legend {
-            lh * caption_rows as f64
+            lh * (caption_rows + bar_rows) as f64
         } else {
             0.0
         };
@@ -922,7 +1140,29 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderErro
         let pts: Vec<[f64; 3]> = used.iter().map(|&v| scene.pos[v as usize]).collect();
         auto_view(&pts)
     });
-    let cam = Camera::fit(view, used.iter().map(|&v| scene.pos[v as usize]), rect);
+    let drawn = used.iter().map(|&v| scene.pos[v as usize]);
+    let cam = match o.camera {
+        None => Camera::fit(view, drawn, rect),
+        Some(e) => {
+            let turn = |p: [f64; 3]| scene::turn(p, o.up);
+            let target = e.target.map(turn).unwrap_or_else(|| {
+                let mut lo = [f64::INFINITY; 3];
+                let mut hi = [f64::NEG_INFINITY; 3];
+                for p in drawn.clone() {
+                    for a in 0..3 {
+                        lo[a] = lo[a].min(p[a]);
+                        hi[a] = hi[a].max(p[a]);
+                    }
+                }
+                [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]))
+            });
+            let eye = turn(e.eye);
+            if eye == target {
+                return Err(RenderError::EyeIsTarget);
+            }
+            Camera::look_at(eye, target, drawn, rect)
+        }
+    };
     let face_colour = scene
         .faces
         .iter()
@@ -963,56 +1203,130 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions) -> Result<Prepared, RenderErro
         line_colour,
         point_colour,
         markers,
+        vertex_base,
         summary,
         text_scale,
         caption_rows,
     })
 }
 
+/// Where the colour bar goes: the legend row after the `row` caption lines, room for the low
+/// label on its left and the high label on its right.
+fn bar_rect(w: usize, h: usize, ts: usize, row: usize) -> [usize; 4] {
+    let x0 = (0.02 * w.min(h) as f64).max(2.0) as usize;
+    let y = x0 + row * font::line_height(ts);
+    let label = 11 * 6 * ts; // room for a label of 10 characters and a space
+    let len = (w / 3)
+        .max(40 * ts)
+        .min(w.saturating_sub(2 * x0 + 2 * label).max(8));
+    [x0 + label, y, x0 + label + len, y + 7 * ts]
+}
+
 /// Light direction in view coordinates (mostly from the viewer, a little from the upper left).
 const LIGHT: [f64; 3] = [-0.25, 0.35, 0.9];
 
-/// The shaded colour of each face.
-fn shaded_colours(p: &Prepared, shading: bool) -> Vec<u32> {
+/// The normal of a face (a triangle's, or a quad's from the cross product of its diagonals),
+/// in view coordinates, length twice the area (of a triangle).
+fn face_normal(p: &Prepared, vs: &[u32]) -> [f64; 3] {
+    let q = |i: usize| p.scene.pos[vs[i] as usize];
+    let (a, b, c3) = (q(0), q(1), q(2));
+    let (u, w) = if vs.len() == 4 {
+        let d = q(3);
+        (
+            [c3[0] - a[0], c3[1] - a[1], c3[2] - a[2]],
+            [d[0] - b[0], d[1] - b[1], d[2] - b[2]],
+        )
+    } else {
+        (
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [c3[0] - a[0], c3[1] - a[1], c3[2] - a[2]],
+        )
+    };
+    p.cam.rotate([
+        u[1] * w[2] - u[2] * w[1],
+        u[2] * w[0] - u[0] * w[2],
+        u[0] * w[1] - u[1] * w[0],
+    ])
+}
+
+/// The light's intensity on a surface of normal `nv` (view coordinates, any length, either
+/// side lit).
+fn intensity(nv: [f64; 3], l: [f64; 3]) -> f32 {
+    let len = (nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]).sqrt();
+    let d = if len > 0.0 {
+        ((nv[0] * l[0] + nv[1] * l[1] + nv[2] * l[2]) / len).abs()
+    } else {
+        0.0
+    };
+    (0.3 + 0.7 * d) as f32
+}
+
+/// How the faces are lit: per face (flat), per vertex (smooth) or not at all.
+enum Lit {
+    Off,
+    Face(Vec<f32>),
+    Vertex(Vec<f32>),
+}
+
+fn lighting(p: &Prepared, o: &RenderOptions) -> Lit {
+    if !o.shading {
+        return Lit::Off;
+    }
     let ln = (LIGHT[0] * LIGHT[0] + LIGHT[1] * LIGHT[1] + LIGHT[2] * LIGHT[2]).sqrt();
     let l = LIGHT.map(|x| x / ln);
-    p.scene
-        .faces
-        .iter()
-        .zip(&p.face_colour)
-        .map(|(f, &c)| {
-            if !shading {
-                return c;
+    if !o.smooth {
+        return Lit::Face(
+            p.scene
+                .faces
+                .iter()
+                .map(|f| intensity(face_normal(p, f.verts()), l))
+                .collect(),
+        );
+    }
+    // per-vertex normals: area-weighted sums of the face normals, each turned towards the
+    // viewer (so that faces of either orientation agree)
+    let mut nrm = vec![[0.0f64; 3]; p.scene.pos.len()];
+    for f in &p.scene.faces {
+        let vs = f.verts();
+        let mut n = face_normal(p, vs);
+        let to = p.cam.to_viewer(p.scene.pos[vs[0] as usize]);
+        if n[0] * to[0] + n[1] * to[1] + n[2] * to[2] < 0.0 {
+            n = n.map(|x| -x);
+        }
+        for &v in vs {
+            for (s, x) in nrm[v as usize].iter_mut().zip(n) {
+                *s += x;
             }
-            let vs = f.verts();
-            let q = |i: usize| p.scene.pos[vs[i] as usize];
-            let (a, b, c3) = (q(0), q(1), q(2));
-            // a triangle's normal, or a quad's (the cross product of its diagonals)
-            let (u, w) = if vs.len() == 4 {
-                let d = q(3);
-                (
-                    [c3[0] - a[0], c3[1] - a[1], c3[2] - a[2]],
-                    [d[0] - b[0], d[1] - b[1], d[2] - b[2]],
-                )
-            } else {
-                (
-                    [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
-                    [c3[0] - a[0], c3[1] - a[1], c3[2] - a[2]],
-                )
-            };
-            let nrm = [
-                u[1] * w[2] - u[2] * w[1],
-                u[2] * w[0] - u[0] * w[2],
-                u[0] * w[1] - u[1] * w[0],
-            ];
-            let nv = p.cam.rotate(nrm);
-            let len = (nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]).sqrt();
-            let d = if len > 0.0 {
-                ((nv[0] * l[0] + nv[1] * l[1] + nv[2] * l[2]) / len).abs()
-            } else {
-                0.0
-            };
-            colour::shade(c, (0.3 + 0.7 * d) as f32)
+        }
+    }
+    Lit::Vertex(nrm.into_iter().map(|n| intensity(n, l)).collect())
+}
+
+/// The colours of the corners of face `i` (the first `n` of them), lit.
+fn corner_colours(p: &Prepared, lit: &Lit, i: usize) -> [u32; 4] {
+    let f = &p.scene.faces[i];
+    let mut out = [0u32; 4];
+    for (j, &v) in f.verts().iter().enumerate() {
+        let base = p
+            .vertex_base
+            .as_ref()
+            .map_or(p.face_colour[i], |b| b[v as usize]);
+        out[j] = match lit {
+            Lit::Off => base,
+            Lit::Face(fi) => colour::shade(base, fi[i]),
+            Lit::Vertex(vi) => colour::shade(base, vi[v as usize]),
+        };
+    }
+    out
+}
+
+/// One colour per face (the mean of its lit corners), for SVG.
+fn shaded_colours(p: &Prepared, o: &RenderOptions) -> Vec<u32> {
+    let lit = lighting(p, o);
+    (0..p.scene.faces.len())
+        .map(|i| {
+            let n = p.scene.faces[i].verts().len();
+            colour::mean(&corner_colours(p, &lit, i)[..n])
         })
         .collect()
 }
@@ -1027,7 +1341,7 @@ fn draw(p: &Prepared, o: &RenderOptions, order: Option<&[u32]>) -> Canvas {
         .iter()
         .map(|&q| p.cam.project(q).map(|x| x as f32))
         .collect();
-    let cols = shaded_colours(p, o.shading);
+    let lit = lighting(p, o);
     let mut draw_face = |i: usize| {
         let f = &p.scene.faces[i];
         let v = f.verts();
@@ -1036,9 +1350,10 @@ fn draw(p: &Prepared, o: &RenderOptions, order: Option<&[u32]>) -> Canvas {
             proj[v[1] as usize],
             proj[v[2] as usize],
         );
-        cv.triangle(a, b, c, cols[i], i as u32);
+        let k = corner_colours(p, &lit, i);
+        cv.triangle_colours(a, b, c, [k[0], k[1], k[2]], i as u32);
         if v.len() == 4 {
-            cv.triangle(a, c, proj[v[3] as usize], cols[i], i as u32);
+            cv.triangle_colours(a, c, proj[v[3] as usize], [k[0], k[2], k[3]], i as u32);
         }
     };
     match order {
@@ -1102,6 +1417,31 @@ fn draw(p: &Prepared, o: &RenderOptions, order: Option<&[u32]>) -> Canvas {
             font::draw_text(&mut cv, x, y, text, colour::INK, ts);
             y += lh;
         }
+        if let Some(ColourBar {
+            lo,
+            hi,
+            rect: Some(r),
+            ..
+        }) = &p.summary.colour_bar
+        {
+            let [x0, y0, x1, y1] = r.map(|v| v as i64);
+            cv.rect(x0 - 1, y0 - 1, x1 + 1, y1 + 1, colour::OUTLINE);
+            for x in x0..x1 {
+                let t = (x - x0) as f64 / (x1 - x0 - 1).max(1) as f64;
+                cv.rect(x, y0, x + 1, y1, colour::ramp(t));
+            }
+            let (l, h) = (short(*lo), short(*hi));
+            let adv = 6 * ts as i64;
+            font::draw_text(
+                &mut cv,
+                x0 - adv * (l.chars().count() as i64 + 1),
+                y0,
+                &l,
+                colour::INK,
+                ts,
+            );
+            font::draw_text(&mut cv, x1 + adv, y0, &h, colour::INK, ts);
+        }
     }
     cv
 }
@@ -1124,7 +1464,33 @@ fn draw(p: &Prepared, o: &RenderOptions, order: Option<&[u32]>) -> Canvas {
 /// [`RenderError`]: a bad size, an empty complex, everything clipped away, a failed Stellar
 /// tree.
 pub fn render(k: &IndexedComplex, o: &RenderOptions) -> Result<Picture, RenderError> {
-    let p = prepare(k, o)?;
+    render_with(k, o, Given::default())
+}
+
+/// As [`render`], reusing results already computed (a validation, a Stellar tree).
+///
+/// ```
+/// use starplex::algo::validate::validate;
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::render::{render_with, ColorMode, Given, RenderOptions};
+/// use starplex::topo::naive::VtIndex;
+/// let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+///     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let r = validate(&VtIndex::new(&k));
+/// let o = RenderOptions { width: 80, height: 60, colour: ColorMode::Defects, ..Default::default() };
+/// let pic = render_with(&k, &o, Given { validation: Some(&r), ..Default::default() }).unwrap();
+/// assert!(pic.summary.defects.contains(&("boundary edges".to_string(), 3)));
+/// ```
+///
+/// # Errors
+/// As [`render`].
+pub fn render_with(
+    k: &IndexedComplex,
+    o: &RenderOptions,
+    given: Given,
+) -> Result<Picture, RenderError> {
+    let p = prepare(k, o, given)?;
     let cv = draw(&p, o, None);
     Ok(Picture {
         width: cv.w,
@@ -1155,7 +1521,29 @@ pub fn render(k: &IndexedComplex, o: &RenderOptions) -> Result<Picture, RenderEr
 /// # Errors
 /// As [`render`].
 pub fn render_svg(k: &IndexedComplex, o: &RenderOptions) -> Result<(String, Summary), RenderError> {
-    let p = prepare(k, o)?;
+    render_svg_with(k, o, Given::default())
+}
+
+/// As [`render_svg`], reusing results already computed (a validation, a Stellar tree).
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::render::{render_svg_with, Given, RenderOptions};
+/// let k = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+///     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let (svg, _) = render_svg_with(&k, &RenderOptions::default(), Given::default()).unwrap();
+/// assert!(svg.contains("<path"));
+/// ```
+///
+/// # Errors
+/// As [`render`].
+pub fn render_svg_with(
+    k: &IndexedComplex,
+    o: &RenderOptions,
+    given: Given,
+) -> Result<(String, Summary), RenderError> {
+    let p = prepare(k, o, given)?;
     // nearest first, so that ties along shared edges go to the nearer face
     let depth: Vec<f64> = p
         .scene
@@ -1189,7 +1577,7 @@ pub fn render_svg(k: &IndexedComplex, o: &RenderOptions) -> Result<(String, Summ
             n >= 3 || (n > 0 && n as f64 >= 0.25 * area)
         })
         .collect();
-    let cols = shaded_colours(&p, o.shading);
+    let cols = shaded_colours(&p, o);
     let doc = svg::document(&p, o, &visible, &cols);
     Ok((doc, p.summary))
 }

@@ -27,16 +27,33 @@ impl Canvas {
 
     /// Fills the triangle `a b c` (screen x, y, depth) where it is nearer than what is there:
     /// every pixel whose centre is inside or on an edge.
+    #[cfg(test)]
     pub(crate) fn triangle(&mut self, a: [f32; 3], b: [f32; 3], c: [f32; 3], colour: u32, id: u32) {
+        self.triangle_colours(a, b, c, [colour; 3], id);
+    }
+
+    /// As [`Canvas::triangle`], the colour interpolated linearly (in screen space) between the
+    /// colours of the corners `a`, `b`, `c` (Gouraud).
+    pub(crate) fn triangle_colours(
+        &mut self,
+        a: [f32; 3],
+        b: [f32; 3],
+        c: [f32; 3],
+        colours: [u32; 3],
+        id: u32,
+    ) {
         let area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
         if area == 0.0 || !area.is_finite() {
             return;
         }
-        let (b, c, area) = if area < 0.0 {
-            (c, b, -area)
+        let (b, c, area, colours) = if area < 0.0 {
+            (c, b, -area, [colours[0], colours[2], colours[1]])
         } else {
-            (b, c, area)
+            (b, c, area, colours)
         };
+        let flat = colours[0] == colours[1] && colours[1] == colours[2];
+        let ch = |k: u32| colours.map(|x| ((x >> k) & 0xFF) as f32);
+        let (cr, cg, cb) = (ch(16), ch(8), ch(0));
         let minx = a[0].min(b[0]).min(c[0]);
         let maxx = a[0].max(b[0]).max(c[0]);
         let miny = a[1].min(b[1]).min(c[1]);
@@ -76,7 +93,14 @@ impl Canvas {
                     let i = row + x;
                     if z > self.depth[i] {
                         self.depth[i] = z;
-                        self.px[i] = colour;
+                        self.px[i] = if flat {
+                            colours[0]
+                        } else {
+                            let mix = |q: [f32; 3]| {
+                                (((w0 * q[0] + w1 * q[1] + w2 * q[2]) * inv + 0.5) as u32).min(255)
+                            };
+                            (mix(cr) << 16) | (mix(cg) << 8) | mix(cb)
+                        };
                         self.face[i] = id;
                     }
                 }
@@ -189,6 +213,31 @@ mod tests {
         c.triangle(a, b, cc, 1, 0);
         c.triangle(a, cc, d, 2, 1);
         assert_eq!(c.px.iter().filter(|&&p| p != 0).count(), 100);
+    }
+
+    #[test]
+    fn corner_colours_are_interpolated() {
+        let mut c = Canvas::new(101, 3, 0);
+        let (l, r) = (0x00_00_00, 0xC8_64_00);
+        // a thin band from x = 0 to x = 101, black on the left, (200, 100, 0) on the right
+        c.triangle_colours(
+            [0.0, 0.0, 0.0],
+            [101.0, 0.0, 0.0],
+            [101.0, 3.0, 0.0],
+            [l, r, r],
+            0,
+        );
+        c.triangle_colours(
+            [0.0, 0.0, 0.0],
+            [101.0, 3.0, 0.0],
+            [0.0, 3.0, 0.0],
+            [l, r, l],
+            1,
+        );
+        let mid = c.px[101 + 50];
+        assert_eq!(mid >> 16, 100, "{mid:06x}");
+        assert_eq!((mid >> 8) & 0xFF, 50, "{mid:06x}");
+        assert!(c.px[101] >> 16 <= 2 && c.px[101 + 100] >> 16 >= 198);
     }
 
     #[test]

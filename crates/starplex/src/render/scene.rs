@@ -67,18 +67,28 @@ impl Scene {
     }
 }
 
+/// The order of the input axes that makes axis `up` the third: up = 2: (x, y, z); up = 1:
+/// (z, x, y); up = 0: (y, z, x) (cyclic: right-handed).
+pub(crate) fn axis_order(up: usize) -> [usize; 3] {
+    match up {
+        0 => [1, 2, 0],
+        1 => [2, 0, 1],
+        _ => [0, 1, 2],
+    }
+}
+
+/// A point in input coordinates, cycled like [`positions`].
+pub(crate) fn turn(p: [f64; 3], up: usize) -> [f64; 3] {
+    axis_order(up).map(|a| p[a])
+}
+
 /// Input coordinates (first three, zero-padded) of every vertex, cycled so that axis `up` is
 /// the third.
 pub(crate) fn positions(k: &IndexedComplex, up: usize) -> Vec<[f64; 3]> {
     let amb = k.ambient_dim();
     let c = k.coords();
     let get = |v: usize, a: usize| if a < amb { c[v * amb + a] } else { 0.0 };
-    // up = 2: (x, y, z); up = 1: (z, x, y); up = 0: (y, z, x) (cyclic: right-handed)
-    let order = match up {
-        0 => [1, 2, 0],
-        1 => [2, 0, 1],
-        _ => [0, 1, 2],
-    };
+    let order = axis_order(up);
     (0..k.n_vertices())
         .map(|v| order.map(|a| get(v, a)))
         .collect()

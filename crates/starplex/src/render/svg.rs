@@ -152,6 +152,45 @@ pub(crate) fn document(p: &Prepared, o: &RenderOptions, visible: &[u32], cols: &
                 esc(text)
             );
         }
+        if let Some(super::ColourBar {
+            lo,
+            hi,
+            rect: Some(r),
+            ..
+        }) = &p.summary.colour_bar
+        {
+            let [x0, y0, x1, y1] = r.map(|v| v as f64);
+            let _ = writeln!(s, r#"<defs><linearGradient id="ramp">"#);
+            for i in 0..=8 {
+                let t = f64::from(i) / 8.0;
+                let _ = writeln!(
+                    s,
+                    r#"<stop offset="{t:.3}" stop-color="{}"/>"#,
+                    hex(colour::ramp(t))
+                );
+            }
+            let _ = writeln!(s, "</linearGradient></defs>");
+            let _ = writeln!(
+                s,
+                r#"<rect x="{x0:.1}" y="{y0:.1}" width="{:.1}" height="{:.1}" fill="url(#ramp)" stroke="{}"/>"#,
+                x1 - x0,
+                y1 - y0,
+                hex(colour::OUTLINE)
+            );
+            let ty = y0 + 7.0 * ts as f64;
+            let _ = writeln!(
+                s,
+                r#"<text x="{:.1}" y="{ty:.1}" text-anchor="end">{}</text>"#,
+                x0 - 6.0 * ts as f64,
+                esc(&super::short(*lo))
+            );
+            let _ = writeln!(
+                s,
+                r#"<text x="{:.1}" y="{ty:.1}">{}</text>"#,
+                x1 + 6.0 * ts as f64,
+                esc(&super::short(*hi))
+            );
+        }
         let _ = writeln!(s, "</g>");
     }
     let _ = writeln!(s, "</svg>");
