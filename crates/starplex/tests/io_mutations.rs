@@ -13,23 +13,22 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The entries of `dir`, sorted (none when it cannot be read).
+fn sorted_entries(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|d| d.flatten().map(|e| e.path()).collect())
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
 /// `(file, format)` of every corpus file of at most `max_len` bytes.
 fn corpus(max_len: u64) -> Vec<(PathBuf, Format)> {
     let mut out = Vec::new();
     let seeds = root().join("../../fuzz/seeds");
-    let mut dirs: Vec<_> = std::fs::read_dir(&seeds)
-        .map(|d| d.flatten().map(|e| e.path()).collect())
-        .unwrap_or_default();
-    dirs.sort();
-    for dir in dirs {
+    for dir in sorted_entries(&seeds) {
         let name = dir.file_name().unwrap().to_string_lossy().into_owned();
-        let mut files: Vec<_> = std::fs::read_dir(&dir)
-            .unwrap()
-            .flatten()
-            .map(|e| e.path())
-            .collect();
-        files.sort();
-        for f in files {
+        for f in sorted_entries(&dir) {
             let stem = f.file_name().unwrap().to_string_lossy().into_owned();
             let format = match name.as_str() {
                 "spb" => Format::Binary,
@@ -41,13 +40,7 @@ fn corpus(max_len: u64) -> Vec<(PathBuf, Format)> {
             out.push((f, format));
         }
     }
-    let mut files: Vec<_> = std::fs::read_dir(root().join("tests/data/io"))
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .collect();
-    files.sort();
-    for f in files {
+    for f in sorted_entries(&root().join("tests/data/io")) {
         if let Some(format) = Format::from_path(&f) {
             out.push((f, format));
         }
