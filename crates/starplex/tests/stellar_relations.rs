@@ -10,7 +10,9 @@ use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 use starplex::ids::{CellId, LeafId, TreeCellId, VertexId};
 use starplex::stellar::sre::SreIter;
 use starplex::stellar::{SplitMode, StellarOptions, StellarTree};
-use starplex::topo::{link::vertex_link, naive::VtIndex, TopCells, VertexAdjacency, VertexStar};
+use starplex::topo::{
+    link::vertex_link, naive::VtIndex, LocalStar, TopCells, VertexAdjacency, VertexStar,
+};
 
 #[derive(Clone, Debug)]
 struct Spec {
@@ -583,14 +585,14 @@ fn cached_visit_equals_plain_visit() {
     )
     .unwrap();
     let plain: Vec<Vec<usize>> =
-        t.par_map_leaves(|l| l.tree_vertices().map(|v| l.vt_tree(v).len()).collect());
+        t.par_map_leaves(|l| l.owned_vertices().map(|v| l.local_star(v).len()).collect());
     for cap in [0usize, 1, 4] {
         // each leaf also looks at its successor through the cache
         let cached: Vec<(Vec<usize>, usize)> = t.par_map_leaves_cached(cap, |l, cache| {
             let next = (l.leaf().0 + 1) % t.n_leaves() as u32;
             let e = cache.get(&t, LeafId(next));
             (
-                l.tree_vertices().map(|v| l.vt_tree(v).len()).collect(),
+                l.owned_vertices().map(|v| l.local_star(v).len()).collect(),
                 e.cells.len(),
             )
         });

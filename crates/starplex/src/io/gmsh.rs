@@ -324,63 +324,7 @@ fn read_element_nodes(
 /// counts that do not match the data, a missing `$End...` line; each with the line.
 pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
     let mut w = Words::new(r, path, None);
-    w.keyword("$MeshFormat").map_err(|e| {
-        IoError::parse(
-            path,
-            e.location,
-            "not a gmsh file: expected '$MeshFormat' first",
-        )
-    })?;
-    let version = w.expect("the format version")?.to_vec();
-    let version = String::from_utf8_lossy(&version).into_owned();
-    let file_type = w.u64("the file type (0 ascii, 1 binary)")?;
-    if file_type > 1 {
-        return Err(w.err(format!(
-            "file type {file_type} is neither 0 (ascii) nor 1 (binary)"
-        )));
-    }
-    let data_size = w.u64("the data size")?;
-    let v4 = match version.as_str() {
-        "4.1" => true,
-        v if v == "2" || v.starts_with("2.") => false,
-        v => {
-            return Err(w.err(format!(
-                "gmsh format version {v} is not supported (starplex reads 4.1 and 2.2; re-save in one of them)"
-            )))
-        }
-    };
-    let bin = if file_type == 1 {
-        if data_size != 8 && !(v4 && data_size == 4) {
-            return Err(w.err(format!(
-                "binary data size {data_size} is not supported (gmsh writes 8)"
-            )));
-        }
-        w.rest_of_line()?;
-        let at = w.offset();
-        let mut one = [0u8; 4];
-        w.read_raw(&mut one, "the binary marker (the integer 1)")?;
-        let endian = if u32::from_le_bytes(one) == 1 {
-            Endian::Little
-        } else if u32::from_be_bytes(one) == 1 {
-            Endian::Big
-        } else {
-            return Err(IoError::parse(
-                path,
-                Some(Location::Byte(at)),
-                format!(
-                    "expected the integer 1 that gives the byte order of a binary .msh, found bytes {one:02x?}"
-                ),
-            ));
-        };
-        w.set_binary();
-        Some(Bin {
-            e: endian,
-            size: data_size as usize,
-        })
-    } else {
-        None
-    };
-    w.keyword("$EndMeshFormat")?;
+    let (bin, v4) = read_format(&mut w, path)?;
 
     let mut tags = TagMap::default();
     let mut coords: Vec<f64> = Vec::new();
@@ -473,6 +417,84 @@ pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<Re
     if !have_nodes {
         return Err(w.err("the file has no $Nodes section"));
     }
+    assemble(path, tags, coords, elems, data)
+}
+
+/// Reads `$MeshFormat` ... `$EndMeshFormat`: the binary encoding (`None` for ascii) and
+/// whether the version is 4.1 (else 2.x).
+fn read_format(
+    w: &mut Words<'_, impl BufRead>,
+    path: &Path,
+) -> Result<(Option<Bin>, bool), IoError> {
+    w.keyword("$MeshFormat").map_err(|e| {
+        IoError::parse(
+            path,
+            e.location,
+            "not a gmsh file: expected '$MeshFormat' first",
+        )
+    })?;
+    let version = w.expect("the format version")?.to_vec();
+    let version = String::from_utf8_lossy(&version).into_owned();
+    let file_type = w.u64("the file type (0 ascii, 1 binary)")?;
+    if file_type > 1 {
+        return Err(w.err(format!(
+            "file type {file_type} is neither 0 (ascii) nor 1 (binary)"
+        )));
+    }
+    let data_size = w.u64("the data size")?;
+    let v4 = match version.as_str() {
+        "4.1" => true,
+        v if v == "2" || v.starts_with("2.") => false,
+        v => {
+            return Err(w.err(format!(
+                "gmsh format version {v} is not supported (starplex reads 4.1 and 2.2; re-save in one of them)"
+            )))
+        }
+    };
+    let bin = if file_type == 1 {
+        if data_size != 8 && !(v4 && data_size == 4) {
+            return Err(w.err(format!(
+                "binary data size {data_size} is not supported (gmsh writes 8)"
+            )));
+        }
+        w.rest_of_line()?;
+        let at = w.offset();
+        let mut one = [0u8; 4];
+        w.read_raw(&mut one, "the binary marker (the integer 1)")?;
+        let endian = if u32::from_le_bytes(one) == 1 {
+            Endian::Little
+        } else if u32::from_be_bytes(one) == 1 {
+            Endian::Big
+        } else {
+            return Err(IoError::parse(
+                path,
+                Some(Location::Byte(at)),
+                format!(
+                    "expected the integer 1 that gives the byte order of a binary .msh, found bytes {one:02x?}"
+                ),
+            ));
+        };
+        w.set_binary();
+        Some(Bin {
+            e: endian,
+            size: data_size as usize,
+        })
+    } else {
+        None
+    };
+    w.keyword("$EndMeshFormat")?;
+    Ok((bin, v4))
+}
+
+/// The complex of the sections read: the nodes some element uses (renumbered in order), the
+/// elements, their tags and data as attributes, and the notes on what was dropped.
+fn assemble(
+    path: &Path,
+    tags: TagMap,
+    coords: Vec<f64>,
+    mut elems: Elements,
+    data: Vec<DataSection>,
+) -> Result<ReadResult, IoError> {
     // Keep the nodes used by some cell, in order.
     let nv = tags.n;
     let mut new_id = vec![u32::MAX; nv];

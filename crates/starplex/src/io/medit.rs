@@ -40,12 +40,13 @@
 use std::io::{BufRead, Write};
 use std::path::Path;
 
+use super::faces::push_build_notes;
 use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
-use crate::complex::{check_cell, BuildReport, ComplexBuilder, IndexedComplex};
+use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
 
 /// The Medit keyword of each cell kind the format holds.
 const CELL_KEYWORDS: [(&str, CellKind); 7] = [
@@ -264,21 +265,6 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         format: Format::Medit,
         notes,
     })
-}
-
-pub(crate) fn push_build_notes(notes: &mut Vec<String>, report: &BuildReport) {
-    if report.dropped_duplicates > 0 {
-        notes.push(format!(
-            "dropped {} duplicate cells",
-            report.dropped_duplicates
-        ));
-    }
-    if report.dropped_face_cells > 0 {
-        notes.push(format!(
-            "dropped {} cells that are faces of other cells",
-            report.dropped_face_cells
-        ));
-    }
 }
 
 /// Refuses what Medit cannot hold: an ambient dimension other than 2 or 3, vertex cells and

@@ -28,6 +28,7 @@ use std::path::{Path, PathBuf};
 use crate::complex::{BuildOptions, ComplexError, IndexedComplex};
 
 pub mod binary;
+mod faces;
 pub mod gmsh;
 pub mod medit;
 pub mod obj;

@@ -10,7 +10,7 @@
 //! - `v x y z [w | r g b]`: a vertex (a weight `w` or colours after `z` are ignored).
 //! - `f i j k ...`: a face; each corner is `v`, `v/vt`, `v//vn` or `v/vt/vn` (only `v` is used),
 //!   1-based or negative (relative to the last vertex defined). Vertices must be defined before
-//!   they are used. Faces follow [`PolygonMode`] as in PLY/OFF: 3 corners a triangle, 4 a quad,
+//!   they are used. Faces follow [`PolygonMode`](super::PolygonMode) as in PLY/OFF: 3 corners a triangle, 4 a quad,
 //!   more fan-triangulated (noted); or a `(k-1)`-simplex with `Simplices`.
 //! - `l i j k ...`: a polyline, read as its segments (edges, 1-simplices).
 //! - `p ...` (points) is ignored with a note (vertices exist without cells); `vt`, `vn`, `vp`, `o`,
@@ -32,8 +32,9 @@
 use std::io::{BufRead, Write};
 use std::path::Path;
 
+use super::faces::{push_build_notes, FaceError, Faces};
 use super::text::{parse_u64, write_f64, LineReader};
-use super::{Format, IoError, IoErrorKind, Location, PolygonMode, ReadOptions, ReadResult};
+use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::CellKind;
 use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
 
@@ -73,8 +74,8 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     let mut lr = LineReader::new(r, path, Some(b'#'));
     let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
     let mut verts: Vec<u32> = Vec::with_capacity(16);
-    let (mut n_fanned, mut n_fan_tris, mut n_polylines, mut n_segments, mut n_points) =
-        (0u64, 0u64, 0u64, 0u64, 0u64);
+    let (mut n_polylines, mut n_segments, mut n_points) = (0u64, 0u64, 0u64);
+    let mut faces = Faces::default();
     let mut n_faces = 0u64;
     while let Some(l) = lr.next_content_line()? {
         let mut t = l.tokens();
@@ -141,36 +142,15 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 }
                 check_cell(n_faces, &verts, nv).map_err(|e| IoError::new(path, e).at(loc))?;
                 n_faces += 1;
-                let mut push = |kind: CellKind, v: &[u32]| {
-                    b.push_cell(kind, v)
-                        .map(|_| ())
-                        .map_err(|e| IoError::new(path, e).at(loc))
-                };
-                match opts.polygons {
-                    PolygonMode::Polygons => match k {
-                        3 => push(CellKind::Simplex(2), &verts)?,
-                        4 => push(CellKind::Quad, &verts)?,
-                        k if k > 4 => {
-                            for j in 1..k - 1 {
-                                push(CellKind::Simplex(2), &[verts[0], verts[j], verts[j + 1]])?;
-                            }
-                            n_fanned += 1;
-                            n_fan_tris += k as u64 - 2;
-                        }
-                        _ => {
-                            return Err(l.err(format!(
-                                "a face needs at least 3 vertices, this one has {k} (use 'l' for edges, or read in simplices mode)"
-                            )))
-                        }
-                    },
-                    PolygonMode::Simplices => {
-                        let kind = k
-                            .checked_sub(1)
-                            .and_then(CellKind::simplex)
-                            .ok_or_else(|| l.err(format!("a face of {k} vertices cannot be a simplex (1 to 65 vertices)")))?;
-                        push(kind, &verts)?
-                    }
-                }
+                faces.push(&mut b, opts.polygons, &verts).map_err(|e| match e {
+                    FaceError::Complex(e) => IoError::new(path, e).at(loc),
+                    FaceError::TooFew(k) => l.err(format!(
+                        "a face needs at least 3 vertices, this one has {k} (use 'l' for edges, or read in simplices mode)"
+                    )),
+                    FaceError::NotSimplex(k) => l.err(format!(
+                        "a face of {k} vertices cannot be a simplex (1 to 65 vertices)"
+                    )),
+                })?;
             }
             b"p" => n_points += 1,
             key => {
@@ -193,11 +173,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         ));
     }
     let mut notes = Vec::new();
-    if n_fanned > 0 {
-        notes.push(format!(
-            "fan-triangulated {n_fanned} polygons of more than 4 vertices into {n_fan_tris} triangles"
-        ));
-    }
+    faces.note(&mut notes);
     if n_polylines > 0 {
         notes.push(format!(
             "read {n_polylines} polylines ('l') as {n_segments} edges"
@@ -209,18 +185,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         ));
     }
     let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
-    if report.dropped_duplicates > 0 {
-        notes.push(format!(
-            "dropped {} duplicate cells",
-            report.dropped_duplicates
-        ));
-    }
-    if report.dropped_face_cells > 0 {
-        notes.push(format!(
-            "dropped {} cells that are faces of other cells",
-            report.dropped_face_cells
-        ));
-    }
+    push_build_notes(&mut notes, &report);
     Ok(ReadResult {
         complex,
         format: Format::Obj,

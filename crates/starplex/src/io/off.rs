@@ -50,6 +50,7 @@
 use std::io::{BufRead, Write};
 use std::path::Path;
 
+use super::faces::push_build_notes;
 use super::text::{parse_f64, parse_u64, write_f64, LineReader, Tokens};
 use super::{Format, IoError, IoErrorKind, Location, PolygonMode, ReadOptions, ReadResult};
 use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
@@ -170,8 +171,64 @@ fn header_value(
 /// longer than its counts say, and the checks of [`ComplexBuilder::build`].
 pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
     let mut lr = LineReader::new(r, path, Some(b'#'));
+    let (header, counts) = read_counts(&mut lr, path)?;
+    let (mut b, normals, vcolours) = read_vertices(&mut lr, path, &header, &counts)?;
+    let (lines, fcolours, faces) = read_faces(&mut lr, path, opts, &counts, &mut b)?;
+    let mut notes = Vec::new();
+    let mut attrs = Attributes::default();
+    if let Some(a) = normals.column(NORMAL, false, &mut notes) {
+        attrs.vertex.push(a);
+    }
+    if let Some(a) = vcolours.column(COLOR, true, &mut notes) {
+        attrs.vertex.push(a);
+    }
+    if let Some(a) = fcolours.column(COLOR, true, &mut notes) {
+        attrs.cell.push(a);
+    }
+    b.set_attributes(attrs);
+    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
+    if faces.split > 0 {
+        notes.push(format!(
+            "fan-triangulated {} polygons with more than 4 vertices into {} triangles",
+            faces.split,
+            faces.split + faces.extra_tris
+        ));
+    }
+    if faces.points > 0 {
+        notes.push(format!(
+            "dropped {} one-vertex faces (a point is just a vertex; read with simplices \
+             to keep them as 0-simplices)",
+            faces.points
+        ));
+    }
+    push_build_notes(&mut notes, &report);
+    Ok(ReadResult {
+        complex,
+        format: Format::Off,
+        notes,
+    })
+}
 
-    // ---- header keyword and counts ----
+/// The counts of an OFF header: the declared dimension (nOFF), vertices, faces, and the line
+/// that ends them.
+struct Counts {
+    dim: Option<u64>,
+    nv: usize,
+    nf: u64,
+    line: u64,
+}
+
+impl Counts {
+    fn err(&self, path: &Path, msg: String) -> IoError {
+        IoError::parse(path, Some(Location::Line(self.line)), msg)
+    }
+}
+
+/// Reads the header keyword and the counts (on the keyword's line or the next ones).
+fn read_counts(
+    lr: &mut LineReader<'_, impl BufRead>,
+    path: &Path,
+) -> Result<(Header, Counts), IoError> {
     let mut header = Header::default();
     let mut vals: Vec<u64> = Vec::with_capacity(4);
     let mut labels: Vec<&str> = vec!["the vertex count", "the face count"];
@@ -248,8 +305,25 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             "dimension {d} is outside 1..={MAX_AMBIENT_DIM}"
         )));
     }
+    Ok((
+        header,
+        Counts {
+            dim: dim_decl,
+            nv,
+            nf,
+            line: counts_line,
+        },
+    ))
+}
 
-    // ---- vertices ----
+/// Reads the vertex lines: positions (homogeneous ones divided out), normals and colours.
+fn read_vertices(
+    lr: &mut LineReader<'_, impl BufRead>,
+    path: &Path,
+    header: &Header,
+    counts: &Counts,
+) -> Result<(ComplexBuilder, ExtraValues, ExtraValues), IoError> {
+    let (dim_decl, nv) = (counts.dim, counts.nv);
     // Values that make up the position on each vertex line (None: plain OFF, set by line 1).
     let mut n_pos: Option<usize> = match (dim_decl, header.homogeneous) {
         (Some(d), h) => Some(d as usize + h as usize),
@@ -318,15 +392,34 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         b.push_vertex(&p)
             .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
     }
-    let mut b = match builder {
+    let b = match builder {
         Some(b) => b,
         None => {
             let d = n_pos.map_or(3, |n| n - header.homogeneous as usize);
-            ComplexBuilder::new(d).map_err(|e| at_counts(e.to_string()))?
+            ComplexBuilder::new(d).map_err(|e| counts.err(path, e.to_string()))?
         }
     };
+    Ok((b, normals, vcolours))
+}
 
-    // ---- faces ----
+/// What reading the faces changed: polygons fan-triangulated (and the triangles they added
+/// beyond one each), one-vertex faces dropped.
+struct FaceCounts {
+    split: u64,
+    extra_tris: u64,
+    points: u64,
+}
+
+/// Reads the face lines into `b` as `opts.polygons` says, with the face colours and the line
+/// of each cell.
+fn read_faces(
+    lr: &mut LineReader<'_, impl BufRead>,
+    path: &Path,
+    opts: &ReadOptions,
+    counts: &Counts,
+    b: &mut ComplexBuilder,
+) -> Result<(CellLines, ExtraValues, FaceCounts), IoError> {
+    let (nv, nf) = (counts.nv, counts.nf);
     let mut verts: Vec<u32> = Vec::with_capacity(16);
     let mut scratch: Vec<u32> = Vec::new();
     let mut split = 0u64;
@@ -371,20 +464,16 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         };
         fcolours.repeat_last(cells);
         match (opts.polygons, verts.len()) {
-            (PolygonMode::Simplices, n) => push(&mut b, CellKind::Simplex((n - 1) as u8), &verts)?,
+            (PolygonMode::Simplices, n) => push(b, CellKind::Simplex((n - 1) as u8), &verts)?,
             (PolygonMode::Polygons, 1) => points += 1,
-            (PolygonMode::Polygons, 2) => push(&mut b, CellKind::Simplex(1), &verts)?,
-            (PolygonMode::Polygons, 3) => push(&mut b, CellKind::Simplex(2), &verts)?,
-            (PolygonMode::Polygons, 4) => push(&mut b, CellKind::Quad, &verts)?,
+            (PolygonMode::Polygons, 2) => push(b, CellKind::Simplex(1), &verts)?,
+            (PolygonMode::Polygons, 3) => push(b, CellKind::Simplex(2), &verts)?,
+            (PolygonMode::Polygons, 4) => push(b, CellKind::Quad, &verts)?,
             (PolygonMode::Polygons, n) => {
                 split += 1;
                 extra_tris += n as u64 - 3;
                 for j in 1..n - 1 {
-                    push(
-                        &mut b,
-                        CellKind::Simplex(2),
-                        &[verts[0], verts[j], verts[j + 1]],
-                    )?;
+                    push(b, CellKind::Simplex(2), &[verts[0], verts[j], verts[j + 1]])?;
                 }
             }
         }
@@ -396,49 +485,15 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             shown(l.bytes, 60)
         )));
     }
-
-    let mut notes = Vec::new();
-    let mut attrs = Attributes::default();
-    if let Some(a) = normals.column(NORMAL, false, &mut notes) {
-        attrs.vertex.push(a);
-    }
-    if let Some(a) = vcolours.column(COLOR, true, &mut notes) {
-        attrs.vertex.push(a);
-    }
-    if let Some(a) = fcolours.column(COLOR, true, &mut notes) {
-        attrs.cell.push(a);
-    }
-    b.set_attributes(attrs);
-    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
-    if split > 0 {
-        notes.push(format!(
-            "fan-triangulated {split} polygons with more than 4 vertices into {} triangles",
-            split + extra_tris
-        ));
-    }
-    if points > 0 {
-        notes.push(format!(
-            "dropped {points} one-vertex faces (a point is just a vertex; read with simplices \
-             to keep them as 0-simplices)"
-        ));
-    }
-    if report.dropped_duplicates > 0 {
-        notes.push(format!(
-            "dropped {} duplicate cells",
-            report.dropped_duplicates
-        ));
-    }
-    if report.dropped_face_cells > 0 {
-        notes.push(format!(
-            "dropped {} cells that are faces of other cells",
-            report.dropped_face_cells
-        ));
-    }
-    Ok(ReadResult {
-        complex,
-        format: Format::Off,
-        notes,
-    })
+    Ok((
+        lines,
+        fcolours,
+        FaceCounts {
+            split,
+            extra_tris,
+            points,
+        },
+    ))
 }
 
 /// The name of the colour attributes (vertex colours of `COFF`, face colours).

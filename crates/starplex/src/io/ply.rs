@@ -2,7 +2,7 @@
 //!
 //! Reading: the `vertex` element's `x`, `y` (and `z` when present; without it the complex is 2D)
 //! of any scalar type become the coordinates; the `face` element's `vertex_indices` (or
-//! `vertex_index`) list of any integer type becomes the cells, following [`PolygonMode`]: with
+//! `vertex_index`) list of any integer type becomes the cells, following [`PolygonMode`](super::PolygonMode): with
 //! `Polygons` a face of 3 vertices is a triangle, 4 a quad, more are fan-triangulated (counted in
 //! [`ReadResult::notes`]); with `Simplices` a face of `k` vertices is a `(k-1)`-simplex. An `edge`
 //! element with integer `vertex1` and `vertex2` properties gives edges (1-simplices), as OBJ `l`
@@ -55,8 +55,9 @@ use ply_rs_bw::ply::{
     BeginList, ElementDef, Encoding, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType,
 };
 
+use super::faces::{push_build_notes, FaceError, Faces};
 use super::text::write_f64;
-use super::{Format, IoError, IoErrorKind, Location, PolygonMode, ReadOptions, ReadResult};
+use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
 use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
@@ -472,7 +473,7 @@ pub fn read_from(
     let mut line = Vec::with_capacity(256);
     let mut nv: Option<usize> = None;
     let mut verts: Vec<u32> = Vec::with_capacity(16);
-    let (mut n_fanned, mut n_fan_tris) = (0u64, 0u64);
+    let mut faces = Faces::default();
     // extra scalar properties: one column of values per vertex property; the cell columns are
     // the union (by name) of the face and edge properties
     let vprops = extra_props(vdef, |n| matches!(n, "x" | "y" | "z"), &mut notes);
@@ -556,46 +557,19 @@ pub fn read_from(
                     let f: FaceRec = read_record(rd, enc, def, &mut line, i, path, loc)?;
                     f.indices(&mut verts)
                         .map_err(|x| here(format!("face {i}: negative vertex index {x}")))?;
-                    let k = verts.len();
                     if let Some(nv) = nv {
                         check_cell(i as u64, &verts, nv)
                             .map_err(|e| IoError::new(path, e).at(loc))?;
                     }
-                    let push = |b: &mut ComplexBuilder, kind: CellKind, v: &[u32]| {
-                        b.push_cell(kind, v)
-                            .map_err(|e| IoError::new(path, e).at(loc))
-                    };
-                    let mut rows = 1;
-                    match opts.polygons {
-                        PolygonMode::Polygons => match k {
-                            3 => {
-                                push(&mut b, CellKind::Simplex(2), &verts)?;
-                            }
-                            4 => {
-                                push(&mut b, CellKind::Quad, &verts)?;
-                            }
-                            k if k > 4 => {
-                                for j in 1..k - 1 {
-                                    push(&mut b, CellKind::Simplex(2), &[verts[0], verts[j], verts[j + 1]])?;
-                                }
-                                n_fanned += 1;
-                                n_fan_tris += k as u64 - 2;
-                                rows = k - 2;
-                            }
-                            _ => {
-                                return Err(here(format!(
-                                    "face {i} has {k} vertices; a polygon needs at least 3 (read in simplices mode for lower-dimensional cells)"
-                                )))
-                            }
-                        },
-                        PolygonMode::Simplices => {
-                            let kind = k
-                                .checked_sub(1)
-                                .and_then(CellKind::simplex)
-                                .ok_or_else(|| here(format!("face {i} has {k} vertices; a simplex needs 1 to 65")))?;
-                            push(&mut b, kind, &verts)?;
+                    let rows = faces.push(&mut b, opts.polygons, &verts).map_err(|e| match e {
+                        FaceError::Complex(e) => IoError::new(path, e).at(loc),
+                        FaceError::TooFew(k) => here(format!(
+                            "face {i} has {k} vertices; a polygon needs at least 3 (read in simplices mode for lower-dimensional cells)"
+                        )),
+                        FaceError::NotSimplex(k) => {
+                            here(format!("face {i} has {k} vertices; a simplex needs 1 to 65"))
                         }
-                    };
+                    })?;
                     if !ccols.is_empty() {
                         for _ in 0..rows {
                             push_row(&mut ccols, &cmaps[0], &f.extra);
@@ -632,11 +606,7 @@ pub fn read_from(
             nv = Some(b.n_vertices());
         }
     }
-    if n_fanned > 0 {
-        notes.push(format!(
-            "fan-triangulated {n_fanned} polygons of more than 4 vertices into {n_fan_tris} triangles"
-        ));
-    }
+    faces.note(&mut notes);
     let has_faces = header.elements.get("face").is_some_and(|d| d.count > 0);
     if n_edges > 0 && has_faces && cmaps.iter().any(|m| m.len() < cprops.len()) {
         notes.push("the 'face' and 'edge' elements do not have the same properties: the values a cell lacks are 0 (integer columns) or NaN (float columns)".into());
@@ -646,18 +616,7 @@ pub fn read_from(
         cell: group_columns(&cprops, ccols),
     });
     let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
-    if report.dropped_duplicates > 0 {
-        notes.push(format!(
-            "dropped {} duplicate cells",
-            report.dropped_duplicates
-        ));
-    }
-    if report.dropped_face_cells > 0 {
-        notes.push(format!(
-            "dropped {} cells that are faces of other cells",
-            report.dropped_face_cells
-        ));
-    }
+    push_build_notes(&mut notes, &report);
     Ok(ReadResult {
         complex,
         format: Format::Ply,

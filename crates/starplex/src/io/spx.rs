@@ -20,6 +20,7 @@
 use std::io::{BufRead, Write};
 use std::path::Path;
 
+use super::faces::push_build_notes;
 use super::text::{write_f64, LineReader};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::CellKind;
@@ -143,18 +144,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     }
     let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
     let mut notes = Vec::new();
-    if report.dropped_duplicates > 0 {
-        notes.push(format!(
-            "dropped {} duplicate cells",
-            report.dropped_duplicates
-        ));
-    }
-    if report.dropped_face_cells > 0 {
-        notes.push(format!(
-            "dropped {} cells that are faces of other cells",
-            report.dropped_face_cells
-        ));
-    }
+    push_build_notes(&mut notes, &report);
     Ok(ReadResult {
         complex,
         format: Format::Spx,

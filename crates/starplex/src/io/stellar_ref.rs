@@ -34,6 +34,7 @@
 use std::io::BufRead;
 use std::path::Path;
 
+use super::faces::push_build_notes;
 use super::off::{shown, CellLines};
 use super::text::{parse_f64, Line, LineReader, Tokens};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
@@ -122,18 +123,7 @@ pub fn read_from(
         }
     };
     let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
-    if report.dropped_duplicates > 0 {
-        notes.push(format!(
-            "dropped {} duplicate cells",
-            report.dropped_duplicates
-        ));
-    }
-    if report.dropped_face_cells > 0 {
-        notes.push(format!(
-            "dropped {} cells that are faces of other cells",
-            report.dropped_face_cells
-        ));
-    }
+    push_build_notes(&mut notes, &report);
     Ok(ReadResult {
         complex,
         format,

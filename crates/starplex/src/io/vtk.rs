@@ -41,7 +41,7 @@
 use std::io::{BufRead, Write};
 use std::path::Path;
 
-use super::medit::push_build_notes;
+use super::faces::push_build_notes;
 use super::raw::{get_i32, get_i64, push_f32s, push_f64s, read_records, Endian};
 use super::text::write_f64;
 use super::words::Words;
@@ -623,6 +623,69 @@ fn read_data_section(
 /// `opts.build`; each with the line.
 pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
     let mut w = Words::new(r, path, None);
+    let h = read_header(&mut w)?;
+    let mut s = Sections::default();
+    if h.binary {
+        w.set_binary();
+    }
+    while let Some(word) = w.next_word()?.map(|t| t.to_vec()) {
+        let kw = word.to_ascii_uppercase();
+        match kw.as_slice() {
+            b"POINTS" => s.points(&mut w, path, h.binary)?,
+            b"VERTICES" | b"LINES" | b"POLYGONS" | b"TRIANGLE_STRIPS" if h.poly => {
+                s.poly_cells(&mut w, &h, &kw)?;
+            }
+            b"CELLS" if !h.poly => s.cells(&mut w, &h)?,
+            b"CELL_TYPES" if !h.poly => s.cell_types(&mut w, path, h.binary)?,
+            b"POINT_DATA" | b"CELL_DATA" => s.data(&mut w, &h, &word, kw == b"POINT_DATA")?,
+            // dataset-level field data (time values, ...): not per vertex or cell
+            b"FIELD" => read_field(&mut w, None, h.binary, &mut Vec::new(), &mut Vec::new())?,
+            b"METADATA" => {
+                w.unread();
+                skip_metadata(&mut w)?;
+            }
+            _ if word
+                .first()
+                .is_some_and(|c| c.is_ascii_digit() || b"-+.".contains(c)) =>
+            {
+                return Err(w.err(format!(
+                    "found the number '{}' where a keyword was expected (a section holds more values than its count says)",
+                    lossy(&word)
+                )))
+            }
+            _ => {
+                return Err(w.err(format!(
+                    "unknown keyword '{}' in a {} dataset",
+                    lossy(&word),
+                    h.dataset_name()
+                )))
+            }
+        }
+    }
+    s.finish(&w, path, &h, opts)
+}
+
+/// What the first lines of a legacy VTK file say.
+struct Header {
+    /// The major file version (5 and later: cells as OFFSETS and CONNECTIVITY).
+    major: u32,
+    binary: bool,
+    /// POLYDATA (else UNSTRUCTURED_GRID).
+    poly: bool,
+}
+
+impl Header {
+    fn dataset_name(&self) -> &'static str {
+        if self.poly {
+            "POLYDATA"
+        } else {
+            "UNSTRUCTURED_GRID"
+        }
+    }
+}
+
+/// Reads the version line, the title, the encoding and the dataset type.
+fn read_header(w: &mut Words<'_, impl BufRead>) -> Result<Header, IoError> {
     let head = w.rest_of_line()?;
     let head_s = String::from_utf8_lossy(&head).into_owned();
     let lower = head_s.to_ascii_lowercase();
@@ -656,304 +719,303 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             lossy(&ds)
         )));
     }
-    let ds_name = if poly {
-        "POLYDATA"
-    } else {
-        "UNSTRUCTURED_GRID"
-    };
-    // POLYDATA: the cells of VERTICES, LINES, POLYGONS and TRIANGLE_STRIPS (flat vertex lists
-    // and ends), in that order: VTK numbers the cells (and their CELL_DATA) section by section
-    let mut sections: [Option<(Vec<u32>, Vec<u64>)>; 4] = Default::default();
+    Ok(Header {
+        major,
+        binary,
+        poly,
+    })
+}
 
-    let mut builder: Option<ComplexBuilder> = None;
-    let mut nv = 0usize;
-    // Cells: vertex lists flat, with the end of each cell, and the line of each cell's first index.
-    let mut conn: Vec<u32> = Vec::new();
-    let mut ends: Vec<u64> = Vec::new();
-    let mut cells_line = 0u64;
-    let mut have_cells = false;
-    let mut types: Option<Vec<u64>> = None;
-    let mut notes = Vec::new();
-    let mut point_data: Vec<Attribute> = Vec::new();
-    let mut cell_data: Vec<Attribute> = Vec::new();
-    let mut skipped: Vec<String> = Vec::new();
-    if binary {
-        w.set_binary();
+/// The sections of a legacy VTK file read so far.
+#[derive(Default)]
+struct Sections {
+    builder: Option<ComplexBuilder>,
+    nv: usize,
+    /// POLYDATA: the cells of VERTICES, LINES, POLYGONS and TRIANGLE_STRIPS (flat vertex
+    /// lists and ends), in that order: VTK numbers the cells (and their CELL_DATA) section
+    /// by section.
+    sections: [Option<(Vec<u32>, Vec<u64>)>; 4],
+    /// UNSTRUCTURED_GRID cells: vertex lists flat, with the end of each cell.
+    conn: Vec<u32>,
+    ends: Vec<u64>,
+    /// The line of the CELLS section (for the error of a missing CELL_TYPES).
+    cells_line: u64,
+    have_cells: bool,
+    types: Option<Vec<u64>>,
+    point_data: Vec<Attribute>,
+    cell_data: Vec<Attribute>,
+    skipped: Vec<String>,
+}
+
+impl Sections {
+    /// POINTS, in either encoding.
+    fn points(
+        &mut self,
+        w: &mut Words<'_, impl BufRead>,
+        path: &Path,
+        binary: bool,
+    ) -> Result<(), IoError> {
+        if self.builder.is_some() {
+            return Err(w.err("a second POINTS section"));
+        }
+        let n = count(w, "the point count")?;
+        let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
+        if binary {
+            read_points_bin(w, n, &mut b)?;
+        } else {
+            w.expect("the point data type")?;
+            let mut p = [0.0f64; 3];
+            for _ in 0..n {
+                for x in p.iter_mut() {
+                    *x = w.f64("a point coordinate")?;
+                }
+                b.push_vertex(&p)
+                    .map_err(|e| IoError::new(path, e).at(Location::Line(w.line())))?;
+            }
+            skip_metadata(w)?;
+        }
+        self.nv = n;
+        self.builder = Some(b);
+        Ok(())
     }
-    while let Some(word) = w.next_word()?.map(|t| t.to_vec()) {
-        let kw = word.to_ascii_uppercase();
-        match kw.as_slice() {
-            b"POINTS" if binary => {
-                if builder.is_some() {
-                    return Err(w.err("a second POINTS section"));
-                }
-                let n = count(&mut w, "the point count")?;
-                let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
-                read_points_bin(&mut w, n, &mut b)?;
-                nv = n;
-                builder = Some(b);
-            }
-            b"VERTICES" | b"LINES" | b"POLYGONS" | b"TRIANGLE_STRIPS" if poly => {
-                let i = POLY_SECTIONS
-                    .iter()
-                    .position(|(n, _)| n.as_bytes() == kw.as_slice())
-                    .unwrap_or(0);
-                if builder.is_none() {
-                    return Err(w.err(format!("{} before POINTS", POLY_SECTIONS[i].0)));
-                }
-                if sections[i].is_some() {
-                    return Err(w.err(format!("a second {} section", POLY_SECTIONS[i].0)));
-                }
-                let (mut c, mut e) = (Vec::new(), Vec::new());
-                let a = w.u64("the cell count")?;
-                let size = w.u64("the cell list size")?;
-                if binary {
-                    if major >= 5 {
-                        w.keyword("OFFSETS")?;
-                        read_offsets_bin(&mut w, a, size, nv, &mut c, &mut e)?;
-                    } else {
-                        w.rest_of_line()?;
-                        read_classic_bin(&mut w, a, size, nv, &mut c, &mut e)?;
-                    }
-                } else {
-                    if cells_line == 0 {
-                        cells_line = w.line();
-                    }
-                    let next = w.expect("the cells")?;
-                    if next.eq_ignore_ascii_case(b"OFFSETS") {
-                        read_offsets_layout(&mut w, a, size, nv, &mut c, &mut e)?;
-                    } else {
-                        w.unread();
-                        if major >= 5 {
-                            return Err(w.err(format!(
-                                "this file says VTK version {major}, whose {} section starts with OFFSETS",
-                                POLY_SECTIONS[i].0
-                            )));
-                        }
-                        read_classic_layout(&mut w, a, size, nv, &mut c, &mut e)?;
-                    }
-                }
-                sections[i] = Some((c, e));
-            }
-            b"CELLS" if binary && !poly => {
-                if builder.is_none() {
-                    return Err(w.err("CELLS before POINTS"));
-                }
-                if have_cells {
-                    return Err(w.err("a second CELLS section"));
-                }
-                have_cells = true;
-                let a = w.u64("the cell count")?;
-                let size = w.u64("the cell list size")?;
-                if major >= 5 {
-                    // the binary data may start with any byte: the layout follows the version
-                    w.keyword("OFFSETS")?;
-                    read_offsets_bin(&mut w, a, size, nv, &mut conn, &mut ends)?;
-                } else {
-                    w.rest_of_line()?;
-                    read_classic_bin(&mut w, a, size, nv, &mut conn, &mut ends)?;
-                }
-            }
-            b"CELL_TYPES" if binary && !poly => {
-                if types.is_some() {
-                    return Err(w.err("a second CELL_TYPES section"));
-                }
-                let n = w.u64("the cell type count")?;
-                if !have_cells {
-                    return Err(w.err("CELL_TYPES before CELLS"));
-                }
-                if n != ends.len() as u64 {
-                    return Err(w.err(format!(
-                        "CELL_TYPES counts {n} cells but CELLS has {}",
-                        ends.len()
-                    )));
-                }
-                w.rest_of_line()?;
-                let at = w.offset();
-                let mut tys: Vec<u64> = Vec::new();
-                read_records(&mut w, n, 4, "the cell types", |_, c, _| {
-                    tys.extend(c.chunks_exact(4).map(|x| get_i32(x, Endian::Big) as u32 as u64));
-                    Ok(())
+
+    /// One of the POLYDATA cell sections (`kw`).
+    fn poly_cells(
+        &mut self,
+        w: &mut Words<'_, impl BufRead>,
+        h: &Header,
+        kw: &[u8],
+    ) -> Result<(), IoError> {
+        let i = POLY_SECTIONS
+            .iter()
+            .position(|(n, _)| n.as_bytes() == kw)
+            .unwrap_or(0);
+        let name = POLY_SECTIONS[i].0;
+        if self.builder.is_none() {
+            return Err(w.err(format!("{name} before POINTS")));
+        }
+        if self.sections[i].is_some() {
+            return Err(w.err(format!("a second {name} section")));
+        }
+        let (mut c, mut e) = (Vec::new(), Vec::new());
+        cell_lists(w, h, name, self.nv, &mut c, &mut e)?;
+        self.sections[i] = Some((c, e));
+        Ok(())
+    }
+
+    /// The CELLS section of an UNSTRUCTURED_GRID.
+    fn cells(&mut self, w: &mut Words<'_, impl BufRead>, h: &Header) -> Result<(), IoError> {
+        if self.builder.is_none() {
+            return Err(w.err("CELLS before POINTS"));
+        }
+        if self.have_cells {
+            return Err(w.err("a second CELLS section"));
+        }
+        self.have_cells = true;
+        if !h.binary {
+            self.cells_line = w.line();
+        }
+        cell_lists(w, h, "CELLS", self.nv, &mut self.conn, &mut self.ends)
+    }
+
+    /// The CELL_TYPES section of an UNSTRUCTURED_GRID, in either encoding.
+    fn cell_types(
+        &mut self,
+        w: &mut Words<'_, impl BufRead>,
+        path: &Path,
+        binary: bool,
+    ) -> Result<(), IoError> {
+        if self.types.is_some() {
+            return Err(w.err("a second CELL_TYPES section"));
+        }
+        let n = w.u64("the cell type count")?;
+        if !self.have_cells {
+            return Err(w.err("CELL_TYPES before CELLS"));
+        }
+        if n != self.ends.len() as u64 {
+            return Err(w.err(format!(
+                "CELL_TYPES counts {n} cells but CELLS has {}",
+                self.ends.len()
+            )));
+        }
+        let mut kinds = Vec::with_capacity(self.ends.len());
+        let mut start = 0u64;
+        if binary {
+            w.rest_of_line()?;
+            let at = w.offset();
+            let mut tys: Vec<u64> = Vec::new();
+            read_records(w, n, 4, "the cell types", |_, c, _| {
+                tys.extend(
+                    c.chunks_exact(4)
+                        .map(|x| get_i32(x, Endian::Big) as u32 as u64),
+                );
+                Ok(())
+            })?;
+            for (i, (&ty, &end)) in tys.iter().zip(self.ends.iter()).enumerate() {
+                let kind = cell_type(i, ty, end - start).map_err(|m| {
+                    IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), m)
                 })?;
-                let mut kinds = Vec::with_capacity(tys.len());
-                let mut start = 0u64;
-                for (i, (&ty, &end)) in tys.iter().zip(ends.iter()).enumerate() {
-                    let kind = cell_type(i, ty, end - start).map_err(|m| {
-                        IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), m)
-                    })?;
-                    start = end;
-                    kinds.push(kind);
-                }
-                types = Some(kinds);
+                start = end;
+                kinds.push(kind);
             }
-            b"POINTS" => {
-                if builder.is_some() {
-                    return Err(w.err("a second POINTS section"));
-                }
-                let n = count(&mut w, "the point count")?;
-                w.expect("the point data type")?;
-                let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
-                let mut p = [0.0f64; 3];
-                for _ in 0..n {
-                    for x in p.iter_mut() {
-                        *x = w.f64("a point coordinate")?;
-                    }
-                    b.push_vertex(&p)
-                        .map_err(|e| IoError::new(path, e).at(Location::Line(w.line())))?;
-                }
-                skip_metadata(&mut w)?;
-                nv = n;
-                builder = Some(b);
-            }
-            b"CELLS" if !poly => {
-                if builder.is_none() {
-                    return Err(w.err("CELLS before POINTS"));
-                }
-                if have_cells {
-                    return Err(w.err("a second CELLS section"));
-                }
-                have_cells = true;
-                cells_line = w.line();
-                let a = w.u64("the cell count")?;
-                let size = w.u64("the cell list size")?;
-                let next = w.expect("the cells")?;
-                if next.eq_ignore_ascii_case(b"OFFSETS") {
-                    read_offsets_layout(&mut w, a, size, nv, &mut conn, &mut ends)?;
-                } else {
-                    w.unread();
-                    if major >= 5 {
-                        return Err(w.err(format!(
-                            "this file says VTK version {major}, whose CELLS section starts with OFFSETS"
-                        )));
-                    }
-                    read_classic_layout(&mut w, a, size, nv, &mut conn, &mut ends)?;
-                }
-            }
-            b"CELL_TYPES" if !poly => {
-                if types.is_some() {
-                    return Err(w.err("a second CELL_TYPES section"));
-                }
-                let n = w.u64("the cell type count")?;
-                if !have_cells {
-                    return Err(w.err("CELL_TYPES before CELLS"));
-                }
-                if n != ends.len() as u64 {
-                    return Err(w.err(format!(
-                        "CELL_TYPES counts {n} cells but CELLS has {}",
-                        ends.len()
-                    )));
-                }
-                let mut kinds = Vec::new();
-                let mut start = 0u64;
-                for (i, &end) in ends.iter().enumerate() {
-                    let ty = w.u64("a cell type")?;
-                    let kind = cell_type(i, ty, end - start).map_err(|m| w.err(m))?;
-                    start = end;
-                    kinds.push(kind);
-                }
-                types = Some(kinds);
-            }
-            b"POINT_DATA" | b"CELL_DATA" => {
-                let n = w.u64("the data count")?;
-                let n_cells = if poly {
-                    sections.iter().flatten().map(|(_, e)| e.len() as u64).sum()
-                } else {
-                    ends.len() as u64
-                };
-                let (cols, n_want) = if kw == b"POINT_DATA" {
-                    (&mut point_data, nv as u64)
-                } else {
-                    (&mut cell_data, n_cells)
-                };
-                if n != n_want {
-                    return Err(w.err(format!(
-                        "{} counts {n} items, the file has {n_want}",
-                        lossy(&word)
-                    )));
-                }
-                read_data_section(&mut w, n, binary, cols, &mut skipped)?;
-            }
-            // dataset-level field data (time values, ...): not per vertex or cell
-            b"FIELD" => read_field(&mut w, None, binary, &mut Vec::new(), &mut Vec::new())?,
-            b"METADATA" => {
-                w.unread();
-                skip_metadata(&mut w)?;
-            }
-            _ if word
-                .first()
-                .is_some_and(|c| c.is_ascii_digit() || b"-+.".contains(c)) =>
-            {
-                return Err(w.err(format!(
-                    "found the number '{}' where a keyword was expected (a section holds more values than its count says)",
-                    lossy(&word)
-                )))
-            }
-            _ => {
-                return Err(w.err(format!(
-                    "unknown keyword '{}' in a {ds_name} dataset",
-                    lossy(&word)
-                )))
+        } else {
+            for (i, &end) in self.ends.iter().enumerate() {
+                let ty = w.u64("a cell type")?;
+                let kind = cell_type(i, ty, end - start).map_err(|m| w.err(m))?;
+                start = end;
+                kinds.push(kind);
             }
         }
+        self.types = Some(kinds);
+        Ok(())
     }
-    let Some(mut b) = builder else {
-        return Err(w.err("the file has no POINTS section"));
-    };
-    if poly {
-        // the sections in VTK's order, as one cell list with the sections' cell types
+
+    /// A POINT_DATA (`points`) or CELL_DATA section, whose keyword is `word`.
+    fn data(
+        &mut self,
+        w: &mut Words<'_, impl BufRead>,
+        h: &Header,
+        word: &[u8],
+        points: bool,
+    ) -> Result<(), IoError> {
+        let n = w.u64("the data count")?;
+        let n_cells = if h.poly {
+            self.sections
+                .iter()
+                .flatten()
+                .map(|(_, e)| e.len() as u64)
+                .sum()
+        } else {
+            self.ends.len() as u64
+        };
+        let (cols, n_want) = if points {
+            (&mut self.point_data, self.nv as u64)
+        } else {
+            (&mut self.cell_data, n_cells)
+        };
+        if n != n_want {
+            return Err(w.err(format!(
+                "{} counts {n} items, the file has {n_want}",
+                lossy(word)
+            )));
+        }
+        read_data_section(w, n, h.binary, cols, &mut self.skipped)
+    }
+
+    /// The complex of the sections read.
+    fn finish(
+        mut self,
+        w: &Words<'_, impl BufRead>,
+        path: &Path,
+        h: &Header,
+        opts: &ReadOptions,
+    ) -> Result<ReadResult, IoError> {
+        let Some(mut b) = self.builder.take() else {
+            return Err(w.err("the file has no POINTS section"));
+        };
+        if h.poly {
+            self.join_poly_sections(path)?;
+        }
+        if self.have_cells && self.types.is_none() {
+            return Err(w.err_at(
+                self.cells_line,
+                "the file has CELLS but no CELL_TYPES section (it is truncated)",
+            ));
+        }
+        let mut stats = CellStats::default();
+        let mut origin: Vec<u32> = Vec::new();
+        if let Some(kinds) = &self.types {
+            let mut start = 0usize;
+            for (i, (&ty, &end)) in kinds.iter().zip(self.ends.iter()).enumerate() {
+                let end = end as usize;
+                let verts = &self.conn[start..end];
+                start = end;
+                let before = b.n_cells();
+                push_cell(&mut b, &mut stats, ty, verts).map_err(|e| match e {
+                    PushError::Complex(e) => IoError::new(path, e),
+                    PushError::Cell(m) => IoError::parse(path, None, format!("cell {i}: {m}")),
+                })?;
+                origin.extend((before..b.n_cells()).map(|_| i as u32));
+            }
+        }
+        let mut notes = Vec::new();
+        stats.notes(&mut notes);
+        if !self.skipped.is_empty() {
+            notes.push(format!(
+                "skipped the data arrays {}",
+                self.skipped.join(", ")
+            ));
+        }
+        b.set_attributes(Attributes {
+            vertex: self.point_data,
+            cell: self.cell_data.iter().map(|a| a.gather(&origin)).collect(),
+        });
+        let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+        push_build_notes(&mut notes, &report);
+        Ok(ReadResult {
+            complex,
+            format: Format::Vtk,
+            notes,
+        })
+    }
+
+    /// POLYDATA: the sections in VTK's order, as one cell list with the sections' cell types.
+    fn join_poly_sections(&mut self, path: &Path) -> Result<(), IoError> {
         let mut kinds = Vec::new();
-        for ((name, ty), sec) in POLY_SECTIONS.iter().zip(sections) {
+        for ((name, ty), sec) in POLY_SECTIONS.iter().zip(std::mem::take(&mut self.sections)) {
             let Some((c, e)) = sec else { continue };
-            let base = conn.len() as u64;
+            let base = self.conn.len() as u64;
             let mut start = 0u64;
             for &end in &e {
-                let kind = cell_type(ends.len(), *ty, end - start)
+                let kind = cell_type(self.ends.len(), *ty, end - start)
                     .map_err(|m| IoError::parse(path, None, format!("{m} (in {name})")))?;
                 kinds.push(kind);
-                ends.push(base + end);
+                self.ends.push(base + end);
                 start = end;
             }
-            conn.extend_from_slice(&c);
+            self.conn.extend_from_slice(&c);
         }
-        types = Some(kinds);
+        self.types = Some(kinds);
+        Ok(())
     }
-    if have_cells && types.is_none() {
-        return Err(w.err_at(
-            cells_line,
-            "the file has CELLS but no CELL_TYPES section (it is truncated)",
-        ));
-    }
-    let mut stats = CellStats::default();
-    let mut origin: Vec<u32> = Vec::new();
-    if let Some(kinds) = types {
-        let mut start = 0usize;
-        for (i, (&ty, &end)) in kinds.iter().zip(ends.iter()).enumerate() {
-            let end = end as usize;
-            let verts = &conn[start..end];
-            start = end;
-            let before = b.n_cells();
-            push_cell(&mut b, &mut stats, ty, verts).map_err(|e| match e {
-                PushError::Complex(e) => IoError::new(path, e),
-                PushError::Cell(m) => IoError::parse(path, None, format!("cell {i}: {m}")),
-            })?;
-            origin.extend((before..b.n_cells()).map(|_| i as u32));
+}
+
+/// The counts line and cell lists of a CELLS or POLYDATA cell section (`name`), in the layout
+/// of the file's version and encoding, appended to `conn` and `ends`.
+fn cell_lists(
+    w: &mut Words<'_, impl BufRead>,
+    h: &Header,
+    name: &str,
+    nv: usize,
+    conn: &mut Vec<u32>,
+    ends: &mut Vec<u64>,
+) -> Result<(), IoError> {
+    let a = w.u64("the cell count")?;
+    let size = w.u64("the cell list size")?;
+    if h.binary {
+        // the binary data may start with any byte: the layout follows the version
+        if h.major >= 5 {
+            w.keyword("OFFSETS")?;
+            read_offsets_bin(w, a, size, nv, conn, ends)
+        } else {
+            w.rest_of_line()?;
+            read_classic_bin(w, a, size, nv, conn, ends)
+        }
+    } else {
+        let next = w.expect("the cells")?;
+        if next.eq_ignore_ascii_case(b"OFFSETS") {
+            read_offsets_layout(w, a, size, nv, conn, ends)
+        } else {
+            w.unread();
+            if h.major >= 5 {
+                return Err(w.err(format!(
+                    "this file says VTK version {}, whose {name} section starts with OFFSETS",
+                    h.major
+                )));
+            }
+            read_classic_layout(w, a, size, nv, conn, ends)
         }
     }
-    stats.notes(&mut notes);
-    if !skipped.is_empty() {
-        notes.push(format!("skipped the data arrays {}", skipped.join(", ")));
-    }
-    b.set_attributes(Attributes {
-        vertex: point_data,
-        cell: cell_data.iter().map(|a| a.gather(&origin)).collect(),
-    });
-    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
-    push_build_notes(&mut notes, &report);
-    Ok(ReadResult {
-        complex,
-        format: Format::Vtk,
-        notes,
-    })
 }
 
 /// The cell sections of a POLYDATA dataset, in VTK's cell order, with the cell type each

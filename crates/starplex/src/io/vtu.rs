@@ -47,7 +47,7 @@ use std::path::Path;
 use base64::Engine as _;
 use quick_xml::events::{BytesStart, Event};
 
-use super::medit::push_build_notes;
+use super::faces::push_build_notes;
 use super::vtk::{push_cell, vtk_type, CellStats};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::attr::{AttrValues, Attribute, Attributes};
@@ -178,13 +178,83 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
             ))
         }
     };
+    let (header, pieces, appended_encoding) = parse_xml(xml, path)?;
+    let appended = appended_block(data, xml_end, appended_encoding, path)?;
+    if pieces.is_empty() {
+        return Err(perr(path, 0, "the file has no <Piece>"));
+    }
+    let mut asm = Assembly {
+        b: ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?,
+        stats: CellStats::default(),
+        origin: Vec::new(),
+        n_file_cells: 0,
+    };
+    let mut point_data = DataColumns::default();
+    let mut cell_data = DataColumns::default();
+    let src = Source {
+        header: &header,
+        appended: appended.as_ref(),
+        path,
+    };
+    for (pi, piece) in pieces.iter().enumerate() {
+        let base = asm.b.n_vertices() as u64;
+        asm.points(piece, &src)?;
+        let sections: &[&str] = if header.poly {
+            &["Verts", "Lines", "Strips", "Polys"]
+        } else {
+            &["Cells"]
+        };
+        for &sec in sections {
+            asm.cells(piece, sec, base, &src)?;
+        }
+        for a in &piece.arrays {
+            let cols = match a.section.as_str() {
+                "PointData" => &mut point_data,
+                "CellData" => &mut cell_data,
+                _ => continue,
+            };
+            let values = decode_attr(a, &header, appended.as_ref(), path)?;
+            cols.push(pi, a, values);
+        }
+    }
+    let Assembly {
+        mut b,
+        stats,
+        origin,
+        n_file_cells,
+    } = asm;
+    let mut notes = Vec::new();
+    stats.notes(&mut notes);
+    let vertex = point_data.finish("PointData", pieces.len(), b.n_vertices(), &mut notes);
+    let file_cells = cell_data.finish("CellData", pieces.len(), n_file_cells as usize, &mut notes);
+    let cell = file_cells.iter().map(|a| a.gather(&origin)).collect();
+    b.set_attributes(Attributes { vertex, cell });
+    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
+    push_build_notes(&mut notes, &report);
+    Ok(ReadResult {
+        complex,
+        format: if header.poly {
+            Format::Vtp
+        } else {
+            Format::Vtu
+        },
+        notes,
+    })
+}
+
+/// The elements of the XML part: the `<VTKFile>` header, the pieces with their array specs,
+/// and the encoding of the `<AppendedData>` block if there is one (where parsing stops).
+#[allow(clippy::type_complexity)]
+fn parse_xml<'a>(
+    xml: &'a str,
+    path: &Path,
+) -> Result<(Header, Vec<Piece<'a>>, Option<String>), IoError> {
     let mut reader = quick_xml::Reader::from_str(xml);
     let mut header: Option<Header> = None;
     let mut pieces: Vec<Piece<'_>> = Vec::new();
     let mut stack: Vec<String> = Vec::new();
     let mut current: Option<ArraySpec<'_>> = None;
     let mut appended_encoding: Option<String> = None;
-    let mut notes = Vec::new();
     loop {
         let pos = reader.buffer_position() as usize;
         let ev = reader.read_event().map_err(|e| {
@@ -257,7 +327,17 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
             "not a VTK XML file: it has no <VTKFile> element",
         ));
     };
-    let appended = match appended_encoding {
+    Ok((header, pieces, appended_encoding))
+}
+
+/// The appended data block after the XML part (`xml_end`), if the XML announced one.
+fn appended_block<'a>(
+    data: &'a [u8],
+    xml_end: usize,
+    encoding: Option<String>,
+    path: &Path,
+) -> Result<Option<Appended<'a>>, IoError> {
+    Ok(match encoding {
         None => None,
         Some(enc) => {
             let base64 = match enc.as_str() {
@@ -280,26 +360,40 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
                 base64,
             })
         }
-    };
-    if pieces.is_empty() {
-        return Err(perr(path, 0, "the file has no <Piece>"));
+    })
+}
+
+/// Where the arrays' bytes are and how to decode them.
+struct Source<'s, 'a> {
+    header: &'s Header,
+    appended: Option<&'s Appended<'a>>,
+    path: &'s Path,
+}
+
+impl Piece<'_> {
+    /// The array of `section` named `name` (any name when `None`).
+    fn array(&self, section: &str, name: Option<&str>) -> Option<&ArraySpec<'_>> {
+        self.arrays
+            .iter()
+            .find(|a| a.section == section && name.is_none_or(|n| a.name == n))
     }
-    let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
-    let mut stats = CellStats::default();
-    // attributes: the file cell of every cell pushed, the columns as read (file cells)
-    let mut origin: Vec<u32> = Vec::new();
-    let mut n_file_cells: u64 = 0;
-    let mut point_data = DataColumns::default();
-    let mut cell_data = DataColumns::default();
-    for (pi, piece) in pieces.iter().enumerate() {
-        let base = b.n_vertices() as u64;
-        let find = |section: &str, name: Option<&str>| {
-            piece
-                .arrays
-                .iter()
-                .find(|a| a.section == section && name.is_none_or(|n| a.name == n))
-        };
-        // points
+}
+
+/// The complex being assembled from the pieces: the builder, the cell statistics, and the
+/// file cell of every cell pushed (to place the cell data).
+struct Assembly {
+    b: ComplexBuilder,
+    stats: CellStats,
+    origin: Vec<u32>,
+    n_file_cells: u64,
+}
+
+impl Assembly {
+    /// The points of a piece.
+    fn points(&mut self, piece: &Piece<'_>, src: &Source<'_, '_>) -> Result<(), IoError> {
+        let (header, appended, path) = (src.header, src.appended, src.path);
+        let b = &mut self.b;
+        let find = |section: &str, name: Option<&str>| piece.array(section, name);
         if piece.n_points > 0 {
             let Some(p) = find("Points", None) else {
                 return Err(perr(
@@ -315,124 +409,107 @@ pub fn read_bytes(data: &[u8], path: &Path, opts: &ReadOptions) -> Result<ReadRe
                     format!("points have {} components, VTK points have 3", p.n_comp),
                 ));
             }
-            let xs = decode_f64(p, &header, appended.as_ref(), path)?;
+            let xs = decode_f64(p, header, appended, path)?;
             if xs.len() != 3 * piece.n_points {
                 return Err(perr(
-                    path,
-                    p.pos,
-                    format!(
-                        "the Points array holds {} values, expected {} (3 per point, NumberOfPoints=\"{}\")",
-                        xs.len(),
-                        3 * piece.n_points,
-                        piece.n_points
-                    ),
-                ));
+                path,
+                p.pos,
+                format!(
+                    "the Points array holds {} values, expected {} (3 per point, NumberOfPoints=\"{}\")",
+                    xs.len(),
+                    3 * piece.n_points,
+                    piece.n_points
+                ),
+            ));
             }
             for q in xs.chunks_exact(3) {
                 b.push_vertex(q).map_err(|e| IoError::new(path, e))?;
             }
         }
+        Ok(())
+    }
+
+    /// The cells of section `sec` of a piece whose first point is `base`.
+    fn cells(
+        &mut self,
+        piece: &Piece<'_>,
+        sec: &str,
+        base: u64,
+        src: &Source<'_, '_>,
+    ) -> Result<(), IoError> {
+        let (header, appended, path) = (src.header, src.appended, src.path);
+        let find = |section: &str, name: Option<&str>| piece.array(section, name);
         let nv = piece.n_points as u64;
-        let sections: &[&str] = if header.poly {
-            &["Verts", "Lines", "Strips", "Polys"]
-        } else {
-            &["Cells"]
+        let Some(conn) = find(sec, Some("connectivity")) else {
+            return Ok(());
         };
-        for &sec in sections {
-            let Some(conn) = find(sec, Some("connectivity")) else {
-                continue;
+        let Some(offs) = find(sec, Some("offsets")) else {
+            return Err(perr(
+                path,
+                conn.pos,
+                format!("<{sec}> has connectivity but no offsets"),
+            ));
+        };
+        let conn_v = decode_index(conn, header, appended, path, nv)?;
+        let offs_v = decode_index(offs, header, appended, path, u64::MAX)?;
+        let types_v = if sec == "Cells" {
+            let Some(t) = find(sec, Some("types")) else {
+                return Err(perr(path, conn.pos, "<Cells> has no types array"));
             };
-            let Some(offs) = find(sec, Some("offsets")) else {
+            let v = decode_index(t, header, appended, path, u64::MAX)?;
+            if v.len() != offs_v.len() {
                 return Err(perr(
                     path,
-                    conn.pos,
-                    format!("<{sec}> has connectivity but no offsets"),
+                    t.pos,
+                    format!(
+                        "{} cell types for {} cells (offsets)",
+                        v.len(),
+                        offs_v.len()
+                    ),
                 ));
-            };
-            let conn_v = decode_index(conn, &header, appended.as_ref(), path, nv)?;
-            let offs_v = decode_index(offs, &header, appended.as_ref(), path, u64::MAX)?;
-            let types_v = if sec == "Cells" {
-                let Some(t) = find(sec, Some("types")) else {
-                    return Err(perr(path, conn.pos, "<Cells> has no types array"));
-                };
-                let v = decode_index(t, &header, appended.as_ref(), path, u64::MAX)?;
-                if v.len() != offs_v.len() {
-                    return Err(perr(
-                        path,
-                        t.pos,
-                        format!(
-                            "{} cell types for {} cells (offsets)",
-                            v.len(),
-                            offs_v.len()
-                        ),
-                    ));
-                }
-                Some(v)
-            } else {
-                None
-            };
-            let mut start = 0u64;
-            let mut verts: Vec<u32> = Vec::new();
-            for (i, &end) in offs_v.iter().enumerate() {
-                if end < start || end > conn_v.len() as u64 {
-                    return Err(perr(
-                        path,
-                        offs.pos,
-                        format!(
-                            "<{sec}> offset {i} is {end}: offsets must grow and stay within the {} connectivity entries",
-                            conn_v.len()
-                        ),
-                    ));
-                }
-                verts.clear();
-                verts.extend(
-                    conn_v[start as usize..end as usize]
-                        .iter()
-                        .map(|&v| (v + base) as u32),
-                );
-                start = end;
-                let ty = match (&types_v, sec) {
-                    (Some(t), _) => t[i],
-                    (None, "Verts") => 2,
-                    (None, "Lines") => 4,
-                    (None, "Strips") => 6,
-                    _ => 7,
-                };
-                let before = b.n_cells();
-                push_cell(&mut b, &mut stats, ty, &verts)
-                    .map_err(|e| perr(path, conn.pos, format!("<{sec}> cell {i}: {e}")))?;
-                let file_cell = u32::try_from(n_file_cells)
-                    .map_err(|_| perr(path, conn.pos, "more than 2^32 cells in one file"))?;
-                origin.extend((before..b.n_cells()).map(|_| file_cell));
-                n_file_cells += 1;
             }
-        }
-        for a in &piece.arrays {
-            let cols = match a.section.as_str() {
-                "PointData" => &mut point_data,
-                "CellData" => &mut cell_data,
-                _ => continue,
-            };
-            let values = decode_attr(a, &header, appended.as_ref(), path)?;
-            cols.push(pi, a, values);
-        }
-    }
-    stats.notes(&mut notes);
-    let vertex = point_data.finish("PointData", pieces.len(), b.n_vertices(), &mut notes);
-    let file_cells = cell_data.finish("CellData", pieces.len(), n_file_cells as usize, &mut notes);
-    let cell = file_cells.iter().map(|a| a.gather(&origin)).collect();
-    b.set_attributes(Attributes { vertex, cell });
-    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
-    push_build_notes(&mut notes, &report);
-    Ok(ReadResult {
-        complex,
-        format: if header.poly {
-            Format::Vtp
+            Some(v)
         } else {
-            Format::Vtu
-        },
-        notes,
-    })
+            None
+        };
+        let mut start = 0u64;
+        let mut verts: Vec<u32> = Vec::new();
+        for (i, &end) in offs_v.iter().enumerate() {
+            if end < start || end > conn_v.len() as u64 {
+                return Err(perr(
+                    path,
+                    offs.pos,
+                    format!(
+                        "<{sec}> offset {i} is {end}: offsets must grow and stay within the {} connectivity entries",
+                        conn_v.len()
+                    ),
+                ));
+            }
+            verts.clear();
+            verts.extend(
+                conn_v[start as usize..end as usize]
+                    .iter()
+                    .map(|&v| (v + base) as u32),
+            );
+            start = end;
+            let ty = match (&types_v, sec) {
+                (Some(t), _) => t[i],
+                (None, "Verts") => 2,
+                (None, "Lines") => 4,
+                (None, "Strips") => 6,
+                _ => 7,
+            };
+            let before = self.b.n_cells();
+            push_cell(&mut self.b, &mut self.stats, ty, &verts)
+                .map_err(|e| perr(path, conn.pos, format!("<{sec}> cell {i}: {e}")))?;
+            let file_cell = u32::try_from(self.n_file_cells)
+                .map_err(|_| perr(path, conn.pos, "more than 2^32 cells in one file"))?;
+            self.origin
+                .extend((before..self.b.n_cells()).map(|_| file_cell));
+            self.n_file_cells += 1;
+        }
+        Ok(())
+    }
 }
 
 /// The point or cell data arrays of every piece, concatenated by name.

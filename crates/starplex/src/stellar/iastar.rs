@@ -790,7 +790,7 @@ impl StellarTree {
                 j += 1;
                 key.clear();
                 key.extend(local.iter().map(|&i| vs[i as usize]));
-                if key.iter().any(|&x| view.owns(x)) {
+                if key.iter().any(|&x| view.owns_tree(x)) {
                     key.sort_unstable();
                     key.insert(0, d as u32);
                     keys.push(&key, super::relations::pack(c, j - 1, 1));
@@ -813,7 +813,7 @@ impl StellarTree {
             }
             let mut j = 0usize;
             crate::cell::oriented_facets_of(kind, |local, _| {
-                if local.iter().any(|&x| view.owns(vs[x as usize])) {
+                if local.iter().any(|&x| view.owns_tree(vs[x as usize])) {
                     adj[off[i] as usize + j] = NONE;
                 }
                 j += 1;

@@ -4,9 +4,10 @@
 //! numbering).
 //!
 //! Manifoldness is the one definition of [`crate::algo::manifold`] under its global convention
-//! (d = dimension of the complex): every leaf vertex's star goes through the same
-//! [`StarTester`] that [`crate::algo::manifold::singularities`] uses on any structure, so the two
-//! give the same answer (a test holds them equal). Exact for d <= 3; for d >= 4 undecided
+//! (d = dimension of the complex): each leaf is a [`LocalStar`](crate::topo::LocalStar) part and
+//! runs [`crate::algo::manifold::local_singularities`], whose star tests are those
+//! [`crate::algo::manifold::singularities`] uses on any structure, so the two give the same
+//! answer (a test holds them equal). Exact for d <= 3; for d >= 4 undecided
 //! simplices are reported as unknown.
 //!
 //! ```
@@ -30,47 +31,17 @@
 //! assert_eq!(r.orientable, Some(true));
 //! ```
 use super::relations::unpack;
-use super::{CellStore, LeafView, StellarTree};
-use crate::algo::manifold::{Manifoldness, StarCells, StarTester};
+use super::{LeafView, StellarTree};
+use crate::algo::manifold::{local_singularities_global, Singularities};
 use crate::algo::unionfind::UnionFind;
 use crate::algo::validate::{finish_report, ValidationReport};
-use crate::cell::CellKind;
-use crate::ids::{CellId, VertexId};
-
-/// The star of a tree vertex, as the shared star tests read it (tree numbering).
-struct TreeStar<'a> {
-    cells: &'a CellStore,
-    star: &'a [u32],
-}
-
-impl StarCells for TreeStar<'_> {
-    #[inline(always)]
-    fn len(&self) -> usize {
-        self.star.len()
-    }
-    #[inline(always)]
-    fn cell(&self, i: usize) -> (CellKind, &[u32]) {
-        self.cells.get(self.star[i])
-    }
-    fn all_of(&self, kind: CellKind) -> bool {
-        match self.cells.uniform {
-            Some(k) => k == kind,
-            None => self
-                .star
-                .iter()
-                .all(|&c| self.cells.kinds[c as usize] == super::kind_code(kind)),
-        }
-    }
-}
+use crate::ids::{CellId, TreeVertexId, VertexId};
 
 struct LeafOut {
     boundary: Vec<Vec<u32>>,
     over2: Vec<Vec<u32>>,
     pairs: Vec<(u32, u32, i8)>,
-    nm_v: Vec<u32>,
-    unk_v: Vec<u32>,
-    nm_e: Vec<[u32; 2]>,
-    unk_e: Vec<[u32; 2]>,
+    sing: Singularities<TreeVertexId>,
 }
 
 impl StellarTree {
@@ -161,27 +132,23 @@ impl StellarTree {
             facet_part
                 .into_iter()
                 .zip(vertex_part)
-                .map(
-                    |((boundary, over2, pairs), (nm_v, unk_v, nm_e, unk_e))| LeafOut {
-                        boundary,
-                        over2,
-                        pairs,
-                        nm_v,
-                        unk_v,
-                        nm_e,
-                        unk_e,
-                    },
-                )
+                .map(|((boundary, over2, pairs), sing)| LeafOut {
+                    boundary,
+                    over2,
+                    pairs,
+                    sing,
+                })
                 .collect()
         };
         let to_in = |v: u32| VertexId(self.v_orig[v as usize]);
+        let tv_in = |v: &TreeVertexId| to_in(v.0);
         let face_in = |f: &Vec<u32>| {
             let mut x: Vec<VertexId> = f.iter().map(|&v| to_in(v)).collect();
             x.sort_unstable();
             x
         };
-        let edge_in = |e: &[u32; 2]| {
-            let (a, b) = (to_in(e[0]), to_in(e[1]));
+        let edge_in = |e: &[TreeVertexId; 2]| {
+            let (a, b) = (to_in(e[0].0), to_in(e[1].0));
             if a < b {
                 [a, b]
             } else {
@@ -194,10 +161,13 @@ impl StellarTree {
             r.faces_in_more_than_two_cells
                 .extend(o.over2.iter().map(face_in));
             r.non_manifold_vertices
-                .extend(o.nm_v.iter().map(|&v| to_in(v)));
-            r.unknown_vertices.extend(o.unk_v.iter().map(|&v| to_in(v)));
-            r.non_manifold_edges.extend(o.nm_e.iter().map(edge_in));
-            r.unknown_edges.extend(o.unk_e.iter().map(edge_in));
+                .extend(o.sing.non_manifold_vertices.iter().map(tv_in));
+            r.unknown_vertices
+                .extend(o.sing.unknown_vertices.iter().map(tv_in));
+            r.non_manifold_edges
+                .extend(o.sing.non_manifold_edges.iter().map(edge_in));
+            r.unknown_edges
+                .extend(o.sing.unknown_edges.iter().map(edge_in));
             pairs.extend_from_slice(&o.pairs);
         }
         drop(outs);
@@ -222,38 +192,15 @@ impl StellarTree {
     }
 
     /// Manifold tests for the vertices of a leaf and the edges they own (the edge's smaller
-    /// tree endpoint). Returns (non-manifold vertices, unknown vertices, non-manifold edges,
-    /// unknown edges), tree ids.
-    #[allow(clippy::type_complexity)]
+    /// tree endpoint), tree ids: the shared [`local_singularities`](crate::algo::manifold::local_singularities)
+    /// on the leaf.
     fn leaf_manifold(
         &self,
         view: &LeafView<'_>,
         d: usize,
         fast: bool,
-    ) -> (Vec<u32>, Vec<u32>, Vec<[u32; 2]>, Vec<[u32; 2]>) {
-        let mut out = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        let mut tester = StarTester::default();
-        let mut edges = Vec::new();
-        for v in view.tree_vertices() {
-            let star = TreeStar {
-                cells: &self.cells,
-                star: view.vt_tree(v),
-            };
-            edges.clear();
-            match tester.test_vertex_global(v, &star, d, fast, &mut edges) {
-                Manifoldness::Manifold => {}
-                Manifoldness::NonManifold => out.0.push(v),
-                Manifoldness::Unknown => out.1.push(v),
-            }
-            for &(w, st) in &edges {
-                match st {
-                    Manifoldness::Manifold => {}
-                    Manifoldness::NonManifold => out.2.push([v, w]),
-                    Manifoldness::Unknown => out.3.push([v, w]),
-                }
-            }
-        }
-        out
+    ) -> Singularities<TreeVertexId> {
+        local_singularities_global(view, d, fast)
     }
 }
 
@@ -377,23 +324,26 @@ mod tests {
             let Some(d) = t.dim() else { continue };
             let norm = |mut r: Vec<LeafManifold>| {
                 for x in &mut r {
-                    x.2.sort_unstable();
-                    x.3.sort_unstable();
+                    x.non_manifold_edges.sort_unstable();
+                    x.unknown_edges.sort_unstable();
                 }
                 r
             };
             let fast = norm(t.par_map_leaves(|view| t.leaf_manifold(view, d, true)));
             let slow = norm(t.par_map_leaves(|view| t.leaf_manifold(view, d, false)));
-            let nm: usize = slow.iter().map(|x| x.0.len()).sum();
+            let nm: usize = slow.iter().map(|x| x.non_manifold_vertices.len()).sum();
             seen[0] += nm;
             seen[1] += t.n_vertices() - nm;
-            seen[2] += slow.iter().map(|x| x.2.len()).sum::<usize>();
+            seen[2] += slow
+                .iter()
+                .map(|x| x.non_manifold_edges.len())
+                .sum::<usize>();
             assert_eq!(fast, slow, "case {case} kv {kv}");
         }
     }
 
     /// What [`StellarTree::leaf_manifold`] returns for one leaf.
-    type LeafManifold = (Vec<u32>, Vec<u32>, Vec<[u32; 2]>, Vec<[u32; 2]>);
+    type LeafManifold = crate::algo::manifold::Singularities<crate::ids::TreeVertexId>;
 
     /// The triangle short cut answers like the generic test, on random (mostly non-manifold)
     /// sets of triangles, triangulated grids with holes, and stars mixing triangles and edges.

@@ -14,8 +14,9 @@
 //! # let k = b.build(&BuildOptions::default()).unwrap().0;
 //! let t = StellarTree::build(&k, &StellarOptions { kv: Some(2), ..Default::default() }).unwrap();
 //! // sum of |VT(v)| over all vertices, one leaf at a time, in parallel
+//! use starplex::topo::LocalStar;
 //! let per_leaf: Vec<usize> = t.par_map_leaves(|leaf| {
-//!     leaf.tree_vertices().map(|v| leaf.vt_tree(v).len()).sum()
+//!     leaf.owned_vertices().map(|v| leaf.local_star(v).len()).sum()
 //! });
 //! assert_eq!(per_leaf.iter().sum::<usize>(), 6);
 //! ```
@@ -26,7 +27,8 @@ use rayon::prelude::*;
 use super::sre;
 use super::StellarTree;
 use crate::cell::CellKind;
-use crate::ids::{CellId, LeafId, VertexId};
+use crate::ids::{CellId, LeafId, TreeCellId, TreeVertexId, VertexId};
+use crate::topo::LocalStar;
 
 /// A leaf expanded for processing: its cells and its local VT relation, in tree numbering.
 ///
@@ -496,29 +498,6 @@ impl<'a> LeafView<'a> {
     pub fn leaf(&self) -> LeafId {
         self.e.leaf
     }
-    /// Tree ids of the leaf's vertices.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// # use starplex::ids::{CellId, LeafId, VertexId};
-    /// use starplex::stellar::LeafView;
-    /// // the leaf of input vertex 1, which is in both triangles
-    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
-    /// let leaf = LeafView { tree: &t, e: &e };
-    /// assert_eq!(leaf.tree_vertices(), t.leaf_vertices(leaf.leaf()));
-    /// assert!(leaf.tree_vertices().contains(&t.vertex_from_input()[1].0));
-    /// ```
-    pub fn tree_vertices(&self) -> std::ops::Range<u32> {
-        self.e.v_start..self.e.v_end
-    }
     /// Input ids of the leaf's vertices (in tree order).
     ///
     /// ```
@@ -542,152 +521,94 @@ impl<'a> LeafView<'a> {
         self.tree_vertices()
             .map(|v| VertexId(self.tree.v_orig[v as usize]))
     }
-    /// True when tree vertex `v` belongs to the leaf.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// # use starplex::ids::{CellId, LeafId, VertexId};
-    /// use starplex::stellar::LeafView;
-    /// // the leaf of input vertex 1, which is in both triangles
-    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
-    /// let leaf = LeafView { tree: &t, e: &e };
-    /// assert!(leaf.owns(t.vertex_from_input()[1].0));
-    /// assert!(!leaf.owns(t.vertex_from_input()[0].0));
-    /// ```
+    /// Tree ids of the leaf's vertices, as raw `u32` (the typed form is
+    /// [`LocalStar::owned_vertices`]).
     #[inline]
-    pub fn owns(&self, v: u32) -> bool {
+    pub(crate) fn tree_vertices(&self) -> std::ops::Range<u32> {
+        self.e.v_start..self.e.v_end
+    }
+    /// True when tree vertex `v` belongs to the leaf (raw form of [`LocalStar::owns`]).
+    #[inline]
+    pub(crate) fn owns_tree(&self, v: u32) -> bool {
         v >= self.e.v_start && v < self.e.v_end
     }
-    /// Tree ids of the leaf's top cells (increasing).
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// # use starplex::ids::{CellId, LeafId, VertexId};
-    /// use starplex::stellar::LeafView;
-    /// // the leaf of input vertex 1, which is in both triangles
-    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
-    /// let leaf = LeafView { tree: &t, e: &e };
-    /// let mut input: Vec<CellId> = leaf.tree_cells().iter().map(|&c| leaf.input_cell(c)).collect();
-    /// input.sort();
-    /// assert_eq!(input, vec![CellId(0), CellId(1)]);
-    /// ```
-    pub fn tree_cells(&self) -> &'a [u32] {
-        &self.e.cells
-    }
-    /// Kind and tree-numbered vertices of a tree cell.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// # use starplex::ids::{CellId, LeafId, VertexId};
-    /// use starplex::stellar::LeafView;
-    /// // the leaf of input vertex 1, which is in both triangles
-    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
-    /// let leaf = LeafView { tree: &t, e: &e };
-    /// for &c in leaf.tree_cells() {
-    ///     let (kind, vs) = leaf.cell(c);
-    ///     assert_eq!(kind, CellKind::Simplex(2));
-    ///     assert!(vs.contains(&t.vertex_from_input()[1].0));
-    /// }
-    /// ```
+    /// Kind and tree-numbered vertices of a tree cell (raw form of [`LocalStar::local_cell`]).
     #[inline]
-    pub fn cell(&self, c: u32) -> (CellKind, &'a [u32]) {
+    pub(crate) fn cell(&self, c: u32) -> (CellKind, &'a [u32]) {
         self.tree.cells.get(c)
     }
-    /// Top cells (tree ids, increasing) incident to tree vertex `v` of this leaf.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// # use starplex::ids::{CellId, LeafId, VertexId};
-    /// use starplex::stellar::LeafView;
-    /// // the leaf of input vertex 1, which is in both triangles
-    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
-    /// let leaf = LeafView { tree: &t, e: &e };
-    /// let v = t.vertex_from_input()[1].0;
-    /// assert_eq!(leaf.vt_tree(v).len(), 2); // both triangles
-    /// ```
+    /// Top cells (tree ids, increasing) incident to tree vertex `v` of this leaf (raw form of
+    /// [`LocalStar::local_star`]).
     #[inline]
-    pub fn vt_tree(&self, v: u32) -> &'a [u32] {
+    pub(crate) fn vt_tree(&self, v: u32) -> &'a [u32] {
         let i = (v - self.e.v_start) as usize;
         &self.e.vt[self.e.vt_off[i] as usize..self.e.vt_off[i + 1] as usize]
     }
-    /// Input id of a tree vertex.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// # use starplex::ids::{CellId, LeafId, VertexId};
-    /// use starplex::stellar::LeafView;
-    /// // the leaf of input vertex 1, which is in both triangles
-    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
-    /// let leaf = LeafView { tree: &t, e: &e };
-    /// let v = leaf.tree_vertices().start;
-    /// assert_eq!(leaf.input_vertex(v), VertexId(1));
-    /// ```
-    #[inline]
-    pub fn input_vertex(&self, v: u32) -> VertexId {
-        VertexId(self.tree.v_orig[v as usize])
+}
+
+/// A leaf is a part of the complex that owns its vertices and holds every top cell incident
+/// to them, in tree numbering.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # use starplex::stellar::{StellarTree, StellarOptions};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::ids::{CellId, TreeVertexId, VertexId};
+/// use starplex::stellar::LeafView;
+/// use starplex::topo::LocalStar;
+/// // the leaf of input vertex 1, which is in both triangles
+/// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
+/// let leaf = LeafView { tree: &t, e: &e };
+/// let v: TreeVertexId = t.vertex_from_input()[1];
+/// assert_eq!(leaf.owned_vertices().collect::<Vec<_>>(), [v]);
+/// assert!(leaf.owns(v) && !leaf.owns(t.vertex_from_input()[0]));
+/// assert_eq!(leaf.input_vertex(v), VertexId(1));
+/// assert_eq!(leaf.local_star(v).len(), 2); // both triangles
+/// let mut input: Vec<CellId> = leaf.local_top_cells().map(|c| leaf.input_cell(c)).collect();
+/// input.sort();
+/// assert_eq!(input, [CellId(0), CellId(1)]);
+/// for c in leaf.local_top_cells() {
+///     let (kind, vs) = leaf.local_cell(c);
+///     assert_eq!(kind, CellKind::Simplex(2));
+///     assert!(vs.contains(&v));
+/// }
+/// ```
+impl LocalStar for LeafView<'_> {
+    type Vertex = TreeVertexId;
+    type Cell = TreeCellId;
+
+    fn owned_vertices(&self) -> impl Iterator<Item = TreeVertexId> + '_ {
+        self.tree_vertices().map(TreeVertexId)
     }
-    /// Input id of a tree cell.
-    ///
-    /// ```
-    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
-    /// # use starplex::cell::CellKind;
-    /// # use starplex::stellar::{StellarTree, StellarOptions};
-    /// # let mut b = ComplexBuilder::new(2).unwrap();
-    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
-    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
-    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// # use starplex::ids::{CellId, LeafId, VertexId};
-    /// use starplex::stellar::LeafView;
-    /// // the leaf of input vertex 1, which is in both triangles
-    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
-    /// let leaf = LeafView { tree: &t, e: &e };
-    /// let c = t.cell_from_input()[1].0;
-    /// assert_eq!(leaf.input_cell(c), CellId(1));
-    /// ```
     #[inline]
-    pub fn input_cell(&self, c: u32) -> CellId {
-        CellId(self.tree.c_orig[c as usize])
+    fn owns(&self, v: TreeVertexId) -> bool {
+        self.owns_tree(v.0)
+    }
+    fn local_top_cells(&self) -> impl Iterator<Item = TreeCellId> + '_ {
+        self.e.cells.iter().map(|&c| TreeCellId(c))
+    }
+    #[inline]
+    fn local_star(&self, v: TreeVertexId) -> &[TreeCellId] {
+        bytemuck::cast_slice(self.vt_tree(v.0))
+    }
+    #[inline]
+    fn local_cell(&self, c: TreeCellId) -> (CellKind, &[TreeVertexId]) {
+        let (kind, vs) = self.cell(c.0);
+        (kind, bytemuck::cast_slice(vs))
+    }
+    fn uniform_kind(&self) -> Option<CellKind> {
+        self.tree.cells.uniform
+    }
+    fn input_vertex(&self, v: TreeVertexId) -> VertexId {
+        VertexId(self.tree.v_orig[v.index()])
+    }
+    fn input_cell(&self, c: TreeCellId) -> CellId {
+        CellId(self.tree.c_orig[c.index()])
     }
 }

@@ -22,6 +22,7 @@
 //! | [`Star`] | St(σ): every simplex containing σ |
 //! | [`Levels`] | iteration over the p-simplices, level by level |
 //! | [`Storage`] | size in references and bytes |
+//! | [`LocalStar`] | a part (a Stellar leaf, an MPI rank, the whole complex) holding the whole star of each vertex it owns |
 //!
 //! Generic algorithms written once against them: [`generic`] (closure, link, skeleton,
 //! Euler characteristic), [`link::vertex_link`], [`crate::algo::components`],
@@ -87,9 +88,12 @@ mod facets;
 pub mod from_tops;
 pub mod generic;
 pub mod link;
+mod local;
 pub mod naive;
 
 pub use facets::{Adjacent, FacetAdjacency};
+pub(crate) use local::PartStar;
+pub use local::{LocalId, LocalStar};
 
 /// Default budget of simplices a query may enumerate before refusing with an estimate.
 ///

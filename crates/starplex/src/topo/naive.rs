@@ -12,7 +12,7 @@
 //! let idx = VtIndex::new(&k);
 //! assert_eq!(idx.n_top_cells(), 1);
 //! ```
-use super::{Storage, TopCells, VertexAdjacency, VertexStar};
+use super::{LocalStar, Storage, TopCells, VertexAdjacency, VertexStar};
 use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::csr::Csr;
@@ -126,6 +126,54 @@ impl VertexStar for VtIndex<'_> {
             let cell = self.complex.cell(CellId(c));
             s.iter().all(|v| cell.vertices.contains(&v.0))
         }))
+    }
+}
+
+/// The whole complex as one part: it owns every vertex, in input numbering.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, LocalStar};
+/// use starplex::ids::{CellId, VertexId};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let idx = VtIndex::new(&k);
+/// assert!(idx.owns(VertexId(3)));
+/// assert_eq!(idx.local_top_cells().count(), 2);
+/// assert_eq!(idx.local_star(VertexId(2)), [CellId(0), CellId(1)]);
+/// assert_eq!(idx.input_cell(CellId(1)), CellId(1));
+/// ```
+impl LocalStar for VtIndex<'_> {
+    type Vertex = VertexId;
+    type Cell = CellId;
+
+    fn owned_vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
+        (0..self.complex.n_vertices() as u32).map(VertexId)
+    }
+    fn owns(&self, v: VertexId) -> bool {
+        v.index() < self.complex.n_vertices()
+    }
+    fn local_top_cells(&self) -> impl Iterator<Item = CellId> + '_ {
+        (0..self.complex.n_cells() as u32).map(CellId)
+    }
+    #[inline]
+    fn local_star(&self, v: VertexId) -> &[CellId] {
+        bytemuck::cast_slice(self.vt.row(v.index()))
+    }
+    #[inline]
+    fn local_cell(&self, c: CellId) -> (CellKind, &[VertexId]) {
+        let cell = self.complex.cell(c);
+        (cell.kind, bytemuck::cast_slice(cell.vertices))
+    }
+    fn input_vertex(&self, v: VertexId) -> VertexId {
+        v
+    }
+    fn input_cell(&self, c: CellId) -> CellId {
+        c
     }
 }
 

@@ -53,7 +53,7 @@
 //! ```
 use crate::cell::CellKind;
 use crate::ids::{CellId, VertexId};
-use crate::topo::{QueryError, TopCells, VertexStar};
+use crate::topo::{LocalStar, PartStar, QueryError, TopCells, VertexStar};
 
 mod star;
 mod tets;
@@ -366,16 +366,30 @@ impl StarTester {
 /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
 /// assert_eq!(singularities(&VtIndex::new(&k), Convention::Global).unwrap(), Singularities::default());
 /// ```
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Singularities {
+///
+/// `V` is the vertex id of the answer: [`VertexId`] for a whole complex, a part's own id for
+/// [`local_singularities`] (a Stellar leaf answers in tree ids).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Singularities<V = VertexId> {
     /// Non-manifold vertices.
-    pub non_manifold_vertices: Vec<VertexId>,
+    pub non_manifold_vertices: Vec<V>,
     /// Vertices whose manifoldness is undecided (links of dimension ≥ 3).
-    pub unknown_vertices: Vec<VertexId>,
-    /// Non-manifold edges (sorted endpoints).
-    pub non_manifold_edges: Vec<[VertexId; 2]>,
+    pub unknown_vertices: Vec<V>,
+    /// Non-manifold edges (endpoints sorted, in the answer's numbering).
+    pub non_manifold_edges: Vec<[V; 2]>,
     /// Undecided edges.
-    pub unknown_edges: Vec<[VertexId; 2]>,
+    pub unknown_edges: Vec<[V; 2]>,
+}
+
+impl<V> Default for Singularities<V> {
+    fn default() -> Self {
+        Singularities {
+            non_manifold_vertices: Vec::new(),
+            unknown_vertices: Vec::new(),
+            non_manifold_edges: Vec::new(),
+            unknown_edges: Vec::new(),
+        }
+    }
 }
 
 /// Tests whether the pure complex with maximal simplices `maxes` (each of m+1 vertices, sorted,
@@ -607,4 +621,79 @@ pub fn singularities_in_dim<S: TopCells + VertexStar + ?Sized>(
         }
     }
     Ok(r)
+}
+
+/// The non-manifold (and undecided) vertices a part owns and the edges it owns (an edge
+/// belongs to the part owning its endpoint of smaller id), in the part's own numbering, under
+/// `convention`, for a part of a complex of dimension `d`. One definition for every part: a
+/// Stellar tree runs it leaf by leaf ([`StellarTree::validate`](crate::stellar::StellarTree::validate)),
+/// and on a whole complex it equals [`singularities_in_dim`].
+///
+/// ```
+/// use starplex::algo::manifold::{local_singularities, singularities, Convention};
+/// use starplex::topo::naive::VtIndex;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(1).unwrap();
+/// for x in 0..5 { b.push_vertex(&[x as f64]).unwrap(); }
+/// for c in [2, 3, 4] { b.push_cell(CellKind::Simplex(2), &[0, 1, c]).unwrap(); }
+/// let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let idx = VtIndex::new(&k);
+/// let whole = local_singularities(&idx, Convention::Global, 2);
+/// assert_eq!(whole, singularities(&idx, Convention::Global).unwrap());
+/// ```
+pub fn local_singularities<P: LocalStar + ?Sized>(
+    part: &P,
+    convention: Convention,
+    d: usize,
+) -> Singularities<P::Vertex> {
+    scan_part(part, |t, v, star, edges| {
+        t.test_vertex(v, star, convention, d, edges)
+    })
+}
+
+/// [`local_singularities`] under the global convention, with the tetrahedral and triangular
+/// short cuts allowed or not (`fast`; the answers are equal, which the Stellar tests check).
+pub(crate) fn local_singularities_global<P: LocalStar + ?Sized>(
+    part: &P,
+    d: usize,
+    fast: bool,
+) -> Singularities<P::Vertex> {
+    scan_part(part, |t, v, star, edges| {
+        t.test_vertex_global(v, star, d, fast, edges)
+    })
+}
+
+fn scan_part<P: LocalStar + ?Sized>(
+    part: &P,
+    mut test: impl FnMut(
+        &mut StarTester,
+        u32,
+        &PartStar<'_, P>,
+        &mut Vec<(u32, Manifoldness)>,
+    ) -> Manifoldness,
+) -> Singularities<P::Vertex> {
+    let mut r = Singularities::default();
+    let mut tester = StarTester::default();
+    let mut edges = Vec::new();
+    for v in part.owned_vertices() {
+        let star = PartStar {
+            part,
+            star: part.local_star(v),
+        };
+        edges.clear();
+        match test(&mut tester, v.into(), &star, &mut edges) {
+            Manifoldness::Manifold => {}
+            Manifoldness::NonManifold => r.non_manifold_vertices.push(v),
+            Manifoldness::Unknown => r.unknown_vertices.push(v),
+        }
+        for &(w, st) in &edges {
+            match st {
+                Manifoldness::Manifold => {}
+                Manifoldness::NonManifold => r.non_manifold_edges.push([v, P::Vertex::from(w)]),
+                Manifoldness::Unknown => r.unknown_edges.push([v, P::Vertex::from(w)]),
+            }
+        }
+    }
+    r
 }

@@ -174,7 +174,7 @@ impl StellarTree {
                             key.clear();
                             key.extend(local.iter().map(|&i| vs[i as usize]));
                             let m = *key.iter().min().expect("faces have vertices");
-                            if view.owns(m) {
+                            if view.owns_tree(m) {
                                 key.sort_unstable();
                                 keys.push(key, c as u64);
                             }
@@ -440,9 +440,9 @@ impl StellarTree {
                             key.clear();
                             key.extend(local.iter().map(|&i| vs[i as usize]));
                             let keep = if local_rule {
-                                key.iter().any(|&v| view.owns(v))
+                                key.iter().any(|&v| view.owns_tree(v))
                             } else {
-                                view.owns(*key.iter().min().expect("facets have vertices"))
+                                view.owns_tree(*key.iter().min().expect("facets have vertices"))
                             };
                             if !keep {
                                 return;
@@ -498,15 +498,15 @@ fn simplex_facets(
     }
     let parity: i8 = if swaps.is_multiple_of(2) { 1 } else { -1 };
     let owned = if local_rule {
-        sv[..n].iter().filter(|&&x| view.owns(x)).count()
+        sv[..n].iter().filter(|&&x| view.owns_tree(x)).count()
     } else {
         0
     };
     for k in 0..n {
         let keep = if local_rule {
-            owned > view.owns(sv[k]) as usize
+            owned > view.owns_tree(sv[k]) as usize
         } else {
-            view.owns(if k == 0 { sv[1] } else { sv[0] })
+            view.owns_tree(if k == 0 { sv[1] } else { sv[0] })
         };
         if !keep {
             continue;
