@@ -40,7 +40,7 @@ pub fn run(ctx: &Ctx, file: Option<PathBuf>) -> Result<(), CliError> {
 fn demo_stellar(ctx: &Ctx, input: &InputArgs) -> Result<(), CliError> {
     let k = load(ctx, input)?.complex;
     let t0 = std::time::Instant::now();
-    let t = crate::cmd_stellar::build_tree(ctx, &k, None, "auto")?;
+    let t = crate::cmd_stellar::build_tree(ctx, &k, None, "auto", "spatial")?;
     let build_s = t0.elapsed().as_secs_f64();
     println!("\nStellar tree");
     crate::cmd_stellar::print_stats(&t.stats());

@@ -358,7 +358,7 @@ fn finish(
     common::with_spinner(ctx, "writing", || io::write(&b.out, &built.complex, to))?;
     let write_s = t.elapsed().as_secs_f64();
     let n_max: usize = built.by_dim.iter().map(|&(_, c)| c).sum();
-    let isolated = built.complex.n_isolated_vertices();
+    let isolated = built.n_isolated;
     if b.json {
         summary["n_edges"] = json!(built.n_edges);
         summary["n_maximal_simplices"] = json!(n_max);

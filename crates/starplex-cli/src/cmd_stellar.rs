@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use serde_json::{json, Value};
 use starplex::measure;
-use starplex::stellar::{SplitMode, StellarOptions, StellarStats, StellarTree};
+use starplex::stellar::{Decomposition, SplitMode, StellarOptions, StellarStats, StellarTree};
 
 use crate::common::{self, CliError, Ctx, InputArgs};
 
@@ -20,6 +20,11 @@ pub struct StellarArgs {
     /// Split rule: auto (2^n regular up to 3 ambient dimensions, kD above), regular, kd.
     #[arg(long, default_value = "auto")]
     pub split: String,
+    /// How vertices are split into blocks: spatial (by coordinates, with --split) or graph (by
+    /// connectivity alone: recursive bisection of the vertex graph of the top cells, for
+    /// complexes without meaningful coordinates such as flag complexes of graphs).
+    #[arg(long, default_value = "spatial")]
+    pub decomposition: String,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -49,6 +54,17 @@ pub fn split_mode(s: &str) -> Result<SplitMode, CliError> {
     }
 }
 
+pub fn decomposition(s: &str) -> Result<Decomposition, CliError> {
+    match s {
+        "spatial" => Ok(Decomposition::Spatial),
+        "graph" => Ok(Decomposition::Graph),
+        _ => Err(CliError::Input(
+            format!("unknown decomposition '{s}'"),
+            Some("use spatial or graph".into()),
+        )),
+    }
+}
+
 /// Runs `f` on a pool of `threads` threads (or the global pool).
 pub fn with_threads<T: Send>(
     threads: Option<usize>,
@@ -72,10 +88,12 @@ pub fn build_tree(
     k: &starplex::complex::IndexedComplex,
     kv: Option<u32>,
     split: &str,
+    decomp: &str,
 ) -> Result<StellarTree, CliError> {
     let opts = StellarOptions {
         kv,
         split: split_mode(split)?,
+        decomposition: decomposition(decomp)?,
         ..Default::default()
     };
     common::with_spinner(ctx, "building the Stellar tree", || {
@@ -146,6 +164,9 @@ pub fn load_saved_tree(ctx: &Ctx, path: &std::path::Path) -> Result<StellarTree,
 }
 
 pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
+    // bad option values fail before any reading
+    split_mode(&a.split)?;
+    decomposition(&a.decomposition)?;
     let t0 = Instant::now();
     let saved = starplex::stellar::is_saved_tree(&a.input.file);
     let k = if saved {
@@ -160,7 +181,7 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     let (t, build_s) = with_threads(a.threads, || {
         let t1 = Instant::now();
         let t = match &k {
-            Some(k) => build_tree(ctx, k, a.kv, &a.split),
+            Some(k) => build_tree(ctx, k, a.kv, &a.split, &a.decomposition),
             None => load_saved_tree(ctx, &a.input.file),
         };
         (t, t1.elapsed().as_secs_f64())
@@ -260,6 +281,7 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     if a.json {
         let mut v = stats_json(&s);
         v["split"] = json!(format!("{:?}", t.split()).to_lowercase());
+        v["decomposition"] = json!(format!("{:?}", t.decomposition()).to_lowercase());
         v["timings"] = timings;
         println!(
             "{}",

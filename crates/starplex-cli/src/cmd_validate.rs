@@ -105,7 +105,7 @@ pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
     let (rep, build_s, validate_s) = with_threads(a.threads, || {
         let t1 = Instant::now();
         let t = match &k {
-            Some(k) => build_tree(ctx, k, a.kv, "auto")?,
+            Some(k) => build_tree(ctx, k, a.kv, "auto", "spatial")?,
             None => crate::cmd_stellar::load_saved_tree(ctx, &a.input.file)?,
         };
         let build_s = t1.elapsed().as_secs_f64();

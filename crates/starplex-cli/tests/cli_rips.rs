@@ -324,3 +324,103 @@ fn rips_metrics_and_precomputed_distances() {
         refused(&o, needle, &bad_out);
     }
 }
+
+/// `stellar --decomposition graph` on a flag complex (no meaningful coordinates): the same
+/// counts and VT answers as the spatial tree, the JSON says which, a saved graph tree reloads
+/// as one; a bad value is refused with exit status 2.
+#[test]
+fn stellar_graph_decomposition_of_a_flag_complex() {
+    let d = dir("graph");
+    let edges = d.join("g.txt");
+    // two 4-cliques joined by a path, and a triangle apart; ids shuffled
+    let mut text = String::new();
+    for (a, b) in [
+        (0, 5),
+        (0, 9),
+        (0, 2),
+        (5, 9),
+        (5, 2),
+        (9, 2),
+        (2, 7),
+        (7, 11),
+        (11, 1),
+        (1, 3),
+        (1, 8),
+        (1, 10),
+        (3, 8),
+        (3, 10),
+        (8, 10),
+        (4, 6),
+        (6, 12),
+        (12, 4),
+    ] {
+        text.push_str(&format!("{a} {b}\n"));
+    }
+    std::fs::write(&edges, text).unwrap();
+    let out = d.join("g.spx");
+    let o = run(&["flag", s(&edges), "-o", s(&out)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stats = |extra: &[&str]| -> serde_json::Value {
+        let mut a = vec!["stellar", s(&out), "--kv", "3", "--json", "--bench"];
+        a.extend_from_slice(extra);
+        let o = run(&a);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let sp = stats(&[]);
+    let gr = stats(&["--decomposition", "graph"]);
+    assert_eq!(sp["decomposition"], "spatial");
+    assert_eq!(gr["decomposition"], "graph");
+    for key in ["n_vertices", "n_top_cells"] {
+        assert_eq!(sp[key], gr[key], "{key}");
+    }
+    assert!(gr["leaf_max_vertices"].as_u64().unwrap() <= 3);
+    // a saved graph tree reloads as one, and answers VT, VV and links like the mesh
+    let saved = d.join("g.stl");
+    let o = run(&[
+        "stellar",
+        s(&out),
+        "--kv",
+        "3",
+        "--decomposition",
+        "graph",
+        "--save",
+        s(&saved),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(&["stellar", s(&saved), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["decomposition"], "graph");
+    assert_eq!(j["chi"], gr["chi"]);
+    for rel in ["vt", "vv", "link"] {
+        let answers = |file: &Path, tag: &str| {
+            let f = d.join(format!("{tag}-{rel}.jsonl"));
+            let o = run(&[
+                "query",
+                s(file),
+                "--structure",
+                "stellar",
+                "--relation",
+                rel,
+                "--all",
+                "--out",
+                s(&f),
+            ]);
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            std::fs::read_to_string(&f).unwrap()
+        };
+        let (a, b) = (answers(&out, "mesh"), answers(&saved, "tree"));
+        assert!(a.lines().count() >= 13, "{rel}: {a}");
+        assert_eq!(a, b, "{rel}");
+    }
+    // a bad value: exit 2, naming the choices
+    let o = run(&["stellar", s(&out), "--decomposition", "spectral"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("spectral") && err.contains("spatial or graph"),
+        "{err}"
+    );
+}

@@ -601,6 +601,18 @@ pub fn check_cell(cell: u64, vertices: &[u32], n_vertices: usize) -> Result<(), 
 /// True when every index of `verts` is below `nv` and the cells of `n` vertices have no
 /// repeated vertex (what [`check_cell`] checks, for a whole block, without early exits).
 fn block_is_valid(verts: &[u32], n: usize, nv: usize) -> bool {
+    // large blocks (complexes built from data) are checked in parallel
+    const PAR_REFS: usize = 1 << 20;
+    if verts.len() > PAR_REFS {
+        use rayon::prelude::*;
+        return verts
+            .par_chunks(n * (PAR_REFS / 16))
+            .all(|c| block_is_valid_serial(c, n, nv));
+    }
+    block_is_valid_serial(verts, n, nv)
+}
+
+fn block_is_valid_serial(verts: &[u32], n: usize, nv: usize) -> bool {
     fn distinct<const N: usize>(verts: &[u32]) -> bool {
         let mut bad = false;
         for c in verts.chunks_exact(N) {

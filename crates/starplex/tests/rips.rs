@@ -4,11 +4,13 @@
 //! datasets' numpy generator.
 mod common_data;
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use starplex::algo::rips::{
     rips_complex, rips_complex_with, rips_from_distances, DistanceMatrix, Metric, RipsOptions,
 };
+use starplex::complex::IndexedComplex;
 use starplex::generate::sierpinski::{sierpinski, SierpinskiOptions};
 use starplex::io::{self, ReadOptions};
 
@@ -82,6 +84,7 @@ proptest::proptest! {
         let got = rips_complex(&pts, dim, eps, &o).unwrap();
         proptest::prop_assert_eq!(cells(&got.complex), brute(&pts, dim, eps, k));
         proptest::prop_assert_eq!(got.complex.n_vertices(), n);
+        proptest::prop_assert_eq!(got.n_isolated, got.complex.n_isolated_vertices());
     }
 
     /// L1 and L∞ (kd-tree in 2–8 dimensions, sweep above) and a precomputed distance matrix
@@ -245,9 +248,133 @@ fn check_vr(name: &str, size: &str, required: bool) {
     }
 }
 
+/// The K-skeleton by the definition, computed the old way from the maximal simplices `full`:
+/// its maximal simplices of at most K vertices as they are, and every (K+1)-subset of the larger
+/// ones, packed into u128 keys, globally sorted and deduplicated. Returns the skeleton's blocks
+/// as (vertices per cell, flat vertex list).
+fn skeleton_by_subsets(full: &IndexedComplex, k: usize) -> Vec<(usize, Vec<u32>)> {
+    let s = k + 1;
+    let bits = 128 / s as u32;
+    assert!(
+        (full.n_vertices() as u64) < 1u64 << bits.min(63),
+        "ids too large to pack"
+    );
+    let mut small: BTreeMap<usize, Vec<u32>> = BTreeMap::new();
+    let mut keys: Vec<u128> = Vec::new();
+    let mut idx = vec![0usize; s];
+    for c in full.cells() {
+        let v = c.vertices;
+        if v.len() <= k {
+            small.entry(v.len()).or_default().extend_from_slice(v);
+            continue;
+        }
+        // every s-subset of v (ascending positions), as one key
+        for (i, x) in idx.iter_mut().enumerate() {
+            *x = i;
+        }
+        loop {
+            keys.push(idx.iter().fold(0u128, |a, &i| (a << bits) | v[i] as u128));
+            let Some(i) = (0..s).rev().find(|&i| idx[i] < v.len() - s + i) else {
+                break;
+            };
+            idx[i] += 1;
+            for j in i + 1..s {
+                idx[j] = idx[j - 1] + 1;
+            }
+        }
+    }
+    keys.sort_unstable();
+    keys.dedup();
+    let mask = (1u128 << bits) - 1;
+    let mut top = Vec::with_capacity(keys.len() * s);
+    for key in keys {
+        for i in (0..s).rev() {
+            top.push(((key >> (bits * i as u32)) & mask) as u32);
+        }
+    }
+    let mut out: Vec<(usize, Vec<u32>)> = small.into_iter().collect();
+    if !top.is_empty() {
+        out.push((s, top));
+    }
+    out
+}
+
+/// The skeleton path of `rips_complex` against [`skeleton_by_subsets`] of its full complex.
+fn check_skeleton(name: &str, pts: &[f64], dim: usize, eps: f64, ks: &[usize]) {
+    let full = rips_complex(pts, dim, eps, &RipsOptions::default())
+        .unwrap()
+        .complex;
+    for &k in ks {
+        let o = RipsOptions {
+            max_dim: Some(k),
+            ..Default::default()
+        };
+        let got = rips_complex(pts, dim, eps, &o).unwrap().complex;
+        let got: Vec<(usize, Vec<u32>)> = got
+            .blocks()
+            .iter()
+            .map(|b| (b.kind.n_vertices(), b.vertices.to_vec()))
+            .collect();
+        let want = skeleton_by_subsets(&full, k);
+        assert_eq!(got.len(), want.len(), "{name} K {k}: blocks");
+        for ((gs, gv), (ws, wv)) in got.iter().zip(&want) {
+            assert_eq!(gs, ws, "{name} K {k}");
+            assert!(gv == wv, "{name} K {k}: the cells of {gs} vertices differ");
+        }
+        eprintln!(
+            "{name} K {k}: {:?}",
+            got.iter()
+                .map(|(s, v)| (*s, v.len() / s))
+                .collect::<Vec<_>>()
+        );
+    }
+}
+
 #[test]
 fn vr_kitten_s_equals_the_networkx_oracle() {
     check_vr("vr_kitten_s", "small", common_data::data_required());
+}
+
+/// The skeleton (every (K+1)-clique listed directly, in order) equals the subsets of the
+/// maximal simplices, sorted and deduplicated, on the dataset's points and on a dense cloud.
+#[test]
+fn skeleton_equals_the_subsets_of_the_maximal_simplices() {
+    if let Some((off, meta, _)) = find("vr_kitten_s", "small") {
+        let pts = io::points::read_points(&off).unwrap();
+        let eps = meta["eps"].as_f64().unwrap();
+        check_skeleton("vr_kitten_s", &pts.coords, pts.dim, eps, &[1, 2, 3, 5, 7]);
+    } else {
+        assert!(
+            !common_data::data_required(),
+            "vr_kitten_s not found (CI=true)"
+        );
+    }
+    // 600 random points in the unit cube at a scale with cliques of ~20 points
+    let mut s = 7u64;
+    let pts: Vec<f64> = (0..1800)
+        .map(|_| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 40) as f64 / (1u64 << 24) as f64
+        })
+        .collect();
+    check_skeleton("cube600", &pts, 3, 0.2, &[2, 3, 4, 5]);
+}
+
+/// The radar setting (CGAL `points_3/radar.xyz`, ε = 3 × the median nearest-neighbour
+/// distance), K = 3 and 5: run with `--ignored` when the CGAL data is there (~1 GB, a minute).
+#[test]
+#[ignore]
+fn radar_skeleton_equals_the_subsets_of_the_maximal_simplices() {
+    let dir = std::env::var("STARPLEX_DATA").unwrap_or_else(|_| "/work/data".into());
+    let path = Path::new(&dir).join("cgal/data/points_3/radar.xyz");
+    let Ok(pts) = io::points::read_points(&path) else {
+        eprintln!("SKIPPED: {} not found", path.display());
+        return;
+    };
+    let eps = 3.0 * starplex::algo::rips::median_nn_distance(&pts.coords, pts.dim).unwrap();
+    check_skeleton("radar", &pts.coords, pts.dim, eps, &[3, 5]);
 }
 
 #[test]

@@ -9,7 +9,7 @@ use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 use starplex::ids::{CellId, LeafId, TreeCellId, VertexId};
 use starplex::stellar::sre::SreIter;
-use starplex::stellar::{SplitMode, StellarOptions, StellarTree};
+use starplex::stellar::{Decomposition, SplitMode, StellarOptions, StellarTree};
 use starplex::topo::{
     link::vertex_link, naive::VtIndex, LocalStar, TopCells, VertexAdjacency, VertexStar,
 };
@@ -281,6 +281,16 @@ fn bf_nm_edges_2(k: &IndexedComplex) -> Vec<[u32; 2]> {
 // ---------------- the comparison ----------------
 
 fn check(k: &IndexedComplex, kv: u32, threads: usize, split: SplitMode) {
+    check_with(k, kv, threads, split, Decomposition::Spatial)
+}
+
+fn check_with(
+    k: &IndexedComplex,
+    kv: u32,
+    threads: usize,
+    split: SplitMode,
+    decomposition: Decomposition,
+) {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -291,6 +301,7 @@ fn check(k: &IndexedComplex, kv: u32, threads: usize, split: SplitMode) {
             &StellarOptions {
                 kv: Some(kv),
                 split,
+                decomposition,
                 ..Default::default()
             },
         )
@@ -422,6 +433,10 @@ fn relations_equal_brute_force_on_random_complexes() {
                 }
             }
             check(&k, 2, 2, SplitMode::Kd);
+            // by connectivity alone
+            for kv in [1u32, 3, 10] {
+                check_with(&k, kv, 2, SplitMode::Auto, Decomposition::Graph);
+            }
             Ok(())
         })
         .unwrap();

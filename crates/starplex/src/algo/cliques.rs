@@ -13,8 +13,13 @@
 //! With [`CliqueOptions::max_dim`] = `K`, the answer is the K-skeleton of the flag complex
 //! stored by its maximal simplices: the maximal cliques of at most `K` vertices plus every clique
 //! of exactly `K + 1` vertices (a `(K+1)`-clique is either maximal or inside a larger maximal
-//! clique, whose `(K+1)`-subsets are exactly these). They are listed directly, each once, from
-//! its earliest vertex in the ordering, so nothing is generated twice and then deduplicated.
+//! clique, whose `(K+1)`-subsets are exactly these). The `(K+1)`-cliques are listed directly
+//! from the graph, each once, from its smallest vertex over its higher neighbours (bit sets over
+//! that neighbourhood, depth-limited at K + 1), candidates in increasing order: each start
+//! vertex's run is already in lexicographic order and the runs of vertices 0, 1, ... concatenate,
+//! so the (large) block of `(K+1)`-cliques is neither sorted nor deduplicated. A counting pass
+//! sizes the output (and refuses it over the budget) before a parallel pass writes every run in
+//! its place.
 //!
 //! ```
 //! use starplex::algo::cliques::{maximal_cliques, CliqueOptions, Graph};
@@ -448,17 +453,15 @@ struct Sink {
 }
 
 impl Sink {
-    /// Appends `clique` plus the optional vertex `last`, sorted in place in the flat array
-    /// (no vector per clique).
-    fn push(&mut self, clique: &[u32], last: Option<u32>) {
-        let s = clique.len() + usize::from(last.is_some());
+    /// Appends `clique`, sorted in place in the flat array (no vector per clique).
+    fn push(&mut self, clique: &[u32]) {
+        let s = clique.len();
         if self.by_size.len() <= s {
             self.by_size.resize_with(s + 1, Vec::new);
         }
         let v = &mut self.by_size[s];
         let at = v.len();
         v.extend_from_slice(clique);
-        v.extend(last);
         v[at..].sort_unstable();
     }
     fn merge(mut self, other: Sink) -> Sink {
@@ -492,22 +495,80 @@ impl Sink {
 /// [`GraphError::OverBudget`] when the output would need more than `opts.max_bytes`.
 pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, GraphError> {
     let n = g.n_vertices();
-    let (order, _) = degeneracy_order(g);
-    let mut rank = vec![0u32; n];
-    for (i, &v) in order.iter().enumerate() {
-        rank[v as usize] = i as u32;
-    }
     let budget = Budget {
         refs: AtomicU64::new(0),
         found: AtomicU64::new(0),
         max_refs: opts.max_bytes / 4,
         stop: AtomicBool::new(false),
     };
-    let done = AtomicUsize::new(0);
+    let over = |done: usize| {
+        let found = budget.found.load(Ordering::Relaxed);
+        let refs = budget.refs.load(Ordering::Relaxed);
+        let scale = (n as f64 / done.max(1) as f64).max(1.0);
+        GraphError::OverBudget {
+            found,
+            found_refs: refs,
+            done: done as u64,
+            total: n as u64,
+            estimate: (found as f64 * scale) as u64,
+            estimate_bytes: (refs as f64 * 4.0 * scale) as u64,
+            budget_bytes: opts.max_bytes,
+        }
+    };
     let k = opts.max_dim;
     if k == Some(0) {
         return Ok(Cliques::default());
     }
+    // The maximal cliques (of at most k vertices with a skeleton; none are listed below 2).
+    let limit = k.unwrap_or(usize::MAX);
+    let mut blocks = Vec::new();
+    if limit >= 2 {
+        let progress = if k.is_none() { opts.progress } else { None };
+        let (sink, done) = maximal_from_starts(g, limit, &budget, progress);
+        if budget.stop.load(Ordering::Relaxed) {
+            return Err(over(done));
+        }
+        for (s, flat) in sink.by_size.into_iter().enumerate() {
+            if s < 2 || flat.is_empty() {
+                continue;
+            }
+            blocks.push((s, sort_rows(flat, s)));
+        }
+    }
+    // The skeleton's other maximal simplices: every clique of k + 1 vertices, listed in order.
+    if let Some(k) = k {
+        match cliques_of_size(g, k + 1, &budget, opts.progress) {
+            Ok(flat) if flat.is_empty() => {}
+            Ok(flat) => blocks.push((k + 1, flat)),
+            Err(Refused::Budget(done)) => return Err(over(done)),
+            Err(Refused::Alloc(bytes)) => {
+                return Err(GraphError::TooLarge(crate::limits::TooLarge::new(
+                    format!("the cliques of {} vertices", k + 1),
+                    bytes as u128,
+                    opts.max_bytes as u128,
+                    crate::limits::Unit::Bytes,
+                )))
+            }
+        }
+    }
+    Ok(Cliques { blocks })
+}
+
+/// Bron–Kerbosch from every start vertex of the degeneracy order, in parallel: the maximal
+/// cliques of at most `limit` vertices, unsorted, and the number of start vertices finished.
+fn maximal_from_starts(
+    g: &Graph,
+    limit: usize,
+    budget: &Budget,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> (Sink, usize) {
+    let n = g.n_vertices();
+    let (order, _) = degeneracy_order(g);
+    let mut rank = vec![0u32; n];
+    for (i, &v) in order.iter().enumerate() {
+        rank[v as usize] = i as u32;
+    }
+    let done = AtomicUsize::new(0);
     // Work per vertex is very uneven; small chunks keep both cores busy, and the result does
     // not depend on how the vertices are split.
     let sink = order
@@ -517,39 +578,17 @@ pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, Graph
             if budget.stop.load(Ordering::Relaxed) {
                 return sink;
             }
-            from_vertex(g, &rank, v, k, &budget, &mut sink);
+            from_vertex(g, &rank, v, limit, budget, &mut sink);
             if !budget.stop.load(Ordering::Relaxed) {
                 done.fetch_add(1, Ordering::Relaxed);
-                if let Some(p) = opts.progress {
+                if let Some(p) = progress {
                     p(1);
                 }
             }
             sink
         })
         .reduce(Sink::default, Sink::merge);
-    if budget.stop.load(Ordering::Relaxed) {
-        let found = budget.found.load(Ordering::Relaxed);
-        let refs = budget.refs.load(Ordering::Relaxed);
-        let d = done.load(Ordering::Relaxed).max(1) as f64;
-        let scale = (n as f64 / d).max(1.0);
-        return Err(GraphError::OverBudget {
-            found,
-            found_refs: refs,
-            done: done.load(Ordering::Relaxed) as u64,
-            total: n as u64,
-            estimate: (found as f64 * scale) as u64,
-            estimate_bytes: (refs as f64 * 4.0 * scale) as u64,
-            budget_bytes: opts.max_bytes,
-        });
-    }
-    let mut blocks = Vec::new();
-    for (s, flat) in sink.by_size.into_iter().enumerate() {
-        if s < 2 || flat.is_empty() {
-            continue;
-        }
-        blocks.push((s, sort_rows(flat, s)));
-    }
-    Ok(Cliques { blocks })
+    (sink, done.load(Ordering::Relaxed))
 }
 
 /// Sorts the `s`-vertex rows of `flat` lexicographically.
@@ -566,15 +605,9 @@ fn sort_rows(flat: Vec<u32>, s: usize) -> Vec<u32> {
     out
 }
 
-/// Lists the cliques whose earliest vertex (in the degeneracy order) is `v`.
-fn from_vertex(
-    g: &Graph,
-    rank: &[u32],
-    v: u32,
-    k: Option<usize>,
-    budget: &Budget,
-    sink: &mut Sink,
-) {
+/// Lists the maximal cliques of at most `limit` vertices whose earliest vertex (in the
+/// degeneracy order) is `v`.
+fn from_vertex(g: &Graph, rank: &[u32], v: u32, limit: usize, budget: &Budget, sink: &mut Sink) {
     let nb = g.neighbours(v);
     if nb.is_empty() {
         return; // an isolated vertex: a clique of one, not listed
@@ -616,15 +649,7 @@ fn from_vertex(
         }
     }
     let mut r = vec![v];
-    match k {
-        None => bk_pivot(&loc, &mut r, p, x, usize::MAX, budget, sink),
-        Some(k) => {
-            // maximal cliques of at most k vertices ...
-            bk_pivot(&loc, &mut r, p.clone(), x, k, budget, sink);
-            // ... and every clique of k + 1 vertices, from its earliest vertex
-            k_cliques(&loc, &mut r, &p, k + 1, budget, sink);
-        }
-    }
+    bk_pivot(&loc, &mut r, p, x, limit, budget, sink);
 }
 
 /// Bron–Kerbosch with Tomita's pivot on the local bit matrix. Cliques of more than `limit`
@@ -644,7 +669,7 @@ fn bk_pivot(
     let p_empty = p.iter().all(|&w| w == 0);
     if p_empty {
         if x.iter().all(|&w| w == 0) && r.len() <= limit && budget.take(r.len()) {
-            sink.push(r, None);
+            sink.push(r);
         }
         return;
     }
@@ -698,51 +723,298 @@ fn bk_pivot(
     }
 }
 
-/// Every clique of `size` vertices that extends `r` by vertices of `p`, each once (candidates in
-/// increasing local index).
-fn k_cliques(
-    loc: &Local,
-    r: &mut Vec<u32>,
-    p: &[u64],
+/// Where the (K+1)-cliques go: counted, or written.
+trait KOut {
+    /// The cliques `prefix + [t]` for the `n` vertices `t` of `tail`; false to abort.
+    fn last(&mut self, prefix: &[u32], n: usize, tail: impl Iterator<Item = u32>) -> bool;
+}
+
+/// Counts cliques, flushing the count to the shared budget every so often so that a huge
+/// output is refused long before it is counted to the end.
+struct Counter<'a> {
+    n: u64,
+    unflushed: u64,
     size: usize,
-    budget: &Budget,
-    sink: &mut Sink,
-) {
-    if budget.stop.load(Ordering::Relaxed) {
-        return;
+    budget: &'a Budget,
+}
+
+impl Counter<'_> {
+    const FLUSH: u64 = 1 << 16;
+    fn flush(&mut self) -> bool {
+        let u = std::mem::take(&mut self.unflushed);
+        u == 0 || self.budget.take_n(u as usize, self.size)
     }
-    if r.len() == size {
-        if budget.take(size) {
-            sink.push(r, None);
+}
+
+impl KOut for Counter<'_> {
+    #[inline]
+    fn last(&mut self, _: &[u32], n: usize, _: impl Iterator<Item = u32>) -> bool {
+        self.n += n as u64;
+        self.unflushed += n as u64;
+        if self.unflushed >= Self::FLUSH {
+            return self.flush() && !self.budget.stop.load(Ordering::Relaxed);
         }
-        return;
+        true
     }
-    let need = size - r.len();
-    let avail: u32 = p.iter().map(|w| w.count_ones()).sum();
-    if (avail as usize) < need {
-        return;
+}
+
+/// Writes cliques into a slice sized by the count pass.
+struct Writer<'a> {
+    out: &'a mut [u32],
+    at: usize,
+}
+
+impl KOut for Writer<'_> {
+    #[inline]
+    fn last(&mut self, prefix: &[u32], n: usize, tail: impl Iterator<Item = u32>) -> bool {
+        let s = prefix.len() + 1;
+        let dst = &mut self.out[self.at..self.at + n * s];
+        for (row, t) in dst.chunks_exact_mut(s).zip(tail) {
+            row[..s - 1].copy_from_slice(prefix);
+            row[s - 1] = t;
+        }
+        self.at += n * s;
+        true
     }
+}
+
+/// A fixed-width bit set of `W` words (the higher neighbourhood of a start vertex).
+type BitRow<const W: usize> = [u64; W];
+
+#[inline]
+fn row_and<const W: usize>(a: &BitRow<W>, b: &BitRow<W>) -> BitRow<W> {
+    std::array::from_fn(|i| a[i] & b[i])
+}
+
+#[inline]
+fn row_count<const W: usize>(a: &BitRow<W>) -> usize {
+    a.iter().map(|w| w.count_ones() as usize).sum()
+}
+
+/// The set bits of a row, ascending.
+#[inline]
+fn row_ones<const W: usize>(a: &BitRow<W>) -> impl Iterator<Item = usize> + '_ {
+    ones(a)
+}
+
+/// Every `need`-vertex extension of `prefix` by vertices of `p` (local indices into `hi`),
+/// candidates in increasing order: lexicographic order of the finished cliques. `rows[w]`
+/// holds only the neighbours of `w` after it, so `p ∩ rows[w]` are the later candidates.
+fn kc_bits<const W: usize, O: KOut>(
+    rows: &[BitRow<W>],
+    hi: &[u32],
+    p: &BitRow<W>,
+    prefix: &mut Vec<u32>,
+    need: usize,
+    out: &mut O,
+) -> bool {
+    let c = row_count(p);
     if need == 1 {
-        // the last level: every candidate closes a clique; no recursion, no bit vectors
-        if budget.take_n(avail as usize, size) {
-            for w in ones(p) {
-                sink.push(r, Some(loc.local[w]));
+        return out.last(prefix, c, row_ones(p).map(|j| hi[j]));
+    }
+    if c < need {
+        return true;
+    }
+    for w in row_ones(p) {
+        let p2 = row_and(p, &rows[w]);
+        if row_count(&p2) >= need - 1 {
+            prefix.push(hi[w]);
+            let go = kc_bits(rows, hi, &p2, prefix, need - 1, out);
+            prefix.pop();
+            if !go {
+                return false;
             }
         }
-        return;
     }
-    let mut rest = p.to_vec();
-    for w in ones(p).collect::<Vec<_>>() {
-        bit_clear(&mut rest, w);
-        let row = loc.row(w);
-        let p2: Bits = rest.iter().zip(row).map(|(a, b)| a & b).collect();
-        r.push(loc.local[w]);
-        k_cliques(loc, r, &p2, size, budget, sink);
-        r.pop();
-        if budget.stop.load(Ordering::Relaxed) {
-            return;
+    true
+}
+
+/// [`kc_bits`] on sorted candidate lists (global ids), for start vertices with very many
+/// higher neighbours (no quadratic bit matrix).
+fn kc_lists<O: KOut>(
+    g: &Graph,
+    cand: &[u32],
+    prefix: &mut Vec<u32>,
+    need: usize,
+    out: &mut O,
+) -> bool {
+    if need == 1 {
+        return out.last(prefix, cand.len(), cand.iter().copied());
+    }
+    if cand.len() < need {
+        return true;
+    }
+    let mut next = Vec::new();
+    for (i, &w) in cand.iter().enumerate() {
+        next.clear();
+        intersect_sorted(&cand[i + 1..], g.neighbours(w), &mut next);
+        if next.len() >= need - 1 {
+            prefix.push(w);
+            let go = kc_lists(g, &next, prefix, need - 1, out);
+            prefix.pop();
+            if !go {
+                return false;
+            }
         }
     }
+    true
+}
+
+/// `a ∩ b` of two ascending lists, appended to `out`.
+fn intersect_sorted(a: &[u32], b: &[u32], out: &mut Vec<u32>) {
+    let (mut i, mut j) = (0usize, 0usize);
+    while i < a.len() && j < b.len() {
+        match a[i].cmp(&b[j]) {
+            std::cmp::Ordering::Less => i += 1,
+            std::cmp::Ordering::Greater => j += 1,
+            std::cmp::Ordering::Equal => {
+                out.push(a[i]);
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+}
+
+/// Above this many higher neighbours a start vertex is searched on sorted lists.
+const BITS_MAX: usize = 1024;
+
+/// The cliques of `size` vertices whose smallest vertex is `v`, in lexicographic order.
+fn kc_from<O: KOut>(g: &Graph, v: u32, size: usize, out: &mut O) -> bool {
+    let nb = g.neighbours(v);
+    let hi = &nb[nb.partition_point(|&u| u < v)..];
+    if hi.len() + 1 < size {
+        return true;
+    }
+    let mut prefix = Vec::with_capacity(size);
+    prefix.push(v);
+    match hi.len().div_ceil(64) {
+        1 => kc_local::<1, O>(g, hi, &mut prefix, size - 1, out),
+        2 => kc_local::<2, O>(g, hi, &mut prefix, size - 1, out),
+        3 | 4 => kc_local::<4, O>(g, hi, &mut prefix, size - 1, out),
+        5..=8 => kc_local::<8, O>(g, hi, &mut prefix, size - 1, out),
+        w if w * 64 <= BITS_MAX => kc_local::<16, O>(g, hi, &mut prefix, size - 1, out),
+        _ => kc_lists(g, hi, &mut prefix, size - 1, out),
+    }
+}
+
+/// The upper-triangular bit matrix of the higher neighbourhood `hi` (row i: the j > i with
+/// `hi[j]` adjacent to `hi[i]`), then [`kc_bits`].
+fn kc_local<const W: usize, O: KOut>(
+    g: &Graph,
+    hi: &[u32],
+    prefix: &mut Vec<u32>,
+    need: usize,
+    out: &mut O,
+) -> bool {
+    let m = hi.len();
+    let mut all = [0u64; W];
+    for i in 0..m {
+        all[i >> 6] |= 1 << (i & 63);
+    }
+    if need == 1 {
+        return out.last(prefix, m, hi.iter().copied());
+    }
+    let mut rows = vec![[0u64; W]; m];
+    for i in 0..m {
+        let u = hi[i];
+        let nu = g.neighbours(u);
+        let row = &nu[nu.partition_point(|&x| x <= u)..];
+        let (mut a, mut b) = (0usize, i + 1);
+        while a < row.len() && b < m {
+            match row[a].cmp(&hi[b]) {
+                std::cmp::Ordering::Less => a += 1,
+                std::cmp::Ordering::Greater => b += 1,
+                std::cmp::Ordering::Equal => {
+                    rows[i][b >> 6] |= 1 << (b & 63);
+                    a += 1;
+                    b += 1;
+                }
+            }
+        }
+    }
+    kc_bits(&rows, hi, &all, prefix, need, out)
+}
+
+/// Every clique of exactly `size` (≥ 2) vertices, vertices ascending, lexicographically
+/// sorted, as one flat array built without a sort: the cliques whose smallest vertex is `v`
+/// come out in lexicographic order from [`kc_from`], and the runs of `v = 0, 1, ...`
+/// concatenate. A first pass counts (and stops as soon as the budget is exceeded), a second
+/// writes each start vertex's run straight into its place, in parallel.
+///
+/// `Err(done)`: over budget after counting `done` start vertices.
+fn cliques_of_size(
+    g: &Graph,
+    size: usize,
+    budget: &Budget,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<Vec<u32>, Refused> {
+    let n = g.n_vertices();
+    let done = AtomicUsize::new(0);
+    let counts: Vec<u64> = (0..n as u32)
+        .into_par_iter()
+        .with_min_len(64)
+        .map(|v| {
+            if budget.stop.load(Ordering::Relaxed) {
+                return 0;
+            }
+            let mut c = Counter {
+                n: 0,
+                unflushed: 0,
+                size,
+                budget,
+            };
+            if kc_from(g, v, size, &mut c) && c.flush() {
+                done.fetch_add(1, Ordering::Relaxed);
+            }
+            c.n
+        })
+        .collect();
+    if budget.stop.load(Ordering::Relaxed) {
+        return Err(Refused::Budget(done.load(Ordering::Relaxed)));
+    }
+    let total: u64 = counts.iter().sum::<u64>() * size as u64;
+    if total.checked_mul(4).is_none_or(|b| b > isize::MAX as u64) {
+        return Err(Refused::Alloc(total.saturating_mul(4)));
+    }
+    // zeroed pages from the allocator: no pass over the output before the parallel writes
+    let mut out: Vec<u32> = vec![0; total as usize];
+    // parts of about `target` references, each a run of start vertices and its slice
+    let target = (total / (64 * rayon::current_num_threads() as u64)).max(1 << 14);
+    let mut parts: Vec<(u32, u32, &mut [u32])> = Vec::new();
+    let mut rest = &mut out[..];
+    let (mut start, mut acc) = (0usize, 0u64);
+    for v in 0..n {
+        acc += counts[v] * size as u64;
+        if acc >= target || v + 1 == n {
+            let (a, b) = std::mem::take(&mut rest).split_at_mut(acc as usize);
+            parts.push((start as u32, v as u32 + 1, a));
+            rest = b;
+            start = v + 1;
+            acc = 0;
+        }
+    }
+    parts.into_par_iter().for_each(|(a, b, slice)| {
+        let mut w = Writer { out: slice, at: 0 };
+        for v in a..b {
+            if counts[v as usize] > 0 {
+                kc_from(g, v, size, &mut w);
+            }
+        }
+        debug_assert_eq!(w.at, w.out.len());
+        if let Some(p) = progress {
+            p((b - a) as u64);
+        }
+    });
+    Ok(out)
+}
+
+/// Why [`cliques_of_size`] stopped.
+enum Refused {
+    /// Over the budget after counting this many start vertices.
+    Budget(usize),
+    /// The output (bytes) could not be allocated.
+    Alloc(u64),
 }
 
 #[cfg(test)]
@@ -817,6 +1089,149 @@ mod tests {
                 assert_eq!(got, brute(n, &e, k), "seed {seed} n {n} k {k:?}");
             }
         }
+    }
+
+    /// Every clique of `size` vertices by plain recursion on adjacency sets, lexicographic.
+    fn reference_k_cliques(n: usize, edges: &[(u32, u32)], size: usize) -> Vec<Vec<u32>> {
+        use std::collections::BTreeSet;
+        let mut adj = vec![BTreeSet::new(); n];
+        for &(a, b) in edges {
+            adj[a as usize].insert(b);
+            adj[b as usize].insert(a);
+        }
+        fn grow(
+            adj: &[std::collections::BTreeSet<u32>],
+            r: &mut Vec<u32>,
+            size: usize,
+            out: &mut Vec<Vec<u32>>,
+        ) {
+            if r.len() == size {
+                out.push(r.clone());
+                return;
+            }
+            let last = *r.last().unwrap();
+            for &c in adj[last as usize].range(last + 1..) {
+                if r.iter().all(|&x| adj[x as usize].contains(&c)) {
+                    r.push(c);
+                    grow(adj, r, size, out);
+                    r.pop();
+                }
+            }
+        }
+        let mut out = Vec::new();
+        for v in 0..n as u32 {
+            grow(&adj, &mut vec![v], size, &mut out);
+        }
+        out
+    }
+
+    /// The skeleton on graphs too large for brute force: the (K+1)-block equals the plain
+    /// recursion, the smaller blocks the maximal cliques of at most K vertices; start vertices
+    /// with 1 to 2000 higher neighbours exercise every bit-set width and the list path.
+    #[test]
+    fn skeleton_equals_reference_on_larger_graphs() {
+        let mut graphs: Vec<(usize, Vec<(u32, u32)>)> = Vec::new();
+        for (i, (n, p)) in [(120, 0.3), (300, 0.08), (200, 0.5), (90, 0.9)]
+            .iter()
+            .enumerate()
+        {
+            graphs.push((*n, random_graph(*n, *p, 11 + i as u64)));
+        }
+        // hubs: vertex 0 sees everything, vertex 1 sees 100 vertices, vertex 2 sees 700
+        let n = 2100usize;
+        let mut e = random_graph(n, 0.004, 5);
+        e.retain(|&(a, b)| a.min(b) > 2);
+        e.extend((1..n as u32).map(|u| (0, u)));
+        e.extend((3..103u32).map(|u| (1, u)));
+        e.extend(
+            (3..703u32)
+                .map(|u| (2, u * 3 % n as u32))
+                .filter(|&(_, u)| u > 2),
+        );
+        e.extend((3..20u32).flat_map(|a| (a + 1..20).map(move |b| (a, b))));
+        graphs.push((n, e));
+        for (n, e) in &graphs {
+            let g = Graph::from_edges(*n, e).unwrap();
+            let all = maximal_cliques(&g, &CliqueOptions::default()).unwrap();
+            for k in 1..=6usize {
+                let o = CliqueOptions {
+                    max_dim: Some(k),
+                    ..Default::default()
+                };
+                let got = maximal_cliques(&g, &o).unwrap();
+                let mut want: Vec<(usize, Vec<u32>)> = all
+                    .blocks
+                    .iter()
+                    .filter(|(s, _)| *s <= k)
+                    .cloned()
+                    .collect();
+                let top: Vec<u32> = reference_k_cliques(*n, e, k + 1).concat();
+                if !top.is_empty() {
+                    want.push((k + 1, top));
+                }
+                assert!(got.blocks == want, "n {n} k {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn skeleton_is_the_same_for_any_thread_count() {
+        let e = random_graph(400, 0.15, 9);
+        let g = Graph::from_edges(400, &e).unwrap();
+        let o = CliqueOptions {
+            max_dim: Some(3),
+            ..Default::default()
+        };
+        let run = |t: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .unwrap()
+                .install(|| maximal_cliques(&g, &o).unwrap())
+        };
+        let one = run(1);
+        assert!(one.count() > 1000);
+        for t in [2, 3, 7] {
+            assert_eq!(run(t), one);
+        }
+    }
+
+    #[test]
+    fn skeleton_over_budget_is_refused_with_an_estimate() {
+        // K30: 142,506 cliques of 5 vertices; a budget of 1,000 vertex references
+        let e: Vec<(u32, u32)> = (0..30u32)
+            .flat_map(|a| (a + 1..30).map(move |b| (a, b)))
+            .collect();
+        let g = Graph::from_edges(30, &e).unwrap();
+        for max_bytes in [4000, 4 * 5 * 142_505] {
+            let o = CliqueOptions {
+                max_dim: Some(4),
+                max_bytes,
+                ..Default::default()
+            };
+            let err = maximal_cliques(&g, &o).unwrap_err();
+            let GraphError::OverBudget {
+                found,
+                budget_bytes,
+                estimate,
+                ..
+            } = err
+            else {
+                panic!("{err}")
+            };
+            assert_eq!(budget_bytes, max_bytes);
+            assert!(
+                estimate >= found && found * 5 * 4 > max_bytes,
+                "{found} {estimate}"
+            );
+        }
+        // exactly enough
+        let o = CliqueOptions {
+            max_dim: Some(4),
+            max_bytes: 4 * 5 * 142_506,
+            ..Default::default()
+        };
+        assert_eq!(maximal_cliques(&g, &o).unwrap().count(), 142_506);
     }
 
     #[test]

@@ -468,6 +468,9 @@ pub struct Built {
     pub n_edges: usize,
     /// `(simplex dimension, count)` of the maximal simplices.
     pub by_dim: Vec<(usize, usize)>,
+    /// Vertices in no top cell (isolated points; every vertex with `max_dim` 0), counted from
+    /// the graph: the same as `complex.n_isolated_vertices()` without a pass over the cells.
+    pub n_isolated: usize,
 }
 
 /// The Vietoris–Rips complex at scale `eps` of `coords` (flat, `dim` coordinates per point):
@@ -529,6 +532,7 @@ pub fn rips_complex_with(
 /// let f = flag_complex(5, &[(0, 1), (1, 2), (2, 0), (3, 2)], &Default::default()).unwrap();
 /// assert_eq!(f.by_dim, vec![(1, 1), (2, 1)]);
 /// assert_eq!(f.complex.n_isolated_vertices(), 1); // vertex 4
+/// assert_eq!(f.n_isolated, 1);
 /// ```
 ///
 /// # Errors
@@ -566,13 +570,22 @@ pub fn complex_of(
         co.max_dim = opts.max_dim;
     }
     let cl = maximal_cliques(g, &co)?;
-    complex_from_cliques(coords, dim, g.n_edges(), cl)
+    let n = g.n_vertices();
+    let n_isolated = if co.max_dim == Some(0) {
+        n
+    } else {
+        (0..n as u32)
+            .filter(|&v| g.neighbours(v).is_empty())
+            .count()
+    };
+    complex_from_cliques(coords, dim, g.n_edges(), n_isolated, cl)
 }
 
 fn complex_from_cliques(
     coords: Vec<f64>,
     dim: usize,
     n_edges: usize,
+    n_isolated: usize,
     cl: Cliques,
 ) -> Result<Built, RipsError> {
     let by_dim = cl
@@ -590,6 +603,7 @@ fn complex_from_cliques(
         complex,
         n_edges,
         by_dim,
+        n_isolated,
     })
 }
 

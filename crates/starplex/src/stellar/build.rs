@@ -7,13 +7,13 @@ use rayon::prelude::*;
 
 use super::sre::{self, RUN_FLAG};
 use super::{
-    default_kv, kind_code, BuildTimings, CellStore, SplitMode, StellarError, StellarOptions,
-    StellarTree, TreeNode,
+    default_kv, kind_code, BuildTimings, CellStore, Decomposition, SplitMode, StellarError,
+    StellarOptions, StellarTree, TreeNode,
 };
 use crate::complex::IndexedComplex;
 
 /// The input's top cells, read without a block search when the complex is one block.
-struct InputCells<'a> {
+pub(super) struct InputCells<'a> {
     k: &'a IndexedComplex,
     /// (kind, vertices, stride) of the only block.
     one: Option<(crate::cell::CellKind, &'a [u32], usize)>,
@@ -28,8 +28,13 @@ impl<'a> InputCells<'a> {
         InputCells { k, one }
     }
 
+    /// Number of top cells.
+    pub(super) fn len(&self) -> usize {
+        self.k.n_cells()
+    }
+
     #[inline]
-    fn get(&self, c: u32) -> (crate::cell::CellKind, &'a [u32]) {
+    pub(super) fn get(&self, c: u32) -> (crate::cell::CellKind, &'a [u32]) {
         match self.one {
             Some((kind, vs, st)) => {
                 let i = c as usize * st;
@@ -44,7 +49,7 @@ impl<'a> InputCells<'a> {
 }
 
 /// A subtree while splitting.
-enum T {
+pub(super) enum T {
     Leaf(u32, u32),
     Inner(u32, u32, Vec<T>),
 }
@@ -91,7 +96,9 @@ pub(super) fn build(
         s => s,
     };
     let kv = opts.kv.unwrap_or_else(|| default_kv(k));
+    let graph = opts.decomposition == Decomposition::Graph;
     let max_depth = opts.max_depth.unwrap_or(match split {
+        _ if graph => 64,
         SplitMode::Regular => 64,
         _ => (64 * n as u32).min(2048),
     });
@@ -105,7 +112,9 @@ pub(super) fn build(
     let mut timings = BuildTimings::default();
 
     let t0 = Instant::now();
-    let d = decompose(&ctx, k.n_vertices());
+    let input = InputCells::new(k);
+    let d = decompose(&ctx, k.n_vertices(), graph.then_some(&input));
+    drop(input);
     timings.decomposition_s = t0.elapsed().as_secs_f64();
 
     let t1 = Instant::now();
@@ -126,6 +135,7 @@ pub(super) fn build(
         ambient_dim: n as u32,
         kv,
         split,
+        decomposition: opts.decomposition,
         bbox: d.bbox,
         nodes: d.nodes,
         leaf_vstart: d.leaf_vstart,
@@ -140,8 +150,8 @@ pub(super) fn build(
     })
 }
 
-/// Phase 1: the spatial decomposition.
-struct Decomposition {
+/// Phase 1: the decomposition.
+struct Decomposed {
     /// Bounding box (lower, upper corner).
     bbox: (Vec<f64>, Vec<f64>),
     /// Nodes in brood (BFS) order.
@@ -152,9 +162,12 @@ struct Decomposition {
     idx: Vec<u32>,
 }
 
-/// Splits the vertices (kD or regular) until every leaf has at most k_V of them; flattens the
-/// tree: leaves in DFS order, nodes in brood order.
-fn decompose(ctx: &Ctx, nv: usize) -> Decomposition {
+/// Splits the vertices (kD or regular, or with `graph` by connectivity, see [`graph_split`])
+/// until every leaf has at most k_V of them; flattens the tree: leaves in DFS order, nodes in
+/// brood order.
+///
+/// [`graph_split`]: super::graph_split
+fn decompose(ctx: &Ctx, nv: usize, graph: Option<&InputCells<'_>>) -> Decomposed {
     let n = ctx.n;
     let (mut lo, mut hi) = (vec![f64::INFINITY; n], vec![f64::NEG_INFINITY; n]);
     for p in ctx.coords.chunks_exact(n) {
@@ -170,6 +183,8 @@ fn decompose(ctx: &Ctx, nv: usize) -> Decomposition {
     let mut idx: Vec<u32> = (0..nv as u32).collect();
     let root = if ctx.kv == 0 || nv <= ctx.kv {
         T::Leaf(0, nv as u32)
+    } else if let Some(cells) = graph {
+        super::graph_split::graph_split(cells, &mut idx, ctx.kv, ctx.max_depth)
     } else {
         split_rec(ctx, &mut idx, 0, lo.clone(), hi.clone(), 0)
     };
@@ -177,7 +192,7 @@ fn decompose(ctx: &Ctx, nv: usize) -> Decomposition {
     collect_leaves(&root, &mut leaf_vstart);
     leaf_vstart.push(nv as u32);
     let nodes = brood_order(&root, &leaf_vstart);
-    Decomposition {
+    Decomposed {
         bbox: (lo, hi),
         nodes,
         leaf_vstart,

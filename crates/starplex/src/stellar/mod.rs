@@ -28,6 +28,7 @@ use crate::complex::IndexedComplex;
 use crate::ids::{CellId, LeafId, NodeId, TreeCellId, TreeVertexId, VertexId};
 
 mod build;
+mod graph_split;
 pub mod iastar;
 pub mod queries;
 pub mod relations;
@@ -72,6 +73,39 @@ pub enum SplitMode {
     Kd,
 }
 
+/// How the vertices are split into blocks.
+///
+/// `Spatial` splits by the vertices' coordinates ([`SplitMode`]); `Graph` by connectivity
+/// alone, for complexes whose coordinates mean nothing (flag complexes of graphs, abstract
+/// complexes): recursive bisection of the vertex graph of the top cells, each block ordered by
+/// breadth-first search from a pseudo-peripheral vertex and cut in half, until a block has at
+/// most k_V vertices. The leaves, their encoding and every query are the same either way.
+///
+/// ```
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// use starplex::stellar::{Decomposition, StellarOptions, StellarTree};
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// assert_eq!(Decomposition::default(), Decomposition::Spatial);
+/// let o = StellarOptions { kv: Some(1), decomposition: Decomposition::Graph, ..Default::default() };
+/// let g = StellarTree::build(&k, &o).unwrap();
+/// let s = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// assert_eq!((g.decomposition(), g.n_leaves()), (Decomposition::Graph, 4));
+/// assert_eq!(g.vt_all(), s.vt_all()); // the same answers
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Decomposition {
+    /// By coordinates: the split rule of [`StellarOptions::split`].
+    #[default]
+    Spatial,
+    /// By connectivity alone (recursive graph bisection).
+    Graph,
+}
+
 /// Options of [`StellarTree::build`].
 ///
 /// ```
@@ -85,10 +119,12 @@ pub struct StellarOptions {
     pub kv: Option<u32>,
     /// Split rule.
     pub split: SplitMode,
-    /// Deepest level of the tree (`None`: 64 for regular splits, 64 x ambient dimension, at
-    /// most 2048, for kD bisection). Leaves at this depth may hold more than k_V vertices
-    /// (coincident points).
+    /// Deepest level of the tree (`None`: 64 for regular splits and graph decompositions, 64
+    /// x ambient dimension, at most 2048, for kD bisection). Leaves at this depth may hold more
+    /// than k_V vertices (coincident points).
     pub max_depth: Option<u32>,
+    /// Split by coordinates or by connectivity.
+    pub decomposition: Decomposition,
 }
 
 /// The default bucketing threshold for a complex: 100 for dimension <= 2 (the paper's k_S for
@@ -292,6 +328,7 @@ pub struct StellarTree {
     pub(crate) ambient_dim: u32,
     pub(crate) kv: u32,
     pub(crate) split: SplitMode,
+    pub(crate) decomposition: Decomposition,
     pub(crate) bbox: (Vec<f64>, Vec<f64>),
     pub(crate) nodes: Vec<TreeNode>,
     /// `leaf_vstart[l]..leaf_vstart[l+1]` are the vertices of leaf `l` (tree numbering).
@@ -447,6 +484,24 @@ impl StellarTree {
     /// ```
     pub fn split(&self) -> SplitMode {
         self.split
+    }
+    /// How the vertices were split: by coordinates or by connectivity (then [`split`](Self::split)
+    /// was not used).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert_eq!(t.decomposition(), starplex::stellar::Decomposition::Spatial);
+    /// ```
+    pub fn decomposition(&self) -> Decomposition {
+        self.decomposition
     }
     /// Ambient dimension.
     ///

@@ -3,7 +3,7 @@
 //!
 //! Layout: `b"SPXSTEL1"`, then 13 `u64` header words (version, ambient dimension, k_V, split,
 //! vertices, cells, nodes, leaves, SRE words, vertex references, uniform kind code, stride,
-//! flags), the root block (2 x ambient `f64`), then the arrays: nodes, leaf vertex starts, leaf
+//! flags: bit 0 = graph decomposition), the root block (2 x ambient `f64`), then the arrays: nodes, leaf vertex starts, leaf
 //! list offsets, SRE words, cell kinds (mixed only), cell offsets (mixed only), cell vertices,
 //! vertex permutation (tree -> input), cell permutation (tree -> input).
 //!
@@ -28,7 +28,8 @@ use std::path::Path;
 
 use super::sre::RUN_FLAG;
 use super::{
-    code_kind, kind_code, BuildTimings, CellStore, SplitMode, StellarError, StellarTree, TreeNode,
+    code_kind, kind_code, BuildTimings, CellStore, Decomposition, SplitMode, StellarError,
+    StellarTree, TreeNode,
 };
 
 /// The first 8 bytes of a saved Stellar tree.
@@ -63,6 +64,8 @@ pub fn is_saved_tree(path: &Path) -> bool {
 const MAGIC: &[u8; 8] = SAVED_TREE_MAGIC;
 const VERSION: u64 = 1;
 const N_HEADER: usize = 13;
+/// Flags word: the vertices were split by connectivity ([`Decomposition::Graph`]).
+const FLAG_GRAPH: u64 = 1;
 /// The header's kind code for a tree whose cells have several kinds (per-cell codes follow).
 const MIXED: u8 = 255;
 
@@ -115,7 +118,7 @@ impl StellarTree {
                 self.cells.verts.len() as u64,
                 self.cells.uniform.map_or(MIXED, kind_code) as u64,
                 self.cells.stride as u64,
-                0,
+                u64::from(self.decomposition == Decomposition::Graph) * FLAG_GRAPH,
             ];
             write_arr(w, &header)?;
             write_arr(w, &self.bbox.0)?;
@@ -202,6 +205,14 @@ impl StellarTree {
         let nrefs = lim(h[9], "vertex references", u32::MAX as u64)?;
         let uniform = lim(h[10], "kind code", 255)? as u8;
         let stride = lim(h[11], "stride", 65)? as u32;
+        if h[12] & !FLAG_GRAPH != 0 {
+            return Err(err(format!("unknown flags {:#x}", h[12])));
+        }
+        let decomposition = if h[12] & FLAG_GRAPH != 0 {
+            Decomposition::Graph
+        } else {
+            Decomposition::Spatial
+        };
         let lo = r.arr::<f64>(amb)?;
         let hi = r.arr::<f64>(amb)?;
         let nodes = r.arr::<TreeNode>(nn)?;
@@ -302,6 +313,7 @@ impl StellarTree {
             ambient_dim: amb as u32,
             kv,
             split,
+            decomposition,
             bbox: (lo, hi),
             nodes,
             leaf_vstart,
