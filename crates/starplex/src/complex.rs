@@ -1242,26 +1242,29 @@ impl IndexedComplex {
         let mut drop: Vec<bool> = Vec::new();
         let mut report = BuildReport::default();
         let n = self.n_cells();
-        let mut keyed: Vec<(u64, u32)> = (0..n as u32)
-            .into_par_iter()
-            .map(|c| (set_hash(self.cell(CellId(c)).vertices), c))
-            .collect();
+        // one u64 per cell: the high 32 bits of the set hash above the cell id (8 bytes a
+        // cell, not the 16 of a (hash, id) pair: this is the peak of reading a large mesh);
+        // equal-hash runs come out sorted by cell id and are compared exactly
+        let keyed_of = |c: u32| (set_hash(self.cell(CellId(c)).vertices) & !0xFFFF_FFFF) | c as u64;
+        let mut keyed: Vec<u64> = (0..n as u32).into_par_iter().map(keyed_of).collect();
         keyed.par_sort_unstable();
+        let hash_of = |x: u64| x >> 32;
+        let id_of = |x: u64| x as u32;
         let mut dups: Vec<(u32, u32)> = Vec::new(); // (later, first)
         let mut i = 0;
         while i < keyed.len() {
             let mut j = i + 1;
-            while j < keyed.len() && keyed[j].0 == keyed[i].0 {
+            while j < keyed.len() && hash_of(keyed[j]) == hash_of(keyed[i]) {
                 j += 1;
             }
             for b in i + 1..j {
-                let cb = self.cell(CellId(keyed[b].1));
+                let cb = self.cell(CellId(id_of(keyed[b])));
                 if let Some(a) = (i..b).find(|&a| {
-                    let ca = self.cell(CellId(keyed[a].1));
+                    let ca = self.cell(CellId(id_of(keyed[a])));
                     ca.vertices.len() == cb.vertices.len()
                         && cb.vertices.iter().all(|x| ca.vertices.contains(x))
                 }) {
-                    dups.push((keyed[b].1, keyed[a].1));
+                    dups.push((id_of(keyed[b]), id_of(keyed[a])));
                 }
             }
             i = j;

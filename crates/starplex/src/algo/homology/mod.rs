@@ -434,8 +434,8 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
     opts: &HomologyOptions,
 ) -> Result<Homology, HomologyError> {
     match choose_order(s, opts.order) {
-        None => homology_ordered(s, opts, None),
-        Some((f, to_old)) => homology_ordered(&f, opts, Some(&to_old)),
+        None => homology_ordered(s, None, opts, None),
+        Some((f, to_old)) => homology_ordered(&f, f.fast_star(), opts, Some(&to_old)),
     }
 }
 
@@ -460,10 +460,36 @@ pub fn homology_indexed(
     k: &IndexedComplex,
     opts: &HomologyOptions,
 ) -> Result<Homology, HomologyError> {
-    match choose_order(k, opts.order) {
-        None => homology_ordered(&VtIndex::new(k), opts, None),
-        Some((f, to_old)) => homology_ordered(&f, opts, Some(&to_old)),
+    match pick_order(k, opts.order, None, Some(k)) {
+        None => input_order(k, opts),
+        Some(fa) => {
+            let t = std::time::Instant::now();
+            match order::Flat::new(k, &fa) {
+                Some(f) => {
+                    debug_time("first-appearance order", t);
+                    let (f, to_old) = finish_order(f, fa, opts.order);
+                    homology_ordered(&f, f.fast_star(), opts, Some(&to_old))
+                }
+                None => input_order(k, opts),
+            }
+        }
     }
+}
+
+/// [`homology_ordered`] in the input order of `k`, through its vertex → cells relation (read
+/// directly when the cells are one block of simplices).
+fn input_order(k: &IndexedComplex, opts: &HomologyOptions) -> Result<Homology, HomologyError> {
+    let idx = VtIndex::new(k);
+    let fast = match k.blocks() {
+        [b] if b.kind.is_simplex() => Some(morse::FastStar {
+            arity: b.kind.n_vertices(),
+            sorted: false,
+            verts: &b.vertices,
+            vt: &idx.vt,
+        }),
+        _ => None,
+    };
+    homology_ordered(&idx, fast, opts, None)
 }
 
 /// [`homology_indexed`] consuming the complex: when a new vertex order is chosen, the cells
@@ -487,15 +513,30 @@ pub fn homology_owned(
     k: IndexedComplex,
     opts: &HomologyOptions,
 ) -> Result<Homology, HomologyError> {
-    let Some(fa) = pick_order(&k, opts.order, Some(k.n_refs() as u64)) else {
-        return homology_ordered(&VtIndex::new(&k), opts, None);
+    let Some(fa) = pick_order(&k, opts.order, Some(k.n_refs() as u64), Some(&k)) else {
+        // the input order: one block of simplices is taken over (coordinates freed)
+        let t = std::time::Instant::now();
+        if !order::Flat::takes_over(&k) {
+            return input_order(&k, opts);
+        }
+        return match order::Flat::input_order(k) {
+            Some(f) => {
+                debug_time("input order (in place)", t);
+                homology_ordered(&f, f.fast_star(), opts, None)
+            }
+            // not reachable: `takes_over` was checked
+            None => Err(HomologyError::TooLarge(TooLarge::ids(
+                "homology: vertex references",
+                u32::MAX as u128,
+            ))),
+        };
     };
     let t = std::time::Instant::now();
     match order::Flat::from_complex(k, &fa) {
         Some(f) => {
             debug_time("first-appearance order (in place)", t);
             let (f, to_old) = finish_order(f, fa, opts.order);
-            homology_ordered(&f, opts, Some(&to_old))
+            homology_ordered(&f, f.fast_star(), opts, Some(&to_old))
         }
         // not reachable: from_complex only refuses what `pick_order` keeps in input order
         None => Err(HomologyError::TooLarge(TooLarge::ids(
@@ -511,7 +552,7 @@ pub fn homology_owned(
 /// first-appearance numbering, whose cells lie close in memory). A complex whose vertex
 /// references overflow 32 bits keeps the input order.
 fn choose_order<S: TopCells + ?Sized>(s: &S, o: VertexOrder) -> Option<(order::Flat, Vec<u32>)> {
-    let fa = pick_order(s, o, None)?;
+    let fa = pick_order(s, o, None, None)?;
     let t = std::time::Instant::now();
     let f = order::Flat::new(s, &fa)?;
     debug_time("first-appearance order", t);
@@ -520,15 +561,23 @@ fn choose_order<S: TopCells + ?Sized>(s: &S, o: VertexOrder) -> Option<(order::F
 
 /// `None` when the input order is kept (asked, few local minima, or more than 2^32 vertex
 /// references: `refs` when known, else counted), else the first-appearance numbering
-/// `to_new[old]`.
-fn pick_order<S: TopCells + ?Sized>(s: &S, o: VertexOrder, refs: Option<u64>) -> Option<Vec<u32>> {
+/// `to_new[old]`. `k`: the same cells as an indexed complex, read directly (faster).
+fn pick_order<S: TopCells + ?Sized>(
+    s: &S,
+    o: VertexOrder,
+    refs: Option<u64>,
+    k: Option<&IndexedComplex>,
+) -> Option<Vec<u32>> {
     let nv = s.n_vertices();
     let few = 64 + nv / 1000;
     let t = std::time::Instant::now();
     match o {
         VertexOrder::Input => return None,
         VertexOrder::Auto => {
-            let minima = order::count_minima(s, None);
+            let minima = match k {
+                Some(k) => order::count_minima_slices(nv, order::complex_cells(k), None),
+                None => order::count_minima(s, None),
+            };
             debug_time("local minima", t);
             if minima <= few {
                 return None;
@@ -549,7 +598,10 @@ fn pick_order<S: TopCells + ?Sized>(s: &S, o: VertexOrder, refs: Option<u64>) ->
     if refs >= u32::MAX as u64 {
         return None;
     }
-    Some(order::first_appearance_order(s))
+    Some(match k {
+        Some(k) => order::first_appearance_slices(nv, order::complex_cells(k)),
+        None => order::first_appearance_order(s),
+    })
 }
 
 /// Breadth-first over the first-appearance copy `f` when asked (or, for Auto, when it still
@@ -561,11 +613,11 @@ fn finish_order(mut f: order::Flat, fa: Vec<u32>, o: VertexOrder) -> (order::Fla
     let bfs = match o {
         VertexOrder::FirstAppearance => false,
         VertexOrder::BreadthFirst => true,
-        _ => order::count_minima(&f, None) > few,
+        _ => order::count_minima_slices(nv, f.cells(), None) > few,
     };
     let mut to_old = fa;
     if bfs {
-        let b = order::bfs_order(&f);
+        let b = order::bfs_order_flat(&f);
         // to_old = (b ∘ fa)^-1, built in the buffer of fa (fa[old] is read before it is
         // overwritten: the composition is written to `b`'s place first)
         let mut composed = b.clone();
@@ -617,17 +669,24 @@ fn debug_time(what: &str, t: std::time::Instant) {
 
 fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
     s: &S,
+    fast: Option<morse::FastStar<'_>>,
     opts: &HomologyOptions,
     to_old: Option<&[u32]>,
 ) -> Result<Homology, HomologyError> {
     let nv = s.n_vertices();
-    let simplicial = (0..s.n_top_cells())
-        .into_par_iter()
-        .all(|c| s.top_cell_kind(CellId(c as u32)).is_simplex());
-    let dmax = (0..s.n_top_cells())
-        .into_par_iter()
-        .map(|c| s.top_cell_kind(CellId(c as u32)).dim())
-        .max();
+    let (simplicial, dmax) = match fast {
+        // simplices of one arity: no scan of the kinds
+        Some(f) if s.n_top_cells() > 0 => (true, Some(f.arity - 1)),
+        _ => (
+            (0..s.n_top_cells())
+                .into_par_iter()
+                .all(|c| s.top_cell_kind(CellId(c as u32)).is_simplex()),
+            (0..s.n_top_cells())
+                .into_par_iter()
+                .map(|c| s.top_cell_kind(CellId(c as u32)).dim())
+                .max(),
+        ),
+    };
     let Some(dmax) = dmax.or(if nv > 0 { Some(0) } else { None }) else {
         return Ok(Homology {
             field: opts.field,
@@ -663,7 +722,7 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
                 let (mut est, mut worst) = (0u128, 0u128);
                 let mut out = Vec::new();
                 for v in lo..hi {
-                    let p = morse::plan_vertex(s, v as u32, w);
+                    let p = morse::plan_vertex(s, fast, v as u32, w);
                     if p.apex == EXPLICIT {
                         est = est.saturating_add(p.estimate);
                         worst = worst.max(p.estimate);

@@ -103,6 +103,47 @@ fn is_subset(a: &[u32], b: &[u32]) -> bool {
     true
 }
 
+/// Direct access to a complex whose top cells are all simplices of one arity, stored flat
+/// (cell `c` is `verts[c * arity..(c + 1) * arity]`), with its vertex → cells relation: the
+/// star of a vertex is read from the slices, without copying cells through the
+/// [`TopCells`] / [`VertexStar`] calls (the same sets in the same order).
+#[derive(Clone, Copy)]
+pub(crate) struct FastStar<'a> {
+    pub arity: usize,
+    /// The vertices of every cell are sorted (a lower set is then a prefix).
+    pub sorted: bool,
+    pub verts: &'a [u32],
+    pub vt: &'a crate::csr::Csr,
+}
+
+/// [`read_lower_sets`] through a [`FastStar`]: the same `w.cells`, `w.lower`, `w.starts`.
+fn read_lower_sets_fast(f: FastStar<'_>, v: u32, w: &mut Scratch) -> (bool, bool, u128) {
+    w.planned = None;
+    let row = f.vt.row(v as usize);
+    w.cells.clear();
+    w.cells.extend(row.iter().map(|&c| CellId(c)));
+    w.lower.clear();
+    w.starts.clear();
+    let mut estimate: u128 = 0;
+    let a = f.arity;
+    for &c in row {
+        let cell = &f.verts[c as usize * a..(c as usize + 1) * a];
+        let start = w.lower.len();
+        w.starts.push(start);
+        if f.sorted {
+            let n = cell.partition_point(|&x| x < v);
+            w.lower.extend_from_slice(&cell[..n]);
+        } else {
+            w.lower.extend(cell.iter().copied().filter(|&x| x < v));
+        }
+        let n = w.lower.len() - start;
+        let e = if n >= 127 { u128::MAX } else { 1u128 << n };
+        estimate = estimate.saturating_add(e);
+    }
+    w.starts.push(w.lower.len());
+    (!w.lower.is_empty(), true, estimate)
+}
+
 /// Reads the star of `v`: the lower vertices of every top cell into `w.lower` / `w.starts`
 /// (unsorted within a cell). Returns (any lower vertex, all cells simplices, estimate).
 fn read_lower_sets<S: TopCells + VertexStar + ?Sized>(
@@ -171,10 +212,14 @@ fn maximal_masks(w: &mut Scratch) -> bool {
 /// Classifies the lower star of `v` (see the module docs) without enumerating it.
 pub(crate) fn plan_vertex<S: TopCells + VertexStar + ?Sized>(
     s: &S,
+    fast: Option<FastStar<'_>>,
     v: u32,
     w: &mut Scratch,
 ) -> VertexPlan {
-    let (any_lower, all_simplices, estimate) = read_lower_sets(s, v, w);
+    let (any_lower, all_simplices, estimate) = match fast {
+        Some(f) => read_lower_sets_fast(f, v, w),
+        None => read_lower_sets(s, v, w),
+    };
     if !any_lower {
         return VertexPlan {
             apex: ALONE,

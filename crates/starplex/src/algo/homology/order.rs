@@ -27,6 +27,102 @@ fn neighbours(kind: CellKind, verts: &[VertexId], v: VertexId, out: &mut Vec<u32
     }
 }
 
+/// The cells of an indexed complex as vertex slices, in cell id order (the kind's vertex
+/// order: what [`TopCells::top_cell_vertices`] gives, without the copies).
+pub(crate) fn complex_cells(
+    k: &crate::complex::IndexedComplex,
+) -> impl Iterator<Item = &[u32]> + '_ {
+    k.blocks()
+        .iter()
+        .flat_map(|b| b.vertices.chunks_exact(b.kind.n_vertices()))
+}
+
+/// [`count_minima`] of the cells given as vertex slices (the same count).
+pub(crate) fn count_minima_slices<'a>(
+    n: usize,
+    cells: impl Iterator<Item = &'a [u32]>,
+    to_new: Option<&[u32]>,
+) -> usize {
+    let mut not_min = vec![false; n];
+    let mut mark = |c: &[u32], key: &dyn Fn(u32) -> u32| {
+        let Some(mn) = c.iter().map(|&x| key(x)).min() else {
+            return;
+        };
+        for &x in c {
+            if key(x) != mn {
+                not_min[x as usize] = true;
+            }
+        }
+    };
+    match to_new {
+        None => cells.for_each(|c| mark(c, &|x| x)),
+        Some(t) => cells.for_each(|c| mark(c, &|x| t[x as usize])),
+    }
+    not_min.iter().filter(|&&b| !b).count()
+}
+
+/// [`first_appearance_order`] of the cells given as vertex slices (the same numbering).
+pub(crate) fn first_appearance_slices<'a>(
+    n: usize,
+    cells: impl Iterator<Item = &'a [u32]>,
+) -> Vec<u32> {
+    let mut to_new = vec![u32::MAX; n];
+    let mut next = 0u32;
+    for c in cells {
+        for &v in c {
+            if to_new[v as usize] == u32::MAX {
+                to_new[v as usize] = next;
+                next += 1;
+            }
+        }
+    }
+    for x in &mut to_new {
+        if *x == u32::MAX {
+            *x = next;
+            next += 1;
+        }
+    }
+    to_new
+}
+
+/// [`bfs_order`] of a [`Flat`] (the same numbering), reading its slices directly when its
+/// cells are simplices of one kind.
+pub(crate) fn bfs_order_flat(f: &Flat) -> Vec<u32> {
+    let Some(fs) = f.fast_star() else {
+        return bfs_order(f);
+    };
+    let n = f.n_vertices;
+    let a = fs.arity;
+    let mut to_new = vec![u32::MAX; n];
+    let mut next = 0u32;
+    // the queue is the numbering itself: vertices are dequeued in the order they are numbered
+    let mut order: Vec<u32> = Vec::with_capacity(n);
+    for root in 0..n {
+        if to_new[root] != u32::MAX {
+            continue;
+        }
+        to_new[root] = next;
+        next += 1;
+        order.push(root as u32);
+        let mut head = order.len() - 1;
+        while head < order.len() {
+            let v = order[head];
+            head += 1;
+            for &c in fs.vt.row(v as usize) {
+                for &w in &fs.verts[c as usize * a..(c as usize + 1) * a] {
+                    // a simplex: every other vertex is a neighbour, met in the stored order
+                    if w != v && to_new[w as usize] == u32::MAX {
+                        to_new[w as usize] = next;
+                        next += 1;
+                        order.push(w);
+                    }
+                }
+            }
+        }
+    }
+    to_new
+}
+
 /// Breadth-first numbering: `to_new[old]`.
 pub(crate) fn bfs_order<S: TopCells + VertexStar + ?Sized>(s: &S) -> Vec<u32> {
     let n = s.n_vertices();
@@ -300,6 +396,42 @@ impl Flat {
         Some(f)
     }
 
+    /// The cells of a complex it consumes, in the input numbering and order, when they are one
+    /// block of simplices (the coordinates are freed first; the vertices of every simplex are
+    /// sorted in place).
+    /// `None` (nothing consumed) unless [`Flat::takes_over`].
+    pub(crate) fn input_order(k: crate::complex::IndexedComplex) -> Option<Flat> {
+        if !Flat::takes_over(&k) {
+            return None;
+        }
+        let nv = k.n_vertices();
+        let nc = k.n_cells();
+        let mut blocks = k.into_blocks();
+        let b = blocks.pop()?;
+        let verts = b.vertices.into_vec();
+        let refs = verts.len();
+        let mut f = Flat {
+            n_vertices: nv,
+            n_cells: nc,
+            uniform: Some(b.kind),
+            kinds: Vec::new(),
+            arity: b.kind.n_vertices(),
+            starts: Vec::new(),
+            verts,
+            vt: crate::csr::Csr {
+                offsets: vec![0u32; nv + 1],
+                targets: vec![0u32; refs],
+            },
+        };
+        f.sort_and_index();
+        Some(f)
+    }
+
+    /// The complex is one block of simplices with fewer than 2^32 vertex references.
+    pub(crate) fn takes_over(k: &crate::complex::IndexedComplex) -> bool {
+        matches!(k.blocks(), [b] if b.kind.is_simplex()) && (k.n_refs() as u64) < u32::MAX as u64
+    }
+
     /// Renumbers the vertices in place (`to_new[old]`): cells keep their places, simplices
     /// are sorted again and the vertex → cells relation is rebuilt in its own buffers.
     pub(crate) fn relabel(&mut self, to_new: &[u32]) {
@@ -312,10 +444,34 @@ impl Flat {
     /// Sorts the vertices of every simplex and builds the vertex → cells relation (cells in
     /// increasing order: rows are sorted).
     fn sort_and_index(&mut self) {
-        for c in 0..self.n_cells {
-            if self.kind(c).is_simplex() {
-                let r = self.range(c);
-                self.verts[r].sort_unstable();
+        match self.uniform {
+            Some(k) if k.is_simplex() && self.arity == 3 => {
+                for c in self.verts.chunks_exact_mut(3) {
+                    // a sorting network
+                    if c[0] > c[1] {
+                        c.swap(0, 1);
+                    }
+                    if c[1] > c[2] {
+                        c.swap(1, 2);
+                    }
+                    if c[0] > c[1] {
+                        c.swap(0, 1);
+                    }
+                }
+            }
+            Some(k) if k.is_simplex() && self.arity > 0 => {
+                for c in self.verts.chunks_exact_mut(self.arity) {
+                    c.sort_unstable();
+                }
+            }
+            Some(_) => {}
+            None => {
+                for c in 0..self.n_cells {
+                    if self.kind(c).is_simplex() {
+                        let r = self.range(c);
+                        self.verts[r].sort_unstable();
+                    }
+                }
             }
         }
         let off = &mut self.vt.offsets;
@@ -326,13 +482,50 @@ impl Flat {
         for i in 0..self.n_vertices {
             off[i + 1] += off[i];
         }
-        let mut fill = off.clone();
-        for c in 0..self.n_cells {
-            for &v in &self.verts[self.range(c)] {
-                self.vt.targets[fill[v as usize] as usize] = c as u32;
-                fill[v as usize] += 1;
+        // `off[v]` is the next free place of row v while filling; shifted back afterwards
+        if self.uniform.is_some() && self.arity > 0 {
+            for (c, cell) in self.verts.chunks_exact(self.arity).enumerate() {
+                for &v in cell {
+                    self.vt.targets[off[v as usize] as usize] = c as u32;
+                    off[v as usize] += 1;
+                }
+            }
+        } else {
+            for c in 0..self.n_cells {
+                let r = if self.uniform.is_some() {
+                    c * self.arity..(c + 1) * self.arity
+                } else {
+                    self.starts[c] as usize..self.starts[c + 1] as usize
+                };
+                for &v in &self.verts[r] {
+                    self.vt.targets[off[v as usize] as usize] = c as u32;
+                    off[v as usize] += 1;
+                }
             }
         }
+        // now off[v] = end of row v = start of row v + 1
+        for i in (0..self.n_vertices).rev() {
+            off[i + 1] = off[i];
+        }
+        off[0] = 0;
+    }
+
+    /// Direct access to the cells when they are simplices of one kind (sorted vertices).
+    pub(crate) fn fast_star(&self) -> Option<super::morse::FastStar<'_>> {
+        match self.uniform {
+            Some(k) if k.is_simplex() => Some(super::morse::FastStar {
+                arity: self.arity,
+                sorted: true,
+                verts: &self.verts,
+                vt: &self.vt,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The cells as vertex slices, in cell order.
+    pub(crate) fn cells(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        (0..self.n_cells).map(|c| &self.verts[self.range(c)])
     }
 
     #[inline]
