@@ -193,7 +193,7 @@ fn info_validate_and_homology_equal_the_single_process_cli() {
     }
     let tmp = std::env::temp_dir().join(format!("starplex-mpi-test-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    let limit = Duration::from_secs(120);
+    let limit = Duration::from_secs(600); // single-process homology of hex_knot1 took 70 s under load 14
     let mut failures = Vec::new();
     for src in &data {
         let name = src.file_stem().unwrap().to_string_lossy().into_owned();
