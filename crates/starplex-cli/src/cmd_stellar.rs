@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use serde_json::{json, Value};
 use starplex::measure;
-use starplex::stellar::{Decomposition, SplitMode, StellarOptions, StellarStats, StellarTree};
+use starplex::stellar::{Decomposition, SplitMode, StellarOptions, StellarTree};
 
 use crate::common::{self, CliError, Ctx, InputArgs};
 
@@ -102,53 +102,9 @@ pub fn build_tree(
     .map_err(|e| CliError::Input(e.to_string(), None))
 }
 
-pub fn stats_json(s: &StellarStats) -> Value {
-    let enc =
-        |e: &starplex::stellar::stats::EncodingStorage| json!({"refs": e.refs, "bytes": e.bytes});
-    json!({
-        "n_nodes": s.n_nodes,
-        "n_leaves": s.n_leaves,
-        "kv": s.kv,
-        "n_vertices": s.n_vertices,
-        "n_top_cells": s.n_top_cells,
-        "max_depth": s.max_depth,
-        "chi": s.chi,
-        "mu": s.mu,
-        "leaf_max_vertices": s.leaf_max_vertices,
-        "leaf_mean_vertices": s.leaf_mean_vertices,
-        "leaf_max_cells": s.leaf_max_cells,
-        "leaf_mean_cells": s.leaf_mean_cells,
-        "storage": {
-            "base_complex": {"refs": s.storage.base_refs, "bytes": s.storage.base_bytes},
-            "explicit": enc(&s.storage.explicit),
-            "vertex_compressed": enc(&s.storage.vertex_compressed),
-            "compressed": enc(&s.storage.compressed),
-            "in_memory_bytes": s.storage.in_memory_bytes,
-        },
-    })
-}
-
-pub fn print_stats(s: &StellarStats) {
-    let mb = |b: u64| b as f64 / 1e6;
-    println!(
-        "  tree                {} nodes, {} leaves, depth {}, k_V {}",
-        s.n_nodes, s.n_leaves, s.max_depth, s.kv
-    );
-    println!(
-        "  leaves              vertices max {} mean {:.1}; top cells max {} mean {:.1}",
-        s.leaf_max_vertices, s.leaf_mean_vertices, s.leaf_max_cells, s.leaf_mean_cells
-    );
-    println!("  chi / mu            {:.3} / {:.3}", s.chi, s.mu);
-    let st = &s.storage;
-    println!(
-        "  storage (MB)        base complex {:.2}; explicit {:.2}, vertex-compressed {:.2}, compressed {:.2} (in memory {:.2})",
-        mb(st.base_bytes),
-        mb(st.explicit.bytes),
-        mb(st.vertex_compressed.bytes),
-        mb(st.compressed.bytes),
-        mb(st.in_memory_bytes)
-    );
-}
+pub use starplex_cli::report::{
+    print_stellar_stats as print_stats, stellar_stats_json as stats_json,
+};
 
 /// Loads a saved tree (memory-mapped), mapping its error to an input error.
 pub fn load_saved_tree(ctx: &Ctx, path: &std::path::Path) -> Result<StellarTree, CliError> {

@@ -3,6 +3,7 @@
 use serde_json::{json, Value};
 use starplex::algo::info::Info;
 use starplex::algo::validate::ValidationReport;
+use starplex::stellar::StellarStats;
 
 /// The JSON object of `starplex info --json` (keys as in the dataset oracles), before the
 /// `format`, `timings`, `betti_z2` and `notes` keys the command adds.
@@ -236,4 +237,69 @@ pub fn print_validation(r: &ValidationReport, max: usize) {
         }
         _ => println!("  orientable          undefined (a (d-1)-face in more than two top cells)"),
     }
+}
+
+/// The JSON object of `starplex stellar --json` before the `split` and `timings` keys (shared
+/// with `starplex-mpi stellar`, whose rank 0 fills the same statistics over all ranks).
+///
+/// ```
+/// use starplex::stellar::{StellarOptions, StellarTree};
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+/// let v = starplex_cli::report::stellar_stats_json(&t.stats());
+/// assert_eq!(v["n_leaves"], 1);
+/// starplex_cli::report::print_stellar_stats(&t.stats());
+/// ```
+pub fn stellar_stats_json(s: &StellarStats) -> Value {
+    let enc =
+        |e: &starplex::stellar::stats::EncodingStorage| json!({"refs": e.refs, "bytes": e.bytes});
+    json!({
+        "n_nodes": s.n_nodes,
+        "n_leaves": s.n_leaves,
+        "kv": s.kv,
+        "n_vertices": s.n_vertices,
+        "n_top_cells": s.n_top_cells,
+        "max_depth": s.max_depth,
+        "chi": s.chi,
+        "mu": s.mu,
+        "leaf_max_vertices": s.leaf_max_vertices,
+        "leaf_mean_vertices": s.leaf_mean_vertices,
+        "leaf_max_cells": s.leaf_max_cells,
+        "leaf_mean_cells": s.leaf_mean_cells,
+        "storage": {
+            "base_complex": {"refs": s.storage.base_refs, "bytes": s.storage.base_bytes},
+            "explicit": enc(&s.storage.explicit),
+            "vertex_compressed": enc(&s.storage.vertex_compressed),
+            "compressed": enc(&s.storage.compressed),
+            "in_memory_bytes": s.storage.in_memory_bytes,
+        },
+    })
+}
+
+/// Prints the human statistics lines of `starplex stellar`. Example: [`stellar_stats_json`].
+pub fn print_stellar_stats(s: &StellarStats) {
+    let mb = |b: u64| b as f64 / 1e6;
+    println!(
+        "  tree                {} nodes, {} leaves, depth {}, k_V {}",
+        s.n_nodes, s.n_leaves, s.max_depth, s.kv
+    );
+    println!(
+        "  leaves              vertices max {} mean {:.1}; top cells max {} mean {:.1}",
+        s.leaf_max_vertices, s.leaf_mean_vertices, s.leaf_max_cells, s.leaf_mean_cells
+    );
+    println!("  chi / mu            {:.3} / {:.3}", s.chi, s.mu);
+    let st = &s.storage;
+    println!(
+        "  storage (MB)        base complex {:.2}; explicit {:.2}, vertex-compressed {:.2}, compressed {:.2} (in memory {:.2})",
+        mb(st.base_bytes),
+        mb(st.explicit.bytes),
+        mb(st.vertex_compressed.bytes),
+        mb(st.compressed.bytes),
+        mb(st.in_memory_bytes)
+    );
 }

@@ -6,9 +6,11 @@
 //!    only the `r`-th slice of the coordinate array and the `r`-th slice of the top cells (its
 //!    byte ranges), plus the coordinates of the vertices those cells use.
 //! 2. The bounding box is reduced over ranks; each vertex gets a Morton key (its first three
-//!    coordinates, 21 bits each, ties broken by id). Ranks share a regular sample of their sorted
-//!    keys, and all pick the same `P - 1` splitters: the owner of a vertex is the range its key
-//!    falls in, computable by any rank from the vertex's coordinates.
+//!    coordinates, 21 bits each, ties broken by id). Ranks share a regular sample of their slice
+//!    of top cells, each cell keyed by its smallest vertex (the vertex whose owner owns the cell),
+//!    and all pick the same `P - 1` splitters, the P-quantiles of the sample: the owned top cells
+//!    are balanced (vertices are sampled instead when there are no cells). The owner of a vertex
+//!    is the range its key falls in, computable by any rank from the vertex's coordinates.
 //! 3. Rank `r` sends every cell of its slice to the owner of each of its vertices (all-to-all):
 //!    each rank receives the full star of every vertex it owns (owned + ghost cells). A cell is
 //!    *owned* by the owner of its smallest vertex, a face likewise.
@@ -159,7 +161,8 @@ impl Split {
     }
 }
 
-/// Agrees on the split: bounding box, Morton keys of this rank's vertex slice, a regular sample.
+/// Agrees on the split: bounding box, then splitters from a regular sample of Morton keys (of
+/// the smallest vertex of this rank's slice of cells; of its vertex slice without cells).
 pub fn split(w: &World, f: &Spb) -> Result<Split, Failure> {
     let (rank, p) = (w.rank() as usize, w.size() as usize);
     let d = f.h.ambient_dim;
@@ -198,24 +201,27 @@ pub fn split(w: &World, f: &Spb) -> Result<Split, Failure> {
         splitters: Vec::new(),
         bbox: (f.h.n_vertices > 0).then(|| (lo.clone(), hi.clone())),
     };
-    // a regular sample of this rank's sorted keys
-    let mut keys: Vec<(u64, u32)> = (v0..v1)
-        .map(|v| (s.key(f.point(v as u32)), v as u32))
-        .collect();
-    keys.sort_unstable();
-    let per = 64 * p;
-    let mut sample = Vec::with_capacity(2 * per);
-    if !keys.is_empty() {
-        for i in 0..per.min(keys.len()) {
-            let (kk, v) = keys[i * keys.len() / per.min(keys.len())];
-            sample.push(kk);
-            sample.push(v as u64);
-        }
+    // the sample the splitters are chosen from: balanced by top cells when there are cells
+    // (each cell stands for its smallest vertex, whose owner owns the cell), by vertices else
+    let per = (64 * p).max(4096);
+    let sample = if f.h.n_cells > 0 {
+        agree(w, cell_sample(f, &s, rank, p, per))?
+    } else {
+        let keys: Vec<(u64, u32)> = (v0..v1)
+            .map(|v| (s.key(f.point(v as u32)), v as u32))
+            .collect();
+        strided(&keys, per)
+    };
+    let mut flat = Vec::with_capacity(2 * sample.len());
+    for (k, v) in sample {
+        flat.push(k);
+        flat.push(v as u64);
     }
-    drop(keys);
-    let all = comm::all_gather(w, &sample);
+    let all = comm::all_gather(w, &flat);
     let mut all: Vec<(u64, u32)> = all.chunks_exact(2).map(|c| (c[0], c[1] as u32)).collect();
     all.sort_unstable();
+    // the splitters cut the sorted sample in P equal parts; equal keys of the same vertex
+    // (cells sharing their smallest vertex) fall on one side of a splitter, as they must
     s.splitters = (1..p)
         .filter_map(|i| all.get(i * all.len() / p).copied())
         .collect();
@@ -224,6 +230,45 @@ pub fn split(w: &World, f: &Spb) -> Result<Split, Failure> {
         s.splitters.push((u64::MAX, u32::MAX));
     }
     Ok(s)
+}
+
+/// `per` items of `keys` at a regular stride (all of them when fewer).
+fn strided(keys: &[(u64, u32)], per: usize) -> Vec<(u64, u32)> {
+    let n = keys.len();
+    if n <= per {
+        return keys.to_vec();
+    }
+    (0..per).map(|i| keys[i * n / per]).collect()
+}
+
+/// A regular sample of this rank's slice of top cells, each cell as the key of its smallest
+/// vertex: splitters cut from it balance the owned top cells (not the vertices). The cells
+/// sampled are checked (vertex ids in range), the others are checked by `distribute`.
+fn cell_sample(
+    f: &Spb,
+    s: &Split,
+    rank: usize,
+    p: usize,
+    per: usize,
+) -> Result<Vec<(u64, u32)>, String> {
+    let (c0, c1) = slice(f.h.n_cells, rank, p);
+    let n = (c1 - c0) as usize;
+    let take = n.min(per);
+    let mut out = Vec::with_capacity(take);
+    for i in 0..take {
+        let cid = c0 + (i * n / take) as u64;
+        let b = f.block_of(cid);
+        let cv = f.block_cells(b, cid - f.starts[b], cid - f.starts[b] + 1);
+        let m = cv.iter().copied().min().unwrap_or(0);
+        if let Some(&x) = cv.iter().find(|&&x| x as u64 >= f.h.n_vertices) {
+            return Err(format!(
+                "{}: cell {cid} has vertex {x}, but the file has {} vertices",
+                f.path, f.h.n_vertices
+            ));
+        }
+        out.push((s.key(f.point(m)), m));
+    }
+    Ok(out)
 }
 
 /// What one rank holds: its local complex over owned and ghost cells.

@@ -3,6 +3,8 @@
 //! ```text
 //! mpirun -np P starplex-mpi info FILE.spb [--json] [--max-faces N] [--stats]
 //! mpirun -np P starplex-mpi validate FILE.spb [--json] [--max-list N] [--stats]
+//! mpirun -np P starplex-mpi stellar FILE.spb [--json] [--kv N] [--vt-vv-out PREFIX] [--stats]
+//! mpirun -np P starplex-mpi homology FILE.spb [--json] [--stats]
 //! ```
 //!
 //! Rank 0 prints what `starplex info` / `starplex validate` print on the same file (the
@@ -29,12 +31,16 @@ use starplex::topo::{TopCells, VertexStar};
 
 mod comm;
 mod dist;
+mod fault;
+mod homology;
 mod labels;
+mod stellar;
 
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate) FILE.spb [--json] [--max-faces N] [--max-list N] [--stats]";
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]";
+const VERBS: [&str; 4] = ["info", "validate", "stellar", "homology"];
 
 #[derive(Debug)]
 struct Args {
@@ -44,6 +50,8 @@ struct Args {
     stats: bool,
     max_faces: u128,
     max_list: usize,
+    kv: Option<u32>,
+    vt_vv_out: Option<PathBuf>,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -55,6 +63,8 @@ fn parse_args() -> Result<Args, String> {
         stats: false,
         max_faces: InfoOptions::default().max_faces,
         max_list: 1000,
+        kv: None,
+        vt_vv_out: None,
     };
     let mut pos = Vec::new();
     while let Some(x) = it.next() {
@@ -68,19 +78,31 @@ fn parse_args() -> Result<Args, String> {
             "--stats" => a.stats = true,
             "--max-faces" => a.max_faces = num("--max-faces")?,
             "--max-list" => a.max_list = num("--max-list")? as usize,
+            "--kv" => {
+                a.kv = Some(
+                    u32::try_from(num("--kv")?)
+                        .map_err(|_| format!("--kv: above 2^32\n{USAGE}"))?,
+                )
+            }
+            "--vt-vv-out" => {
+                a.vt_vv_out = Some(PathBuf::from(
+                    it.next()
+                        .ok_or(format!("--vt-vv-out needs a value\n{USAGE}"))?,
+                ))
+            }
             "-h" | "--help" => return Err(USAGE.to_string()),
             s if s.starts_with('-') => return Err(format!("unknown option {s}\n{USAGE}")),
             _ => pos.push(x),
         }
     }
     match pos.as_slice() {
-        [v, f] if v == "info" || v == "validate" => {
+        [v, f] if VERBS.contains(&v.as_str()) => {
             a.verb = v.clone();
             a.file = PathBuf::from(f);
             Ok(a)
         }
         [v, _] => Err(format!(
-            "unknown verb '{v}' (this version distributes info and validate)\n{USAGE}"
+            "unknown verb '{v}' (this version distributes info, validate, stellar and homology)\n{USAGE}"
         )),
         _ => Err(USAGE.to_string()),
     }
@@ -117,7 +139,9 @@ struct Loaded {
 fn run(w: &World) -> Result<(), Failure> {
     let a = agree(w, parse_args())?;
     let t0 = Instant::now();
+    fault::guard_sigbus(&a.file);
     let f = agree(w, Spb::open(&a.file))?;
+    fault::test_pause();
     let split = dist::split(w, &f)?;
     let l = dist::distribute(w, &f, &split)?;
     agree(w, f.check_unchanged())?;
@@ -129,6 +153,19 @@ fn run(w: &World) -> Result<(), Failure> {
     };
     match a.verb.as_str() {
         "info" => run_info(w, &a, &mut ld)?,
+        "stellar" => stellar::run(
+            w,
+            &stellar::StellarArgs {
+                kv: a.kv,
+                vt_vv_out: a.vt_vv_out.as_deref(),
+                json: a.json,
+            },
+            &a.file,
+            &ld.f,
+            &ld.l,
+            ld.read_s,
+        )?,
+        "homology" => homology::run(w, a.json, &a.file, &ld.f, &ld.l, ld.read_s, a.max_faces)?,
         _ => run_validate(w, &a, &ld)?,
     }
     if a.stats {
@@ -281,7 +318,7 @@ fn run_info(w: &World, a: &Args, ld: &mut Loaded) -> Result<(), Failure> {
     Ok(())
 }
 
-fn print_json(v: &serde_json::Value) {
+pub(crate) fn print_json(v: &serde_json::Value) {
     println!(
         "{}",
         serde_json::to_string_pretty(v).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
@@ -545,6 +582,16 @@ fn print_stats(w: &World, ld: &Loaded) -> Result<(), Failure> {
         peak_rss_kib(),
     ];
     if let Some(all) = comm::gather(w, &row)? {
+        let owned: Vec<u64> = all.chunks_exact(row.len()).map(|r| r[3]).collect();
+        let (max, total) = (
+            owned.iter().copied().max().unwrap_or(0),
+            owned.iter().sum::<u64>(),
+        );
+        let mean = total as f64 / owned.len().max(1) as f64;
+        eprintln!(
+            "owned top cells per rank {owned:?}: max / mean {:.3} (the split balances owned top cells)",
+            if mean > 0.0 { max as f64 / mean } else { 1.0 }
+        );
         eprintln!("rank owned_vertices held_vertices owned_cells held_cells ghost_share bytes_sent peak_rss_kib");
         for r in all.chunks_exact(row.len()) {
             let ghost = if r[4] > 0 {
