@@ -17,6 +17,7 @@ use mpi::traits::Communicator;
 use serde_json::json;
 use starplex::ids::VertexId;
 use starplex::stellar::{sre, StellarOptions, StellarStats, StellarTree};
+use starplex::topo::LocalStar;
 
 use crate::comm::{self, agree, Failure, World};
 use crate::dist::Local;
@@ -43,14 +44,15 @@ pub fn owned_stats(t: &StellarTree, l: &Local) -> Owned {
     t.for_each_leaf(|view| {
         cells.clear();
         let mut nv = 0u64;
-        let all = view.tree_vertices();
-        for tv in all.clone() {
+        let mut any = false;
+        for tv in view.owned_vertices() {
+            any = true;
             if l.owned.contains(view.input_vertex(tv).index()) {
                 nv += 1;
-                cells.extend_from_slice(view.vt_tree(tv));
+                cells.extend(view.local_star(tv).iter().map(|c| c.0));
             }
         }
-        if nv == 0 && !all.is_empty() {
+        if nv == 0 && any {
             return;
         }
         cells.sort_unstable();

@@ -141,7 +141,7 @@ fn random_graph(n: usize, m: usize, seed: u64) -> Vec<(u32, u32)> {
     while e.len() < m {
         let a = (r.next_u64() % n as u64) as u32;
         // mostly local edges (clustered, many triangles), some long ones
-        let b = if r.next_u64() % 4 == 0 {
+        let b = if r.next_u64().is_multiple_of(4) {
             (r.next_u64() % n as u64) as u32
         } else {
             ((a as u64 + 1 + r.next_u64() % 12) % n as u64) as u32

@@ -984,8 +984,8 @@ fn cliques_of_size(
     let mut parts: Vec<(u32, u32, &mut [u32])> = Vec::new();
     let mut rest = &mut out[..];
     let (mut start, mut acc) = (0usize, 0u64);
-    for v in 0..n {
-        acc += counts[v] * size as u64;
+    for (v, &count) in counts.iter().enumerate().take(n) {
+        acc += count * size as u64;
         if acc >= target || v + 1 == n {
             let (a, b) = std::mem::take(&mut rest).split_at_mut(acc as usize);
             parts.push((start as u32, v as u32 + 1, a));

@@ -114,7 +114,6 @@ pub(super) fn build(
     let t0 = Instant::now();
     let input = InputCells::new(k);
     let d = decompose(&ctx, k.n_vertices(), graph.then_some(&input));
-    drop(input);
     timings.decomposition_s = t0.elapsed().as_secs_f64();
 
     let t1 = Instant::now();

@@ -142,8 +142,7 @@ impl Walk<'_> {
         }
         let mut order = Vec::with_capacity(len);
         let mut scratch = Vec::new();
-        for i in 0..len {
-            let v = idx[i];
+        for &v in idx.iter() {
             if self.placed[v as usize] == b {
                 continue;
             }
