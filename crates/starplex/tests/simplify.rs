@@ -7,12 +7,12 @@ use std::path::Path;
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
-use starplex::algo::simplify::contract::contract_homology;
+use starplex::algo::simplify::contract::{contract_homology, contract_homology_blocks};
 use starplex::algo::simplify::link_condition::{
     link_condition, link_condition_full, LinkMode, LinkScratch,
 };
 use starplex::algo::simplify::{
-    simplify, summary, Mode, SimplifyError, SimplifyOptions, Target, TopSimplices,
+    simplify, summary, Blocks, Mode, SimplifyError, SimplifyOptions, Target, TopSimplices,
 };
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
@@ -238,6 +238,163 @@ proptest! {
             prop_assert!(TopSimplices::from_tops(n, &st).is_ok(), "{:?}", st);
         }
     }
+}
+
+/// Random complexes whose cells are local in the vertex ids (each cell within a window of 6
+/// consecutive ids), so that blocks of consecutive ids have inner vertices; with 2 to 4 cuts.
+fn random_local_tops() -> impl Strategy<Value = (usize, Vec<Vec<u32>>, Vec<usize>)> {
+    (12usize..=40, 1usize..=4).prop_flat_map(|(n, dim)| {
+        let cell = (
+            0..n as u32 - 1,
+            proptest::collection::btree_set(0u32..6, 2..=dim + 1),
+        );
+        let cuts = proptest::collection::btree_set(1..n, 1..=3);
+        (Just(n), proptest::collection::vec(cell, 1..=45), cuts).prop_map(|(n, cells, cuts)| {
+            let cells: Vec<Vec<u32>> = cells
+                .into_iter()
+                .map(|(s, off)| {
+                    let c: BTreeSet<u32> =
+                        off.into_iter().map(|o| (s + o).min(n as u32 - 1)).collect();
+                    c.into_iter().collect()
+                })
+                .filter(|c: &Vec<u32>| c.len() >= 2)
+                .collect();
+            let mut tops: Vec<Vec<u32>> = Vec::new();
+            for (i, c) in cells.iter().enumerate() {
+                let dominated = cells.iter().enumerate().any(|(j, d)| {
+                    j != i && c.iter().all(|v| d.contains(v)) && (c.len() < d.len() || j < i)
+                });
+                if !dominated {
+                    tops.push(c.clone());
+                }
+            }
+            if tops.is_empty() {
+                tops.push(vec![0, 1]);
+            }
+            let mut cuts: Vec<usize> = std::iter::once(0).chain(cuts).collect();
+            cuts.push(n);
+            (n, tops, cuts)
+        })
+    })
+}
+
+/// The vertex rows of `w` are those of the structure rebuilt from its tops.
+fn rows_are_consistent(w: &TopSimplices) -> bool {
+    (0..w.n_vertices() as u32).all(|v| {
+        let mut row: Vec<Vec<u32>> = w
+            .star(v)
+            .iter()
+            .map(|&t| {
+                let mut t = w.top(t).to_vec();
+                t.sort_unstable();
+                t
+            })
+            .collect();
+        row.sort();
+        let want: Vec<Vec<u32>> = w
+            .sorted_tops()
+            .into_iter()
+            .filter(|t| t.contains(&v))
+            .collect();
+        row == want && (w.is_alive(v) || row.is_empty())
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 300,
+        rng_seed: RngSeed::Fixed(0xb10c),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    /// Contraction over blocks (parts cut out, contracted in parallel, pasted back) on 300
+    /// random complexes of dimension 1–4 cut in 2–4 blocks: the Betti numbers are kept, no edge
+    /// left passes the link condition, the vertex rows match the tops, the result is the same
+    /// on 1 and 2 threads, and a vertex target is met exactly.
+    #[test]
+    fn blocks_keep_betti_and_do_not_depend_on_threads((n, tops, cuts) in random_local_tops()) {
+        let w = TopSimplices::from_tops(n, &tops).unwrap();
+        let before = betti_brute(&w.sorted_tops());
+        let order: Vec<u32> = (0..n as u32).collect();
+        let blocks = Blocks::from_order(&order, &cuts).unwrap();
+        for mode in [LinkMode::Homology, LinkMode::Manifold] {
+            let run = |threads: usize, target: Target| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let mut c = w.clone();
+                let s = pool.install(|| contract_homology_blocks(&mut c, &target, mode, None, &blocks));
+                (c, s)
+            };
+            let (one, s1) = run(1, Target::default());
+            let (two, s2) = run(2, Target::default());
+            prop_assert_eq!(one.sorted_tops(), two.sorted_tops());
+            prop_assert_eq!(s1, s2);
+            prop_assert_eq!(&betti_brute(&one.sorted_tops()), &before, "{:?} {:?} cuts {:?}", mode, tops, cuts);
+            prop_assert!(rows_are_consistent(&one), "{:?} {:?} cuts {:?}", mode, tops, cuts);
+            if mode == LinkMode::Homology {
+                for (a, b) in edges(&one) {
+                    prop_assert!(one.can_contract(a, b).is_err(), "{}-{} still contracts", a, b);
+                }
+            }
+            // a vertex target half way: met exactly (each contraction removes one vertex)
+            let goal = (w.n_alive_vertices() + one.n_alive_vertices()) / 2;
+            let t = Target { vertices: Some(goal), ..Default::default() };
+            let (half, _) = run(2, t);
+            prop_assert_eq!(half.n_alive_vertices(), goal);
+            prop_assert_eq!(half.sorted_tops(), run(1, t).0.sorted_tops());
+            prop_assert_eq!(&betti_brute(&half.sorted_tops()), &before);
+        }
+    }
+}
+
+/// A 160,801-vertex grid (several blocks of a Stellar tree): the same result on 1 and 2
+/// threads, contractible to one vertex, a disc of few triangles with the manifold condition,
+/// and a face target met exactly.
+#[test]
+fn parallel_rounds_on_a_large_grid() {
+    let k = kuhn_grid(&[400, 400]).unwrap();
+    assert!(starplex::algo::simplify::homology_blocks(&k).len() > 1);
+    let run = |threads: usize, opts: &SimplifyOptions| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| simplify(&k, opts).unwrap())
+    };
+    let homology = SimplifyOptions {
+        mode: Some(Mode::Homology),
+        ..Default::default()
+    };
+    let (p1, r1) = run(1, &homology);
+    let (p2, r2) = run(2, &homology);
+    assert_eq!((p1.n_vertices(), p1.n_cells()), (1, 0));
+    assert_eq!((p2.n_vertices(), r2.n_contractions), (1, r1.n_contractions));
+    let manifold = SimplifyOptions {
+        keep_manifold: true,
+        ..homology.clone()
+    };
+    let (d1, _) = run(1, &manifold);
+    let (d2, _) = run(2, &manifold);
+    assert_eq!(
+        d1.cells().map(|c| c.vertices.to_vec()).collect::<Vec<_>>(),
+        d2.cells().map(|c| c.vertices.to_vec()).collect::<Vec<_>>()
+    );
+    assert_eq!(summary(&d1).betti, Some(vec![1, 0, 0]));
+    assert!(d1.n_cells() < 10, "{} triangles left", d1.n_cells());
+    let faces = SimplifyOptions {
+        target: Target {
+            faces: Some(20_000),
+            ..Default::default()
+        },
+        ..manifold
+    };
+    let (f1, _) = run(2, &faces);
+    assert!(
+        f1.n_cells() <= 20_000 && f1.n_cells() >= 19_990,
+        "{} triangles",
+        f1.n_cells()
+    );
+    assert_eq!(summary(&f1).betti, Some(vec![1, 0, 0]));
 }
 
 /// Refused contractions that would have changed the homology, built to do so.

@@ -240,7 +240,7 @@ impl StellarTree {
     /// let mut refs = 0;
     /// t.for_each_leaf(|leaf| {
     ///     leaves.push(leaf.leaf().0);
-    ///     refs += leaf.tree_cells().len();
+    ///     refs += leaf.e.cells.len();
     /// });
     /// assert_eq!(leaves, vec![0, 1, 2, 3]);
     /// assert_eq!(refs, 6); // vertices 1 and 2 are in both triangles
@@ -268,7 +268,7 @@ impl StellarTree {
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
     /// let ids = t.par_map_leaves(|leaf| leaf.leaf().0);
     /// assert_eq!(ids, vec![0, 1, 2, 3]); // in leaf order
-    /// let n_cells: Vec<usize> = t.par_map_leaves(|leaf| leaf.tree_cells().len());
+    /// let n_cells: Vec<usize> = t.par_map_leaves(|leaf| leaf.e.cells.len());
     /// assert_eq!(n_cells.iter().sum::<usize>(), 6);
     /// ```
     pub fn par_map_leaves<R: Send>(&self, f: impl Fn(&LeafView<'_>) -> R + Sync + Send) -> Vec<R> {
@@ -464,7 +464,7 @@ impl LeafCache {
 /// // the leaf of input vertex 1, which is in both triangles
 /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
 /// let leaf = LeafView { tree: &t, e: &e };
-/// assert_eq!(leaf.tree_cells(), &[0, 1]);
+/// assert_eq!(leaf.e.cells, vec![0, 1]);
 /// assert_eq!(leaf.input_vertices().collect::<Vec<_>>(), vec![VertexId(1)]);
 /// ```
 #[derive(Clone, Copy)]

@@ -17,6 +17,7 @@
 //! ```
 use fixedbitset::FixedBitSet;
 
+use super::blocks::Blocks;
 use super::link_condition::{link_condition, region_condition, LinkMode, LinkScratch};
 use super::tops::TopSimplices;
 use super::{Progress, Target};
@@ -122,7 +123,8 @@ pub struct ContractStats {
 /// ([`TopSimplices::set_locked`]) is never removed: it absorbs its unlocked neighbours, and an
 /// edge between two locked vertices is never contracted. `mode` [`LinkMode::Manifold`] also keeps a
 /// manifold (with boundary) a manifold of the same dimension. `progress` is called with the
-/// number of contractions made.
+/// number of contractions made. One thread; [`contract_homology_blocks`] is the same on
+/// blocks of vertices contracted in parallel.
 ///
 /// ```
 /// use starplex::algo::simplify::{TopSimplices, Target, contract::contract_homology};
@@ -142,22 +144,130 @@ pub fn contract_homology(
     mode: LinkMode,
     progress: Option<&Progress>,
 ) -> ContractStats {
+    let blocks = Blocks::single(w.n_vertices());
+    contract_homology_blocks(w, target, mode, progress, &blocks)
+}
+
+/// [`contract_homology`] over blocks of vertices (for instance the leaves of a Stellar tree,
+/// [`Blocks::from_stellar`]), both cores at work. Each round first sweeps every block on its
+/// own, in parallel: a block contracts only edges whose two stars lie inside it (its *inner*
+/// vertices), on a part cut out of the structure, in increasing vertex id order; the parts are
+/// pasted back in block order. Then one sweep over all the vertices, in id order, takes the
+/// edges across blocks (and the vertices left untouched). With a count target, each block gets
+/// a share of what is left to remove in proportion to its size and stops before a contraction
+/// that could exceed it, so the sequential sweep stops exactly at the target. The result
+/// depends on the blocks, never on the number of threads; with one block it is
+/// [`contract_homology`]'s.
+///
+/// ```
+/// use starplex::algo::simplify::{TopSimplices, Target, Blocks, contract::{contract_homology_blocks}};
+/// use starplex::algo::simplify::link_condition::LinkMode;
+/// // a path of 100 vertices in 4 blocks of 25 consecutive ones: contractible, one vertex left
+/// let path: Vec<Vec<u32>> = (0..99).map(|i| vec![i, i + 1]).collect();
+/// let mut w = TopSimplices::from_tops(100, &path).unwrap();
+/// let order: Vec<u32> = (0..100).collect();
+/// let blocks = Blocks::from_order(&order, &[0, 25, 50, 75, 100]).unwrap();
+/// let s = contract_homology_blocks(&mut w, &Target::default(), LinkMode::Homology, None, &blocks);
+/// assert_eq!((w.n_alive_vertices(), s.n_contractions), (1, 99));
+/// ```
+pub fn contract_homology_blocks(
+    w: &mut TopSimplices,
+    target: &Target,
+    mode: LinkMode,
+    progress: Option<&Progress>,
+    blocks: &Blocks,
+) -> ContractStats {
     let mut stats = ContractStats::default();
     let n = w.n_vertices();
-    let mut scratch = LinkScratch::default();
-    let mut nb = Vec::new();
+    let mut sweeper = Sweeper::new(mode, progress);
     let mut touched = FixedBitSet::with_capacity(n);
+    // inner vertices whose block sweep ran to its end: their pairs were all tried this round
+    let mut tried = FixedBitSet::with_capacity(n);
+    let mut in_part = FixedBitSet::with_capacity(w.n_top_slots());
     while !target.reached(w) {
         stats.rounds += 1;
         touched.clear();
+        tried.clear();
         let before = stats.n_contractions;
-        for a in 0..n as u32 {
+        if blocks.len() > 1 {
+            blocks.sweep_parts(
+                w,
+                target,
+                &sweeper,
+                &mut touched,
+                &mut tried,
+                &mut in_part,
+                &mut stats,
+            );
+        }
+        if !target.reached(w) {
+            let all = 0..n as u32;
+            sweeper.sweep(
+                w,
+                all,
+                &mut touched,
+                Some(&tried),
+                &mut stats,
+                |_, _, _| true,
+                |w| target.reached(w),
+            );
+        }
+        if stats.n_contractions == before {
+            break;
+        }
+    }
+    stats
+}
+
+/// One sweep of [`contract_homology_blocks`]: its mode, callback and reused buffers.
+pub(super) struct Sweeper<'a> {
+    mode: LinkMode,
+    progress: Option<&'a Progress>,
+    scratch: LinkScratch,
+    nb: Vec<u32>,
+}
+
+impl<'a> Sweeper<'a> {
+    pub(super) fn new(mode: LinkMode, progress: Option<&'a Progress>) -> Sweeper<'a> {
+        Sweeper {
+            mode,
+            progress,
+            scratch: LinkScratch::default(),
+            nb: Vec::new(),
+        }
+    }
+
+    /// A fresh sweeper with the same mode and callback (one per parallel task).
+    pub(super) fn fork(&self) -> Sweeper<'a> {
+        Sweeper::new(self.mode, self.progress)
+    }
+
+    /// Every vertex of `order` not `touched` absorbs (or is absorbed by) its first untouched
+    /// neighbour, in id order, whose edge passes the link condition; both ends become touched.
+    /// A pair of two `tried` vertices is skipped (already tried this round). `allow(w, s, t)`
+    /// is asked before contracting `t` into `s` (false ends the sweep), `done(w)` after each
+    /// contraction (true ends it). Returns false when a callback ended the sweep.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn sweep(
+        &mut self,
+        w: &mut TopSimplices,
+        order: impl Iterator<Item = u32>,
+        touched: &mut FixedBitSet,
+        tried: Option<&FixedBitSet>,
+        stats: &mut ContractStats,
+        mut allow: impl FnMut(&TopSimplices, u32, u32) -> bool,
+        mut done: impl FnMut(&TopSimplices) -> bool,
+    ) -> bool {
+        let was_tried = |v: u32| tried.is_some_and(|t| t.contains(v as usize));
+        for a in order {
             if !w.is_alive(a) || touched.contains(a as usize) {
                 continue;
             }
-            w.neighbours_into(a, &mut nb);
-            for &b in &nb {
-                if touched.contains(b as usize) {
+            w.neighbours_into(a, &mut self.nb);
+            let a_tried = was_tried(a);
+            for i in 0..self.nb.len() {
+                let b = self.nb[i];
+                if touched.contains(b as usize) || (a_tried && was_tried(b)) {
                     continue;
                 }
                 // a locked vertex survives; two locked ones are never merged
@@ -166,27 +276,27 @@ pub fn contract_homology(
                     (false, true) => (b, a),
                     _ => (a, b),
                 };
-                if link_condition(w, s, t, mode, &mut scratch)
-                    && region_condition(w, s, t, &mut scratch)
+                if link_condition(w, s, t, self.mode, &mut self.scratch)
+                    && region_condition(w, s, t, &mut self.scratch)
                 {
+                    if !allow(w, s, t) {
+                        return false;
+                    }
                     w.contract(s, t);
                     touched.insert(a as usize);
                     touched.insert(b as usize);
                     stats.n_contractions += 1;
-                    if let Some(p) = progress {
+                    if let Some(p) = self.progress {
                         p(1);
+                    }
+                    if done(w) {
+                        return false;
                     }
                     break;
                 }
                 stats.n_refused += 1;
             }
-            if target.reached(w) {
-                break;
-            }
         }
-        if stats.n_contractions == before {
-            break;
-        }
+        true
     }
-    stats
 }

@@ -23,6 +23,7 @@
 //! assert_eq!(summary(&small).betti, Some(vec![1, 0, 0, 0]));
 //! assert_eq!(report.mode, Mode::Homology);
 //! ```
+pub mod blocks;
 pub mod contract;
 pub mod hausdorff;
 pub mod link_condition;
@@ -32,6 +33,7 @@ pub mod tops;
 use std::sync::Arc;
 use std::time::Instant;
 
+pub use blocks::Blocks;
 pub use tops::TopSimplices;
 
 use crate::complex::{ComplexError, IndexedComplex};
@@ -366,7 +368,8 @@ pub fn simplify(
             } else {
                 link_condition::LinkMode::Homology
             };
-            let s = contract::contract_homology(&mut w, &target, lm, progress);
+            let blocks = homology_blocks(k);
+            let s = contract::contract_homology_blocks(&mut w, &target, lm, progress, &blocks);
             report.n_contractions = s.n_contractions;
             report.rounds = s.rounds;
         }
@@ -400,6 +403,38 @@ pub fn simplify(
     }
     report.time_s = t0.elapsed().as_secs_f64();
     Ok((out, report))
+}
+
+/// The blocks of the parallel rounds of homology mode: the leaves of a Stellar tree of `k`
+/// (by coordinates; by connectivity when the coordinates do not separate the vertices)
+/// grouped by [`blocks::BLOCK_VERTICES`]; one block for a small complex. They depend on the
+/// complex alone, so the result is the same for any number of threads.
+///
+/// ```
+/// use starplex::algo::simplify::homology_blocks;
+/// use starplex::generate::kuhn_grid;
+/// assert_eq!(homology_blocks(&kuhn_grid(&[4, 4]).unwrap()).len(), 1);
+/// assert!(homology_blocks(&kuhn_grid(&[300, 300]).unwrap()).len() > 1);
+/// ```
+pub fn homology_blocks(k: &IndexedComplex) -> Blocks {
+    use crate::stellar::{Decomposition, StellarOptions, StellarTree};
+    let n = k.n_vertices();
+    if n < 2 * blocks::BLOCK_VERTICES {
+        return Blocks::single(n);
+    }
+    for decomposition in [Decomposition::Spatial, Decomposition::Graph] {
+        let opts = StellarOptions {
+            decomposition,
+            ..Default::default()
+        };
+        if let Ok(tree) = StellarTree::build(k, &opts) {
+            let b = Blocks::from_stellar(&tree, blocks::BLOCK_VERTICES);
+            if b.len() > 1 {
+                return b;
+            }
+        }
+    }
+    Blocks::single(n)
 }
 
 /// The label attributes [`default_label_attribute`] looks for, in order.

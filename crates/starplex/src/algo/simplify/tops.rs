@@ -20,6 +20,9 @@
 //! assert_eq!((w.n_alive_vertices(), w.n_alive_tops()), (4, 2));
 //! assert_eq!(w.neighbours(1), vec![0, 2, 3]);
 //! ```
+use std::sync::Arc;
+
+use fixedbitset::FixedBitSet;
 use smallvec::SmallVec;
 
 use super::SimplifyError;
@@ -56,8 +59,9 @@ pub struct TopSimplices {
     vt: Vec<SmallVec<[u32; 8]>>,
     alive_v: Vec<bool>,
     locked: Vec<bool>,
-    /// Per input top (by origin): its label, when labels are kept (empty otherwise).
-    labels: Vec<u32>,
+    /// Per input top (by origin): its label, when labels are kept (empty otherwise); shared
+    /// with the parts cut out for a parallel sweep ([`cut`](Self::cut)).
+    labels: Arc<Vec<u32>>,
     n_alive_tops: usize,
     n_alive_v: usize,
     /// Coordinates, `stride` numbers a vertex (empty when there are none).
@@ -348,7 +352,7 @@ impl TopSimplices {
             vt,
             alive_v: vec![true; n],
             locked: vec![false; n],
-            labels: Vec::new(),
+            labels: Arc::default(),
             n_alive_v: n,
             coords,
             stride,
@@ -447,7 +451,7 @@ impl TopSimplices {
     /// assert!(w.has_labels());
     /// ```
     pub fn set_cell_labels(&mut self, labels: Vec<u32>) {
-        self.labels = labels;
+        self.labels = Arc::new(labels);
     }
 
     /// True when the tops are labelled ([`set_cell_labels`](Self::set_cell_labels)).
@@ -907,6 +911,114 @@ impl TopSimplices {
             .filter(|&v| self.alive_v[v as usize])
             .map(VertexId)
             .collect()
+    }
+}
+
+/// The part of a [`TopSimplices`] cut out for one block of vertices ([`TopSimplices::cut`]):
+/// the stars of the block's *inner* vertices (those whose every top lies in the block), in a
+/// structure of its own whose vertex `i` is the block's `i`-th vertex.
+pub(super) struct Part {
+    /// The part: tops in global id order, vertices numbered within the block.
+    pub(super) w: TopSimplices,
+    /// Per part top: its id in the whole structure.
+    pub(super) global_top: Vec<u32>,
+    /// Per block vertex: inner (alive, and every top through it lies in the block).
+    pub(super) inner: FixedBitSet,
+}
+
+impl TopSimplices {
+    /// Cuts out the stars of the inner vertices of block `x`: `verts` are its vertices in
+    /// increasing id order, `block_of` / `local_of` give every vertex's block and position in
+    /// it. A contraction of two inner vertices reads and writes only the part (the tops through
+    /// them and the rows of those tops' vertices, all in the block), so disjoint blocks can be
+    /// contracted at the same time and pasted back ([`paste`](Self::paste)).
+    pub(super) fn cut(&self, verts: &[u32], block_of: &[u32], local_of: &[u32], x: u32) -> Part {
+        let mut inner = FixedBitSet::with_capacity(verts.len());
+        let mut ids: Vec<u32> = Vec::new();
+        for (i, &v) in verts.iter().enumerate() {
+            let star = self.star(v);
+            let is_inner = self.is_alive(v)
+                && star
+                    .iter()
+                    .all(|&t| self.top(t).iter().all(|&u| block_of[u as usize] == x));
+            if is_inner {
+                inner.insert(i);
+                ids.extend_from_slice(star);
+            }
+        }
+        ids.sort_unstable();
+        ids.dedup();
+        let mut tverts = Vec::with_capacity(ids.len() * self.tops.width.max(1));
+        let mut lens = Vec::with_capacity(ids.len());
+        let mut origin = Vec::with_capacity(ids.len());
+        for &t in &ids {
+            let top = self.top(t);
+            tverts.extend(top.iter().map(|&u| local_of[u as usize]));
+            lens.push(top.len() as u8);
+            origin.push(self.origin[t as usize]);
+        }
+        let mut w = Self::assemble(
+            verts.len(),
+            FlatTops::new(tverts, lens),
+            origin,
+            Vec::new(),
+            0,
+        );
+        for (i, &v) in verts.iter().enumerate() {
+            w.alive_v[i] = self.is_alive(v);
+            w.locked[i] = self.is_locked(v);
+        }
+        w.n_alive_v = w.alive_v.iter().filter(|&&a| a).count();
+        w.labels = Arc::clone(&self.labels);
+        Part {
+            w,
+            global_top: ids,
+            inner,
+        }
+    }
+
+    /// Writes a contracted part back (the inverse of [`cut`](Self::cut) for block `verts`):
+    /// the part's tops into their slots (removed ones removed), the inner vertices' rows, the
+    /// part's entries of the other block vertices' rows, the vertices contracted away.
+    /// `in_part` is a cleared bitset over the tops (left cleared).
+    pub(super) fn paste(&mut self, verts: &[u32], part: &Part, in_part: &mut FixedBitSet) {
+        let p = &part.w;
+        for (lt, &g) in part.global_top.iter().enumerate() {
+            in_part.insert(g as usize);
+            let g = g as usize;
+            let l = p.tops.lens[lt];
+            if l == 0 {
+                self.tops.lens[g] = 0;
+                self.n_alive_tops -= 1;
+                continue;
+            }
+            let s = self.tops.slot(g);
+            for (i, &u) in p.tops.get(lt).iter().enumerate() {
+                self.tops.verts[s + i] = verts[u as usize];
+            }
+            self.tops.lens[g] = l;
+        }
+        for (i, &v) in verts.iter().enumerate() {
+            let row = &mut self.vt[v as usize];
+            if part.inner.contains(i) {
+                row.clear();
+            } else {
+                row.retain(|t| !in_part.contains(*t as usize));
+            }
+            row.extend(p.vt[i].iter().map(|&lt| part.global_top[lt as usize]));
+            if self.alive_v[v as usize] && !p.alive_v[i] {
+                self.alive_v[v as usize] = false;
+                self.n_alive_v -= 1;
+            }
+        }
+        for &g in &part.global_top {
+            in_part.set(g as usize, false);
+        }
+    }
+
+    /// Number of top slots (alive or removed): the range of top ids.
+    pub(super) fn n_top_slots(&self) -> usize {
+        self.tops.len()
     }
 }
 

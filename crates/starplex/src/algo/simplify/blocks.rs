@@ -1,0 +1,247 @@
+//! Blocks of vertices for the parallel rounds of homology-preserving contraction
+//! ([`contract_homology_blocks`](super::contract::contract_homology_blocks)): a partition of
+//! the vertices into groups that are close in the complex, taken from the leaves of a Stellar
+//! tree ([`Blocks::from_stellar`]: consecutive leaves, in the tree's order, until a block has
+//! enough vertices) or given as an order and cut points ([`Blocks::from_order`]).
+//!
+//! A block's *inner* vertices are those whose every top lies inside the block: an edge between
+//! two of them is contracted on a part cut out of the structure ([`TopSimplices::cut`]), without
+//! looking at the rest, so the blocks are contracted in parallel, and pasted back in block order.
+//!
+//! ```
+//! use starplex::algo::simplify::Blocks;
+//! let b = Blocks::from_order(&[3, 1, 0, 2], &[0, 2, 4]).unwrap();
+//! assert_eq!(b.len(), 2);
+//! assert_eq!((b.block(0), b.block(1)), (&[1, 3][..], &[0, 2][..])); // each sorted by id
+//! assert_eq!(Blocks::single(4).len(), 1);
+//! ```
+use fixedbitset::FixedBitSet;
+use rayon::prelude::*;
+
+use super::contract::{ContractStats, Sweeper};
+use super::tops::TopSimplices;
+use super::{SimplifyError, Target};
+use crate::stellar::StellarTree;
+
+/// Vertices per block that [`simplify`](super::simplify) aims at: the border of a block (its
+/// vertices with a top reaching another block) is then a few percent of it on a mesh.
+pub const BLOCK_VERTICES: usize = 16_384;
+
+/// Blocks contracted in parallel before they are pasted back (bounds the memory of the parts;
+/// the result does not depend on it).
+const WAVE: usize = 8;
+
+/// A partition of the vertices into blocks (see the [module](self)).
+///
+/// ```
+/// use starplex::algo::simplify::Blocks;
+/// let b = Blocks::from_order(&[0, 1, 2, 3, 4], &[0, 3, 5]).unwrap();
+/// assert_eq!(b.block(1), &[3, 4]);
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct Blocks {
+    /// The vertices, block after block, each block in increasing id order.
+    verts: Vec<u32>,
+    /// Block `x` is `verts[starts[x]..starts[x + 1]]`.
+    starts: Vec<usize>,
+    /// Per vertex: its block (empty for a single block).
+    block_of: Vec<u32>,
+    /// Per vertex: its position in its block (empty for a single block).
+    local_of: Vec<u32>,
+}
+
+impl Blocks {
+    /// All `n` vertices in one block (no parallel sweep).
+    ///
+    /// ```
+    /// assert_eq!(starplex::algo::simplify::Blocks::single(10).len(), 1);
+    /// ```
+    pub fn single(n: usize) -> Blocks {
+        Blocks {
+            verts: Vec::new(),
+            starts: vec![0, n],
+            block_of: Vec::new(),
+            local_of: Vec::new(),
+        }
+    }
+
+    /// Blocks `order[cuts[i]..cuts[i + 1]]`: `order` a permutation of the vertices `0..n`,
+    /// `cuts` increasing from 0 to `n`.
+    ///
+    /// ```
+    /// use starplex::algo::simplify::Blocks;
+    /// assert!(Blocks::from_order(&[0, 0], &[0, 2]).is_err()); // not a permutation
+    /// assert!(Blocks::from_order(&[0, 1], &[0, 1]).is_err()); // cuts end before n
+    /// ```
+    ///
+    /// # Errors
+    /// [`SimplifyError::BadTarget`] naming what is wrong.
+    pub fn from_order(order: &[u32], cuts: &[usize]) -> Result<Blocks, SimplifyError> {
+        let n = order.len();
+        let bad = |what: &str| Err(SimplifyError::BadTarget(format!("blocks: {what}")));
+        if cuts.first() != Some(&0) || cuts.last() != Some(&n) {
+            return bad("the cuts must run from 0 to the number of vertices");
+        }
+        if cuts.windows(2).any(|c| c[0] >= c[1]) {
+            return bad("the cuts must be increasing");
+        }
+        let mut block_of = vec![u32::MAX; n];
+        for (x, c) in cuts.windows(2).enumerate() {
+            for &v in &order[c[0]..c[1]] {
+                match block_of.get_mut(v as usize) {
+                    Some(b) if *b == u32::MAX => *b = x as u32,
+                    _ => return bad("the order must hold every vertex once"),
+                }
+            }
+        }
+        let mut verts = order.to_vec();
+        let mut local_of = vec![0u32; n];
+        for c in cuts.windows(2) {
+            let block = &mut verts[c[0]..c[1]];
+            block.sort_unstable();
+            for (i, &v) in block.iter().enumerate() {
+                local_of[v as usize] = i as u32;
+            }
+        }
+        Ok(Blocks {
+            verts,
+            starts: cuts.to_vec(),
+            block_of,
+            local_of,
+        })
+    }
+
+    /// Consecutive leaves of a Stellar tree (in the tree's order) grouped until a block has at
+    /// least `min_vertices` vertices; the last block takes what is left. One block when the
+    /// tree has fewer than `2 * min_vertices` vertices.
+    ///
+    /// ```
+    /// use starplex::algo::simplify::Blocks;
+    /// use starplex::generate::kuhn_grid;
+    /// use starplex::stellar::{StellarOptions, StellarTree};
+    /// let k = kuhn_grid(&[8, 8]).unwrap(); // 81 vertices
+    /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(8), ..Default::default() }).unwrap();
+    /// let b = Blocks::from_stellar(&t, 20);
+    /// assert!(b.len() >= 2 && (0..b.len()).all(|x| b.block(x).len() >= 20));
+    /// assert_eq!((0..b.len()).map(|x| b.block(x).len()).sum::<usize>(), 81);
+    /// ```
+    pub fn from_stellar(tree: &StellarTree, min_vertices: usize) -> Blocks {
+        let n = tree.n_vertices();
+        let min_vertices = min_vertices.max(1);
+        if n < 2 * min_vertices {
+            return Blocks::single(n);
+        }
+        let order: Vec<u32> = tree.vertex_to_input().iter().map(|v| v.0).collect();
+        let mut cuts = vec![0];
+        for l in 0..tree.n_leaves() {
+            let end = tree.leaf_vertices(crate::ids::LeafId(l as u32)).end as usize;
+            if end - cuts[cuts.len() - 1] >= min_vertices && n - end >= min_vertices {
+                cuts.push(end);
+            }
+        }
+        cuts.push(n);
+        Blocks::from_order(&order, &cuts).unwrap_or_else(|_| Blocks::single(n))
+    }
+
+    /// Number of blocks.
+    ///
+    /// ```
+    /// assert_eq!(starplex::algo::simplify::Blocks::from_order(&[1, 0], &[0, 1, 2]).unwrap().len(), 2);
+    /// ```
+    pub fn len(&self) -> usize {
+        self.starts.len() - 1
+    }
+
+    /// True when there is no block (never: a partition has at least one).
+    ///
+    /// ```
+    /// assert!(!starplex::algo::simplify::Blocks::single(0).is_empty());
+    /// ```
+    pub fn is_empty(&self) -> bool {
+        self.starts.len() < 2
+    }
+
+    /// The vertices of block `x`, in increasing id order (empty for [`single`](Self::single)).
+    ///
+    /// ```
+    /// let b = starplex::algo::simplify::Blocks::from_order(&[1, 0], &[0, 1, 2]).unwrap();
+    /// assert_eq!(b.block(0), &[1]);
+    /// ```
+    pub fn block(&self, x: usize) -> &[u32] {
+        self.verts
+            .get(self.starts[x]..self.starts[x + 1])
+            .unwrap_or(&[])
+    }
+
+    /// The block sweeps of one round: every block's inner edges contracted on its own part, in
+    /// parallel waves, pasted back in block order. Marks the vertices contracted (`touched`)
+    /// and the inner vertices of the blocks swept to the end (`tried`); `in_part` is a cleared
+    /// bitset over the top slots.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn sweep_parts(
+        &self,
+        w: &mut TopSimplices,
+        target: &Target,
+        sweeper: &Sweeper<'_>,
+        touched: &mut FixedBitSet,
+        tried: &mut FixedBitSet,
+        in_part: &mut FixedBitSet,
+        stats: &mut ContractStats,
+    ) {
+        let n = w.n_vertices() as u128;
+        // what a block may remove: its share of what is left before the target
+        let left_tops = target
+            .faces
+            .map(|f| w.n_alive_tops().saturating_sub(f) as u128);
+        let left_vertices = target
+            .vertices
+            .map(|v| w.n_alive_vertices().saturating_sub(v) as u128);
+        let ids: Vec<usize> = (0..self.len()).collect();
+        for wave in ids.chunks(WAVE) {
+            let shared: &TopSimplices = w;
+            let done: Vec<_> = wave
+                .par_iter()
+                .map(|&x| {
+                    let verts = self.block(x);
+                    let mut part = shared.cut(verts, &self.block_of, &self.local_of, x as u32);
+                    let share = |left: u128| (left * verts.len() as u128 / n.max(1)) as usize;
+                    let max_tops = left_tops.map(share);
+                    let max_vertices = left_vertices.map(share);
+                    let (tops0, verts0) = (part.w.n_alive_tops(), part.w.n_alive_vertices());
+                    let mut frozen = FixedBitSet::with_capacity(verts.len());
+                    frozen.insert_range(..);
+                    frozen.difference_with(&part.inner);
+                    let mut local = frozen.clone();
+                    let mut s = sweeper.fork();
+                    let mut st = ContractStats::default();
+                    let allow = |p: &TopSimplices, a: u32, b: u32| {
+                        let bound = tops0 - p.n_alive_tops() + p.star(a).len() + p.star(b).len();
+                        max_tops.is_none_or(|m| bound <= m)
+                            && max_vertices.is_none_or(|m| verts0 - p.n_alive_vertices() < m)
+                    };
+                    let order = 0..verts.len() as u32;
+                    let complete =
+                        s.sweep(&mut part.w, order, &mut local, None, &mut st, allow, |_| {
+                            false
+                        });
+                    local.difference_with(&frozen);
+                    (part, local, st, complete)
+                })
+                .collect();
+            for (&x, (part, contracted, st, complete)) in wave.iter().zip(done) {
+                let verts = self.block(x);
+                w.paste(verts, &part, in_part);
+                for i in contracted.ones() {
+                    touched.insert(verts[i] as usize);
+                }
+                if complete {
+                    for i in part.inner.ones() {
+                        tried.insert(verts[i] as usize);
+                    }
+                }
+                stats.n_contractions += st.n_contractions;
+                stats.n_refused += st.n_refused;
+            }
+        }
+    }
+}
