@@ -2,6 +2,7 @@
 //! read → write → read round trip every target with a writer runs.
 use std::io::Write;
 
+use starplex::attr::{AttrValues, Attribute};
 use starplex::complex::IndexedComplex;
 use starplex::io::{IoError, IoErrorKind, PolygonMode, ReadOptions, ReadResult};
 
@@ -31,4 +32,27 @@ pub fn round_trip(
     write(&mut out, &r.complex).ok()?;
     let back = read(&out, opts).expect("a written file must read back");
     Some((r, back))
+}
+
+/// Whether two complexes are the same, attributes included, with NaN equal to NaN (a reader
+/// fills the items a data section does not cover with NaN, and `==` on `f64` says NaN != NaN).
+pub fn same(a: &IndexedComplex, b: &IndexedComplex) -> bool {
+    let (mut a, mut b) = (a.clone(), b.clone());
+    let (aa, ab) = (a.take_attributes(), b.take_attributes());
+    let col = |x: &Attribute, y: &Attribute| {
+        x.name == y.name
+            && x.components == y.components
+            && match (&x.values, &y.values) {
+                (AttrValues::Int(p), AttrValues::Int(q)) => p == q,
+                (AttrValues::Float(p), AttrValues::Float(q)) => {
+                    p.len() == q.len()
+                        && p.iter().zip(q).all(|(u, v)| u == v || (u.is_nan() && v.is_nan()))
+                }
+                _ => false,
+            }
+    };
+    let cols = |p: &[Attribute], q: &[Attribute]| {
+        p.len() == q.len() && p.iter().zip(q).all(|(x, y)| col(x, y))
+    };
+    a == b && cols(&aa.vertex, &ab.vertex) && cols(&aa.cell, &ab.cell)
 }
