@@ -7,7 +7,8 @@ use starplex::complex::IndexedComplex;
 use starplex::io::{IoError, IoErrorKind, PolygonMode, ReadOptions, ReadResult};
 
 /// Reader options from a target's mode byte: bit 1 drops duplicate cells, bit 2 drops cells
-/// that are faces of others, and, when `polygon_bit` is set (OFF, PLY), bit 0 reads every
+/// that are faces of others, bit 3 degenerate cells, bit 4 reads leniently (OFF face counts;
+/// the `gzip` target uses bits 3-4 for its own choices too), and, when `polygon_bit` is set (OFF, PLY), bit 0 reads every
 /// face as a simplex.
 pub fn options(mode: u8, polygon_bit: bool) -> ReadOptions {
     let mut opts = ReadOptions::default();
@@ -16,6 +17,8 @@ pub fn options(mode: u8, polygon_bit: bool) -> ReadOptions {
     }
     opts.build.drop_duplicates = mode & 2 == 2;
     opts.build.drop_face_cells = mode & 4 == 4;
+    opts.build.drop_degenerate = mode & 8 == 8;
+    opts.lenient = mode & 16 == 16;
     opts
 }
 

@@ -487,7 +487,9 @@ fn drop_degenerate_drops_cells_with_a_repeated_vertex_in_every_reader() {
     ));
     // binary legacy VTK (big-endian), and binary gmsh 4.1 as starplex writes it, patched
     let vtk_bin = |last: i32| {
-        let mut b = b"# vtk DataFile Version 4.2\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n".to_vec();
+        let mut b =
+            b"# vtk DataFile Version 4.2\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n"
+                .to_vec();
         for x in [0f32, 0., 0., 1., 0., 0., 0., 1., 0., 1., 1., 0.] {
             b.extend_from_slice(&x.to_be_bytes());
         }
@@ -539,7 +541,10 @@ fn drop_degenerate_drops_cells_with_a_repeated_vertex_in_every_reader() {
         // the valid file reads the same with the option, without a note about it
         match io::read(&vp, &drop) {
             Ok(r) if r.complex == v.complex && r.notes == v.notes => {}
-            Ok(r) => failures.push(format!("{name}: drop_degenerate changed a valid file: {:?}", r.notes)),
+            Ok(r) => failures.push(format!(
+                "{name}: drop_degenerate changed a valid file: {:?}",
+                r.notes
+            )),
             Err(e) => failures.push(format!("{name}: valid file with drop_degenerate: {e}")),
         }
         match io::read(&dp, &ReadOptions::default()) {
@@ -547,7 +552,9 @@ fn drop_degenerate_drops_cells_with_a_repeated_vertex_in_every_reader() {
             Err(e) => {
                 let e = e.to_string();
                 if !(e.contains("degenerate") && e.contains(&dp.display().to_string())) {
-                    failures.push(format!("{name}: default error says nothing of a degenerate cell: {e}"));
+                    failures.push(format!(
+                        "{name}: default error says nothing of a degenerate cell: {e}"
+                    ));
                 }
             }
         }
@@ -561,19 +568,37 @@ fn drop_degenerate_drops_cells_with_a_repeated_vertex_in_every_reader() {
                         v.complex.n_cells()
                     ));
                 }
-                if !r.notes.iter().any(|n| n.starts_with("dropped 1 degenerate")) {
-                    failures.push(format!("{name}: no note on the dropped cell: {:?}", r.notes));
+                if !r
+                    .notes
+                    .iter()
+                    .any(|n| n.starts_with("dropped 1 degenerate"))
+                {
+                    failures.push(format!(
+                        "{name}: no note on the dropped cell: {:?}",
+                        r.notes
+                    ));
                 }
                 // every kept cell is a cell of the valid file
                 for c in r.complex.cells() {
-                    if !v.complex.cells().any(|d| d.kind == c.kind && d.vertices == c.vertices) {
-                        failures.push(format!("{name}: cell {:?} is not in the valid file", c.vertices));
+                    if !v
+                        .complex
+                        .cells()
+                        .any(|d| d.kind == c.kind && d.vertices == c.vertices)
+                    {
+                        failures.push(format!(
+                            "{name}: cell {:?} is not in the valid file",
+                            c.vertices
+                        ));
                     }
                 }
                 if name == "m.mesh" {
                     let refs = &r.complex.attributes().cell;
-                    if refs.len() != 1 || refs[0] != starplex::attr::Attribute::int("medit:ref", 1, vec![10]) {
-                        failures.push(format!("m.mesh: the references did not follow the drop: {refs:?}"));
+                    if refs.len() != 1
+                        || refs[0] != starplex::attr::Attribute::int("medit:ref", 1, vec![10])
+                    {
+                        failures.push(format!(
+                            "m.mesh: the references did not follow the drop: {refs:?}"
+                        ));
                     }
                 }
             }

@@ -277,7 +277,9 @@ fn lenient_reads_a_header_face_count_that_disagrees() {
             // the first face line past the count is named
             let line = 9 + nf;
             assert!(
-                e.starts_with(&format!("h.off:{line}: unexpected content after the {nf} faces")),
+                e.starts_with(&format!(
+                    "h.off:{line}: unexpected content after the {nf} faces"
+                )),
                 "{nf}: {e}"
             );
         } else {
@@ -309,7 +311,11 @@ fn lenient_reads_a_header_face_count_that_disagrees() {
     let none = "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n";
     let r = off::read_from(none.as_bytes(), "h.off".as_ref(), &opts).unwrap();
     assert_eq!((r.complex.n_vertices(), r.complex.n_cells()), (3, 0));
-    assert!(r.notes[0].contains("announces 2 faces but the file has 0"), "{:?}", r.notes);
+    assert!(
+        r.notes[0].contains("announces 2 faces but the file has 0"),
+        "{:?}",
+        r.notes
+    );
 }
 
 /// CGAL's `meshes/prim.off` (header: 7 faces; the file: 8) reads with `lenient` only.
@@ -324,13 +330,24 @@ fn lenient_reads_cgal_prim_off() {
         println!("SKIPPED: {} not present", p.display());
         return;
     }
-    let e = io::read(&p, &ReadOptions::default()).unwrap_err().to_string();
-    assert!(e.contains("unexpected content after the 7 faces") && e.contains("--lenient"), "{e}");
+    let e = io::read(&p, &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("unexpected content after the 7 faces") && e.contains("--lenient"),
+        "{e}"
+    );
     let opts = ReadOptions {
         lenient: true,
         ..Default::default()
     };
     let r = io::read(&p, &opts).unwrap();
     assert_eq!(r.complex.n_cells(), 8);
-    assert!(r.notes.iter().any(|n| n.contains("announces 7 faces but the file has 8")), "{:?}", r.notes);
+    assert!(
+        r.notes
+            .iter()
+            .any(|n| n.contains("announces 7 faces but the file has 8")),
+        "{:?}",
+        r.notes
+    );
 }

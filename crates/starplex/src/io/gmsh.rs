@@ -1183,7 +1183,8 @@ fn element_bin(
     } else {
         verts.extend_from_slice(&raw[..k]);
     }
-    tags.check(n_elem, verts).map_err(|x| IoError::new(path, x).at(Location::Byte(at)))
+    tags.check(n_elem, verts)
+        .map_err(|x| IoError::new(path, x).at(Location::Byte(at)))
 }
 
 fn read_elements_41_bin(

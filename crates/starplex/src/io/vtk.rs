@@ -821,7 +821,15 @@ impl Sections {
             self.cells_line = w.line();
         }
         let build = &self.build;
-        cell_lists(w, h, "CELLS", self.nv, build, &mut self.conn, &mut self.ends)
+        cell_lists(
+            w,
+            h,
+            "CELLS",
+            self.nv,
+            build,
+            &mut self.conn,
+            &mut self.ends,
+        )
     }
 
     /// The CELL_TYPES section of an UNSTRUCTURED_GRID, in either encoding.
@@ -1164,7 +1172,8 @@ fn read_classic_bin(
             }
             conn.push(v as u32);
         }
-        build.check_cell(c, &conn[start..], nv)
+        build
+            .check_cell(c, &conn[start..], nv)
             .map_err(|e| IoError::new(path, e).at(Location::Byte(at + 4 * i as u64)))?;
         i += 1 + k as usize;
         ends.push(conn.len() as u64);
@@ -1261,7 +1270,8 @@ fn read_offsets_bin(
     conn.extend(flat.iter().map(|&v| v as u32));
     let mut start = 0usize;
     for (i, &end) in ends.iter().enumerate() {
-        build.check_cell(i as u64, &conn[start..end as usize], nv)
+        build
+            .check_cell(i as u64, &conn[start..end as usize], nv)
             .map_err(|e| IoError::new(path, e).at(Location::Byte(at + (start * width) as u64)))?;
         start = end as usize;
     }
@@ -1296,7 +1306,8 @@ fn read_classic_layout(
         for _ in 0..k {
             conn.push(w.index("point index", 0, nv)?);
         }
-        build.check_cell(i, &conn[start..], nv)
+        build
+            .check_cell(i, &conn[start..], nv)
             .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line)))?;
         used += k + 1;
         ends.push(conn.len() as u64);
@@ -1357,7 +1368,8 @@ fn read_offsets_layout(
                 line = w.line();
             }
         }
-        build.check_cell(i as u64, &conn[start..], nv)
+        build
+            .check_cell(i as u64, &conn[start..], nv)
             .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line.max(1))))?;
         start = conn.len();
     }
