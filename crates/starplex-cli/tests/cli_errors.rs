@@ -32,7 +32,11 @@ fn info_fails(name: &str, content: &[u8], line: u64, problem: &str) -> String {
         String::from_utf8_lossy(&out.stdout)
     );
     let lines: Vec<&str> = stderr.lines().collect();
-    let hints = lines.iter().skip(1).filter(|l| l.starts_with("hint: ")).count();
+    let hints = lines
+        .iter()
+        .skip(1)
+        .filter(|l| l.starts_with("hint: "))
+        .count();
     assert!(
         lines.len() == 1 || (lines.len() == 2 && hints == 1),
         "{name}: expected one error line (and at most one hint), got {stderr:?}"
@@ -96,7 +100,10 @@ fn hex_with_a_repeated_vertex() {
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.ends_with("hint: pass --drop-degenerate to drop the cells with a repeated vertex\n"), "{stderr}");
+    assert!(
+        stderr.ends_with("hint: pass --drop-degenerate to drop the cells with a repeated vertex\n"),
+        "{stderr}"
+    );
 }
 
 #[test]
