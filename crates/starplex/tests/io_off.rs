@@ -351,3 +351,22 @@ fn lenient_reads_cgal_prim_off() {
         r.notes
     );
 }
+
+/// Fuzz regression (`off` target, crash-48e956de): when every coloured face is a dropped
+/// one-vertex face, no colour column of zero items is left behind (it made the round trip
+/// through the OFF writer, which writes no column, differ).
+#[test]
+fn colours_of_dropped_point_faces_leave_no_empty_column() {
+    let text = "# c\x0bCOO\u{b9}FF\n1 1\n1 0 \t\t0 1 1\n1 0 \t\t0\t\t5\n";
+    let r = off::read_from(text.as_bytes(), "c.off".as_ref(), &ReadOptions::default()).unwrap();
+    assert_eq!((r.complex.n_vertices(), r.complex.n_cells()), (1, 0));
+    assert!(
+        r.complex.attributes().cell.is_empty(),
+        "{:?}",
+        r.complex.attributes()
+    );
+    let mut out = Vec::new();
+    off::write(&mut out, &r.complex).unwrap();
+    let back = off::read_from(&out[..], "c.off".as_ref(), &ReadOptions::default()).unwrap();
+    assert_eq!(back.complex, r.complex);
+}

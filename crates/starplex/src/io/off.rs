@@ -627,6 +627,10 @@ impl ExtraValues {
             return None;
         }
         let n = self.n.filter(|&n| n > 0)?;
+        if self.values.is_empty() {
+            // every row went with its line's cells (one-vertex faces, dropped): no column
+            return None;
+        }
         Some(if int_ok && self.all_int {
             Attribute::int(name, n, self.values.iter().map(|&x| x as i64).collect())
         } else {
