@@ -370,3 +370,32 @@ fn colours_of_dropped_point_faces_leave_no_empty_column() {
     let back = off::read_from(&out[..], "c.off".as_ref(), &ReadOptions::default()).unwrap();
     assert_eq!(back.complex, r.complex);
 }
+
+/// Fuzz regression (`off` target, crash-99f92be5, mode 0xfb): a COFF whose only face (an edge
+/// `1 1`) is degenerate and dropped (`drop_degenerate`, `lenient` for the header's 2 faces) leaves
+/// no cell colour column of zero items.
+#[test]
+fn colours_of_dropped_degenerate_faces_leave_no_empty_column() {
+    let text: &[u8] = b"# c\nCOFF\n5 2 0\n0 0 0 2 1\n1 0 00 111   1\xff\xff\xff\xff\xff0 \n1  1 0\n2 1 0 111   1\n1 2 040 0\n2 1 01 0";
+    let opts = ReadOptions {
+        polygons: PolygonMode::Simplices,
+        build: BuildOptions {
+            drop_duplicates: true,
+            drop_degenerate: true,
+            ..Default::default()
+        },
+        lenient: true,
+        ..Default::default()
+    };
+    let r = off::read_from(text, "c.off".as_ref(), &opts).unwrap();
+    assert_eq!(r.complex.n_cells(), 0);
+    assert!(
+        r.complex.attributes().cell.is_empty(),
+        "{:?}",
+        r.complex.attributes()
+    );
+    let mut out = Vec::new();
+    off::write(&mut out, &r.complex).unwrap();
+    let back = off::read_from(&out[..], "c.off".as_ref(), &opts).unwrap();
+    assert_eq!(back.complex, r.complex);
+}

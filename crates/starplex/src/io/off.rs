@@ -186,7 +186,16 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         attrs.cell.push(a);
     }
     b.set_attributes(attrs);
-    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
+    let (mut complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
+    if complex.n_cells() == 0 && !complex.attributes().cell.is_empty() {
+        // every coloured face was dropped (one-vertex or degenerate faces): a column of zero
+        // items says nothing (and OFF could not write it back)
+        let mut a = complex.take_attributes();
+        a.cell.clear();
+        complex
+            .set_attributes(a)
+            .map_err(|e| IoError::new(path, e))?;
+    }
     if faces.split > 0 {
         notes.push(format!(
             "fan-triangulated {} polygons with more than 4 vertices into {} triangles",
