@@ -25,6 +25,8 @@ pub fn run(ctx: &Ctx, file: Option<PathBuf>) -> Result<(), CliError> {
         simplices: false,
         drop_faces: false,
         drop_duplicates: false,
+        drop_degenerate: false,
+        lenient: false,
     };
     let args = crate::cmd_info::InfoArgs {
         input: input.clone(),

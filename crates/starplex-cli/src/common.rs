@@ -60,6 +60,9 @@ impl From<io::IoError> for CliError {
             io::IoErrorKind::Complex(starplex::complex::ComplexError::DuplicateCell { .. }) => {
                 Some("pass --drop-duplicates to keep the first copy".to_string())
             }
+            io::IoErrorKind::Complex(starplex::complex::ComplexError::RepeatedVertex { .. }) => {
+                Some("pass --drop-degenerate to drop the cells with a repeated vertex".to_string())
+            }
             io::IoErrorKind::CannotWrite { .. } => Some(format!(
                 "choose another output format with --to ({}), or convert explicitly with --boundary / --triangulate",
                 Format::writable_names()
@@ -156,6 +159,14 @@ pub struct InputArgs {
     /// Drop duplicate top cells instead of failing.
     #[arg(long)]
     pub drop_duplicates: bool,
+    /// Drop degenerate cells (a vertex repeated in a cell, e.g. a triangle `0 1 1`) instead of
+    /// failing; the number dropped is noted (and in `info --json` notes).
+    #[arg(long)]
+    pub drop_degenerate: bool,
+    /// Accept an OFF file whose header face count disagrees with the face lines present: read
+    /// the faces that are there, with a note.
+    #[arg(long)]
+    pub lenient: bool,
 }
 
 impl InputArgs {
@@ -178,6 +189,8 @@ impl InputArgs {
         }
         o.build.drop_face_cells = self.drop_faces;
         o.build.drop_duplicates = self.drop_duplicates;
+        o.build.drop_degenerate = self.drop_degenerate;
+        o.lenient = self.lenient;
         Ok(o)
     }
 }

@@ -294,3 +294,82 @@ fn boundary_and_triangulate_make_a_closed_stl() {
     assert!(e.contains("not 3D cells"), "{e}");
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// `--drop-degenerate` and `--lenient` on the verbs that read a mesh: without them the same
+/// errors as before, with hints naming them; with them the file reads and `info --json` notes
+/// what was done.
+#[test]
+fn drop_degenerate_and_lenient_options() {
+    let d = dir("conventions");
+    // a triangle with a repeated vertex beside a good one
+    let degen = d.join("degen.off");
+    std::fs::write(
+        &degen,
+        "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 3\n",
+    )
+    .unwrap();
+    let degen = degen.to_str().unwrap();
+    let e = fails(&["info", degen], None);
+    assert!(
+        e.contains("degen.off:8:") && e.contains("appears more than once"),
+        "{e}"
+    );
+    assert!(e.contains("hint: pass --drop-degenerate"), "{e}");
+    let v = info_json(&["--drop-degenerate", degen], None);
+    assert_eq!(v["n_top_cells"], 1, "{v}");
+    let notes = v["notes"].to_string();
+    assert!(notes.contains("dropped 1 degenerate cells"), "{notes}");
+    // the other verbs take it too
+    let out = d.join("out.off");
+    ok(
+        &["convert", "--drop-degenerate", degen, out.to_str().unwrap()],
+        None,
+    );
+    ok(&["validate", "--drop-degenerate", degen], None);
+    // an OFF header that announces one face fewer than the file has (CGAL's prim.off)
+    let short = d.join("short.off");
+    std::fs::write(
+        &short,
+        "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n",
+    )
+    .unwrap();
+    let short = short.to_str().unwrap();
+    let e = fails(&["info", short], None);
+    assert!(
+        e.contains("short.off:8: unexpected content after the 1 faces"),
+        "{e}"
+    );
+    assert!(e.contains("--lenient"), "{e}");
+    let v = info_json(&["--lenient", short], None);
+    assert_eq!(v["n_top_cells"], 2, "{v}");
+    assert!(
+        v["notes"]
+            .to_string()
+            .contains("announces 1 faces but the file has 2"),
+        "{v}"
+    );
+    ok(
+        &["convert", "--lenient", short, out.to_str().unwrap()],
+        None,
+    );
+    // both at once, on a header that announces more faces than there are
+    let long = d.join("long.off");
+    std::fs::write(
+        &long,
+        "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 3\n",
+    )
+    .unwrap();
+    let long = long.to_str().unwrap();
+    let e = fails(&["info", "--drop-degenerate", long], None);
+    assert!(
+        e.contains("long.off:9: unexpected end of file") && e.contains("--lenient"),
+        "{e}"
+    );
+    let v = info_json(&["--lenient", "--drop-degenerate", long], None);
+    assert_eq!(v["n_top_cells"], 1, "{v}");
+    let help = String::from_utf8(ok(&["info", "--help"], None).stdout).unwrap();
+    assert!(
+        help.contains("--drop-degenerate") && help.contains("--lenient"),
+        "{help}"
+    );
+}

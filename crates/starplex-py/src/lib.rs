@@ -362,6 +362,7 @@ impl Complex {
             drop_face_cells: drop_faces,
             drop_duplicates,
             trust_maximality: false,
+            drop_degenerate: false,
         };
         let k = py
             .detach(|| {

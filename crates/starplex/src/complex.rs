@@ -26,7 +26,7 @@
 //! b.push_vertex(&[1.0, 0.0]).unwrap();
 //! b.push_cell(CellKind::Simplex(2), &[0, 1, 1]).unwrap();
 //! let err = b.build(&BuildOptions::default()).unwrap_err();
-//! assert_eq!(err.to_string(), "cell 0: vertex 1 appears more than once (degenerate cell)");
+//! assert_eq!(err.to_string(), "cell 0: vertex 1 appears more than once (degenerate cell; drop such cells with the drop-degenerate option)");
 //! ```
 use crate::attr::{AttrError, Attributes};
 use crate::buf::Buf;
@@ -73,7 +73,7 @@ pub enum ComplexError {
         n_vertices: u64,
     },
     /// A vertex appears twice in one cell.
-    #[error("cell {cell}: vertex {vertex} appears more than once (degenerate cell)")]
+    #[error("cell {cell}: vertex {vertex} appears more than once (degenerate cell; drop such cells with the drop-degenerate option)")]
     RepeatedVertex {
         /// Cell id.
         cell: u64,
@@ -297,6 +297,53 @@ pub struct BuildOptions {
     /// Skip the maximality and duplicate checks (for inputs known to be clean, e.g. the binary
     /// format written by starplex; index and coordinate checks always run).
     pub trust_maximality: bool,
+    /// Drop cells with a repeated vertex (degenerate cells, e.g. a triangle `0 1 1`) instead of
+    /// failing; the dropped count is in the [`BuildReport`]. Out-of-range indices still fail.
+    pub drop_degenerate: bool,
+}
+
+impl BuildOptions {
+    /// [`check_cell`] as these options ask: with [`drop_degenerate`](Self::drop_degenerate)
+    /// only the index range is checked (a repeated vertex is left for
+    /// [`ComplexBuilder::build`] to drop). Readers call this to report a bad index with its line.
+    ///
+    /// ```
+    /// use starplex::complex::{BuildOptions, ComplexError};
+    /// let strict = BuildOptions::default();
+    /// assert_eq!(strict.check_cell(4, &[0, 1, 1], 3),
+    ///            Err(ComplexError::RepeatedVertex { cell: 4, vertex: 1 }));
+    /// let lax = BuildOptions { drop_degenerate: true, ..Default::default() };
+    /// assert!(lax.check_cell(4, &[0, 1, 1], 3).is_ok());
+    /// assert!(matches!(lax.check_cell(4, &[0, 1, 3], 3),
+    ///                  Err(ComplexError::VertexOutOfRange { vertex: 3, .. })));
+    /// ```
+    ///
+    /// # Errors
+    /// As [`check_cell`], without [`ComplexError::RepeatedVertex`] when degenerate cells are
+    /// dropped.
+    pub fn check_cell(
+        &self,
+        cell: u64,
+        vertices: &[u32],
+        n_vertices: usize,
+    ) -> Result<(), ComplexError> {
+        if !self.drop_degenerate {
+            return check_cell(cell, vertices, n_vertices);
+        }
+        check_range(cell, vertices, n_vertices)
+    }
+}
+
+/// The first index of `vertices` that is not below `n_vertices`, as an error.
+fn check_range(cell: u64, vertices: &[u32], n_vertices: usize) -> Result<(), ComplexError> {
+    match vertices.iter().find(|&&v| v as usize >= n_vertices) {
+        Some(&v) => Err(ComplexError::VertexOutOfRange {
+            cell,
+            vertex: v as u64,
+            n_vertices: n_vertices as u64,
+        }),
+        None => Ok(()),
+    }
 }
 
 /// What [`ComplexBuilder::build`] changed.
@@ -310,7 +357,7 @@ pub struct BuildOptions {
 /// b.push_cell(CellKind::Simplex(1), &[1, 0]).unwrap(); // the same edge again
 /// let opts = BuildOptions { drop_duplicates: true, ..Default::default() };
 /// let (k, report) = b.build(&opts).unwrap();
-/// assert_eq!(report, BuildReport { dropped_face_cells: 0, dropped_duplicates: 1 });
+/// assert_eq!(report, BuildReport { dropped_duplicates: 1, ..Default::default() });
 /// assert_eq!(k.n_cells(), 1);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -319,6 +366,8 @@ pub struct BuildReport {
     pub dropped_face_cells: usize,
     /// Cells dropped as duplicates.
     pub dropped_duplicates: usize,
+    /// Cells dropped for having a repeated vertex ([`BuildOptions::drop_degenerate`]).
+    pub dropped_degenerate: usize,
 }
 
 /// Accumulates vertices and cells, then checks them into an [`IndexedComplex`].
@@ -521,11 +570,22 @@ impl ComplexBuilder {
     /// b.push_cell(CellKind::Simplex(1), &[2, 1]).unwrap();
     /// let err = b.build(&BuildOptions::default()).unwrap_err();
     /// assert_eq!(err, ComplexError::DuplicateCell { cell: 2, first: 1 });
+    ///
+    /// // a degenerate triangle (vertex 1 twice) fails, or is dropped on request
+    /// let mut b = ComplexBuilder::new(1).unwrap();
+    /// for x in [0.0, 1.0, 2.0] { b.push_vertex(&[x]).unwrap(); }
+    /// b.push_cell(CellKind::Simplex(2), &[0, 1, 1]).unwrap();
+    /// b.push_cell(CellKind::Simplex(1), &[1, 2]).unwrap();
+    /// assert!(matches!(b.clone().build(&BuildOptions::default()), Err(ComplexError::RepeatedVertex { cell: 0, vertex: 1 })));
+    /// let (k, report) = b.build(&BuildOptions { drop_degenerate: true, ..Default::default() }).unwrap();
+    /// assert_eq!((k.n_cells(), report.dropped_degenerate), (1, 1));
     /// ```
     ///
     /// # Errors
-    /// The first problem found, in cell order: an index out of range, a repeated vertex, a
-    /// duplicate top cell, a top cell that is a face of another (unless the options drop them).
+    /// The first problem found, in cell order: an index out of range, a repeated vertex (unless
+    /// [`BuildOptions::drop_degenerate`]: such cells are dropped first, and the cell ids of later
+    /// errors count the kept cells), a duplicate top cell, a top cell that is a face of another
+    /// (unless the options drop them).
     pub fn build(
         mut self,
         opts: &BuildOptions,
@@ -557,14 +617,23 @@ impl ComplexBuilder {
             blocks,
             attrs: self.attrs,
         };
-        for c in k.cells() {
-            check_cell(c.id.0 as u64, c.vertices, n_vertices)?;
-        }
-        k.attrs.check(n_vertices, k.n_cells())?;
-        if opts.trust_maximality {
-            return Ok((k, BuildReport::default()));
-        }
-        k.check_maximality(opts)
+        let (k, dropped_degenerate) = if opts.drop_degenerate {
+            k.attrs.check(n_vertices, k.n_cells())?;
+            k.without_degenerate(n_vertices)?
+        } else {
+            for c in k.cells() {
+                check_cell(c.id.0 as u64, c.vertices, n_vertices)?;
+            }
+            k.attrs.check(n_vertices, k.n_cells())?;
+            (k, 0)
+        };
+        let (k, mut report) = if opts.trust_maximality {
+            (k, BuildReport::default())
+        } else {
+            k.check_maximality(opts)?
+        };
+        report.dropped_degenerate = dropped_degenerate;
+        Ok((k, report))
     }
 }
 
@@ -646,6 +715,40 @@ fn block_is_valid_serial(verts: &[u32], n: usize, nv: usize) -> bool {
 }
 
 impl IndexedComplex {
+    /// The complex without its cells that have a repeated vertex (their attribute items go with
+    /// them; later cells are renumbered), and how many were dropped. Out-of-range indices fail.
+    fn without_degenerate(
+        self,
+        n_vertices: usize,
+    ) -> Result<(IndexedComplex, usize), ComplexError> {
+        let mut bad: Vec<u32> = Vec::new();
+        for c in self.cells() {
+            check_range(c.id.0 as u64, c.vertices, n_vertices)?;
+            if check_cell(c.id.0 as u64, c.vertices, n_vertices).is_err() {
+                bad.push(c.id.0);
+            }
+        }
+        if bad.is_empty() {
+            return Ok((self, 0));
+        }
+        let mut b = ComplexBuilder::new(self.ambient_dim)?;
+        b.coords = self.coords.to_vec();
+        let mut kept: Vec<u32> = Vec::with_capacity(self.n_cells() - bad.len());
+        let mut next_bad = bad.iter().peekable();
+        for c in self.cells() {
+            if next_bad.next_if(|&&x| x == c.id.0).is_none() {
+                b.push_cell(c.kind, c.vertices)?;
+                kept.push(c.id.0);
+            }
+        }
+        b.attrs = self.attrs.gather_cells(&kept);
+        let (k, _) = b.build(&BuildOptions {
+            trust_maximality: true,
+            ..BuildOptions::default()
+        })?;
+        Ok((k, bad.len()))
+    }
+
     /// The cell blocks, consuming the complex (its coordinates and attributes are freed).
     pub(crate) fn into_blocks(self) -> Vec<CellBlock> {
         self.blocks

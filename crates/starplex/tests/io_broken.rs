@@ -409,3 +409,201 @@ fn mutated_files_never_panic() {
     }
     assert_eq!(runs, FORMATS.len() * 400);
 }
+
+/// `drop_degenerate` (`--drop-degenerate`): a cell with a repeated vertex, an error by default
+/// (above), is dropped instead, in every reader, with a note counting it; the other cells and
+/// their attributes are kept.
+#[test]
+fn drop_degenerate_drops_cells_with_a_repeated_vertex_in_every_reader() {
+    use starplex::complex::BuildOptions;
+    let dir = std::env::temp_dir().join(format!("starplex-io-degenerate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let drop = ReadOptions {
+        build: BuildOptions {
+            drop_degenerate: true,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    // (name with extension, valid file, the same with one degenerate cell)
+    let mut files: Vec<(String, Vec<u8>, Vec<u8>)> = Vec::new();
+    for (k, row) in FORMATS.iter().enumerate() {
+        let (nv, nc) = (row.nv.to_string(), row.nc.to_string());
+        files.push((
+            format!("row{k}.{}", row.ext),
+            fill(row, &nv, &nc, row.x, row.i).into(),
+            fill(row, &nv, &nc, row.x, row.repeated).into(),
+        ));
+    }
+    let pair = |name: &str, valid: &str, from: &str, to: &str| {
+        assert!(valid.contains(from), "{name}");
+        (
+            name.to_string(),
+            valid.as_bytes().to_vec(),
+            valid.replacen(from, to, 1).into_bytes(),
+        )
+    };
+    files.push(pair(
+        "m.mesh",
+        "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n1 1 0 0\nTriangles\n2\n1 2 3 10\n2 4 3 20\nEnd\n",
+        "2 4 3 20",
+        "2 4 4 20",
+    ));
+    files.push(pair(
+        "m.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n",
+        "f 2 4 3",
+        "f 2 4 4",
+    ));
+    files.push(pair(
+        "m.ply",
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n",
+        "3 1 3 2",
+        "3 1 3 3",
+    ));
+    files.push(pair(
+        "m.stl",
+        "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n",
+        "vertex 1 1 0\nvertex 0 1 0",
+        "vertex 1 1 0\nvertex 1 1 0",
+    ));
+    files.push(pair(
+        "m.vtk",
+        "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n0 0 0 1 0 0 0 1 0 1 1 0\nCELLS 2 8\n3 0 1 2\n3 1 3 2\nCELL_TYPES 2\n5\n5\n",
+        "3 1 3 2",
+        "3 1 3 3",
+    ));
+    files.push(pair(
+        "m.vtu",
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"4\" NumberOfCells=\"2\">\n<Points>\n<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0 1 1 0</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2 1 3 2</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3 6</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">5 5</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n",
+        "1 3 2</DataArray>",
+        "1 3 3</DataArray>",
+    ));
+    files.push(pair(
+        "m22.msh",
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n$EndNodes\n$Elements\n2\n1 2 2 7 1 1 2 3\n2 2 2 7 1 2 4 3\n$EndElements\n",
+        "2 4 3\n",
+        "2 4 4\n",
+    ));
+    // binary legacy VTK (big-endian), and binary gmsh 4.1 as starplex writes it, patched
+    let vtk_bin = |last: i32| {
+        let mut b =
+            b"# vtk DataFile Version 4.2\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n"
+                .to_vec();
+        for x in [0f32, 0., 0., 1., 0., 0., 0., 1., 0., 1., 1., 0.] {
+            b.extend_from_slice(&x.to_be_bytes());
+        }
+        b.extend_from_slice(b"\nCELLS 2 8\n");
+        for x in [3i32, 0, 1, 2, 3, 1, 3, last] {
+            b.extend_from_slice(&x.to_be_bytes());
+        }
+        b.extend_from_slice(b"\nCELL_TYPES 2\n");
+        for x in [5i32, 5] {
+            b.extend_from_slice(&x.to_be_bytes());
+        }
+        b.push(b'\n');
+        b
+    };
+    files.push(("bin.vtk".into(), vtk_bin(2), vtk_bin(3)));
+    let two = {
+        use starplex::cell::CellKind;
+        starplex::complex::IndexedComplex::from_parts(
+            3,
+            vec![0., 0., 0., 1., 0., 0., 0., 1., 0., 1., 1., 0.].into(),
+            vec![(CellKind::Simplex(2), vec![0, 1, 2, 1, 3, 2].into())],
+        )
+        .unwrap()
+    };
+    let mut msh = Vec::new();
+    io::gmsh::write_binary(&mut msh, &two).unwrap();
+    let tags: Vec<u8> = [2u64, 4, 3].iter().flat_map(|x| x.to_le_bytes()).collect();
+    let at = msh
+        .windows(24)
+        .position(|w| w == &tags[..])
+        .expect("the second triangle's node tags 2 4 3 in the binary file");
+    let mut bad = msh.clone();
+    bad[at + 16..at + 24].copy_from_slice(&4u64.to_le_bytes());
+    files.push(("bin41.msh".into(), msh, bad));
+
+    let mut failures = Vec::new();
+    for (name, valid, degenerate) in &files {
+        let vp = dir.join(format!("valid_{name}"));
+        let dp = dir.join(format!("degenerate_{name}"));
+        std::fs::write(&vp, valid).unwrap();
+        std::fs::write(&dp, degenerate).unwrap();
+        let v = match io::read(&vp, &ReadOptions::default()) {
+            Ok(r) => r,
+            Err(e) => {
+                failures.push(format!("{name}: the valid file does not read: {e}"));
+                continue;
+            }
+        };
+        // the valid file reads the same with the option, without a note about it
+        match io::read(&vp, &drop) {
+            Ok(r) if r.complex == v.complex && r.notes == v.notes => {}
+            Ok(r) => failures.push(format!(
+                "{name}: drop_degenerate changed a valid file: {:?}",
+                r.notes
+            )),
+            Err(e) => failures.push(format!("{name}: valid file with drop_degenerate: {e}")),
+        }
+        match io::read(&dp, &ReadOptions::default()) {
+            Ok(_) => failures.push(format!("{name}: the degenerate file reads by default")),
+            Err(e) => {
+                let e = e.to_string();
+                if !(e.contains("degenerate") && e.contains(&dp.display().to_string())) {
+                    failures.push(format!(
+                        "{name}: default error says nothing of a degenerate cell: {e}"
+                    ));
+                }
+            }
+        }
+        match io::read(&dp, &drop) {
+            Err(e) => failures.push(format!("{name}: drop_degenerate still fails: {e}")),
+            Ok(r) => {
+                if r.complex.n_cells() + 1 != v.complex.n_cells() {
+                    failures.push(format!(
+                        "{name}: {} cells, expected {} - 1",
+                        r.complex.n_cells(),
+                        v.complex.n_cells()
+                    ));
+                }
+                if !r
+                    .notes
+                    .iter()
+                    .any(|n| n.starts_with("dropped 1 degenerate"))
+                {
+                    failures.push(format!(
+                        "{name}: no note on the dropped cell: {:?}",
+                        r.notes
+                    ));
+                }
+                // every kept cell is a cell of the valid file
+                for c in r.complex.cells() {
+                    if !v
+                        .complex
+                        .cells()
+                        .any(|d| d.kind == c.kind && d.vertices == c.vertices)
+                    {
+                        failures.push(format!(
+                            "{name}: cell {:?} is not in the valid file",
+                            c.vertices
+                        ));
+                    }
+                }
+                if name == "m.mesh" {
+                    let refs = &r.complex.attributes().cell;
+                    if refs.len() != 1
+                        || refs[0] != starplex::attr::Attribute::int("medit:ref", 1, vec![10])
+                    {
+                        failures.push(format!(
+                            "m.mesh: the references did not follow the drop: {refs:?}"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -28,6 +28,11 @@ fn corpus(max_len: u64) -> Vec<(PathBuf, Format)> {
     let seeds = root().join("../../fuzz/seeds");
     for dir in sorted_entries(&seeds) {
         let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        if name == "gzip" {
+            // compressed files of the other formats (or bytes the target compresses): mutating
+            // them mostly breaks the gzip stream; the `gzip` fuzz target covers them
+            continue;
+        }
         for f in sorted_entries(&dir) {
             let stem = f.file_name().unwrap().to_string_lossy().into_owned();
             let format = match name.as_str() {
@@ -145,6 +150,7 @@ fn check(path: &Path, bytes: &[u8], format: Format, mode: usize) -> Result<(), S
             drop_face_cells: mode & 4 == 4,
             ..Default::default()
         },
+        ..Default::default()
     };
     match std::panic::catch_unwind(|| io::read(path, &opts)) {
         Err(_) => Err("panicked".into()),

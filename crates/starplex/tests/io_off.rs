@@ -249,3 +249,153 @@ fn big_polygons_are_fan_triangulated_with_a_note() {
     );
     assert_eq!(r.format, Format::Off);
 }
+
+/// An OFF file whose header face count disagrees with its face lines (CGAL's `prim.off` says 7
+/// and has 8): refused by default with the line and a hint at `--lenient`; read with
+/// `lenient` (every face line present, a note naming the header line and both counts).
+#[test]
+fn lenient_reads_a_header_face_count_that_disagrees() {
+    const BODY: &str = "OFF\n# a comment\n5 @NF@ 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 2 2\n3 0 1 2\n3 0 2 3\n3 2 3 4\n";
+    let read = |nf: u64, lenient: bool| {
+        let text = BODY.replace("@NF@", &nf.to_string());
+        let opts = ReadOptions {
+            lenient,
+            ..Default::default()
+        };
+        off::read_from(text.as_bytes(), "h.off".as_ref(), &opts)
+    };
+    // the header agrees: the same complex and no note either way
+    let exact = read(3, false).unwrap();
+    assert!(exact.notes.is_empty());
+    let exact_lenient = read(3, true).unwrap();
+    assert_eq!(exact_lenient.complex, exact.complex);
+    assert!(exact_lenient.notes.is_empty(), "{:?}", exact_lenient.notes);
+    for nf in [0u64, 1, 2, 4, 5, 1000] {
+        let e = read(nf, false).unwrap_err().to_string();
+        assert!(e.contains("--lenient"), "{nf}: {e}");
+        if nf < 3 {
+            // the first face line past the count is named
+            let line = 9 + nf;
+            assert!(
+                e.starts_with(&format!(
+                    "h.off:{line}: unexpected content after the {nf} faces"
+                )),
+                "{nf}: {e}"
+            );
+        } else {
+            // the end of the file (line 12) is named, and the header line with the count
+            assert!(
+                e.starts_with("h.off:12: unexpected end of file: expected face 3 of the"),
+                "{nf}: {e}"
+            );
+            assert!(e.contains("the header (line 3)"), "{nf}: {e}");
+        }
+        let r = read(nf, true).unwrap();
+        assert_eq!(r.complex, exact.complex, "{nf}");
+        assert_eq!(
+            r.notes,
+            [format!(
+                "the header (line 3) announces {nf} faces but the file has 3: read the 3 face lines present (--lenient)"
+            )]
+        );
+    }
+    // lenient reads the extra lines as faces: a line that is no face is still an error at its line
+    let bad = BODY.replace("@NF@", "2") + "x y z\n";
+    let opts = ReadOptions {
+        lenient: true,
+        ..Default::default()
+    };
+    let e = off::read_from(bad.as_bytes(), "h.off".as_ref(), &opts).unwrap_err();
+    assert!(e.to_string().starts_with("h.off:12:"), "{e}");
+    // an announced count that is too large in a file with no face lines at all
+    let none = "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n";
+    let r = off::read_from(none.as_bytes(), "h.off".as_ref(), &opts).unwrap();
+    assert_eq!((r.complex.n_vertices(), r.complex.n_cells()), (3, 0));
+    assert!(
+        r.notes[0].contains("announces 2 faces but the file has 0"),
+        "{:?}",
+        r.notes
+    );
+}
+
+/// CGAL's `meshes/prim.off` (header: 7 faces; the file: 8) reads with `lenient` only.
+#[test]
+fn lenient_reads_cgal_prim_off() {
+    let Some(d) = std::env::var_os("STARPLEX_DATA") else {
+        println!("SKIPPED: STARPLEX_DATA not set");
+        return;
+    };
+    let p = Path::new(&d).join("cgal/data/meshes/prim.off");
+    if !p.exists() {
+        println!("SKIPPED: {} not present", p.display());
+        return;
+    }
+    let e = io::read(&p, &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("unexpected content after the 7 faces") && e.contains("--lenient"),
+        "{e}"
+    );
+    let opts = ReadOptions {
+        lenient: true,
+        ..Default::default()
+    };
+    let r = io::read(&p, &opts).unwrap();
+    assert_eq!(r.complex.n_cells(), 8);
+    assert!(
+        r.notes
+            .iter()
+            .any(|n| n.contains("announces 7 faces but the file has 8")),
+        "{:?}",
+        r.notes
+    );
+}
+
+/// Fuzz regression (`off` target, crash-48e956de): when every coloured face is a dropped
+/// one-vertex face, no colour column of zero items is left behind (it made the round trip
+/// through the OFF writer, which writes no column, differ).
+#[test]
+fn colours_of_dropped_point_faces_leave_no_empty_column() {
+    let text = "# c\x0bCOO\u{b9}FF\n1 1\n1 0 \t\t0 1 1\n1 0 \t\t0\t\t5\n";
+    let r = off::read_from(text.as_bytes(), "c.off".as_ref(), &ReadOptions::default()).unwrap();
+    assert_eq!((r.complex.n_vertices(), r.complex.n_cells()), (1, 0));
+    assert!(
+        r.complex.attributes().cell.is_empty(),
+        "{:?}",
+        r.complex.attributes()
+    );
+    let mut out = Vec::new();
+    off::write(&mut out, &r.complex).unwrap();
+    let back = off::read_from(&out[..], "c.off".as_ref(), &ReadOptions::default()).unwrap();
+    assert_eq!(back.complex, r.complex);
+}
+
+/// Fuzz regression (`off` target, crash-99f92be5, mode 0xfb): a COFF whose only face (an edge
+/// `1 1`) is degenerate and dropped (`drop_degenerate`, `lenient` for the header's 2 faces) leaves
+/// no cell colour column of zero items.
+#[test]
+fn colours_of_dropped_degenerate_faces_leave_no_empty_column() {
+    let text: &[u8] = b"# c\nCOFF\n5 2 0\n0 0 0 2 1\n1 0 00 111   1\xff\xff\xff\xff\xff0 \n1  1 0\n2 1 0 111   1\n1 2 040 0\n2 1 01 0";
+    let opts = ReadOptions {
+        polygons: PolygonMode::Simplices,
+        build: BuildOptions {
+            drop_duplicates: true,
+            drop_degenerate: true,
+            ..Default::default()
+        },
+        lenient: true,
+        ..Default::default()
+    };
+    let r = off::read_from(text, "c.off".as_ref(), &opts).unwrap();
+    assert_eq!(r.complex.n_cells(), 0);
+    assert!(
+        r.complex.attributes().cell.is_empty(),
+        "{:?}",
+        r.complex.attributes()
+    );
+    let mut out = Vec::new();
+    off::write(&mut out, &r.complex).unwrap();
+    let back = off::read_from(&out[..], "c.off".as_ref(), &opts).unwrap();
+    assert_eq!(back.complex, r.complex);
+}

@@ -74,8 +74,10 @@ impl Faces {
     }
 }
 
-/// The notes of a complex build: duplicate cells and cells that were faces of others, dropped.
+/// The notes of a complex build: degenerate cells, duplicate cells and cells that were faces of
+/// others, dropped.
 pub(crate) fn push_build_notes(notes: &mut Vec<String>, report: &BuildReport) {
+    push_degenerate_note(notes, report);
     if report.dropped_duplicates > 0 {
         notes.push(format!(
             "dropped {} duplicate cells",
@@ -86,6 +88,16 @@ pub(crate) fn push_build_notes(notes: &mut Vec<String>, report: &BuildReport) {
         notes.push(format!(
             "dropped {} cells that are faces of other cells",
             report.dropped_face_cells
+        ));
+    }
+}
+
+/// The note on cells dropped for a repeated vertex (`--drop-degenerate`), if any.
+pub(crate) fn push_degenerate_note(notes: &mut Vec<String>, report: &BuildReport) {
+    if report.dropped_degenerate > 0 {
+        notes.push(format!(
+            "dropped {} degenerate cells (a vertex repeated in the cell)",
+            report.dropped_degenerate
         ));
     }
 }

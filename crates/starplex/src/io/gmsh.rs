@@ -71,7 +71,7 @@ use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
-use crate::complex::{check_cell, BuildOptions, ComplexBuilder, IndexedComplex};
+use crate::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 
 /// gmsh prism node `PRISM_PERM[i]` is VTK wedge node `i` (an involution: the same map converts
 /// back).
@@ -162,6 +162,21 @@ struct TagMap {
     dense: Vec<u32>,
     sparse: FxHashMap<u64, u32>,
     n: usize,
+    /// `--drop-degenerate`: an element with a repeated node passes the element checks (only
+    /// the node tags are checked) and is dropped by the build.
+    drop_degenerate: bool,
+}
+
+impl TagMap {
+    /// The element checks: the node ids in range and, unless degenerate elements are dropped,
+    /// pairwise distinct.
+    fn check(&self, n_elem: u64, verts: &[u32]) -> Result<(), crate::complex::ComplexError> {
+        let opts = BuildOptions {
+            drop_degenerate: self.drop_degenerate,
+            ..BuildOptions::default()
+        };
+        opts.check_cell(n_elem, verts, self.n)
+    }
 }
 
 impl TagMap {
@@ -300,13 +315,13 @@ fn read_element_nodes(
     } else {
         verts.extend_from_slice(&raw[..k]);
     }
-    check_cell(n_elem, verts, tags.n)
+    tags.check(n_elem, verts)
         .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line.max(w.line()))))
 }
 
-/// Reads gmsh ascii text from any buffered reader; `path` names it in errors. `opts.build` is
-/// not used: a gmsh file always has its boundary elements and point elements dropped (see the
-/// module docs).
+/// Reads gmsh ascii text from any buffered reader; `path` names it in errors. Of `opts.build`
+/// only `drop_degenerate` is used: a gmsh file always has its boundary elements and point
+/// elements dropped (see the module docs).
 ///
 /// ```
 /// use starplex::io::{gmsh, ReadOptions};
@@ -322,11 +337,14 @@ fn read_element_nodes(
 /// versions other than 2.x and 4.1, malformed or non-finite numbers, repeated node tags, element
 /// nodes that are not in `$Nodes`, unsupported element types, repeated nodes in one element,
 /// counts that do not match the data, a missing `$End...` line; each with the line.
-pub fn read_from(r: impl BufRead, path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
+pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
     let mut w = Words::new(r, path, None);
     let (bin, v4) = read_format(&mut w, path)?;
 
-    let mut tags = TagMap::default();
+    let mut tags = TagMap {
+        drop_degenerate: opts.build.drop_degenerate,
+        ..TagMap::default()
+    };
     let mut coords: Vec<f64> = Vec::new();
     let mut have_nodes = false;
     let mut elems = Elements::default();
@@ -497,6 +515,7 @@ fn assemble(
 ) -> Result<ReadResult, IoError> {
     // Keep the nodes used by some cell, in order.
     let nv = tags.n;
+    let drop_degenerate = tags.drop_degenerate;
     let mut new_id = vec![u32::MAX; nv];
     for (_, v) in &elems.blocks {
         for &x in v {
@@ -561,8 +580,10 @@ fn assemble(
             drop_face_cells: true,
             drop_duplicates: true,
             trust_maximality: false,
+            drop_degenerate,
         })
         .map_err(|e| IoError::new(path, e))?;
+    super::faces::push_degenerate_note(&mut notes, &report);
     if report.dropped_face_cells > 0 {
         notes.push(format!(
             "dropped {} elements that are faces of other elements (boundary elements)",
@@ -1162,7 +1183,8 @@ fn element_bin(
     } else {
         verts.extend_from_slice(&raw[..k]);
     }
-    check_cell(n_elem, verts, tags.n).map_err(|x| IoError::new(path, x).at(Location::Byte(at)))
+    tags.check(n_elem, verts)
+        .map_err(|x| IoError::new(path, x).at(Location::Byte(at)))
 }
 
 fn read_elements_41_bin(

@@ -46,7 +46,7 @@ use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
-use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
+use crate::complex::{ComplexBuilder, IndexedComplex};
 
 /// The Medit keyword of each cell kind the format holds.
 const CELL_KEYWORDS: [(&str, CellKind); 7] = [
@@ -212,7 +212,8 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 }
                 let line = w.line();
                 crefs.push(w.i64("the element reference")?);
-                check_cell(n_cells, &verts, nv)
+                opts.build
+                    .check_cell(n_cells, &verts, nv)
                     .map_err(|e| IoError::new(path, e).at(Location::Line(line)))?;
                 b.push_cell(kind, &verts)
                     .map_err(|e| IoError::new(path, e).at(Location::Line(line)))?;

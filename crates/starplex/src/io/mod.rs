@@ -560,8 +560,26 @@ pub struct ReadOptions {
     pub format: Option<Format>,
     /// How OFF/PLY/OBJ faces become cells.
     pub polygons: PolygonMode,
-    /// Checks of the resulting complex (drop duplicates or face cells instead of failing).
+    /// Checks of the resulting complex (drop duplicates, face cells or degenerate cells instead
+    /// of failing).
     pub build: BuildOptions,
+    /// Accept a file whose declared counts disagree with its content where the content is
+    /// unambiguous: an OFF file whose header's face count is larger or smaller than the number
+    /// of face lines (the face lines present are read, with a note). Other formats ignore it.
+    ///
+    /// ```
+    /// use starplex::io::{off, ReadOptions};
+    /// // the header says 1 face, the file has 2 (CGAL's `prim.off` is such a file)
+    /// let text = "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n";
+    /// let e = off::read_from(text.as_bytes(), "m.off".as_ref(), &ReadOptions::default()).unwrap_err();
+    /// assert!(e.to_string().starts_with("m.off:8: unexpected content after the 1 faces"), "{e}");
+    /// assert!(e.to_string().contains("--lenient"), "{e}");
+    /// let opts = ReadOptions { lenient: true, ..Default::default() };
+    /// let r = off::read_from(text.as_bytes(), "m.off".as_ref(), &opts).unwrap();
+    /// assert_eq!(r.complex.n_cells(), 2);
+    /// assert!(r.notes[0].starts_with("the header (line 2) announces 1 faces but the file has 2"), "{:?}", r.notes);
+    /// ```
+    pub lenient: bool,
 }
 
 /// A complex read from a file, with what the reader had to change.

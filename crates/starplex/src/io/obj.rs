@@ -36,7 +36,7 @@ use super::faces::{push_build_notes, FaceError, Faces};
 use super::text::{parse_u64, write_f64, LineReader};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::CellKind;
-use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
+use crate::complex::{ComplexBuilder, IndexedComplex};
 
 /// Reads an OBJ file.
 ///
@@ -131,7 +131,8 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                         )));
                     }
                     for w in verts.windows(2) {
-                        check_cell(b.n_cells(), w, nv)
+                        opts.build
+                            .check_cell(b.n_cells(), w, nv)
                             .map_err(|e| IoError::new(path, e).at(loc))?;
                         b.push_cell(CellKind::Simplex(1), w)
                             .map_err(|e| IoError::new(path, e).at(loc))?;
@@ -140,7 +141,9 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                     n_segments += k as u64 - 1;
                     continue;
                 }
-                check_cell(n_faces, &verts, nv).map_err(|e| IoError::new(path, e).at(loc))?;
+                opts.build
+                    .check_cell(n_faces, &verts, nv)
+                    .map_err(|e| IoError::new(path, e).at(loc))?;
                 n_faces += 1;
                 faces.push(&mut b, opts.polygons, &verts).map_err(|e| match e {
                     FaceError::Complex(e) => IoError::new(path, e).at(loc),

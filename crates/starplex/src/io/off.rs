@@ -186,7 +186,16 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         attrs.cell.push(a);
     }
     b.set_attributes(attrs);
-    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
+    let (mut complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
+    if complex.n_cells() == 0 && !complex.attributes().cell.is_empty() {
+        // every coloured face was dropped (one-vertex or degenerate faces): a column of zero
+        // items says nothing (and OFF could not write it back)
+        let mut a = complex.take_attributes();
+        a.cell.clear();
+        complex
+            .set_attributes(a)
+            .map_err(|e| IoError::new(path, e))?;
+    }
     if faces.split > 0 {
         notes.push(format!(
             "fan-triangulated {} polygons with more than 4 vertices into {} triangles",
@@ -199,6 +208,13 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             "dropped {} one-vertex faces (a point is just a vertex; read with simplices \
              to keep them as 0-simplices)",
             faces.points
+        ));
+    }
+    if faces.read != counts.nf {
+        notes.push(format!(
+            "the header (line {}) announces {} faces but the file has {}: read the {} face \
+             lines present (--lenient)",
+            counts.line, counts.nf, faces.read, faces.read
         ));
     }
     push_build_notes(&mut notes, &report);
@@ -408,6 +424,8 @@ struct FaceCounts {
     split: u64,
     extra_tris: u64,
     points: u64,
+    /// Face lines read (the header's count unless lenient).
+    read: u64,
 }
 
 /// Reads the face lines into `b` as `opts.polygons` says, with the face colours and the line
@@ -428,8 +446,24 @@ fn read_faces(
     let mut face = 0u64;
     let mut lines = CellLines::default();
     let mut fcolours = ExtraValues::new("face colours");
-    while face < nf {
-        let l = lr.expect_line("a face line")?;
+    // lenient: read face lines until the end of the file, whatever the header's count
+    while face < nf || opts.lenient {
+        let eof_line = lr.line_no() + 1;
+        let Some(l) = lr.next_content_line()? else {
+            if opts.lenient {
+                break;
+            }
+            return Err(IoError::parse(
+                path,
+                Some(Location::Line(eof_line)),
+                format!(
+                    "unexpected end of file: expected face {face} of the {nf} that the header \
+                     (line {}) announces: the file is truncated or the count is wrong (pass \
+                     --lenient to read the faces that are there)",
+                    counts.line
+                ),
+            ));
+        };
         let mut t = l.tokens();
         let k = t.u64("the face's vertex count")?;
         if k == 0 {
@@ -448,8 +482,12 @@ fn read_faces(
         }
         // anything after the indices is the face's colour
         fcolours.push_line(&mut t, usize::MAX, l.no);
-        check_distinct(face, &verts, nv, &mut scratch)
-            .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
+        if !opts.build.drop_degenerate {
+            // (with drop_degenerate the build drops the cells with a repeated vertex: those of
+            // a fanned polygon one triangle at a time)
+            check_distinct(face, &verts, nv, &mut scratch)
+                .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
+        }
         let mut push = |b: &mut ComplexBuilder, kind: CellKind, v: &[u32]| {
             let id = b
                 .push_cell(kind, v)
@@ -481,7 +519,8 @@ fn read_faces(
     }
     if let Some(l) = lr.next_content_line()? {
         return Err(l.err(format!(
-            "unexpected content after the {nf} faces the header announced: '{}'",
+            "unexpected content after the {nf} faces the header announced: '{}' (if these are \
+             more faces, the header's count is wrong: pass --lenient to read them)",
             shown(l.bytes, 60)
         )));
     }
@@ -492,6 +531,7 @@ fn read_faces(
             split,
             extra_tris,
             points,
+            read: face,
         },
     ))
 }
@@ -596,6 +636,10 @@ impl ExtraValues {
             return None;
         }
         let n = self.n.filter(|&n| n > 0)?;
+        if self.values.is_empty() {
+            // every row went with its line's cells (one-vertex faces, dropped): no column
+            return None;
+        }
         Some(if int_ok && self.all_int {
             Attribute::int(name, n, self.values.iter().map(|&x| x as i64).collect())
         } else {

@@ -60,7 +60,7 @@ use super::text::write_f64;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
-use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
+use crate::complex::{ComplexBuilder, IndexedComplex};
 
 /// PLY data encodings starplex writes.
 ///
@@ -558,7 +558,8 @@ pub fn read_from(
                     f.indices(&mut verts)
                         .map_err(|x| here(format!("face {i}: negative vertex index {x}")))?;
                     if let Some(nv) = nv {
-                        check_cell(i as u64, &verts, nv)
+                        opts.build
+                            .check_cell(i as u64, &verts, nv)
                             .map_err(|e| IoError::new(path, e).at(loc))?;
                     }
                     let rows = faces.push(&mut b, opts.polygons, &verts).map_err(|e| match e {
@@ -587,7 +588,8 @@ pub fn read_from(
                         verts.push(x as u32);
                     }
                     if let Some(nv) = nv {
-                        check_cell(i as u64, &verts, nv)
+                        opts.build
+                            .check_cell(i as u64, &verts, nv)
                             .map_err(|e| IoError::new(path, e).at(loc))?;
                     }
                     b.push_cell(CellKind::Simplex(1), &verts)

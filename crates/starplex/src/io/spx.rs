@@ -24,7 +24,7 @@ use super::faces::push_build_notes;
 use super::text::{write_f64, LineReader};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::CellKind;
-use crate::complex::{check_cell, ComplexBuilder, IndexedComplex};
+use crate::complex::{ComplexBuilder, IndexedComplex};
 
 /// Reads a `.spx` file.
 ///
@@ -131,7 +131,8 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             verts.push(t.index(format_args!("cell {i}: vertex index"), 0, nv)?);
         }
         t.end()?;
-        check_cell(i as u64, &verts, nv)
+        opts.build
+            .check_cell(i as u64, &verts, nv)
             .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
         b.push_cell(kind, &verts)
             .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;

@@ -39,7 +39,7 @@ use super::off::{shown, CellLines};
 use super::text::{parse_f64, Line, LineReader, Tokens};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
-use crate::complex::{check_cell, ComplexBuilder, IndexedComplex, MAX_AMBIENT_DIM};
+use crate::complex::{BuildOptions, ComplexBuilder, IndexedComplex, MAX_AMBIENT_DIM};
 
 /// The reference's `.hex` corner order in terms of VTK corners: reference corner `j` is VTK
 /// corner `HEX_REF_TO_VTK[j]`.
@@ -108,12 +108,15 @@ pub fn read_from(
     format: Format,
     opts: &ReadOptions,
 ) -> Result<ReadResult, IoError> {
-    let mut lines = CellLines::default();
+    let mut cx = Cx {
+        lines: CellLines::default(),
+        build: opts.build.clone(),
+    };
     let (b, mut notes) = match format {
-        Format::Tri => read_tri(LineReader::new(r, path, None), &mut lines)?,
-        Format::Ts => read_ts(LineReader::new(r, path, None), &mut lines)?,
-        Format::Sierp => read_sierp(LineReader::new(r, path, None), &mut lines)?,
-        Format::Hex => read_hex(LineReader::new(r, path, Some(b'#')), &mut lines)?,
+        Format::Tri => read_tri(LineReader::new(r, path, None), &mut cx)?,
+        Format::Ts => read_ts(LineReader::new(r, path, None), &mut cx)?,
+        Format::Sierp => read_sierp(LineReader::new(r, path, None), &mut cx)?,
+        Format::Hex => read_hex(LineReader::new(r, path, Some(b'#')), &mut cx)?,
         other => {
             return Err(IoError::parse(
                 path,
@@ -122,7 +125,7 @@ pub fn read_from(
             ))
         }
     };
-    let (complex, report) = b.build(&opts.build).map_err(|e| lines.error(path, e))?;
+    let (complex, report) = b.build(&opts.build).map_err(|e| cx.lines.error(path, e))?;
     push_build_notes(&mut notes, &report);
     Ok(ReadResult {
         complex,
@@ -252,7 +255,7 @@ fn vertices_no_field<R: BufRead>(
 /// Reads `nc` lines of exactly `k` 0-based indices (after `skip` ignored leading integers).
 fn cells<R: BufRead>(
     lr: &mut LineReader<'_, R>,
-    lines: &mut CellLines,
+    cx: &mut Cx,
     b: &mut ComplexBuilder,
     kind: CellKind,
     nc: u64,
@@ -272,24 +275,31 @@ fn cells<R: BufRead>(
             v.push(t.index("cell vertex", 0, nv)?);
         }
         t.end()?;
-        push_checked(&l, lines, b, i, kind, &v)?;
+        push_checked(&l, cx, b, i, kind, &v)?;
     }
     Ok(())
 }
 
 fn push_checked(
     l: &Line<'_>,
-    lines: &mut CellLines,
+    cx: &mut Cx,
     b: &mut ComplexBuilder,
     i: u64,
     kind: CellKind,
     v: &[u32],
 ) -> Result<(), IoError> {
     let at = |e| IoError::new(l.path, e).at(Location::Line(l.no));
-    check_cell(i, v, b.n_vertices()).map_err(at)?;
+    cx.build.check_cell(i, v, b.n_vertices()).map_err(at)?;
     let id = b.push_cell(kind, v).map_err(at)?;
-    lines.record(id.0 as u64, l.no);
+    cx.lines.record(id.0 as u64, l.no);
     Ok(())
+}
+
+/// What the cell lines are read with: the line of each cell (for errors of the build) and the
+/// build options (whether a repeated vertex fails at once or is dropped by the build).
+struct Cx {
+    lines: CellLines,
+    build: BuildOptions,
 }
 
 fn no_trailing<R: BufRead>(lr: &mut LineReader<'_, R>, what: &str) -> Result<(), IoError> {
@@ -302,7 +312,7 @@ fn no_trailing<R: BufRead>(lr: &mut LineReader<'_, R>, what: &str) -> Result<(),
     Ok(())
 }
 
-fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
+fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>, cx: &mut Cx) -> Read {
     let path = lr.path();
     let ([nv], line) = counts(&mut lr, "the vertex count line 'nV'", ["the vertex count"])?;
     let nv = check_count(nv, "vertex count", path, line)?;
@@ -312,12 +322,12 @@ fn read_tri<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Rea
         "the triangle count line 'nT'",
         ["the triangle count"],
     )?;
-    cells(&mut lr, lines, &mut b, CellKind::Simplex(2), nt, 0)?;
+    cells(&mut lr, cx, &mut b, CellKind::Simplex(2), nt, 0)?;
     no_trailing(&mut lr, &format!("{nt} triangles"))?;
     Ok((b, Vec::new()))
 }
 
-fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
+fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>, cx: &mut Cx) -> Read {
     let path = lr.path();
     let ([nv, nt], line) = counts(
         &mut lr,
@@ -335,12 +345,12 @@ fn read_ts<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read
         t.end()?;
         b.push_vertex(&p).map_err(|e| l.err(e.to_string()))?;
     }
-    cells(&mut lr, lines, &mut b, CellKind::Simplex(3), nt, 0)?;
+    cells(&mut lr, cx, &mut b, CellKind::Simplex(3), nt, 0)?;
     no_trailing(&mut lr, &format!("{nt} tetrahedra"))?;
     Ok((b, Vec::new()))
 }
 
-fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
+fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>, cx: &mut Cx) -> Read {
     let path = lr.path();
     let ([dim, nv, nt], line) = counts(
         &mut lr,
@@ -360,12 +370,12 @@ fn read_sierp<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> R
     }
     let nv = check_count(nv, "vertex count", path, line)?;
     let mut b = vertices_no_field(&mut lr, nv)?;
-    cells(&mut lr, lines, &mut b, CellKind::Simplex(dim as u8), nt, 1)?;
+    cells(&mut lr, cx, &mut b, CellKind::Simplex(dim as u8), nt, 1)?;
     no_trailing(&mut lr, &format!("{nt} simplices"))?;
     Ok((b, Vec::new()))
 }
 
-fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Read {
+fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>, cx: &mut Cx) -> Read {
     let path = lr.path();
     let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
     let mut p = Vec::with_capacity(3);
@@ -398,7 +408,7 @@ fn read_hex<R: BufRead>(mut lr: LineReader<'_, R>, lines: &mut CellLines) -> Rea
                 for (j, &r) in refv.iter().enumerate() {
                     vtk[HEX_REF_TO_VTK[j]] = r;
                 }
-                push_checked(&l, lines, &mut b, n_hex, CellKind::Hex, &vtk)?;
+                push_checked(&l, cx, &mut b, n_hex, CellKind::Hex, &vtk)?;
                 n_hex += 1;
             }
             other => {

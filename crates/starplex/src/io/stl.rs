@@ -12,8 +12,9 @@
 //! hash map), so neighbouring facets share vertices and edges. Vertex ids follow first appearance.
 //!
 //! A facet that is degenerate after merging (two equal corners) is an error naming the facet
-//! (0-based) unless `opts.build.drop_duplicates` is set, in which case such facets are dropped
-//! and counted in [`ReadResult::notes`] (the same option drops repeated facets). Non-finite
+//! (0-based) unless `opts.build.drop_degenerate` (or, as before it existed,
+//! `opts.build.drop_duplicates`) is set, in which case such facets are dropped and counted in
+//! [`ReadResult::notes`] (`drop_duplicates` also drops repeated facets). Non-finite
 //! coordinates are errors naming the facet.
 //!
 //! Binary detection: a file whose length is exactly `84 + 50 * n` where `n` is the facet count
@@ -201,12 +202,12 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
             tri[c] = id;
         }
         if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
-            if !opts.build.drop_duplicates {
+            if !(opts.build.drop_degenerate || opts.build.drop_duplicates) {
                 return Err(IoError::parse(
                     path,
                     None,
                     format!(
-                        "facet {i} is degenerate: two of its corners are the same point ({:?}); drop such facets with the drop-duplicates option",
+                        "facet {i} is degenerate: two of its corners are the same point ({:?}); drop such facets with --drop-degenerate",
                         t.vertices.iter().map(|v| v.0).collect::<Vec<_>>()
                     ),
                 ));

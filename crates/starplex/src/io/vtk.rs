@@ -48,7 +48,7 @@ use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::attr::{AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
-use crate::complex::{check_cell, ComplexBuilder, ComplexError, IndexedComplex};
+use crate::complex::{BuildOptions, ComplexBuilder, ComplexError, IndexedComplex};
 
 /// The VTK cell type of a kind (`None` for kinds legacy VTK has no linear cell for).
 ///
@@ -624,7 +624,10 @@ fn read_data_section(
 pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
     let mut w = Words::new(r, path, None);
     let h = read_header(&mut w)?;
-    let mut s = Sections::default();
+    let mut s = Sections {
+        build: opts.build.clone(),
+        ..Sections::default()
+    };
     if h.binary {
         w.set_binary();
     }
@@ -745,6 +748,8 @@ struct Sections {
     point_data: Vec<Attribute>,
     cell_data: Vec<Attribute>,
     skipped: Vec<String>,
+    /// The build options (a repeated point fails at once, or is left for the build to drop).
+    build: BuildOptions,
 }
 
 impl Sections {
@@ -798,7 +803,7 @@ impl Sections {
             return Err(w.err(format!("a second {name} section")));
         }
         let (mut c, mut e) = (Vec::new(), Vec::new());
-        cell_lists(w, h, name, self.nv, &mut c, &mut e)?;
+        cell_lists(w, h, name, self.nv, &self.build, &mut c, &mut e)?;
         self.sections[i] = Some((c, e));
         Ok(())
     }
@@ -815,7 +820,16 @@ impl Sections {
         if !h.binary {
             self.cells_line = w.line();
         }
-        cell_lists(w, h, "CELLS", self.nv, &mut self.conn, &mut self.ends)
+        let build = &self.build;
+        cell_lists(
+            w,
+            h,
+            "CELLS",
+            self.nv,
+            build,
+            &mut self.conn,
+            &mut self.ends,
+        )
     }
 
     /// The CELL_TYPES section of an UNSTRUCTURED_GRID, in either encoding.
@@ -987,6 +1001,7 @@ fn cell_lists(
     h: &Header,
     name: &str,
     nv: usize,
+    build: &BuildOptions,
     conn: &mut Vec<u32>,
     ends: &mut Vec<u64>,
 ) -> Result<(), IoError> {
@@ -996,15 +1011,15 @@ fn cell_lists(
         // the binary data may start with any byte: the layout follows the version
         if h.major >= 5 {
             w.keyword("OFFSETS")?;
-            read_offsets_bin(w, a, size, nv, conn, ends)
+            read_offsets_bin(w, a, size, nv, build, conn, ends)
         } else {
             w.rest_of_line()?;
-            read_classic_bin(w, a, size, nv, conn, ends)
+            read_classic_bin(w, a, size, nv, build, conn, ends)
         }
     } else {
         let next = w.expect("the cells")?;
         if next.eq_ignore_ascii_case(b"OFFSETS") {
-            read_offsets_layout(w, a, size, nv, conn, ends)
+            read_offsets_layout(w, a, size, nv, build, conn, ends)
         } else {
             w.unread();
             if h.major >= 5 {
@@ -1013,7 +1028,7 @@ fn cell_lists(
                     h.major
                 )));
             }
-            read_classic_layout(w, a, size, nv, conn, ends)
+            read_classic_layout(w, a, size, nv, build, conn, ends)
         }
     }
 }
@@ -1113,6 +1128,7 @@ fn read_classic_bin(
     n: u64,
     size: u64,
     nv: usize,
+    build: &BuildOptions,
     conn: &mut Vec<u32>,
     ends: &mut Vec<u64>,
 ) -> Result<(), IoError> {
@@ -1156,7 +1172,8 @@ fn read_classic_bin(
             }
             conn.push(v as u32);
         }
-        check_cell(c, &conn[start..], nv)
+        build
+            .check_cell(c, &conn[start..], nv)
             .map_err(|e| IoError::new(path, e).at(Location::Byte(at + 4 * i as u64)))?;
         i += 1 + k as usize;
         ends.push(conn.len() as u64);
@@ -1190,6 +1207,7 @@ fn read_offsets_bin(
     n_off: u64,
     n_conn: u64,
     nv: usize,
+    build: &BuildOptions,
     conn: &mut Vec<u32>,
     ends: &mut Vec<u64>,
 ) -> Result<(), IoError> {
@@ -1252,7 +1270,8 @@ fn read_offsets_bin(
     conn.extend(flat.iter().map(|&v| v as u32));
     let mut start = 0usize;
     for (i, &end) in ends.iter().enumerate() {
-        check_cell(i as u64, &conn[start..end as usize], nv)
+        build
+            .check_cell(i as u64, &conn[start..end as usize], nv)
             .map_err(|e| IoError::new(path, e).at(Location::Byte(at + (start * width) as u64)))?;
         start = end as usize;
     }
@@ -1265,6 +1284,7 @@ fn read_classic_layout(
     n: u64,
     size: u64,
     nv: usize,
+    build: &BuildOptions,
     conn: &mut Vec<u32>,
     ends: &mut Vec<u64>,
 ) -> Result<(), IoError> {
@@ -1286,7 +1306,8 @@ fn read_classic_layout(
         for _ in 0..k {
             conn.push(w.index("point index", 0, nv)?);
         }
-        check_cell(i, &conn[start..], nv)
+        build
+            .check_cell(i, &conn[start..], nv)
             .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line)))?;
         used += k + 1;
         ends.push(conn.len() as u64);
@@ -1306,6 +1327,7 @@ fn read_offsets_layout(
     n_off: u64,
     n_conn: u64,
     nv: usize,
+    build: &BuildOptions,
     conn: &mut Vec<u32>,
     ends: &mut Vec<u64>,
 ) -> Result<(), IoError> {
@@ -1346,7 +1368,8 @@ fn read_offsets_layout(
                 line = w.line();
             }
         }
-        check_cell(i as u64, &conn[start..], nv)
+        build
+            .check_cell(i as u64, &conn[start..], nv)
             .map_err(|e| IoError::new(w.path(), e).at(Location::Line(line.max(1))))?;
         start = conn.len();
     }
