@@ -731,12 +731,22 @@ impl IndexedComplex {
         if bad.is_empty() {
             return Ok((self, 0));
         }
+        let mut next_bad = bad.iter().peekable();
+        let k = self.keep_cells(|c| next_bad.next_if(|&&x| x == c).is_none())?;
+        Ok((k, bad.len()))
+    }
+
+    /// The complex with the cells `keep` accepts (asked once per cell, in id order; their
+    /// attribute items go with them, kept cells renumbered in order), the vertices unchanged.
+    fn keep_cells(
+        &self,
+        mut keep: impl FnMut(u32) -> bool,
+    ) -> Result<IndexedComplex, ComplexError> {
         let mut b = ComplexBuilder::new(self.ambient_dim)?;
         b.coords = self.coords.to_vec();
-        let mut kept: Vec<u32> = Vec::with_capacity(self.n_cells() - bad.len());
-        let mut next_bad = bad.iter().peekable();
+        let mut kept: Vec<u32> = Vec::new();
         for c in self.cells() {
-            if next_bad.next_if(|&&x| x == c.id.0).is_none() {
+            if keep(c.id.0) {
                 b.push_cell(c.kind, c.vertices)?;
                 kept.push(c.id.0);
             }
@@ -746,7 +756,7 @@ impl IndexedComplex {
             trust_maximality: true,
             ..BuildOptions::default()
         })?;
-        Ok((k, bad.len()))
+        Ok(k)
     }
 
     /// The cell blocks, consuming the complex (its coordinates and attributes are freed).
@@ -1428,20 +1438,7 @@ impl IndexedComplex {
         if drop.is_empty() {
             return Ok((self, report));
         }
-        let mut b = ComplexBuilder::new(self.ambient_dim)?;
-        b.coords = self.coords.to_vec();
-        let mut kept: Vec<u32> = Vec::new();
-        for c in self.cells() {
-            if !drop[c.id.index()] {
-                b.push_cell(c.kind, c.vertices)?;
-                kept.push(c.id.0);
-            }
-        }
-        b.attrs = self.attrs.gather_cells(&kept);
-        let (k, _) = b.build(&BuildOptions {
-            trust_maximality: true,
-            ..BuildOptions::default()
-        })?;
+        let k = self.keep_cells(|c| !drop[c as usize])?;
         Ok((k, report))
     }
 }

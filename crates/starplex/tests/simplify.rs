@@ -98,22 +98,29 @@ fn hasse_of(tops: &[Vec<u32>]) -> Hasse {
     h
 }
 
+/// The cells that are no face of another (of two equal cells, the first).
+fn maximal(cells: &[Vec<u32>]) -> Vec<Vec<u32>> {
+    let dominated = |i: usize, c: &Vec<u32>| {
+        cells
+            .iter()
+            .enumerate()
+            .any(|(j, d)| j != i && c.iter().all(|v| d.contains(v)) && (c.len() < d.len() || j < i))
+    };
+    cells
+        .iter()
+        .enumerate()
+        .filter(|&(i, c)| !dominated(i, c))
+        .map(|(_, c)| c.clone())
+        .collect()
+}
+
 /// Random maximal simplices on `n` vertices: dimensions up to `dim`, not pure, not manifold.
 fn random_tops() -> impl Strategy<Value = (usize, Vec<Vec<u32>>)> {
     (4usize..=9, 1usize..=6).prop_flat_map(|(n, dim)| {
         let cell = proptest::collection::btree_set(0..n as u32, 2..=(dim + 1).min(n));
         (Just(n), proptest::collection::vec(cell, 1..=9)).prop_map(|(n, cells)| {
             let cells: Vec<Vec<u32>> = cells.into_iter().map(|c| c.into_iter().collect()).collect();
-            let mut tops: Vec<Vec<u32>> = Vec::new();
-            for (i, c) in cells.iter().enumerate() {
-                let dominated = cells.iter().enumerate().any(|(j, d)| {
-                    j != i && c.iter().all(|v| d.contains(v)) && (c.len() < d.len() || j < i)
-                });
-                if !dominated {
-                    tops.push(c.clone());
-                }
-            }
-            (n, tops)
+            (n, maximal(&cells))
         })
     })
 }
@@ -259,15 +266,7 @@ fn random_local_tops() -> impl Strategy<Value = (usize, Vec<Vec<u32>>, Vec<usize
                 })
                 .filter(|c: &Vec<u32>| c.len() >= 2)
                 .collect();
-            let mut tops: Vec<Vec<u32>> = Vec::new();
-            for (i, c) in cells.iter().enumerate() {
-                let dominated = cells.iter().enumerate().any(|(j, d)| {
-                    j != i && c.iter().all(|v| d.contains(v)) && (c.len() < d.len() || j < i)
-                });
-                if !dominated {
-                    tops.push(c.clone());
-                }
-            }
+            let mut tops = maximal(&cells);
             if tops.is_empty() {
                 tops.push(vec![0, 1]);
             }
