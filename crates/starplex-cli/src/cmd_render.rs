@@ -51,7 +51,8 @@ pub struct RenderArgs {
     #[arg(long, value_name = "AXIS=VALUE", allow_hyphen_values = true)]
     pub clip: Option<String>,
     /// Shading: flat (one light value per face), smooth (Gouraud: per-vertex normals, the
-    /// area-weighted mean of the faces' normals, interpolated colours) or none.
+    /// area-weighted mean of the faces' normals, interpolated colours; edges sharper than
+    /// about 60 degrees stay sharp) or none.
     #[arg(long, default_value = "flat", value_parser = ["flat", "smooth", "none"])]
     pub shading: String,
     /// No shading (the same as --shading none).
@@ -164,6 +165,7 @@ pub fn options(a: &RenderArgs, title: String) -> Result<RenderOptions, CliError>
         shading: !a.no_shading && a.shading != "none",
         smooth: a.shading == "smooth",
         camera,
+        frame: None,
         title: Some(a.title.clone().unwrap_or(title)),
         legend: !a.no_legend,
         kv: a.kv,
@@ -229,8 +231,10 @@ pub fn render_to(
             let pic = match other {
                 None => render::render_with(k, o, given).map_err(rerr)?,
                 Some((k2, title2)) => {
+                    // both halves framed by the box around both: same view, same scale
                     let half = RenderOptions {
                         width: o.width.div_ceil(2).max(1),
+                        frame: o.frame.or_else(|| render::frame_around(&[k, k2])),
                         ..o.clone()
                     };
                     let a = render::render(k, &half).map_err(rerr)?;

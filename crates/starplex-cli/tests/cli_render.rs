@@ -244,3 +244,43 @@ fn smooth_shading_and_a_perspective_camera() {
         "glossy",
     );
 }
+
+#[test]
+fn compare_draws_both_complexes_side_by_side() {
+    let input = tet_pair();
+    let one = dir().join("one.mesh");
+    std::fs::write(
+        &one,
+        "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\nTetrahedra\n1\n1 2 3 4 0\nEnd\n",
+    )
+    .unwrap();
+    let o = dir().join("compare.png");
+    let out = run(&[
+        "render",
+        "--quiet",
+        s(&input),
+        "-o",
+        s(&o),
+        "--size",
+        "301x200",
+        "--compare",
+        s(&one),
+        "--camera",
+        "3,-4,2",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let png = std::fs::read(&o).unwrap();
+    let be = |i: usize| u32::from_be_bytes(png[i..i + 4].try_into().unwrap());
+    // two halves of 151 pixels and a rule between them
+    assert_eq!((be(16), be(20)), (303, 200));
+    let never = dir().join("never-compare.svg");
+    refused(
+        &["render", s(&input), "-o", s(&never), "--compare", s(&one)],
+        &never,
+        "PNG only",
+    );
+}

@@ -207,6 +207,7 @@ pub fn run(
     if a.json {
         let mut v = starplex_cli::report::stellar_stats_json(&s);
         v["split"] = json!(split);
+        v["decomposition"] = json!(format!("{:?}", t.decomposition()).to_lowercase());
         v["distributed"] = json!({
             "ranks": w.size(),
             "rule": rule,

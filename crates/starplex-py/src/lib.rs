@@ -723,13 +723,20 @@ impl Complex {
     /// boundary, or `("label", NAME)` (a cell attribute) / `("field", NAME)` (a vertex
     /// attribute); `view` iso, front, top, side or `"AZIMUTH,ELEVATION"` (default: top for a
     /// flat complex, iso otherwise); `up` x, y or z; `clip` `"x=0.5"`; `kv` the Stellar tree
-    /// threshold of `color="blocks"`. Notes of the renderer come as `UserWarning`s.
+    /// threshold of `color="blocks"`; `shading` "flat" (or True), "smooth" (Gouraud, from
+    /// per-vertex normals) or "none" (or False); `camera` a perspective eye `(EX, EY, EZ)`, or
+    /// `(EX, EY, EZ, TX, TY, TZ)` with the point looked at, or the same as a comma-separated
+    /// string (not with `view`). Notes of the renderer come as `UserWarning`s.
     ///
     /// >>> import numpy as np, starplex
     /// >>> png = starplex.Complex(np.eye(3), [[0, 1, 2]]).render(size=(64, 48))
     /// >>> png[:4], int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
     /// (b'\x89PNG', 64, 48)
-    #[pyo3(signature = (path = None, *, size = None, color = None, view = None, up = "z", edges = false, clip = None, shading = true, legend = true, title = None, kv = None))]
+    ///
+    /// >>> k = starplex.Complex(np.eye(3), [[0, 1, 2]])
+    /// >>> k.render(size=(32, 32), shading="smooth", camera=(2, 2, 2))[:4]
+    /// b'\x89PNG'
+    #[pyo3(signature = (path = None, *, size = None, color = None, view = None, up = "z", edges = false, clip = None, shading = None, legend = true, title = None, kv = None, camera = None))]
     #[allow(clippy::too_many_arguments)]
     fn render<'py>(
         &self,
@@ -741,10 +748,11 @@ impl Complex {
         up: &str,
         edges: bool,
         clip: Option<&str>,
-        shading: bool,
+        shading: Option<&Bound<'py, PyAny>>,
         legend: bool,
         title: Option<String>,
         kv: Option<u32>,
+        camera: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Option<Bound<'py, PyBytes>>> {
         let default_size = PyTuple::new(py, [1024u32, 768])?.into_any();
         let plain = PyString::new(py, "plain").into_any();
@@ -759,6 +767,7 @@ impl Complex {
             legend,
             title,
             kv,
+            camera,
         )?;
         let svg = ops::is_svg(path.as_deref())?;
         let k = self.k();

@@ -13,7 +13,7 @@ use starplex::algo::simplify::{
     TopologySummary,
 };
 use starplex::complex::IndexedComplex;
-use starplex::render::{self, Clip, ColorMode, RenderOptions, View, COLOR_MODES};
+use starplex::render::{self, Clip, ColorMode, Eye, RenderOptions, View, COLOR_MODES};
 
 use crate::value_err;
 
@@ -268,10 +268,11 @@ pub(crate) fn render_options(
     up: &str,
     edges: bool,
     clip: Option<&str>,
-    shading: bool,
+    shading: Option<&Bound<'_, PyAny>>,
     legend: bool,
     title: Option<String>,
     kv: Option<u32>,
+    camera: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<RenderOptions> {
     let (width, height) = parse_size(size)?;
     let (colour, attribute) = parse_colour(color)?;
@@ -297,6 +298,16 @@ pub(crate) fn render_options(
             ))
         })?),
     };
+    let (shading, smooth) = parse_shading(shading)?;
+    let camera = match camera {
+        None => None,
+        Some(c) => Some(parse_camera(c)?),
+    };
+    if camera.is_some() && view.is_some() {
+        return Err(value_err(
+            "camera and view both given: a perspective camera replaces the view; give one",
+        ));
+    }
     Ok(RenderOptions {
         width,
         height,
@@ -306,11 +317,49 @@ pub(crate) fn render_options(
         edges,
         clip,
         shading,
+        smooth,
+        camera,
         title,
         legend,
         kv,
         attribute,
         ..Default::default()
+    })
+}
+
+/// `shading`: None or True (flat), False, or "flat" / "smooth" / "none"; as (shading, smooth).
+fn parse_shading(s: Option<&Bound<'_, PyAny>>) -> PyResult<(bool, bool)> {
+    let Some(s) = s else { return Ok((true, false)) };
+    if let Ok(b) = s.extract::<bool>() {
+        return Ok((b, false));
+    }
+    match s.extract::<String>().as_deref() {
+        Ok("flat") => Ok((true, false)),
+        Ok("smooth") => Ok((true, true)),
+        Ok("none") => Ok((false, false)),
+        _ => Err(value_err(format!(
+            "shading {}: expected 'flat', 'smooth', 'none' or a bool",
+            s.repr().map_or_else(|_| "?".to_string(), |r| r.to_string())
+        ))),
+    }
+}
+
+/// `camera`: `(EX, EY, EZ)`, `(EX, EY, EZ, TX, TY, TZ)` or the same comma-separated.
+fn parse_camera(c: &Bound<'_, PyAny>) -> PyResult<Eye> {
+    let text = match c.extract::<String>() {
+        Ok(t) => Some(t),
+        Err(_) => c.extract::<Vec<f64>>().ok().map(|v| {
+            v.iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join(",")
+        }),
+    };
+    text.as_deref().and_then(Eye::parse).ok_or_else(|| {
+        value_err(format!(
+            "camera {}: expected (EX, EY, EZ) or (EX, EY, EZ, TX, TY, TZ), finite numbers",
+            c.repr().map_or_else(|_| "?".to_string(), |r| r.to_string())
+        ))
     })
 }
 

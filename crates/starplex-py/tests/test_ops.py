@@ -232,6 +232,45 @@ def test_render_errors(tmp_path):
         c.render(tmp_path / "no" / "such" / "dir" / "m.png", size=(20, 20))
 
 
+def bumpy(n=12):
+    """A curved surface (smooth and flat shading differ on it)."""
+    c = grid(n)
+    xy = c.points
+    z = np.sin(xy[:, 0] / 2.0) * np.cos(xy[:, 1] / 3.0)
+    return starplex.Complex(np.column_stack([xy, z]), c.cell_blocks[0][1])
+
+
+def test_render_shading_and_camera():
+    c = bumpy()
+    kw = {"size": (90, 70), "legend": False}
+    flat = c.render(**kw)
+    assert c.render(shading="flat", **kw) == flat
+    assert c.render(shading=True, **kw) == flat
+    smooth = png_pixels(c.render(shading="smooth", **kw))
+    none = png_pixels(c.render(shading="none", **kw))
+    assert c.render(shading=False, **kw) == c.render(shading="none", **kw)
+    f = png_pixels(flat)
+    assert (smooth != f).any() and (none != f).any() and (smooth != none).any()
+    # unshaded: few distinct colours (the plain colour, the background); shaded: many
+    assert len(np.unique(none.reshape(-1, 3), axis=0)) < len(np.unique(f.reshape(-1, 3), axis=0))
+    eye = c.render(camera=(15.0, -8.0, 9.0), **kw)
+    assert eye != flat
+    assert c.render(camera="15,-8,9", **kw) == eye
+    assert c.render(camera=np.array([15.0, -8.0, 9.0]), **kw) == eye
+    aimed = c.render(camera=(15, -8, 9, 0, 0, 0), **kw)
+    assert aimed != eye  # another target: another picture
+    for bad, msg in [
+        ({"shading": "gouraud"}, "shading"),
+        ({"shading": 3}, "shading"),
+        ({"camera": (1, 2)}, "camera"),
+        ({"camera": "1,2,nan"}, "camera"),
+        ({"camera": (1, 2, 3), "view": "top"}, "camera and view"),
+        ({"camera": (5.5, 5, 0, 5.5, 5, 0)}, "eye"),
+    ]:
+        with pytest.raises(ValueError, match=msg):
+            c.render(**kw, **bad)
+
+
 # ---------------------------------------------------------------- same as the command line
 
 
@@ -268,6 +307,12 @@ def test_same_answers_as_the_command_line(cli, tmp_path):
     run("render", src, "-o", tmp_path / "g.png", "--size", "80x60", "--color", "components")
     png = c.render(size=(80, 60), color="components", title="g.spx")
     assert (tmp_path / "g.png").read_bytes() == png
+    b = bumpy()
+    b.write(tmp_path / "b.spx")
+    run("render", tmp_path / "b.spx", "-o", tmp_path / "b.png", "--size", "80x60",
+        "--shading", "smooth", "--camera", "15,-8,9,2,2,0")
+    png = b.render(size=(80, 60), shading="smooth", camera=(15, -8, 9, 2, 2, 0), title="b.spx")
+    assert (tmp_path / "b.png").read_bytes() == png
 
 
 def test_threads_share_a_complex_while_its_attributes_change():

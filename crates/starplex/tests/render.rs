@@ -598,16 +598,15 @@ fn a_linear_field_shows_the_colour_bar_ends() {
     ));
 }
 
-#[test]
-fn smooth_shading_hides_the_crease_flat_shading_shows() {
-    // a roof: two quads meeting at a ridge along x = 0
-    let k = complex(
+/// A roof: two quads meeting at a ridge along x = 0 at height `h`.
+fn roof(h: f64) -> IndexedComplex {
+    complex(
         3,
         &[
             &[-1.0, 0.0, 0.0],
             &[-1.0, 1.0, 0.0],
-            &[0.0, 0.0, 0.6],
-            &[0.0, 1.0, 0.6],
+            &[0.0, 0.0, h],
+            &[0.0, 1.0, h],
             &[1.0, 0.0, 0.0],
             &[1.0, 1.0, 0.0],
         ],
@@ -615,7 +614,13 @@ fn smooth_shading_hides_the_crease_flat_shading_shows() {
             (CellKind::Quad, &[0, 2, 3, 1]),
             (CellKind::Quad, &[2, 4, 5, 3]),
         ],
-    );
+    )
+}
+
+#[test]
+fn smooth_shading_hides_a_gentle_crease_flat_shading_shows() {
+    // faces 16.7 degrees from the ridge's vertex normal (a dihedral of 33 degrees): smooth
+    let k = roof(0.3);
     let mut o = bare(400, 300, View::Top);
     o.shading = true;
     let flat = render(&k, &o).unwrap();
@@ -635,6 +640,26 @@ fn smooth_shading_hides_the_crease_flat_shading_shows() {
     // at the outer edges smooth and flat agree (the vertex normal is the face's)
     assert!(close(at(&smooth, -0.99), at(&flat, -0.99), 3));
     assert!(close(at(&smooth, 0.99), at(&flat, 0.99), 3));
+}
+
+#[test]
+fn smooth_shading_keeps_a_hard_edge_sharp() {
+    // faces 63 degrees from the ridge's vertex normal (more than CREASE_DEGREES): the ridge
+    // stays a sharp edge, each face lit flat as with flat shading
+    assert!(starplex::render::CREASE_DEGREES < 63.0);
+    let k = roof(2.0);
+    let mut o = bare(400, 300, View::Iso);
+    o.shading = true;
+    let flat = render(&k, &o).unwrap();
+    o.smooth = true;
+    let smooth = render(&k, &o).unwrap();
+    let differ = flat
+        .pixels
+        .iter()
+        .zip(&smooth.pixels)
+        .filter(|(a, b)| !close(**a, **b, 2))
+        .count();
+    assert_eq!(differ, 0, "{differ} pixels differ from flat shading");
 }
 
 #[test]
@@ -850,4 +875,84 @@ fn a_given_validation_is_used_not_recomputed() {
     o.kv = Some(1);
     let built = render(&k, &o).unwrap();
     assert_eq!(given.pixels, built.pixels);
+}
+
+/// The squares `x < cols`, `y < rows` of a grid of unit squares in the plane z = 0, two
+/// triangles each (only their vertices).
+fn grid_part(cols: u32, rows: u32) -> IndexedComplex {
+    let m = cols + 1;
+    let pts: Vec<Vec<f64>> = (0..m * (rows + 1))
+        .map(|i| vec![f64::from(i % m), f64::from(i / m), 0.0])
+        .collect();
+    let pts: Vec<&[f64]> = pts.iter().map(|p| p.as_slice()).collect();
+    let mut tris = Vec::new();
+    for y in 0..rows {
+        for x in 0..cols {
+            let a = y * m + x;
+            tris.push([a, a + 1, a + m + 1]);
+            tris.push([a, a + m + 1, a + m]);
+        }
+    }
+    let cells: Vec<(CellKind, &[u32])> = tris
+        .iter()
+        .map(|t| (CellKind::Simplex(2), t.as_slice()))
+        .collect();
+    complex(3, &pts, &cells)
+}
+
+#[test]
+fn a_common_frame_puts_two_complexes_on_one_scale() {
+    // a quarter of a grid, framed with the whole grid, lands on the whole grid's pixels
+    let (whole, left) = (grid_part(10, 10), grid_part(5, 5));
+    let frame = starplex::render::frame_around(&[&whole, &left]);
+    assert_eq!(frame, Some([[0.0; 3], [10.0, 10.0, 0.0]]));
+    for view in [None, Some(View::Iso)] {
+        let o = RenderOptions {
+            view,
+            frame,
+            ..bare(240, 200, View::Top)
+        };
+        let a = render(&whole, &o).unwrap();
+        let b = render(&left, &o).unwrap();
+        let drawn =
+            |p: &starplex::render::Picture| p.pixels.iter().filter(|&&c| c != WHITE).count();
+        let inside = a
+            .pixels
+            .iter()
+            .zip(&b.pixels)
+            .filter(|&(&pa, &pb)| pb != WHITE && pa != WHITE)
+            .count();
+        let (na, nb) = (drawn(&a), drawn(&b));
+        assert!(
+            inside as f64 >= 0.99 * nb as f64,
+            "{view:?}: {inside} of {nb} inside"
+        );
+        let share = nb as f64 / na as f64;
+        assert!(
+            (0.2..0.3).contains(&share),
+            "{view:?}: the quarter covers {share} of the whole"
+        );
+        // without the frame the quarter fills the picture on its own
+        let alone = render(
+            &left,
+            &RenderOptions {
+                frame: None,
+                ..o.clone()
+            },
+        )
+        .unwrap();
+        assert!(
+            drawn(&alone) as f64 > 3.0 * nb as f64,
+            "{view:?}: not rescaled alone"
+        );
+        // the two halves of a comparison picture are the two framed pictures
+        let both = a.beside(&b);
+        assert_eq!(both.width, 2 * a.width + 1); // a grey rule between
+        for y in (0..a.height).step_by(7) {
+            for x in (0..a.width).step_by(5) {
+                assert_eq!(both.pixel(x, y), a.pixel(x, y));
+                assert_eq!(both.pixel(a.width + 1 + x, y), b.pixel(x, y));
+            }
+        }
+    }
 }

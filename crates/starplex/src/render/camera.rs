@@ -193,16 +193,6 @@ impl Camera {
         ]
     }
 
-    /// The direction from `p` towards the viewer, in view coordinates (unit).
-    pub(crate) fn to_viewer(&self, p: [f64; 3]) -> [f64; 3] {
-        if self.perspective.is_some() {
-            let v = self.view(p);
-            normalize([-v[0], -v[1], -v[2]])
-        } else {
-            [0.0, 0.0, 1.0]
-        }
-    }
-
     /// A direction (e.g. a normal) in view coordinates.
     pub(crate) fn rotate(&self, d: [f64; 3]) -> [f64; 3] {
         self.rot.map(|r| r[0] * d[0] + r[1] * d[1] + r[2] * d[2])

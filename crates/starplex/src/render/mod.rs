@@ -259,11 +259,17 @@ pub struct RenderOptions {
     /// Shading by the light (off: every face in its plain colour).
     pub shading: bool,
     /// With `shading`: smooth (Gouraud) shading from per-vertex normals (the area-weighted
-    /// mean of the drawn faces' normals, each turned towards the viewer) instead of flat
-    /// shading per face.
+    /// mean of the drawn faces' normals, as the faces are oriented) instead of flat shading per
+    /// face; corners across a hard edge or between faces oriented against each other (see
+    /// [`CREASE_DEGREES`]) stay flat.
     pub smooth: bool,
     /// A perspective camera (replaces `view`).
     pub camera: Option<Eye>,
+    /// A box `[low, high]` in input coordinates (the first three) framed as well as what is
+    /// drawn: the automatic view, the scale and the camera's default target then come from
+    /// both, so that pictures of two complexes with the same frame are to the same scale and
+    /// seen the same way (`--compare` frames both sides with the box around both).
+    pub frame: Option<[[f64; 3]; 2]>,
     /// First line of the caption (e.g. the file name).
     pub title: Option<String>,
     /// Draw the caption and the legend.
@@ -288,12 +294,47 @@ impl Default for RenderOptions {
             shading: true,
             smooth: false,
             camera: None,
+            frame: None,
             title: None,
             legend: true,
             kv: None,
             attribute: None,
         }
     }
+}
+
+/// The box around the vertices of `ks` in their first three coordinates (a missing coordinate
+/// counts as 0, non-finite ones are skipped), for [`RenderOptions::frame`]; `None` when no vertex
+/// has a finite coordinate.
+///
+/// ```
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::render::frame_around;
+/// let a = IndexedComplex::from_parts(2, vec![0., 0., 1., 0., 0., 1.].into(),
+///     vec![(CellKind::Simplex(2), vec![0, 1, 2].into())]).unwrap();
+/// let b = IndexedComplex::from_parts(3, vec![5., 5., 5.].into(), vec![]).unwrap();
+/// assert_eq!(frame_around(&[&a, &b]), Some([[0.0; 3], [5.0; 3]]));
+/// ```
+pub fn frame_around(ks: &[&IndexedComplex]) -> Option<[[f64; 3]; 2]> {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for k in ks {
+        let d = k.ambient_dim();
+        if d == 0 {
+            continue;
+        }
+        for c in k.coords().chunks_exact(d) {
+            for a in 0..3 {
+                let x = if a < d { c[a] } else { 0.0 };
+                if x.is_finite() {
+                    lo[a] = lo[a].min(x);
+                    hi[a] = hi[a].max(x);
+                }
+            }
+        }
+    }
+    (0..3).all(|a| lo[a] <= hi[a]).then_some([lo, hi])
 }
 
 /// Largest accepted width or height.
@@ -720,11 +761,27 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions, given: Given) -> Result<Prepar
         rect = [margin, margin, w - margin, h - margin]; // too small for the caption: overlap
     }
     let used = scene.used();
+    let corners: Vec<[f64; 3]> = o.frame.map_or_else(Vec::new, |[lo, hi]| {
+        (0..8)
+            .map(|i| {
+                let c = [0, 1, 2].map(|a| if i >> a & 1 == 0 { lo[a] } else { hi[a] });
+                scene::turn(c, o.up)
+            })
+            .filter(|c| c.iter().all(|x| x.is_finite()))
+            .collect()
+    });
     let view = o.view.unwrap_or_else(|| {
-        let pts: Vec<[f64; 3]> = used.iter().map(|&v| scene.pos[v as usize]).collect();
+        let pts: Vec<[f64; 3]> = if corners.is_empty() {
+            used.iter().map(|&v| scene.pos[v as usize]).collect()
+        } else {
+            corners.clone()
+        };
         auto_view(&pts)
     });
-    let drawn = used.iter().map(|&v| scene.pos[v as usize]);
+    let drawn = used
+        .iter()
+        .map(|&v| scene.pos[v as usize])
+        .chain(corners.iter().copied());
     let cam = match o.camera {
         None => Camera::fit(view, drawn, rect),
         Some(e) => {
@@ -849,15 +906,38 @@ fn intensity(nv: [f64; 3], l: [f64; 3]) -> f32 {
 enum Lit {
     Off,
     Face(Vec<f32>),
-    Vertex(Vec<f32>),
+    /// Smooth: per face its flat intensity and unit normal, per vertex its unit normal and
+    /// intensity (`[nx, ny, nz, intensity]`); a corner whose face normal is more than
+    /// [`CREASE_DEGREES`] from its vertex normal is lit flat (a hard edge stays sharp).
+    Vertex {
+        face: Vec<f32>,
+        face_normal: Vec<[f32; 3]>,
+        vertex: Vec<[f32; 4]>,
+        /// cos([`CREASE_DEGREES`]).
+        crease: f32,
+    },
+}
+
+/// Smooth shading: a face corner whose face normal turns more than this from the vertex
+/// normal (the area-weighted mean of its faces') is lit by the face normal instead, so that
+/// two faces meeting at a dihedral angle of more than about twice this keep a sharp edge (a
+/// box stays a box) while finely curved surfaces are smooth.
+pub const CREASE_DEGREES: f64 = 30.0;
+
+fn unit(n: [f64; 3]) -> [f64; 3] {
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    if len > 0.0 {
+        n.map(|x| x / len)
+    } else {
+        [0.0; 3]
+    }
 }
 
 fn lighting(p: &Prepared, o: &RenderOptions) -> Lit {
     if !o.shading {
         return Lit::Off;
     }
-    let ln = (LIGHT[0] * LIGHT[0] + LIGHT[1] * LIGHT[1] + LIGHT[2] * LIGHT[2]).sqrt();
-    let l = LIGHT.map(|x| x / ln);
+    let l = unit(LIGHT);
     if !o.smooth {
         return Lit::Face(
             p.scene
@@ -867,23 +947,37 @@ fn lighting(p: &Prepared, o: &RenderOptions) -> Lit {
                 .collect(),
         );
     }
-    // per-vertex normals: area-weighted sums of the face normals, each turned towards the
-    // viewer (so that faces of either orientation agree)
+    // per-vertex normals: area-weighted sums of the face normals as the faces are oriented
+    // (a volume's boundary faces as induced by their cells); where neighbouring faces are
+    // oriented against each other the sum turns away from both and the crease rule lights
+    // them flat
     let mut nrm = vec![[0.0f64; 3]; p.scene.pos.len()];
+    let mut face = Vec::with_capacity(p.scene.faces.len());
+    let mut face_normal_unit = Vec::with_capacity(p.scene.faces.len());
     for f in &p.scene.faces {
         let vs = f.verts();
-        let mut n = face_normal(p, vs);
-        let to = p.cam.to_viewer(p.scene.pos[vs[0] as usize]);
-        if n[0] * to[0] + n[1] * to[1] + n[2] * to[2] < 0.0 {
-            n = n.map(|x| -x);
-        }
+        let n = face_normal(p, vs);
         for &v in vs {
             for (s, x) in nrm[v as usize].iter_mut().zip(n) {
                 *s += x;
             }
         }
+        face.push(intensity(n, l));
+        face_normal_unit.push(unit(n).map(|x| x as f32));
     }
-    Lit::Vertex(nrm.into_iter().map(|n| intensity(n, l)).collect())
+    let vertex = nrm
+        .into_iter()
+        .map(|n| {
+            let u = unit(n);
+            [u[0] as f32, u[1] as f32, u[2] as f32, intensity(n, l)]
+        })
+        .collect();
+    Lit::Vertex {
+        face,
+        face_normal: face_normal_unit,
+        vertex,
+        crease: CREASE_DEGREES.to_radians().cos() as f32,
+    }
 }
 
 /// The colours of the corners of face `i` (the first `n` of them), lit.
@@ -898,7 +992,16 @@ fn corner_colours(p: &Prepared, lit: &Lit, i: usize) -> [u32; 4] {
         out[j] = match lit {
             Lit::Off => base,
             Lit::Face(fi) => colour::shade(base, fi[i]),
-            Lit::Vertex(vi) => colour::shade(base, vi[v as usize]),
+            Lit::Vertex {
+                face,
+                face_normal,
+                vertex,
+                crease,
+            } => {
+                let (nf, q) = (face_normal[i], vertex[v as usize]);
+                let along = nf[0] * q[0] + nf[1] * q[1] + nf[2] * q[2];
+                colour::shade(base, if along >= *crease { q[3] } else { face[i] })
+            }
         };
     }
     out
