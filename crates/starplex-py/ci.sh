@@ -21,7 +21,23 @@ export PYO3_PYTHON="$PWD/$VENV/bin/python"
 cargo clippy -p starplex-py --all-targets -- -D warnings
 # the dev profile (its dependencies at opt-level 2, shared with `cargo test`): a release build
 # of the extension took ~5 min of CI; `pip install` without the variable builds in release
-MATURIN_PEP517_ARGS="${MATURIN_PEP517_ARGS:---profile dev}" \
-    python -m pip install -q --no-build-isolation ./crates/starplex-py
+export MATURIN_PEP517_ARGS="${MATURIN_PEP517_ARGS:---profile dev}"
+# a wheel for this machine's CPython, checked against the interpreter's own tags
+WHEELS=target/ci-wheels
+rm -rf "$WHEELS"
+python -m pip wheel -q --no-deps --no-build-isolation -w "$WHEELS" ./crates/starplex-py
+python - "$WHEELS" <<'PY'
+import pathlib, sys
+from pip._vendor.packaging.tags import sys_tags
+from pip._vendor.packaging.utils import parse_wheel_filename
+wheels = sorted(pathlib.Path(sys.argv[1]).glob("starplex-*.whl"))
+assert len(wheels) == 1, f"expected one starplex wheel, got {wheels}"
+name, version, _, tags = parse_wheel_filename(wheels[0].name)
+ours = set(sys_tags())
+assert tags & ours, f"{wheels[0].name} does not install on this Python ({next(iter(ours))} ...)"
+print(f"starplex-py: built {wheels[0].name} ({wheels[0].stat().st_size / 1e6:.1f} MB)")
+PY
+# the README's install command (the same build, cached)
+python -m pip install -q --no-build-isolation ./crates/starplex-py
 # the tests compare with the command line built by `cargo test` (target/debug/starplex)
 python -m pytest -q crates/starplex-py/tests
