@@ -74,8 +74,9 @@ pub struct SimplifyArgs {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
-    /// Worker threads for the before/after report (the contraction itself runs on one
-    /// thread); the answer is the same for any number.
+    /// Worker threads: homology mode contracts blocks of the mesh in parallel rounds, and the
+    /// before/after report runs on them (quadric-error contraction itself is sequential); the
+    /// answer is the same for any number.
     #[arg(long)]
     pub threads: Option<usize>,
 }
