@@ -84,7 +84,7 @@ pub fn run(ctx: &Ctx, a: &HomologyArgs) -> Result<(), CliError> {
         ..Default::default()
     };
     if let Some(m) = a.max_faces {
-        opts.max_faces = m;
+        opts.limits.homology_cells = m;
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

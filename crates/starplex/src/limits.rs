@@ -221,6 +221,8 @@ pub struct Limits {
     pub query_simplices: u128,
     /// Faces one Stellar face relation may enumerate ([`STELLAR_FACES`]).
     pub stellar_faces: u128,
+    /// Cells of all lower stars homology's Morse reduction may enumerate ([`HOMOLOGY_CELLS`]).
+    pub homology_cells: u128,
     /// Simplices in one lower star of homology's reduction ([`LOWER_STAR_SIMPLICES`]).
     pub lower_star_simplices: u128,
     /// Entries of homology's dense integer remainder ([`DENSE_ENTRIES`]).
@@ -235,6 +237,7 @@ impl Default for Limits {
         Limits {
             query_simplices: QUERY_SIMPLICES,
             stellar_faces: STELLAR_FACES,
+            homology_cells: HOMOLOGY_CELLS,
             lower_star_simplices: LOWER_STAR_SIMPLICES,
             dense_entries: DENSE_ENTRIES,
             memory_bytes: default_memory_bytes(),

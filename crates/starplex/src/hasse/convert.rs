@@ -73,7 +73,7 @@ impl<L: LevelTypes> Hasse<L> {
             };
             let d = d as usize;
             if d + 1 > super::MAX_INSERT_VERTICES {
-                return Err(super::complex::too_many_faces(d + 1));
+                return Err(super::insert::too_many_faces(d + 1));
             }
             buf.clear();
             buf.extend_from_slice(c.vertices);

@@ -4,8 +4,9 @@
 //! always a simplicial complex.
 use smallvec::SmallVec;
 
-use super::complex::{Hasse, Verts};
+use super::complex::Hasse;
 use super::levels::{LevelTypes, MergeAll};
+use super::storage::Verts;
 use super::{HasseError, Node, NodeSet};
 use crate::ids::{SimplexId, VertexId};
 

@@ -69,20 +69,26 @@
 
 mod arena;
 mod bulk;
+mod check;
 mod complex;
 mod convert;
 mod decimate;
 mod edit;
 mod geom;
+mod insert;
 pub mod levels;
+mod navigate;
 mod orient;
 mod queries;
+mod remove;
 mod sets;
+mod storage;
 
-pub use complex::{Hasse, MAX_INSERT_VERTICES};
+pub use complex::Hasse;
 pub use convert::DotOptions;
 pub use decimate::{DecimationGroup, DecimationPlan};
 pub use edit::{EditError, Position};
+pub use insert::MAX_INSERT_VERTICES;
 pub use levels::{At, DefaultData, KeepFirst, LevelTypes, Merge, MergeAll, Visit, VisitAll};
 pub use orient::{HasseOrientation, SurfaceGeometry};
 pub use queries::HasseQueries;

@@ -52,7 +52,8 @@ use std::path::Path;
 
 use ply_rs_bw::parser::{ParseError, Parser, Reader};
 use ply_rs_bw::ply::{
-    BeginList, ElementDef, Encoding, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType,
+    BeginList, ElementDef, Encoding, Header, PropertyAccess, PropertyAccessResult, PropertyType,
+    ScalarType,
 };
 
 use super::faces::{push_build_notes, FaceError, Faces};
@@ -392,51 +393,59 @@ pub fn read_from(
         .read_header(&mut reader)
         .map_err(|e| ply_err(path, e, Location::Line(1)))?;
     let rd = reader.get_mut();
-    let header_lines = rd.newlines;
-    let hdr_err = |msg: String| IoError::parse(path, Some(Location::Line(header_lines)), msg);
-    let enc = header.encoding;
+    let hdr_err = |msg: String| IoError::parse(path, Some(Location::Line(rd.newlines)), msg);
+    let ambient = check_header(&header, len.saturating_sub(rd.pos)).map_err(hdr_err)?;
+    let mut notes = Vec::new();
+    let mut rec = Records::new(&header, ambient, path, &mut notes)?;
+    for def in header.elements.values() {
+        rec.read_element(rd, header.encoding, def, opts, &mut notes)?;
+    }
+    rec.finish(&header, opts, notes)
+}
 
-    // Guard: declared counts against the bytes that follow the header.
-    let remaining = len.saturating_sub(rd.pos);
+/// The checks of a header before any record is read: the declared counts against the
+/// `remaining` bytes, a `vertex` element with scalar `x` and `y` (its count within 32-bit ids),
+/// one integer index list on `face`. Returns the ambient dimension (3 when `z` is present);
+/// the error is the message.
+fn check_header(header: &Header, remaining: u64) -> Result<usize, String> {
+    let enc = header.encoding;
     let mut need: u128 = 0;
     for def in header.elements.values() {
         let one = min_record_bytes(def, enc) as u128;
         need += one * def.count as u128;
         if need > remaining as u128 {
-            return Err(hdr_err(format!(
+            return Err(format!(
                 "element '{}' declares {} records, which need at least {} bytes, but only {} bytes follow the header (truncated file or corrupt header)",
                 def.name,
                 def.count,
                 one * def.count as u128,
                 remaining
-            )));
+            ));
         }
     }
     let Some(vdef) = header.elements.get("vertex") else {
-        return Err(hdr_err("no 'vertex' element in the header".into()));
+        return Err("no 'vertex' element in the header".into());
     };
     let mut has_axis = [false; 3];
     for (i, a) in ["x", "y", "z"].iter().enumerate() {
         if let Some(p) = vdef.properties.get(*a) {
             if !matches!(p.data_type, PropertyType::Scalar(_)) {
-                return Err(hdr_err(format!(
+                return Err(format!(
                     "vertex property '{a}' is a list, expected a number"
-                )));
+                ));
             }
             has_axis[i] = true;
         }
     }
     if !has_axis[0] || !has_axis[1] {
-        return Err(hdr_err(
-            "the 'vertex' element has no 'x' and 'y' properties".into(),
-        ));
+        return Err("the 'vertex' element has no 'x' and 'y' properties".into());
     }
     let ambient = if has_axis[2] { 3 } else { 2 };
     if vdef.count >= u32::MAX as usize {
-        return Err(hdr_err(format!(
+        return Err(format!(
             "{} vertices exceed the 32-bit id limit of starplex",
             vdef.count
-        )));
+        ));
     }
     if let Some(fdef) = header.elements.get("face") {
         let idx: Vec<_> = fdef
@@ -446,86 +455,162 @@ pub fn read_from(
             .collect();
         match idx.as_slice() {
             [] => {
-                return Err(hdr_err(
+                return Err(
                     "the 'face' element has no 'vertex_indices' (or 'vertex_index') property"
                         .into(),
-                ))
+                );
             }
             [p] => match &p.data_type {
                 PropertyType::List(_, t) if is_int(t) => {}
                 t => {
-                    return Err(hdr_err(format!(
+                    return Err(format!(
                         "face property '{}' has type {t:?}; expected a list of integers",
                         p.name
-                    )))
+                    ));
                 }
             },
             _ => {
-                return Err(hdr_err(
+                return Err(
                     "the 'face' element has both 'vertex_indices' and 'vertex_index'".into(),
-                ))
+                );
             }
+        }
+    }
+    Ok(ambient)
+}
+
+/// The attribute columns of a PLY file: one column of values per extra vertex property; the
+/// cell columns are the union (by name) of the face and edge properties, `cmaps[m]` placing
+/// the extra values of element `m` (0 face, 1 edge) in them.
+struct Columns {
+    vprops: Vec<(String, bool)>,
+    vcols: Vec<Vec<f64>>,
+    cprops: Vec<(String, bool)>,
+    cmaps: [Vec<usize>; 2],
+    ccols: Vec<Vec<f64>>,
+}
+
+impl Columns {
+    fn new(
+        header: &Header,
+        vdef: &ElementDef,
+        edge_def: Option<&ElementDef>,
+        notes: &mut Vec<String>,
+    ) -> Columns {
+        let vprops = extra_props(vdef, |n| matches!(n, "x" | "y" | "z"), notes);
+        let vcols: Vec<Vec<f64>> = vec![Vec::new(); vprops.len()];
+        let mut cprops: Vec<(String, bool)> = Vec::new();
+        let mut cmaps: [Vec<usize>; 2] = [Vec::new(), Vec::new()];
+        for (m, def) in [header.elements.get("face"), edge_def]
+            .into_iter()
+            .enumerate()
+        {
+            let Some(def) = def else { continue };
+            let props = if m == 0 {
+                extra_props(def, is_index_name, notes)
+            } else {
+                extra_props(def, |n| n == "vertex1" || n == "vertex2", notes)
+            };
+            for (name, is_int) in props {
+                let at = match cprops.iter().position(|(n, _)| *n == name) {
+                    Some(at) => {
+                        cprops[at].1 &= is_int;
+                        at
+                    }
+                    None => {
+                        cprops.push((name, is_int));
+                        cprops.len() - 1
+                    }
+                };
+                cmaps[m].push(at);
+            }
+        }
+        let ccols: Vec<Vec<f64>> = vec![Vec::new(); cprops.len()];
+        Columns {
+            vprops,
+            vcols,
+            cprops,
+            cmaps,
+            ccols,
         }
     }
 
-    let mut b = ComplexBuilder::new(ambient).map_err(|e| IoError::new(path, e))?;
-    let mut notes = Vec::new();
-    let mut line = Vec::with_capacity(256);
-    let mut nv: Option<usize> = None;
-    let mut verts: Vec<u32> = Vec::with_capacity(16);
-    let mut faces = Faces::default();
-    // extra scalar properties: one column of values per vertex property; the cell columns are
-    // the union (by name) of the face and edge properties
-    let vprops = extra_props(vdef, |n| matches!(n, "x" | "y" | "z"), &mut notes);
-    let mut vcols: Vec<Vec<f64>> = vec![Vec::new(); vprops.len()];
-    let mut cprops: Vec<(String, bool)> = Vec::new();
-    let mut cmaps: [Vec<usize>; 2] = [Vec::new(), Vec::new()];
-    let edge_def = header
-        .elements
-        .get("edge")
-        .filter(|d| is_edge_def(d) && d.count > 0);
-    for (m, def) in [header.elements.get("face"), edge_def]
-        .into_iter()
-        .enumerate()
-    {
-        let Some(def) = def else { continue };
-        let props = if m == 0 {
-            extra_props(def, is_index_name, &mut notes)
-        } else {
-            extra_props(def, |n| n == "vertex1" || n == "vertex2", &mut notes)
-        };
-        for (name, is_int) in props {
-            let at = match cprops.iter().position(|(n, _)| *n == name) {
-                Some(at) => {
-                    cprops[at].1 &= is_int;
-                    at
-                }
-                None => {
-                    cprops.push((name, is_int));
-                    cprops.len() - 1
-                }
-            };
-            cmaps[m].push(at);
-        }
-    }
-    let mut ccols: Vec<Vec<f64>> = vec![Vec::new(); cprops.len()];
-    // one row of cell values (fill values where the element has no such property)
-    let push_row = |ccols: &mut [Vec<f64>], map: &[usize], extra: &[f64]| {
-        for (c, (_, is_int)) in ccols.iter_mut().zip(&cprops) {
+    /// One row of cell values from the extra values of element `m` (fill values where the
+    /// element has no such property).
+    fn push_row(&mut self, m: usize, extra: &[f64]) {
+        for (c, (_, is_int)) in self.ccols.iter_mut().zip(&self.cprops) {
             c.push(if *is_int { 0.0 } else { f64::NAN });
         }
-        for (&c, &v) in map.iter().zip(extra) {
-            if let Some(last) = ccols[c].last_mut() {
+        for (&c, &v) in self.cmaps[m].iter().zip(extra) {
+            if let Some(last) = self.ccols[c].last_mut() {
                 *last = v;
             }
         }
-    };
-    let mut n_edges = 0u64;
-    for def in header.elements.values() {
+    }
+}
+
+/// The state of the payload pass: the builder, the polygon splitter, the attribute columns and
+/// scratch buffers.
+struct Records<'a> {
+    path: &'a Path,
+    b: ComplexBuilder,
+    ambient: usize,
+    /// The number of vertices, once the `vertex` element is read (indices are checked then).
+    nv: Option<usize>,
+    verts: Vec<u32>,
+    line: Vec<u8>,
+    faces: Faces,
+    cols: Columns,
+    edge_def: Option<&'a ElementDef>,
+    n_edges: u64,
+}
+
+impl<'a> Records<'a> {
+    fn new(
+        header: &'a Header,
+        ambient: usize,
+        path: &'a Path,
+        notes: &mut Vec<String>,
+    ) -> Result<Records<'a>, IoError> {
+        let b = ComplexBuilder::new(ambient).map_err(|e| IoError::new(path, e))?;
+        let edge_def = header
+            .elements
+            .get("edge")
+            .filter(|d| is_edge_def(d) && d.count > 0);
+        // checked by check_header
+        let vdef = header
+            .elements
+            .get("vertex")
+            .ok_or_else(|| IoError::parse(path, None, "no 'vertex' element in the header"))?;
+        let cols = Columns::new(header, vdef, edge_def, notes);
+        Ok(Records {
+            path,
+            b,
+            ambient,
+            nv: None,
+            verts: Vec::with_capacity(16),
+            line: Vec::with_capacity(256),
+            faces: Faces::default(),
+            cols,
+            edge_def,
+            n_edges: 0,
+        })
+    }
+
+    /// Reads every record of one element (vertices, faces, edges; others are read past and
+    /// noted).
+    fn read_element<R: BufRead>(
+        &mut self,
+        rd: &mut Counting<R>,
+        enc: Encoding,
+        def: &ElementDef,
+        opts: &ReadOptions,
+        notes: &mut Vec<String>,
+    ) -> Result<(), IoError> {
         let kind = match def.name.as_str() {
             "vertex" => 0,
             "face" => 1,
-            "edge" if edge_def.is_some() => 3,
+            "edge" if self.edge_def.is_some() => 3,
             _ => {
                 notes.push(format!(
                     "ignored element '{}' ({} records)",
@@ -535,7 +620,7 @@ pub fn read_from(
             }
         };
         if enc != Encoding::Ascii && def.properties.is_empty() {
-            continue; // records of no bytes
+            return Ok(()); // records of no bytes
         }
         for i in 0..def.count {
             let loc = if enc == Encoding::Ascii {
@@ -543,87 +628,140 @@ pub fn read_from(
             } else {
                 Location::Byte(rd.pos)
             };
-            let here = |msg: String| IoError::parse(path, Some(loc), msg);
             match kind {
                 0 => {
-                    let v: VertexRec = read_record(rd, enc, def, &mut line, i, path, loc)?;
-                    b.push_vertex(&v.p[..ambient])
-                        .map_err(|e| IoError::new(path, e).at(loc))?;
-                    for (c, &x) in vcols.iter_mut().zip(&v.extra) {
-                        c.push(x);
-                    }
+                    let v: VertexRec =
+                        read_record(rd, enc, def, &mut self.line, i, self.path, loc)?;
+                    self.vertex(v, loc)?;
                 }
                 1 => {
-                    let f: FaceRec = read_record(rd, enc, def, &mut line, i, path, loc)?;
-                    f.indices(&mut verts)
-                        .map_err(|x| here(format!("face {i}: negative vertex index {x}")))?;
-                    if let Some(nv) = nv {
-                        opts.build
-                            .check_cell(i as u64, &verts, nv)
-                            .map_err(|e| IoError::new(path, e).at(loc))?;
-                    }
-                    let rows = faces.push(&mut b, opts.polygons, &verts).map_err(|e| match e {
-                        FaceError::Complex(e) => IoError::new(path, e).at(loc),
-                        FaceError::TooFew(k) => here(format!(
-                            "face {i} has {k} vertices; a polygon needs at least 3 (read in simplices mode for lower-dimensional cells)"
-                        )),
-                        FaceError::NotSimplex(k) => {
-                            here(format!("face {i} has {k} vertices; a simplex needs 1 to 65"))
-                        }
-                    })?;
-                    if !ccols.is_empty() {
-                        for _ in 0..rows {
-                            push_row(&mut ccols, &cmaps[0], &f.extra);
-                        }
-                    }
+                    let f: FaceRec = read_record(rd, enc, def, &mut self.line, i, self.path, loc)?;
+                    self.face(f, i, loc, opts)?;
                 }
                 3 => {
-                    let e: EdgeRec = read_record(rd, enc, def, &mut line, i, path, loc)?;
-                    verts.clear();
-                    for x in e.v {
-                        // integer types only (checked by is_edge_def): exact in f64
-                        if x < 0.0 {
-                            return Err(here(format!("edge {i}: negative vertex index {x}")));
-                        }
-                        verts.push(x as u32);
-                    }
-                    if let Some(nv) = nv {
-                        opts.build
-                            .check_cell(i as u64, &verts, nv)
-                            .map_err(|e| IoError::new(path, e).at(loc))?;
-                    }
-                    b.push_cell(CellKind::Simplex(1), &verts)
-                        .map_err(|e| IoError::new(path, e).at(loc))?;
-                    if !ccols.is_empty() {
-                        push_row(&mut ccols, &cmaps[1], &e.extra);
-                    }
-                    n_edges += 1;
+                    let e: EdgeRec = read_record(rd, enc, def, &mut self.line, i, self.path, loc)?;
+                    self.edge(e, i, loc, opts)?;
                 }
                 _ => {
-                    let _: Skip = read_record(rd, enc, def, &mut line, i, path, loc)?;
+                    let _: Skip = read_record(rd, enc, def, &mut self.line, i, self.path, loc)?;
                 }
             }
         }
         if kind == 0 {
-            nv = Some(b.n_vertices());
+            self.nv = Some(self.b.n_vertices());
         }
+        Ok(())
     }
-    faces.note(&mut notes);
-    let has_faces = header.elements.get("face").is_some_and(|d| d.count > 0);
-    if n_edges > 0 && has_faces && cmaps.iter().any(|m| m.len() < cprops.len()) {
-        notes.push("the 'face' and 'edge' elements do not have the same properties: the values a cell lacks are 0 (integer columns) or NaN (float columns)".into());
+
+    fn vertex(&mut self, v: VertexRec, loc: Location) -> Result<(), IoError> {
+        self.b
+            .push_vertex(&v.p[..self.ambient])
+            .map_err(|e| IoError::new(self.path, e).at(loc))?;
+        for (c, &x) in self.cols.vcols.iter_mut().zip(&v.extra) {
+            c.push(x);
+        }
+        Ok(())
     }
-    b.set_attributes(Attributes {
-        vertex: group_columns(&vprops, vcols),
-        cell: group_columns(&cprops, ccols),
-    });
-    let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
-    push_build_notes(&mut notes, &report);
-    Ok(ReadResult {
-        complex,
-        format: Format::Ply,
-        notes,
-    })
+
+    fn face(
+        &mut self,
+        f: FaceRec,
+        i: usize,
+        loc: Location,
+        opts: &ReadOptions,
+    ) -> Result<(), IoError> {
+        let path = self.path;
+        let here = |msg: String| IoError::parse(path, Some(loc), msg);
+        f.indices(&mut self.verts)
+            .map_err(|x| here(format!("face {i}: negative vertex index {x}")))?;
+        if let Some(nv) = self.nv {
+            opts.build
+                .check_cell(i as u64, &self.verts, nv)
+                .map_err(|e| IoError::new(path, e).at(loc))?;
+        }
+        let rows = self
+            .faces
+            .push(&mut self.b, opts.polygons, &self.verts)
+            .map_err(|e| match e {
+                FaceError::Complex(e) => IoError::new(path, e).at(loc),
+                FaceError::TooFew(k) => here(format!(
+                    "face {i} has {k} vertices; a polygon needs at least 3 (read in simplices mode for lower-dimensional cells)"
+                )),
+                FaceError::NotSimplex(k) => {
+                    here(format!("face {i} has {k} vertices; a simplex needs 1 to 65"))
+                }
+            })?;
+        if !self.cols.ccols.is_empty() {
+            for _ in 0..rows {
+                self.cols.push_row(0, &f.extra);
+            }
+        }
+        Ok(())
+    }
+
+    fn edge(
+        &mut self,
+        e: EdgeRec,
+        i: usize,
+        loc: Location,
+        opts: &ReadOptions,
+    ) -> Result<(), IoError> {
+        let path = self.path;
+        self.verts.clear();
+        for x in e.v {
+            // integer types only (checked by is_edge_def): exact in f64
+            if x < 0.0 {
+                return Err(IoError::parse(
+                    path,
+                    Some(loc),
+                    format!("edge {i}: negative vertex index {x}"),
+                ));
+            }
+            self.verts.push(x as u32);
+        }
+        if let Some(nv) = self.nv {
+            opts.build
+                .check_cell(i as u64, &self.verts, nv)
+                .map_err(|e| IoError::new(path, e).at(loc))?;
+        }
+        self.b
+            .push_cell(CellKind::Simplex(1), &self.verts)
+            .map_err(|e| IoError::new(path, e).at(loc))?;
+        if !self.cols.ccols.is_empty() {
+            self.cols.push_row(1, &e.extra);
+        }
+        self.n_edges += 1;
+        Ok(())
+    }
+
+    /// The notes of the pass, the attributes, and the build of the complex.
+    fn finish(
+        mut self,
+        header: &Header,
+        opts: &ReadOptions,
+        mut notes: Vec<String>,
+    ) -> Result<ReadResult, IoError> {
+        self.faces.note(&mut notes);
+        let cols = self.cols;
+        let has_faces = header.elements.get("face").is_some_and(|d| d.count > 0);
+        if self.n_edges > 0 && has_faces && cols.cmaps.iter().any(|m| m.len() < cols.cprops.len()) {
+            notes.push("the 'face' and 'edge' elements do not have the same properties: the values a cell lacks are 0 (integer columns) or NaN (float columns)".into());
+        }
+        self.b.set_attributes(Attributes {
+            vertex: group_columns(&cols.vprops, cols.vcols),
+            cell: group_columns(&cols.cprops, cols.ccols),
+        });
+        let (complex, report) = self
+            .b
+            .build(&opts.build)
+            .map_err(|e| IoError::new(self.path, e))?;
+        push_build_notes(&mut notes, &report);
+        Ok(ReadResult {
+            complex,
+            format: Format::Ply,
+            notes,
+        })
+    }
 }
 
 /// Whether an `edge` element can be read as edges: integer `vertex1` and `vertex2`.

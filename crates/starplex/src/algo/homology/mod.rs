@@ -33,7 +33,7 @@
 //! let hz = homology(&VtIndex::new(&k), &HomologyOptions { field: Field::Z, ..Default::default() }).unwrap();
 //! assert_eq!((hz.betti, hz.torsion), (vec![1, 0, 1], vec![vec![], vec![], vec![]]));
 //! ```
-use crate::limits::{TooLarge, Unit};
+use crate::limits::{Limits, TooLarge, Unit};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::sync::Arc;
@@ -215,7 +215,7 @@ pub enum VertexOrder {
 /// use starplex::algo::homology::{Field, HomologyOptions};
 /// let o = HomologyOptions { field: Field::Q, per_component: true, ..Default::default() };
 /// assert!(!o.generators);
-/// assert_eq!(o.max_faces, 4_000_000_000);
+/// assert_eq!(o.limits.homology_cells, 4_000_000_000);
 /// ```
 #[derive(Clone)]
 pub struct HomologyOptions {
@@ -225,8 +225,10 @@ pub struct HomologyOptions {
     pub per_component: bool,
     /// Also compute representative cycles (over Z/2 or Z/p; not for Q or Z).
     pub generators: bool,
-    /// Largest number of lower-star cells to enumerate before refusing with an estimate.
-    pub max_faces: u128,
+    /// The budgets: `homology_cells`, the lower-star cells to enumerate in all before refusing
+    /// with an estimate; `lower_star_simplices`, the simplices of one lower star;
+    /// `dense_entries`, the entries of the dense remainder of the integer elimination.
+    pub limits: Limits,
     /// The vertex order of the matching.
     pub order: VertexOrder,
     /// Called with the number of vertices just processed (for progress bars; one pass).
@@ -239,7 +241,7 @@ impl Default for HomologyOptions {
             field: Field::Z2,
             per_component: false,
             generators: false,
-            max_faces: crate::limits::HOMOLOGY_CELLS,
+            limits: Limits::default(),
             order: VertexOrder::Auto,
             progress: None,
         }
@@ -252,7 +254,7 @@ impl std::fmt::Debug for HomologyOptions {
             .field("field", &self.field)
             .field("per_component", &self.per_component)
             .field("generators", &self.generators)
-            .field("max_faces", &self.max_faces)
+            .field("limits", &self.limits)
             .field("order", &self.order)
             .finish()
     }
@@ -402,10 +404,6 @@ pub fn betti_z2(k: &IndexedComplex) -> Result<Vec<u64>, HomologyError> {
 }
 
 const CHUNK: usize = 4096;
-/// Largest single lower star enumerated.
-const MAX_STAR: u128 = crate::limits::LOWER_STAR_SIMPLICES;
-/// Largest dense remainder of the integer elimination (entries).
-const MAX_DENSE: usize = crate::limits::DENSE_ENTRIES as usize;
 
 /// Computes the homology of the complex given by `s`.
 ///
@@ -427,7 +425,8 @@ const MAX_DENSE: usize = crate::limits::DENSE_ENTRIES as usize;
 ///
 /// # Errors
 /// [`HomologyError::TooLarge`] (with an estimate) when the lower stars that must be enumerated
-/// exceed `opts.max_faces` cells or one of them exceeds 2^26 cells;
+/// exceed `opts.limits.homology_cells` cells or one of them exceeds
+/// `opts.limits.lower_star_simplices` (2^26 by default);
 /// [`HomologyError::Overflow`] when integer coefficients (Z, Q) overflow.
 pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
     s: &S,
@@ -674,7 +673,85 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
     to_old: Option<&[u32]>,
 ) -> Result<Homology, HomologyError> {
     let nv = s.n_vertices();
-    let (simplicial, dmax) = match fast {
+    let (simplicial, dmax) = scan_kinds(s, fast);
+    let Some(dmax) = dmax.or(if nv > 0 { Some(0) } else { None }) else {
+        return Ok(Homology {
+            field: opts.field,
+            betti: vec![],
+            torsion: vec![],
+            critical: vec![],
+            components: opts.per_component.then(Vec::new),
+            generators: vec![],
+        });
+    };
+    let t0 = std::time::Instant::now();
+    let g = morse_gradient(s, fast, opts, simplicial, dmax, t0)?;
+    let critical: Vec<u64> = g.crit.iter().map(|l| l.len() as u64).collect();
+
+    // components
+    let comps = if opts.per_component {
+        components(s)
+    } else {
+        // one label for everything: totals need no components
+        crate::algo::components::Components {
+            n_components: 1,
+            label: vec![0; nv],
+        }
+    };
+    debug_time("components", t0);
+    let n_comp = comps.n_components;
+    let comp_of = |c: &Cell| comps.label[c.key[0] as usize];
+    let comp_labels: Vec<Vec<u32>> = g
+        .crit
+        .iter()
+        .map(|l| l.iter().map(comp_of).collect())
+        .collect();
+
+    let m = opts.field.modulus();
+    // per component Betti numbers and torsion
+    let mut rank = vec![vec![0u64; n_comp]; dmax + 2]; // rank[k] = rank of ∂_k per component
+    let mut tors: Vec<Vec<Vec<u128>>> = vec![vec![Vec::new(); n_comp]; dmax + 1];
+    let mut generators = Vec::new();
+    if m > 0 {
+        let red = field_ranks(&g, m, simplicial, opts.generators, &comp_labels, &mut rank)?;
+        if opts.generators {
+            generators = field_generators(&g, m, red, to_old)?;
+        }
+    } else {
+        let max_dense = usize::try_from(opts.limits.dense_entries).unwrap_or(usize::MAX);
+        integer_ranks(
+            &g,
+            opts.field,
+            max_dense,
+            &comp_labels,
+            n_comp,
+            &mut rank,
+            &mut tors,
+        )?;
+    }
+    debug_time("boundaries and ranks", t0);
+    let (betti, torsion, per) =
+        betti_per_component(s, opts, &comps, &comp_labels, &rank, &tors, to_old);
+    for g in &mut generators {
+        g.cells.sort();
+    }
+    Ok(Homology {
+        field: opts.field,
+        betti,
+        torsion,
+        critical,
+        components: opts.per_component.then_some(per),
+        generators,
+    })
+}
+
+/// Whether every top cell is a simplex, and the largest top-cell dimension (`None` without
+/// top cells).
+fn scan_kinds<S: TopCells + Sync + ?Sized>(
+    s: &S,
+    fast: Option<morse::FastStar<'_>>,
+) -> (bool, Option<usize>) {
+    match fast {
         // simplices of one arity: no scan of the kinds
         Some(f) if s.n_top_cells() > 0 => (true, Some(f.arity - 1)),
         _ => (
@@ -686,29 +763,30 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
                 .map(|c| s.top_cell_kind(CellId(c as u32)).dim())
                 .max(),
         ),
-    };
-    let Some(dmax) = dmax.or(if nv > 0 { Some(0) } else { None }) else {
-        return Ok(Homology {
-            field: opts.field,
-            betti: vec![],
-            torsion: vec![],
-            critical: vec![],
-            components: opts.per_component.then(Vec::new),
-            generators: vec![],
-        });
-    };
+    }
+}
+
+/// The discrete gradient: in one pass, the plan of every lower star, and the critical cells of
+/// those enumerated (the enumeration stops as soon as the budget is known to be exceeded; the
+/// decision itself depends only on the plans, so it is the same for any thread count).
+fn morse_gradient<'a, S: TopCells + VertexStar + Sync + ?Sized>(
+    s: &'a S,
+    fast: Option<morse::FastStar<'_>>,
+    opts: &HomologyOptions,
+    simplicial: bool,
+    dmax: usize,
+    t0: std::time::Instant,
+) -> Result<Gradient<'a, S>, HomologyError> {
+    let nv = s.n_vertices();
     let progress = |n: usize| {
         if let Some(p) = &opts.progress {
             p(n as u64);
         }
     };
-    let t0 = std::time::Instant::now();
-    // one pass: the plan of every lower star, and the critical cells of those enumerated (the
-    // enumeration stops as soon as the budget is known to be exceeded; the decision itself
-    // depends only on the plans, so it is the same for any thread count)
     let spent = std::sync::atomic::AtomicU64::new(0);
     let over = std::sync::atomic::AtomicBool::new(false);
-    let budget = u64::try_from(opts.max_faces).unwrap_or(u64::MAX);
+    let budget = u64::try_from(opts.limits.homology_cells).unwrap_or(u64::MAX);
+    let max_star = opts.limits.lower_star_simplices;
     type Part = (Vec<u32>, u128, u128, Vec<Cell>);
     let parts: Vec<Part> = (0..nv.div_ceil(CHUNK))
         .into_par_iter()
@@ -727,7 +805,7 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
                         est = est.saturating_add(p.estimate);
                         worst = worst.max(p.estimate);
                         let e = u64::try_from(p.estimate).unwrap_or(u64::MAX);
-                        if p.estimate > MAX_STAR
+                        if p.estimate > max_star
                             || spent.fetch_add(e.min(1 << 40), Relaxed).saturating_add(e) > budget
                         {
                             over.store(true, Relaxed);
@@ -745,12 +823,12 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
         .collect();
     let est = parts.iter().fold(0u128, |a, p| a.saturating_add(p.1));
     let worst = parts.iter().map(|p| p.2).max().unwrap_or(0);
-    if est > opts.max_faces || worst > MAX_STAR {
+    if est > opts.limits.homology_cells || worst > max_star {
         return Err(HomologyError::TooLarge(TooLarge::new(
             "homology: cells of the lower stars to enumerate",
             est,
-            opts.max_faces.min(if worst > MAX_STAR {
-                MAX_STAR
+            opts.limits.homology_cells.min(if worst > max_star {
+                max_star
             } else {
                 u128::MAX
             }),
@@ -779,161 +857,201 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
     }
     let g = Gradient { s, apex, crit };
     debug_time("critical cells", t0);
-    let critical: Vec<u64> = g.crit.iter().map(|l| l.len() as u64).collect();
+    Ok(g)
+}
 
-    // components
-    let comps = if opts.per_component {
-        components(s)
-    } else {
-        // one label for everything: totals need no components
-        crate::algo::components::Components {
-            n_components: 1,
-            label: vec![0; nv],
+fn flow_err(_: morse::Overflow) -> HomologyError {
+    HomologyError::Overflow("the Morse boundary".into())
+}
+
+/// What the reduction over Z/p keeps for the generators: per dimension, the rows that are
+/// pivots (boundaries), the reduction matrix `V` when tracked, and the columns reduced to zero
+/// (cycles).
+struct FieldReduction {
+    essential_rows: Vec<Vec<bool>>,
+    vs: Vec<Option<Vec<reduce::Column>>>,
+    zero_cols: Vec<Vec<bool>>,
+}
+
+/// Ranks of the Morse boundaries over Z/`m` per component (into `rank`), from the top dimension
+/// down, with clearing (the pivot rows of ∂_{k+1} are skipped as columns of ∂_k).
+fn field_ranks<S: TopCells + VertexStar + Sync + ?Sized>(
+    g: &Gradient<'_, S>,
+    m: i64,
+    simplicial: bool,
+    generators: bool,
+    comp_labels: &[Vec<u32>],
+    rank: &mut [Vec<u64>],
+) -> Result<FieldReduction, HomologyError> {
+    let dmax = g.crit.len() - 1;
+    let mut cleared: Vec<bool> = Vec::new();
+    let mut essential_rows: Vec<Vec<bool>> = vec![Vec::new(); dmax + 2];
+    let mut vs: Vec<Option<Vec<reduce::Column>>> = vec![None; dmax + 1];
+    let mut zero_cols: Vec<Vec<bool>> = vec![Vec::new(); dmax + 1];
+    for k in (1..=dmax).rev() {
+        let n = g.crit[k].len();
+        if cleared.len() != n {
+            cleared = vec![false; n];
         }
-    };
-    debug_time("components", t0);
-    let n_comp = comps.n_components;
-    let comp_of = |c: &Cell| comps.label[c.key[0] as usize];
-    let comp_labels: Vec<Vec<u32>> = g
-        .crit
-        .iter()
-        .map(|l| l.iter().map(comp_of).collect())
-        .collect();
-
-    let m = opts.field.modulus();
-    let flow_err = |_| HomologyError::Overflow("the Morse boundary".into());
-    // per component Betti numbers and torsion
-    let mut rank = vec![vec![0u64; n_comp]; dmax + 2]; // rank[k] = rank of ∂_k per component
-    let mut tors: Vec<Vec<Vec<u128>>> = vec![vec![Vec::new(); n_comp]; dmax + 1];
-    let mut generators = Vec::new();
-    if m > 0 {
-        let mut cleared: Vec<bool> = Vec::new();
-        let mut essential_rows: Vec<Vec<bool>> = vec![Vec::new(); dmax + 2];
-        let mut vs: Vec<Option<Vec<reduce::Column>>> = vec![None; dmax + 1];
-        let mut zero_cols: Vec<Vec<bool>> = vec![Vec::new(); dmax + 1];
-        for k in (1..=dmax).rev() {
-            let n = g.crit[k].len();
-            if cleared.len() != n {
-                cleared = vec![false; n];
+        let no_rows = g.crit[k - 1].is_empty();
+        if k == dmax
+            && simplicial
+            && !generators
+            && !no_rows
+            && let Some(next) = coboundary_pairs(g, k, m, &cleared, comp_labels, rank)?
+        {
+            essential_rows[k - 1] = next.clone();
+            cleared = next;
+            continue;
+        }
+        let cols: Vec<Option<reduce::Column>> = (0..n)
+            .into_par_iter()
+            .map_init(Scratch::default, |w, j| {
+                if cleared[j] {
+                    return Ok(None);
+                }
+                if no_rows {
+                    // nothing critical below: every Morse boundary is zero
+                    return Ok(Some(Vec::new()));
+                }
+                let col = g.flow(&[(g.crit[k][j].clone(), 1)], m, None, w)?;
+                Ok(Some(col))
+            })
+            .collect::<Result<_, _>>()
+            .map_err(flow_err)?;
+        let r = reduce::reduce(cols, g.crit[k - 1].len(), m, generators);
+        let mut next = vec![false; g.crit[k - 1].len()];
+        let mut zc = vec![false; n];
+        for (j, l) in r.low.iter().enumerate() {
+            match l {
+                Some(row) => {
+                    next[*row as usize] = true;
+                    rank[k][comp_labels[k][j] as usize] += 1;
+                }
+                None => zc[j] = !cleared[j],
             }
-            let no_rows = g.crit[k - 1].is_empty();
-            if k == dmax
-                && simplicial
-                && !opts.generators
-                && !no_rows
-                && let Some(next) = coboundary_pairs(&g, k, m, &cleared, &comp_labels, &mut rank)?
-            {
-                essential_rows[k - 1] = next.clone();
-                cleared = next;
+        }
+        zero_cols[k] = zc;
+        essential_rows[k - 1] = next.clone();
+        vs[k] = r.v;
+        cleared = next;
+    }
+    Ok(FieldReduction {
+        essential_rows,
+        vs,
+        zero_cols,
+    })
+}
+
+/// One cycle per essential class over Z/`m`: every zero column that is not a pivot row, its
+/// combination of critical cells flowed back to cells of the complex (input numbering).
+fn field_generators<S: TopCells + VertexStar + Sync + ?Sized>(
+    g: &Gradient<'_, S>,
+    m: i64,
+    mut red: FieldReduction,
+    to_old: Option<&[u32]>,
+) -> Result<Vec<Generator>, HomologyError> {
+    let dmax = g.crit.len() - 1;
+    let mut generators = Vec::new();
+    red.zero_cols[0] = vec![true; g.crit[0].len()];
+    for k in 0..=dmax {
+        let pivots = &red.essential_rows[k];
+        for j in 0..g.crit[k].len() {
+            let is_pivot = pivots.get(j).copied().unwrap_or(false);
+            if !red.zero_cols[k][j] || is_pivot {
                 continue;
             }
-            let cols: Vec<Option<reduce::Column>> = (0..n)
-                .into_par_iter()
-                .map_init(Scratch::default, |w, j| {
-                    if cleared[j] {
-                        return Ok(None);
-                    }
-                    if no_rows {
-                        // nothing critical below: every Morse boundary is zero
-                        return Ok(Some(Vec::new()));
-                    }
-                    let col = g.flow(&[(g.crit[k][j].clone(), 1)], m, None, w)?;
-                    Ok(Some(col))
-                })
-                .collect::<Result<_, _>>()
+            let combo: Vec<(Cell, i64)> = match &red.vs[k] {
+                Some(v) => v[j]
+                    .iter()
+                    .map(|&(i, c)| (g.crit[k][i as usize].clone(), c))
+                    .collect(),
+                None => vec![(g.crit[k][j].clone(), 1)],
+            };
+            let mut chain: BTreeMap<Key, (Cell, i64)> = BTreeMap::new();
+            let mut w = Scratch::default();
+            g.flow(&combo, m, Some(&mut chain), &mut w)
                 .map_err(flow_err)?;
-            let r = reduce::reduce(cols, g.crit[k - 1].len(), m, opts.generators);
-            let mut next = vec![false; g.crit[k - 1].len()];
-            let mut zc = vec![false; n];
-            for (j, l) in r.low.iter().enumerate() {
-                match l {
-                    Some(row) => {
-                        next[*row as usize] = true;
-                        rank[k][comp_labels[k][j] as usize] += 1;
-                    }
-                    None => zc[j] = !cleared[j],
-                }
-            }
-            zero_cols[k] = zc;
-            essential_rows[k - 1] = next.clone();
-            vs[k] = r.v;
-            cleared = next;
+            generators.push(Generator {
+                dim: k,
+                cells: chain
+                    .into_values()
+                    .map(|(c, x)| {
+                        let (v, sg) = map_back(&c, to_old);
+                        (v, (x * sg).rem_euclid(m))
+                    })
+                    .collect(),
+            });
         }
-        if opts.generators {
-            zero_cols[0] = vec![true; g.crit[0].len()];
-            for k in 0..=dmax {
-                let pivots = &essential_rows[k];
-                for j in 0..g.crit[k].len() {
-                    let is_pivot = pivots.get(j).copied().unwrap_or(false);
-                    if !zero_cols[k][j] || is_pivot {
-                        continue;
-                    }
-                    let combo: Vec<(Cell, i64)> = match &vs[k] {
-                        Some(v) => v[j]
-                            .iter()
-                            .map(|&(i, c)| (g.crit[k][i as usize].clone(), c))
-                            .collect(),
-                        None => vec![(g.crit[k][j].clone(), 1)],
-                    };
-                    let mut chain: BTreeMap<Key, (Cell, i64)> = BTreeMap::new();
-                    let mut w = Scratch::default();
-                    g.flow(&combo, m, Some(&mut chain), &mut w)
-                        .map_err(flow_err)?;
-                    generators.push(Generator {
-                        dim: k,
-                        cells: chain
-                            .into_values()
-                            .map(|(c, x)| {
-                                let (v, sg) = map_back(&c, to_old);
-                                (v, (x * sg).rem_euclid(m))
-                            })
-                            .collect(),
-                    });
+    }
+    Ok(generators)
+}
+
+/// Ranks (and, over Z, torsion) of the Morse boundaries with integer coefficients per
+/// component, by the Smith normal form (into `rank` and `tors`).
+fn integer_ranks<S: TopCells + VertexStar + Sync + ?Sized>(
+    g: &Gradient<'_, S>,
+    field: Field,
+    max_dense: usize,
+    comp_labels: &[Vec<u32>],
+    n_comp: usize,
+    rank: &mut [Vec<u64>],
+    tors: &mut [Vec<Vec<u128>>],
+) -> Result<(), HomologyError> {
+    let dmax = g.crit.len() - 1;
+    for k in 1..=dmax {
+        let n = g.crit[k].len();
+        let cols: Vec<Vec<(u32, i64)>> = (0..n)
+            .into_par_iter()
+            .map_init(Scratch::default, |w, j| {
+                if g.crit[k - 1].is_empty() {
+                    return Ok(Vec::new());
                 }
-            }
-        }
-    } else {
-        for k in 1..=dmax {
-            let n = g.crit[k].len();
-            let cols: Vec<Vec<(u32, i64)>> = (0..n)
-                .into_par_iter()
-                .map_init(Scratch::default, |w, j| {
-                    if g.crit[k - 1].is_empty() {
-                        return Ok(Vec::new());
-                    }
-                    g.flow(&[(g.crit[k][j].clone(), 1)], 0, None, w)
-                })
-                .collect::<Result<_, _>>()
-                .map_err(flow_err)?;
-            let r = smith::int_rank(
-                &cols,
-                g.crit[k - 1].len(),
-                &comp_labels[k],
-                &comp_labels[k - 1],
-                n_comp,
-                MAX_DENSE,
-            )
-            .map_err(|e| match e {
-                smith::IntError::Overflow => {
-                    HomologyError::Overflow("the Smith normal form".into())
-                }
-                smith::IntError::TooLarge(n) => HomologyError::TooLarge(TooLarge::new(
-                    "homology over Z: dense Smith normal form entries",
-                    n,
-                    MAX_DENSE as u128,
-                    Unit::Items,
-                )),
-            })?;
-            for c in 0..n_comp {
-                rank[k][c] = r.rank[c] as u64;
-                if opts.field == Field::Z {
-                    tors[k - 1][c] = r.torsion[c].iter().map(|&x| x as u128).collect();
-                }
+                g.flow(&[(g.crit[k][j].clone(), 1)], 0, None, w)
+            })
+            .collect::<Result<_, _>>()
+            .map_err(flow_err)?;
+        let r = smith::int_rank(
+            &cols,
+            g.crit[k - 1].len(),
+            &comp_labels[k],
+            &comp_labels[k - 1],
+            n_comp,
+            max_dense,
+        )
+        .map_err(|e| match e {
+            smith::IntError::Overflow => HomologyError::Overflow("the Smith normal form".into()),
+            smith::IntError::TooLarge(n) => HomologyError::TooLarge(TooLarge::new(
+                "homology over Z: dense Smith normal form entries",
+                n,
+                max_dense as u128,
+                Unit::Items,
+            )),
+        })?;
+        for c in 0..n_comp {
+            rank[k][c] = r.rank[c] as u64;
+            if field == Field::Z {
+                tors[k - 1][c] = r.torsion[c].iter().map(|&x| x as u128).collect();
             }
         }
     }
-    debug_time("boundaries and ranks", t0);
-    // Betti numbers per component and in total
+    Ok(())
+}
+
+/// Betti numbers and torsion in total and per component (with the surface facts of each
+/// component of a 2-complex), from the critical cells and the boundary ranks.
+#[allow(clippy::type_complexity)]
+fn betti_per_component<S: TopCells + VertexStar + Sync + ?Sized>(
+    s: &S,
+    opts: &HomologyOptions,
+    comps: &crate::algo::components::Components,
+    comp_labels: &[Vec<u32>],
+    rank: &[Vec<u64>],
+    tors: &[Vec<Vec<u128>>],
+    to_old: Option<&[u32]>,
+) -> (Vec<u64>, Vec<Vec<u128>>, Vec<ComponentHomology>) {
+    let dmax = comp_labels.len() - 1;
+    let n_comp = comps.n_components;
     let mut crit_per_comp = vec![vec![0u64; n_comp]; dmax + 1];
     for k in 0..=dmax {
         for &l in &comp_labels[k] {
@@ -994,17 +1112,7 @@ fn homology_ordered<S: TopCells + VertexStar + Sync + ?Sized>(
         t.sort_unstable();
     }
     per.sort_by_key(|c: &ComponentHomology| c.first_vertex);
-    for g in &mut generators {
-        g.cells.sort();
-    }
-    Ok(Homology {
-        field: opts.field,
-        betti,
-        torsion,
-        critical,
-        components: opts.per_component.then_some(per),
-        generators,
-    })
+    (betti, torsion, per)
 }
 
 /// The pairs of the Morse boundary matrix of dimension `k` found from the other side: the

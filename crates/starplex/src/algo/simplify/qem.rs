@@ -374,82 +374,7 @@ pub fn simplify_qem(
         .chunks_exact(stride)
         .map(|p| [p[0], p[1], p.get(2).copied().unwrap_or(0.0)])
         .collect();
-    let mut quad = vec![Quadric::default(); n];
-    let mut boundary = vec![false; n];
-    // surface triangles: the triangles themselves, or the boundary faces of the tets
-    let tet_surface = (d == 3).then(|| boundary_faces(w));
-    let mut total_area = 0.0;
-    let mut n_surface = 0usize;
-    let mut add_plane = |f: [u32; 3], quad: &mut [Quadric]| {
-        let p = f.map(|v| pos[v as usize]);
-        let nrm = normal(p);
-        let len = dot(nrm, nrm).sqrt();
-        if len > 0.0 {
-            let u = nrm.map(|x| x / len);
-            let q = Quadric::plane(u, -dot(u, p[0]), len / 2.0);
-            for &v in &f {
-                quad[v as usize].add(&q);
-            }
-        }
-        total_area += len / 2.0;
-        n_surface += 1;
-    };
-    match &tet_surface {
-        Some(faces) => {
-            for &f in faces {
-                add_plane(f, &mut quad);
-                for v in f {
-                    boundary[v as usize] = true;
-                }
-            }
-        }
-        None => {
-            for t in w.tops() {
-                add_plane([t[0], t[1], t[2]], &mut quad);
-            }
-        }
-    }
-    drop(tet_surface);
-    if d == 2 {
-        // boundary edges (in exactly one triangle), in (u, v) order, found from each vertex's
-        // star: no edge table
-        let mut around: Vec<(u32, u32)> = Vec::new();
-        for u in 0..n as u32 {
-            around.clear();
-            for &t in w.star(u) {
-                around.extend(w.top(t).iter().filter(|&&v| v > u).map(|&v| (v, t)));
-            }
-            around.sort_unstable();
-            let mut i = 0;
-            while i < around.len() {
-                let (v, t) = around[i];
-                let mut j = i + 1;
-                while j < around.len() && around[j].0 == v {
-                    j += 1;
-                }
-                let single = j - i == 1;
-                i = j;
-                if !single {
-                    continue;
-                }
-                boundary[u as usize] = true;
-                boundary[v as usize] = true;
-                let tri = w.top(t);
-                let p = [0, 1, 2].map(|k| pos[tri[k] as usize]);
-                let nrm = normal(p);
-                let e = sub(pos[v as usize], pos[u as usize]);
-                let m = cross(e, nrm);
-                let len = dot(m, m).sqrt();
-                if len > 0.0 {
-                    let m = m.map(|x| x / len);
-                    let q =
-                        Quadric::plane(m, -dot(m, pos[u as usize]), BOUNDARY_WEIGHT * dot(e, e));
-                    quad[u as usize].add(&q);
-                    quad[v as usize].add(&q);
-                }
-            }
-        }
-    }
+    let (mut quad, boundary, total_area, n_surface) = surface_quadrics(w, d, &pos);
     // vertices that neither move nor disappear: the locked ones, and the boundary if asked
     let mut locked: Vec<bool> = (0..n as u32)
         .map(|v| w.is_locked(v) || (lock_boundary && boundary[v as usize]))
@@ -471,61 +396,6 @@ pub fn simplify_qem(
     let mut stats = QemStats::default();
     let mut sum_err = 0.0;
     let mut unreported = 0u64;
-
-    let candidate = |a: u32, b: u32, quad: &[Quadric], pos: &[[f64; 3]], locked: &[bool]| {
-        let (la, lb) = (locked[a as usize], locked[b as usize]);
-        let q = quad[a as usize].sum(&quad[b as usize]);
-        let (pa, pb) = (pos[a as usize], pos[b as usize]);
-        let p = if la && lb {
-            return None;
-        } else if la {
-            pa
-        } else if lb {
-            pb
-        } else if let Some(x) = q.optimum() {
-            x
-        } else {
-            let mid = [
-                (pa[0] + pb[0]) / 2.0,
-                (pa[1] + pb[1]) / 2.0,
-                (pa[2] + pb[2]) / 2.0,
-            ];
-            let mut best = (q.eval(mid), mid);
-            for c in [pa, pb] {
-                let e = q.eval(c);
-                if e < best.0 {
-                    best = (e, c);
-                }
-            }
-            best.1
-        };
-        Some((q.eval(p).max(0.0), p))
-    };
-
-    let push_all = |heap: &mut RadixHeap,
-                    w: &TopSimplices,
-                    nb: &mut Vec<u32>,
-                    quad: &[Quadric],
-                    pos: &[[f64; 3]],
-                    locked: &[bool],
-                    stamp: &[u8]| {
-        heap.clear();
-        // one entry per edge (the capacity beyond is never touched, and is given back)
-        let mut entries = Vec::new();
-        for a in 0..n as u32 {
-            if !w.is_alive(a) {
-                continue;
-            }
-            w.neighbours_into(a, nb);
-            for &b in nb.iter().filter(|&&b| b > a) {
-                if let Some((cost, _)) = candidate(a, b, quad, pos, locked) {
-                    entries.push(Entry::new(cost, a, b, stamp));
-                }
-            }
-        }
-        entries.shrink_to_fit();
-        heap.fill(entries);
-    };
 
     let mut last_round_contracted = true;
     'rounds: while last_round_contracted && !target.reached(w) {
@@ -611,6 +481,172 @@ pub fn simplify_qem(
         .flat_map(|p| p.iter().copied().take(stride))
         .collect();
     Ok(stats)
+}
+
+/// The quadrics of the surface planes at every vertex (the triangles, or the boundary faces of
+/// the tetrahedra, area-weighted; on a triangle mesh also the boundary-edge constraints), the
+/// boundary vertices, the surface area and the number of surface triangles.
+fn surface_quadrics(
+    w: &TopSimplices,
+    d: usize,
+    pos: &[[f64; 3]],
+) -> (Vec<Quadric>, Vec<bool>, f64, usize) {
+    let n = w.n_vertices();
+    let mut quad = vec![Quadric::default(); n];
+    let mut boundary = vec![false; n];
+    // surface triangles: the triangles themselves, or the boundary faces of the tets
+    let tet_surface = (d == 3).then(|| boundary_faces(w));
+    let mut total_area = 0.0;
+    let mut n_surface = 0usize;
+    let mut add_plane = |f: [u32; 3], quad: &mut [Quadric]| {
+        let p = f.map(|v| pos[v as usize]);
+        let nrm = normal(p);
+        let len = dot(nrm, nrm).sqrt();
+        if len > 0.0 {
+            let u = nrm.map(|x| x / len);
+            let q = Quadric::plane(u, -dot(u, p[0]), len / 2.0);
+            for &v in &f {
+                quad[v as usize].add(&q);
+            }
+        }
+        total_area += len / 2.0;
+        n_surface += 1;
+    };
+    match &tet_surface {
+        Some(faces) => {
+            for &f in faces {
+                add_plane(f, &mut quad);
+                for v in f {
+                    boundary[v as usize] = true;
+                }
+            }
+        }
+        None => {
+            for t in w.tops() {
+                add_plane([t[0], t[1], t[2]], &mut quad);
+            }
+        }
+    }
+    drop(tet_surface);
+    if d == 2 {
+        boundary_edge_quadrics(w, pos, &mut quad, &mut boundary);
+    }
+    (quad, boundary, total_area, n_surface)
+}
+
+/// The boundary edges of a triangle mesh (in exactly one triangle), in (u, v) order, found
+/// from each vertex's star (no edge table): marks their vertices in `boundary` and adds to both
+/// ends the quadric of the plane through the edge perpendicular to its triangle.
+fn boundary_edge_quadrics(
+    w: &TopSimplices,
+    pos: &[[f64; 3]],
+    quad: &mut [Quadric],
+    boundary: &mut [bool],
+) {
+    let n = w.n_vertices();
+    // star: no edge table
+    let mut around: Vec<(u32, u32)> = Vec::new();
+    for u in 0..n as u32 {
+        around.clear();
+        for &t in w.star(u) {
+            around.extend(w.top(t).iter().filter(|&&v| v > u).map(|&v| (v, t)));
+        }
+        around.sort_unstable();
+        let mut i = 0;
+        while i < around.len() {
+            let (v, t) = around[i];
+            let mut j = i + 1;
+            while j < around.len() && around[j].0 == v {
+                j += 1;
+            }
+            let single = j - i == 1;
+            i = j;
+            if !single {
+                continue;
+            }
+            boundary[u as usize] = true;
+            boundary[v as usize] = true;
+            let tri = w.top(t);
+            let p = [0, 1, 2].map(|k| pos[tri[k] as usize]);
+            let nrm = normal(p);
+            let e = sub(pos[v as usize], pos[u as usize]);
+            let m = cross(e, nrm);
+            let len = dot(m, m).sqrt();
+            if len > 0.0 {
+                let m = m.map(|x| x / len);
+                let q = Quadric::plane(m, -dot(m, pos[u as usize]), BOUNDARY_WEIGHT * dot(e, e));
+                quad[u as usize].add(&q);
+                quad[v as usize].add(&q);
+            }
+        }
+    }
+}
+
+/// The cost and the position of contracting edge `a b`: a locked end stays, else the
+/// quadric's optimum, else the best of the midpoint and the ends; `None` when both are locked.
+fn candidate(
+    a: u32,
+    b: u32,
+    quad: &[Quadric],
+    pos: &[[f64; 3]],
+    locked: &[bool],
+) -> Option<(f64, [f64; 3])> {
+    let (la, lb) = (locked[a as usize], locked[b as usize]);
+    let q = quad[a as usize].sum(&quad[b as usize]);
+    let (pa, pb) = (pos[a as usize], pos[b as usize]);
+    let p = if la && lb {
+        return None;
+    } else if la {
+        pa
+    } else if lb {
+        pb
+    } else if let Some(x) = q.optimum() {
+        x
+    } else {
+        let mid = [
+            (pa[0] + pb[0]) / 2.0,
+            (pa[1] + pb[1]) / 2.0,
+            (pa[2] + pb[2]) / 2.0,
+        ];
+        let mut best = (q.eval(mid), mid);
+        for c in [pa, pb] {
+            let e = q.eval(c);
+            if e < best.0 {
+                best = (e, c);
+            }
+        }
+        best.1
+    };
+    Some((q.eval(p).max(0.0), p))
+}
+
+/// Fills the queue with one entry per contractible edge of the live vertices.
+fn push_all(
+    heap: &mut RadixHeap,
+    w: &TopSimplices,
+    nb: &mut Vec<u32>,
+    quad: &[Quadric],
+    pos: &[[f64; 3]],
+    locked: &[bool],
+    stamp: &[u8],
+) {
+    let n = w.n_vertices();
+    heap.clear();
+    // one entry per edge (the capacity beyond is never touched, and is given back)
+    let mut entries = Vec::new();
+    for a in 0..n as u32 {
+        if !w.is_alive(a) {
+            continue;
+        }
+        w.neighbours_into(a, nb);
+        for &b in nb.iter().filter(|&&b| b > a) {
+            if let Some((cost, _)) = candidate(a, b, quad, pos, locked) {
+                entries.push(Entry::new(cost, a, b, stamp));
+            }
+        }
+    }
+    entries.shrink_to_fit();
+    heap.fill(entries);
 }
 
 /// The boundary triangles of a tetrahedral mesh (in one tetrahedron), oriented outward for a

@@ -1,6 +1,6 @@
 //! Boundary p-faces of every dimension (simplices and CP cells) and top-cell adjacency across
 //! (d-1)-faces, each face handled in the leaf owning its smallest vertex.
-use crate::limits::{TooLarge, Unit};
+use crate::limits::{Limits, TooLarge, Unit};
 use rayon::prelude::*;
 
 use super::{face_width, FaceKeys};
@@ -23,8 +23,9 @@ use crate::stellar::{LeafView, StellarError, StellarTree};
 /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
 /// use starplex::stellar::relations::FACE_BUDGET;
 /// // `p_faces` uses this budget
-/// assert_eq!(t.p_faces_with_budget(1, FACE_BUDGET).unwrap(), t.p_faces(1).unwrap());
-/// assert!(t.p_faces_with_budget(1, 1).is_err());
+/// use starplex::limits::Limits;
+/// assert_eq!(t.p_faces_with_limits(1, &Limits::default()).unwrap(), t.p_faces(1).unwrap());
+/// assert!(t.p_faces_with_limits(1, &Limits { stellar_faces: 1, ..Limits::default() }).is_err());
 /// ```
 pub const FACE_BUDGET: u128 = crate::limits::STELLAR_FACES;
 
@@ -221,10 +222,11 @@ impl StellarTree {
     /// assert_eq!(e.n_cofaces.iter().filter(|&&n| n == 2).count(), 1);
     /// ```
     pub fn p_faces(&self, p: usize) -> Result<FaceList, StellarError> {
-        self.p_faces_with_budget(p, FACE_BUDGET)
+        self.p_faces_within(p, FACE_BUDGET)
     }
 
-    /// [`p_faces`](Self::p_faces) with an explicit budget.
+    /// [`p_faces`](Self::p_faces) within the budget `limits.stellar_faces` (the faces the
+    /// relation may enumerate).
     ///
     /// # Errors
     /// Over the budget.
@@ -240,9 +242,14 @@ impl StellarTree {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// assert!(t.p_faces_with_budget(1, 3).is_err());
+    /// use starplex::limits::Limits;
+    /// assert!(t.p_faces_with_limits(1, &Limits { stellar_faces: 3, ..Limits::default() }).is_err());
     /// ```
-    pub fn p_faces_with_budget(&self, p: usize, budget: u128) -> Result<FaceList, StellarError> {
+    pub fn p_faces_with_limits(&self, p: usize, limits: &Limits) -> Result<FaceList, StellarError> {
+        self.p_faces_within(p, limits.stellar_faces)
+    }
+
+    fn p_faces_within(&self, p: usize, budget: u128) -> Result<FaceList, StellarError> {
         self.check_budget(p, budget)?;
         let per_leaf: Vec<(Vec<u32>, Vec<u32>, Vec<u32>)> = self.par_face_groups(p, |_, keys| {
             let mut lens = Vec::new();

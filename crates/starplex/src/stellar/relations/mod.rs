@@ -31,6 +31,7 @@ use super::{LeafView, StellarError, StellarTree};
 use crate::cell::CellKind;
 use crate::csr::Csr;
 use crate::ids::{CellId, LeafId, TreeVertexId, VertexId};
+use crate::limits::Limits;
 use crate::topo::link::{LinkError, VertexLink};
 use crate::topo::naive::edge_neighbours;
 use crate::topo::{TopCells, VertexAdjacency, VertexStar};
@@ -362,7 +363,8 @@ impl StellarTree {
     }
 
     /// Link f-vectors of every vertex, leaf by leaf in parallel; entry `v` (input id) is the
-    /// f-vector or why it could not be computed.
+    /// f-vector or why it could not be computed (a link over `limits.query_simplices`
+    /// simplices is refused).
     ///
     /// ```
     /// # use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -375,10 +377,11 @@ impl StellarTree {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-    /// let f = t.link_f_vectors_all(1_000_000);
+    /// let f = t.link_f_vectors_all(&starplex::limits::Limits::default());
     /// assert_eq!(f[1].as_ref().unwrap(), &vec![3, 2]);
     /// ```
-    pub fn link_f_vectors_all(&self, budget: u128) -> Vec<Result<Vec<u64>, LinkError>> {
+    pub fn link_f_vectors_all(&self, limits: &Limits) -> Vec<Result<Vec<u64>, LinkError>> {
+        let budget = limits.query_simplices;
         let per_leaf: Vec<Vec<Result<Vec<u64>, LinkError>>> = self.par_map_leaves(|view| {
             view.tree_vertices()
                 .map(|v| self.link_in_leaf(view, v, budget).map(|l| l.f_vector))

@@ -476,31 +476,10 @@ fn run<W: Word>(
         parts,
     } = counts;
     let dmax = t.len() - 1;
-    let low = lay.low;
-    let nc = if nv == 0 { 0 } else { ((nv - 1) >> low) + 1 };
-    let narrow: Vec<bool> = (0..nc)
-        .map(|c| {
-            let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
-            tuning.pack_links && vt_off[v1] - vt_off[v0] <= 1 << 16
-        })
-        .collect();
-    // room for the links into each bucket (see `Links`)
-    let mut room = Vec::with_capacity(nc);
-    let mut l = 0usize;
-    for (v, &x) in finc.iter().enumerate() {
-        l += if narrow[v >> low] {
-            x as usize / 2
-        } else {
-            x as usize / 2 * 2
-        };
-        if v & ((1 << low) - 1) == (1 << low) - 1 || v + 1 == nv {
-            room.push(l);
-            l = 0;
-        }
-    }
+    let n_ranges = n_parts(k.n_cells(), tuning);
+    let (narrow, room) = link_room(&vt_off, &finc, nv, lay.low, tuning);
     drop(finc);
     // 2. VT by counting sort; facet words into coarse buckets
-    let n_ranges = n_parts(k.n_cells(), tuning);
     let total = *vt_off.last().unwrap_or(&0) as usize;
     let (mut targets, recs) = if parts.is_empty() {
         scatter_blocks::<W>(k, blocks, t, &vt_off, &fcnt, lay)
@@ -515,22 +494,116 @@ fn run<W: Word>(
         let len = (d + 3) * t.get(d + 2).map_or(0, |&x| x as usize);
         large_with(len, || AtomicU32::new(0))
     });
+    let vt = Vt {
+        off: &vt_off,
+        targets: &targets,
+    };
+    let buckets = Buckets {
+        nv,
+        low: lay.low,
+        n_ranges,
+        vt_off: &vt_off,
+    };
+    let grouped = group_facets(
+        &buckets, blocks, lay, &adj, &recs, &fcnt, &vt, &narrow, &room,
+    );
+    drop((recs, fcnt));
+    let nm = number_non_manifold(&grouped, &adj, t, dmax);
+    // 4. the clusters of every bucket's vertices
+    let offsets = join_clusters(&buckets, &mut targets, &grouped);
+    drop(grouped);
+    // 5. the top records
+    top_records(k, blocks, &adj);
+    (nm, Csr { offsets, targets })
+}
+
+/// The coarse buckets of vertices (`1 << low` vertices each) and the VT row offsets, as the
+/// phases of [`run`] share them.
+struct Buckets<'a> {
+    nv: usize,
+    low: u32,
+    n_ranges: usize,
+    vt_off: &'a [u32],
+}
+
+impl Buckets<'_> {
+    /// Number of coarse buckets.
+    fn len(&self) -> usize {
+        if self.nv == 0 {
+            0
+        } else {
+            ((self.nv - 1) >> self.low) + 1
+        }
+    }
+    /// The vertices of bucket `c`.
+    fn vertices(&self, c: usize) -> (usize, usize) {
+        (c << self.low, ((c + 1) << self.low).min(self.nv))
+    }
+    /// The first VT place of bucket `c` (the end of the VT for `c == len()`).
+    fn vlo(&self, c: usize) -> usize {
+        self.vt_off[(c << self.low).min(self.nv)] as usize
+    }
+}
+
+/// Per coarse bucket, whether its links are packed in one word (narrow), and the room for
+/// the links into it (see [`Links`]).
+fn link_room(
+    vt_off: &[u32],
+    finc: &[u32],
+    nv: usize,
+    low: u32,
+    tuning: Tuning,
+) -> (Vec<bool>, Vec<usize>) {
+    let nc = if nv == 0 { 0 } else { ((nv - 1) >> low) + 1 };
+    let narrow: Vec<bool> = (0..nc)
+        .map(|c| {
+            let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
+            tuning.pack_links && vt_off[v1] - vt_off[v0] <= 1 << 16
+        })
+        .collect();
+    let mut room = Vec::with_capacity(nc);
+    let mut l = 0usize;
+    for (v, &x) in finc.iter().enumerate() {
+        l += if narrow[v >> low] {
+            x as usize / 2
+        } else {
+            x as usize / 2 * 2
+        };
+        if v & ((1 << low) - 1) == (1 << low) - 1 || v + 1 == nv {
+            room.push(l);
+            l = 0;
+        }
+    }
+    (narrow, room)
+}
+
+/// Phase 3: per coarse bucket, in ranges of buckets run in parallel, groups equal facets,
+/// writes the adjacency slots of manifold facets into `adj`, and leaves the links (and the
+/// non-manifold facets) each range found.
+#[allow(clippy::too_many_arguments)]
+fn group_facets<W: Word>(
+    bk: &Buckets<'_>,
+    blocks: &[Block],
+    lay: Layout,
+    adj: &[Vec<AtomicU32>; 2],
+    recs: &[Vec<Part<W>>; 2],
+    fcnt: &[Vec<u32>; 2],
+    vt: &Vt<'_>,
+    narrow: &[bool],
+    room: &[usize],
+) -> Vec<Grouped> {
+    let nc = bk.len();
     let ids = [DimIds::new(blocks, 2), DimIds::new(blocks, 3)];
-    let vlo = |c: usize| vt_off[(c << low).min(nv)] as usize;
     // ranges with about the same number of facet words (buckets of small vertices hold
     // more of them: a facet is filed under its smallest vertex)
-    let branges = balanced(nc, n_ranges, |c| {
-        let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
+    let branges = balanced(nc, bk.n_ranges, |c| {
+        let (v0, v1) = bk.vertices(c);
         fcnt.iter()
             .filter(|f| !f.is_empty())
             .map(|f| (f[v1] - f[v0]) as u64)
             .sum()
     });
-    let vt = Vt {
-        off: &vt_off,
-        targets: &targets,
-    };
-    let grouped: Vec<Grouped> = branges
+    branges
         .par_iter()
         .map(|br| {
             // links into the buckets from this range's start on
@@ -542,7 +615,7 @@ fn run<W: Word>(
                 area: large_zeroed(start[nc]),
                 end: start[..nc].to_vec(),
                 start,
-                narrow: narrow.clone(),
+                narrow: narrow.to_vec(),
                 over: vec![Vec::new(); nc],
             };
             let mut groups = [
@@ -553,7 +626,7 @@ fn run<W: Word>(
             for c in br.clone() {
                 for (d, g) in groups.iter_mut().enumerate() {
                     if !fcnt[d].is_empty() {
-                        g.chunk(d + 2, &recs[d], &fcnt[d], &vt, c, &mut tmp, &mut links);
+                        g.chunk(d + 2, &recs[d], &fcnt[d], vt, c, &mut tmp, &mut links);
                     }
                 }
             }
@@ -566,9 +639,17 @@ fn run<W: Word>(
                 ],
             }
         })
-        .collect();
-    drop((recs, fcnt));
-    // the non-manifold facets, numbered range after range (the sequential order)
+        .collect()
+}
+
+/// The non-manifold facets, numbered range after range (the sequential order), with their
+/// adjacency slots written.
+fn number_non_manifold(
+    grouped: &[Grouped],
+    adj: &[Vec<AtomicU32>; 2],
+    t: &[u64],
+    dmax: usize,
+) -> Vec<Csr> {
     let mut nm: Vec<Csr> = vec![Csr::default(); dmax + 1];
     for d in 0..2 {
         if t.get(d + 2).is_none_or(|&x| x == 0) {
@@ -576,7 +657,7 @@ fn run<W: Word>(
         }
         let mut offsets = vec![0u32];
         let mut tops = Vec::new();
-        for gr in &grouped {
+        for gr in grouped {
             let (o, ts, slots) = &gr.nm[d];
             let first = (offsets.len() - 1) as u32;
             for &(slot, f) in slots {
@@ -591,32 +672,38 @@ fn run<W: Word>(
             targets: tops,
         };
     }
-    // 4. per coarse bucket, in parallel ranges: the links into it from every range, then
-    //    the clusters of its vertices (roots kept at the front of the range's VT); ranges
-    //    of about the same number of places and links
-    let branges = balanced(nc, n_ranges, |c| {
+    nm
+}
+
+/// Phase 4: per coarse bucket, in parallel ranges of about the same number of places and
+/// links: the links into it from every range, then the clusters of its vertices (roots kept
+/// at the front of the range's VT); then the ranges' kept references packed. Returns the
+/// offsets of the packed `targets`.
+fn join_clusters(bk: &Buckets<'_>, targets: &mut Vec<u32>, grouped: &[Grouped]) -> Vec<u32> {
+    let (nv, low, vt_off) = (bk.nv, bk.low, bk.vt_off);
+    let branges = balanced(bk.len(), bk.n_ranges, |c| {
         let links: usize = grouped
             .iter()
             .map(|g| g.links.end[c] - g.links.start[c] + g.links.over[c].len())
             .sum();
-        (vlo(c + 1) - vlo(c) + links) as u64
+        (bk.vlo(c + 1) - bk.vlo(c) + links) as u64
     });
-    let t_pieces = split_by(&mut targets, &branges, vlo);
+    let t_pieces = split_by(targets, &branges, |c| bk.vlo(c));
     let kept: Vec<(usize, Vec<u32>)> = branges
         .par_iter()
         .zip(t_pieces)
         .map(|(br, tg)| {
             let mut par: Vec<u32> = Vec::new();
-            let base = vlo(br.start);
+            let base = bk.vlo(br.start);
             let mut out = 0usize;
             let mut offs = Vec::with_capacity((br.end << low).min(nv) - (br.start << low).min(nv));
             for c in br.clone() {
-                let (lo, hi) = (vlo(c) - base, vlo(c + 1) - base);
+                let (lo, hi) = (bk.vlo(c) - base, bk.vlo(c + 1) - base);
                 par.clear();
                 par.extend(0..(hi - lo) as u32);
                 let bpar = &mut par[..];
                 let mut joined = false;
-                for gr in &grouped {
+                for gr in grouped {
                     let lk = &gr.links;
                     let ls = &lk.area[lk.start[c]..lk.end[c]];
                     joined |= !ls.is_empty() || !lk.over[c].is_empty();
@@ -633,7 +720,7 @@ fn run<W: Word>(
                         union(bpar, x, y);
                     }
                 }
-                let (v0, v1) = (c << low, ((c + 1) << low).min(nv));
+                let (v0, v1) = bk.vertices(c);
                 if !joined {
                     tg.copy_within(lo..hi, out);
                     for v in v0..v1 {
@@ -658,20 +745,23 @@ fn run<W: Word>(
             (out, offs)
         })
         .collect();
-    drop(grouped);
     // the ranges' kept references, packed
     let mut offsets = Vec::with_capacity(nv + 1);
     offsets.push(0u32);
     let mut out = 0usize;
     for (br, (n_kept, offs)) in branges.iter().zip(kept) {
-        let base = vlo(br.start);
+        let base = bk.vlo(br.start);
         targets.copy_within(base..base + n_kept, out);
         offsets.extend(offs.iter().map(|&x| x + out as u32));
         out += n_kept;
     }
     targets.truncate(out);
     targets.shrink_to_fit();
-    // 5. the top records: vertices (input order), then the adjacency slots
+    offsets
+}
+
+/// Phase 5: the top records: vertices (input order), then the adjacency slots.
+fn top_records(k: &IndexedComplex, blocks: &mut [Block], adj: &[Vec<AtomicU32>; 2]) {
     for (blk, b) in blocks.iter_mut().zip(k.blocks()) {
         let d = blk.dim;
         if d < 2 {
@@ -687,7 +777,6 @@ fn run<W: Word>(
         }
         blk.data = data;
     }
-    (nm, Csr { offsets, targets })
 }
 
 /// Pass 2 over the tops `verts` of dimension `d` ≥ 2 (ids from `first`): their VT entries
