@@ -646,7 +646,7 @@ fn smooth_shading_hides_a_gentle_crease_flat_shading_shows() {
 fn smooth_shading_keeps_a_hard_edge_sharp() {
     // faces 63 degrees from the ridge's vertex normal (more than CREASE_DEGREES): the ridge
     // stays a sharp edge, each face lit flat as with flat shading
-    assert!(starplex::render::CREASE_DEGREES < 63.0);
+    const { assert!(starplex::render::CREASE_DEGREES < 63.0) };
     let k = roof(2.0);
     let mut o = bare(400, 300, View::Iso);
     o.shading = true;
