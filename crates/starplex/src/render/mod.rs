@@ -922,6 +922,12 @@ enum Lit {
 /// normal (the area-weighted mean of its faces') is lit by the face normal instead, so that
 /// two faces meeting at a dihedral angle of more than about twice this keep a sharp edge (a
 /// box stays a box) while finely curved surfaces are smooth.
+///
+/// ```
+/// // the corner of a cube: its three faces are 54.7 degrees from the mean normal, lit flat
+/// let to_mean = (1.0f64 / 3.0f64.sqrt()).acos().to_degrees();
+/// assert!(to_mean > starplex::render::CREASE_DEGREES);
+/// ```
 pub const CREASE_DEGREES: f64 = 30.0;
 
 fn unit(n: [f64; 3]) -> [f64; 3] {
