@@ -16,13 +16,18 @@ fn run(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// The two-tetrahedron input, shared by every test of this file. Tests run in parallel threads
+/// of one process, so each writes its own copy and renames it into place: a reader never sees a
+/// file another test is in the middle of writing (CI once read an empty `pair.mesh`).
 fn tet_pair() -> PathBuf {
     let p = dir().join("pair.mesh");
+    let tmp = dir().join(format!("pair.mesh.{:?}", std::thread::current().id()));
     std::fs::write(
-        &p,
+        &tmp,
         "MeshVersionFormatted 2\nDimension 3\nVertices\n5\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n1 1 1 0\nTetrahedra\n2\n1 2 3 4 0\n5 4 3 2 0\nEnd\n",
     )
     .unwrap();
+    std::fs::rename(&tmp, &p).unwrap();
     p
 }
 
