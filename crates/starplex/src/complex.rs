@@ -1315,7 +1315,7 @@ impl IndexedComplex {
     /// assert!(vc.row(3).is_empty());
     /// ```
     pub fn vertex_cells(&self) -> Csr {
-        // two direct passes (counts, then fill in cell order, so rows come out sorted)
+        // a count pass, then a fill in cell order (so rows come out sorted) by csr::scatter
         let nv = self.n_vertices();
         let mut offsets = vec![0u32; nv + 1];
         for b in &self.blocks {
@@ -1326,19 +1326,17 @@ impl IndexedComplex {
         for i in 0..nv {
             offsets[i + 1] += offsets[i];
         }
-        let mut pos = offsets[..nv].to_vec();
-        let mut targets = vec![0u32; offsets[nv] as usize];
-        for b in &self.blocks {
-            let n = b.kind.n_vertices();
-            for (i, cell) in b.vertices.chunks_exact(n).enumerate() {
-                let c = b.first + i as u32;
-                for &v in cell {
-                    let p = &mut pos[v as usize];
-                    targets[*p as usize] = c;
-                    *p += 1;
+        let targets = crate::csr::scatter(&offsets, |sink| {
+            for b in &self.blocks {
+                let n = b.kind.n_vertices();
+                for (i, cell) in b.vertices.chunks_exact(n).enumerate() {
+                    let c = b.first + i as u32;
+                    for &v in cell {
+                        sink.emit(v, c);
+                    }
                 }
             }
-        }
+        });
         Csr { offsets, targets }
     }
 

@@ -40,23 +40,11 @@ impl Csr {
     /// If a row index is `>= n_rows` or there are more than `u32::MAX` pairs (internal use only:
     /// callers validate their input first).
     pub fn from_pairs(n_rows: usize, pairs: &[(u32, u32)]) -> Csr {
-        let mut counts = vec![0u32; n_rows + 1];
-        for &(r, _) in pairs {
-            counts[r as usize + 1] += 1;
-        }
-        for i in 0..n_rows {
-            counts[i + 1] += counts[i];
-        }
-        let mut pos = counts.clone();
-        let mut targets = vec![0u32; pairs.len()];
-        for &(r, t) in pairs {
-            targets[pos[r as usize] as usize] = t;
-            pos[r as usize] += 1;
-        }
-        Csr {
-            offsets: counts,
-            targets,
-        }
+        Csr::from_fn(n_rows, |emit| {
+            for &(r, t) in pairs {
+                emit(r, t);
+            }
+        })
     }
 
     /// Builds from a count pass and a fill pass over the same items: `each(emit)` must call
@@ -81,12 +69,7 @@ impl Csr {
         for i in 0..n_rows {
             offsets[i + 1] += offsets[i];
         }
-        let mut pos = offsets[..n_rows].to_vec();
-        let mut targets = vec![0u32; offsets[n_rows] as usize];
-        each(&mut |r, t| {
-            targets[pos[r as usize] as usize] = t;
-            pos[r as usize] += 1;
-        });
+        let targets = scatter(&offsets, |sink| each(&mut |r, t| sink.emit(r, t)));
         Csr { offsets, targets }
     }
 
@@ -147,5 +130,134 @@ impl Csr {
     /// ```
     pub fn bytes(&self) -> usize {
         4 * (self.offsets.len() + self.targets.len())
+    }
+}
+
+/// Rows per bucket of [`scatter`]'s first pass: a bucket's share of the targets (about
+/// 4,096 rows times the mean degree, times 4 bytes) stays in the core's cache while it is filled.
+const BUCKET_SHIFT: u32 = 12;
+
+/// Fewer references than this go straight to their rows: the targets fit in cache anyway.
+const BUCKETED_FROM: usize = 1 << 19;
+
+/// More references than this go straight to their rows as well: the buckets would take
+/// 8 bytes per reference on top of the 4 of the answer (1 GiB at this size).
+const BUCKETED_UP_TO: usize = 1 << 27;
+
+/// The fill pass of a counting sort: `each(sink)` calls [`Sink::emit`] for every (row, target)
+/// pair, in the same order as the count pass that made `offsets`; targets keep that order
+/// within a row.
+///
+/// Writing each target straight to its row is one random store per reference, and a store that
+/// misses the cache is slow (measured: about 28 ns each into a 10 MB answer on this project's
+/// 2-core Xeon VM, against 3 ns for the count pass's increments into a 1.6 MB array). Past
+/// [`BUCKETED_FROM`] references the pairs first go to buckets of 2^[`BUCKET_SHIFT`] rows, one
+/// sequential stream per bucket, and each bucket is then written into its own short,
+/// cache-resident stretch of the answer: about 2x faster on meshes of a few million references.
+pub(crate) fn scatter(offsets: &[u32], mut each: impl FnMut(&mut Sink)) -> Vec<u32> {
+    let n_rows = offsets.len() - 1;
+    let total = offsets[n_rows] as usize;
+    let bucketed = (BUCKETED_FROM..=BUCKETED_UP_TO).contains(&total) && n_rows >> BUCKET_SHIFT >= 2;
+    let mut sink = Sink {
+        bucketed,
+        targets: vec![0u32; total],
+        pos: offsets[..n_rows].to_vec(),
+        bucket_pos: Vec::new(),
+        pairs: Vec::new(),
+    };
+    if bucketed {
+        sink.bucket_pos = offsets.iter().step_by(1 << BUCKET_SHIFT).copied().collect();
+        sink.pairs = vec![0u64; total];
+    }
+    each(&mut sink);
+    let Sink {
+        mut targets,
+        mut pos,
+        pairs,
+        ..
+    } = sink;
+    for x in pairs {
+        let p = &mut pos[(x >> 32) as usize];
+        targets[*p as usize] = x as u32;
+        *p += 1;
+    }
+    targets
+}
+
+/// Where [`scatter`]'s fill pass sends its pairs: straight to the rows, or to the buckets.
+pub(crate) struct Sink {
+    bucketed: bool,
+    targets: Vec<u32>,
+    pos: Vec<u32>,
+    bucket_pos: Vec<u32>,
+    pairs: Vec<u64>,
+}
+
+impl Sink {
+    /// Sends target `t` to row `r` (the branch is the same for every pair of a fill).
+    #[inline(always)]
+    pub(crate) fn emit(&mut self, r: u32, t: u32) {
+        if self.bucketed {
+            let p = &mut self.bucket_pos[(r >> BUCKET_SHIFT) as usize];
+            self.pairs[*p as usize] = (u64::from(r) << 32) | u64::from(t);
+            *p += 1;
+        } else {
+            let p = &mut self.pos[r as usize];
+            self.targets[*p as usize] = t;
+            *p += 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::XorShift;
+
+    /// The model: a stable sort of the pairs by row.
+    fn model(n_rows: usize, pairs: &[(u32, u32)]) -> Csr {
+        let mut sorted = pairs.to_vec();
+        sorted.sort_by_key(|&(r, _)| r);
+        let mut offsets = vec![0u32; n_rows + 1];
+        for &(r, _) in pairs {
+            offsets[r as usize + 1] += 1;
+        }
+        for i in 0..n_rows {
+            offsets[i + 1] += offsets[i];
+        }
+        Csr {
+            offsets,
+            targets: sorted.into_iter().map(|(_, t)| t).collect(),
+        }
+    }
+
+    #[test]
+    fn both_fills_equal_a_stable_sort_by_row() {
+        let mut rng = XorShift::new(0x5ca7);
+        // below, at and above the bucketed range's lower end, few and many rows, empty rows,
+        // rows past the last full bucket
+        for (n_rows, n_pairs) in [
+            (0, 0),
+            (1, 5),
+            (3 << BUCKET_SHIFT, BUCKETED_FROM - 1),
+            (3 << BUCKET_SHIFT, BUCKETED_FROM),
+            ((5 << BUCKET_SHIFT) + 17, BUCKETED_FROM + 1000),
+            (1 << BUCKET_SHIFT, BUCKETED_FROM + 3), // one bucket: the direct fill
+            (200_000, BUCKETED_FROM + 77),
+        ] {
+            let pairs: Vec<(u32, u32)> = (0..n_pairs)
+                .map(|_| {
+                    let r = rng.below(n_rows.max(1) as u64) as u32;
+                    (r, rng.next_u64() as u32)
+                })
+                .filter(|_| n_rows > 0)
+                .collect();
+            let want = model(n_rows, &pairs);
+            assert_eq!(
+                Csr::from_pairs(n_rows, &pairs),
+                want,
+                "{n_rows} rows, {n_pairs} pairs"
+            );
+        }
     }
 }

@@ -87,31 +87,32 @@ impl StellarTree {
     }
 
     /// Rows of per-leaf results (rows of the leaf's vertices in tree order) reassembled into a
-    /// [`Csr`] keyed by input vertex.
+    /// [`Csr`] keyed by input vertex. The rows are first laid end to end in tree order, then
+    /// read in input order: the answer is written front to back and the random accesses are
+    /// reads, which overlap, not stores, which miss the cache one by one (see `csr::scatter`).
+    /// A small gain on the whole of `vt_all` (medians 39 → 37 ms on tri_armadillo_x16, 41 → 40
+    /// ms on tet_armadillo_m, one thread, at load 4): the leaf rows, not this, dominate it.
     fn gather_vertex_rows(&self, per_leaf: Vec<(Vec<u32>, Vec<u32>)>) -> Csr {
         let nv = self.n_vertices();
-        let mut offsets = vec![0u32; nv + 1];
-        let mut tv = 0usize;
-        for (lens, _) in &per_leaf {
-            for &len in lens {
-                offsets[self.v_orig[tv] as usize + 1] = len;
-                tv += 1;
+        let total: usize = per_leaf.iter().map(|(_, data)| data.len()).sum();
+        let mut start = Vec::with_capacity(nv + 1);
+        let mut rows = Vec::with_capacity(total);
+        for (lens, data) in per_leaf {
+            let mut at = rows.len() as u32;
+            for len in lens {
+                start.push(at);
+                at += len;
             }
+            rows.extend_from_slice(&data);
         }
-        for i in 0..nv {
-            offsets[i + 1] += offsets[i];
-        }
-        let mut targets = vec![0u32; offsets[nv] as usize];
-        let mut tv = 0usize;
-        for (lens, data) in &per_leaf {
-            let mut pos = 0usize;
-            for &len in lens {
-                let o = offsets[self.v_orig[tv] as usize] as usize;
-                let len = len as usize;
-                targets[o..o + len].copy_from_slice(&data[pos..pos + len]);
-                pos += len;
-                tv += 1;
-            }
+        start.push(rows.len() as u32);
+        let mut offsets = Vec::with_capacity(nv + 1);
+        offsets.push(0u32);
+        let mut targets = Vec::with_capacity(total);
+        for &tv in &self.v_new {
+            let tv = tv as usize;
+            targets.extend_from_slice(&rows[start[tv] as usize..start[tv + 1] as usize]);
+            offsets.push(targets.len() as u32);
         }
         Csr { offsets, targets }
     }
