@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# CI for the Python package: a venv made here (numpy, pytest, maturin), one release build of
-# the extension installed with pip (the README's install command), clippy on the binding, pytest.
+# CI for the Python package: a venv made here (numpy, pytest, maturin), clippy on the binding,
+# one build of the extension as a wheel, installed with pip (the README's install command), pytest.
+#   crates/starplex-py/ci.sh          everything
+#   crates/starplex-py/ci.sh setup    only the venv (.ci/run: before one clippy of the workspace)
+#   crates/starplex-py/ci.sh test     everything but clippy
 # Runs from anywhere; uses $STARPLEX_VENV (default target/ci-venv, git-ignored) and python3.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+PHASE=${1:-all}
 VENV=${STARPLEX_VENV:-target/ci-venv}
 if [ ! -x "$VENV/bin/python" ]; then
     if ! python3 -m venv "$VENV"; then
@@ -16,9 +20,12 @@ if [ ! -x "$VENV/bin/python" ]; then
     fi
 fi
 export PATH="$PWD/$VENV/bin:$PATH"   # maturin's build backend calls `maturin` by name
-python -m pip install -q numpy pytest "maturin>=1.9,<2"
 export PYO3_PYTHON="$PWD/$VENV/bin/python"
-cargo clippy -p starplex-py --all-targets -- -D warnings
+python -m pip install -q numpy pytest "maturin>=1.9,<2"   # quick when they are there
+[ "$PHASE" = setup ] && exit 0
+if [ "$PHASE" != test ]; then
+    cargo clippy -p starplex-py --all-targets -- -D warnings
+fi
 # the dev profile (its dependencies at opt-level 2, shared with `cargo test`): a release build
 # of the extension took ~5 min of CI; `pip install` without the variable builds in release
 export MATURIN_PEP517_ARGS="${MATURIN_PEP517_ARGS:---profile dev}"
