@@ -60,6 +60,9 @@ impl From<io::IoError> for CliError {
             io::IoErrorKind::Complex(starplex::complex::ComplexError::DuplicateCell { .. }) => {
                 Some("pass --drop-duplicates to keep the first copy".to_string())
             }
+            io::IoErrorKind::CountMismatch(_) => {
+                Some("pass --lenient to read what the file holds, with a note".to_string())
+            }
             io::IoErrorKind::Complex(starplex::complex::ComplexError::RepeatedVertex { .. }) => {
                 Some("pass --drop-degenerate to drop the cells with a repeated vertex".to_string())
             }

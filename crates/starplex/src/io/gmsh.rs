@@ -125,13 +125,61 @@ pub fn kind_of_gmsh_type(t: u64) -> Option<CellKind> {
     })
 }
 
+/// The kind of a gmsh element type starplex reads and its number of nodes: the first-order
+/// types of [`kind_of_gmsh_type`], and the Lagrange elements of higher order (types 8-14 and
+/// 16-31: lines of 3-6 nodes, triangles of 6-21, quadrangles of 8 and 9, tetrahedra of 10-56,
+/// hexahedra of 20 and 27, prisms of 15 and 18, pyramids of 13 and 14). A higher-order
+/// element's first nodes are its corners, in the first-order element's order: it is read as
+/// that first-order cell, and its other nodes are not vertices (the reader notes it).
+///
+/// ```
+/// use starplex::{cell::CellKind, io::gmsh};
+/// assert_eq!(gmsh::gmsh_type_nodes(4), Some((CellKind::Simplex(3), 4)));
+/// assert_eq!(gmsh::gmsh_type_nodes(11), Some((CellKind::Simplex(3), 10))); // 10-node tetrahedron
+/// assert_eq!(gmsh::gmsh_type_nodes(17), Some((CellKind::Hex, 20)));
+/// assert_eq!(gmsh::gmsh_type_nodes(32), None);
+/// ```
+pub fn gmsh_type_nodes(t: u64) -> Option<(CellKind, usize)> {
+    if let Some(k) = kind_of_gmsh_type(t) {
+        return Some((k, k.n_vertices()));
+    }
+    let (line, tri, tet) = (
+        CellKind::Simplex(1),
+        CellKind::Simplex(2),
+        CellKind::Simplex(3),
+    );
+    Some(match t {
+        8 => (line, 3),
+        26 => (line, 4),
+        27 => (line, 5),
+        28 => (line, 6),
+        9 => (tri, 6),
+        20 => (tri, 9),
+        21 => (tri, 10),
+        22 => (tri, 12),
+        23 | 24 => (tri, 15),
+        25 => (tri, 21),
+        10 => (CellKind::Quad, 9),
+        16 => (CellKind::Quad, 8),
+        11 => (tet, 10),
+        29 => (tet, 20),
+        30 => (tet, 35),
+        31 => (tet, 56),
+        12 => (CellKind::Hex, 27),
+        17 => (CellKind::Hex, 20),
+        13 => (CellKind::Prism, 18),
+        18 => (CellKind::Prism, 15),
+        14 => (CellKind::Pyramid, 14),
+        19 => (CellKind::Pyramid, 13),
+        _ => return None,
+    })
+}
+
 fn unsupported_type(t: u64) -> String {
-    let what = match t {
-        8..=14 | 16..=31 => "a second- or higher-order element",
-        _ => "an element type starplex does not know",
-    };
     format!(
-        "gmsh element type {t} ({what}) is not supported (starplex reads first-order types 1-7 and 15)"
+        "gmsh element type {t} is not supported (starplex reads types 1-31: points, lines, \
+         triangles, quadrangles, tetrahedra, hexahedra, prisms and pyramids of first order, and \
+         the higher-order ones as their first-order cells)"
     )
 }
 
@@ -218,6 +266,8 @@ struct Elements {
     /// `(kind, flat vertex ids)` runs in file order.
     blocks: Vec<(CellKind, Vec<u32>)>,
     points: usize,
+    /// Elements of higher order read as their first-order cells.
+    higher_order: usize,
     /// Physical and elementary (geometrical) tag of every element kept, in file order.
     physical: Vec<i64>,
     geometrical: Vec<i64>,
@@ -229,6 +279,13 @@ struct Elements {
 }
 
 impl Elements {
+    /// Counts a higher-order element (more nodes than corners).
+    fn count_order(&mut self, (kind, nn): (CellKind, usize)) {
+        if nn > kind.n_vertices() {
+            self.higher_order += 1;
+        }
+    }
+
     /// Adds an element with its physical and elementary tags.
     fn push(&mut self, tag: u64, kind: CellKind, verts: &[u32], physical: i64, geometrical: i64) {
         let n = self.physical.len() as u64;
@@ -291,9 +348,11 @@ fn read_entities(
 }
 
 /// Reads an element's node tags into `verts` (VTK order), checking them.
+/// Reads the `nn` node tags of an element of `kind` (its corners first, then, for a
+/// higher-order element, the other nodes: checked to be nodes, not kept).
 fn read_element_nodes(
     w: &mut Words<'_, impl BufRead>,
-    kind: CellKind,
+    (kind, nn): (CellKind, usize),
     tags: &TagMap,
     n_elem: u64,
     verts: &mut Vec<u32>,
@@ -302,13 +361,16 @@ fn read_element_nodes(
     verts.clear();
     let mut raw = [0u32; 8];
     let line = w.line();
-    for slot in raw.iter_mut().take(k) {
+    for i in 0..nn {
         let t = w.u64("a node tag")?;
-        *slot = tags.get(t).ok_or_else(|| {
+        let v = tags.get(t).ok_or_else(|| {
             w.err(format!(
                 "element node tag {t} is not a node of the $Nodes section"
             ))
         })?;
+        if let Some(slot) = raw.get_mut(i).filter(|_| i < k) {
+            *slot = v;
+        }
     }
     if kind == CellKind::Prism {
         verts.extend(PRISM_PERM.iter().map(|&i| raw[i]));
@@ -599,9 +661,21 @@ fn assemble(
     if elems.points > 0 {
         notes.push(format!("dropped {} point elements (type 15)", elems.points));
     }
+    if elems.higher_order > 0 {
+        notes.push(format!(
+            "read {} higher-order elements as their first-order cells (their corner nodes \
+             are the vertices; their other nodes are dropped with the unused nodes)",
+            elems.higher_order
+        ));
+    }
     if dropped_nodes > 0 {
         notes.push(format!(
-            "dropped {dropped_nodes} nodes used by no element (geometry points)"
+            "dropped {dropped_nodes} nodes used by no element{}",
+            if elems.higher_order > 0 {
+                " as a corner (geometry points, higher-order nodes)"
+            } else {
+                " (geometry points)"
+            }
         ));
     }
     Ok(ReadResult {
@@ -965,11 +1039,13 @@ fn read_elements_41(
         let entity = w.i64("the entity tag")?;
         let physical = entities.get(&(dim, entity)).copied().unwrap_or(0);
         let ty = w.u64("the element type")?;
-        let kind = kind_of_gmsh_type(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
+        let shape = gmsh_type_nodes(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
+        let kind = shape.0;
         let n = w.u64("the number of elements in the block")?;
         for _ in 0..n {
             let tag = w.u64("an element tag")?;
-            read_element_nodes(w, kind, tags, seen, verts)?;
+            read_element_nodes(w, shape, tags, seen, verts)?;
+            elems.count_order(shape);
             seen += 1;
             if kind == CellKind::Simplex(0) {
                 elems.points += 1;
@@ -997,7 +1073,8 @@ fn read_elements_22(
     for i in 0..n {
         let tag = w.u64("an element tag")?;
         let ty = w.u64("the element type")?;
-        let kind = kind_of_gmsh_type(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
+        let shape = gmsh_type_nodes(ty).ok_or_else(|| w.err(unsupported_type(ty)))?;
+        let kind = shape.0;
         let n_tags = w.u64("the number of element tags")?;
         let mut t = [0i64; 2];
         for j in 0..n_tags {
@@ -1006,7 +1083,8 @@ fn read_elements_22(
                 *slot = x;
             }
         }
-        read_element_nodes(w, kind, tags, i, verts)?;
+        read_element_nodes(w, shape, tags, i, verts)?;
+        elems.count_order(shape);
         if kind == CellKind::Simplex(0) {
             elems.points += 1;
         } else {
@@ -1159,7 +1237,7 @@ fn element_bin(
     r: &[u8],
     width: usize,
     e: Endian,
-    kind: CellKind,
+    (kind, nn): (CellKind, usize),
     tags: &TagMap,
     n_elem: u64,
     at: u64,
@@ -1167,15 +1245,18 @@ fn element_bin(
 ) -> Result<(), IoError> {
     let k = kind.n_vertices();
     let mut raw = [0u32; 8];
-    for (slot, x) in raw.iter_mut().zip(r.chunks_exact(width)).take(k) {
+    for (i, x) in r.chunks_exact(width).take(nn).enumerate() {
         let t = get_uint(x, width, e);
-        *slot = tags.get(t).ok_or_else(|| {
+        let v = tags.get(t).ok_or_else(|| {
             byte_err(
                 path,
                 at,
                 format!("element node tag {t} is not a node of the $Nodes section"),
             )
         })?;
+        if let Some(slot) = raw.get_mut(i).filter(|_| i < k) {
+            *slot = v;
+        }
     }
     verts.clear();
     if kind == CellKind::Prism {
@@ -1212,16 +1293,17 @@ fn read_elements_41_bin(
         let entity = get_i32(&bh[4..], e) as i64;
         let ty = get_i32(&bh[8..], e);
         let n = get_uint(&bh[12..], sz, e);
-        let kind = kind_of_gmsh_type(ty as u32 as u64)
+        let shape = gmsh_type_nodes(ty as u32 as u64)
             .ok_or_else(|| byte_err(path, at, unsupported_type(ty as u32 as u64)))?;
-        let k = kind.n_vertices();
-        let rec = (1 + k) * sz;
+        let kind = shape.0;
+        let rec = (1 + shape.1) * sz;
         read_records(w, n, rec, "elements", |w, c, first| {
             let start = w.offset() - c.len() as u64;
             for (j, r) in c.chunks_exact(rec).enumerate() {
                 let at = start + (j * rec) as u64;
                 let id = seen + first + j as u64;
-                element_bin(path, &r[sz..], sz, e, kind, tags, id, at, &mut verts)?;
+                element_bin(path, &r[sz..], sz, e, shape, tags, id, at, &mut verts)?;
+                elems.count_order(shape);
                 if kind == CellKind::Simplex(0) {
                     elems.points += 1;
                 } else {
@@ -1262,7 +1344,8 @@ fn read_elements_22_bin(
         let ty = get_i32(&h, e) as u32 as u64;
         let follow = get_i32(&h[4..], e);
         let n_tags = get_i32(&h[8..], e);
-        let kind = kind_of_gmsh_type(ty).ok_or_else(|| byte_err(path, at, unsupported_type(ty)))?;
+        let shape = gmsh_type_nodes(ty).ok_or_else(|| byte_err(path, at, unsupported_type(ty)))?;
+        let kind = shape.0;
         if follow <= 0 || follow as u64 > n - seen || !(0..=64).contains(&n_tags) {
             return Err(byte_err(
                 path,
@@ -1274,15 +1357,15 @@ fn read_elements_22_bin(
             ));
         }
         elems.has_physical |= n_tags > 0;
-        let k = kind.n_vertices();
-        let rec = (1 + n_tags as usize + k) * 4;
+        let rec = (1 + n_tags as usize + shape.1) * 4;
         let skip = (1 + n_tags as usize) * 4;
         read_records(w, follow as u64, rec, "elements", |w, c, first| {
             let start = w.offset() - c.len() as u64;
             for (j, r) in c.chunks_exact(rec).enumerate() {
                 let at = start + (j * rec) as u64;
                 let id = seen + first + j as u64;
-                element_bin(path, &r[skip..], 4, e, kind, tags, id, at, &mut verts)?;
+                element_bin(path, &r[skip..], 4, e, shape, tags, id, at, &mut verts)?;
+                elems.count_order(shape);
                 if kind == CellKind::Simplex(0) {
                     elems.points += 1;
                 } else {

@@ -213,7 +213,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     if faces.read != counts.nf {
         notes.push(format!(
             "the header (line {}) announces {} faces but the file has {}: read the {} face \
-             lines present (--lenient)",
+             lines present (lenient option)",
             counts.line, counts.nf, faces.read, faces.read
         ));
     }
@@ -453,16 +453,16 @@ fn read_faces(
             if opts.lenient {
                 break;
             }
-            return Err(IoError::parse(
+            return Err(IoError::new(
                 path,
-                Some(Location::Line(eof_line)),
-                format!(
+                IoErrorKind::CountMismatch(format!(
                     "unexpected end of file: expected face {face} of the {nf} that the header \
-                     (line {}) announces: the file is truncated or the count is wrong (pass \
-                     --lenient to read the faces that are there)",
+                     (line {}) announces: the file is truncated or the count is wrong (the \
+                     lenient option reads the faces that are there)",
                     counts.line
-                ),
-            ));
+                )),
+            )
+            .at(Location::Line(eof_line)));
         };
         let mut t = l.tokens();
         let k = t.u64("the face's vertex count")?;
@@ -518,11 +518,15 @@ fn read_faces(
         face += 1;
     }
     if let Some(l) = lr.next_content_line()? {
-        return Err(l.err(format!(
-            "unexpected content after the {nf} faces the header announced: '{}' (if these are \
-             more faces, the header's count is wrong: pass --lenient to read them)",
-            shown(l.bytes, 60)
-        )));
+        return Err(IoError::new(
+            path,
+            IoErrorKind::CountMismatch(format!(
+                "unexpected content after the {nf} faces the header announced: '{}' (if these \
+                 are more faces, the header's count is wrong: the lenient option reads them)",
+                shown(l.bytes, 60)
+            )),
+        )
+        .at(Location::Line(l.no)));
     }
     Ok((
         lines,

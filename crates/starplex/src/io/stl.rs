@@ -207,7 +207,7 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
                     path,
                     None,
                     format!(
-                        "facet {i} is degenerate: two of its corners are the same point ({:?}); drop such facets with --drop-degenerate",
+                        "facet {i} is degenerate: two of its corners are the same point ({:?}); drop such facets with the drop-degenerate option",
                         t.vertices.iter().map(|v| v.0).collect::<Vec<_>>()
                     ),
                 ));

@@ -110,7 +110,8 @@ fn vtk_type_name(t: u64) -> &'static str {
         14 => "pyramid",
         15 => "pentagonal_prism",
         16 => "hexagonal_prism",
-        21..=37 => "a quadratic or higher-order cell",
+        21..=35 | 37 => "a quadratic or higher-order cell",
+        36 => "quadratic_polygon",
         42 => "polyhedron",
         _ => "an unknown type",
     }
@@ -140,10 +141,48 @@ pub(crate) fn arity_error(ty: u64, n: u64) -> Option<String> {
         11 | 12 => need(8),
         13 => need(6),
         14 => need(5),
-        _ => Some(format!(
-            "VTK cell type {ty} ({name}) is not supported (starplex reads the linear types 1 to 14)"
-        )),
+        _ => match higher_order_vtk_type(ty) {
+            Some((_, k)) => need(k as u64),
+            None => Some(format!(
+                "VTK cell type {ty} ({name}) is not supported (starplex reads the linear types 1 \
+                 to 14, and the quadratic ones 21-35 and 37 as their linear cells)"
+            )),
+        },
     }
+}
+
+/// The linear kind and point count of VTK's quadratic and bi/tri-quadratic cell types (21-35,
+/// 37): their first points are the corners, in the linear cell's order, so starplex reads them
+/// as that linear cell; the other points stay, as vertices in no cell. Type 36 (quadratic
+/// polygon) and the arbitrary-order Lagrange and Bezier types (68-79) are not read.
+///
+/// ```
+/// use starplex::{cell::CellKind, io::vtk};
+/// assert_eq!(vtk::higher_order_vtk_type(24), Some((CellKind::Simplex(3), 10))); // quadratic tetra
+/// assert_eq!(vtk::higher_order_vtk_type(29), Some((CellKind::Hex, 27)));
+/// assert_eq!(vtk::higher_order_vtk_type(10), None); // linear: `kind_of_vtk_type`
+/// ```
+pub fn higher_order_vtk_type(t: u64) -> Option<(CellKind, usize)> {
+    let (line, tri) = (CellKind::Simplex(1), CellKind::Simplex(2));
+    Some(match t {
+        21 => (line, 3),
+        35 => (line, 4),
+        22 => (tri, 6),
+        34 => (tri, 7),
+        23 => (CellKind::Quad, 8),
+        28 => (CellKind::Quad, 9),
+        30 => (CellKind::Quad, 6),
+        24 => (CellKind::Simplex(3), 10),
+        25 => (CellKind::Hex, 20),
+        29 => (CellKind::Hex, 27),
+        33 => (CellKind::Hex, 24),
+        26 => (CellKind::Prism, 15),
+        31 => (CellKind::Prism, 12),
+        32 => (CellKind::Prism, 18),
+        27 => (CellKind::Pyramid, 13),
+        37 => (CellKind::Pyramid, 19),
+        _ => return None,
+    })
 }
 
 /// Why a VTK cell could not be pushed.
@@ -174,6 +213,7 @@ pub(crate) struct CellStats {
     strip_tris: u64,
     polylines: u64,
     polyline_edges: u64,
+    higher_order: u64,
 }
 
 impl CellStats {
@@ -201,6 +241,13 @@ impl CellStats {
             notes.push(format!(
                 "split {} poly-lines into {} edges",
                 self.polylines, self.polyline_edges
+            ));
+        }
+        if self.higher_order > 0 {
+            notes.push(format!(
+                "read {} quadratic cells (types 21-37) as their linear cells; their points \
+                 that are not corners stay, as vertices in no cell",
+                self.higher_order
             ));
         }
     }
@@ -258,9 +305,13 @@ pub(crate) fn push_cell(
             CellKind::Hex,
             &[v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]],
         ),
-        _ => match kind_of_vtk_type(ty) {
-            Some(kind) => push(kind, v),
-            None => Err(PushError::Cell(format!(
+        _ => match (kind_of_vtk_type(ty), higher_order_vtk_type(ty)) {
+            (Some(kind), _) => push(kind, v),
+            (None, Some((kind, _))) => {
+                st.higher_order += 1;
+                push(kind, &v[..kind.n_vertices()])
+            }
+            (None, None) => Err(PushError::Cell(format!(
                 "VTK cell type {ty} is not supported"
             ))),
         },
