@@ -48,9 +48,28 @@ fn value_err(msg: impl std::fmt::Display) -> PyErr {
 }
 
 fn io_err(e: IoError) -> PyErr {
+    use starplex::complex::ComplexError;
+    // what to pass to `read` instead, as the command line's hints say it with flags
+    let hint = match &e.kind {
+        IoErrorKind::CountMismatch(_) => Some("pass lenient=True to read what the file holds"),
+        IoErrorKind::Complex(ComplexError::RepeatedVertex { .. }) => {
+            Some("pass drop_degenerate=True to drop the cells with a repeated vertex")
+        }
+        IoErrorKind::Complex(ComplexError::DuplicateCell { .. }) => {
+            Some("pass drop_duplicates=True to keep the first copy")
+        }
+        IoErrorKind::Complex(ComplexError::CellIsFaceOf { .. }) => {
+            Some("pass drop_faces=True to keep only the maximal cells")
+        }
+        _ => None,
+    };
+    let msg = match hint {
+        Some(h) => format!("{e} ({h})"),
+        None => e.to_string(),
+    };
     match e.kind {
-        IoErrorKind::Os(_) => PyIOError::new_err(e.to_string()),
-        _ => PyValueError::new_err(e.to_string()),
+        IoErrorKind::Os(_) => PyIOError::new_err(msg),
+        _ => PyValueError::new_err(msg),
     }
 }
 
@@ -893,15 +912,30 @@ fn report_dict(py: Python<'_>, r: ValidationReport) -> PyResult<Bound<'_, PyDict
 }
 
 /// Reads a complex from a file (format from `format`, the extension or the content). Bad
-/// files raise ValueError naming the file, line and problem; missing ones OSError.
+/// files raise ValueError naming the file, line and problem, and the option that would read
+/// them; missing ones OSError. What the reader changed (polygons split, cells dropped, a
+/// header count overruled) is issued as a `UserWarning` per note, as the command line prints
+/// `note:` lines.
 ///
-/// >>> import starplex, tempfile, os
+/// Options, as the command line's flags: `simplices` (OFF/PLY/OBJ faces become simplices of
+/// their size, not polygons), `drop_faces` (cells that are faces of other cells),
+/// `drop_duplicates`, `drop_degenerate` (cells with a repeated vertex), `lenient` (an OFF
+/// header whose face count disagrees with the face lines: read the lines that are there).
+///
+/// >>> import starplex, tempfile, os, warnings
 /// >>> p = os.path.join(tempfile.mkdtemp(), "t.off")
 /// >>> _ = open(p, "w").write("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
 /// >>> starplex.read(p).cells.tolist()
 /// [[0, 1, 2]]
+/// >>> _ = open(p, "w").write("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 1\n")
+/// >>> with warnings.catch_warnings(record=True) as w:
+/// ...     warnings.simplefilter("always")
+/// ...     c = starplex.read(p, lenient=True, drop_degenerate=True)
+/// >>> c.n_cells, len(w)
+/// (1, 2)
 #[pyfunction]
-#[pyo3(signature = (path, *, format = None, simplices = false, drop_faces = false, drop_duplicates = false))]
+#[pyo3(signature = (path, *, format = None, simplices = false, drop_faces = false, drop_duplicates = false, drop_degenerate = false, lenient = false))]
+#[allow(clippy::too_many_arguments)]
 fn read(
     py: Python<'_>,
     path: PathBuf,
@@ -909,6 +943,8 @@ fn read(
     simplices: bool,
     drop_faces: bool,
     drop_duplicates: bool,
+    drop_degenerate: bool,
+    lenient: bool,
 ) -> PyResult<Complex> {
     let format = match format {
         None => None,
@@ -925,7 +961,16 @@ fn read(
     }
     o.build.drop_face_cells = drop_faces;
     o.build.drop_duplicates = drop_duplicates;
+    o.build.drop_degenerate = drop_degenerate;
+    o.lenient = lenient;
     let r = py.detach(|| io::read(&path, &o)).map_err(io_err)?;
+    if !r.notes.is_empty() {
+        let warn = py.import("warnings")?.getattr("warn")?;
+        let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+        for n in &r.notes {
+            warn.call1((format!("{}: {n}", path.display()), &category))?;
+        }
+    }
     Ok(Complex::wrap(r.complex))
 }
 

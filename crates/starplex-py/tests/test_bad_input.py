@@ -157,3 +157,32 @@ print("ok", n)
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert r.stdout.startswith("ok")
+
+
+def test_read_options_and_the_errors_that_name_them(tmp_path):
+    """Each refusal names the keyword that reads the file; with it, the file is read and the
+    reader's notes arrive as UserWarnings."""
+    head = "OFF\n4 {nf} 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n"
+    cases = [
+        # (file body, keyword, cells read with it)
+        (head.format(nf=1) + "3 0 1 2\n3 1 3 2\n", "lenient", 2),  # more faces than the header
+        (head.format(nf=3) + "3 0 1 2\n3 1 3 2\n", "lenient", 2),  # fewer faces
+        (head.format(nf=2) + "3 0 1 2\n3 1 1 2\n", "drop_degenerate", 1),
+        (head.format(nf=2) + "3 0 1 2\n3 2 1 0\n", "drop_duplicates", 1),
+    ]
+    for i, (body, kw, n) in enumerate(cases):
+        p = tmp_path / f"m{i}.off"
+        p.write_text(body)
+        with pytest.raises(ValueError, match=f"{p.name}.*pass {kw}=True"):
+            starplex.read(str(p))
+        with pytest.warns(UserWarning, match=p.name) as w:
+            c = starplex.read(str(p), **{kw: True})
+        assert c.n_cells == n, (kw, c.n_cells)
+        assert len(w) >= 1
+    # a face of another cell: drop_faces
+    p = tmp_path / "faces.obj"
+    p.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n")
+    with pytest.raises(ValueError, match="pass drop_faces=True"):
+        starplex.read(str(p))
+    with pytest.warns(UserWarning, match="dropped 1 cells that are faces of other cells"):
+        assert starplex.read(str(p), drop_faces=True).n_cells == 1
