@@ -34,7 +34,7 @@ use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::csr::Csr;
 use crate::ids::{CellId, SimplexId, VertexId};
-use crate::limits::{NotSimplicial, TooLarge, Unit};
+use crate::limits::{Limits, NotSimplicial, TooLarge, Unit};
 use crate::topo::from_tops::{boundary_of_sorted, for_each_subset};
 use crate::topo::{
     sort_flat, sorted_simplex, Adjacency, Boundary, Coboundary, Counts, Levels, QueryError,
@@ -53,7 +53,8 @@ use crate::topo::{
 /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
 /// # let k = b.build(&BuildOptions::default()).unwrap().0;
 /// // k: the tetrahedron 0-1-2-3
-/// let opts = SimplexTreeOptions { max_simplices: 10, ..Default::default() };
+/// let limits = starplex::limits::Limits { stored_simplices: 10, ..Default::default() };
+/// let opts = SimplexTreeOptions { limits, ..Default::default() };
 /// assert_eq!(SimplexTree::new(&k, &opts).unwrap_err(), BuildError::too_many(19, 10 ));
 /// let opts = SimplexTreeOptions { label_lists: true, ..Default::default() };
 /// assert!(SimplexTree::new(&k, &opts).unwrap().has_label_lists());
@@ -62,15 +63,19 @@ use crate::topo::{
 pub struct SimplexTreeOptions {
     /// Keep, per label, the list of nodes carrying it (output-sensitive stars and co-faces).
     pub label_lists: bool,
-    /// Refuse to build when the complex has more simplices than this (estimate from the tops).
-    pub max_simplices: u128,
+    /// Refuse to build when the complex has more simplices than `limits.stored_simplices`
+    /// (estimate from the tops; the default here is 2·10^9, ids are 32-bit in any case).
+    pub limits: Limits,
 }
 
 impl Default for SimplexTreeOptions {
     fn default() -> Self {
         SimplexTreeOptions {
             label_lists: false,
-            max_simplices: 2_000_000_000,
+            limits: Limits {
+                stored_simplices: 2_000_000_000,
+                ..Limits::default()
+            },
         }
     }
 }
@@ -412,9 +417,10 @@ impl SimplexTree {
     /// ```
     ///
     /// # Errors
-    /// A CP cell; more simplices than `opts.max_simplices` (refused before allocating).
+    /// A CP cell; more simplices than `opts.limits.stored_simplices` (refused before
+    /// allocating).
     pub fn new(k: &IndexedComplex, opts: &SimplexTreeOptions) -> Result<SimplexTree, BuildError> {
-        let l = all_simplices(k, opts.max_simplices.min(u32::MAX as u128))?;
+        let l = all_simplices(k, opts.limits.stored_simplices.min(u32::MAX as u128))?;
         Ok(Self::from_levels(k, l, opts.label_lists))
     }
 
