@@ -60,7 +60,7 @@ pub enum Structure {
 /// let o = StructureOptions { kv: Some(20), ..Default::default() };
 /// assert_eq!(o.limits.stored_simplices, 1 << 31);
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct StructureOptions {
     /// The Stellar tree's bucketing threshold k_V (`None`: its default).
     pub kv: Option<u32>,
@@ -68,15 +68,6 @@ pub struct StructureOptions {
     /// (simplex tree, IG, IS, Hasse) may hold; more is refused with an estimate before anything
     /// is allocated.
     pub limits: Limits,
-}
-
-impl Default for StructureOptions {
-    fn default() -> Self {
-        StructureOptions {
-            kv: None,
-            limits: Limits::default(),
-        }
-    }
 }
 
 /// Why a structure could not be built.

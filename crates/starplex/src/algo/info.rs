@@ -52,7 +52,7 @@ use crate::limits::Limits;
 /// assert_eq!(s.f_vector_estimate, Some(10)); // 6 edges + 4 triangles
 /// assert_eq!(info(&k, &InfoOptions::default()).f_vector, Some(vec![4, 6, 4, 1]));
 /// ```
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub struct InfoOptions {
     /// `limits.info_faces`: the largest number of (cell, face) pairs the f-vector pass may
     /// visit; above it the f-vector (and Euler characteristic, boundary counts) are skipped and
@@ -87,16 +87,6 @@ pub struct InfoOptions {
     /// assert_eq!(a.n_boundary_faces.unwrap() + b.n_boundary_faces.unwrap(), 4);
     /// ```
     pub owned_vertices: Option<std::sync::Arc<fixedbitset::FixedBitSet>>,
-}
-
-impl Default for InfoOptions {
-    fn default() -> Self {
-        InfoOptions {
-            limits: Limits::default(),
-            progress: None,
-            owned_vertices: None,
-        }
-    }
 }
 
 impl std::fmt::Debug for InfoOptions {

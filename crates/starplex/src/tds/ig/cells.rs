@@ -195,7 +195,7 @@ fn level_keys(
                 key.clear();
                 key.extend(f.iter().map(|&l| c[l as usize]));
                 key.sort_unstable();
-                flat[at * w..at * w + key.len()].copy_from_slice(&key);
+                flat[at * w..at * w + key.len()].copy_from_slice(key);
                 at += 1;
             }
         }
