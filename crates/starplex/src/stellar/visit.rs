@@ -410,9 +410,9 @@ impl StellarTree {
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
     /// use starplex::ids::LeafId;
-    /// let n0 = t.expand_leaf(LeafId(0)).cells.len();
+    /// let n0 = t.expand_leaf(LeafId(0)).cells().len();
     /// // every leaf looks into leaf 0 through the worker's cache
-    /// let r = t.par_map_leaves_cached(2, |leaf, cache| (leaf.leaf(), cache.get(leaf.tree, LeafId(0)).cells.len()));
+    /// let r = t.par_map_leaves_cached(2, |leaf, cache| (leaf.leaf(), cache.get(leaf.tree, LeafId(0)).cells().len()));
     /// assert_eq!(r.len(), 4);
     /// assert!(r.iter().enumerate().all(|(i, &(l, n))| l == LeafId(i as u32) && n == n0));
     /// ```
