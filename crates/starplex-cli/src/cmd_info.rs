@@ -31,7 +31,7 @@ pub fn run(ctx: &Ctx, a: &InfoArgs) -> Result<(), CliError> {
     let k = &r.complex;
     let mut opts = InfoOptions::default();
     if let Some(m) = a.max_faces {
-        opts.max_faces = m;
+        opts.limits.info_faces = m;
     }
     let pb = if face_visits(k) > 5_000_000 {
         common::progress_bar(ctx, k.n_cells() as u64, "counting faces")
@@ -70,7 +70,7 @@ pub fn run(ctx: &Ctx, a: &InfoArgs) -> Result<(), CliError> {
             &a.input.file.display().to_string(),
             load_s,
             info_s,
-            opts.max_faces,
+            opts.limits.info_faces,
         );
         match &betti {
             Some(Ok(b)) => println!("  Betti numbers (Z/2) {b:?}"),

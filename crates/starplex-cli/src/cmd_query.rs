@@ -281,33 +281,7 @@ pub fn try_run_all(
 }
 
 pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
-    let mut a_vertex = a.vertex.clone();
-    if let Some(f) = &a.vertex_file {
-        a_vertex.extend(crate::export::read_ids(f)?);
-    }
-    let relation = a.relation[0];
-    if a.relation.len() > 1 && (a.all || a.out.is_some()) {
-        return Err(CliError::Input(
-            "--all and --out answer one relation at a time".into(),
-            Some("pass one --relation".into()),
-        ));
-    }
-    if let Some(out) = &a.out {
-        crate::export::OutFormat::from_path(out)?;
-    }
-    let a = &QueryArgs {
-        vertex: a_vertex,
-        ..a.clone()
-    };
-    if a.kv.is_some() && a.structure != StructureKind::Stellar && !ctx.quiet {
-        eprintln!("note: --kv is used by the Stellar tree only");
-    }
-    if a.vertex.is_empty() && !a.all {
-        return Err(CliError::Input(
-            "nothing to query".into(),
-            Some("pass --vertex ID ..., --vertex-file FILE or --all".into()),
-        ));
-    }
+    let a = &checked_args(ctx, a)?;
     let saved = starplex::stellar::is_saved_tree(&a.input.file);
     if saved && a.structure != StructureKind::Stellar {
         return Err(CliError::Input(
@@ -327,113 +301,177 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
     };
     let build_s = t.elapsed().as_secs_f64();
     if let Some(out) = &a.out {
-        let t = Instant::now();
-        let items = (!a.all).then_some(&a.vertex[..]);
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(a.threads.max(1))
-            .build()
-            .map_err(|e| CliError::Other(e.to_string()))?;
-        let (n, total) = pool.install(|| crate::export::write(s.as_ref(), relation, items, out))?;
-        let secs = t.elapsed().as_secs_f64();
-        if a.json {
-            println!(
-                "{}",
-                serde_json::json!({
-                    "structure": a.structure.name(),
-                    "relation": format!("{relation:?}").to_lowercase(),
-                    "out": out.display().to_string(),
-                    "build_s": build_s,
-                    "items": n,
-                    "total_size": total,
-                    "write_s": secs,
-                    "threads": a.threads,
-                })
-            );
-        } else if !ctx.quiet {
-            eprintln!(
-                "{}: {n} items, {total} answers ({:?}) in {secs:.3} s",
-                out.display(),
-                relation
-            );
-        }
-        return Ok(());
+        return write_out(ctx, a, s.as_ref(), out, build_s);
     }
     if !a.vertex.is_empty() {
-        let mut objs = Vec::new();
-        for &v in &a.vertex {
-            let mut o = vertex_object(s.as_ref(), VertexId(v))?;
-            let (mut cells, mut verts) = (Vec::new(), Vec::new());
-            for &rel in &a.relation {
-                match rel {
-                    RelationKind::Star => {
-                        let st = s.star(&[VertexId(v)]).map_err(qerr)?;
-                        o["star_f_vector"] = serde_json::json!(st.f_vector());
-                    }
-                    RelationKind::Pfaces => {
-                        let mut co = Vec::new();
-                        for q in 1..s.f_vector().map_err(qerr)?.len() {
-                            s.coboundary(&[VertexId(v)], q, &mut verts).map_err(qerr)?;
-                            co.push(verts.len() / (q + 1));
-                        }
-                        o["coboundary_sizes"] = serde_json::json!(co);
-                    }
-                    RelationKind::Adj => {
-                        s.adjacent(&[VertexId(v)], &mut verts).map_err(qerr)?;
-                        o["adjacent"] =
-                            serde_json::json!(verts.iter().map(|w| w.0).collect::<Vec<_>>());
-                    }
-                    RelationKind::IaStar => {
-                        s.vertex_top_cells(VertexId(v), &mut cells);
-                        o["n_incident_top_cells"] = serde_json::json!(cells.len());
-                    }
-                    _ => {}
-                }
-            }
-            objs.push(filter(o, &a.relation));
-        }
-        if a.json {
-            println!("{}", serde_json::Value::Array(objs));
-        } else {
-            for o in &objs {
-                let key = match relation {
-                    RelationKind::Vt | RelationKind::IaStar => "incident_top_cells",
-                    RelationKind::Vv => "vv",
-                    RelationKind::Link => "link_maximal_simplices",
-                    RelationKind::Star => "star_f_vector",
-                    RelationKind::Pfaces => "coboundary_sizes",
-                    RelationKind::Adj => "adjacent",
-                };
-                println!("vertex {}: {} = {}", o["vertex"], key, o[key]);
-                if relation == RelationKind::Link {
-                    println!("  link f-vector = {}", o["link_f_vector"]);
-                }
+        print_vertices(a, s.as_ref())?;
+    }
+    if a.all {
+        print_all(a, s.as_ref(), build_s)?;
+    }
+    Ok(())
+}
+
+/// The arguments with `--vertex-file`'s ids appended to `--vertex`, after the checks that need
+/// no input: one relation with `--all` / `--out`, a known `--out` format, something to query.
+fn checked_args(ctx: &Ctx, a: &QueryArgs) -> Result<QueryArgs, CliError> {
+    let mut a_vertex = a.vertex.clone();
+    if let Some(f) = &a.vertex_file {
+        a_vertex.extend(crate::export::read_ids(f)?);
+    }
+    if a.relation.len() > 1 && (a.all || a.out.is_some()) {
+        return Err(CliError::Input(
+            "--all and --out answer one relation at a time".into(),
+            Some("pass one --relation".into()),
+        ));
+    }
+    if let Some(out) = &a.out {
+        crate::export::OutFormat::from_path(out)?;
+    }
+    let a = QueryArgs {
+        vertex: a_vertex,
+        ..a.clone()
+    };
+    if a.kv.is_some() && a.structure != StructureKind::Stellar && !ctx.quiet {
+        eprintln!("note: --kv is used by the Stellar tree only");
+    }
+    if a.vertex.is_empty() && !a.all {
+        return Err(CliError::Input(
+            "nothing to query".into(),
+            Some("pass --vertex ID ..., --vertex-file FILE or --all".into()),
+        ));
+    }
+    Ok(a)
+}
+
+/// `--out FILE`: writes the relation's answers (every item with `--all`, else the given
+/// vertices) and reports counts and time.
+fn write_out(
+    ctx: &Ctx,
+    a: &QueryArgs,
+    s: &(dyn Queries + Sync),
+    out: &std::path::Path,
+    build_s: f64,
+) -> Result<(), CliError> {
+    let relation = a.relation[0];
+    let t = Instant::now();
+    let items = (!a.all).then_some(&a.vertex[..]);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(a.threads.max(1))
+        .build()
+        .map_err(|e| CliError::Other(e.to_string()))?;
+    let (n, total) = pool.install(|| crate::export::write(s, relation, items, out))?;
+    let secs = t.elapsed().as_secs_f64();
+    if a.json {
+        println!(
+            "{}",
+            serde_json::json!({
+                "structure": a.structure.name(),
+                "relation": format!("{relation:?}").to_lowercase(),
+                "out": out.display().to_string(),
+                "build_s": build_s,
+                "items": n,
+                "total_size": total,
+                "write_s": secs,
+                "threads": a.threads,
+            })
+        );
+    } else if !ctx.quiet {
+        eprintln!(
+            "{}: {n} items, {total} answers ({:?}) in {secs:.3} s",
+            out.display(),
+            relation
+        );
+    }
+    Ok(())
+}
+
+/// `--vertex`: one object per vertex with the relations asked for, as JSON or one line each.
+fn print_vertices(a: &QueryArgs, s: &dyn Queries) -> Result<(), CliError> {
+    let relation = a.relation[0];
+    let mut objs = Vec::new();
+    for &v in &a.vertex {
+        objs.push(filter(vertex_relations(a, s, v)?, &a.relation));
+    }
+    if a.json {
+        println!("{}", serde_json::Value::Array(objs));
+    } else {
+        for o in &objs {
+            let key = match relation {
+                RelationKind::Vt | RelationKind::IaStar => "incident_top_cells",
+                RelationKind::Vv => "vv",
+                RelationKind::Link => "link_maximal_simplices",
+                RelationKind::Star => "star_f_vector",
+                RelationKind::Pfaces => "coboundary_sizes",
+                RelationKind::Adj => "adjacent",
+            };
+            println!("vertex {}: {} = {}", o["vertex"], key, o[key]);
+            if relation == RelationKind::Link {
+                println!("  link f-vector = {}", o["link_f_vector"]);
             }
         }
     }
-    if a.all {
-        let (items, total, secs) = run_all(s.as_ref(), relation, a.threads)?;
-        if a.json {
-            println!(
-                "{}",
-                serde_json::json!({
-                    "structure": a.structure.name(),
-                    "relation": format!("{relation:?}").to_lowercase(),
-                    "build_s": build_s,
-                    "items": items,
-                    "total_size": total,
-                    "query_s": secs,
-                    "threads": a.threads,
-                })
-            );
-        } else {
-            println!(
-                "{} on {}: built in {build_s:.3} s; {:?} over {items} items: {total} results in {secs:.3} s ({} thread(s))",
-                a.structure.name(),
-                a.input.file.display(),
-                relation,
-                a.threads
-            );
+    Ok(())
+}
+
+/// The JSON object of vertex `v` with the relations of `--relation` that [`vertex_object`]
+/// does not fill.
+fn vertex_relations(a: &QueryArgs, s: &dyn Queries, v: u32) -> Result<serde_json::Value, CliError> {
+    let mut o = vertex_object(s, VertexId(v))?;
+    let (mut cells, mut verts) = (Vec::new(), Vec::new());
+    for &rel in &a.relation {
+        match rel {
+            RelationKind::Star => {
+                let st = s.star(&[VertexId(v)]).map_err(qerr)?;
+                o["star_f_vector"] = serde_json::json!(st.f_vector());
+            }
+            RelationKind::Pfaces => {
+                let mut co = Vec::new();
+                for q in 1..s.f_vector().map_err(qerr)?.len() {
+                    s.coboundary(&[VertexId(v)], q, &mut verts).map_err(qerr)?;
+                    co.push(verts.len() / (q + 1));
+                }
+                o["coboundary_sizes"] = serde_json::json!(co);
+            }
+            RelationKind::Adj => {
+                s.adjacent(&[VertexId(v)], &mut verts).map_err(qerr)?;
+                o["adjacent"] = serde_json::json!(verts.iter().map(|w| w.0).collect::<Vec<_>>());
+            }
+            RelationKind::IaStar => {
+                s.vertex_top_cells(VertexId(v), &mut cells);
+                o["n_incident_top_cells"] = serde_json::json!(cells.len());
+            }
+            _ => {}
         }
+    }
+    Ok(o)
+}
+
+/// `--all`: answers the relation for every item and reports counts and time.
+fn print_all(a: &QueryArgs, s: &(dyn Queries + Sync), build_s: f64) -> Result<(), CliError> {
+    let relation = a.relation[0];
+    let (items, total, secs) = run_all(s, relation, a.threads)?;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::json!({
+                "structure": a.structure.name(),
+                "relation": format!("{relation:?}").to_lowercase(),
+                "build_s": build_s,
+                "items": items,
+                "total_size": total,
+                "query_s": secs,
+                "threads": a.threads,
+            })
+        );
+    } else {
+        println!(
+            "{} on {}: built in {build_s:.3} s; {:?} over {items} items: {total} results in {secs:.3} s ({} thread(s))",
+            a.structure.name(),
+            a.input.file.display(),
+            relation,
+            a.threads
+        );
     }
     Ok(())
 }

@@ -8,6 +8,7 @@ use serde_json::json;
 use starplex::algo::cliques::CliqueOptions;
 use starplex::algo::rips::{self, Built, DistanceMatrix, Metric, RipsOptions};
 use starplex::io::{self, Format};
+use starplex::limits::Limits;
 
 use crate::common::{self, CliError, Ctx};
 
@@ -267,7 +268,7 @@ pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
     let opts = RipsOptions {
         cliques: CliqueOptions {
             max_dim: a.build.max_dim,
-            max_bytes,
+            limits: Limits::with_memory(max_bytes),
             progress: Some(&progress),
         },
         max_dim: a.build.max_dim,
@@ -317,7 +318,7 @@ pub fn run_flag(ctx: &Ctx, a: &FlagArgs) -> Result<(), CliError> {
     let opts = RipsOptions {
         cliques: CliqueOptions {
             max_dim: a.build.max_dim,
-            max_bytes,
+            limits: Limits::with_memory(max_bytes),
             progress: Some(&progress),
         },
         max_dim: a.build.max_dim,

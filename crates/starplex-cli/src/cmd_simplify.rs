@@ -10,12 +10,13 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use serde_json::{json, Value};
-use starplex::algo::simplify::hausdorff::hausdorff_estimate;
+use starplex::algo::simplify::hausdorff::{hausdorff_estimate, HausdorffEstimate};
 use starplex::algo::simplify::{
-    default_label_attribute, simplify, summary, Mode, SimplifyError, SimplifyOptions, Target,
-    TopologySummary,
+    default_label_attribute, simplify, summary, Mode, SimplifyError, SimplifyOptions,
+    SimplifyReport, Target, TopologySummary,
 };
 use starplex::attr::AttrTarget;
+use starplex::complex::IndexedComplex;
 use starplex::io;
 
 use crate::common::{self, CliError, Ctx, InputArgs};
@@ -130,6 +131,64 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
         (None, false) => default_label_attribute(k.attributes()).map(str::to_string),
         (None, true) => None,
     };
+    let keep_vertices = keep_vertices(a, k, &name)?;
+    let total = (k.n_vertices() as u64).max(1);
+    let pb = common::progress_bar(ctx, total, "simplify");
+    let pb2 = pb.clone();
+    let opts = SimplifyOptions {
+        mode,
+        target: Target {
+            faces: a.faces,
+            vertices: a.vertices,
+            ratio: a.ratio,
+            max_error: a.max_error,
+        },
+        lock_boundary: a.lock_boundary,
+        keep_manifold: a.keep_manifold,
+        progress: Some(Arc::new(move |n| pb2.inc(n))),
+        keep_labels,
+        keep_vertices,
+    };
+    let res = simplify(k, &opts);
+    pb.finish_and_clear();
+    let (out, report) = res.map_err(|e| simplify_error(e, k, &name))?;
+    let t_after = Instant::now();
+    let after =
+        (!a.no_report).then(|| common::with_spinner(ctx, "topology after", || summary(&out)));
+    let hausdorff = if a.no_report {
+        None
+    } else {
+        common::with_spinner(ctx, "Hausdorff estimate", || hausdorff_estimate(k, &out))
+    };
+    let after_s = t_after.elapsed().as_secs_f64();
+    common::with_spinner(ctx, "writing", || io::write(&a.output, &out, to))?;
+    let o = Outcome {
+        name: &name,
+        k,
+        out: &out,
+        report: &report,
+        before,
+        after,
+        hausdorff,
+        report_s: before_s + after_s,
+        labels_available: k
+            .attributes()
+            .cell
+            .iter()
+            .map(|a| a.name.as_str())
+            .collect(),
+    };
+    if a.json {
+        print_json(a, &o)
+    } else {
+        print_human(a, &o);
+        Ok(())
+    }
+}
+
+/// The vertices `--keep-vertices FILE` and `--keep-vertex-attribute NAME` (non-zero values)
+/// ask to keep.
+fn keep_vertices(a: &SimplifyArgs, k: &IndexedComplex, name: &str) -> Result<Vec<u32>, CliError> {
     let mut keep_vertices = match &a.keep_vertices {
         Some(f) => crate::export::read_ids(f)?,
         None => Vec::new(),
@@ -158,168 +217,179 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
                 .map(|v| v as u32),
         );
     }
-    let total = (k.n_vertices() as u64).max(1);
-    let pb = common::progress_bar(ctx, total, "simplify");
-    let pb2 = pb.clone();
-    let opts = SimplifyOptions {
-        mode,
-        target: Target {
-            faces: a.faces,
-            vertices: a.vertices,
-            ratio: a.ratio,
-            max_error: a.max_error,
-        },
-        lock_boundary: a.lock_boundary,
-        keep_manifold: a.keep_manifold,
-        progress: Some(Arc::new(move |n| pb2.inc(n))),
-        keep_labels,
-        keep_vertices,
-    };
-    let res = simplify(k, &opts);
-    pb.finish_and_clear();
-    let (out, report) = res.map_err(|e| {
-        let hint = match &e {
-            SimplifyError::NotSimplicial { .. } => Some(format!(
-                "starplex convert --triangulate {name} triangulated.off"
-            )),
-            SimplifyError::BadTarget(_) => Some(format!(
-                "the input has {} vertices and {} top cells; --ratio is between 0 and 1",
-                k.n_vertices(),
-                k.n_cells()
-            )),
-            SimplifyError::NotAMesh => Some("pass --mode homology".into()),
-            SimplifyError::UnknownLabel { .. } => {
-                Some("name a cell attribute (`starplex info` lists them)".into())
-            }
-            _ => None,
-        };
-        CliError::Input(format!("{name}: {e}"), hint)
-    })?;
-    let t_after = Instant::now();
-    let after =
-        (!a.no_report).then(|| common::with_spinner(ctx, "topology after", || summary(&out)));
-    let hausdorff = if a.no_report {
-        None
-    } else {
-        common::with_spinner(ctx, "Hausdorff estimate", || hausdorff_estimate(k, &out))
-    };
-    let after_s = t_after.elapsed().as_secs_f64();
-    common::with_spinner(ctx, "writing", || io::write(&a.output, &out, to))?;
-    let labels_available: Vec<&str> = k
-        .attributes()
-        .cell
-        .iter()
-        .map(|a| a.name.as_str())
-        .collect();
-    if a.json {
-        let mut v = json!({
-            "input": name,
-            "output": common::shown(&a.output),
-            "mode": report.mode.name(),
-            "target_faces": report.target_faces,
-            "n_contractions": report.n_contractions,
-            "rounds": report.rounds,
-            "time_s": report.time_s,
-            "report_time_s": before_s + after_s,
-            "before": before.as_ref().map(summary_json),
-            "after": after.as_ref().map(summary_json),
-            "vertices": [k.n_vertices(), out.n_vertices()],
-            "cells": [k.n_cells(), out.n_cells()],
-        });
-        if report.mode == Mode::Qem {
-            v["max_error"] = json!(report.max_error);
-            v["mean_error"] = json!(report.mean_error);
-        }
-        v["labels_kept"] = json!(report.kept_labels);
-        v["labels_available"] = json!(labels_available);
-        v["locked_vertices"] = json!(report.locked_vertices);
-        v["attributes"] = json!({
-            "vertex": out.attributes().vertex.iter().map(|a| &a.name).collect::<Vec<_>>(),
-            "cell": out.attributes().cell.iter().map(|a| &a.name).collect::<Vec<_>>(),
-        });
-        v["hausdorff"] = match &hausdorff {
-            None => Value::Null,
-            Some(h) => json!({
-                "estimate": "sampled: every surface vertex of one mesh to the closest triangle of the other",
-                "input_to_output": h.a_to_b,
-                "output_to_input": h.b_to_a,
-                "max": h.max(),
-                "mean_input_to_output": h.mean_a_to_b,
-                "mean_output_to_input": h.mean_b_to_a,
-                "samples": h.n_samples,
-                "input_diagonal": h.diagonal,
-            }),
-        };
-        if let (Some(b), Some(f)) = (&before, &after) {
-            v["topology_kept"] = json!(
-                b.betti == f.betti
-                    && b.euler_characteristic == f.euler_characteristic
-                    && f.non_manifold_vertices <= b.non_manifold_vertices
-                    && f.non_manifold_edges <= b.non_manifold_edges
-            );
-        }
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&v).map_err(|e| CliError::Other(e.to_string()))?
-        );
-    } else {
-        println!("{name} -> {}", common::shown(&a.output));
-        println!("  mode                {}", report.mode.name());
-        println!(
-            "  vertices            {} -> {}",
+    Ok(keep_vertices)
+}
+
+/// The library's refusal as an input error, with a hint per kind.
+fn simplify_error(e: SimplifyError, k: &IndexedComplex, name: &str) -> CliError {
+    let hint = match &e {
+        SimplifyError::NotSimplicial { .. } => Some(format!(
+            "starplex convert --triangulate {name} triangulated.off"
+        )),
+        SimplifyError::BadTarget(_) => Some(format!(
+            "the input has {} vertices and {} top cells; --ratio is between 0 and 1",
             k.n_vertices(),
-            out.n_vertices()
-        );
-        println!("  top cells           {} -> {}", k.n_cells(), out.n_cells());
-        println!(
-            "  contractions        {} in {} round(s), {:.3} s",
-            report.n_contractions, report.rounds, report.time_s
-        );
-        if let (Some(m), Some(e)) = (report.max_error, report.mean_error) {
-            println!("  quadric error       max {m:.3e}, mean {e:.3e}");
+            k.n_cells()
+        )),
+        SimplifyError::NotAMesh => Some("pass --mode homology".into()),
+        SimplifyError::UnknownLabel { .. } => {
+            Some("name a cell attribute (`starplex info` lists them)".into())
         }
-        if let Some(h) = &hausdorff {
-            println!(
-                "  Hausdorff (est.)    {:.3e} (input->output {:.3e}, output->input {:.3e}; {:.3}% of the diagonal)",
-                h.max(),
-                h.a_to_b,
-                h.b_to_a,
-                100.0 * h.max() / h.diagonal.max(f64::MIN_POSITIVE)
-            );
-        }
-        match (&report.kept_labels, labels_available.is_empty()) {
-            (Some(l), _) => println!(
-                "  labels              {l} kept ({} interface/kept vertices locked)",
-                report.locked_vertices
-            ),
-            (None, true) => {}
-            (None, false) => println!(
-                "  labels              not kept (cell attributes: {})",
-                labels_available.join(", ")
-            ),
-        }
-        if report.kept_labels.is_none() && report.locked_vertices > 0 {
-            println!("  kept vertices       {}", report.locked_vertices);
-        }
-        if let (Some(b), Some(f)) = (&before, &after) {
-            println!("  f-vector            {:?} -> {:?}", b.f_vector, f.f_vector);
-            println!(
-                "  Euler char.         {:?} -> {:?}",
-                b.euler_characteristic, f.euler_characteristic
-            );
-            println!("  Betti (Z/2)         {:?} -> {:?}", b.betti, f.betti);
-            println!(
-                "  non-manifold        {} vertices, {} edges -> {} vertices, {} edges",
-                b.non_manifold_vertices,
-                b.non_manifold_edges,
-                f.non_manifold_vertices,
-                f.non_manifold_edges
-            );
-            println!(
-                "  boundary faces      {} -> {}",
-                b.boundary_faces, f.boundary_faces
-            );
-        }
+        _ => None,
+    };
+    CliError::Input(format!("{name}: {e}"), hint)
+}
+
+/// What one run did, for the reports.
+struct Outcome<'a> {
+    name: &'a str,
+    k: &'a IndexedComplex,
+    out: &'a IndexedComplex,
+    report: &'a SimplifyReport,
+    before: Option<TopologySummary>,
+    after: Option<TopologySummary>,
+    hausdorff: Option<HausdorffEstimate>,
+    /// Seconds of the before/after summaries and the Hausdorff estimate.
+    report_s: f64,
+    /// The input's cell attributes.
+    labels_available: Vec<&'a str>,
+}
+
+/// `--json`: one object with the counts, errors, labels, attributes, Hausdorff estimate and
+/// the topology before and after.
+fn print_json(a: &SimplifyArgs, o: &Outcome<'_>) -> Result<(), CliError> {
+    let Outcome {
+        name,
+        k,
+        out,
+        report,
+        before,
+        after,
+        hausdorff,
+        report_s,
+        labels_available,
+    } = o;
+    let mut v = json!({
+        "input": name,
+        "output": common::shown(&a.output),
+        "mode": report.mode.name(),
+        "target_faces": report.target_faces,
+        "n_contractions": report.n_contractions,
+        "rounds": report.rounds,
+        "time_s": report.time_s,
+        "report_time_s": report_s,
+        "before": before.as_ref().map(summary_json),
+        "after": after.as_ref().map(summary_json),
+        "vertices": [k.n_vertices(), out.n_vertices()],
+        "cells": [k.n_cells(), out.n_cells()],
+    });
+    if report.mode == Mode::Qem {
+        v["max_error"] = json!(report.max_error);
+        v["mean_error"] = json!(report.mean_error);
     }
+    v["labels_kept"] = json!(report.kept_labels);
+    v["labels_available"] = json!(labels_available);
+    v["locked_vertices"] = json!(report.locked_vertices);
+    v["attributes"] = json!({
+        "vertex": out.attributes().vertex.iter().map(|a| &a.name).collect::<Vec<_>>(),
+        "cell": out.attributes().cell.iter().map(|a| &a.name).collect::<Vec<_>>(),
+    });
+    v["hausdorff"] = match &hausdorff {
+        None => Value::Null,
+        Some(h) => json!({
+            "estimate": "sampled: every surface vertex of one mesh to the closest triangle of the other",
+            "input_to_output": h.a_to_b,
+            "output_to_input": h.b_to_a,
+            "max": h.max(),
+            "mean_input_to_output": h.mean_a_to_b,
+            "mean_output_to_input": h.mean_b_to_a,
+            "samples": h.n_samples,
+            "input_diagonal": h.diagonal,
+        }),
+    };
+    if let (Some(b), Some(f)) = (&before, &after) {
+        v["topology_kept"] = json!(
+            b.betti == f.betti
+                && b.euler_characteristic == f.euler_characteristic
+                && f.non_manifold_vertices <= b.non_manifold_vertices
+                && f.non_manifold_edges <= b.non_manifold_edges
+        );
+    }
+    println!(
+        "{}",
+        serde_json::to_string_pretty(&v).map_err(|e| CliError::Other(e.to_string()))?
+    );
     Ok(())
+}
+
+/// The human-readable report.
+fn print_human(a: &SimplifyArgs, o: &Outcome<'_>) {
+    let Outcome {
+        name,
+        k,
+        out,
+        report,
+        before,
+        after,
+        hausdorff,
+        labels_available,
+        ..
+    } = o;
+    println!("{name} -> {}", common::shown(&a.output));
+    println!("  mode                {}", report.mode.name());
+    println!(
+        "  vertices            {} -> {}",
+        k.n_vertices(),
+        out.n_vertices()
+    );
+    println!("  top cells           {} -> {}", k.n_cells(), out.n_cells());
+    println!(
+        "  contractions        {} in {} round(s), {:.3} s",
+        report.n_contractions, report.rounds, report.time_s
+    );
+    if let (Some(m), Some(e)) = (report.max_error, report.mean_error) {
+        println!("  quadric error       max {m:.3e}, mean {e:.3e}");
+    }
+    if let Some(h) = &hausdorff {
+        println!(
+            "  Hausdorff (est.)    {:.3e} (input->output {:.3e}, output->input {:.3e}; {:.3}% of the diagonal)",
+            h.max(),
+            h.a_to_b,
+            h.b_to_a,
+            100.0 * h.max() / h.diagonal.max(f64::MIN_POSITIVE)
+        );
+    }
+    match (&report.kept_labels, labels_available.is_empty()) {
+        (Some(l), _) => println!(
+            "  labels              {l} kept ({} interface/kept vertices locked)",
+            report.locked_vertices
+        ),
+        (None, true) => {}
+        (None, false) => println!(
+            "  labels              not kept (cell attributes: {})",
+            labels_available.join(", ")
+        ),
+    }
+    if report.kept_labels.is_none() && report.locked_vertices > 0 {
+        println!("  kept vertices       {}", report.locked_vertices);
+    }
+    if let (Some(b), Some(f)) = (&before, &after) {
+        println!("  f-vector            {:?} -> {:?}", b.f_vector, f.f_vector);
+        println!(
+            "  Euler char.         {:?} -> {:?}",
+            b.euler_characteristic, f.euler_characteristic
+        );
+        println!("  Betti (Z/2)         {:?} -> {:?}", b.betti, f.betti);
+        println!(
+            "  non-manifold        {} vertices, {} edges -> {} vertices, {} edges",
+            b.non_manifold_vertices,
+            b.non_manifold_edges,
+            f.non_manifold_vertices,
+            f.non_manifold_edges
+        );
+        println!(
+            "  boundary faces      {} -> {}",
+            b.boundary_faces, f.boundary_faces
+        );
+    }
 }

@@ -149,7 +149,6 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     let complex_bytes = k
         .as_ref()
         .map_or(t.stats().storage.base_bytes, |k| k.bytes() as u64);
-    let n_cells = t.n_top_cells();
     let s = t.stats();
     let bt = t.timings();
     let mut timings = json!({
@@ -163,71 +162,13 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
         "build_cpu_s": build_cpu,
     });
     if a.bench {
-        let mut cpu = serde_json::Map::new();
-        let vt_mem: std::sync::Mutex<Option<(u64, u64)>> = std::sync::Mutex::new(None);
-        let mut phase = |name: &str, f: &mut dyn FnMut()| -> f64 {
-            let c = measure::process_cpu_seconds();
-            let t1 = Instant::now();
-            f();
-            let wall = t1.elapsed().as_secs_f64();
-            if let (Some(a), Some(b)) = (c, measure::process_cpu_seconds()) {
-                cpu.insert(name.to_string(), json!(b - a));
-            }
-            wall
-        };
-        let (vt_local_s, vt_s, faces_s, validate_s, ia_s) = with_threads(a.threads, || {
-            let vt_local_s = phase("vt_local_s", &mut || {
-                // the reference's VT: expand every leaf (local VT in tree numbering)
-                let n: Vec<usize> = t.par_map_leaves(|l| l.e.vt.len());
-                std::hint::black_box(n);
-            });
-            let vt_s = phase("vt_all_s", &mut || {
-                let sum = std::sync::atomic::AtomicU64::new(0);
-                t.par_for_each_vt(|_, cells| {
-                    sum.fetch_add(cells.len() as u64, std::sync::atomic::Ordering::Relaxed);
-                });
-            });
-            if let (true, Some(base), Some(measure::Memory { peak: hwm, .. })) =
-                (peak_reset, rss_loaded, measure::memory())
-            {
-                *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) = Some((base, hwm));
-            }
-            let faces_s = phase("p_faces_s", &mut || {
-                for p in 1..t.dim().unwrap_or(0) {
-                    std::hint::black_box(t.count_p_faces(p).ok());
-                }
-            });
-            let validate_s = phase("validate_s", &mut || {
-                std::hint::black_box(t.validate());
-            });
-            let ia_s = phase("iastar_global_s", &mut || {
-                std::hint::black_box(starplex::topo::Storage::refs(&t.iastar()));
-            });
-            (vt_local_s, vt_s, faces_s, validate_s, ia_s)
-        })?;
-        timings["vt_local_s"] = json!(vt_local_s);
-        if let (true, Some(base), Some(measure::Memory { peak: hwm, .. })) =
-            (peak_reset, rss_loaded, measure::memory())
-        {
-            timings["memory"] = json!({
-                "complex_bytes": complex_bytes,
-                "rss_after_load": base,
-                "peak_rss_build_and_queries": hwm,
-                "extra_over_loaded": hwm.saturating_sub(base),
-                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / complex_bytes.max(1) as f64,
-            });
-        }
-        timings["iastar_global_s"] = json!(ia_s);
-        if let Some((base, hwm)) = *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) {
-            timings["memory_build_and_vt"] = json!({
-                "extra_over_loaded": hwm.saturating_sub(base),
-                "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / complex_bytes.max(1) as f64,
-            });
-        }
-        timings["cpu"] = Value::Object(cpu);
-        timings["vt_all_s"] = json!(vt_s);
-        timings["p_faces_s"] = json!(faces_s);
-        timings["validate_s"] = json!(validate_s);
+        bench_phases(
+            &t,
+            a.threads,
+            &mut timings,
+            (peak_reset, rss_loaded),
+            complex_bytes,
+        )?;
     }
     if let Some(out) = &a.save {
         let t1 = Instant::now();
@@ -244,51 +185,7 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
             serde_json::to_string_pretty(&v).map_err(|e| CliError::Other(e.to_string()))?
         );
     } else {
-        println!("{}", a.input.file.display());
-        print_stats(&s);
-        let per = |x: f64| 1e6 * x / (n_cells.max(1) as f64);
-        if saved {
-            println!(
-                "  loaded              {:.3} s (saved tree, memory-mapped and checked)",
-                build_s
-            );
-        } else {
-            println!(
-            "  build               {:.3} s ({:.3} us per top cell): decomposition {:.3}, vertex reindex {:.3}, cell reindex {:.3}, leaf lists {:.3}",
-            build_s,
-            per(build_s),
-            bt.decomposition_s,
-            bt.vertex_reindex_s,
-            bt.cell_reindex_s,
-            bt.leaf_lists_s
-        );
-        }
-        if let (false, Some(c)) = (saved, build_cpu) {
-            println!(
-                "  build cpu           {c:.3} s ({:.3} us per top cell)",
-                per(c)
-            );
-        }
-        for key in [
-            "vt_local_s",
-            "vt_all_s",
-            "p_faces_s",
-            "validate_s",
-            "iastar_global_s",
-            "save_s",
-        ] {
-            if let Some(x) = timings[key].as_f64() {
-                let c = timings["cpu"][key].as_f64();
-                println!(
-                    "  {:<19} {:.3} s ({:.3} us per top cell){}",
-                    key.trim_end_matches("_s"),
-                    x,
-                    per(x),
-                    c.map(|c| format!(", cpu {c:.3} s ({:.3} us)", per(c)))
-                        .unwrap_or_default()
-                );
-            }
-        }
+        print_human(a, &t, &s, &timings, saved, (build_s, build_cpu));
     }
     if let Some(out) = &a.render {
         crate::cmd_render::shortcut(
@@ -305,4 +202,143 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
         )?;
     }
     Ok(())
+}
+
+/// `--bench`: times the leaf-parallel phases (local VT, VT of every vertex, p-faces,
+/// validation, global IA*) on `threads` threads into `timings` (wall, `cpu`, and the memory
+/// over the loaded state when `mem` = (peak reset, RSS after loading) allows it).
+fn bench_phases(
+    t: &StellarTree,
+    threads: Option<usize>,
+    timings: &mut Value,
+    mem: (bool, Option<u64>),
+    complex_bytes: u64,
+) -> Result<(), CliError> {
+    let (peak_reset, rss_loaded) = mem;
+    let mut cpu = serde_json::Map::new();
+    let vt_mem: std::sync::Mutex<Option<(u64, u64)>> = std::sync::Mutex::new(None);
+    let mut phase = |name: &str, f: &mut dyn FnMut()| -> f64 {
+        let c = measure::process_cpu_seconds();
+        let t1 = Instant::now();
+        f();
+        let wall = t1.elapsed().as_secs_f64();
+        if let (Some(a), Some(b)) = (c, measure::process_cpu_seconds()) {
+            cpu.insert(name.to_string(), json!(b - a));
+        }
+        wall
+    };
+    let (vt_local_s, vt_s, faces_s, validate_s, ia_s) = with_threads(threads, || {
+        let vt_local_s = phase("vt_local_s", &mut || {
+            // the reference's VT: expand every leaf (local VT in tree numbering)
+            let n: Vec<usize> = t.par_map_leaves(|l| l.e.n_vt_refs());
+            std::hint::black_box(n);
+        });
+        let vt_s = phase("vt_all_s", &mut || {
+            let sum = std::sync::atomic::AtomicU64::new(0);
+            t.par_for_each_vt(|_, cells| {
+                sum.fetch_add(cells.len() as u64, std::sync::atomic::Ordering::Relaxed);
+            });
+        });
+        if let (true, Some(base), Some(measure::Memory { peak: hwm, .. })) =
+            (peak_reset, rss_loaded, measure::memory())
+        {
+            *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) = Some((base, hwm));
+        }
+        let faces_s = phase("p_faces_s", &mut || {
+            for p in 1..t.dim().unwrap_or(0) {
+                std::hint::black_box(t.count_p_faces(p).ok());
+            }
+        });
+        let validate_s = phase("validate_s", &mut || {
+            std::hint::black_box(t.validate());
+        });
+        let ia_s = phase("iastar_global_s", &mut || {
+            std::hint::black_box(starplex::topo::Storage::refs(&t.iastar()));
+        });
+        (vt_local_s, vt_s, faces_s, validate_s, ia_s)
+    })?;
+    timings["vt_local_s"] = json!(vt_local_s);
+    if let (true, Some(base), Some(measure::Memory { peak: hwm, .. })) =
+        (peak_reset, rss_loaded, measure::memory())
+    {
+        timings["memory"] = json!({
+            "complex_bytes": complex_bytes,
+            "rss_after_load": base,
+            "peak_rss_build_and_queries": hwm,
+            "extra_over_loaded": hwm.saturating_sub(base),
+            "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / complex_bytes.max(1) as f64,
+        });
+    }
+    timings["iastar_global_s"] = json!(ia_s);
+    if let Some((base, hwm)) = *vt_mem.lock().unwrap_or_else(|e| e.into_inner()) {
+        timings["memory_build_and_vt"] = json!({
+            "extra_over_loaded": hwm.saturating_sub(base),
+            "extra_ratio_to_complex": hwm.saturating_sub(base) as f64 / complex_bytes.max(1) as f64,
+        });
+    }
+    timings["cpu"] = Value::Object(cpu);
+    timings["vt_all_s"] = json!(vt_s);
+    timings["p_faces_s"] = json!(faces_s);
+    timings["validate_s"] = json!(validate_s);
+    Ok(())
+}
+
+/// The human-readable report: the tree's statistics, then the build (or load) and each timed
+/// phase, per top cell; `build` = (build seconds, build CPU seconds).
+fn print_human(
+    a: &StellarArgs,
+    t: &StellarTree,
+    s: &starplex::stellar::StellarStats,
+    timings: &Value,
+    saved: bool,
+    build: (f64, Option<f64>),
+) {
+    let (build_s, build_cpu) = build;
+    let n_cells = t.n_top_cells();
+    let bt = t.timings();
+    println!("{}", a.input.file.display());
+    print_stats(s);
+    let per = |x: f64| 1e6 * x / (n_cells.max(1) as f64);
+    if saved {
+        println!(
+            "  loaded              {:.3} s (saved tree, memory-mapped and checked)",
+            build_s
+        );
+    } else {
+        println!(
+        "  build               {:.3} s ({:.3} us per top cell): decomposition {:.3}, vertex reindex {:.3}, cell reindex {:.3}, leaf lists {:.3}",
+        build_s,
+        per(build_s),
+        bt.decomposition_s,
+        bt.vertex_reindex_s,
+        bt.cell_reindex_s,
+        bt.leaf_lists_s
+    );
+    }
+    if let (false, Some(c)) = (saved, build_cpu) {
+        println!(
+            "  build cpu           {c:.3} s ({:.3} us per top cell)",
+            per(c)
+        );
+    }
+    for key in [
+        "vt_local_s",
+        "vt_all_s",
+        "p_faces_s",
+        "validate_s",
+        "iastar_global_s",
+        "save_s",
+    ] {
+        if let Some(x) = timings[key].as_f64() {
+            let c = timings["cpu"][key].as_f64();
+            println!(
+                "  {:<19} {:.3} s ({:.3} us per top cell){}",
+                key.trim_end_matches("_s"),
+                x,
+                per(x),
+                c.map(|c| format!(", cpu {c:.3} s ({:.3} us)", per(c)))
+                    .unwrap_or_default()
+            );
+        }
+    }
 }

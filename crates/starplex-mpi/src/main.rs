@@ -61,7 +61,7 @@ fn parse_args() -> Result<Args, String> {
         file: PathBuf::new(),
         json: false,
         stats: false,
-        max_faces: InfoOptions::default().max_faces,
+        max_faces: starplex::limits::INFO_FACES,
         max_list: 1000,
         kv: None,
         vt_vv_out: None,
@@ -263,7 +263,10 @@ fn run_info(w: &World, a: &Args, ld: &mut Loaded) -> Result<(), Failure> {
         let part = info(
             &l.k,
             &InfoOptions {
-                max_faces: u128::MAX,
+                limits: starplex::limits::Limits {
+                    info_faces: u128::MAX,
+                    ..Default::default()
+                },
                 owned_vertices: Some(Arc::new(l.owned.clone())),
                 ..Default::default()
             },

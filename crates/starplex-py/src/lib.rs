@@ -40,8 +40,9 @@ use starplex::topo::batch::{self, Answers, Relation};
 use starplex::topo::naive::VtIndex;
 use starplex::topo::{Queries, QueryError};
 
-/// Most simplices a structure may hold (as the command line).
-const LIMIT: u128 = 1 << 31;
+/// The budgets of a structure build (as the command line): at most
+/// [`starplex::limits::STORED_SIMPLICES`] (2^31) simplices; no memory budget is used there.
+const LIMITS: starplex::limits::Limits = starplex::limits::Limits::with_memory(u64::MAX);
 
 fn value_err(msg: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(msg.to_string())
@@ -541,7 +542,7 @@ impl Complex {
     ) -> PyResult<Bound<'py, PyDict>> {
         let mut opts = InfoOptions::default();
         if let Some(m) = max_faces {
-            opts.max_faces = m;
+            opts.limits.info_faces = m;
         }
         let k = &self.k();
         let (s, b) = py.detach(|| {
@@ -1426,24 +1427,24 @@ structure_class!(
         &k,
         &SimplexTreeOptions {
             label_lists: true,
-            max_simplices: LIMIT
+            limits: LIMITS
         }
     )
 );
 structure_class!(
     IncidenceGraph,
     "Incidence graph: every simplex (or CP face) with full boundary and co-boundary.",
-    |k| RsIg::new(&k, LIMIT)
+    |k| RsIg::new(&k, &LIMITS)
 );
 structure_class!(
     Is,
     "IS: every simplex, boundary, one coface per link component; simplicial only.",
-    |k| RsIs::new(&k, LIMIT)
+    |k| RsIs::new(&k, &LIMITS)
 );
 structure_class!(
     Hasse,
     "CASC Hasse diagram: every simplex with up and down incidences; simplicial only.",
-    |k| starplex::hasse::HasseQueries::new(&k, LIMIT)
+    |k| starplex::hasse::HasseQueries::new(&k, &LIMITS)
 );
 
 /// Stellar tree: leaf-by-leaf spatial index; `kv` is its bucketing threshold.

@@ -13,6 +13,7 @@ use starplex::algo::simplify::{
     TopologySummary,
 };
 use starplex::complex::IndexedComplex;
+use starplex::limits::Limits;
 use starplex::render::{self, Clip, ColorMode, Eye, RenderOptions, View, COLOR_MODES};
 
 use crate::value_err;
@@ -172,7 +173,7 @@ pub(crate) fn run_rips(
     let opts = RipsOptions {
         cliques: CliqueOptions {
             max_dim,
-            max_bytes,
+            limits: Limits::with_memory(max_bytes),
             progress: None,
         },
         max_dim,
@@ -191,7 +192,7 @@ pub(crate) fn run_flag(
     let opts = RipsOptions {
         cliques: CliqueOptions {
             max_dim,
-            max_bytes,
+            limits: Limits::with_memory(max_bytes),
             progress: None,
         },
         max_dim,

@@ -34,6 +34,12 @@ pub const HOMOLOGY_CELLS: u128 = 4_000_000_000;
 pub const LOWER_STAR_SIMPLICES: u128 = 1 << 26;
 /// Entries of the dense remainder of homology's integer elimination.
 pub const DENSE_ENTRIES: u128 = 50_000_000;
+/// Simplices a structure that stores every simplex (the simplex tree, the incidence graph, IS,
+/// the Hasse diagram) may hold; more is refused with an estimate before anything is allocated.
+pub const STORED_SIMPLICES: u128 = 1 << 31;
+/// (cell, face) pairs the f-vector pass of [`info`](crate::algo::info::info) may visit; above
+/// it the f-vector is skipped and an estimate reported.
+pub const INFO_FACES: u128 = 4_000_000_000;
 /// Ids are 32-bit (`u32::MAX` is reserved): at most this many vertices or cells in one complex.
 pub const MAX_IDS: u128 = u32::MAX as u128 - 1;
 
@@ -227,20 +233,41 @@ pub struct Limits {
     pub lower_star_simplices: u128,
     /// Entries of homology's dense integer remainder ([`DENSE_ENTRIES`]).
     pub dense_entries: u128,
-    /// Bytes an output built in memory may take (a Rips complex, a neighbourhood graph):
-    /// [`default_memory_bytes`].
+    /// Simplices a structure storing every simplex may hold ([`STORED_SIMPLICES`]).
+    pub stored_simplices: u128,
+    /// (cell, face) pairs `info`'s f-vector pass may visit ([`INFO_FACES`]).
+    pub info_faces: u128,
+    /// Bytes an output built in memory may take (a Rips complex, a neighbourhood graph, the
+    /// cliques of a graph): [`default_memory_bytes`].
     pub memory_bytes: u64,
 }
 
 impl Default for Limits {
     fn default() -> Limits {
+        Limits::with_memory(default_memory_bytes())
+    }
+}
+
+impl Limits {
+    /// The default budgets with this memory budget, without reading the available memory
+    /// (`u64::MAX`: no memory budget).
+    ///
+    /// ```
+    /// use starplex::limits::{Limits, STORED_SIMPLICES};
+    /// let l = Limits::with_memory(1 << 20);
+    /// assert_eq!((l.memory_bytes, l.stored_simplices), (1 << 20, STORED_SIMPLICES));
+    /// assert_eq!(Limits { memory_bytes: 1 << 20, ..Limits::default() }, l);
+    /// ```
+    pub const fn with_memory(memory_bytes: u64) -> Limits {
         Limits {
             query_simplices: QUERY_SIMPLICES,
             stellar_faces: STELLAR_FACES,
             homology_cells: HOMOLOGY_CELLS,
             lower_star_simplices: LOWER_STAR_SIMPLICES,
             dense_entries: DENSE_ENTRIES,
-            memory_bytes: default_memory_bytes(),
+            stored_simplices: STORED_SIMPLICES,
+            info_faces: INFO_FACES,
+            memory_bytes,
         }
     }
 }

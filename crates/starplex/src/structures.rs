@@ -19,6 +19,7 @@
 //! ```
 use crate::complex::IndexedComplex;
 use crate::hasse::HasseQueries;
+use crate::limits::Limits;
 use crate::stellar::{StellarOptions, StellarTree};
 use crate::tds::iastar::IaStar;
 use crate::tds::ig::IncidenceGraph;
@@ -57,24 +58,16 @@ pub enum Structure {
 /// ```
 /// use starplex::structures::StructureOptions;
 /// let o = StructureOptions { kv: Some(20), ..Default::default() };
-/// assert_eq!(o.max_simplices, 1 << 31);
+/// assert_eq!(o.limits.stored_simplices, 1 << 31);
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct StructureOptions {
     /// The Stellar tree's bucketing threshold k_V (`None`: its default).
     pub kv: Option<u32>,
-    /// The most simplices the structures that store every simplex (simplex tree, IG, IS,
-    /// Hasse) may hold; more is refused with an estimate before anything is allocated.
-    pub max_simplices: u128,
-}
-
-impl Default for StructureOptions {
-    fn default() -> Self {
-        StructureOptions {
-            kv: None,
-            max_simplices: 1 << 31,
-        }
-    }
+    /// `limits.stored_simplices`: the most simplices the structures that store every simplex
+    /// (simplex tree, IG, IS, Hasse) may hold; more is refused with an estimate before anything
+    /// is allocated.
+    pub limits: Limits,
 }
 
 /// Why a structure could not be built.
@@ -183,7 +176,9 @@ impl Structure {
     /// # for x in 0..3 { b.push_vertex(&[x as f64]).unwrap(); }
     /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// let tight = StructureOptions { max_simplices: 3, ..Default::default() };
+    /// use starplex::limits::Limits;
+    /// let limits = Limits { stored_simplices: 3, ..Limits::default() };
+    /// let tight = StructureOptions { limits, ..Default::default() };
     /// assert!(Structure::Ig.build(&k, &tight).is_err()); // 7 simplices
     /// assert!(Structure::IaStar.build(&k, &tight).is_ok()); // tops only
     /// ```
@@ -200,7 +195,6 @@ impl Structure {
                 StructureError::Refused { structure, reason }
             }
         };
-        let limit = o.max_simplices;
         Ok(match self {
             Structure::Vt => Box::new(VtIndex::new(k)),
             Structure::IaStar => Box::new(IaStar::new(k).map_err(|e| err(e.to_string()))?),
@@ -209,17 +203,17 @@ impl Structure {
                     k,
                     &SimplexTreeOptions {
                         label_lists: true,
-                        max_simplices: limit,
+                        limits: o.limits,
                     },
                 )
                 .map_err(|e| err(e.to_string()))?,
             ),
             Structure::Ig => {
-                Box::new(IncidenceGraph::new(k, limit).map_err(|e| err(e.to_string()))?)
+                Box::new(IncidenceGraph::new(k, &o.limits).map_err(|e| err(e.to_string()))?)
             }
-            Structure::Is => Box::new(Is::new(k, limit).map_err(|e| err(e.to_string()))?),
+            Structure::Is => Box::new(Is::new(k, &o.limits).map_err(|e| err(e.to_string()))?),
             Structure::Hasse => {
-                Box::new(HasseQueries::new(k, limit).map_err(|e| err(e.to_string()))?)
+                Box::new(HasseQueries::new(k, &o.limits).map_err(|e| err(e.to_string()))?)
             }
             Structure::Stellar => {
                 let opts = StellarOptions {

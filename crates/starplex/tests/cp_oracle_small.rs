@@ -7,10 +7,18 @@ mod common_data;
 use serde_json::Value;
 use starplex::ids::{CellId, VertexId};
 use starplex::io::{self, ReadOptions};
+use starplex::limits::Limits;
 use starplex::tds::iastar::IaStar;
 use starplex::tds::ig::IncidenceGraph;
 use starplex::topo::{generic, Counts, Queries, TopCells};
 use starplex::topo::{Adjacent, FacetAdjacency};
+/// The default budgets with `n` stored simplices.
+fn stored(n: u128) -> Limits {
+    Limits {
+        stored_simplices: n,
+        ..Limits::default()
+    }
+}
 
 fn u64s(v: &Value) -> Vec<u64> {
     v.as_array()
@@ -61,7 +69,7 @@ fn ig_and_iastar_match_the_oracles_on_the_small_cp_datasets() {
     for (name, path, o) in &sets {
         let k = io::read(path, &ReadOptions::default()).unwrap().complex;
         assert!(!k.is_simplicial(), "{name}");
-        let ig = IncidenceGraph::new(&k, 1 << 31).unwrap();
+        let ig = IncidenceGraph::new(&k, &stored(1 << 31)).unwrap();
         vertex_queries(name, "ig", &ig, o);
         assert_eq!(ig.f_vector().unwrap(), u64s(&o["f_vector"]), "{name}/ig");
         assert_eq!(

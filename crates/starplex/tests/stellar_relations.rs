@@ -608,13 +608,16 @@ fn cached_visit_equals_plain_visit() {
             let e = cache.get(&t, LeafId(next));
             (
                 l.owned_vertices().map(|v| l.local_star(v).len()).collect(),
-                e.cells.len(),
+                e.cells().len(),
             )
         });
         for (i, (rows, next_cells)) in cached.iter().enumerate() {
             assert_eq!(rows, &plain[i]);
             let next = (i + 1) % t.n_leaves();
-            assert_eq!(*next_cells, t.expand_leaf(LeafId(next as u32)).cells.len());
+            assert_eq!(
+                *next_cells,
+                t.expand_leaf(LeafId(next as u32)).cells().len()
+            );
         }
     }
     let mut cache = starplex::stellar::LeafCache::new(2);

@@ -16,6 +16,7 @@ use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 use starplex::hasse::HasseQueries;
 use starplex::ids::{CellId, VertexId};
+use starplex::limits::Limits;
 use starplex::stellar::{StellarOptions, StellarTree};
 use starplex::tds::iastar::IaStar;
 use starplex::tds::ig::IncidenceGraph;
@@ -25,6 +26,13 @@ use starplex::topo::{
     generic, naive::VtIndex, FacetAdjacency, Queries, QueryError, Storage, VertexAdjacency,
     VertexStar,
 };
+/// The default budgets with `n` stored simplices.
+fn stored(n: u128) -> Limits {
+    Limits {
+        stored_simplices: n,
+        ..Limits::default()
+    }
+}
 
 // ------------------------------------------------------------------------------------------
 // the brute-force model
@@ -266,19 +274,19 @@ fn check_all(name: &str, k: &IndexedComplex) {
     }
     check_structure(
         &format!("{name}/ig"),
-        &IncidenceGraph::new(k, 1 << 30).unwrap(),
+        &IncidenceGraph::new(k, &stored(1 << 30)).unwrap(),
         &m,
         true,
     );
     check_structure(
         &format!("{name}/is"),
-        &Is::new(k, 1 << 30).unwrap(),
+        &Is::new(k, &stored(1 << 30)).unwrap(),
         &m,
         true,
     );
     check_structure(
         &format!("{name}/hasse"),
-        &HasseQueries::new(k, 1 << 30).unwrap(),
+        &HasseQueries::new(k, &stored(1 << 30)).unwrap(),
         &m,
         true,
     );
@@ -399,10 +407,10 @@ fn a_40_simplex_answers_top_cell_queries_and_refuses_the_rest() {
         other => panic!("expected a refusal, got {other:?}"),
     };
     too_large(SimplexTree::new(&k, &SimplexTreeOptions::default()).map(|_| ()));
-    too_large(IncidenceGraph::new(&k, u32::MAX as u128).map(|_| ()));
-    too_large(Is::new(&k, u32::MAX as u128).map(|_| ()));
+    too_large(IncidenceGraph::new(&k, &stored(u32::MAX as u128)).map(|_| ()));
+    too_large(Is::new(&k, &stored(u32::MAX as u128)).map(|_| ()));
     assert!(matches!(
-        HasseQueries::new(&k, u32::MAX as u128),
+        HasseQueries::new(&k, &stored(u32::MAX as u128)),
         Err(starplex::hasse::HasseError::TooLarge(t)) if t.estimate >= 1 << 41
     ));
     let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
@@ -507,9 +515,13 @@ fn storage_matches_the_spec_anchors_and_formulas() {
             IaStar::refs_stellar_variant(&iastar),
             ia + 2 * iastar.n_tops(1)
         );
-        assert_eq!(Is::new(&k, 1 << 20).unwrap().refs(), is, "{cells:?}");
         assert_eq!(
-            IncidenceGraph::new(&k, 1 << 20).unwrap().refs(),
+            Is::new(&k, &stored(1 << 20)).unwrap().refs(),
+            is,
+            "{cells:?}"
+        );
+        assert_eq!(
+            IncidenceGraph::new(&k, &stored(1 << 20)).unwrap().refs(),
             ig,
             "{cells:?}"
         );
@@ -522,7 +534,7 @@ fn storage_matches_the_spec_anchors_and_formulas() {
             "{name}"
         );
         assert_eq!(
-            Is::new(&k, 1 << 20).unwrap().refs(),
+            Is::new(&k, &stored(1 << 20)).unwrap().refs(),
             is_formula(&m),
             "{name}"
         );
@@ -533,7 +545,7 @@ fn storage_matches_the_spec_anchors_and_formulas() {
             .map(|s| s.len() as u64)
             .sum();
         assert_eq!(
-            IncidenceGraph::new(&k, 1 << 20).unwrap().refs(),
+            IncidenceGraph::new(&k, &stored(1 << 20)).unwrap().refs(),
             2 * bnd,
             "{name}"
         );
@@ -646,7 +658,7 @@ fn non_manifold_singularities_on_the_fixtures() {
         let want_v: Vec<VertexId> = nmv.iter().map(|&x| v(x)).collect();
         let want_e: Vec<[VertexId; 2]> = nme.iter().map(|e| [v(e[0]), v(e[1])]).collect();
         let ia = IaStar::new(&k).unwrap();
-        let is = Is::new(&k, 1 << 20).unwrap();
+        let is = Is::new(&k, &stored(1 << 20)).unwrap();
         for (sname, r) in [
             ("vt", singularities(&VtIndex::new(&k), Local).unwrap()),
             ("ia*", singularities(&ia, Local).unwrap()),
@@ -736,12 +748,12 @@ proptest! {
             check_all("random", &k);
             let m = Model::new(&k);
             prop_assert_eq!(IaStar::new(&k).unwrap().refs(), iastar_formula(&m));
-            prop_assert_eq!(Is::new(&k, 1 << 20).unwrap().refs(), is_formula(&m));
+            prop_assert_eq!(Is::new(&k, &stored(1 << 20)).unwrap().refs(), is_formula(&m));
             // components agree across structures
             let c0 = components(&VtIndex::new(&k));
             prop_assert_eq!(components(&IaStar::new(&k).unwrap()), c0.clone());
-            prop_assert_eq!(components(&Is::new(&k, 1 << 20).unwrap()), c0.clone());
-            prop_assert_eq!(components(&HasseQueries::new(&k, 1 << 20).unwrap()), c0);
+            prop_assert_eq!(components(&Is::new(&k, &stored(1 << 20)).unwrap()), c0.clone());
+            prop_assert_eq!(components(&HasseQueries::new(&k, &stored(1 << 20)).unwrap()), c0);
             // non-manifold detection agrees across structures
             let r0 = singularities(&VtIndex::new(&k), Local).unwrap();
             prop_assert_eq!(singularities(&IaStar::new(&k).unwrap(), Local).unwrap(), r0.clone());
@@ -749,7 +761,7 @@ proptest! {
                 singularities(&SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap(), Local).unwrap(),
                 r0.clone()
             );
-            prop_assert_eq!(singularities(&HasseQueries::new(&k, 1 << 20).unwrap(), Local).unwrap(), r0);
+            prop_assert_eq!(singularities(&HasseQueries::new(&k, &stored(1 << 20)).unwrap(), Local).unwrap(), r0);
         }
     }
 }
@@ -843,7 +855,7 @@ fn every_structure_matches_the_oracles_on_the_small_datasets() {
         }
         if !k.is_simplicial() {
             // the structures that hold CP cells: VT and VV (tests/cp_oracle_small.rs checks more)
-            let ig = IncidenceGraph::new(&k, 1 << 30).unwrap();
+            let ig = IncidenceGraph::new(&k, &stored(1 << 30)).unwrap();
             let ia = IaStar::new(&k).unwrap();
             for (sname, s) in [("ig", &ig as &dyn Queries), ("ia*", &ia)] {
                 for q in o["vertex_queries"].as_array().unwrap() {
@@ -872,10 +884,20 @@ fn every_structure_matches_the_oracles_on_the_small_datasets() {
         )
         .unwrap();
         check_oracle(&name, "simplex-tree", &st, &o);
-        check_oracle(&name, "ig", &IncidenceGraph::new(&k, 1 << 30).unwrap(), &o);
-        let is = Is::new(&k, 1 << 30).unwrap();
+        check_oracle(
+            &name,
+            "ig",
+            &IncidenceGraph::new(&k, &stored(1 << 30)).unwrap(),
+            &o,
+        );
+        let is = Is::new(&k, &stored(1 << 30)).unwrap();
         check_oracle(&name, "is", &is, &o);
-        check_oracle(&name, "hasse", &HasseQueries::new(&k, 1 << 30).unwrap(), &o);
+        check_oracle(
+            &name,
+            "hasse",
+            &HasseQueries::new(&k, &stored(1 << 30)).unwrap(),
+            &o,
+        );
         let stellar = StellarTree::build(&k, &StellarOptions::default()).unwrap();
         check_oracle(&name, "stellar", &stellar, &o);
         check_oracle(&name, "stellar-ia*", &stellar.iastar(), &o);
@@ -1419,7 +1441,7 @@ fn ig_and_iastar_answer_every_relation_on_the_cp_fixtures() {
         let m = CpModel::new(&k);
         check_cp_ig(
             &format!("{name}/ig"),
-            &IncidenceGraph::new(&k, 1 << 30).unwrap(),
+            &IncidenceGraph::new(&k, &stored(1 << 30)).unwrap(),
             &m,
         );
         check_cp_iastar(&format!("{name}/ia*"), &IaStar::new(&k).unwrap(), &m);
@@ -1441,14 +1463,14 @@ fn ig_and_iastar_answer_every_relation_on_the_cp_fixtures() {
 fn simplicial_only_structures_refuse_cp_complexes_naming_one_that_answers() {
     let (_, k) = cp_fixtures().swap_remove(1);
     let st = SimplexTree::new(&k, &SimplexTreeOptions::default()).unwrap_err();
-    let is = Is::new(&k, 1 << 20).unwrap_err();
+    let is = Is::new(&k, &stored(1 << 20)).unwrap_err();
     for e in [st, is] {
         assert!(matches!(e, BuildError::NotSimplicial(ref n) if n.cell == 0));
         assert!(e
             .to_string()
             .contains("the incidence graph, IA* and the Stellar tree"));
     }
-    assert!(HasseQueries::new(&k, 1 << 20).is_err());
+    assert!(HasseQueries::new(&k, &stored(1 << 20)).is_err());
 }
 
 /// A random CP complex: cells of random kinds on few vertices (faces of other cells and
@@ -1512,11 +1534,11 @@ proptest! {
     ) {
         if let Some(k) = random_cp_complex(nv, &raw) {
             let m = CpModel::new(&k);
-            check_cp_ig("random/ig", &IncidenceGraph::new(&k, 1 << 30).unwrap(), &m);
+            check_cp_ig("random/ig", &IncidenceGraph::new(&k, &stored(1 << 30)).unwrap(), &m);
             check_cp_iastar("random/ia*", &IaStar::new(&k).unwrap(), &m);
             let c0 = components(&VtIndex::new(&k));
             prop_assert_eq!(components(&IaStar::new(&k).unwrap()), c0.clone());
-            prop_assert_eq!(components(&IncidenceGraph::new(&k, 1 << 30).unwrap()), c0);
+            prop_assert_eq!(components(&IncidenceGraph::new(&k, &stored(1 << 30)).unwrap()), c0);
         }
     }
 }

@@ -36,6 +36,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use rayon::prelude::*;
 
 use crate::csr::Csr;
+use crate::limits::Limits;
 
 /// What is wrong with a graph's input, or why an enumeration was refused.
 ///
@@ -306,15 +307,16 @@ pub fn degeneracy_order(g: &Graph) -> (Vec<u32>, usize) {
 /// ```
 /// use starplex::algo::cliques::CliqueOptions;
 /// let o = CliqueOptions { max_dim: Some(3), ..Default::default() };
-/// assert_eq!(o.max_bytes, u64::MAX);
+/// assert_eq!(o.limits.memory_bytes, u64::MAX); // no memory budget unless asked
 /// ```
 #[derive(Clone, Copy)]
 pub struct CliqueOptions<'a> {
     /// Keep the K-skeleton: cliques of more than K + 1 vertices are replaced by their
     /// (K+1)-subsets (each listed once). `None`: every maximal clique.
     pub max_dim: Option<usize>,
-    /// Refuse (with an estimate) when the output's vertex references would take more bytes.
-    pub max_bytes: u64,
+    /// `limits.memory_bytes`: refuse (with an estimate) when the output's vertex references
+    /// would take more bytes (default: `u64::MAX`, no memory budget).
+    pub limits: Limits,
     /// Called with the number of start vertices finished since the last call (progress bars).
     pub progress: Option<&'a (dyn Fn(u64) + Sync)>,
 }
@@ -323,7 +325,7 @@ impl Default for CliqueOptions<'_> {
     fn default() -> Self {
         CliqueOptions {
             max_dim: None,
-            max_bytes: u64::MAX,
+            limits: Limits::with_memory(u64::MAX),
             progress: None,
         }
     }
@@ -492,13 +494,14 @@ impl Sink {
 /// ```
 ///
 /// # Errors
-/// [`GraphError::OverBudget`] when the output would need more than `opts.max_bytes`.
+/// [`GraphError::OverBudget`] when the output would need more than `opts.limits.memory_bytes`.
 pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, GraphError> {
     let n = g.n_vertices();
+    let max_bytes = opts.limits.memory_bytes;
     let budget = Budget {
         refs: AtomicU64::new(0),
         found: AtomicU64::new(0),
-        max_refs: opts.max_bytes / 4,
+        max_refs: max_bytes / 4,
         stop: AtomicBool::new(false),
     };
     let over = |done: usize| {
@@ -512,7 +515,7 @@ pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, Graph
             total: n as u64,
             estimate: (found as f64 * scale) as u64,
             estimate_bytes: (refs as f64 * 4.0 * scale) as u64,
-            budget_bytes: opts.max_bytes,
+            budget_bytes: max_bytes,
         }
     };
     let k = opts.max_dim;
@@ -545,7 +548,7 @@ pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, Graph
                 return Err(GraphError::TooLarge(crate::limits::TooLarge::new(
                     format!("the cliques of {} vertices", k + 1),
                     bytes as u128,
-                    opts.max_bytes as u128,
+                    max_bytes as u128,
                     crate::limits::Unit::Bytes,
                 )))
             }
@@ -1207,7 +1210,7 @@ mod tests {
         for max_bytes in [4000, 4 * 5 * 142_505] {
             let o = CliqueOptions {
                 max_dim: Some(4),
-                max_bytes,
+                limits: Limits::with_memory(max_bytes),
                 ..Default::default()
             };
             let err = maximal_cliques(&g, &o).unwrap_err();
@@ -1229,7 +1232,7 @@ mod tests {
         // exactly enough
         let o = CliqueOptions {
             max_dim: Some(4),
-            max_bytes: 4 * 5 * 142_506,
+            limits: Limits::with_memory(4 * 5 * 142_506),
             ..Default::default()
         };
         assert_eq!(maximal_cliques(&g, &o).unwrap().count(), 142_506);
@@ -1258,7 +1261,7 @@ mod tests {
         let e = random_graph(200, 0.3, 3);
         let g = Graph::from_edges(200, &e).unwrap();
         let o = CliqueOptions {
-            max_bytes: 400,
+            limits: Limits::with_memory(400),
             ..Default::default()
         };
         let err = maximal_cliques(&g, &o).unwrap_err();

@@ -32,6 +32,7 @@ use rayon::prelude::*;
 use crate::algo::unionfind::UnionFind;
 use crate::complex::IndexedComplex;
 use crate::csr::Csr;
+use crate::limits::Limits;
 
 /// Options of [`info`].
 ///
@@ -45,16 +46,18 @@ use crate::csr::Csr;
 /// # let k = b.build(&BuildOptions::default()).unwrap().0;
 /// // k: the tetrahedron 0-1-2-3
 /// // A tiny budget skips the f-vector and reports the estimate instead.
-/// let s = info(&k, &InfoOptions { max_faces: 5, ..Default::default() });
+/// let limits = starplex::limits::Limits { info_faces: 5, ..Default::default() };
+/// let s = info(&k, &InfoOptions { limits, ..Default::default() });
 /// assert_eq!(s.f_vector, None);
 /// assert_eq!(s.f_vector_estimate, Some(10)); // 6 edges + 4 triangles
 /// assert_eq!(info(&k, &InfoOptions::default()).f_vector, Some(vec![4, 6, 4, 1]));
 /// ```
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub struct InfoOptions {
-    /// Largest number of (cell, face) pairs the f-vector pass may visit; above it the f-vector
-    /// (and Euler characteristic, boundary counts) are skipped and an estimate is reported.
-    pub max_faces: u128,
+    /// `limits.info_faces`: the largest number of (cell, face) pairs the f-vector pass may
+    /// visit; above it the f-vector (and Euler characteristic, boundary counts) are skipped and
+    /// an estimate is reported.
+    pub limits: Limits,
     /// Called with the number of cells just processed (for progress bars).
     pub progress: Option<std::sync::Arc<dyn Fn(u64) + Send + Sync>>,
     /// When set, the face counts (f-vector entries of dimension >= 1, boundary and shared
@@ -86,20 +89,10 @@ pub struct InfoOptions {
     pub owned_vertices: Option<std::sync::Arc<fixedbitset::FixedBitSet>>,
 }
 
-impl Default for InfoOptions {
-    fn default() -> Self {
-        InfoOptions {
-            max_faces: 4_000_000_000,
-            progress: None,
-            owned_vertices: None,
-        }
-    }
-}
-
 impl std::fmt::Debug for InfoOptions {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("InfoOptions")
-            .field("max_faces", &self.max_faces)
+            .field("limits", &self.limits)
             .field(
                 "owned_vertices",
                 &self.owned_vertices.as_ref().map(|m| m.count_ones(..)),
@@ -225,7 +218,7 @@ pub fn info(k: &IndexedComplex, opts: &InfoOptions) -> Info {
         return out;
     }
     let estimate = face_visits(k);
-    if estimate > opts.max_faces {
+    if estimate > opts.limits.info_faces {
         out.f_vector_estimate = Some(estimate);
         return out;
     }

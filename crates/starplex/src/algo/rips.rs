@@ -28,6 +28,7 @@ use crate::algo::cliques::{maximal_cliques, CliqueOptions, Cliques, Graph, Graph
 use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
 use crate::complex::{ComplexError, IndexedComplex, MAX_AMBIENT_DIM};
 use crate::csr::Csr;
+use crate::limits::Limits;
 
 /// Why a Rips or flag complex could not be built.
 ///
@@ -357,17 +358,18 @@ impl DistanceMatrix {
     }
 
     /// The graph joining `i` and `j ≠ i` when `d(i, j) ≤ eps`, refused when it would take more
-    /// than `max_bytes`.
+    /// than `limits.memory_bytes`.
     ///
     /// ```
     /// # use starplex::algo::rips::DistanceMatrix;
     /// let d = DistanceMatrix::new(3, 3, vec![0.0, 1.0, 4.0, 1.0, 0.0, 2.0, 4.0, 2.0, 0.0]).unwrap();
-    /// assert_eq!(d.graph(2.0, u64::MAX).unwrap().n_edges(), 2);
+    /// assert_eq!(d.graph(2.0, &Default::default()).unwrap().n_edges(), 2);
     /// ```
     ///
     /// # Errors
     /// A bad scale, [`RipsError::GraphOverBudget`] (an exact count, nothing sampled).
-    pub fn graph(&self, eps: f64, max_bytes: u64) -> Result<Graph, RipsError> {
+    pub fn graph(&self, eps: f64, limits: &Limits) -> Result<Graph, RipsError> {
+        let max_bytes = limits.memory_bytes;
         if !(eps.is_finite() && eps > 0.0) {
             return Err(RipsError::BadScale(eps));
         }
@@ -421,7 +423,7 @@ pub fn rips_from_distances(
     eps: f64,
     opts: &RipsOptions,
 ) -> Result<Built, RipsError> {
-    let g = d.graph(eps, opts.cliques.max_bytes)?;
+    let g = d.graph(eps, &opts.cliques.limits)?;
     let coords: Vec<f64> = (0..d.n).map(|i| i as f64).collect();
     complex_of(coords, 1, &g, opts)
 }
@@ -519,7 +521,7 @@ pub fn rips_complex_with(
     if !(eps.is_finite() && eps > 0.0) {
         return Err(RipsError::BadScale(eps));
     }
-    let g = neighbourhood_graph_metric(coords, dim, eps, metric, opts.cliques.max_bytes)?;
+    let g = neighbourhood_graph_metric(coords, dim, eps, metric, &opts.cliques.limits)?;
     complex_of(coords.to_vec(), dim, &g, opts)
 }
 
@@ -654,19 +656,20 @@ fn dist2(a: &[f64], b: &[f64]) -> f64 {
 /// # Errors
 /// Bad coordinates or scale (as [`rips_complex`]), more than 2^32 adjacency entries.
 pub fn neighbourhood_graph(coords: &[f64], dim: usize, eps: f64) -> Result<Graph, RipsError> {
-    neighbourhood_graph_within(coords, dim, eps, u64::MAX)
+    neighbourhood_graph_within(coords, dim, eps, &Limits::with_memory(u64::MAX))
 }
 
 /// Bytes per edge while the graph is built (later-neighbour rows, then both directions).
 const BYTES_PER_EDGE: u64 = 12;
 
 /// [`neighbourhood_graph`] that first estimates the edge count from a sample of points and
-/// refuses when the graph would take more than `max_bytes`.
+/// refuses when the graph would take more than `limits.memory_bytes`.
 ///
 /// ```
 /// use starplex::algo::rips::{neighbourhood_graph_within, RipsError};
+/// use starplex::limits::Limits;
 /// let pts: Vec<f64> = (0..1000).map(|i| i as f64).collect();
-/// let e = neighbourhood_graph_within(&pts, 1, 1e6, 10_000).unwrap_err();
+/// let e = neighbourhood_graph_within(&pts, 1, 1e6, &Limits::with_memory(10_000)).unwrap_err();
 /// assert!(matches!(e, RipsError::GraphOverBudget { .. }));
 /// ```
 ///
@@ -676,16 +679,17 @@ pub fn neighbourhood_graph_within(
     coords: &[f64],
     dim: usize,
     eps: f64,
-    max_bytes: u64,
+    limits: &Limits,
 ) -> Result<Graph, RipsError> {
-    neighbourhood_graph_metric(coords, dim, eps, Metric::Euclidean, max_bytes)
+    neighbourhood_graph_metric(coords, dim, eps, Metric::Euclidean, limits)
 }
 
 /// [`neighbourhood_graph_within`] under another [`Metric`]: `i ~ j` when `d(p_i, p_j) ≤ ε`.
 ///
 /// ```
 /// use starplex::algo::rips::{neighbourhood_graph_metric, Metric};
-/// let g = neighbourhood_graph_metric(&[0.0, 0.0, 3.0, 4.0], 2, 4.0, Metric::Chebyshev, u64::MAX).unwrap();
+/// let limits = starplex::limits::Limits::default();
+/// let g = neighbourhood_graph_metric(&[0.0, 0.0, 3.0, 4.0], 2, 4.0, Metric::Chebyshev, &limits).unwrap();
 /// assert_eq!(g.n_edges(), 1);
 /// ```
 ///
@@ -696,8 +700,9 @@ pub fn neighbourhood_graph_metric(
     dim: usize,
     eps: f64,
     metric: Metric,
-    max_bytes: u64,
+    limits: &Limits,
 ) -> Result<Graph, RipsError> {
+    let max_bytes = limits.memory_bytes;
     check_points(coords, dim)?;
     if !(eps.is_finite() && eps > 0.0) {
         return Err(RipsError::BadScale(eps));
@@ -888,7 +893,7 @@ fn later_sweep(
     Ok(rows)
 }
 
-/// The default memory budget of [`CliqueOptions::max_bytes`] for the command line and the
+/// The default memory budget (`CliqueOptions::limits.memory_bytes`) for the command line and the
 /// Python package: [`crate::limits::default_memory_bytes`], a third of the available memory
 /// (Linux `MemAvailable`), else 8 GiB.
 ///

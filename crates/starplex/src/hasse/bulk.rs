@@ -98,171 +98,18 @@ impl<L: LevelTypes> Hasse<L> {
         self.ensure_level(d);
         let nb = max_label as usize + 1;
         let mut count = vec![0u32; nb + 1];
-        // top level: unique tuples, bucketed by first label, sorted in each bucket
-        {
-            let n = d + 1;
-            for c in cells[d].chunks_exact(n) {
-                count[c[0] as usize + 1] += 1;
-            }
-            prefix(&mut count);
-            let mut keys = vec![0u128; cells[d].len() / n];
-            let mut pos = count.clone();
-            for c in cells[d].chunks_exact(n) {
-                let p = &mut pos[c[0] as usize];
-                keys[*p as usize] = pack_rest(c);
-                *p += 1;
-            }
-            drop(pos);
-            let mut unique = 0usize;
-            for a in 0..nb {
-                let b = &mut keys[count[a] as usize..count[a + 1] as usize];
-                if b.len() > 1 {
-                    b.sort_unstable();
-                }
-                // duplicates are adjacent now
-                unique += b.len() - b.windows(2).filter(|w| w[0] == w[1]).count();
-            }
-            let l = &mut self.levels[d];
-            l.verts.reserve_exact(unique * n);
-            for a in 0..nb {
-                let b = &keys[count[a] as usize..count[a + 1] as usize];
-                for (i, &r) in b.iter().enumerate() {
-                    if i == 0 || b[i - 1] != r {
-                        push_unpacked(&mut l.verts, a as u32, r, n);
-                    }
-                }
-            }
-            if d > 0 {
-                l.down = vec![0; l.verts.len()];
-            }
-            l.up.hdr.reserve_exact(unique);
-            for _ in 0..unique {
-                l.up.push_node(0);
-            }
-            for _ in 0..unique {
-                L::push_default(&mut self.data, d);
-            }
-        }
+        self.bulk_top_level(&cells[d], d, &mut count);
         let mut recs: Vec<Rec> = Vec::new();
         let mut pos: Vec<u32> = Vec::new();
         let mut ups: Vec<[u32; 2]> = Vec::new();
         for k in (1..=d).rev() {
             // facets of level k, plus the input cells of dimension k - 1, bucketed by their
             // first label
-            let n = self.levels[k].slots();
             let l = &self.levels[k];
-            count.iter_mut().for_each(|c| *c = 0);
-            for vs in l.verts.chunks_exact(k + 1) {
-                count[vs[1] as usize + 1] += 1; // the facet without vs[0]
-                count[vs[0] as usize + 1] += k as u32;
-            }
-            for c in cells[k - 1].chunks_exact(k) {
-                count[c[0] as usize + 1] += 1;
-            }
-            prefix(&mut count);
-            recs.clear();
-            recs.resize(count[nb] as usize, (0, 0, 0));
-            pos.clear();
-            pos.extend_from_slice(&count[..nb]);
-            let mut f = [0u32; 4];
-            for (i, vs) in l.verts.chunks_exact(k + 1).enumerate() {
-                for j in 0..=k {
-                    let mut m = 0;
-                    for (t, &x) in vs.iter().enumerate() {
-                        if t != j {
-                            f[m] = x;
-                            m += 1;
-                        }
-                    }
-                    let p = &mut pos[f[0] as usize];
-                    recs[*p as usize] = (pack_rest(&f[..k]) as u64, i as u32, j as u32);
-                    *p += 1;
-                }
-            }
-            debug_assert_eq!(n * (k + 1) + cells[k - 1].len() / k, recs.len());
-            for c in cells[k - 1].chunks_exact(k) {
-                let p = &mut pos[c[0] as usize];
-                recs[*p as usize] = (pack_rest(c) as u64, NO_PARENT, 0);
-                *p += 1;
-            }
-            // sort every bucket; count the groups and the arena slots their up lists need
-            // (power-of-two blocks)
-            let (mut groups, mut slots) = (0usize, 0usize);
-            for a in 0..nb {
-                let b = &mut recs[count[a] as usize..count[a + 1] as usize];
-                match b.len() {
-                    0 => continue,
-                    1 => {}
-                    2 => {
-                        if b[1].0 < b[0].0 {
-                            b.swap(0, 1);
-                        }
-                    }
-                    _ => b.sort_unstable_by_key(|r| r.0),
-                }
-                let mut run = 0u32;
-                for (i, r) in b.iter().enumerate() {
-                    if r.1 != NO_PARENT {
-                        run += 1;
-                    }
-                    if i + 1 == b.len() || b[i + 1].0 != r.0 {
-                        groups += 1;
-                        if run > 0 {
-                            slots += run.next_power_of_two().max(2) as usize;
-                        }
-                        run = 0;
-                    }
-                }
-            }
-            // groups become the nodes of level k - 1
-            let (lo, hi) = self.levels.split_at_mut(k);
-            let below = &mut lo[k - 1];
-            let above = &mut hi[0];
-            below.verts.reserve_exact(groups * k);
-            if k > 1 {
-                below.down.reserve_exact(groups * k);
-            }
-            below.up.hdr.reserve_exact(groups);
-            // with the headroom reserved below, so that it costs no copy
-            below.up.reserve_slots(slots + slots / 16 + 64);
-            L::reserve(&mut self.data, k - 1, groups);
-            for a in 0..nb {
-                let b = &recs[count[a] as usize..count[a + 1] as usize];
-                let mut g = 0;
-                while g < b.len() {
-                    let key = b[g].0;
-                    let mut e = g;
-                    ups.clear();
-                    while e < b.len() && b[e].0 == key {
-                        let (_, p, q) = b[e];
-                        if p != NO_PARENT {
-                            let w = above.verts[p as usize * (k + 1) + q as usize];
-                            ups.push([w, p]);
-                        }
-                        e += 1;
-                    }
-                    let id = below.slots() as u32;
-                    push_unpacked(&mut below.verts, a as u32, key as u128, k);
-                    if k > 1 {
-                        below.down.extend(std::iter::repeat_n(0, k));
-                    }
-                    if ups.len() == 2 {
-                        if ups[1] < ups[0] {
-                            ups.swap(0, 1);
-                        }
-                    } else {
-                        ups.sort_unstable();
-                    }
-                    below.up.push_node_with(&ups);
-                    for r in &b[g..e] {
-                        if r.1 != NO_PARENT {
-                            above.down[r.1 as usize * (k + 1) + r.2 as usize] = id;
-                        }
-                    }
-                    L::push_default(&mut self.data, k - 1);
-                    g = e;
-                }
-            }
+            bucket_facets(&l.verts, &cells[k - 1], k, &mut count, &mut recs, &mut pos);
+            debug_assert_eq!(l.slots() * (k + 1) + cells[k - 1].len() / k, recs.len());
+            let (groups, slots) = sort_buckets(&mut recs, &count);
+            self.bulk_level_below(k, &recs, &count, (groups, slots), &mut ups);
         }
         // a little headroom in every arena, so the first local edits after a bulk build do not
         // reallocate (and copy) a whole arena
@@ -270,6 +117,202 @@ impl<L: LevelTypes> Hasse<L> {
             l.up.reserve_headroom();
         }
     }
+
+    /// The top level `d` from the input cells `top` (`d + 1` labels each): unique tuples,
+    /// bucketed by first label, sorted in each bucket; `count` has `max_label + 2` entries.
+    #[inline]
+    fn bulk_top_level(&mut self, top: &[u32], d: usize, count: &mut [u32]) {
+        let nb = count.len() - 1;
+        let n = d + 1;
+        for c in top.chunks_exact(n) {
+            count[c[0] as usize + 1] += 1;
+        }
+        prefix(count);
+        let mut keys = vec![0u128; top.len() / n];
+        let mut pos = count.to_vec();
+        for c in top.chunks_exact(n) {
+            let p = &mut pos[c[0] as usize];
+            keys[*p as usize] = pack_rest(c);
+            *p += 1;
+        }
+        drop(pos);
+        let mut unique = 0usize;
+        for a in 0..nb {
+            let b = &mut keys[count[a] as usize..count[a + 1] as usize];
+            if b.len() > 1 {
+                b.sort_unstable();
+            }
+            // duplicates are adjacent now
+            unique += b.len() - b.windows(2).filter(|w| w[0] == w[1]).count();
+        }
+        let l = &mut self.levels[d];
+        l.verts.reserve_exact(unique * n);
+        for a in 0..nb {
+            let b = &keys[count[a] as usize..count[a + 1] as usize];
+            for (i, &r) in b.iter().enumerate() {
+                if i == 0 || b[i - 1] != r {
+                    push_unpacked(&mut l.verts, a as u32, r, n);
+                }
+            }
+        }
+        if d > 0 {
+            l.down = vec![0; l.verts.len()];
+        }
+        l.up.hdr.reserve_exact(unique);
+        for _ in 0..unique {
+            l.up.push_node(0);
+        }
+        for _ in 0..unique {
+            L::push_default(&mut self.data, d);
+        }
+    }
+
+    /// Level `k - 1` from the sorted facet records of level `k`: each group of equal keys
+    /// becomes one node (labels, up list sorted, the faces' `down` entries above pointing to
+    /// it); `sizes` = (groups, up-arena slots) from [`sort_buckets`].
+    #[inline]
+    fn bulk_level_below(
+        &mut self,
+        k: usize,
+        recs: &[Rec],
+        count: &[u32],
+        sizes: (usize, usize),
+        ups: &mut Vec<[u32; 2]>,
+    ) {
+        let nb = count.len() - 1;
+        let (groups, slots) = sizes;
+        let (lo, hi) = self.levels.split_at_mut(k);
+        let below = &mut lo[k - 1];
+        let above = &mut hi[0];
+        below.verts.reserve_exact(groups * k);
+        if k > 1 {
+            below.down.reserve_exact(groups * k);
+        }
+        below.up.hdr.reserve_exact(groups);
+        // with the headroom reserved below, so that it costs no copy
+        below.up.reserve_slots(slots + slots / 16 + 64);
+        L::reserve(&mut self.data, k - 1, groups);
+        for a in 0..nb {
+            let b = &recs[count[a] as usize..count[a + 1] as usize];
+            let mut g = 0;
+            while g < b.len() {
+                let key = b[g].0;
+                let mut e = g;
+                ups.clear();
+                while e < b.len() && b[e].0 == key {
+                    let (_, p, q) = b[e];
+                    if p != NO_PARENT {
+                        let w = above.verts[p as usize * (k + 1) + q as usize];
+                        ups.push([w, p]);
+                    }
+                    e += 1;
+                }
+                let id = below.slots() as u32;
+                push_unpacked(&mut below.verts, a as u32, key as u128, k);
+                if k > 1 {
+                    below.down.extend(std::iter::repeat_n(0, k));
+                }
+                if ups.len() == 2 {
+                    if ups[1] < ups[0] {
+                        ups.swap(0, 1);
+                    }
+                } else {
+                    ups.sort_unstable();
+                }
+                below.up.push_node_with(ups);
+                for r in &b[g..e] {
+                    if r.1 != NO_PARENT {
+                        above.down[r.1 as usize * (k + 1) + r.2 as usize] = id;
+                    }
+                }
+                L::push_default(&mut self.data, k - 1);
+                g = e;
+            }
+        }
+    }
+}
+
+/// Counting sort of the facets of level `k` (`verts`, `k + 1` labels per node) and of the input
+/// cells of dimension `k - 1` (`below`) into `recs`, bucketed by first label (`count`: the
+/// bucket offsets after the call; `pos` scratch).
+#[inline]
+fn bucket_facets(
+    verts: &[u32],
+    below: &[u32],
+    k: usize,
+    count: &mut [u32],
+    recs: &mut Vec<Rec>,
+    pos: &mut Vec<u32>,
+) {
+    let nb = count.len() - 1;
+    count.iter_mut().for_each(|c| *c = 0);
+    for vs in verts.chunks_exact(k + 1) {
+        count[vs[1] as usize + 1] += 1; // the facet without vs[0]
+        count[vs[0] as usize + 1] += k as u32;
+    }
+    for c in below.chunks_exact(k) {
+        count[c[0] as usize + 1] += 1;
+    }
+    prefix(count);
+    recs.clear();
+    recs.resize(count[nb] as usize, (0, 0, 0));
+    pos.clear();
+    pos.extend_from_slice(&count[..nb]);
+    let mut f = [0u32; 4];
+    for (i, vs) in verts.chunks_exact(k + 1).enumerate() {
+        for j in 0..=k {
+            let mut m = 0;
+            for (t, &x) in vs.iter().enumerate() {
+                if t != j {
+                    f[m] = x;
+                    m += 1;
+                }
+            }
+            let p = &mut pos[f[0] as usize];
+            recs[*p as usize] = (pack_rest(&f[..k]) as u64, i as u32, j as u32);
+            *p += 1;
+        }
+    }
+    for c in below.chunks_exact(k) {
+        let p = &mut pos[c[0] as usize];
+        recs[*p as usize] = (pack_rest(c) as u64, NO_PARENT, 0);
+        *p += 1;
+    }
+}
+
+/// Sorts every bucket of `recs` by key; returns the number of groups (equal keys: the nodes of
+/// the level below) and the arena slots their up lists need (power-of-two blocks).
+#[inline]
+fn sort_buckets(recs: &mut [Rec], count: &[u32]) -> (usize, usize) {
+    let nb = count.len() - 1;
+    let (mut groups, mut slots) = (0usize, 0usize);
+    for a in 0..nb {
+        let b = &mut recs[count[a] as usize..count[a + 1] as usize];
+        match b.len() {
+            0 => continue,
+            1 => {}
+            2 => {
+                if b[1].0 < b[0].0 {
+                    b.swap(0, 1);
+                }
+            }
+            _ => b.sort_unstable_by_key(|r| r.0),
+        }
+        let mut run = 0u32;
+        for (i, r) in b.iter().enumerate() {
+            if r.1 != NO_PARENT {
+                run += 1;
+            }
+            if i + 1 == b.len() || b[i + 1].0 != r.0 {
+                groups += 1;
+                if run > 0 {
+                    slots += run.next_power_of_two().max(2) as usize;
+                }
+                run = 0;
+            }
+        }
+    }
+    (groups, slots)
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use smallvec::SmallVec;
 
 use super::complex::Hasse;
 use super::levels::{LevelTypes, MergeAll};
+use super::remove::StarBufs;
 use super::storage::Verts;
 use super::{HasseError, Node, NodeSet};
 use crate::ids::{SimplexId, VertexId};
@@ -100,28 +101,11 @@ impl<L: LevelTypes> Hasse<L> {
         // St of each face: cofaces reached only from their canonical parent (no duplicates
         // within one star)
         let mut out: Vec<(usize, u32)> = Vec::new();
-        let mut cur: Vec<(u32, u32)> = Vec::new();
-        let mut next: Vec<(u32, u32)> = Vec::new();
+        let mut bufs = StarBufs::default();
         for &(k, i) in &cl {
-            out.push((k, i));
-            cur.clear();
-            cur.push((i, 0));
-            let mut j = k;
-            let mut first = true;
-            while !cur.is_empty() && j + 1 < self.levels.len() {
-                next.clear();
-                for &(t, m) in &cur {
-                    for p in self.levels[j].up.get(t) {
-                        if first || p[0] > m {
-                            next.push((p[1], p[0]));
-                        }
-                    }
-                }
-                first = false;
-                j += 1;
-                out.extend(next.iter().map(|x| (j, x.0)));
-                std::mem::swap(&mut cur, &mut next);
-            }
+            self.for_each_star_level(k, i, &mut bufs, |j, level| {
+                out.extend(level.iter().map(|x| (j, x.0)));
+            });
         }
         out.sort_unstable();
         out.dedup();

@@ -3,7 +3,7 @@ use super::{Hasse, HasseError, LevelTypes, Node};
 use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::ids::{CellId, SimplexId, VertexId};
-use crate::limits::{TooLarge, Unit};
+use crate::limits::{Limits, TooLarge, Unit};
 use crate::tds::simplex_tree::{simplex_estimate, BuildError};
 use crate::topo::from_tops::boundary_of_sorted;
 use crate::topo::{
@@ -43,7 +43,7 @@ const NOT_TOP: u32 = u32::MAX;
 /// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
 /// b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
 /// let k = b.build(&BuildOptions::default()).unwrap().0;
-/// let h = HasseQueries::new(&k, 1 << 20).unwrap();
+/// let h = HasseQueries::new(&k, &Default::default()).unwrap();
 /// let mut vt = Vec::new();
 /// h.vertex_top_cells(VertexId(2), &mut vt);
 /// assert_eq!(vt, vec![CellId(0), CellId(1)]);
@@ -75,8 +75,8 @@ impl HasseQueries {
     ///
     /// # Errors
     /// [`HasseError::NotSimplicial`] for a CP cell; [`HasseError::TooLarge`] when `k` may
-    /// have more than `max_simplices` simplices (every face of every top cell, counted before
-    /// anything is allocated).
+    /// have more than `limits.stored_simplices` simplices (every face of every top cell,
+    /// counted before anything is allocated).
     ///
     /// ```
     /// use starplex::cell::CellKind;
@@ -85,10 +85,12 @@ impl HasseQueries {
     /// for x in 0..41 { b.push_vertex(&[x as f64]).unwrap(); }
     /// b.push_cell(CellKind::Simplex(40), &(0..41).collect::<Vec<u32>>()).unwrap();
     /// let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// let e = starplex::hasse::HasseQueries::new(&k, 1 << 31).unwrap_err();
+    /// let limits = starplex::limits::Limits::default(); // 2^31 stored simplices
+    /// let e = starplex::hasse::HasseQueries::new(&k, &limits).unwrap_err();
     /// assert!(e.to_string().contains("over the budget of 2147483648"), "{e}");
     /// ```
-    pub fn new(k: &IndexedComplex, max_simplices: u128) -> Result<HasseQueries, HasseError> {
+    pub fn new(k: &IndexedComplex, limits: &Limits) -> Result<HasseQueries, HasseError> {
+        let max_simplices = limits.stored_simplices;
         let est = simplex_estimate(k)?;
         if est > max_simplices {
             return Err(BuildError::too_many(est, max_simplices).into());
@@ -151,7 +153,7 @@ impl HasseQueries {
     /// for x in 0..2 { b.push_vertex(&[x as f64]).unwrap(); }
     /// b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
     /// let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// let q = starplex::hasse::HasseQueries::new(&k, 100).unwrap();
+    /// let q = starplex::hasse::HasseQueries::new(&k, &Default::default()).unwrap();
     /// assert_eq!(q.hasse().f_vector(), vec![2, 1]);
     /// ```
     pub fn hasse(&self) -> &Hasse {

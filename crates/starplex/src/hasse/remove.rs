@@ -172,18 +172,38 @@ impl<L: LevelTypes> Hasse<L> {
         self.remove(s)
     }
 
-    /// The star of `s` (all cofaces including `s`) as ids per level, each found exactly once:
-    /// a coface is reached only from its parent without its largest vertex outside `s`.
+    /// The star of `s` (all cofaces including `s`) as ids per level, each found exactly once
+    /// (see [`for_each_star_level`](Hasse::for_each_star_level)).
     pub(crate) fn star_ids(&self, s: Node) -> Vec<Vec<u32>> {
-        let k = s.dim as usize;
         let mut out: Vec<Vec<u32>> = vec![Vec::new(); self.levels.len()];
-        out[k].push(s.id.0);
-        let mut cur: Vec<(u32, u32)> = vec![(s.id.0, 0)];
+        let mut bufs = StarBufs::default();
+        self.for_each_star_level(s.dim as usize, s.id.0, &mut bufs, |j, level| {
+            out[j].extend(level.iter().map(|x| x.0));
+        });
+        out
+    }
+
+    /// Walks the star of node `id` of level `k` level by level: calls `f(level, cofaces)`
+    /// with the cofaces of that level as (node id, the vertex that led to it) pairs, first
+    /// `(k, [(id, 0)])`. Each coface is found exactly once: it is reached only from its parent
+    /// without its largest vertex outside the start. `bufs` is scratch space, reusable across
+    /// calls.
+    pub(crate) fn for_each_star_level(
+        &self,
+        k: usize,
+        id: u32,
+        bufs: &mut StarBufs,
+        mut f: impl FnMut(usize, &[(u32, u32)]),
+    ) {
+        let StarBufs { cur, next } = bufs;
+        cur.clear();
+        cur.push((id, 0));
+        f(k, cur);
         let mut first = true;
         let mut j = k;
         while !cur.is_empty() && j + 1 < self.levels.len() {
-            let mut next = Vec::new();
-            for &(t, m) in &cur {
+            next.clear();
+            for &(t, m) in cur.iter() {
                 for p in self.levels[j].up.get(t) {
                     if first || p[0] > m {
                         next.push((p[1], p[0]));
@@ -192,9 +212,16 @@ impl<L: LevelTypes> Hasse<L> {
             }
             first = false;
             j += 1;
-            out[j].extend(next.iter().map(|x| x.0));
-            cur = next;
+            f(j, next);
+            std::mem::swap(cur, next);
         }
-        out
     }
+}
+
+/// Scratch space of [`Hasse::for_each_star_level`]: the current and the next level of the walk,
+/// as (coface id, the vertex that led to it) pairs.
+#[derive(Default)]
+pub(crate) struct StarBufs {
+    cur: Vec<(u32, u32)>,
+    next: Vec<(u32, u32)>,
 }

@@ -306,6 +306,44 @@ fn u64_at(b: &[u8], at: usize) -> u64 {
 pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
     let err = |at: usize, msg: String| IoError::parse(path, Some(Location::Byte(at as u64)), msg);
     let len = bytes.len() as u64;
+    check_preamble(bytes, &err)?;
+    let ambient = u32_at(bytes, 16) as u64;
+    let n_blocks = u32_at(bytes, 20) as u64;
+    let n_vertices = u64_at(bytes, 24);
+    let n_cells = u64_at(bytes, 32);
+    let coords_offset = u64_at(bytes, 40);
+    let file_len = u64_at(bytes, 48);
+    let sum = u64_at(bytes, 56);
+    if file_len != len {
+        let what = if file_len > len {
+            "truncated"
+        } else {
+            "has trailing bytes"
+        };
+        return Err(err(
+            48,
+            format!("the header says the file has {file_len} bytes but it has {len}: the file is {what}"),
+        ));
+    }
+    check_table(bytes, n_blocks, sum, &err)?;
+    check_counts(ambient, n_vertices, n_cells, coords_offset, len, &err)?;
+    let blocks = read_blocks(bytes, n_blocks, n_cells, len, &err)?;
+    check_layout(ambient, n_vertices, coords_offset, &blocks, len, &err)?;
+    Ok(SpbHeader {
+        ambient_dim: ambient as usize,
+        n_vertices,
+        n_cells,
+        coords_offset,
+        blocks,
+        file_len,
+    })
+}
+
+/// An error of [`read_header`] at a byte offset.
+type HeaderErr<'a> = &'a dyn Fn(usize, String) -> IoError;
+
+/// The header's length, magic, version and endianness tag.
+fn check_preamble(bytes: &[u8], err: HeaderErr<'_>) -> Result<(), IoError> {
     if bytes.len() < HEADER_LEN {
         if bytes.len() < 8 || bytes[..8] != MAGIC {
             return Err(err(
@@ -343,24 +381,12 @@ pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
         };
         return Err(err(12, msg));
     }
-    let ambient = u32_at(bytes, 16) as u64;
-    let n_blocks = u32_at(bytes, 20) as u64;
-    let n_vertices = u64_at(bytes, 24);
-    let n_cells = u64_at(bytes, 32);
-    let coords_offset = u64_at(bytes, 40);
-    let file_len = u64_at(bytes, 48);
-    let sum = u64_at(bytes, 56);
-    if file_len != len {
-        let what = if file_len > len {
-            "truncated"
-        } else {
-            "has trailing bytes"
-        };
-        return Err(err(
-            48,
-            format!("the header says the file has {file_len} bytes but it has {len}: the file is {what}"),
-        ));
-    }
+    Ok(())
+}
+
+/// The block table fits the file and the checksum over the header and table matches.
+fn check_table(bytes: &[u8], n_blocks: u64, sum: u64, err: HeaderErr<'_>) -> Result<(), IoError> {
+    let len = bytes.len() as u64;
     let table_end = (n_blocks as u128) * BLOCK_ENTRY_LEN as u128 + HEADER_LEN as u128;
     if table_end > len as u128 {
         return Err(err(
@@ -379,6 +405,18 @@ pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
             format!("header checksum mismatch (stored {sum:#018x}, computed {expect:#018x}): the header or block table is corrupted"),
         ));
     }
+    Ok(())
+}
+
+/// The ambient dimension, the 32-bit id limits and the coordinate array's extent.
+fn check_counts(
+    ambient: u64,
+    n_vertices: u64,
+    n_cells: u64,
+    coords_offset: u64,
+    len: u64,
+    err: HeaderErr<'_>,
+) -> Result<(), IoError> {
     if ambient == 0 || ambient > MAX_AMBIENT_DIM as u64 {
         return Err(err(
             16,
@@ -406,6 +444,18 @@ pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
             ),
         ));
     }
+    Ok(())
+}
+
+/// The block table's (kind, cells, offset) entries, each within the file, holding `n_cells`
+/// cells in all.
+fn read_blocks(
+    bytes: &[u8],
+    n_blocks: u64,
+    n_cells: u64,
+    len: u64,
+    err: HeaderErr<'_>,
+) -> Result<Vec<(CellKind, u64, u64)>, IoError> {
     let mut blocks = Vec::with_capacity(n_blocks as usize);
     let mut total: u64 = 0;
     for i in 0..n_blocks as usize {
@@ -439,6 +489,18 @@ pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
             format!("the header says {n_cells} cells but the blocks hold {total}"),
         ));
     }
+    Ok(blocks)
+}
+
+/// The arrays sit exactly where the canonical layout puts them and end at the end of the file.
+fn check_layout(
+    ambient: u64,
+    n_vertices: u64,
+    coords_offset: u64,
+    blocks: &[(CellKind, u64, u64)],
+    len: u64,
+    err: HeaderErr<'_>,
+) -> Result<(), IoError> {
     let kinds: Vec<(CellKind, u64)> = blocks.iter().map(|&(k, n, _)| (k, n)).collect();
     let (c_off, offs, f_len) = layout(ambient, n_vertices, &kinds)
         .ok_or_else(|| err(24, "counts overflow the 64-bit layout".into()))?;
@@ -462,14 +524,7 @@ pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
             format!("the arrays end at byte {f_len} but the file has {len} bytes"),
         ));
     }
-    Ok(SpbHeader {
-        ambient_dim: ambient as usize,
-        n_vertices,
-        n_cells,
-        coords_offset,
-        blocks,
-        file_len,
-    })
+    Ok(())
 }
 
 /// Maps `file` read-only. The only `unsafe` of the binary reader.

@@ -179,6 +179,90 @@ impl StellarTree {
         if r.bytes(8)? != MAGIC {
             return Err(err("not a starplex Stellar tree (bad magic)".into()));
         }
+        let h = Header::read(&mut r, &err)?;
+        let lo = r.arr::<f64>(h.amb)?;
+        let hi = r.arr::<f64>(h.amb)?;
+        let nodes = r.arr::<TreeNode>(h.nn)?;
+        let leaf_vstart = r.arr::<u32>(h.nl + 1)?;
+        let leaf_toff = r.arr::<u32>(h.nl + 1)?;
+        let leaf_tops = r.arr::<u32>(h.ntops)?;
+        let (kinds, offsets) = if h.uniform == MIXED {
+            (r.arr::<u8>(h.nc)?, r.arr::<u32>(h.nc + 1)?)
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        let verts = r.arr::<u32>(h.nrefs)?;
+        let v_orig = r.arr::<u32>(h.nv)?;
+        let c_orig = r.arr::<u32>(h.nc)?;
+        // ---- checks
+        h.check_ranges(&leaf_vstart, &leaf_toff, &kinds, &offsets, &verts, &err)?;
+        let v_new = inverse(&v_orig, "vertex", &err)?;
+        let c_new = inverse(&c_orig, "cell", &err)?;
+        h.check_leaf_lists(&leaf_toff, &leaf_tops, &err)?;
+        h.check_nodes(&nodes, &err)?;
+        let Header {
+            amb,
+            kv,
+            split,
+            decomposition,
+            uniform,
+            stride,
+            nc,
+            ..
+        } = h;
+        Ok(StellarTree {
+            ambient_dim: amb as u32,
+            kv,
+            split,
+            decomposition,
+            bbox: (lo, hi),
+            nodes,
+            leaf_vstart,
+            leaf_toff,
+            leaf_tops,
+            cells: CellStore {
+                uniform: (uniform != MIXED).then(|| code_kind(uniform)),
+                stride,
+                kinds,
+                offsets,
+                verts,
+                n: nc as u32,
+            },
+            v_orig,
+            v_new,
+            c_orig,
+            c_new,
+            timings: BuildTimings::default(),
+        })
+    }
+}
+
+/// The counts and codes of a saved tree's header, range-checked.
+struct Header {
+    amb: usize,
+    kv: u32,
+    split: SplitMode,
+    nv: usize,
+    nc: usize,
+    nn: usize,
+    nl: usize,
+    ntops: usize,
+    nrefs: usize,
+    uniform: u8,
+    stride: u32,
+    decomposition: Decomposition,
+}
+
+/// The error of [`StellarTree::load`] for one reason.
+type LoadErr<'a> = &'a dyn Fn(String) -> StellarError;
+
+impl Header {
+    /// Reads the header words after the magic: version, sizes (each within its id range),
+    /// split and kind codes, flags.
+    fn read<F: Fn(String) -> StellarError>(
+        r: &mut Reader<'_, F>,
+        err: LoadErr<'_>,
+    ) -> Result<Header, StellarError> {
         let h: Vec<u64> = r.arr::<u64>(N_HEADER)?;
         if h[0] != VERSION {
             return Err(err(format!("unsupported version {}", h[0])));
@@ -213,36 +297,57 @@ impl StellarTree {
         } else {
             Decomposition::Spatial
         };
-        let lo = r.arr::<f64>(amb)?;
-        let hi = r.arr::<f64>(amb)?;
-        let nodes = r.arr::<TreeNode>(nn)?;
-        let leaf_vstart = r.arr::<u32>(nl + 1)?;
-        let leaf_toff = r.arr::<u32>(nl + 1)?;
-        let leaf_tops = r.arr::<u32>(ntops)?;
-        let (kinds, offsets) = if uniform == MIXED {
-            (r.arr::<u8>(nc)?, r.arr::<u32>(nc + 1)?)
-        } else {
-            (Vec::new(), Vec::new())
-        };
-        let verts = r.arr::<u32>(nrefs)?;
-        let v_orig = r.arr::<u32>(nv)?;
-        let c_orig = r.arr::<u32>(nc)?;
-        // ---- checks
+        Ok(Header {
+            amb,
+            kv,
+            split,
+            nv,
+            nc,
+            nn,
+            nl,
+            ntops,
+            nrefs,
+            uniform,
+            stride,
+            decomposition,
+        })
+    }
+
+    /// Leaf vertex ranges and list offsets increasing over their arrays, cell kinds and
+    /// offsets consistent, vertex indices in range.
+    fn check_ranges(
+        &self,
+        leaf_vstart: &[u32],
+        leaf_toff: &[u32],
+        kinds: &[u8],
+        offsets: &[u32],
+        verts: &[u32],
+        err: LoadErr<'_>,
+    ) -> Result<(), StellarError> {
+        let &Header {
+            nv,
+            nc,
+            ntops,
+            nrefs,
+            uniform,
+            stride,
+            ..
+        } = self;
         let monotone = |a: &[u32], first: u32, last: usize| {
             a.first() == Some(&first)
                 && a.last().map(|&x| x as usize) == Some(last)
                 && a.windows(2).all(|w| w[0] <= w[1])
         };
-        if !monotone(&leaf_vstart, 0, nv) {
+        if !monotone(leaf_vstart, 0, nv) {
             return Err(err(
                 "leaf vertex ranges are not increasing over all vertices".into(),
             ));
         }
-        if !monotone(&leaf_toff, 0, ntops) {
+        if !monotone(leaf_toff, 0, ntops) {
             return Err(err("leaf list offsets are inconsistent".into()));
         }
         if uniform == MIXED {
-            if !monotone(&offsets, 0, nrefs) || kinds.iter().any(|&k| k > 68) {
+            if !monotone(offsets, 0, nrefs) || kinds.iter().any(|&k| k > 68) {
                 return Err(err("cell offsets or kinds are inconsistent".into()));
             }
             for c in 0..nc {
@@ -259,20 +364,17 @@ impl StellarTree {
         if let Some(v) = verts.iter().find(|&&v| v as usize >= nv) {
             return Err(err(format!("vertex index {v} out of range")));
         }
-        let inverse = |p: &[u32], what: &str| -> Result<Vec<u32>, StellarError> {
-            let mut inv = vec![u32::MAX; p.len()];
-            for (i, &x) in p.iter().enumerate() {
-                if x as usize >= p.len() || inv[x as usize] != u32::MAX {
-                    return Err(err(format!("{what} permutation is not a bijection")));
-                }
-                inv[x as usize] = i as u32;
-            }
-            Ok(inv)
-        };
-        let v_new = inverse(&v_orig, "vertex")?;
-        let c_new = inverse(&c_orig, "cell")?;
-        // SRE words: runs complete, ids in range, increasing
-        for l in 0..nl {
+        Ok(())
+    }
+
+    /// SRE words: runs complete, ids in range, increasing within each leaf.
+    fn check_leaf_lists(
+        &self,
+        leaf_toff: &[u32],
+        leaf_tops: &[u32],
+        err: LoadErr<'_>,
+    ) -> Result<(), StellarError> {
+        for l in 0..self.nl {
             let enc = &leaf_tops[leaf_toff[l] as usize..leaf_toff[l + 1] as usize];
             let mut i = 0;
             let mut last: i64 = -1;
@@ -288,12 +390,18 @@ impl StellarTree {
                     i += 1;
                     (enc[i - 1] as u64, enc[i - 1] as u64)
                 };
-                if (s as i64) <= last || e >= nc as u64 {
+                if (s as i64) <= last || e >= self.nc as u64 {
                     return Err(err(format!("leaf {l}: cell list out of order or range")));
                 }
                 last = e as i64;
             }
         }
+        Ok(())
+    }
+
+    /// Every node's vertex range and children (or leaf) in range; a root exists.
+    fn check_nodes(&self, nodes: &[TreeNode], err: LoadErr<'_>) -> Result<(), StellarError> {
+        let &Header { nv, nl, nn, .. } = self;
         for (i, n) in nodes.iter().enumerate() {
             let ok = n.v_start <= n.v_end
                 && (n.v_end as usize) <= nv
@@ -309,31 +417,20 @@ impl StellarTree {
         if nodes.is_empty() {
             return Err(err("no root node".into()));
         }
-        Ok(StellarTree {
-            ambient_dim: amb as u32,
-            kv,
-            split,
-            decomposition,
-            bbox: (lo, hi),
-            nodes,
-            leaf_vstart,
-            leaf_toff,
-            leaf_tops,
-            cells: CellStore {
-                uniform: (uniform != MIXED).then(|| code_kind(uniform)),
-                stride,
-                kinds,
-                offsets,
-                verts,
-                n: nc as u32,
-            },
-            v_orig,
-            v_new,
-            c_orig,
-            c_new,
-            timings: BuildTimings::default(),
-        })
+        Ok(())
     }
+}
+
+/// The inverse of a permutation `p` of `0..p.len()`, refused when `p` is not one.
+fn inverse(p: &[u32], what: &str, err: LoadErr<'_>) -> Result<Vec<u32>, StellarError> {
+    let mut inv = vec![u32::MAX; p.len()];
+    for (i, &x) in p.iter().enumerate() {
+        if x as usize >= p.len() || inv[x as usize] != u32::MAX {
+            return Err(err(format!("{what} permutation is not a bijection")));
+        }
+        inv[x as usize] = i as u32;
+    }
+    Ok(inv)
 }
 
 struct Reader<'a, F: Fn(String) -> StellarError> {

@@ -42,30 +42,144 @@ use crate::topo::LocalStar;
 /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
 /// # let k = b.build(&BuildOptions::default()).unwrap().0;
 /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
-/// use starplex::ids::VertexId;
+/// use starplex::ids::{TreeCellId, TreeVertexId, VertexId};
 /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
-/// assert_eq!(e.v_end - e.v_start, 1); // k_V = 1
-/// assert_eq!(e.cells, vec![0, 1]); // vertex 1 is in both triangles
-/// assert_eq!(e.vt_off, vec![0, 2]);
-/// assert_eq!(e.vt, vec![0, 1]);
+/// let v: TreeVertexId = t.vertex_from_input()[1];
+/// assert_eq!(e.vertices().collect::<Vec<_>>(), [v]); // k_V = 1
+/// assert_eq!(e.cells(), [TreeCellId(0), TreeCellId(1)]); // vertex 1 is in both triangles
+/// assert_eq!(e.vt(v), [TreeCellId(0), TreeCellId(1)]);
+/// assert_eq!(e.n_vt_refs(), 2);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct ExpandedLeaf {
     /// The leaf.
     pub leaf: LeafId,
-    /// First tree vertex of the leaf.
-    pub v_start: u32,
+    /// First tree vertex of the leaf (raw; typed: [`ExpandedLeaf::vertices`]).
+    pub(crate) v_start: u32,
     /// One past the last tree vertex.
-    pub v_end: u32,
-    /// Top cells of the leaf (tree ids, increasing).
-    pub cells: Vec<u32>,
+    pub(crate) v_end: u32,
+    /// Top cells of the leaf (tree ids, increasing; typed: [`ExpandedLeaf::cells`]).
+    pub(crate) cells: Vec<u32>,
     /// `vt_off[i]..vt_off[i+1]` in `vt` are the cells of vertex `v_start + i`.
-    pub vt_off: Vec<u32>,
-    /// Tree cell ids, increasing within each vertex.
-    pub vt: Vec<u32>,
+    pub(crate) vt_off: Vec<u32>,
+    /// Tree cell ids, increasing within each vertex (typed: [`ExpandedLeaf::vt`]).
+    pub(crate) vt: Vec<u32>,
 }
 
 impl ExpandedLeaf {
+    /// The leaf's vertices (tree numbering, consecutive).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{LeafId, TreeVertexId};
+    /// let e = t.expand_leaf(LeafId(0));
+    /// assert_eq!(e.vertices().count(), 1); // k_V = 1
+    /// assert!(e.vertices().all(|v| e.owns(v)));
+    /// ```
+    pub fn vertices(&self) -> impl ExactSizeIterator<Item = TreeVertexId> {
+        (self.v_start..self.v_end).map(TreeVertexId)
+    }
+
+    /// True when tree vertex `v` belongs to the leaf.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::{LeafId, TreeVertexId};
+    /// let e = t.expand_leaf(LeafId(0));
+    /// assert!(e.owns(TreeVertexId(0)) && !e.owns(TreeVertexId(1)));
+    /// ```
+    #[inline]
+    pub fn owns(&self, v: TreeVertexId) -> bool {
+        v.0 >= self.v_start && v.0 < self.v_end
+    }
+
+    /// The top cells of the leaf: every top cell incident to one of its vertices (tree ids,
+    /// increasing).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::VertexId;
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(0)).unwrap());
+    /// assert_eq!(e.cells().len(), 1); // vertex 0 is in one triangle
+    /// ```
+    #[inline]
+    pub fn cells(&self) -> &[TreeCellId] {
+        bytemuck::cast_slice(&self.cells)
+    }
+
+    /// The top cells (tree ids, increasing) incident to vertex `v` of the leaf; empty when the
+    /// leaf does not own `v`.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// use starplex::ids::VertexId;
+    /// let v = t.vertex_from_input()[2];
+    /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(2)).unwrap());
+    /// assert_eq!(e.vt(v).len(), 2); // vertex 2 is in both triangles
+    /// assert!(e.vt(t.vertex_from_input()[0]).is_empty()); // not this leaf's
+    /// ```
+    #[inline]
+    pub fn vt(&self, v: TreeVertexId) -> &[TreeCellId] {
+        if !self.owns(v) {
+            return &[];
+        }
+        let i = (v.0 - self.v_start) as usize;
+        bytemuck::cast_slice(&self.vt[self.vt_off[i] as usize..self.vt_off[i + 1] as usize])
+    }
+
+    /// (vertex, top cell) references of the local VT relation: the sum of `vt(v).len()` over the
+    /// leaf's vertices.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let n: usize = t.par_map_leaves(|l| l.e.n_vt_refs()).iter().sum();
+    /// assert_eq!(n, 6); // 3 + 3 vertex-triangle incidences
+    /// ```
+    #[inline]
+    pub fn n_vt_refs(&self) -> usize {
+        self.vt.len()
+    }
+
     /// Bytes used.
     ///
     /// ```
@@ -105,8 +219,8 @@ impl StellarTree {
     /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(0), ..Default::default() }).unwrap();
     /// let mut e = ExpandedLeaf::default();
     /// t.expand_leaf_into(LeafId(0), &mut e);
-    /// assert_eq!(e.cells.len(), 2);
-    /// assert_eq!(e.vt_off.len(), 4);
+    /// assert_eq!(e.cells().len(), 2);
+    /// assert_eq!(e.vertices().len(), 3);
     /// ```
     pub fn expand_leaf_into(&self, l: LeafId, out: &mut ExpandedLeaf) {
         let r = self.leaf_vertices(l);
@@ -240,7 +354,7 @@ impl StellarTree {
     /// let mut refs = 0;
     /// t.for_each_leaf(|leaf| {
     ///     leaves.push(leaf.leaf().0);
-    ///     refs += leaf.e.cells.len();
+    ///     refs += leaf.e.cells().len();
     /// });
     /// assert_eq!(leaves, vec![0, 1, 2, 3]);
     /// assert_eq!(refs, 6); // vertices 1 and 2 are in both triangles
@@ -268,7 +382,7 @@ impl StellarTree {
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
     /// let ids = t.par_map_leaves(|leaf| leaf.leaf().0);
     /// assert_eq!(ids, vec![0, 1, 2, 3]); // in leaf order
-    /// let n_cells: Vec<usize> = t.par_map_leaves(|leaf| leaf.e.cells.len());
+    /// let n_cells: Vec<usize> = t.par_map_leaves(|leaf| leaf.e.cells().len());
     /// assert_eq!(n_cells.iter().sum::<usize>(), 6);
     /// ```
     pub fn par_map_leaves<R: Send>(&self, f: impl Fn(&LeafView<'_>) -> R + Sync + Send) -> Vec<R> {
@@ -296,9 +410,9 @@ impl StellarTree {
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
     /// use starplex::ids::LeafId;
-    /// let n0 = t.expand_leaf(LeafId(0)).cells.len();
+    /// let n0 = t.expand_leaf(LeafId(0)).cells().len();
     /// // every leaf looks into leaf 0 through the worker's cache
-    /// let r = t.par_map_leaves_cached(2, |leaf, cache| (leaf.leaf(), cache.get(leaf.tree, LeafId(0)).cells.len()));
+    /// let r = t.par_map_leaves_cached(2, |leaf, cache| (leaf.leaf(), cache.get(leaf.tree, LeafId(0)).cells().len()));
     /// assert_eq!(r.len(), 4);
     /// assert!(r.iter().enumerate().all(|(i, &(l, n))| l == LeafId(i as u32) && n == n0));
     /// ```
@@ -464,7 +578,7 @@ impl LeafCache {
 /// // the leaf of input vertex 1, which is in both triangles
 /// let e = t.expand_leaf(t.leaf_of_vertex(VertexId(1)).unwrap());
 /// let leaf = LeafView { tree: &t, e: &e };
-/// assert_eq!(leaf.e.cells, vec![0, 1]);
+/// assert_eq!(leaf.e.cells().len(), 2);
 /// assert_eq!(leaf.input_vertices().collect::<Vec<_>>(), vec![VertexId(1)]);
 /// ```
 #[derive(Clone, Copy)]

@@ -14,7 +14,7 @@
 //! for x in 0..4 { b.push_vertex(&[x as f64]).unwrap(); }
 //! b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
 //! let k = b.build(&BuildOptions::default()).unwrap().0;
-//! let ig = IncidenceGraph::new(&k, u32::MAX as u128).unwrap();
+//! let ig = IncidenceGraph::new(&k, &Default::default()).unwrap();
 //! assert_eq!(ig.refs(), 56); // the spec's worked anchor
 //! let mut e = Vec::new();
 //! ig.coboundary(&[VertexId(0)], 1, &mut e).unwrap();
@@ -24,7 +24,7 @@ use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::csr::Csr;
 use crate::ids::{CellId, SimplexId, VertexId};
-use crate::limits::{TooLarge, Unit};
+use crate::limits::{Limits, TooLarge, Unit};
 use crate::tds::simplex_tree::{all_simplices, child_starts, BuildError, Levels0};
 use crate::topo::{
     sort_flat, sorted_simplex, Adjacency, Boundary, Coboundary, Counts, Levels, QueryError,
@@ -558,7 +558,7 @@ impl Storage for SimplicialIg {
 /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
 /// # let k = b.build(&BuildOptions::default()).unwrap().0;
 /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
-/// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+/// let ig = IncidenceGraph::new(&k, &Default::default()).unwrap();
 /// // Boundary and co-boundary references: 2 * (2 * 5 edges + 3 * 2 triangles).
 /// assert_eq!(ig.refs(), 32);
 /// let mut out = Vec::new();
@@ -594,7 +594,7 @@ impl Storage for SimplicialIg {
 /// b.push_cell(CellKind::Quad, &[1, 2, 5, 4]).unwrap();
 /// b.push_cell(CellKind::Simplex(2), &[4, 5, 6]).unwrap();
 /// let k = b.build(&BuildOptions::default()).unwrap().0;
-/// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+/// let ig = IncidenceGraph::new(&k, &Default::default()).unwrap();
 /// assert_eq!(ig.f_vector().unwrap(), vec![7, 9, 3]); // no diagonals
 /// let mut vv = Vec::new();
 /// ig.vertex_neighbours(VertexId(4), &mut vv);
@@ -641,6 +641,7 @@ impl IncidenceGraph {
     /// Builds every simplex (every cell, for a CP complex) with its boundary and co-boundary.
     ///
     /// ```
+    /// use starplex::limits::Limits;
     /// use starplex::tds::{ig::IncidenceGraph, simplex_tree::BuildError};
     /// use starplex::topo::Counts;
     /// # use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -650,14 +651,16 @@ impl IncidenceGraph {
     /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: the tetrahedron 0-1-2-3
-    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let ig = IncidenceGraph::new(&k, &Limits::default()).unwrap();
     /// assert_eq!(ig.f_vector().unwrap(), vec![4, 6, 4, 1]);
-    /// assert!(matches!(IncidenceGraph::new(&k, 10), Err(BuildError::TooLarge { .. })));
+    /// let tight = Limits { stored_simplices: 10, ..Limits::default() };
+    /// assert!(matches!(IncidenceGraph::new(&k, &tight), Err(BuildError::TooLarge { .. })));
     /// ```
     ///
     /// # Errors
-    /// More than `limit` simplices or cells (refused before allocating them).
-    pub fn new(k: &IndexedComplex, limit: u128) -> Result<IncidenceGraph, BuildError> {
+    /// More than `limits.stored_simplices` simplices or cells (refused before allocating them).
+    pub fn new(k: &IndexedComplex, limits: &Limits) -> Result<IncidenceGraph, BuildError> {
+        let limit = limits.stored_simplices;
         let repr = if k.is_simplicial() {
             Repr::Simplices(SimplicialIg::new(k, limit)?)
         } else {
@@ -679,7 +682,7 @@ impl IncidenceGraph {
     /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: the tetrahedron 0-1-2-3
-    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let ig = IncidenceGraph::new(&k, &Default::default()).unwrap();
     /// assert!(ig.aux_bytes() > 0);
     /// assert!(ig.bytes() >= 4 * ig.refs()); // aux_bytes is not part of bytes
     /// ```
@@ -703,7 +706,7 @@ impl IncidenceGraph {
     /// # b.push_cell(CellKind::Quad, &[0, 1, 2, 3]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: the quad 0-1-2-3
-    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let ig = IncidenceGraph::new(&k, &Default::default()).unwrap();
     /// let q = ig.find_simplex(&[VertexId(3), VertexId(2), VertexId(1), VertexId(0)]).unwrap();
     /// assert_eq!(ig.cell_dim(q), Some(2));
     /// assert_eq!(ig.cell_dim(SimplexId(99)), None);
@@ -745,7 +748,7 @@ impl IncidenceGraph {
     /// # b.push_cell(CellKind::Hex, &[0, 1, 3, 2, 4, 5, 7, 6]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: one hexahedron
-    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let ig = IncidenceGraph::new(&k, &Default::default()).unwrap();
     /// let hex = ig.find_simplex(&(0..8).map(VertexId).collect::<Vec<_>>()).unwrap();
     /// assert_eq!(ig.cell_faces(hex, 2).unwrap().len(), 6);
     /// assert_eq!(ig.cell_faces(hex, 1).unwrap().len(), 12);
@@ -775,7 +778,7 @@ impl IncidenceGraph {
     /// # b.push_cell(CellKind::Hex, &[0, 1, 3, 2, 4, 5, 7, 6]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: one hexahedron
-    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let ig = IncidenceGraph::new(&k, &Default::default()).unwrap();
     /// let v0 = ig.find_simplex(&[VertexId(0)]).unwrap();
     /// assert_eq!(ig.cell_cofaces(v0, 2).unwrap().len(), 3); // three quads at a corner
     /// ```
@@ -809,7 +812,7 @@ impl IncidenceGraph {
     /// # b.push_cell(CellKind::Hex, &[0, 1, 3, 2, 4, 5, 7, 6]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: one hexahedron
-    /// let ig = IncidenceGraph::new(&k, 1000).unwrap();
+    /// let ig = IncidenceGraph::new(&k, &Default::default()).unwrap();
     /// let bottom = ig.find_simplex(&[VertexId(0), VertexId(1), VertexId(2), VertexId(3)]).unwrap();
     /// assert_eq!(ig.cell_adjacent(bottom).unwrap().len(), 4); // the four side quads
     /// ```

@@ -17,12 +17,12 @@
 //! b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
 //! b.push_cell(CellKind::Simplex(3), &[0, 1, 4, 5]).unwrap();
 //! let k = b.build(&BuildOptions::default()).unwrap().0;
-//! let is = Is::new(&k, u32::MAX as u128).unwrap();
+//! let is = Is::new(&k, &Default::default()).unwrap();
 //! assert_eq!(is.refs(), 80); // the spec's worked anchor
 //! assert_eq!(is.n_clusters(&[VertexId(0), VertexId(1)]).unwrap(), 2);
 //! assert_eq!(is.star(&[VertexId(0)]).unwrap().len(), 1 + 5 + 6 + 2);
 //! ```
-use crate::limits::{TooLarge, Unit};
+use crate::limits::{Limits, TooLarge, Unit};
 use rustc_hash::FxHashSet;
 
 use crate::algo::unionfind::UnionFind;
@@ -51,7 +51,7 @@ use crate::topo::{
 /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
 /// # let k = b.build(&BuildOptions::default()).unwrap().0;
 /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
-/// let is = Is::new(&k, 1000).unwrap();
+/// let is = Is::new(&k, &Default::default()).unwrap();
 /// assert_eq!(is.f_vector().unwrap(), vec![4, 5, 2]);
 /// assert_eq!(is.star(&[VertexId(1)]).unwrap().f_vector(), vec![1, 3, 2]);
 /// ```
@@ -66,6 +66,7 @@ impl Is {
     /// Builds IS from an indexed simplicial complex (spec §1.2).
     ///
     /// ```
+    /// use starplex::limits::Limits;
     /// use starplex::tds::{is::Is, simplex_tree::BuildError};
     /// # use starplex::complex::{ComplexBuilder, BuildOptions};
     /// # use starplex::cell::CellKind;
@@ -75,14 +76,16 @@ impl Is {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
-    /// assert!(Is::new(&k, 1000).is_ok());
-    /// assert!(matches!(Is::new(&k, 5), Err(BuildError::TooLarge(t)) if t.budget == 5));
+    /// assert!(Is::new(&k, &Limits::default()).is_ok());
+    /// let tight = Limits { stored_simplices: 5, ..Limits::default() };
+    /// assert!(matches!(Is::new(&k, &tight), Err(BuildError::TooLarge(t)) if t.budget == 5));
     /// ```
     ///
     /// # Errors
-    /// A CP cell; more than `limit` simplices (refused before allocating them).
-    pub fn new(k: &IndexedComplex, limit: u128) -> Result<Is, BuildError> {
-        let x = Explicit::new(k, limit)?;
+    /// A CP cell; more than `limits.stored_simplices` simplices (refused before allocating
+    /// them).
+    pub fn new(k: &IndexedComplex, limits: &Limits) -> Result<Is, BuildError> {
+        let x = Explicit::new(k, limits.stored_simplices)?;
         let cobs = x.coboundaries();
         let depth = x.depth();
         let mut pcob = Vec::with_capacity(cobs.len());
@@ -137,7 +140,7 @@ impl Is {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
-    /// let is = Is::new(&k, 1000).unwrap();
+    /// let is = Is::new(&k, &Default::default()).unwrap();
     /// // At least the sorted vertex tuples of the 5 edges and 2 triangles.
     /// assert!(is.aux_bytes() >= 4 * (5 * 2 + 2 * 3));
     /// ```
@@ -158,7 +161,7 @@ impl Is {
     /// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
     /// b.push_cell(CellKind::Simplex(2), &[0, 3, 4]).unwrap();
     /// let k = b.build(&BuildOptions::default()).unwrap().0;
-    /// let is = Is::new(&k, 1000).unwrap();
+    /// let is = Is::new(&k, &Default::default()).unwrap();
     /// assert_eq!(is.n_clusters(&[VertexId(0)]).unwrap(), 2); // two link components
     /// assert_eq!(is.n_clusters(&[VertexId(1)]).unwrap(), 1);
     /// assert_eq!(is.n_clusters(&[VertexId(0), VertexId(1), VertexId(2)]).unwrap(), 0); // a top
@@ -186,7 +189,7 @@ impl Is {
     /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
     /// # let k = b.build(&BuildOptions::default()).unwrap().0;
     /// // k: the triangles 0-1-2 and 1-3-2, sharing the edge 1-2
-    /// let is = Is::new(&k, 1000).unwrap();
+    /// let is = Is::new(&k, &Default::default()).unwrap();
     /// let mut part = Vec::new();
     /// is.partial_coboundary(&[VertexId(1)], &mut part).unwrap();
     /// assert_eq!(part.len() / 2, 1); // the link of vertex 1 is connected: one edge kept

@@ -34,7 +34,7 @@ use crate::cell::CellKind;
 use crate::complex::IndexedComplex;
 use crate::csr::Csr;
 use crate::ids::{CellId, SimplexId, VertexId};
-use crate::limits::{NotSimplicial, TooLarge, Unit};
+use crate::limits::{Limits, NotSimplicial, TooLarge, Unit};
 use crate::topo::from_tops::{boundary_of_sorted, for_each_subset};
 use crate::topo::{
     sort_flat, sorted_simplex, Adjacency, Boundary, Coboundary, Counts, Levels, QueryError,
@@ -53,7 +53,8 @@ use crate::topo::{
 /// # b.push_cell(CellKind::Simplex(3), &[0, 1, 2, 3]).unwrap();
 /// # let k = b.build(&BuildOptions::default()).unwrap().0;
 /// // k: the tetrahedron 0-1-2-3
-/// let opts = SimplexTreeOptions { max_simplices: 10, ..Default::default() };
+/// let limits = starplex::limits::Limits { stored_simplices: 10, ..Default::default() };
+/// let opts = SimplexTreeOptions { limits, ..Default::default() };
 /// assert_eq!(SimplexTree::new(&k, &opts).unwrap_err(), BuildError::too_many(19, 10 ));
 /// let opts = SimplexTreeOptions { label_lists: true, ..Default::default() };
 /// assert!(SimplexTree::new(&k, &opts).unwrap().has_label_lists());
@@ -62,15 +63,19 @@ use crate::topo::{
 pub struct SimplexTreeOptions {
     /// Keep, per label, the list of nodes carrying it (output-sensitive stars and co-faces).
     pub label_lists: bool,
-    /// Refuse to build when the complex has more simplices than this (estimate from the tops).
-    pub max_simplices: u128,
+    /// Refuse to build when the complex has more simplices than `limits.stored_simplices`
+    /// (estimate from the tops; the default here is 2·10^9, ids are 32-bit in any case).
+    pub limits: Limits,
 }
 
 impl Default for SimplexTreeOptions {
     fn default() -> Self {
         SimplexTreeOptions {
             label_lists: false,
-            max_simplices: 2_000_000_000,
+            limits: Limits {
+                stored_simplices: 2_000_000_000,
+                ..Limits::default()
+            },
         }
     }
 }
@@ -182,147 +187,21 @@ pub(crate) fn all_simplices(k: &IndexedComplex, limit: u128) -> Result<Levels0, 
     let nv = k.n_vertices();
     let dmax = k.dim().unwrap_or(0);
     let vt = k.vertex_cells();
-    let mut labels: Vec<Vec<u32>> = vec![Vec::new(); dmax + 1];
-    let mut parent: Vec<Vec<u32>> = vec![Vec::new(); dmax + 1];
-    // rough reservations from the tops
-    for b in k.blocks() {
-        for q in 1..=b.kind.dim() {
-            let per = crate::cell::binomial(b.kind.dim() as u64 + 1, q as u64 + 1) as usize;
-            let add = if q == b.kind.dim() {
-                b.len()
-            } else {
-                per * b.len() / 2
-            };
-            labels[q].reserve(add.min(1 << 28));
-            parent[q].reserve(add.min(1 << 28));
-        }
-    }
-    let mut w: Vec<u32> = Vec::new(); // upper vertices of v (sorted, distinct)
-    let mut us: Vec<u32> = Vec::new(); // ranks of each top's upper set, flat
-    let mut ulen: Vec<u8> = Vec::new();
-    let mut keys: Vec<u128> = Vec::new();
-    let mut cur: Vec<u32> = Vec::new();
-    let mut prev: Vec<u32> = Vec::new();
-    let mut sub: Vec<u32> = Vec::new();
+    let (mut labels, mut parent) = reserved_levels(k, dmax);
+    let mut s = Scratch::default();
     let mut cell_node = vec![u32::MAX; k.n_cells()];
     for v in 0..nv as u32 {
-        w.clear();
         let row = vt.row(v as usize);
-        for &c in row {
-            let cell = k.cell(CellId(c));
-            w.extend(cell.vertices.iter().copied().filter(|&x| x > v));
-        }
-        if w.is_empty() {
+        let Some(maxu) = s.upper_sets(k, row, v) else {
             continue;
-        }
-        w.sort_unstable();
-        w.dedup();
-        us.clear();
-        ulen.clear();
-        let mut maxu = 0usize;
-        for &c in row {
-            let cell = k.cell(CellId(c));
-            let start = us.len();
-            for &x in cell.vertices.iter().filter(|&&x| x > v) {
-                us.push(w.binary_search(&x).expect("upper vertex") as u32);
-            }
-            us[start..].sort_unstable();
-            let n = us.len() - start;
-            maxu = maxu.max(n);
-            ulen.push(n as u8);
-        }
-        let packed = maxu <= 8 && w.len() <= 1 << 16;
-        prev.clear();
+        };
+        let packed = maxu <= 8 && s.w.len() <= 1 << 16;
+        s.prev.clear();
         for q in 1..=maxu {
-            cur.clear();
-            if packed {
-                keys.clear();
-                let mut off = 0usize;
-                for &n in &ulen {
-                    let n = n as usize;
-                    let u = &us[off..off + n];
-                    off += n;
-                    if n < q {
-                        continue;
-                    }
-                    if q == 1 {
-                        keys.extend(u.iter().map(|&r| (r as u128) << 112));
-                    } else {
-                        for_each_subset(u, q, &mut sub, &mut |s| {
-                            let mut key = 0u128;
-                            for (i, &r) in s.iter().enumerate() {
-                                key |= (r as u128) << (112 - 16 * i);
-                            }
-                            keys.push(key);
-                        });
-                    }
-                }
-                keys.sort_unstable();
-                keys.dedup();
-                for &key in &keys {
-                    for i in 0..q {
-                        cur.push(((key >> (112 - 16 * i)) & 0xffff) as u32);
-                    }
-                }
-            } else {
-                let mut off = 0usize;
-                for &n in &ulen {
-                    let n = n as usize;
-                    let u = &us[off..off + n];
-                    off += n;
-                    if n >= q {
-                        for_each_subset(u, q, &mut sub, &mut |s| cur.extend_from_slice(s));
-                    }
-                }
-                sort_flat(&mut cur, q);
-            }
-            // emit level q: labels and parents
-            let base_prev = if q == 1 {
-                0
-            } else {
-                labels[q - 1].len() - prev.len() / (q - 1)
-            };
-            let mut ptr = 0usize;
-            for t in cur.chunks_exact(q) {
-                labels[q].push(w[t[q - 1] as usize]);
-                if q == 1 {
-                    parent[q].push(v);
-                } else {
-                    while prev[ptr * (q - 1)..(ptr + 1) * (q - 1)] != t[..q - 1] {
-                        ptr += 1;
-                    }
-                    parent[q].push((base_prev + ptr) as u32);
-                }
-            }
-            // the tops whose smallest vertex is v and whose dimension is q
-            let base = labels[q].len() - cur.len() / q;
-            let mut off = 0usize;
-            for (ci, &n) in ulen.iter().enumerate() {
-                let n = n as usize;
-                let u = &us[off..off + n];
-                off += n;
-                if n != q {
-                    continue;
-                }
-                let c = row[ci];
-                if k.cell(CellId(c)).vertices.len() != q + 1 {
-                    continue;
-                }
-                let (mut lo, mut hi) = (0usize, cur.len() / q);
-                while lo < hi {
-                    let mid = (lo + hi) / 2;
-                    match cur[mid * q..(mid + 1) * q].cmp(u) {
-                        std::cmp::Ordering::Less => lo = mid + 1,
-                        std::cmp::Ordering::Greater => hi = mid,
-                        std::cmp::Ordering::Equal => {
-                            lo = mid;
-                            break;
-                        }
-                    }
-                }
-                cell_node[c as usize] = (base + lo) as u32;
-            }
-            std::mem::swap(&mut prev, &mut cur);
+            s.level(q, packed);
+            s.emit(&mut labels, &mut parent, q, v);
+            s.place_tops(k, row, q, labels[q].len(), &mut cell_node);
+            std::mem::swap(&mut s.prev, &mut s.cur);
         }
     }
     // tops of dimension 0 (a vertex cell) are the vertex nodes
@@ -340,6 +219,200 @@ pub(crate) fn all_simplices(k: &IndexedComplex, limit: u128) -> Result<Levels0, 
         parent,
         cell_node,
     })
+}
+
+/// Empty label and parent arrays per level `0..=dmax`, with rough reservations from the tops.
+fn reserved_levels(k: &IndexedComplex, dmax: usize) -> (Vec<Vec<u32>>, Vec<Vec<u32>>) {
+    let mut labels: Vec<Vec<u32>> = vec![Vec::new(); dmax + 1];
+    let mut parent: Vec<Vec<u32>> = vec![Vec::new(); dmax + 1];
+    for b in k.blocks() {
+        for q in 1..=b.kind.dim() {
+            let per = crate::cell::binomial(b.kind.dim() as u64 + 1, q as u64 + 1) as usize;
+            let add = if q == b.kind.dim() {
+                b.len()
+            } else {
+                per * b.len() / 2
+            };
+            labels[q].reserve(add.min(1 << 28));
+            parent[q].reserve(add.min(1 << 28));
+        }
+    }
+    (labels, parent)
+}
+
+/// The per-vertex working state of [`all_simplices`], reused across vertices.
+#[derive(Default)]
+struct Scratch {
+    /// Upper vertices of the current vertex v (sorted, distinct).
+    w: Vec<u32>,
+    /// Ranks (in `w`) of each top's upper set, flat, each sorted.
+    us: Vec<u32>,
+    /// Length of each top's upper set.
+    ulen: Vec<u8>,
+    /// Packed keys of the level being built.
+    keys: Vec<u128>,
+    /// The level being built: sorted distinct rank tuples of length q, flat.
+    cur: Vec<u32>,
+    /// The previous level (length q - 1).
+    prev: Vec<u32>,
+    /// Subset buffer.
+    sub: Vec<u32>,
+}
+
+impl Scratch {
+    /// The upper sets (vertices above `v`) of the tops in `row`, the star of `v`; `None` when
+    /// no top has a vertex above `v`, else the largest upper set's size.
+    #[inline]
+    fn upper_sets(&mut self, k: &IndexedComplex, row: &[u32], v: u32) -> Option<usize> {
+        let w = &mut self.w;
+        w.clear();
+        for &c in row {
+            let cell = k.cell(CellId(c));
+            w.extend(cell.vertices.iter().copied().filter(|&x| x > v));
+        }
+        if w.is_empty() {
+            return None;
+        }
+        w.sort_unstable();
+        w.dedup();
+        let (us, ulen) = (&mut self.us, &mut self.ulen);
+        us.clear();
+        ulen.clear();
+        let mut maxu = 0usize;
+        for &c in row {
+            let cell = k.cell(CellId(c));
+            let start = us.len();
+            for &x in cell.vertices.iter().filter(|&&x| x > v) {
+                us.push(w.binary_search(&x).expect("upper vertex") as u32);
+            }
+            us[start..].sort_unstable();
+            let n = us.len() - start;
+            maxu = maxu.max(n);
+            ulen.push(n as u8);
+        }
+        Some(maxu)
+    }
+
+    /// Level `q` into `cur`: every q-subset of every upper set, sorted and distinct (through
+    /// packed 16-bit keys when `packed`).
+    #[inline]
+    fn level(&mut self, q: usize, packed: bool) {
+        let Scratch {
+            us,
+            ulen,
+            keys,
+            cur,
+            sub,
+            ..
+        } = self;
+        cur.clear();
+        if packed {
+            keys.clear();
+            let mut off = 0usize;
+            for &n in ulen.iter() {
+                let n = n as usize;
+                let u = &us[off..off + n];
+                off += n;
+                if n < q {
+                    continue;
+                }
+                if q == 1 {
+                    keys.extend(u.iter().map(|&r| (r as u128) << 112));
+                } else {
+                    for_each_subset(u, q, sub, &mut |s| {
+                        let mut key = 0u128;
+                        for (i, &r) in s.iter().enumerate() {
+                            key |= (r as u128) << (112 - 16 * i);
+                        }
+                        keys.push(key);
+                    });
+                }
+            }
+            keys.sort_unstable();
+            keys.dedup();
+            for &key in keys.iter() {
+                for i in 0..q {
+                    cur.push(((key >> (112 - 16 * i)) & 0xffff) as u32);
+                }
+            }
+        } else {
+            let mut off = 0usize;
+            for &n in ulen.iter() {
+                let n = n as usize;
+                let u = &us[off..off + n];
+                off += n;
+                if n >= q {
+                    for_each_subset(u, q, sub, &mut |s| cur.extend_from_slice(s));
+                }
+            }
+            sort_flat(cur, q);
+        }
+    }
+
+    /// Appends level `q` of `v`'s subtree: labels (the last vertex) and parents (the node of
+    /// the tuple without its last vertex, found by a forward scan of the previous level).
+    #[inline]
+    fn emit(&self, labels: &mut [Vec<u32>], parent: &mut [Vec<u32>], q: usize, v: u32) {
+        let (w, cur, prev) = (&self.w, &self.cur, &self.prev);
+        let base_prev = if q == 1 {
+            0
+        } else {
+            labels[q - 1].len() - prev.len() / (q - 1)
+        };
+        let mut ptr = 0usize;
+        for t in cur.chunks_exact(q) {
+            labels[q].push(w[t[q - 1] as usize]);
+            if q == 1 {
+                parent[q].push(v);
+            } else {
+                while prev[ptr * (q - 1)..(ptr + 1) * (q - 1)] != t[..q - 1] {
+                    ptr += 1;
+                }
+                parent[q].push((base_prev + ptr) as u32);
+            }
+        }
+    }
+
+    /// The node of each top of `row` whose smallest vertex is v and whose dimension is q
+    /// (binary search of its upper set in level `q`, which ends at `level_len`).
+    #[inline]
+    fn place_tops(
+        &self,
+        k: &IndexedComplex,
+        row: &[u32],
+        q: usize,
+        level_len: usize,
+        cell_node: &mut [u32],
+    ) {
+        let (us, ulen, cur) = (&self.us, &self.ulen, &self.cur);
+        let base = level_len - cur.len() / q;
+        let mut off = 0usize;
+        for (ci, &n) in ulen.iter().enumerate() {
+            let n = n as usize;
+            let u = &us[off..off + n];
+            off += n;
+            if n != q {
+                continue;
+            }
+            let c = row[ci];
+            if k.cell(CellId(c)).vertices.len() != q + 1 {
+                continue;
+            }
+            let (mut lo, mut hi) = (0usize, cur.len() / q);
+            while lo < hi {
+                let mid = (lo + hi) / 2;
+                match cur[mid * q..(mid + 1) * q].cmp(u) {
+                    std::cmp::Ordering::Less => lo = mid + 1,
+                    std::cmp::Ordering::Greater => hi = mid,
+                    std::cmp::Ordering::Equal => {
+                        lo = mid;
+                        break;
+                    }
+                }
+            }
+            cell_node[c as usize] = (base + lo) as u32;
+        }
+    }
 }
 
 /// Children ranges from non-decreasing parent indices.
@@ -412,9 +485,10 @@ impl SimplexTree {
     /// ```
     ///
     /// # Errors
-    /// A CP cell; more simplices than `opts.max_simplices` (refused before allocating).
+    /// A CP cell; more simplices than `opts.limits.stored_simplices` (refused before
+    /// allocating).
     pub fn new(k: &IndexedComplex, opts: &SimplexTreeOptions) -> Result<SimplexTree, BuildError> {
-        let l = all_simplices(k, opts.max_simplices.min(u32::MAX as u128))?;
+        let l = all_simplices(k, opts.limits.stored_simplices.min(u32::MAX as u128))?;
         Ok(Self::from_levels(k, l, opts.label_lists))
     }
 

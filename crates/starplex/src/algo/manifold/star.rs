@@ -127,6 +127,36 @@ fn star_tests_3<S: StarCells + ?Sized>(
 ) -> Manifoldness {
     use Manifoldness::*;
     // 2-faces containing v of the 3-cells: (sorted key, cell index, e1, e2)
+    faces_around(v, star, s);
+    s.faces.sort_unstable();
+    // group faces
+    let (faces_bad, sets, n_faces) = group_faces(star, s);
+    s.wpairs.sort_unstable();
+    s.face_bad_w.sort_unstable();
+    // per edge vw: cells containing it form one cluster through faces containing vw
+    let edges_bad = edge_clusters(v, star, edge_groups, s, edges_out);
+    if v_mixed || faces_bad || edges_bad || sets != 1 {
+        return NonManifold;
+    }
+    // Euler characteristic of the link: E - F + C
+    let chi = edge_groups.len() as i64 - n_faces + star.len() as i64;
+    let ok = if s.bedges.is_empty() {
+        chi == 2
+    } else {
+        // boundary of the link is a single cycle
+        chi == 1 && one_cycle(&s.bedges)
+    };
+    if ok {
+        Manifold
+    } else {
+        NonManifold
+    }
+}
+
+/// The 2-faces containing `v` of the star's 3-cells into `s.faces`: (key of the other
+/// vertices, cell index, the face's two neighbours of v).
+#[inline]
+fn faces_around<S: StarCells + ?Sized>(v: u32, star: &S, s: &mut Scratch) {
     s.faces.clear();
     for i in 0..star.len() {
         let (kind, vs) = star.cell(i);
@@ -172,9 +202,15 @@ fn star_tests_3<S: StarCells + ?Sized>(
             s.faces.push((key, i as u32, e1, e2));
         });
     }
-    s.faces.sort_unstable();
-    // group faces
-    let mut bad = v_mixed;
+}
+
+/// Groups the sorted faces: one face joins its two cells (union-find in `s.parent`; the link
+/// edges through it into `s.wpairs`), one cell makes a boundary edge of the link
+/// (`s.bedges`), more makes the face and its edges bad (`s.face_bad_w`). Returns (a bad face,
+/// the number of cell clusters, the number of faces).
+#[inline]
+fn group_faces<S: StarCells + ?Sized>(star: &S, s: &mut Scratch) -> (bool, usize, i64) {
+    let mut bad = false;
     s.parent.clear();
     s.parent.extend(0..star.len() as u32);
     let mut sets = star.len();
@@ -212,13 +248,25 @@ fn star_tests_3<S: StarCells + ?Sized>(
         }
         i = j;
     }
-    s.wpairs.sort_unstable();
-    s.face_bad_w.sort_unstable();
-    // per edge vw: cells containing it form one cluster through faces containing vw
+    (bad, sets, n_faces)
+}
+
+/// Per edge vw (the groups of `s.ew`): bad when a cell of its star is not a 3-cell, when a
+/// bad face contains it, or when its cells are not one cluster through the faces containing
+/// it; each edge with w > v goes to `edges_out`. Returns whether one is bad.
+#[inline]
+fn edge_clusters<S: StarCells + ?Sized>(
+    v: u32,
+    star: &S,
+    edge_groups: &[(u32, usize, usize)],
+    s: &mut Scratch,
+    edges_out: &mut Vec<(u32, Manifoldness)>,
+) -> bool {
+    use Manifoldness::*;
+    let mut bad = false;
     s.local_uf.clear();
     s.local_uf.resize(star.len(), 0);
     let mut p = 0usize;
-    let n_edges = edge_groups.len() as i64;
     for &(w, a, b) in edge_groups {
         let mut e_bad = s.ew[a..b]
             .iter()
@@ -255,31 +303,21 @@ fn star_tests_3<S: StarCells + ?Sized>(
             edges_out.push((w, if e_bad { NonManifold } else { Manifold }));
         }
     }
-    if bad || sets != 1 {
-        return NonManifold;
+    bad
+}
+
+/// True when the link's boundary edges form one connected set.
+fn one_cycle(bedges: &[(u32, u32)]) -> bool {
+    let mut ws: Vec<u32> = bedges.iter().flat_map(|&(a, b)| [a, b]).collect();
+    ws.sort_unstable();
+    ws.dedup();
+    let mut buf = UnionFind::new(ws.len());
+    for &(a, b) in bedges {
+        let ia = ws.binary_search(&a).expect("present") as u32;
+        let ib = ws.binary_search(&b).expect("present") as u32;
+        buf.union(ia, ib);
     }
-    // Euler characteristic of the link: E - F + C
-    let chi = n_edges - n_faces + star.len() as i64;
-    let ok = if s.bedges.is_empty() {
-        chi == 2
-    } else {
-        // boundary of the link is a single cycle
-        let mut ws: Vec<u32> = s.bedges.iter().flat_map(|&(a, b)| [a, b]).collect();
-        ws.sort_unstable();
-        ws.dedup();
-        let mut buf = UnionFind::new(ws.len());
-        for &(a, b) in &s.bedges {
-            let ia = ws.binary_search(&a).expect("present") as u32;
-            let ib = ws.binary_search(&b).expect("present") as u32;
-            buf.union(ia, ib);
-        }
-        chi == 1 && buf.n_sets() == 1
-    };
-    if ok {
-        Manifold
-    } else {
-        NonManifold
-    }
+    buf.n_sets() == 1
 }
 
 /// d >= 4 (the top d-cells are simplices): combinatorial obstructions or Unknown.

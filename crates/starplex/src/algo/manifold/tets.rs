@@ -86,152 +86,26 @@ pub(crate) fn star_tests_tets<S: StarCells + ?Sized>(
     edges_out: &mut Vec<(u32, Manifoldness)>,
 ) -> Option<Manifoldness> {
     use Manifoldness::*;
-    let TetScratch {
-        vkeys,
-        vvals,
-        lv,
-        lslot,
-        tri,
-        ekeys,
-        evals,
-        eslot,
-        eab,
-        ecnt,
-        etri,
-        flags,
-        root,
-        tuf,
-        cuf,
-        vuf,
-    } = s;
     let n = star.len();
     // at most 3n link vertices and 3n link edges: load factor <= 1/2
     let cap = (6 * n).next_power_of_two().max(16);
     let shift = 32 - cap.trailing_zeros();
     let mask = cap - 1;
-    if vkeys.len() < cap {
-        vkeys.resize(cap, EMPTY);
-        vvals.resize(cap, 0);
-        ekeys.resize(cap, EMPTY2);
-        evals.resize(cap, 0);
+    if s.vkeys.len() < cap {
+        s.vkeys.resize(cap, EMPTY);
+        s.vvals.resize(cap, 0);
+        s.ekeys.resize(cap, EMPTY2);
+        s.evals.resize(cap, 0);
     }
     // link triangles with local vertex ids
-    lv.clear();
-    lslot.clear();
-    tri.clear();
-    let mut degenerate = false;
-    for i in 0..star.len() {
-        let mut t = [0u32; 3];
-        let mut m = 0;
-        for &x in star.cell(i).1 {
-            if x == v {
-                continue;
-            }
-            let mut h = hash1(x, shift);
-            let id = loop {
-                let k = vkeys[h];
-                if k == x {
-                    break vvals[h];
-                }
-                if k == EMPTY {
-                    let id = lv.len() as u32;
-                    vkeys[h] = x;
-                    vvals[h] = id;
-                    lv.push(x);
-                    lslot.push(h as u32);
-                    break id;
-                }
-                h = (h + 1) & mask;
-            };
-            if m < 3 {
-                t[m] = id;
-            }
-            m += 1;
-        }
-        // a cell with a repeated vertex (only in a damaged tree file)
-        degenerate |= m != 3;
-        if t[0] > t[1] {
-            t.swap(0, 1);
-        }
-        if t[1] > t[2] {
-            t.swap(1, 2);
-        }
-        if t[0] > t[1] {
-            t.swap(0, 1);
-        }
-        tri.push(t);
-    }
-    for &h in lslot.iter() {
-        vkeys[h as usize] = EMPTY;
-    }
-    if degenerate {
+    if s.link_triangles(v, star, shift, mask) {
         return None;
     }
     // link edges with their triangles
-    eab.clear();
-    ecnt.clear();
-    etri.clear();
-    eslot.clear();
-    for (i, t) in tri.iter().enumerate() {
-        for (a, b) in [(t[0], t[1]), (t[0], t[2]), (t[1], t[2])] {
-            let key = ((a as u64) << 32) | b as u64;
-            let mut h = hash2(a, b, shift);
-            loop {
-                let k = ekeys[h];
-                if k == key {
-                    let e = evals[h] as usize;
-                    if ecnt[e] == 1 {
-                        etri[e][1] = i as u32;
-                    }
-                    ecnt[e] += 1;
-                    break;
-                }
-                if k == EMPTY2 {
-                    ekeys[h] = key;
-                    evals[h] = eab.len() as u32;
-                    eslot.push(h as u32);
-                    eab.push((a, b));
-                    ecnt.push(1);
-                    etri.push([i as u32, EMPTY]);
-                    break;
-                }
-                h = (h + 1) & mask;
-            }
-        }
-    }
-    for &h in eslot.iter() {
-        ekeys[h as usize] = EMPTY2;
-    }
-    let m = lv.len();
-    let ne = eab.len();
-    flags.clear();
-    flags.resize(m, 0);
-    tuf.clear();
-    tuf.extend(0..n as u32);
-    let mut sets = n;
-    let mut bad = false;
-    let mut n_boundary = 0usize;
-    for e in 0..ne {
-        let (a, b) = eab[e];
-        match ecnt[e] {
-            1 => {
-                flags[a as usize] |= BOUNDARY;
-                flags[b as usize] |= BOUNDARY;
-                n_boundary += 1;
-            }
-            2 => {
-                let [t0, t1] = etri[e];
-                if union(tuf, t0, t1) {
-                    sets -= 1;
-                }
-            }
-            _ => {
-                bad = true;
-                flags[a as usize] |= OVER;
-                flags[b as usize] |= OVER;
-            }
-        }
-    }
+    s.link_edges(shift, mask);
+    let m = s.lv.len();
+    let ne = s.eab.len();
+    let (mut bad, sets, n_boundary) = s.classify_edges(n);
     // Euler characteristic of the link: V - E + F
     let chi = m as i64 - ne as i64 + n as i64;
     if !bad && sets == 1 && chi == if n_boundary == 0 { 2 } else { 1 } {
@@ -239,41 +113,19 @@ pub(crate) fn star_tests_tets<S: StarCells + ?Sized>(
         // copies; the result is a connected surface with Euler characteristic
         // chi + sum(k - 1), at most 2 without boundary and 1 with: so every fan is
         // connected, the link is a sphere or a disk, and every edge at v is manifold.
-        for &w in lv.iter() {
+        for &w in s.lv.iter() {
             if w > v {
                 edges_out.push((w, Manifold));
             }
         }
         return Some(Manifold);
     }
-    cuf.clear();
-    cuf.extend(0..3 * n as u32);
-    for e in 0..ne {
-        if ecnt[e] == 2 {
-            let (a, b) = eab[e];
-            let [t0, t1] = etri[e];
-            union(cuf, corner(tri, t0, a), corner(tri, t1, a));
-            union(cuf, corner(tri, t0, b), corner(tri, t1, b));
-        }
-    }
     // the triangles at each link vertex w form one fan (edge vw manifold)
-    root.clear();
-    root.resize(m, EMPTY);
-    for (i, t) in tri.iter().enumerate() {
-        for (p, &w) in t.iter().enumerate() {
-            let r = find(cuf, 3 * i as u32 + p as u32);
-            let slot = &mut root[w as usize];
-            if *slot == EMPTY {
-                *slot = r;
-            } else if *slot != r {
-                flags[w as usize] |= FAN;
-            }
-        }
-    }
-    for (w, &f) in flags.iter().enumerate() {
+    s.flag_fans(n);
+    for (w, &f) in s.flags.iter().enumerate() {
         let e_bad = f & (OVER | FAN) != 0;
         bad |= e_bad;
-        let tw = lv[w];
+        let tw = s.lv[w];
         if tw > v {
             edges_out.push((tw, if e_bad { NonManifold } else { Manifold }));
         }
@@ -285,6 +137,237 @@ pub(crate) fn star_tests_tets<S: StarCells + ?Sized>(
         chi == 2
     } else {
         // the boundary of the link is a single cycle
+        chi == 1 && s.boundary_is_one_cycle()
+    };
+    Some(if ok { Manifold } else { NonManifold })
+}
+
+impl TetScratch {
+    /// The link triangle of every tetrahedron of `star` (its vertices other than `v`, as
+    /// local ids from the vertex hash, increasing) into `tri`, the local vertices into `lv`;
+    /// empties the hash again. Returns true when a cell has a repeated vertex (only in a
+    /// damaged tree file).
+    #[inline]
+    fn link_triangles<S: StarCells + ?Sized>(
+        &mut self,
+        v: u32,
+        star: &S,
+        shift: u32,
+        mask: usize,
+    ) -> bool {
+        let TetScratch {
+            vkeys,
+            vvals,
+            lv,
+            lslot,
+            tri,
+            ..
+        } = self;
+        lv.clear();
+        lslot.clear();
+        tri.clear();
+        let mut degenerate = false;
+        for i in 0..star.len() {
+            let mut t = [0u32; 3];
+            let mut m = 0;
+            for &x in star.cell(i).1 {
+                if x == v {
+                    continue;
+                }
+                let mut h = hash1(x, shift);
+                let id = loop {
+                    let k = vkeys[h];
+                    if k == x {
+                        break vvals[h];
+                    }
+                    if k == EMPTY {
+                        let id = lv.len() as u32;
+                        vkeys[h] = x;
+                        vvals[h] = id;
+                        lv.push(x);
+                        lslot.push(h as u32);
+                        break id;
+                    }
+                    h = (h + 1) & mask;
+                };
+                if m < 3 {
+                    t[m] = id;
+                }
+                m += 1;
+            }
+            // a cell with a repeated vertex (only in a damaged tree file)
+            degenerate |= m != 3;
+            if t[0] > t[1] {
+                t.swap(0, 1);
+            }
+            if t[1] > t[2] {
+                t.swap(1, 2);
+            }
+            if t[0] > t[1] {
+                t.swap(0, 1);
+            }
+            tri.push(t);
+        }
+        for &h in lslot.iter() {
+            vkeys[h as usize] = EMPTY;
+        }
+        degenerate
+    }
+
+    /// The link edges (`eab`, local ids a < b) with their triangle count and first two
+    /// triangles, from the edge hash (emptied again).
+    #[inline]
+    fn link_edges(&mut self, shift: u32, mask: usize) {
+        let TetScratch {
+            tri,
+            ekeys,
+            evals,
+            eslot,
+            eab,
+            ecnt,
+            etri,
+            ..
+        } = self;
+        eab.clear();
+        ecnt.clear();
+        etri.clear();
+        eslot.clear();
+        for (i, t) in tri.iter().enumerate() {
+            for (a, b) in [(t[0], t[1]), (t[0], t[2]), (t[1], t[2])] {
+                let key = ((a as u64) << 32) | b as u64;
+                let mut h = hash2(a, b, shift);
+                loop {
+                    let k = ekeys[h];
+                    if k == key {
+                        let e = evals[h] as usize;
+                        if ecnt[e] == 1 {
+                            etri[e][1] = i as u32;
+                        }
+                        ecnt[e] += 1;
+                        break;
+                    }
+                    if k == EMPTY2 {
+                        ekeys[h] = key;
+                        evals[h] = eab.len() as u32;
+                        eslot.push(h as u32);
+                        eab.push((a, b));
+                        ecnt.push(1);
+                        etri.push([i as u32, EMPTY]);
+                        break;
+                    }
+                    h = (h + 1) & mask;
+                }
+            }
+        }
+        for &h in eslot.iter() {
+            ekeys[h as usize] = EMPTY2;
+        }
+    }
+
+    /// Classifies the link edges: boundary (one triangle: its ends flagged BOUNDARY), interior
+    /// (two: the triangles joined in `tuf`), over-full (more: its ends flagged OVER). Returns
+    /// (an over-full edge, the number of triangle clusters, the number of boundary edges).
+    #[inline]
+    fn classify_edges(&mut self, n: usize) -> (bool, usize, usize) {
+        let TetScratch {
+            lv,
+            eab,
+            ecnt,
+            etri,
+            flags,
+            tuf,
+            ..
+        } = self;
+        let m = lv.len();
+        let ne = eab.len();
+        flags.clear();
+        flags.resize(m, 0);
+        tuf.clear();
+        tuf.extend(0..n as u32);
+        let mut sets = n;
+        let mut bad = false;
+        let mut n_boundary = 0usize;
+        for e in 0..ne {
+            let (a, b) = eab[e];
+            match ecnt[e] {
+                1 => {
+                    flags[a as usize] |= BOUNDARY;
+                    flags[b as usize] |= BOUNDARY;
+                    n_boundary += 1;
+                }
+                2 => {
+                    let [t0, t1] = etri[e];
+                    if union(tuf, t0, t1) {
+                        sets -= 1;
+                    }
+                }
+                _ => {
+                    bad = true;
+                    flags[a as usize] |= OVER;
+                    flags[b as usize] |= OVER;
+                }
+            }
+        }
+        (bad, sets, n_boundary)
+    }
+
+    /// Flags FAN every link vertex whose triangles are not one fan: corners of triangles
+    /// sharing an interior edge are joined, and a vertex whose corners have two roots is
+    /// flagged.
+    #[inline]
+    fn flag_fans(&mut self, n: usize) {
+        let TetScratch {
+            lv,
+            tri,
+            eab,
+            ecnt,
+            etri,
+            flags,
+            root,
+            cuf,
+            ..
+        } = self;
+        let m = lv.len();
+        let ne = eab.len();
+        cuf.clear();
+        cuf.extend(0..3 * n as u32);
+        for e in 0..ne {
+            if ecnt[e] == 2 {
+                let (a, b) = eab[e];
+                let [t0, t1] = etri[e];
+                union(cuf, corner(tri, t0, a), corner(tri, t1, a));
+                union(cuf, corner(tri, t0, b), corner(tri, t1, b));
+            }
+        }
+        root.clear();
+        root.resize(m, EMPTY);
+        for (i, t) in tri.iter().enumerate() {
+            for (p, &w) in t.iter().enumerate() {
+                let r = find(cuf, 3 * i as u32 + p as u32);
+                let slot = &mut root[w as usize];
+                if *slot == EMPTY {
+                    *slot = r;
+                } else if *slot != r {
+                    flags[w as usize] |= FAN;
+                }
+            }
+        }
+    }
+
+    /// True when the link's boundary edges (one triangle each) form one cycle: the boundary
+    /// vertices are one set.
+    #[inline]
+    fn boundary_is_one_cycle(&mut self) -> bool {
+        let TetScratch {
+            lv,
+            eab,
+            ecnt,
+            flags,
+            vuf,
+            ..
+        } = self;
+        let m = lv.len();
+        let ne = eab.len();
         vuf.clear();
         vuf.extend(0..m as u32);
         let mut merged = 0usize;
@@ -295,7 +378,6 @@ pub(crate) fn star_tests_tets<S: StarCells + ?Sized>(
             }
         }
         let nb = flags.iter().filter(|&&f| f & BOUNDARY != 0).count();
-        chi == 1 && nb - merged == 1
-    };
-    Some(if ok { Manifold } else { NonManifold })
+        nb - merged == 1
+    }
 }

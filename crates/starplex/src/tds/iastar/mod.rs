@@ -654,41 +654,153 @@ mod low_dim;
 /// non-manifold face lists.
 fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
     let n = d + 1;
-    // sorted copy of every top's vertices, the input position of each sorted entry, and
-    // where each top lives (block, local), in dimension order
-    let nt: usize = blocks
-        .iter()
-        .filter(|b| b.dim == d)
-        .map(|b| b.len as usize)
-        .sum();
-    let mut sorted: Vec<u32> = Vec::with_capacity(nt * n);
-    let mut perm: Vec<u8> = Vec::with_capacity(nt * n);
-    let mut where_: Vec<(u32, u32)> = Vec::new(); // (first dim-local index, block index)
-    let mut pairs: Vec<(u32, u8)> = Vec::with_capacity(n);
-    for (bi, b) in blocks.iter().enumerate().filter(|(_, b)| b.dim == d) {
-        where_.push(((sorted.len() / n) as u32, bi as u32));
-        let st = b.stride();
-        for rec in b.data.chunks_exact(st) {
-            pairs.clear();
-            for (j, &v) in rec[..n].iter().enumerate() {
-                pairs.push((v, j as u8));
-            }
-            // insertion sort: n is small
-            for i in 1..pairs.len() {
-                let mut j = i;
-                while j > 0 && pairs[j - 1].0 > pairs[j].0 {
-                    pairs.swap(j - 1, j);
-                    j -= 1;
+    let tops = SortedTops::new(blocks, d);
+    let packed = d <= 3;
+    let (counts, mut order, mut recs) = bucket_slots(&tops, d, nv, packed);
+    let mut g = Grouper::new(blocks, &tops);
+    let mut gbuf: Vec<u32> = Vec::new();
+    let mut ka = vec![0u32; n];
+    let mut kb = vec![0u32; n];
+    for v in 0..nv {
+        if counts[v + 1] - counts[v] < 2 {
+            continue;
+        }
+        let r = counts[v] as usize..counts[v + 1] as usize;
+        if packed {
+            let keyed = &mut recs[r];
+            keyed.sort_unstable();
+            let mut i = 0;
+            while i < keyed.len() {
+                let mut j = i + 1;
+                while j < keyed.len() && keyed[j].0 == keyed[i].0 {
+                    j += 1;
                 }
+                if j - i >= 2 {
+                    gbuf.clear();
+                    gbuf.extend(keyed[i..j].iter().map(|x| x.1));
+                    g.group(blocks, &gbuf);
+                }
+                i = j;
             }
-            for p in &pairs {
-                sorted.push(p.0);
-                perm.push(p.1);
+        } else {
+            let bucket = &mut order[r];
+            bucket.sort_unstable_by(|&a, &b| {
+                tops.facet(a, &mut ka[..d]);
+                tops.facet(b, &mut kb[..d]);
+                ka[..d].cmp(&kb[..d])
+            });
+            let mut i = 0;
+            while i < bucket.len() {
+                tops.facet(bucket[i], &mut ka[..d]);
+                let mut j = i + 1;
+                while j < bucket.len() {
+                    tops.facet(bucket[j], &mut kb[..d]);
+                    if ka[..d] != kb[..d] {
+                        break;
+                    }
+                    j += 1;
+                }
+                if j - i >= 2 {
+                    gbuf.clear();
+                    gbuf.extend_from_slice(&bucket[i..j]);
+                    g.group(blocks, &gbuf);
+                }
+                i = j;
             }
         }
     }
-    // bucket the slots (li, jj) by the facet's smallest vertex; for d ≤ 3 the rest of the
-    // facet packs into a u64 key, computed in one sequential pass
+    Csr {
+        offsets: g.nm_offsets,
+        targets: g.nm_tops,
+    }
+}
+
+/// The top d-simplices with sorted vertices, in dimension order: slot `li * n + j` is the facet
+/// of top `li` without its `j`-th smallest vertex.
+struct SortedTops {
+    /// Vertices per top (d + 1).
+    n: usize,
+    /// Number of tops.
+    nt: usize,
+    /// Every top's vertices, sorted.
+    sorted: Vec<u32>,
+    /// The input position of each sorted entry.
+    perm: Vec<u8>,
+    /// Where each block's tops start: (first dimension-local index, block index).
+    where_: Vec<(u32, u32)>,
+}
+
+impl SortedTops {
+    /// Sorted copies of the tops of dimension `d` of `blocks`.
+    fn new(blocks: &[Block], d: usize) -> SortedTops {
+        let n = d + 1;
+        let nt: usize = blocks
+            .iter()
+            .filter(|b| b.dim == d)
+            .map(|b| b.len as usize)
+            .sum();
+        let mut sorted: Vec<u32> = Vec::with_capacity(nt * n);
+        let mut perm: Vec<u8> = Vec::with_capacity(nt * n);
+        let mut where_: Vec<(u32, u32)> = Vec::new();
+        let mut pairs: Vec<(u32, u8)> = Vec::with_capacity(n);
+        for (bi, b) in blocks.iter().enumerate().filter(|(_, b)| b.dim == d) {
+            where_.push(((sorted.len() / n) as u32, bi as u32));
+            let st = b.stride();
+            for rec in b.data.chunks_exact(st) {
+                pairs.clear();
+                for (j, &v) in rec[..n].iter().enumerate() {
+                    pairs.push((v, j as u8));
+                }
+                // insertion sort: n is small
+                for i in 1..pairs.len() {
+                    let mut j = i;
+                    while j > 0 && pairs[j - 1].0 > pairs[j].0 {
+                        pairs.swap(j - 1, j);
+                        j -= 1;
+                    }
+                }
+                for p in &pairs {
+                    sorted.push(p.0);
+                    perm.push(p.1);
+                }
+            }
+        }
+        SortedTops {
+            n,
+            nt,
+            sorted,
+            perm,
+            where_,
+        }
+    }
+
+    /// The facet of `slot` without its smallest vertex, into `out` (`n - 1` entries).
+    #[inline]
+    fn facet(&self, slot: u32, out: &mut [u32]) {
+        let n = self.n;
+        let (li, jj) = (slot as usize / n, slot as usize % n);
+        let t = &self.sorted[li * n..(li + 1) * n];
+        let mut w = 0;
+        for (i, &x) in t.iter().enumerate() {
+            if i != jj {
+                out[w] = x;
+                w += 1;
+            }
+        }
+    }
+}
+
+/// Buckets the slots of `tops` by the facet's smallest vertex: returns the bucket offsets per
+/// vertex and, when `packed` (d ≤ 3: the rest of the facet packs into a u64 key, computed in
+/// one sequential pass), (key, slot) records, else the slots.
+#[allow(clippy::type_complexity)]
+fn bucket_slots(
+    tops: &SortedTops,
+    d: usize,
+    nv: usize,
+    packed: bool,
+) -> (Vec<u32>, Vec<u32>, Vec<(u64, u32)>) {
+    let (n, nt, sorted) = (tops.n, tops.nt, &tops.sorted);
     let min_of = |slot: usize| -> u32 {
         let (li, jj) = (slot / n, slot % n);
         sorted[li * n + usize::from(jj == 0)]
@@ -701,7 +813,6 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
         counts[i + 1] += counts[i];
     }
     let mut pos = counts.clone();
-    let packed = d <= 3;
     let mut order = vec![0u32; if packed { 0 } else { nt * n }];
     let mut recs: Vec<(u64, u32)> = vec![(0, 0); if packed { nt * n } else { 0 }];
     for li in 0..nt {
@@ -729,112 +840,77 @@ fn build_adjacency(blocks: &mut [Block], d: usize, nv: usize) -> Csr {
             pos[m] += 1;
         }
     }
-    drop(pos);
-    // the facet without its smallest vertex
-    let facet = |slot: u32, out: &mut [u32]| {
-        let (li, jj) = (slot as usize / n, slot as usize % n);
-        let t = &sorted[li * n..(li + 1) * n];
-        let mut w = 0;
-        for (i, &x) in t.iter().enumerate() {
-            if i != jj {
-                out[w] = x;
-                w += 1;
-            }
-        }
-    };
-    let single = where_.len() == 1;
-    let locate = |li: usize| -> (usize, usize) {
-        if single {
-            return (where_[0].1 as usize, li);
-        }
-        let k = where_.partition_point(|w| w.0 as usize <= li) - 1;
-        (where_[k].1 as usize, li - where_[k].0 as usize)
-    };
-    let ids: Vec<u32> = (0..nt)
-        .map(|li| {
-            let (bi, local) = locate(li);
-            blocks[bi].first + local as u32
-        })
-        .collect();
-    let set_slot = |blocks: &mut [Block], slot: u32, val: u32| {
-        let li = slot as usize / n;
-        let j = perm[slot as usize] as usize;
-        let (bi, local) = locate(li);
-        blocks[bi].data[local * 2 * n + n + j] = val;
-    };
-    let mut nm_tops: Vec<u32> = Vec::new();
-    let mut nm_offsets: Vec<u32> = vec![0];
-    let mut ka = vec![0u32; n];
-    let mut kb = vec![0u32; n];
-    let mut group = |blocks: &mut [Block], g: &[u32]| match g.len() {
-        1 => {}
-        2 => {
-            let (c1, c2) = (ids[g[0] as usize / n], ids[g[1] as usize / n]);
-            set_slot(blocks, g[0], c2);
-            set_slot(blocks, g[1], c1);
-        }
-        _ => {
-            let f = (nm_offsets.len() - 1) as u32;
-            let start = nm_tops.len();
-            for &s in g {
-                nm_tops.push(ids[s as usize / n]);
-                set_slot(blocks, s, NM_BIT | f);
-            }
-            nm_tops[start..].sort_unstable();
-            nm_offsets.push(nm_tops.len() as u32);
-        }
-    };
-    let mut gbuf: Vec<u32> = Vec::new();
-    for v in 0..nv {
-        if counts[v + 1] - counts[v] < 2 {
-            continue;
-        }
-        if packed {
-            let keyed = &mut recs[counts[v] as usize..counts[v + 1] as usize];
-            keyed.sort_unstable();
-            let mut i = 0;
-            while i < keyed.len() {
-                let mut j = i + 1;
-                while j < keyed.len() && keyed[j].0 == keyed[i].0 {
-                    j += 1;
-                }
-                if j - i >= 2 {
-                    gbuf.clear();
-                    gbuf.extend(keyed[i..j].iter().map(|x| x.1));
-                    group(blocks, &gbuf);
-                }
-                i = j;
-            }
-        } else {
-            let bucket = &mut order[counts[v] as usize..counts[v + 1] as usize];
-            bucket.sort_unstable_by(|&a, &b| {
-                facet(a, &mut ka[..d]);
-                facet(b, &mut kb[..d]);
-                ka[..d].cmp(&kb[..d])
-            });
-            let mut i = 0;
-            while i < bucket.len() {
-                facet(bucket[i], &mut ka[..d]);
-                let mut j = i + 1;
-                while j < bucket.len() {
-                    facet(bucket[j], &mut kb[..d]);
-                    if ka[..d] != kb[..d] {
-                        break;
-                    }
-                    j += 1;
-                }
-                if j - i >= 2 {
-                    gbuf.clear();
-                    gbuf.extend_from_slice(&bucket[i..j]);
-                    group(blocks, &gbuf);
-                }
-                i = j;
-            }
-        }
+    (counts, order, recs)
+}
+
+/// Fills the adjacency slots of one group of slots sharing a facet: two tops see each other;
+/// three or more make a non-manifold face (its tops listed, the slots pointing to it).
+struct Grouper<'a> {
+    tops: &'a SortedTops,
+    /// The cell id of every top (dimension-local index).
+    ids: Vec<u32>,
+    nm_tops: Vec<u32>,
+    nm_offsets: Vec<u32>,
+}
+
+impl<'a> Grouper<'a> {
+    fn new(blocks: &[Block], tops: &'a SortedTops) -> Grouper<'a> {
+        let mut g = Grouper {
+            tops,
+            ids: Vec::new(),
+            nm_tops: Vec::new(),
+            nm_offsets: vec![0],
+        };
+        g.ids = (0..tops.nt)
+            .map(|li| {
+                let (bi, local) = g.locate(li);
+                blocks[bi].first + local as u32
+            })
+            .collect();
+        g
     }
-    Csr {
-        offsets: nm_offsets,
-        targets: nm_tops,
+
+    /// (block index, index in the block) of dimension-local top `li`.
+    #[inline]
+    fn locate(&self, li: usize) -> (usize, usize) {
+        let w = &self.tops.where_;
+        if w.len() == 1 {
+            return (w[0].1 as usize, li);
+        }
+        let k = w.partition_point(|w| w.0 as usize <= li) - 1;
+        (w[k].1 as usize, li - w[k].0 as usize)
+    }
+
+    #[inline]
+    fn set_slot(&self, blocks: &mut [Block], slot: u32, val: u32) {
+        let n = self.tops.n;
+        let li = slot as usize / n;
+        let j = self.tops.perm[slot as usize] as usize;
+        let (bi, local) = self.locate(li);
+        blocks[bi].data[local * 2 * n + n + j] = val;
+    }
+
+    #[inline]
+    fn group(&mut self, blocks: &mut [Block], g: &[u32]) {
+        let n = self.tops.n;
+        match g.len() {
+            1 => {}
+            2 => {
+                let (c1, c2) = (self.ids[g[0] as usize / n], self.ids[g[1] as usize / n]);
+                self.set_slot(blocks, g[0], c2);
+                self.set_slot(blocks, g[1], c1);
+            }
+            _ => {
+                let f = (self.nm_offsets.len() - 1) as u32;
+                let start = self.nm_tops.len();
+                for &s in g {
+                    self.nm_tops.push(self.ids[s as usize / n]);
+                    self.set_slot(blocks, s, NM_BIT | f);
+                }
+                self.nm_tops[start..].sort_unstable();
+                self.nm_offsets.push(self.nm_tops.len() as u32);
+            }
+        }
     }
 }
 

@@ -112,6 +112,202 @@ pub(super) struct CellGraph {
     top_at: Vec<Vec<(u32, u32)>>,
 }
 
+/// Cells the incidence graph of `k` would hold: its vertices and every face of every top.
+fn cell_estimate(k: &IndexedComplex) -> u128 {
+    let nv = k.n_vertices();
+    let mut est: u128 = nv as u128;
+    for b in k.blocks() {
+        for p in 1..=b.kind.dim() {
+            let f = if b.kind.is_simplex() {
+                binomial(b.kind.n_vertices() as u64, p as u64 + 1)
+            } else {
+                b.kind.n_faces(p)
+            };
+            est = est.saturating_add(f.saturating_mul(b.len() as u128));
+        }
+    }
+    est
+}
+
+/// The face tables of the cell kinds of a complex.
+struct FaceTables(Vec<(CellKind, KindFaces)>);
+
+impl FaceTables {
+    fn new(k: &IndexedComplex) -> FaceTables {
+        let mut kinds: Vec<(CellKind, KindFaces)> = Vec::new();
+        for b in k.blocks() {
+            if !kinds.iter().any(|x| x.0 == b.kind) {
+                kinds.push((b.kind, KindFaces::new(b.kind)));
+            }
+        }
+        FaceTables(kinds)
+    }
+
+    /// The table of `kind` (one of the complex's kinds).
+    fn get(&self, kind: CellKind) -> &KindFaces {
+        &self.0.iter().find(|x| x.0 == kind).expect("listed").1
+    }
+
+    /// The number of `p`-faces of a cell of `kind`.
+    fn n_faces(&self, kind: CellKind, p: usize) -> usize {
+        self.get(kind).faces.get(p).map_or(0, |l| l.len())
+    }
+}
+
+/// Level `p`'s cells: every (top, p-face) slot keyed by its sorted vertices, the distinct keys
+/// in order. Returns the slot base of each block, the keys (one row per cell) and the cell of
+/// every slot; `key` is scratch.
+fn level_keys(
+    k: &IndexedComplex,
+    tables: &FaceTables,
+    p: usize,
+    key: &mut Vec<u32>,
+) -> (Vec<usize>, Csr, Vec<u32>) {
+    let kf = |kind: CellKind| tables.get(kind);
+    let nf = |kind: CellKind, p: usize| tables.n_faces(kind, p);
+    let mut base = Vec::new();
+    let mut tot = 0usize;
+    let mut w = 0usize;
+    for b in k.blocks() {
+        base.push(tot);
+        tot += b.len() * nf(b.kind, p);
+        if nf(b.kind, p) > 0 {
+            w = w.max(
+                kf(b.kind).faces[p]
+                    .iter()
+                    .map(|f| f.len())
+                    .max()
+                    .unwrap_or(0),
+            );
+        }
+    }
+    // every (cell, face) slot's key, zero-padded to width w
+    let mut flat: Vec<u32> = vec![0; tot * w];
+    let mut at = 0usize;
+    for b in k.blocks() {
+        let faces = &kf(b.kind).faces;
+        let Some(fl) = faces.get(p) else {
+            continue;
+        };
+        let n = b.kind.n_vertices();
+        for c in b.vertices.chunks_exact(n) {
+            for f in fl {
+                key.clear();
+                key.extend(f.iter().map(|&l| c[l as usize]));
+                key.sort_unstable();
+                flat[at * w..at * w + key.len()].copy_from_slice(key);
+                at += 1;
+            }
+        }
+    }
+    debug_assert_eq!(at, tot);
+    let order: Vec<u32> = if w <= 4 {
+        let mut recs: Vec<(u128, u32)> = (0..tot)
+            .map(|s| (pack4(&flat[s * w..(s + 1) * w]), s as u32))
+            .collect();
+        recs.sort_unstable();
+        recs.into_iter().map(|x| x.1).collect()
+    } else {
+        let mut o: Vec<u32> = (0..tot as u32).collect();
+        o.sort_unstable_by(|&a, &b| {
+            let (a, b) = (a as usize, b as usize);
+            flat[a * w..(a + 1) * w]
+                .cmp(&flat[b * w..(b + 1) * w])
+                .then(a.cmp(&b))
+        });
+        o
+    };
+    let mut nodes = vec![0u32; tot];
+    let mut kc = Csr {
+        offsets: vec![0],
+        targets: Vec::new(),
+    };
+    let mut prev: Option<usize> = None;
+    for &s in &order {
+        let s = s as usize;
+        let cur = &flat[s * w..(s + 1) * w];
+        if prev.is_none_or(|q| &flat[q * w..(q + 1) * w] != cur) {
+            kc.targets.extend_from_slice(&cur[..key_len(cur)]);
+            kc.offsets.push(kc.targets.len() as u32);
+        }
+        nodes[s] = (kc.offsets.len() - 2) as u32;
+        prev = Some(s);
+    }
+    (base, kc, nodes)
+}
+
+/// The (cell, facet) pairs of level `p` (`n_p` cells), each cell's facets from the first top
+/// met that holds it, sorted per cell.
+fn level_facets(
+    k: &IndexedComplex,
+    tables: &FaceTables,
+    p: usize,
+    n_p: usize,
+    base: &[Vec<usize>],
+    slot_node: &[Vec<u32>],
+) -> Vec<(u32, u32)> {
+    let kf = |kind: CellKind| tables.get(kind);
+    let mut seen = vec![false; n_p];
+    let mut pairs: Vec<(u32, u32)> = Vec::new();
+    for (bi, b) in k.blocks().iter().enumerate() {
+        let f = kf(b.kind);
+        let Some(fl) = f.faces.get(p) else {
+            continue;
+        };
+        let n = b.kind.n_vertices();
+        let (m, mb) = (fl.len(), f.faces[p - 1].len());
+        for (i, c) in b.vertices.chunks_exact(n).enumerate() {
+            for j in 0..m {
+                let node = slot_node[p][base[p][bi] + i * m + j];
+                if seen[node as usize] {
+                    continue;
+                }
+                seen[node as usize] = true;
+                let start = pairs.len();
+                for &g in &f.facets[p][j] {
+                    let fnode = if p == 1 {
+                        c[f.faces[0][g as usize][0] as usize]
+                    } else {
+                        slot_node[p - 1][base[p - 1][bi] + i * mb + g as usize]
+                    };
+                    pairs.push((node, fnode));
+                }
+                pairs[start..].sort_unstable();
+            }
+        }
+    }
+    pairs
+}
+
+/// The node of every top cell, and per dimension the (node, top) pairs sorted.
+#[allow(clippy::type_complexity)]
+fn top_nodes(
+    k: &IndexedComplex,
+    depth: usize,
+    base: &[Vec<usize>],
+    slot_node: &[Vec<u32>],
+) -> (Vec<u32>, Vec<Vec<(u32, u32)>>) {
+    let mut cell_node = vec![0u32; k.n_cells()];
+    let mut top_at = vec![Vec::new(); depth];
+    for (bi, b) in k.blocks().iter().enumerate() {
+        let d = b.kind.dim();
+        for i in 0..b.len() {
+            let node = if d == 0 {
+                b.vertices[i]
+            } else {
+                slot_node[d][base[d][bi] + i]
+            };
+            let c = b.first + i as u32;
+            cell_node[c as usize] = node;
+            top_at[d].push((node, c));
+        }
+    }
+    for t in &mut top_at {
+        t.sort_unstable();
+    }
+    (cell_node, top_at)
+}
+
 impl CellGraph {
     /// Builds every cell with its boundary and co-boundary.
     ///
@@ -120,29 +316,12 @@ impl CellGraph {
     pub(super) fn new(k: &IndexedComplex, limit: u128) -> Result<CellGraph, BuildError> {
         let limit = limit.min(u32::MAX as u128);
         let nv = k.n_vertices();
-        let mut est: u128 = nv as u128;
-        for b in k.blocks() {
-            for p in 1..=b.kind.dim() {
-                let f = if b.kind.is_simplex() {
-                    binomial(b.kind.n_vertices() as u64, p as u64 + 1)
-                } else {
-                    b.kind.n_faces(p)
-                };
-                est = est.saturating_add(f.saturating_mul(b.len() as u128));
-            }
-        }
+        let est = cell_estimate(k);
         if est > limit {
             return Err(BuildError::too_many(est, limit));
         }
         let depth = k.dim().map_or(1, |d| d + 1);
-        let mut kinds: Vec<(CellKind, KindFaces)> = Vec::new();
-        for b in k.blocks() {
-            if !kinds.iter().any(|x| x.0 == b.kind) {
-                kinds.push((b.kind, KindFaces::new(b.kind)));
-            }
-        }
-        let kf = |kind: CellKind| &kinds.iter().find(|x| x.0 == kind).expect("listed").1;
-        let nf = |kind: CellKind, p: usize| kf(kind).faces.get(p).map_or(0, |l| l.len());
+        let tables = FaceTables::new(k);
         // per level: the slot base of each block, and the node of every (cell, face) slot
         let mut base: Vec<Vec<usize>> = vec![Vec::new(); depth];
         let mut slot_node: Vec<Vec<u32>> = vec![Vec::new(); depth];
@@ -153,73 +332,8 @@ impl CellGraph {
         };
         let mut key: Vec<u32> = Vec::new();
         for p in 1..depth {
-            let mut tot = 0usize;
-            let mut w = 0usize;
-            for b in k.blocks() {
-                base[p].push(tot);
-                tot += b.len() * nf(b.kind, p);
-                if nf(b.kind, p) > 0 {
-                    w = w.max(
-                        kf(b.kind).faces[p]
-                            .iter()
-                            .map(|f| f.len())
-                            .max()
-                            .unwrap_or(0),
-                    );
-                }
-            }
-            // every (cell, face) slot's key, zero-padded to width w
-            let mut flat: Vec<u32> = vec![0; tot * w];
-            let mut at = 0usize;
-            for b in k.blocks() {
-                let faces = &kf(b.kind).faces;
-                let Some(fl) = faces.get(p) else {
-                    continue;
-                };
-                let n = b.kind.n_vertices();
-                for c in b.vertices.chunks_exact(n) {
-                    for f in fl {
-                        key.clear();
-                        key.extend(f.iter().map(|&l| c[l as usize]));
-                        key.sort_unstable();
-                        flat[at * w..at * w + key.len()].copy_from_slice(&key);
-                        at += 1;
-                    }
-                }
-            }
-            debug_assert_eq!(at, tot);
-            let order: Vec<u32> = if w <= 4 {
-                let mut recs: Vec<(u128, u32)> = (0..tot)
-                    .map(|s| (pack4(&flat[s * w..(s + 1) * w]), s as u32))
-                    .collect();
-                recs.sort_unstable();
-                recs.into_iter().map(|x| x.1).collect()
-            } else {
-                let mut o: Vec<u32> = (0..tot as u32).collect();
-                o.sort_unstable_by(|&a, &b| {
-                    let (a, b) = (a as usize, b as usize);
-                    flat[a * w..(a + 1) * w]
-                        .cmp(&flat[b * w..(b + 1) * w])
-                        .then(a.cmp(&b))
-                });
-                o
-            };
-            let mut nodes = vec![0u32; tot];
-            let mut kc = Csr {
-                offsets: vec![0],
-                targets: Vec::new(),
-            };
-            let mut prev: Option<usize> = None;
-            for &s in &order {
-                let s = s as usize;
-                let cur = &flat[s * w..(s + 1) * w];
-                if prev.is_none_or(|q| &flat[q * w..(q + 1) * w] != cur) {
-                    kc.targets.extend_from_slice(&cur[..key_len(cur)]);
-                    kc.offsets.push(kc.targets.len() as u32);
-                }
-                nodes[s] = (kc.offsets.len() - 2) as u32;
-                prev = Some(s);
-            }
+            let (b, kc, nodes) = level_keys(k, &tables, p, &mut key);
+            base[p] = b;
             keys[p] = kc;
             slot_node[p] = nodes;
         }
@@ -228,35 +342,7 @@ impl CellGraph {
         let mut bnd: Vec<Csr> = vec![Csr::default(); depth];
         let mut cob: Vec<Csr> = vec![Csr::default(); depth];
         for p in 1..depth {
-            let mut seen = vec![false; n_at(p)];
-            let mut pairs: Vec<(u32, u32)> = Vec::new();
-            for (bi, b) in k.blocks().iter().enumerate() {
-                let f = kf(b.kind);
-                let Some(fl) = f.faces.get(p) else {
-                    continue;
-                };
-                let n = b.kind.n_vertices();
-                let (m, mb) = (fl.len(), f.faces[p - 1].len());
-                for (i, c) in b.vertices.chunks_exact(n).enumerate() {
-                    for j in 0..m {
-                        let node = slot_node[p][base[p][bi] + i * m + j];
-                        if seen[node as usize] {
-                            continue;
-                        }
-                        seen[node as usize] = true;
-                        let start = pairs.len();
-                        for &g in &f.facets[p][j] {
-                            let fnode = if p == 1 {
-                                c[f.faces[0][g as usize][0] as usize]
-                            } else {
-                                slot_node[p - 1][base[p - 1][bi] + i * mb + g as usize]
-                            };
-                            pairs.push((node, fnode));
-                        }
-                        pairs[start..].sort_unstable();
-                    }
-                }
-            }
+            let pairs = level_facets(k, &tables, p, n_at(p), &base, &slot_node);
             let b = Csr::from_pairs(n_at(p), &pairs);
             let mut inv: Vec<(u32, u32)> = Vec::with_capacity(b.n_refs());
             for r in 0..b.n_rows() {
@@ -275,24 +361,7 @@ impl CellGraph {
             acc += n_at(p) as u32;
         }
         level_offset.push(acc);
-        let mut cell_node = vec![0u32; k.n_cells()];
-        let mut top_at = vec![Vec::new(); depth];
-        for (bi, b) in k.blocks().iter().enumerate() {
-            let d = b.kind.dim();
-            for i in 0..b.len() {
-                let node = if d == 0 {
-                    b.vertices[i]
-                } else {
-                    slot_node[d][base[d][bi] + i]
-                };
-                let c = b.first + i as u32;
-                cell_node[c as usize] = node;
-                top_at[d].push((node, c));
-            }
-        }
-        for t in &mut top_at {
-            t.sort_unstable();
-        }
+        let (cell_node, top_at) = top_nodes(k, depth, &base, &slot_node);
         let mut blocks = Vec::with_capacity(k.blocks().len());
         let mut top_verts = Vec::with_capacity(k.n_refs());
         for b in k.blocks() {
