@@ -32,7 +32,11 @@ pub fn run(ctx: &Ctx, a: &ConvertArgs) -> Result<(), CliError> {
     let r = common::load(ctx, &a.input)?;
     let mut k = r.complex;
     let convert_err = |e: surface::SurfaceError| {
-        CliError::Input(format!("{}: {e}", a.input.file.display()), None)
+        let hint = matches!(e, surface::SurfaceError::VolumeCell { .. }).then(|| {
+            "pass --boundary as well: the boundary surface is taken first, then triangulated"
+                .to_string()
+        });
+        CliError::Input(format!("{}: {e}", a.input.file.display()), hint)
     };
     let attrs = k.attributes().clone();
     if a.boundary {

@@ -334,7 +334,7 @@ fn lenient_reads_cgal_prim_off() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("unexpected content after the 7 faces") && e.contains("--lenient"),
+        e.contains("unexpected content after the 7 faces") && e.contains("lenient option"),
         "{e}"
     );
     let opts = ReadOptions {

@@ -35,7 +35,7 @@ use crate::ids::CellId;
 #[derive(Debug, thiserror::Error)]
 pub enum SurfaceError {
     /// `triangulate` splits polygons, not 3D cells.
-    #[error("cell {cell} is a {kind}: --triangulate splits quads into triangles, not 3D cells (write the surface with --boundary first)")]
+    #[error("cell {cell} is a {kind}: triangulating splits quads into triangles, not 3D cells (take the boundary surface first)")]
     VolumeCell {
         /// The cell id.
         cell: u64,

@@ -403,7 +403,7 @@ pub enum IoErrorKind {
     #[error("{0}")]
     CountMismatch(String),
     /// The extension names no known format.
-    #[error("unknown format for '{0}': use one of spx spb off ply obj stl mesh vtk vtu vtp msh tri ts sierp hex, or --format (msh22 writes gmsh 2.2)")]
+    #[error("unknown format for '{0}': use one of spx spb off ply obj stl mesh vtk vtu vtp msh tri ts sierp hex, or name the format (msh22 writes gmsh 2.2)")]
     UnknownFormat(String),
     /// Standard input or output (`-`) was given without a format: nothing names it.
     #[error("{what} has no extension: say its format with {flag} (e.g. {flag} off)")]

@@ -811,19 +811,19 @@ pub fn check(k: &IndexedComplex) -> Result<(), IoErrorKind> {
             CellKind::Simplex(1) | CellKind::Simplex(2) | CellKind::Quad => continue,
             CellKind::Simplex(0) => format!(
                 "cell {} is a vertex (a 0-simplex top cell), which OFF readers drop; write \
-                 off-simplices (the Stellar convention, read back with --simplices), spx or spb",
+                 off-simplices (the Stellar convention, read back as simplices), spx or spb",
                 b.first
             ),
             CellKind::Simplex(d) => format!(
                 "cell {} is a {d}-simplex, whose {} vertices an OFF reader takes for a polygon \
                  (a tetrahedron comes back as a quad); write off-simplices (the Stellar \
-                 convention, read back with --simplices), or the surface with --boundary",
+                 convention, read back as simplices), or the boundary surface",
                 b.first,
                 d + 1
             ),
             kind => format!(
                 "OFF holds simplices and polygons, not 3D cells; cell {} is a {} (write its \
-                 surface with --boundary, or use vtk, msh, mesh, spx or spb)",
+                 boundary surface, or use vtk, msh, mesh, spx or spb)",
                 b.first,
                 kind.type_name()
             ),
@@ -858,7 +858,7 @@ pub fn check_simplices(k: &IndexedComplex) -> Result<(), IoErrorKind> {
             format: Format::OffSimplices,
             reason: format!(
                 "off-simplices reads every face as a simplex, and cell {} is a {} (write off, \
-                 or --triangulate first)",
+                 or triangulate first)",
                 b.first,
                 b.kind.type_name()
             ),

@@ -955,7 +955,7 @@ pub fn check_surface(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKi
             }
         };
         let alt = if b.kind.dim() == 3 {
-            ".mesh, .vtk, .msh, .spx or .spb (or write its surface with --boundary)"
+            ".mesh, .vtk, .msh, .spx or .spb (or write its boundary surface)"
         } else {
             ".spx, .spb, .vtk or .msh"
         };

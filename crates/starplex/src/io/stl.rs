@@ -272,7 +272,7 @@ fn point32(k: &IndexedComplex, v: u32) -> [f32; 3] {
 /// let quad = IndexedComplex::from_parts(3, vec![0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.].into(),
 ///                                       vec![(CellKind::Quad, vec![0, 1, 2, 3].into())]).unwrap();
 /// let e = stl::check(&quad, Format::Stl).unwrap_err();
-/// assert!(e.to_string().contains("--triangulate"), "{e}");
+/// assert!(e.to_string().contains("triangulate the quads first"), "{e}");
 /// ```
 ///
 /// # Errors
@@ -290,13 +290,13 @@ pub fn check(k: &IndexedComplex, format: Format) -> Result<(), IoErrorKind> {
             CellKind::Simplex(2) => {}
             CellKind::Quad => {
                 return fail(format!(
-                    "STL holds triangles only, cell {} is a quad: split quads with --triangulate",
+                    "STL holds triangles only, cell {} is a quad: triangulate the quads first",
                     b.first
                 ))
             }
             kind if kind.dim() == 3 => {
                 return fail(format!(
-                    "STL holds triangles only, cell {} is a {}: write the surface with --boundary (and --triangulate for quad faces)",
+                    "STL holds triangles only, cell {} is a {}: write its boundary surface (triangulated, if it has quad faces)",
                     b.first,
                     kind.type_name()
                 ))

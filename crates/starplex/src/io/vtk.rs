@@ -1536,7 +1536,7 @@ pub fn check_polydata(k: &IndexedComplex) -> Result<(), IoErrorKind> {
             CellKind::Simplex(1) | CellKind::Simplex(2) | CellKind::Quad
         ) {
             return fail(format!(
-                "POLYDATA holds edges, triangles and quads, not {} cells: write the unstructured grid (--to vtk)",
+                "POLYDATA holds edges, triangles and quads, not {} cells: write the unstructured grid (format vtk)",
                 b.kind
             ));
         }

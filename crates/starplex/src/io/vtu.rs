@@ -1151,7 +1151,7 @@ fn inflate_blocks(hv: &[u64], comp: &[u8]) -> Result<Vec<u8>, String> {
 /// let tet = IndexedComplex::from_parts(3, vec![0.0; 12].into(),
 ///                                      vec![(CellKind::Simplex(3), vec![0, 1, 2, 3].into())]).unwrap();
 /// assert!(vtu::check(&tet, false).is_ok());
-/// assert!(vtu::check(&tet, true).unwrap_err().to_string().contains("--boundary"));
+/// assert!(vtu::check(&tet, true).unwrap_err().to_string().contains("boundary surface"));
 /// ```
 ///
 /// # Errors
@@ -1176,7 +1176,7 @@ pub fn check(k: &IndexedComplex, poly: bool) -> Result<(), IoErrorKind> {
             return Err(IoErrorKind::CannotWrite {
                 format,
                 reason: format!(
-                    "VTK poly data holds points, lines and polygons, not {} cells: write .vtu, or its boundary surface with --boundary",
+                    "VTK poly data holds points, lines and polygons, not {} cells: write .vtu, or its boundary surface",
                     b.kind
                 ),
             });

@@ -169,7 +169,7 @@ pub enum HomologyError {
     #[error(transparent)]
     Query(QueryError),
     /// Integer coefficients overflowed (Z or Q).
-    #[error("integer coefficients overflow in {0}; try a prime field (--field p)")]
+    #[error("integer coefficients overflow in {0}; try a prime field")]
     Overflow(String),
     /// A field name that is not known.
     #[error("unknown field '{0}' (use 2, a prime p, q or z)")]

@@ -67,7 +67,7 @@ pub enum SimplifyError {
         reason: String,
     },
     /// QEM needs a pure triangle mesh (2D/3D) or a pure tetrahedral mesh (3D).
-    #[error("quadric simplification needs a pure triangle mesh (2 or 3 coordinates) or a pure tetrahedral mesh (3 coordinates); use --mode homology for other complexes")]
+    #[error("quadric simplification needs a pure triangle mesh (2 or 3 coordinates) or a pure tetrahedral mesh (3 coordinates); use the homology mode for other complexes")]
     NotAMesh,
     /// The target cannot be met or makes no sense.
     #[error("bad target: {0}")]
@@ -79,7 +79,7 @@ pub enum SimplifyError {
     #[error("building the simplified complex: {0}")]
     Complex(ComplexError),
     /// `keep_labels` names no cell attribute of the complex.
-    #[error("--keep-labels {name}: the complex has no cell attribute of that name (it has: {available})")]
+    #[error("labels to keep, '{name}': the complex has no cell attribute of that name (it has: {available})")]
     UnknownLabel {
         /// The name asked.
         name: String,
@@ -328,7 +328,7 @@ pub fn simplify(
         }
         if mode == Mode::Homology {
             return Err(SimplifyError::BadTarget(
-                "--max-error is a quadric error: it needs --mode qem".into(),
+                "a maximum error is a quadric error: it needs the qem mode".into(),
             ));
         }
     }
