@@ -185,7 +185,8 @@ pub enum StellarError {
 }
 
 /// A node of the hierarchy. Children of a node are contiguous (brood encoding); a leaf has
-/// `n_children == 0` and `first` is its [`LeafId`].
+/// no children and [`TreeNode::leaf`] gives its [`LeafId`]. Ids are typed: tree vertices are
+/// [`TreeVertexId`]s, children [`NodeId`]s.
 ///
 /// ```
 /// # use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -197,24 +198,59 @@ pub enum StellarError {
 /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
 /// # let k = b.build(&BuildOptions::default()).unwrap().0;
 /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+/// use starplex::ids::{NodeId, TreeVertexId};
 /// let root = t.nodes()[0];
-/// assert_eq!((root.v_start, root.v_end), (0, 4));
-/// assert_eq!(root.n_children, 4); // quadtree split, one vertex per leaf
-/// let leaf = t.nodes()[root.first as usize];
-/// assert_eq!(leaf.n_children, 0);
-/// assert_eq!(leaf.v_end - leaf.v_start, 1);
+/// assert_eq!((root.v_start(), root.v_end()), (TreeVertexId(0), TreeVertexId(4)));
+/// assert_eq!(root.n_children(), 4); // quadtree split, one vertex per leaf
+/// assert_eq!(root.leaf(), None);
+/// let first: NodeId = root.children().next().unwrap();
+/// let leaf = t.nodes()[first.index()];
+/// assert!(leaf.leaf().is_some() && leaf.children().next().is_none());
+/// assert_eq!(leaf.n_vertices(), 1);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C)]
 pub struct TreeNode {
     /// First vertex (tree numbering) of the block.
-    pub v_start: u32,
+    pub(crate) v_start: u32,
     /// One past the last vertex of the block.
-    pub v_end: u32,
+    pub(crate) v_end: u32,
     /// First child node, or the leaf id for a leaf.
-    pub first: u32,
+    pub(crate) first: u32,
     /// Number of children (0 for a leaf).
-    pub n_children: u32,
+    pub(crate) n_children: u32,
+}
+
+impl TreeNode {
+    /// First vertex (tree numbering) of the node's block; see [`TreeNode`] for an example.
+    pub fn v_start(&self) -> TreeVertexId {
+        TreeVertexId(self.v_start)
+    }
+
+    /// One past the last vertex (tree numbering) of the node's block.
+    pub fn v_end(&self) -> TreeVertexId {
+        TreeVertexId(self.v_end)
+    }
+
+    /// Number of vertices in the node's block.
+    pub fn n_vertices(&self) -> usize {
+        (self.v_end - self.v_start) as usize
+    }
+
+    /// The leaf this node is, or `None` for an internal node.
+    pub fn leaf(&self) -> Option<LeafId> {
+        (self.n_children == 0).then_some(LeafId(self.first))
+    }
+
+    /// Number of children (0 for a leaf).
+    pub fn n_children(&self) -> usize {
+        self.n_children as usize
+    }
+
+    /// The children, contiguous in [`StellarTree::nodes`] (none for a leaf).
+    pub fn children(&self) -> impl ExactSizeIterator<Item = NodeId> + use<> {
+        (self.first..self.first + self.n_children).map(NodeId)
+    }
 }
 
 /// Seconds spent in each build phase.
@@ -554,8 +590,8 @@ impl StellarTree {
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
     /// let nodes = t.nodes();
     /// assert_eq!(nodes.len(), t.n_nodes());
-    /// assert_eq!((nodes[0].v_start, nodes[0].v_end), (0, 4)); // the root covers every vertex
-    /// assert_eq!(nodes.iter().filter(|n| n.n_children == 0).count(), t.n_leaves());
+    /// assert_eq!(nodes[0].n_vertices(), 4); // the root covers every vertex
+    /// assert_eq!(nodes.iter().filter(|n| n.leaf().is_some()).count(), t.n_leaves());
     /// ```
     pub fn nodes(&self) -> &[TreeNode] {
         &self.nodes
@@ -574,7 +610,7 @@ impl StellarTree {
     /// # let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
     /// use starplex::ids::NodeId;
     /// assert_eq!(t.node(NodeId(0)), t.nodes()[0]);
-    /// assert_eq!(t.node(NodeId(0)).n_children, 4);
+    /// assert_eq!(t.node(NodeId(0)).n_children(), 4);
     /// ```
     pub fn node(&self, n: NodeId) -> TreeNode {
         self.nodes[n.index()]
