@@ -640,7 +640,9 @@ fn broken_inputs_fail_with_their_line() {
         (Format::Gmsh, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1000000000000\n1 0 0 0\n".into(), 7, "unexpected end of file"),
         (Format::Gmsh, format!("{G_HEAD}$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 9\n$EndElements\n"), 19, "node tag 9 is not a node"),
         (Format::Gmsh, format!("{G_HEAD}$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 3\n$EndElements\n"), 19, "more than once"),
-        (Format::Gmsh, format!("{G_HEAD}$Elements\n1 1 1 1\n3 1 11 1\n1 1 2 3 4 5 6 7 8 9 10\n$EndElements\n"), 18, "element type 11"),
+        (Format::Gmsh, format!("{G_HEAD}$Elements\n1 1 1 1\n3 1 32 1\n1 1 2 3 4\n$EndElements\n"), 18, "element type 32 is not supported"),
+        // a 10-node tetrahedron (read as its corners) whose mid-edge nodes are not in $Nodes
+        (Format::Gmsh, format!("{G_HEAD}$Elements\n1 1 1 1\n3 1 11 1\n1 1 2 3 4 5 6 7 8 9 10\n$EndElements\n"), 19, "node tag 5 is not a node"),
         (Format::Gmsh, format!("{G_HEAD}$Elements\n1 2 1 2\n3 1 4 1\n1 1 2 3 4\n$EndElements\n"), 17, "declares 2 elements"),
         (Format::Gmsh, format!("{G_HEAD}$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n"), 20, "'$EndElements'"),
         (Format::Gmsh, format!("{G_HEAD}$Comments\nhello\n"), 18, "'$EndComments'"),
