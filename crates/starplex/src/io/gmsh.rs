@@ -368,8 +368,8 @@ fn read_element_nodes(
                 "element node tag {t} is not a node of the $Nodes section"
             ))
         })?;
-        if let Some(slot) = raw.get_mut(i).filter(|_| i < k) {
-            *slot = v;
+        if i < k {
+            raw[i] = v; // corners; k <= 8
         }
     }
     if kind == CellKind::Prism {
@@ -1254,8 +1254,8 @@ fn element_bin(
                 format!("element node tag {t} is not a node of the $Nodes section"),
             )
         })?;
-        if let Some(slot) = raw.get_mut(i).filter(|_| i < k) {
-            *slot = v;
+        if i < k {
+            raw[i] = v; // corners; k <= 8
         }
     }
     verts.clear();
