@@ -49,11 +49,13 @@ impl From<io::IoError> for CliError {
                 READABLE,
                 Format::writable_names()
             )),
-            io::IoErrorKind::NeedsFormat { flag, .. } => Some(if *flag == "--to" {
-                format!("writable formats: {}", Format::writable_names())
-            } else {
-                format!("readable formats: {READABLE}")
-            }),
+            io::IoErrorKind::NeedsFormat { output: true, .. } => Some(format!(
+                "pass --to NAME, e.g. --to off (writable formats: {})",
+                Format::writable_names()
+            )),
+            io::IoErrorKind::NeedsFormat { output: false, .. } => Some(format!(
+                "pass --format NAME, e.g. --format off (readable formats: {READABLE})"
+            )),
             io::IoErrorKind::Complex(starplex::complex::ComplexError::CellIsFaceOf { .. }) => {
                 Some("pass --drop-faces to keep only the maximal cells".to_string())
             }

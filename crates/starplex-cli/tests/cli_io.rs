@@ -110,14 +110,16 @@ fn dash_is_stdin_and_stdout() {
 fn dash_without_a_format_is_a_clear_error() {
     let e = fails(&["info", "-"], Some(b"OFF\n"));
     assert!(
-        e.contains("standard input has no extension: say its format with --format"),
+        e.contains("standard input has no extension to tell its format"),
         "{e}"
     );
-    assert!(e.contains("hint: readable formats:"), "{e}");
+    assert!(e.contains("hint: pass --format NAME"), "{e}");
+    assert!(e.contains("readable formats:"), "{e}");
     let d = dir("dashfmt");
     let g = grid(&d);
     let e = fails(&["convert", &g, "-"], None);
-    assert!(e.contains("say its format with --to"), "{e}");
+    assert!(e.contains("standard output has no extension"), "{e}");
+    assert!(e.contains("hint: pass --to NAME"), "{e}");
     // spb is memory-mapped: not from a pipe
     let e = fails(&["info", "-", "--format", "spb"], Some(b"x"));
     assert!(e.contains("cannot be read from a stream"), "{e}");

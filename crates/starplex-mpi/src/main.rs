@@ -401,6 +401,50 @@ fn edges(x: Vec<u32>) -> Vec<[VertexId; 2]> {
     e
 }
 
+/// The facet-connected classes of the top cells and their orientation signs: the local walk over
+/// the facet `pairs`, then the merge across ranks.
+fn facet_classes(
+    w: &World,
+    l: &Local,
+    d: usize,
+    pairs: &[(u32, u32, i8)],
+) -> Result<labels::Merged, Failure> {
+    let nc = l.k.n_cells();
+    let is_top = |c: u32| l.k.cell(CellId(c)).kind.dim() == d;
+    let walk = orient_walk(nc, is_top, pairs, |_| 1);
+    let mut uf = UnionFind::new(nc);
+    for &(x, y, _) in pairs {
+        uf.union(x, y);
+    }
+    let tops: Vec<usize> = (0..nc).filter(|&c| is_top(c as u32)).collect();
+    let (class_all, _) = classes(&mut uf, nc);
+    // classes renumbered over the top cells
+    let mut remap = rustc_hash::FxHashMap::default();
+    let class: Vec<u32> = tops
+        .iter()
+        .map(|&c| {
+            let n = remap.len() as u32;
+            *remap.entry(class_all[c]).or_insert(n)
+        })
+        .collect();
+    let e = labels::Elements {
+        gid: tops.iter().map(|&c| l.cell_gid[c]).collect(),
+        owner: tops
+            .iter()
+            .map(|&c| {
+                let cell = l.k.cell(CellId(c as u32));
+                let m = cell.vertices.iter().copied().min().unwrap_or(0);
+                l.vertex_owner[m as usize]
+            })
+            .collect(),
+        class,
+        n_classes: remap.len(),
+        sign: tops.iter().map(|&c| walk.signs[c]).collect(),
+        conflict: walk.conflict.is_some(),
+    };
+    labels::merge(w, &e)
+}
+
 fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<(), Failure> {
     let (f, l) = (&ld.f, &ld.l);
     let t1 = Instant::now();
@@ -454,43 +498,9 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<(), Failure> {
         n_connected_components: n_components,
         ..Default::default()
     };
-    let mut negative = Vec::new();
-    let mut conflict = false;
+    let (mut negative, mut conflict) = (Vec::new(), false);
     if let Some(d) = d {
-        let nc = l.k.n_cells();
-        let is_top = |c: u32| l.k.cell(CellId(c)).kind.dim() == d;
-        let walk = orient_walk(nc, is_top, &pairs, |_| 1);
-        let mut uf = UnionFind::new(nc);
-        for &(x, y, _) in &pairs {
-            uf.union(x, y);
-        }
-        let tops: Vec<usize> = (0..nc).filter(|&c| is_top(c as u32)).collect();
-        let (class_all, _) = classes(&mut uf, nc);
-        // classes renumbered over the top cells
-        let mut remap = rustc_hash::FxHashMap::default();
-        let class: Vec<u32> = tops
-            .iter()
-            .map(|&c| {
-                let n = remap.len() as u32;
-                *remap.entry(class_all[c]).or_insert(n)
-            })
-            .collect();
-        let e = labels::Elements {
-            gid: tops.iter().map(|&c| l.cell_gid[c]).collect(),
-            owner: tops
-                .iter()
-                .map(|&c| {
-                    let cell = l.k.cell(CellId(c as u32));
-                    let m = cell.vertices.iter().copied().min().unwrap_or(0);
-                    l.vertex_owner[m as usize]
-                })
-                .collect(),
-            class,
-            n_classes: remap.len(),
-            sign: tops.iter().map(|&c| walk.signs[c]).collect(),
-            conflict: walk.conflict.is_some(),
-        };
-        let m = labels::merge(w, &e)?;
+        let m = facet_classes(w, l, d, &pairs)?;
         rep.n_facet_components = m.n_classes;
         rep.facet_connected = m.n_classes == 1;
         negative = m.negative;

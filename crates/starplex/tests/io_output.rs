@@ -181,18 +181,12 @@ fn standard_streams_and_devices_resolve_to_streams() {
 fn standard_output_needs_a_format() {
     let e = io::write(Path::new("-"), &tri(), None).unwrap_err();
     assert!(
-        matches!(e.kind, IoErrorKind::NeedsFormat { flag: "--to", .. }),
+        matches!(e.kind, IoErrorKind::NeedsFormat { output: true, .. }),
         "{e}"
     );
     let e = io::read(Path::new("-"), &ReadOptions::default()).unwrap_err();
     assert!(
-        matches!(
-            e.kind,
-            IoErrorKind::NeedsFormat {
-                flag: "--format",
-                ..
-            }
-        ),
+        matches!(e.kind, IoErrorKind::NeedsFormat { output: false, .. }),
         "{e}"
     );
     assert_eq!(e.path, Path::new(io::STDIN_NAME));

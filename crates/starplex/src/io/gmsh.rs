@@ -368,8 +368,8 @@ fn read_element_nodes(
                 "element node tag {t} is not a node of the $Nodes section"
             ))
         })?;
-        if i < k {
-            raw[i] = v; // corners; k <= 8
+        if let Some(slot) = raw.get_mut(i).filter(|_| i < k) {
+            *slot = v;
         }
     }
     if kind == CellKind::Prism {
@@ -1254,8 +1254,8 @@ fn element_bin(
                 format!("element node tag {t} is not a node of the $Nodes section"),
             )
         })?;
-        if i < k {
-            raw[i] = v; // corners; k <= 8
+        if let Some(slot) = raw.get_mut(i).filter(|_| i < k) {
+            *slot = v;
         }
     }
     verts.clear();

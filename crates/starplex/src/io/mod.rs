@@ -406,12 +406,14 @@ pub enum IoErrorKind {
     #[error("unknown format for '{0}': use one of spx spb off ply obj stl mesh vtk vtu vtp msh tri ts sierp hex, or name the format (msh22 writes gmsh 2.2)")]
     UnknownFormat(String),
     /// Standard input or output (`-`) was given without a format: nothing names it.
-    #[error("{what} has no extension: say its format with {flag} (e.g. {flag} off)")]
+    /// The format is named by [`ReadOptions::format`] for input and by [`write`]'s `format` for
+    /// output; front ends add how to pass it.
+    #[error("{what} has no extension to tell its format: name the format")]
     NeedsFormat {
         /// `standard input` or `standard output`.
         what: &'static str,
-        /// The option that names the format (`--format` for input, `--to` for output).
-        flag: &'static str,
+        /// True for an output, false for an input.
+        output: bool,
     },
     /// The format's reader needs a file (it seeks or memory-maps), not a stream.
     #[error("{0} cannot be read from a stream (its reader needs a seekable file): save it to a file first")]
@@ -639,7 +641,7 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
                 name,
                 IoErrorKind::NeedsFormat {
                     what: "standard input",
-                    flag: "--format",
+                    output: false,
                 },
             ));
         };
@@ -836,7 +838,7 @@ pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> R
                 path,
                 IoErrorKind::NeedsFormat {
                     what: "standard output",
-                    flag: "--to",
+                    output: true,
                 },
             ))
         }

@@ -760,50 +760,7 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions, given: Given) -> Result<Prepar
     if rect[3] - rect[1] < 0.3 * h {
         rect = [margin, margin, w - margin, h - margin]; // too small for the caption: overlap
     }
-    let used = scene.used();
-    let corners: Vec<[f64; 3]> = o.frame.map_or_else(Vec::new, |[lo, hi]| {
-        (0..8)
-            .map(|i| {
-                let c = [0, 1, 2].map(|a| if i >> a & 1 == 0 { lo[a] } else { hi[a] });
-                scene::turn(c, o.up)
-            })
-            .filter(|c| c.iter().all(|x| x.is_finite()))
-            .collect()
-    });
-    let view = o.view.unwrap_or_else(|| {
-        let pts: Vec<[f64; 3]> = if corners.is_empty() {
-            used.iter().map(|&v| scene.pos[v as usize]).collect()
-        } else {
-            corners.clone()
-        };
-        auto_view(&pts)
-    });
-    let drawn = used
-        .iter()
-        .map(|&v| scene.pos[v as usize])
-        .chain(corners.iter().copied());
-    let cam = match o.camera {
-        None => Camera::fit(view, drawn, rect),
-        Some(e) => {
-            let turn = |p: [f64; 3]| scene::turn(p, o.up);
-            let target = e.target.map(turn).unwrap_or_else(|| {
-                let mut lo = [f64::INFINITY; 3];
-                let mut hi = [f64::NEG_INFINITY; 3];
-                for p in drawn.clone() {
-                    for a in 0..3 {
-                        lo[a] = lo[a].min(p[a]);
-                        hi[a] = hi[a].max(p[a]);
-                    }
-                }
-                [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]))
-            });
-            let eye = turn(e.eye);
-            if eye == target {
-                return Err(RenderError::EyeIsTarget);
-            }
-            Camera::look_at(eye, target, drawn, rect)
-        }
-    };
+    let cam = place_camera(o, &scene, rect)?;
     let face_colour = scene
         .faces
         .iter()
@@ -849,6 +806,60 @@ fn prepare(k: &IndexedComplex, o: &RenderOptions, given: Given) -> Result<Prepar
         text_scale,
         caption_rows,
     })
+}
+
+/// The camera: `o.camera` aimed at its target (the middle of what is drawn by default), or a
+/// view (`o.view`, else one chosen from the drawn points) fitted to `rect`; `o.frame`'s corners
+/// count as drawn.
+fn place_camera(
+    o: &RenderOptions,
+    scene: &scene::Scene,
+    rect: [f64; 4],
+) -> Result<Camera, RenderError> {
+    let used = scene.used();
+    let corners: Vec<[f64; 3]> = o.frame.map_or_else(Vec::new, |[lo, hi]| {
+        (0..8)
+            .map(|i| {
+                let c = [0, 1, 2].map(|a| if i >> a & 1 == 0 { lo[a] } else { hi[a] });
+                scene::turn(c, o.up)
+            })
+            .filter(|c| c.iter().all(|x| x.is_finite()))
+            .collect()
+    });
+    let view = o.view.unwrap_or_else(|| {
+        let pts: Vec<[f64; 3]> = if corners.is_empty() {
+            used.iter().map(|&v| scene.pos[v as usize]).collect()
+        } else {
+            corners.clone()
+        };
+        auto_view(&pts)
+    });
+    let drawn = used
+        .iter()
+        .map(|&v| scene.pos[v as usize])
+        .chain(corners.iter().copied());
+    match o.camera {
+        None => Ok(Camera::fit(view, drawn, rect)),
+        Some(e) => {
+            let turn = |p: [f64; 3]| scene::turn(p, o.up);
+            let target = e.target.map(turn).unwrap_or_else(|| {
+                let mut lo = [f64::INFINITY; 3];
+                let mut hi = [f64::NEG_INFINITY; 3];
+                for p in drawn.clone() {
+                    for a in 0..3 {
+                        lo[a] = lo[a].min(p[a]);
+                        hi[a] = hi[a].max(p[a]);
+                    }
+                }
+                [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]))
+            });
+            let eye = turn(e.eye);
+            if eye == target {
+                return Err(RenderError::EyeIsTarget);
+            }
+            Ok(Camera::look_at(eye, target, drawn, rect))
+        }
+    }
 }
 
 /// Where the colour bar goes: the legend row after the `row` caption lines, room for the low

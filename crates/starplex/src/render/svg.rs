@@ -26,10 +26,6 @@ fn esc(s: &str) -> String {
 /// The document: `visible` faces (back to front) in their shaded colours `cols`.
 pub(crate) fn document(p: &Prepared, o: &RenderOptions, visible: &[u32], cols: &[u32]) -> String {
     let (w, h) = (o.width, o.height);
-    let pr = |v: u32| {
-        let s = p.cam.project(p.scene.pos[v as usize]);
-        (s[0], s[1])
-    };
     let mut s = String::new();
     let _ = writeln!(s, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
@@ -41,6 +37,26 @@ pub(crate) fn document(p: &Prepared, o: &RenderOptions, visible: &[u32], cols: &
         r#"<rect width="{w}" height="{h}" fill="{}"/>"#,
         hex(colour::BACKGROUND)
     );
+    faces(&mut s, p, o, visible, cols);
+    let unit = (f64::from(w.min(h)) / 600.0).max(1.0);
+    lines_and_points(&mut s, p, unit);
+    markers(&mut s, p, unit, (f64::from(w.min(h)) / 120.0).max(5.0));
+    if o.legend {
+        caption(&mut s, p, (0.02 * f64::from(w.min(h))).max(2.0));
+    }
+    let _ = writeln!(s, "</svg>");
+    s
+}
+
+/// The screen position of vertex `v`.
+fn screen(p: &Prepared, v: u32) -> (f64, f64) {
+    let s = p.cam.project(p.scene.pos[v as usize]);
+    (s[0], s[1])
+}
+
+/// The faces group: one path per visible face, back to front.
+fn faces(s: &mut String, p: &Prepared, o: &RenderOptions, visible: &[u32], cols: &[u32]) {
+    let pr = |v: u32| screen(p, v);
     let stroke = if o.edges {
         format!(r#" stroke="{}" stroke-width="0.6""#, hex(colour::WIRE))
     } else {
@@ -67,7 +83,11 @@ pub(crate) fn document(p: &Prepared, o: &RenderOptions, visible: &[u32], cols: &
         }
     }
     let _ = writeln!(s, "</g>");
-    let unit = (f64::from(w.min(h)) / 600.0).max(1.0);
+}
+
+/// The 1D and 0D parts: edges as lines, isolated vertices as dots.
+fn lines_and_points(s: &mut String, p: &Prepared, unit: f64) {
+    let pr = |v: u32| screen(p, v);
     let _ = writeln!(s, r#"<g id="lines" stroke-width="{unit:.2}" fill="none">"#);
     for (&(_, e), &c) in p.scene.lines.iter().zip(&p.line_colour) {
         let ((x0, y0), (x1, y1)) = (pr(e[0]), pr(e[1]));
@@ -89,7 +109,11 @@ pub(crate) fn document(p: &Prepared, o: &RenderOptions, visible: &[u32], cols: &
         );
     }
     let _ = writeln!(s, "</g>");
-    let r = (f64::from(w.min(h)) / 120.0).max(5.0);
+}
+
+/// The defect markers: edges drawn thick, vertices and points as outlined discs of radius `r`.
+fn markers(s: &mut String, p: &Prepared, unit: f64, r: f64) {
+    let pr = |v: u32| screen(p, v);
     let _ = writeln!(s, r#"<g id="defects">"#);
     for m in &p.markers {
         if let Marker::Edge(e, c, t) = m {
@@ -122,77 +146,76 @@ pub(crate) fn document(p: &Prepared, o: &RenderOptions, visible: &[u32], cols: &
         );
     }
     let _ = writeln!(s, "</g>");
-    if o.legend {
-        let ts = p.text_scale;
-        let lh = font::line_height(ts) as f64;
-        let x0 = (0.02 * f64::from(w.min(h))).max(2.0);
-        let _ = writeln!(
-            s,
-            r#"<g id="caption" font-family="sans-serif" font-size="{:.1}" fill="{}">"#,
-            7.0 * ts as f64 * 1.3,
-            hex(colour::INK)
-        );
-        for (k, (sw, text)) in p.summary.legend.iter().take(p.caption_rows).enumerate() {
-            let y = x0 + k as f64 * lh;
-            let mut x = x0;
-            if let Some(c) = sw {
-                let sz = 7.0 * ts as f64;
-                let _ = writeln!(
-                    s,
-                    r#"<rect x="{x:.1}" y="{y:.1}" width="{sz:.1}" height="{sz:.1}" fill="{}" stroke="{}"/>"#,
-                    hex(*c),
-                    hex(colour::OUTLINE)
-                );
-                x += sz + 3.0 * ts as f64;
-            }
+}
+
+/// The caption: legend rows with swatches, and the colour bar of a field, `x0` from the corner.
+fn caption(s: &mut String, p: &Prepared, x0: f64) {
+    let ts = p.text_scale;
+    let lh = font::line_height(ts) as f64;
+    let _ = writeln!(
+        s,
+        r#"<g id="caption" font-family="sans-serif" font-size="{:.1}" fill="{}">"#,
+        7.0 * ts as f64 * 1.3,
+        hex(colour::INK)
+    );
+    for (k, (sw, text)) in p.summary.legend.iter().take(p.caption_rows).enumerate() {
+        let y = x0 + k as f64 * lh;
+        let mut x = x0;
+        if let Some(c) = sw {
+            let sz = 7.0 * ts as f64;
             let _ = writeln!(
                 s,
-                r#"<text x="{x:.1}" y="{:.1}">{}</text>"#,
-                y + 7.0 * ts as f64,
-                esc(text)
-            );
-        }
-        if let Some(super::ColourBar {
-            lo,
-            hi,
-            rect: Some(r),
-            ..
-        }) = &p.summary.colour_bar
-        {
-            let [x0, y0, x1, y1] = r.map(|v| v as f64);
-            let _ = writeln!(s, r#"<defs><linearGradient id="ramp">"#);
-            for i in 0..=8 {
-                let t = f64::from(i) / 8.0;
-                let _ = writeln!(
-                    s,
-                    r#"<stop offset="{t:.3}" stop-color="{}"/>"#,
-                    hex(colour::ramp(t))
-                );
-            }
-            let _ = writeln!(s, "</linearGradient></defs>");
-            let _ = writeln!(
-                s,
-                r#"<rect x="{x0:.1}" y="{y0:.1}" width="{:.1}" height="{:.1}" fill="url(#ramp)" stroke="{}"/>"#,
-                x1 - x0,
-                y1 - y0,
+                r#"<rect x="{x:.1}" y="{y:.1}" width="{sz:.1}" height="{sz:.1}" fill="{}" stroke="{}"/>"#,
+                hex(*c),
                 hex(colour::OUTLINE)
             );
-            let ty = y0 + 7.0 * ts as f64;
+            x += sz + 3.0 * ts as f64;
+        }
+        let _ = writeln!(
+            s,
+            r#"<text x="{x:.1}" y="{:.1}">{}</text>"#,
+            y + 7.0 * ts as f64,
+            esc(text)
+        );
+    }
+    if let Some(super::ColourBar {
+        lo,
+        hi,
+        rect: Some(r),
+        ..
+    }) = &p.summary.colour_bar
+    {
+        let [x0, y0, x1, y1] = r.map(|v| v as f64);
+        let _ = writeln!(s, r#"<defs><linearGradient id="ramp">"#);
+        for i in 0..=8 {
+            let t = f64::from(i) / 8.0;
             let _ = writeln!(
                 s,
-                r#"<text x="{:.1}" y="{ty:.1}" text-anchor="end">{}</text>"#,
-                x0 - 6.0 * ts as f64,
-                esc(&super::short(*lo))
-            );
-            let _ = writeln!(
-                s,
-                r#"<text x="{:.1}" y="{ty:.1}">{}</text>"#,
-                x1 + 6.0 * ts as f64,
-                esc(&super::short(*hi))
+                r#"<stop offset="{t:.3}" stop-color="{}"/>"#,
+                hex(colour::ramp(t))
             );
         }
-        let _ = writeln!(s, "</g>");
+        let _ = writeln!(s, "</linearGradient></defs>");
+        let _ = writeln!(
+            s,
+            r#"<rect x="{x0:.1}" y="{y0:.1}" width="{:.1}" height="{:.1}" fill="url(#ramp)" stroke="{}"/>"#,
+            x1 - x0,
+            y1 - y0,
+            hex(colour::OUTLINE)
+        );
+        let ty = y0 + 7.0 * ts as f64;
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{ty:.1}" text-anchor="end">{}</text>"#,
+            x0 - 6.0 * ts as f64,
+            esc(&super::short(*lo))
+        );
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{ty:.1}">{}</text>"#,
+            x1 + 6.0 * ts as f64,
+            esc(&super::short(*hi))
+        );
     }
-    let _ = writeln!(s, "</svg>");
-    s
+    let _ = writeln!(s, "</g>");
 }

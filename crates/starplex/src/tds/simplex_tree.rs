@@ -59,25 +59,14 @@ use crate::topo::{
 /// let opts = SimplexTreeOptions { label_lists: true, ..Default::default() };
 /// assert!(SimplexTree::new(&k, &opts).unwrap().has_label_lists());
 /// ```
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct SimplexTreeOptions {
     /// Keep, per label, the list of nodes carrying it (output-sensitive stars and co-faces).
     pub label_lists: bool,
     /// Refuse to build when the complex has more simplices than `limits.stored_simplices`
-    /// (estimate from the tops; the default here is 2·10^9, ids are 32-bit in any case).
+    /// (estimated from the tops; [`STORED_SIMPLICES`](crate::limits::STORED_SIMPLICES) by
+    /// default, as for every structure that stores each simplex: node ids are 32-bit).
     pub limits: Limits,
-}
-
-impl Default for SimplexTreeOptions {
-    fn default() -> Self {
-        SimplexTreeOptions {
-            label_lists: false,
-            limits: Limits {
-                stored_simplices: 2_000_000_000,
-                ..Limits::default()
-            },
-        }
-    }
 }
 
 /// Why a simplex tree could not be built.
