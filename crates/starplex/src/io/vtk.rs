@@ -112,6 +112,20 @@ fn vtk_type_name(t: u64) -> &'static str {
         16 => "hexagonal_prism",
         21..=35 | 37 => "a quadratic or higher-order cell",
         36 => "quadratic_polygon",
+        68 => "lagrange_curve",
+        69 => "lagrange_triangle",
+        70 => "lagrange_quadrilateral",
+        71 => "lagrange_tetrahedron",
+        72 => "lagrange_hexahedron",
+        73 => "lagrange_wedge",
+        74 => "lagrange_pyramid",
+        75 => "bezier_curve",
+        76 => "bezier_triangle",
+        77 => "bezier_quadrilateral",
+        78 => "bezier_tetrahedron",
+        79 => "bezier_hexahedron",
+        80 => "bezier_wedge",
+        81 => "bezier_pyramid",
         42 => "polyhedron",
         _ => "an unknown type",
     }
@@ -141,11 +155,28 @@ pub(crate) fn arity_error(ty: u64, n: u64) -> Option<String> {
         11 | 12 => need(8),
         13 => need(6),
         14 => need(5),
-        _ => match higher_order_vtk_type(ty) {
-            Some((_, k)) => need(k as u64),
-            None => Some(format!(
+        36 if n < 6 || n % 2 == 1 => Some(format!(
+            "VTK cell type 36 ({name}) needs an even number of points, at least 6 (its corners, \
+             then one point on each side), the cell lists {n}"
+        )),
+        36 => None,
+        74 | 81 => Some(format!(
+            "VTK cell type {ty} ({name}) is not supported: VTK itself defines no arbitrary-order \
+             pyramid cell, so the order of its points is unknown"
+        )),
+        _ => match (higher_order_vtk_type(ty), arbitrary_order_vtk_type(ty)) {
+            (Some((_, k)), _) => need(k as u64),
+            (None, Some(kind)) => (!arbitrary_order_count_ok(kind, n)).then(|| {
+                format!(
+                    "VTK cell type {ty} ({name}) cannot have {n} points: no order of this cell \
+                     has that many ({})",
+                    arbitrary_order_counts(kind)
+                )
+            }),
+            (None, None) => Some(format!(
                 "VTK cell type {ty} ({name}) is not supported (starplex reads the linear types 1 \
-                 to 14, and the quadratic ones 21-35 and 37 as their linear cells)"
+                 to 14, the quadratic ones 21-37 and the Lagrange and Bezier ones 68-73 and 75-80 \
+                 as their linear cells)"
             )),
         },
     }
@@ -153,8 +184,9 @@ pub(crate) fn arity_error(ty: u64, n: u64) -> Option<String> {
 
 /// The linear kind and point count of VTK's quadratic and bi/tri-quadratic cell types (21-35,
 /// 37): their first points are the corners, in the linear cell's order, so starplex reads them
-/// as that linear cell; the other points stay, as vertices in no cell. Type 36 (quadratic
-/// polygon) and the arbitrary-order Lagrange and Bezier types (68-79) are not read.
+/// as that linear cell; the other points stay, as vertices in no cell. The quadratic polygon (36:
+/// `2n` points) is read as the polygon of its first `n`, and the arbitrary-order types as
+/// [`arbitrary_order_vtk_type`] says.
 ///
 /// ```
 /// use starplex::{cell::CellKind, io::vtk};
@@ -183,6 +215,74 @@ pub fn higher_order_vtk_type(t: u64) -> Option<(CellKind, usize)> {
         37 => (CellKind::Pyramid, 19),
         _ => return None,
     })
+}
+
+/// The linear kind of VTK's arbitrary-order Lagrange (68-73) and Bezier (75-80) cell types:
+/// their first points are the corners, in the linear cell's order, so starplex reads them as that
+/// linear cell (the other points stay, as vertices in no cell), whatever their order. VTK defines
+/// no arbitrary-order pyramid (74, 81): those are refused.
+///
+/// ```
+/// use starplex::{cell::CellKind, io::vtk};
+/// assert_eq!(vtk::arbitrary_order_vtk_type(71), Some(CellKind::Simplex(3))); // Lagrange tetra
+/// assert_eq!(vtk::arbitrary_order_vtk_type(79), Some(CellKind::Hex)); // Bezier hexahedron
+/// assert_eq!(vtk::arbitrary_order_vtk_type(74), None);
+/// ```
+pub fn arbitrary_order_vtk_type(t: u64) -> Option<CellKind> {
+    Some(match t {
+        68 | 75 => CellKind::Simplex(1),
+        69 | 76 => CellKind::Simplex(2),
+        70 | 77 => CellKind::Quad,
+        71 | 78 => CellKind::Simplex(3),
+        72 | 79 => CellKind::Hex,
+        73 | 80 => CellKind::Prism,
+        _ => return None,
+    })
+}
+
+/// `(p + 1)(p + 2)/2` for some order `p >= 1`: the points of an order-p triangle.
+fn is_triangle_count(n: u64) -> bool {
+    (1..)
+        .map(|p: u64| (p + 1) * (p + 2) / 2)
+        .take_while(|&t| t <= n)
+        .any(|t| t == n)
+}
+
+/// `n = a * rest` for some `a >= 2` with `rest` accepted by `more`.
+fn splits(n: u64, more: impl Fn(u64) -> bool) -> bool {
+    (2..=n / 2).any(|a| n.is_multiple_of(a) && more(n / a))
+}
+
+/// Whether an arbitrary-order cell of linear kind `kind` can have `n` points: a curve any number
+/// from 2, a triangle or a tetrahedron those of one order, a quadrilateral, hexahedron or wedge
+/// those of one order per direction (VTK's `HigherOrderDegrees` lets them differ).
+fn arbitrary_order_count_ok(kind: CellKind, n: u64) -> bool {
+    match kind {
+        CellKind::Simplex(1) => n >= 2,
+        CellKind::Simplex(2) => is_triangle_count(n),
+        CellKind::Simplex(3) => (1..)
+            .map(|p: u64| (p + 1) * (p + 2) * (p + 3) / 6)
+            .take_while(|&t| t <= n)
+            .any(|t| t == n),
+        CellKind::Quad => splits(n, |r| r >= 2),
+        CellKind::Hex => splits(n, |r| splits(r, |s| s >= 2)),
+        // a triangle's points times those along the axis; 21 is VTK's order-2 wedge with
+        // face and body points
+        CellKind::Prism => n == 21 || splits(n, is_triangle_count),
+        _ => false,
+    }
+}
+
+/// The point counts of the first orders, for messages.
+fn arbitrary_order_counts(kind: CellKind) -> &'static str {
+    match kind {
+        CellKind::Simplex(1) => "at least 2",
+        CellKind::Simplex(2) => "3, 6, 10, 15, ...",
+        CellKind::Simplex(3) => "4, 10, 20, 35, ...",
+        CellKind::Quad => "(p+1)(q+1): 4, 6, 9, 16, ...",
+        CellKind::Hex => "(p+1)(q+1)(r+1): 8, 12, 27, 64, ...",
+        _ => "(p+1)(p+2)/2 times (q+1): 6, 18, 21, 40, ...",
+    }
 }
 
 /// Why a VTK cell could not be pushed.
@@ -245,8 +345,8 @@ impl CellStats {
         }
         if self.higher_order > 0 {
             notes.push(format!(
-                "read {} quadratic cells (types 21-37) as their linear cells; their points \
-                 that are not corners stay, as vertices in no cell",
+                "read {} higher-order cells (types 21-37, 68-80) as their linear cells; their \
+                 points that are not corners stay, as vertices in no cell",
                 self.higher_order
             ));
         }
@@ -305,16 +405,27 @@ pub(crate) fn push_cell(
             CellKind::Hex,
             &[v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]],
         ),
-        _ => match (kind_of_vtk_type(ty), higher_order_vtk_type(ty)) {
-            (Some(kind), _) => push(kind, v),
-            (None, Some((kind, _))) => {
-                st.higher_order += 1;
-                push(kind, &v[..kind.n_vertices()])
+        36 => {
+            // its corners, then one point on each side: the linear polygon of the corners
+            st.higher_order += 1;
+            push_cell(b, st, 7, &v[..n / 2])
+        }
+        _ => {
+            let linear = kind_of_vtk_type(ty);
+            let higher = higher_order_vtk_type(ty)
+                .map(|(kind, _)| kind)
+                .or_else(|| arbitrary_order_vtk_type(ty));
+            match (linear, higher) {
+                (Some(kind), _) => push(kind, v),
+                (None, Some(kind)) => {
+                    st.higher_order += 1;
+                    push(kind, &v[..kind.n_vertices()])
+                }
+                (None, None) => Err(PushError::Cell(format!(
+                    "VTK cell type {ty} is not supported"
+                ))),
             }
-            (None, None) => Err(PushError::Cell(format!(
-                "VTK cell type {ty} is not supported"
-            ))),
-        },
+        }
     }
 }
 
