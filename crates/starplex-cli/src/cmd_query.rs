@@ -6,6 +6,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 use starplex::complex::IndexedComplex;
 use starplex::ids::{CellId, VertexId};
+use starplex::stellar::Decomposition;
 use starplex::structures::{Structure, StructureError, StructureOptions};
 use starplex::topo::{generic, Queries, QueryError};
 
@@ -96,6 +97,10 @@ pub struct QueryArgs {
     /// Stellar tree bucket threshold k_V (used by the Stellar tree only).
     #[arg(long)]
     pub kv: Option<usize>,
+    /// How the Stellar tree splits vertices into blocks: spatial (by coordinates) or graph (by
+    /// connectivity alone); with --structure stellar only.
+    #[arg(long)]
+    pub decomposition: Option<String>,
     /// Vertices to query (input ids).
     #[arg(long, num_args = 1..)]
     pub vertex: Vec<u32>,
@@ -124,7 +129,7 @@ pub type Built<'a> = starplex::structures::BoxedQueries<'a>;
 
 /// Builds structure `s` on `k`.
 pub fn build(k: &IndexedComplex, s: StructureKind) -> Result<Built<'_>, CliError> {
-    build_with(k, s, None)
+    build_with(k, s, None, Decomposition::Spatial)
 }
 
 /// Builds structure `s` on `k`, with the Stellar tree's bucketing threshold `kv` when given
@@ -133,9 +138,11 @@ pub fn build_with(
     k: &IndexedComplex,
     s: StructureKind,
     kv: Option<usize>,
+    decomposition: Decomposition,
 ) -> Result<Built<'_>, CliError> {
     let opts = StructureOptions {
         kv: kv.map(|x| x.min(u32::MAX as usize) as u32),
+        decomposition,
         ..Default::default()
     };
     s.structure().build(k, &opts).map_err(|e| {
@@ -289,6 +296,19 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
             Some("query it with --structure stellar, or pass the mesh file".into()),
         ));
     }
+    let decomposition = match a.decomposition.as_deref() {
+        None => Decomposition::Spatial,
+        Some(_) if a.structure != StructureKind::Stellar => {
+            return Err(CliError::Input(
+                "--decomposition is the Stellar tree's: it needs --structure stellar".into(),
+                None,
+            ))
+        }
+        Some(_) if saved => {
+            return Err(crate::cmd_validate::saved_tree_decomposition(&a.input.file))
+        }
+        Some(d) => crate::cmd_stellar::decomposition(d)?,
+    };
     let k = if saved {
         None
     } else {
@@ -296,7 +316,7 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
     };
     let t = Instant::now();
     let s: Built<'_> = match &k {
-        Some(k) => build_with(k, a.structure, a.kv)?,
+        Some(k) => build_with(k, a.structure, a.kv, decomposition)?,
         None => Box::new(crate::cmd_stellar::load_saved_tree(ctx, &a.input.file)?),
     };
     let build_s = t.elapsed().as_secs_f64();

@@ -15,6 +15,11 @@ pub struct ValidateArgs {
     /// Bucketing threshold of the Stellar tree used.
     #[arg(long)]
     pub kv: Option<u32>,
+    /// How the Stellar tree splits vertices into blocks: spatial (by coordinates, the default)
+    /// or graph (by connectivity alone, for complexes without meaningful coordinates). A saved
+    /// tree keeps the one it was built with.
+    #[arg(long)]
+    pub decomposition: Option<String>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -92,9 +97,25 @@ pub fn defects_found(r: &ValidationReport, wanted: &[Defect]) -> Vec<String> {
 
 pub use starplex_cli::report::{print_validation as print_human, validation_json as to_json};
 
+/// `--decomposition` on a saved tree: it keeps the decomposition it was built with.
+pub fn saved_tree_decomposition(file: &std::path::Path) -> CliError {
+    CliError::Input(
+        format!(
+            "{}: a saved Stellar tree keeps the decomposition it was built with",
+            file.display()
+        ),
+        Some("drop --decomposition, or run on the mesh file to build the tree anew".into()),
+    )
+}
+
 pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
     let t0 = Instant::now();
     let saved = starplex::stellar::is_saved_tree(&a.input.file);
+    let decomp = a.decomposition.as_deref().unwrap_or("spatial");
+    crate::cmd_stellar::decomposition(decomp)?;
+    if saved && a.decomposition.is_some() {
+        return Err(saved_tree_decomposition(&a.input.file));
+    }
     let (k, notes) = if saved {
         (None, Vec::new())
     } else {
@@ -105,7 +126,7 @@ pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
     let (rep, build_s, validate_s) = with_threads(a.threads, || {
         let t1 = Instant::now();
         let t = match &k {
-            Some(k) => build_tree(ctx, k, a.kv, "auto", "spatial")?,
+            Some(k) => build_tree(ctx, k, a.kv, "auto", decomp)?,
             None => crate::cmd_stellar::load_saved_tree(ctx, &a.input.file)?,
         };
         let build_s = t1.elapsed().as_secs_f64();

@@ -97,6 +97,19 @@ fn validate_json_equals_algo_on_the_small_datasets() {
             .map(|e| [e[0].as_u64().unwrap(), e[1].as_u64().unwrap()])
             .collect();
         assert_eq!(got, nme, "{name}");
+        // the graph decomposition (connectivity alone) gives the same report
+        let graph = Command::new(env!("CARGO_BIN_EXE_starplex"))
+            .args(["validate", "--json", "--quiet", "--max-list", "100000000"])
+            .args(["--decomposition", "graph"])
+            .arg(f)
+            .output()
+            .unwrap();
+        assert!(graph.status.success(), "{name}");
+        let mut g: serde_json::Value = serde_json::from_slice(&graph.stdout).unwrap();
+        let mut j = j;
+        g["timings"] = serde_json::Value::Null;
+        j["timings"] = serde_json::Value::Null;
+        assert_eq!(g, j, "{name}: --decomposition graph");
     }
 }
 

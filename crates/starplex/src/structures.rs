@@ -57,13 +57,18 @@ pub enum Structure {
 ///
 /// ```
 /// use starplex::structures::StructureOptions;
+/// use starplex::stellar::Decomposition;
 /// let o = StructureOptions { kv: Some(20), ..Default::default() };
 /// assert_eq!(o.limits.stored_simplices, 1 << 31);
+/// assert_eq!(o.decomposition, Decomposition::Spatial);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct StructureOptions {
     /// The Stellar tree's bucketing threshold k_V (`None`: its default).
     pub kv: Option<u32>,
+    /// How the Stellar tree splits the vertices into blocks (by coordinates, or by connectivity
+    /// alone for complexes without meaningful coordinates).
+    pub decomposition: crate::stellar::Decomposition,
     /// `limits.stored_simplices`: the most simplices the structures that store every simplex
     /// (simplex tree, IG, IS, Hasse) may hold; more is refused with an estimate before anything
     /// is allocated.
@@ -218,6 +223,7 @@ impl Structure {
             Structure::Stellar => {
                 let opts = StellarOptions {
                     kv: o.kv,
+                    decomposition: o.decomposition,
                     ..Default::default()
                 };
                 Box::new(StellarTree::build(k, &opts).map_err(|e| err(e.to_string()))?)
