@@ -637,3 +637,24 @@ fn gmsh_22_binary_reads_back_as_the_ascii_one() {
         .dropped_attributes(big.attributes())
         .is_empty());
 }
+
+/// The fuzz seed of the version-2 layout (`fuzz/seeds/spb/attrs.spb`) is what the writer writes
+/// for [`rich`]; `STARPLEX_WRITE_SEEDS=1` rewrites it.
+#[test]
+fn fuzz_seed_of_the_attribute_layout_is_current() {
+    let mut bytes = Vec::new();
+    binary::write(&mut bytes, &rich()).unwrap();
+    let seed = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/seeds/spb/attrs.spb");
+    if std::env::var_os("STARPLEX_WRITE_SEEDS").is_some() {
+        std::fs::write(&seed, &bytes).unwrap();
+    }
+    assert_eq!(
+        std::fs::read(&seed).unwrap(),
+        bytes,
+        "rerun with STARPLEX_WRITE_SEEDS=1"
+    );
+    assert!(
+        bytes.len() <= 4096,
+        "scripts/fuzz.sh runs with -max_len=4096"
+    );
+}

@@ -395,6 +395,7 @@ fn own_outputs_for_meshio() {
     let k = volume(vec![10, 10, 20, 30], Some(vec![1, 2, 3, 4]));
     io::write(&dir.join("tags_41.msh"), &k, Some(Format::Gmsh)).unwrap();
     io::write(&dir.join("tags_41_bin.msh"), &k, Some(Format::GmshBinary)).unwrap();
+    io::write(&dir.join("tags_22_bin.msh"), &k, Some(Format::Gmsh22Binary)).unwrap();
     let gmsh_ref = k.attributes().clone();
     let s = surface_with_edges(true);
     io::write(&dir.join("edges_bin.ply"), &s, None).unwrap();
