@@ -63,6 +63,8 @@ for f in ["tags_41.msh", "tags_41_bin.msh", "tags_22_bin.msh"]:
         ok &= same(np.concatenate(got[kind]), v.reshape(-1, n))
     ok &= same(m.point_data["T"], values(g["attrs"]["vertex"]["T"]))
     for name, col in g["attrs"]["cell"].items():
+        if f == "tags_22_bin.msh" and name == "stress":
+            continue  # written without element data (meshio 5.3.5 mis-splits 2.2 $ElementData)
         ok &= same(np.concatenate(m.cell_data[name]), values(col))
     report("meshio %s points, cells, cell_data %s" % (f, sorted(m.cell_data)), ok)
 
