@@ -70,7 +70,7 @@ pub fn run(ctx: &Ctx, a: &ConvertArgs) -> Result<(), CliError> {
             let dropped = f.dropped_attributes(&attrs);
             if !dropped.is_empty() {
                 eprintln!(
-                    "note: the attributes {} are not written: {f} cannot hold them (write .vtu or .vtk to keep them)",
+                    "note: the attributes {} are not written: {f} cannot hold them (write .vtu, .vtk, .spx or .spb to keep them)",
                     dropped.join(", ")
                 );
             }
