@@ -1,6 +1,7 @@
 //! `convert` to starplex's own formats keeps the attributes (no "not written" note) and `info`
 //! shows them read back: a `.vtu` with point and cell data through `.spx`, `.spb`, and gmsh 2.2
-//! binary (`--to msh22-binary`, tags only).
+//! binary (`--to msh22-binary`, tags only); `stellar --save` keeps them in the saved tree
+//! (`stellar SAVED --json` lists them).
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -74,5 +75,29 @@ fn msh22_binary_is_a_format_name() {
         .unwrap()
         .starts_with(b"$MeshFormat\n2.2 1 8\n\x01\0\0\0\n"));
     assert_eq!(info_attrs(&out), info_attrs(&src));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn saved_stellar_trees_keep_the_attributes() {
+    let src =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../starplex/tests/data/io/attrs_ascii.vtu");
+    let want = info_attrs(&src);
+    let d = dir("tree");
+    let tree = d.join("t.tree");
+    let o = run(&[
+        "stellar",
+        src.to_str().unwrap(),
+        "--kv",
+        "1",
+        "--save",
+        tree.to_str().unwrap(),
+        "--json",
+    ]);
+    let built: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(built["attributes"], want);
+    let o = run(&["stellar", tree.to_str().unwrap(), "--json"]);
+    let loaded: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(loaded["attributes"], want);
     let _ = std::fs::remove_dir_all(&d);
 }

@@ -401,7 +401,12 @@ fn own_outputs_for_meshio() {
     let mut a22 = k22.take_attributes();
     a22.cell.retain(|c| c.name != "stress");
     k22.set_attributes(a22).unwrap();
-    io::write(&dir.join("tags_22_bin.msh"), &k22, Some(Format::Gmsh22Binary)).unwrap();
+    io::write(
+        &dir.join("tags_22_bin.msh"),
+        &k22,
+        Some(Format::Gmsh22Binary),
+    )
+    .unwrap();
     let gmsh_ref = k.attributes().clone();
     let s = surface_with_edges(true);
     io::write(&dir.join("edges_bin.ply"), &s, None).unwrap();

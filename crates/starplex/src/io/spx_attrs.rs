@@ -48,7 +48,7 @@ pub(super) fn decode_name(tok: &[u8]) -> Result<String, String> {
                 .get(i + 1..i + 3)
                 .and_then(|h| std::str::from_utf8(h).ok())
                 .and_then(|h| u8::from_str_radix(h, 16).ok())
-                .ok_or_else(|| "a '%' in the attribute name is not followed by two hex digits")?;
+                .ok_or("a '%' in the attribute name is not followed by two hex digits")?;
             out.push(hex);
             i += 3;
         } else {
