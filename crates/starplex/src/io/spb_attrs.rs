@@ -108,7 +108,7 @@ pub(super) fn read_head(bytes: &[u8], at: usize, err: ByteErr<'_>) -> Result<(u6
         ));
     }
     let entries = u64_at(bytes, at + 8);
-    if entries % 8 != 0 {
+    if !entries.is_multiple_of(8) {
         return Err(err(
             at + 8,
             format!("attribute table: its length {entries} is not a multiple of 8"),
