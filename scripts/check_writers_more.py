@@ -3,8 +3,9 @@
 what starplex wrote (reference.json, written beside the files by the test `own_outputs_for_meshio`
 of crates/starplex/tests/io_writers_more.rs):
 
-- gmsh 4.1 ascii and binary with physical/geometrical tags as entities: meshio (points, cells,
-  gmsh:physical, gmsh:geometrical, data) and gmsh's own API (physical group of every entity);
+- gmsh 4.1 ascii and binary with physical/geometrical tags as entities, and gmsh 2.2 binary with
+  them as element tags: meshio (points, cells, gmsh:physical, gmsh:geometrical, data) and gmsh's
+  own API (physical group of every entity);
 - PLY with an `edge` element (ascii and binary): trimesh's PLY parser (its raw element arrays);
   meshio 5.3.5 has no `edge` element (reported, not counted);
 - legacy VTK POLYDATA: meshio 5.3.5 reads no POLYDATA and the venv has no `vtk` module
@@ -47,7 +48,7 @@ MESHIO_KIND = {"line": "line", "tri": "triangle", "tet": "tetra", "quad": "quad"
 g = ref["gmsh"]
 pts = np.array(g["points"]).reshape(-1, 3)
 want_blocks = [(MESHIO_KIND.get(k, k), np.array(v)) for k, v in g["blocks"]]
-for f in ["tags_41.msh", "tags_41_bin.msh"]:
+for f in ["tags_41.msh", "tags_41_bin.msh", "tags_22_bin.msh"]:
     try:
         m = meshio.read(os.path.join(d, f))
     except Exception as ex:  # noqa: BLE001
@@ -62,6 +63,8 @@ for f in ["tags_41.msh", "tags_41_bin.msh"]:
         ok &= same(np.concatenate(got[kind]), v.reshape(-1, n))
     ok &= same(m.point_data["T"], values(g["attrs"]["vertex"]["T"]))
     for name, col in g["attrs"]["cell"].items():
+        if f == "tags_22_bin.msh" and name == "stress":
+            continue  # written without element data (meshio 5.3.5 mis-splits 2.2 $ElementData)
         ok &= same(np.concatenate(m.cell_data[name]), values(col))
     report("meshio %s points, cells, cell_data %s" % (f, sorted(m.cell_data)), ok)
 
@@ -73,7 +76,7 @@ except ImportError:
 else:
     phys = values(g["attrs"]["cell"]["gmsh:physical"])
     geom = values(g["attrs"]["cell"]["gmsh:geometrical"])
-    for f in ["tags_41.msh", "tags_41_bin.msh"]:
+    for f in ["tags_41.msh", "tags_41_bin.msh", "tags_22_bin.msh"]:
         gmsh.initialize(["-v", "0"])
         gmsh.open(os.path.join(d, f))
         ok = True

@@ -15,7 +15,7 @@ pub struct ConvertArgs {
     /// A symbolic link is followed (its target is replaced), a FIFO or device written through.
     pub output: PathBuf,
     /// Output format: spx spb off off-simplices ply obj stl stl-binary mesh vtk vtk-polydata vtu
-    /// vtp msh msh22 msh-binary.
+    /// vtp msh msh22 msh-binary msh22-binary.
     #[arg(long)]
     pub to: Option<String>,
     /// Write the boundary of the mesh (the faces in exactly one top cell, oriented outward)
@@ -70,7 +70,7 @@ pub fn run(ctx: &Ctx, a: &ConvertArgs) -> Result<(), CliError> {
             let dropped = f.dropped_attributes(&attrs);
             if !dropped.is_empty() {
                 eprintln!(
-                    "note: the attributes {} are not written: {f} cannot hold them (write .vtu or .vtk to keep them)",
+                    "note: the attributes {} are not written: {f} cannot hold them (write .vtu, .vtk, .spx or .spb to keep them)",
                     dropped.join(", ")
                 );
             }

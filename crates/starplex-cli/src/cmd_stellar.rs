@@ -180,6 +180,10 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
         v["split"] = json!(format!("{:?}", t.split()).to_lowercase());
         v["decomposition"] = json!(format!("{:?}", t.decomposition()).to_lowercase());
         v["timings"] = timings;
+        if !t.attributes().is_empty() {
+            // in the input's order (a saved tree stores them in tree order)
+            v["attributes"] = crate::cmd_info::attributes_json(&t.input_attributes());
+        }
         println!(
             "{}",
             serde_json::to_string_pretty(&v).map_err(|e| CliError::Other(e.to_string()))?

@@ -2,12 +2,14 @@
 //! exactly as [`IndexedComplex`] holds them, so a file is loaded by memory-mapping it, with no
 //! copy and no parsing ([`Buf::Mapped`]).
 //!
-//! Layout (version 1, every number little-endian, every array 8-byte aligned):
+//! Layout (every number little-endian, every array 8-byte aligned). Version 1 is written for a
+//! complex without attributes, version 2 (the same plus an attribute table and arrays) for one
+//! with attributes; both are read:
 //!
 //! ```text
 //! offset  size  field
 //!      0     8  magic b"STARPLX\0"
-//!      8     4  format version (u32) = 1
+//!      8     4  format version (u32) = 1, or 2 with attributes
 //!     12     4  endianness tag (u32) = 0x0102_0304 (bytes 04 03 02 01)
 //!     16     4  ambient dimension (u32, 1..=64)
 //!     20     4  number of blocks (u32)
@@ -15,13 +17,21 @@
 //!     32     8  number of cells (u64, the sum over blocks)
 //!     40     8  byte offset of the coordinate array (u64)
 //!     48     8  total file length in bytes (u64)
-//!     56     8  FNV-1a 64 checksum of bytes 0..56 and of the block table
+//!     56     8  FNV-1a 64 checksum of bytes 0..56, the block table and (version 2) the
+//!               attribute table
 //!     64  32*n  block table, one entry per block:
 //!                 kind code (u32: 0 simplex, 1 quad, 2 pyramid, 3 prism, 4 hex),
 //!                 dimension (u32), number of cells (u64), byte offset of its vertex array (u64),
 //!                 reserved (u64, 0)
+//!  (version 2 only) attribute table, right after the block table:
+//!      T    16  head: number of columns (u32), reserved (u32, 0), bytes of the entries (u64)
+//!   T+16   ...  one entry per column (vertex columns first, then cell columns):
+//!                 target (u8: 0 vertex, 1 cell), type (u8: 0 int = i64, 1 float = f64),
+//!                 reserved (u16, 0), name length (u32), components (u64),
+//!                 byte offset of its values (u64), the UTF-8 name, zero padding to 8
 //!    ...        coordinates: n_vertices * ambient_dim f64, at the offset above
 //!    ...        each block's vertex ids: n_cells * vertices-per-cell u32, at its offset
+//!    ...        (version 2) each column's values: items * components i64 or f64, at its offset
 //! ```
 //!
 //! Arrays follow each other in this order, each starting at the end of the previous one rounded
@@ -55,7 +65,8 @@ use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
-use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use super::{spb_attrs, Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
+use crate::attr::AttrTarget;
 use crate::buf::Buf;
 use crate::cell::{CellKind, MAX_SIMPLEX_DIM};
 use crate::complex::{IndexedComplex, MAX_AMBIENT_DIM};
@@ -66,12 +77,19 @@ use crate::complex::{IndexedComplex, MAX_AMBIENT_DIM};
 /// assert_eq!(&starplex::io::binary::MAGIC, b"STARPLX\0");
 /// ```
 pub const MAGIC: [u8; 8] = *b"STARPLX\0";
-/// The format version this code writes and reads.
+/// The newest format version this code writes and reads (version 2: with attributes).
 ///
 /// ```
-/// assert_eq!(starplex::io::binary::VERSION, 1);
+/// assert_eq!(starplex::io::binary::VERSION, 2);
 /// ```
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
+/// The version written for a complex without attributes (the same bytes as before attributes
+/// existed, so older readers and `starplex-mpi` keep reading them).
+///
+/// ```
+/// assert_eq!(starplex::io::binary::VERSION_NO_ATTRIBUTES, 1);
+/// ```
+pub const VERSION_NO_ATTRIBUTES: u32 = 1;
 /// Written as a little-endian u32; reads back as this value only on a little-endian reading.
 ///
 /// ```
@@ -90,6 +108,51 @@ pub const HEADER_LEN: usize = 64;
 /// assert_eq!(starplex::io::binary::BLOCK_ENTRY_LEN, 32);
 /// ```
 pub const BLOCK_ENTRY_LEN: usize = 32;
+/// Size of the attribute table's head (version 2) in bytes.
+///
+/// ```
+/// assert_eq!(starplex::io::binary::ATTR_HEAD_LEN, 16);
+/// ```
+pub const ATTR_HEAD_LEN: usize = 16;
+/// Size of the fixed part of one attribute entry (the name and its padding follow) in bytes.
+///
+/// ```
+/// assert_eq!(starplex::io::binary::ATTR_ENTRY_LEN, 24);
+/// ```
+pub const ATTR_ENTRY_LEN: usize = 24;
+
+/// One column of a version-2 file's attribute table (what [`read_header`] returns in
+/// [`SpbHeader::attrs`]).
+///
+/// ```
+/// use starplex::attr::{AttrTarget, Attribute, Attributes};
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::binary;
+/// let mut k = IndexedComplex::from_parts(1, vec![0.0, 1.0].into(),
+///     vec![(CellKind::Simplex(1), vec![0, 1].into())]).unwrap();
+/// k.set_attributes(Attributes { vertex: vec![], cell: vec![Attribute::int("tag", 2, vec![4, 5])] }).unwrap();
+/// let mut bytes = Vec::new();
+/// binary::write(&mut bytes, &k).unwrap();
+/// let h = binary::read_header(&bytes, "a.spb".as_ref()).unwrap();
+/// assert_eq!(h.version, 2);
+/// let a = &h.attrs[0];
+/// assert_eq!((a.name.as_str(), a.target, a.int, a.components), ("tag", AttrTarget::Cell, true, 2));
+/// assert_eq!(&bytes[a.offset as usize..a.offset as usize + 8], &4i64.to_le_bytes());
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SpbAttr {
+    /// The column's name.
+    pub name: String,
+    /// Vertices or cells.
+    pub target: AttrTarget,
+    /// Integer (`i64`) values, else float (`f64`).
+    pub int: bool,
+    /// Values per item.
+    pub components: u64,
+    /// Byte offset of the values (items × components, 8 bytes each).
+    pub offset: u64,
+}
 
 /// The parsed header of a `.spb` file (what [`read_header`] returns).
 ///
@@ -108,6 +171,7 @@ pub const BLOCK_ENTRY_LEN: usize = 32;
 /// let h = binary::read_header(&bytes, "t.spb".as_ref()).unwrap();
 /// assert_eq!((h.ambient_dim, h.n_vertices, h.n_cells), (2, 3, 1));
 /// assert_eq!(h.blocks, vec![(CellKind::Simplex(2), 1, 64 + 32 + 48)]);
+/// assert_eq!((h.version, h.attrs.len()), (1, 0)); // no attributes: version 1
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SpbHeader {
@@ -123,6 +187,10 @@ pub struct SpbHeader {
     pub blocks: Vec<(CellKind, u64, u64)>,
     /// File length in bytes.
     pub file_len: u64,
+    /// The format version (1, or 2 when the file holds attributes).
+    pub version: u32,
+    /// The attribute table (empty in version 1).
+    pub attrs: Vec<SpbAttr>,
 }
 
 fn kind_code(k: CellKind) -> (u32, u32) {
@@ -165,19 +233,28 @@ fn fnv1a(chunks: &[&[u8]]) -> u64 {
     h
 }
 
-#[inline]
-fn align8(x: u64) -> u64 {
-    x.div_ceil(8) * 8
+use super::spb_attrs::align8;
+
+/// Where each array goes.
+struct Layout {
+    coords: u64,
+    blocks: Vec<u64>,
+    attrs: Vec<u64>,
+    file_len: u64,
 }
 
-/// The layout `k` is written with: (coords offset, per-block offsets, file length).
+/// The layout a complex is written with. `attr_table` is the attribute table's total length
+/// (head and entries; `None` in version 1) and `attrs` the number of values of each column.
 fn layout(
     ambient_dim: u64,
     n_vertices: u64,
     blocks: &[(CellKind, u64)],
-) -> Option<(u64, Vec<u64>, u64)> {
+    attr_table: Option<u64>,
+    attrs: &[u64],
+) -> Option<Layout> {
     let table = (HEADER_LEN as u64)
-        .checked_add((BLOCK_ENTRY_LEN as u64).checked_mul(blocks.len() as u64)?)?;
+        .checked_add((BLOCK_ENTRY_LEN as u64).checked_mul(blocks.len() as u64)?)?
+        .checked_add(attr_table.unwrap_or(0))?;
     let coords_offset = align8(table);
     let mut end =
         coords_offset.checked_add(n_vertices.checked_mul(ambient_dim)?.checked_mul(8)?)?;
@@ -187,10 +264,22 @@ fn layout(
         offs.push(start);
         end = start.checked_add(n.checked_mul(kind.n_vertices() as u64)?.checked_mul(4)?)?;
     }
-    Some((coords_offset, offs, align8(end)))
+    let mut a_offs = Vec::with_capacity(attrs.len());
+    for &n in attrs {
+        let start = align8(end);
+        a_offs.push(start);
+        end = start.checked_add(n.checked_mul(8)?)?;
+    }
+    Some(Layout {
+        coords: coords_offset,
+        blocks: offs,
+        attrs: a_offs,
+        file_len: align8(end),
+    })
 }
 
-/// Writes `k` as `.spb`.
+/// Writes `k` as `.spb`: version 1 without attributes, version 2 with its attribute table and
+/// arrays otherwise.
 ///
 /// ```
 /// use starplex::io::binary;
@@ -215,11 +304,22 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
         .map(|b| (b.kind, b.len() as u64))
         .collect();
     let nv = k.n_vertices() as u64;
-    let (coords_offset, offs, file_len) = layout(k.ambient_dim() as u64, nv, &blocks)
-        .ok_or_else(|| IoErrorKind::Parse("complex too large for the .spb layout".into()))?;
+    let cols = spb_attrs::columns(k.attributes());
+    let too_large = || IoErrorKind::Parse("complex too large for the .spb layout".into());
+    let entries = spb_attrs::entries_len(&cols).ok_or_else(too_large)?;
+    let attr_table = (!cols.is_empty()).then_some(ATTR_HEAD_LEN as u64 + entries);
+    let n_values: Vec<u64> = cols.iter().map(|(_, c)| c.values.len() as u64).collect();
+    let lay =
+        layout(k.ambient_dim() as u64, nv, &blocks, attr_table, &n_values).ok_or_else(too_large)?;
+    let (coords_offset, offs, file_len) = (lay.coords, &lay.blocks, lay.file_len);
+    let version = if cols.is_empty() {
+        VERSION_NO_ATTRIBUTES
+    } else {
+        VERSION
+    };
     let mut head = Vec::with_capacity(HEADER_LEN);
     head.extend_from_slice(&MAGIC);
-    head.extend_from_slice(&VERSION.to_le_bytes());
+    head.extend_from_slice(&version.to_le_bytes());
     head.extend_from_slice(&ENDIAN_TAG.to_le_bytes());
     head.extend_from_slice(&(k.ambient_dim() as u32).to_le_bytes());
     head.extend_from_slice(&(blocks.len() as u32).to_le_bytes());
@@ -228,7 +328,7 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     head.extend_from_slice(&coords_offset.to_le_bytes());
     head.extend_from_slice(&file_len.to_le_bytes());
     let mut table = Vec::with_capacity(BLOCK_ENTRY_LEN * blocks.len());
-    for (&(kind, n), &off) in blocks.iter().zip(&offs) {
+    for (&(kind, n), &off) in blocks.iter().zip(offs) {
         let (code, dim) = kind_code(kind);
         table.extend_from_slice(&code.to_le_bytes());
         table.extend_from_slice(&dim.to_le_bytes());
@@ -236,11 +336,17 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
         table.extend_from_slice(&off.to_le_bytes());
         table.extend_from_slice(&0u64.to_le_bytes());
     }
-    let sum = fnv1a(&[&head, &table]);
+    let atable = if cols.is_empty() {
+        Vec::new()
+    } else {
+        spb_attrs::encode(&cols, &lay.attrs, entries)
+    };
+    let sum = fnv1a(&[&head, &table, &atable]);
     head.extend_from_slice(&sum.to_le_bytes());
     w.write_all(&head)?;
     w.write_all(&table)?;
-    let mut pos = (HEADER_LEN + table.len()) as u64;
+    w.write_all(&atable)?;
+    let mut pos = (HEADER_LEN + table.len() + atable.len()) as u64;
     let pad = |w: &mut dyn Write, pos: &mut u64, to: u64| -> std::io::Result<()> {
         let zeros = [0u8; 8];
         w.write_all(&zeros[..(to - *pos) as usize])?;
@@ -250,10 +356,15 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     pad(w, &mut pos, coords_offset)?;
     write_le_f64(w, k.coords())?;
     pos += 8 * k.coords().len() as u64;
-    for (b, &off) in k.blocks().iter().zip(&offs) {
+    for (b, &off) in k.blocks().iter().zip(offs) {
         pad(w, &mut pos, off)?;
         write_le_u32(w, &b.vertices)?;
         pos += 4 * b.vertices.len() as u64;
+    }
+    for ((_, c), &off) in cols.iter().zip(&lay.attrs) {
+        pad(w, &mut pos, off)?;
+        spb_attrs::write_values(w, c)?;
+        pos += 8 * c.values.len() as u64;
     }
     pad(w, &mut pos, file_len)?;
     Ok(())
@@ -306,7 +417,7 @@ fn u64_at(b: &[u8], at: usize) -> u64 {
 pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
     let err = |at: usize, msg: String| IoError::parse(path, Some(Location::Byte(at as u64)), msg);
     let len = bytes.len() as u64;
-    check_preamble(bytes, &err)?;
+    let version = check_preamble(bytes, &err)?;
     let ambient = u32_at(bytes, 16) as u64;
     let n_blocks = u32_at(bytes, 20) as u64;
     let n_vertices = u64_at(bytes, 24);
@@ -325,10 +436,31 @@ pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
             format!("the header says the file has {file_len} bytes but it has {len}: the file is {what}"),
         ));
     }
-    check_table(bytes, n_blocks, sum, &err)?;
+    let attr_head = check_table(bytes, n_blocks, sum, version, &err)?;
     check_counts(ambient, n_vertices, n_cells, coords_offset, len, &err)?;
     let blocks = read_blocks(bytes, n_blocks, n_cells, len, &err)?;
-    check_layout(ambient, n_vertices, coords_offset, &blocks, len, &err)?;
+    let attrs = match attr_head {
+        Some((at, n, entries)) => spb_attrs::read_entries(
+            bytes,
+            at + ATTR_HEAD_LEN,
+            n,
+            entries,
+            n_vertices,
+            n_cells,
+            &err,
+        )?,
+        None => Vec::new(),
+    };
+    let attr_table = attr_head.map(|(_, _, e)| ATTR_HEAD_LEN as u64 + e);
+    check_layout(
+        ambient,
+        n_vertices,
+        coords_offset,
+        &blocks,
+        (attr_table, &attrs, n_cells),
+        len,
+        &err,
+    )?;
     Ok(SpbHeader {
         ambient_dim: ambient as usize,
         n_vertices,
@@ -336,14 +468,16 @@ pub fn read_header(bytes: &[u8], path: &Path) -> Result<SpbHeader, IoError> {
         coords_offset,
         blocks,
         file_len,
+        version,
+        attrs,
     })
 }
 
 /// An error of [`read_header`] at a byte offset.
 type HeaderErr<'a> = &'a dyn Fn(usize, String) -> IoError;
 
-/// The header's length, magic, version and endianness tag.
-fn check_preamble(bytes: &[u8], err: HeaderErr<'_>) -> Result<(), IoError> {
+/// The header's length, magic, version and endianness tag; the version.
+fn check_preamble(bytes: &[u8], err: HeaderErr<'_>) -> Result<u32, IoError> {
     if bytes.len() < HEADER_LEN {
         if bytes.len() < 8 || bytes[..8] != MAGIC {
             return Err(err(
@@ -366,10 +500,10 @@ fn check_preamble(bytes: &[u8], err: HeaderErr<'_>) -> Result<(), IoError> {
         ));
     }
     let version = u32_at(bytes, 8);
-    if version != VERSION {
+    if !(VERSION_NO_ATTRIBUTES..=VERSION).contains(&version) {
         return Err(err(
             8,
-            format!("unsupported .spb version {version} (this starplex reads version {VERSION})"),
+            format!("unsupported .spb version {version} (this starplex reads versions {VERSION_NO_ATTRIBUTES} to {VERSION})"),
         ));
     }
     let tag = u32_at(bytes, 12);
@@ -381,11 +515,19 @@ fn check_preamble(bytes: &[u8], err: HeaderErr<'_>) -> Result<(), IoError> {
         };
         return Err(err(12, msg));
     }
-    Ok(())
+    Ok(version)
 }
 
-/// The block table fits the file and the checksum over the header and table matches.
-fn check_table(bytes: &[u8], n_blocks: u64, sum: u64, err: HeaderErr<'_>) -> Result<(), IoError> {
+/// The block table (and in version 2 the attribute table) fits the file and the checksum over
+/// the header and tables matches; in version 2, the attribute table's (byte offset, number of
+/// columns, bytes of entries).
+fn check_table(
+    bytes: &[u8],
+    n_blocks: u64,
+    sum: u64,
+    version: u32,
+    err: HeaderErr<'_>,
+) -> Result<Option<(usize, u64, u64)>, IoError> {
     let len = bytes.len() as u64;
     let table_end = (n_blocks as u128) * BLOCK_ENTRY_LEN as u128 + HEADER_LEN as u128;
     if table_end > len as u128 {
@@ -398,14 +540,22 @@ fn check_table(bytes: &[u8], n_blocks: u64, sum: u64, err: HeaderErr<'_>) -> Res
         ));
     }
     let table = &bytes[HEADER_LEN..table_end as usize];
-    let expect = fnv1a(&[&bytes[..56], table]);
+    let (attr_table, attr_head): (&[u8], _) = if version >= 2 {
+        let at = table_end as usize;
+        let (n, entries) = spb_attrs::read_head(bytes, at, err)?;
+        let end = at + ATTR_HEAD_LEN + entries as usize;
+        (&bytes[at..end], Some((at, n, entries)))
+    } else {
+        (&[], None)
+    };
+    let expect = fnv1a(&[&bytes[..56], table, attr_table]);
     if expect != sum {
         return Err(err(
             56,
-            format!("header checksum mismatch (stored {sum:#018x}, computed {expect:#018x}): the header or block table is corrupted"),
+            format!("header checksum mismatch (stored {sum:#018x}, computed {expect:#018x}): the header, block table or attribute table is corrupted"),
         ));
     }
-    Ok(())
+    Ok(attr_head)
 }
 
 /// The ambient dimension, the 32-bit id limits and the coordinate array's extent.
@@ -492,29 +642,56 @@ fn read_blocks(
     Ok(blocks)
 }
 
+/// The attribute table's length (`None` in version 1), its entries and the cell count.
+type AttrLayout<'a> = (Option<u64>, &'a [SpbAttr], u64);
+
 /// The arrays sit exactly where the canonical layout puts them and end at the end of the file.
 fn check_layout(
     ambient: u64,
     n_vertices: u64,
     coords_offset: u64,
     blocks: &[(CellKind, u64, u64)],
+    (attr_table, attrs, n_cells): AttrLayout<'_>,
     len: u64,
     err: HeaderErr<'_>,
 ) -> Result<(), IoError> {
     let kinds: Vec<(CellKind, u64)> = blocks.iter().map(|&(k, n, _)| (k, n)).collect();
-    let (c_off, offs, f_len) = layout(ambient, n_vertices, &kinds)
+    // each product is at most the file length (checked by read_entries)
+    let n_values: Vec<u64> = attrs
+        .iter()
+        .map(|a| {
+            let items = match a.target {
+                AttrTarget::Vertex => n_vertices,
+                AttrTarget::Cell => n_cells,
+            };
+            items.saturating_mul(a.components)
+        })
+        .collect();
+    let lay = layout(ambient, n_vertices, &kinds, attr_table, &n_values)
         .ok_or_else(|| err(24, "counts overflow the 64-bit layout".into()))?;
+    let (c_off, offs, f_len) = (lay.coords, &lay.blocks, lay.file_len);
     if c_off != coords_offset {
         return Err(err(
             40,
             format!("coordinate array at offset {coords_offset}, expected {c_off}"),
         ));
     }
-    for (i, (&(_, _, off), &want)) in blocks.iter().zip(&offs).enumerate() {
+    for (i, (&(_, _, off), &want)) in blocks.iter().zip(offs).enumerate() {
         if off != want {
             return Err(err(
                 HEADER_LEN + i * BLOCK_ENTRY_LEN + 16,
                 format!("block {i}: vertex array at offset {off}, expected {want}"),
+            ));
+        }
+    }
+    for (i, (a, &want)) in attrs.iter().zip(&lay.attrs).enumerate() {
+        if a.offset != want {
+            return Err(err(
+                HEADER_LEN + blocks.len() * BLOCK_ENTRY_LEN + ATTR_HEAD_LEN,
+                format!(
+                    "attribute {i} ('{}'): values at offset {}, expected {want}",
+                    a.name, a.offset
+                ),
             ));
         }
     }
@@ -633,8 +810,15 @@ pub fn read(path: &Path, _opts: &ReadOptions) -> Result<ReadResult, IoError> {
             )
         })
         .collect();
-    let complex = IndexedComplex::from_parts(h.ambient_dim, coords, blocks)
+    let mut complex = IndexedComplex::from_parts(h.ambient_dim, coords, blocks)
         .map_err(|e| IoError::new(path, e))?;
+    if !h.attrs.is_empty() {
+        let at = (HEADER_LEN + h.blocks.len() * BLOCK_ENTRY_LEN) as u64;
+        let a = spb_attrs::load(&map, &h.attrs, h.n_vertices, h.n_cells, at, path)?;
+        complex
+            .set_attributes(a)
+            .map_err(|e| IoError::new(path, e).at(Location::Byte(at)))?;
+    }
     Ok(ReadResult {
         complex,
         format: Format::Binary,

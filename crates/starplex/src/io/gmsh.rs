@@ -1741,10 +1741,10 @@ fn write_41(w: &mut dyn Write, k: &IndexedComplex, bin: bool) -> Result<(), IoEr
 /// The names of the attributes that the element tags carry.
 const TAG_NAMES: [&str; 2] = ["gmsh:physical", "gmsh:geometrical"];
 
-/// Whether a gmsh file written as `format` ([`Format::Gmsh`], [`Format::GmshBinary`] or
-/// [`Format::Gmsh22`]) can hold the attribute `a` of `target`, looking at `a` alone:
-/// `gmsh:physical` and `gmsh:geometrical` are integer cell columns of one component written as
-/// element tags (2.2, any values) or as geometric entities (4.1: physical tags that fit an
+/// Whether a gmsh file written as `format` ([`Format::Gmsh`], [`Format::GmshBinary`],
+/// [`Format::Gmsh22`] or [`Format::Gmsh22Binary`]) can hold the attribute `a` of `target`, looking
+/// at `a` alone: `gmsh:physical` and `gmsh:geometrical` are integer cell columns of one component
+/// written as element tags (2.2 ascii: any values; 2.2 binary: values that fit an `int`) or as geometric entities (4.1: physical tags that fit an
 /// `int`, geometrical tags in `1..=i32::MAX`; [`dropped`] also checks that the two columns
 /// agree); every other column is a `$NodeData` or `$ElementData` section (a name without `"`
 /// or line breaks, 1 to 64 components, integers up to 2^53 in magnitude: gmsh data is double,
@@ -1758,6 +1758,9 @@ const TAG_NAMES: [&str; 2] = ["gmsh:physical", "gmsh:geometrical"];
 /// assert!(gmsh::holds(Format::Gmsh, AttrTarget::Cell, &phys));
 /// let geom = Attribute::int("gmsh:geometrical", 1, vec![0, 2]);
 /// assert!(!gmsh::holds(Format::Gmsh, AttrTarget::Cell, &geom)); // 4.1 entity tags start at 1
+/// let big = Attribute::int("gmsh:physical", 1, vec![1 << 40]);
+/// assert!(gmsh::holds(Format::Gmsh22, AttrTarget::Cell, &big));
+/// assert!(!gmsh::holds(Format::Gmsh22Binary, AttrTarget::Cell, &big)); // tags are 32-bit ints
 /// assert!(gmsh::holds(Format::Gmsh, AttrTarget::Vertex, &Attribute::float("T", 3, vec![0.0; 6])));
 /// ```
 pub fn holds(format: Format, target: AttrTarget, a: &Attribute) -> bool {
@@ -1770,6 +1773,9 @@ pub fn holds(format: Format, target: AttrTarget, a: &Attribute) -> bool {
         };
         if format == Format::Gmsh22 {
             return true;
+        }
+        if format == Format::Gmsh22Binary {
+            return v.iter().all(|&x| i32::try_from(x).is_ok());
         }
         let lo = if a.name == TAG_NAMES[0] {
             i32::MIN as i64
@@ -1803,7 +1809,7 @@ pub fn holds(format: Format, target: AttrTarget, a: &Attribute) -> bool {
 /// assert!(gmsh::dropped(Format::Gmsh22, &a).is_empty()); // 2.2 tags each element
 /// ```
 pub fn dropped(format: Format, a: &Attributes) -> Vec<String> {
-    let four = format != Format::Gmsh22;
+    let four = !matches!(format, Format::Gmsh22 | Format::Gmsh22Binary);
     let (_, geom) = tag_columns_41(a);
     let mut out = Vec::new();
     for target in [AttrTarget::Vertex, AttrTarget::Cell] {
@@ -2003,4 +2009,108 @@ pub fn write_22(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind
     }
     writeln!(w, "$EndElements")?;
     write_data(w, k, Format::Gmsh22, false)
+}
+
+/// Writes `k` as gmsh 2.2 binary (file type 1, little-endian, 8-byte doubles; format name
+/// `msh22-binary` on the command line: `starplex convert in.spx out.msh --to msh22-binary`):
+/// the `int` 1 after the format line for the endianness, `$Nodes` as (`int` tag, 3 doubles),
+/// `$Elements` in one run per block (`int` header: type, count, 2 tags; then per element its
+/// `int` tag, physical and elementary tags and nodes), data sections as in
+/// [`write_binary`]. Tags and numbering as [`write_22`]; the physical and geometrical tags must
+/// fit an `int` ([`holds`]), and so must the node and element counts.
+///
+/// ```
+/// use starplex::attr::{AttrTarget, Attribute};
+/// use starplex::cell::CellKind;
+/// use starplex::complex::IndexedComplex;
+/// use starplex::io::{gmsh, ReadOptions};
+/// let mut k = IndexedComplex::from_parts(3, vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.5].into(),
+///     vec![(CellKind::Simplex(2), vec![0, 1, 2, 1, 3, 2].into())]).unwrap();
+/// let mut a = k.take_attributes();
+/// a.cell.push(Attribute::int("gmsh:physical", 1, vec![7, -9]));
+/// k.set_attributes(a).unwrap();
+/// let mut out = Vec::new();
+/// gmsh::write_22_binary(&mut out, &k).unwrap();
+/// assert!(out.starts_with(b"$MeshFormat\n2.2 1 8\n\x01\0\0\0\n$EndMeshFormat\n"));
+/// let back = gmsh::read_from(&out[..], "b.msh".as_ref(), &ReadOptions::default()).unwrap();
+/// let phys = back.complex.attributes().get(AttrTarget::Cell, "gmsh:physical");
+/// assert_eq!(phys, Some(&Attribute::int("gmsh:physical", 1, vec![7, -9])));
+/// assert_eq!(back.complex.coords(), k.coords());
+/// ```
+///
+/// # Errors
+/// As [`write()`], and [`IoErrorKind::CannotWrite`] for more than `i32::MAX` nodes or elements.
+pub fn write_22_binary(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
+    let format = Format::Gmsh22Binary;
+    check_writable(k, format)?;
+    for (what, n) in [("nodes", k.n_vertices()), ("elements", k.n_cells())] {
+        if n > i32::MAX as usize {
+            return Err(IoErrorKind::CannotWrite {
+                format,
+                reason: format!("{n} {what}: gmsh 2.2 binary numbers them with 32-bit ints"),
+            });
+        }
+    }
+    let d = k.ambient_dim();
+    w.write_all(b"$MeshFormat\n2.2 1 8\n")?;
+    w.write_all(&1i32.to_le_bytes())?;
+    w.write_all(b"\n$EndMeshFormat\n")?;
+    writeln!(w, "$Nodes\n{}", k.n_vertices())?;
+    let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+    for (i, p) in k.coords().chunks_exact(d.max(1)).enumerate() {
+        buf.extend_from_slice(&(i as i32 + 1).to_le_bytes());
+        for a in 0..3 {
+            buf.extend_from_slice(&p.get(a).copied().unwrap_or(0.0).to_le_bytes());
+        }
+        if buf.len() >= 1 << 16 {
+            w.write_all(&buf)?;
+            buf.clear();
+        }
+    }
+    w.write_all(&buf)?;
+    buf.clear();
+    writeln!(w, "\n$EndNodes\n$Elements\n{}", k.n_cells())?;
+    let tag_col = |name: &str| match k.attributes().get(AttrTarget::Cell, name) {
+        Some(a) if holds(format, AttrTarget::Cell, a) => match &a.values {
+            AttrValues::Int(v) => Some(v.as_slice()),
+            AttrValues::Float(_) => None,
+        },
+        _ => None,
+    };
+    let (phys, geom) = (tag_col(TAG_NAMES[0]), tag_col(TAG_NAMES[1]));
+    for b in k.blocks() {
+        if b.is_empty() {
+            continue;
+        }
+        let t = gmsh_type(b.kind).unwrap_or(0) as i32;
+        for x in [t, b.len() as i32, 2] {
+            buf.extend_from_slice(&x.to_le_bytes());
+        }
+        for i in 0..b.len() {
+            let id = b.first as usize + i;
+            // holds() checked that both columns fit an int
+            let p = phys.map_or(0, |v| v[id] as i32);
+            let g = geom.map_or(1 + b.kind.dim() as i32, |v| v[id] as i32);
+            for x in [id as i32 + 1, p, g] {
+                buf.extend_from_slice(&x.to_le_bytes());
+            }
+            let c = b.cell(i);
+            if b.kind == CellKind::Prism {
+                for &j in &PRISM_PERM {
+                    buf.extend_from_slice(&(c[j] as i32 + 1).to_le_bytes());
+                }
+            } else {
+                for &v in c {
+                    buf.extend_from_slice(&(v as i32 + 1).to_le_bytes());
+                }
+            }
+            if buf.len() >= 1 << 16 {
+                w.write_all(&buf)?;
+                buf.clear();
+            }
+        }
+    }
+    w.write_all(&buf)?;
+    writeln!(w, "\n$EndElements")?;
+    write_data(w, k, format, true)
 }

@@ -37,7 +37,9 @@ pub mod output;
 pub mod ply;
 pub mod points;
 mod raw;
+mod spb_attrs;
 pub mod spx;
+mod spx_attrs;
 pub mod stellar_ref;
 pub mod stl;
 pub mod text;
@@ -94,6 +96,9 @@ pub enum Format {
     /// `.msh` written as gmsh 4.1 binary (named `msh-binary` or `mshb`; reads as
     /// [`Format::Gmsh`]).
     GmshBinary,
+    /// `.msh` written as gmsh 2.2 binary (named `msh22-binary` or `msh2b`; reads as
+    /// [`Format::Gmsh`]).
+    Gmsh22Binary,
     /// `.tri` (Stellar reference: triangles).
     Tri,
     /// `.ts` (Stellar reference: tetrahedra).
@@ -109,12 +114,13 @@ impl Format {
     ///
     /// ```
     /// use starplex::io::Format;
-    /// assert_eq!(Format::ALL.len(), 20);
+    /// assert_eq!(Format::ALL.len(), 21);
     /// let writable: Vec<String> = Format::ALL.iter().filter(|f| f.can_write()).map(|f| f.to_string()).collect();
     /// assert_eq!(writable, ["spx", "spb", "off", "off-simplices", "ply", "obj", "stl", "stl-binary",
-    ///                       "mesh", "vtk", "vtk-polydata", "vtu", "vtp", "msh", "msh22", "msh-binary"]);
+    ///                       "mesh", "vtk", "vtk-polydata", "vtu", "vtp", "msh", "msh22", "msh-binary",
+    ///                       "msh22-binary"]);
     /// ```
-    pub const ALL: [Format; 20] = [
+    pub const ALL: [Format; 21] = [
         Format::Spx,
         Format::Binary,
         Format::Off,
@@ -131,6 +137,7 @@ impl Format {
         Format::Gmsh,
         Format::Gmsh22,
         Format::GmshBinary,
+        Format::Gmsh22Binary,
         Format::Tri,
         Format::Ts,
         Format::Sierp,
@@ -179,6 +186,7 @@ impl Format {
             "msh" | "gmsh" | "msh4" | "msh41" | "gmsh4" | "gmsh41" => Format::Gmsh,
             "msh2" | "msh22" | "gmsh2" | "gmsh22" => Format::Gmsh22,
             "msh-binary" | "mshb" | "msh41-binary" | "gmsh-binary" => Format::GmshBinary,
+            "msh22-binary" | "msh2b" | "msh2-binary" | "gmsh22-binary" => Format::Gmsh22Binary,
             "tri" => Format::Tri,
             "ts" => Format::Ts,
             "sierp" => Format::Sierp,
@@ -244,8 +252,8 @@ impl Format {
     /// use starplex::io::Format;
     /// assert_eq!(Format::Medit.extension(), "mesh");
     /// assert_eq!(Format::Gmsh22.extension(), "msh");
-    /// let variants = [Format::Gmsh22, Format::GmshBinary, Format::OffSimplices, Format::StlBinary,
-    ///                 Format::VtkPolyData];
+    /// let variants = [Format::Gmsh22, Format::GmshBinary, Format::Gmsh22Binary, Format::OffSimplices,
+    ///                 Format::StlBinary, Format::VtkPolyData];
     /// for f in Format::ALL.into_iter().filter(|f| !variants.contains(f)) {
     ///     assert_eq!(Format::from_name(f.extension()), Some(f));
     /// }
@@ -262,7 +270,7 @@ impl Format {
             Format::Vtk | Format::VtkPolyData => "vtk",
             Format::Vtu => "vtu",
             Format::Vtp => "vtp",
-            Format::Gmsh | Format::Gmsh22 | Format::GmshBinary => "msh",
+            Format::Gmsh | Format::Gmsh22 | Format::GmshBinary | Format::Gmsh22Binary => "msh",
             Format::Tri => "tri",
             Format::Ts => "ts",
             Format::Sierp => "sierp",
@@ -282,7 +290,8 @@ impl Format {
     }
 
     /// The attributes of `a` that a file of this format cannot hold (`kind name`, e.g.
-    /// `cell material`): none for VTK (`.vtk`, `.vtu`, `.vtp`); Medit keeps only its integer
+    /// `cell material`): none for VTK (`.vtk`, `.vtu`, `.vtp`) and starplex's own `.spx` and
+    /// `.spb` (version 2); Medit keeps only its integer
     /// `medit:ref` columns; PLY keeps those [`ply::dropped`] does not name; OFF keeps the
     /// colours ([`off::holds`]); gmsh the data sections and the physical and geometrical tags
     /// ([`gmsh::dropped`]); the other formats keep none.
@@ -295,6 +304,8 @@ impl Format {
     ///     cell: vec![Attribute::int("medit:ref", 1, vec![3])],
     /// };
     /// assert!(Format::Vtu.dropped_attributes(&a).is_empty());
+    /// assert!(Format::Spx.dropped_attributes(&a).is_empty());
+    /// assert!(Format::Binary.dropped_attributes(&a).is_empty());
     /// assert_eq!(Format::Medit.dropped_attributes(&a), ["vertex height"]);
     /// assert_eq!(Format::Obj.dropped_attributes(&a).len(), 2);
     /// ```
@@ -303,7 +314,10 @@ impl Format {
         if self == Format::Ply {
             return ply::dropped(a, ply::PlyEncoding::default());
         }
-        if matches!(self, Format::Gmsh | Format::Gmsh22 | Format::GmshBinary) {
+        if matches!(
+            self,
+            Format::Gmsh | Format::Gmsh22 | Format::GmshBinary | Format::Gmsh22Binary
+        ) {
             return gmsh::dropped(self, a);
         }
         let mut out = Vec::new();
@@ -311,6 +325,7 @@ impl Format {
             for c in a.of(target) {
                 let kept = match self {
                     Format::Vtk | Format::VtkPolyData | Format::Vtu | Format::Vtp => true,
+                    Format::Spx | Format::Binary => true,
                     Format::Off | Format::OffSimplices => off::holds(target, c),
                     Format::Medit => {
                         c.name == medit::REF
@@ -349,6 +364,7 @@ impl fmt::Display for Format {
         match self {
             Format::Gmsh22 => f.write_str("msh22"),
             Format::GmshBinary => f.write_str("msh-binary"),
+            Format::Gmsh22Binary => f.write_str("msh22-binary"),
             Format::VtkPolyData => f.write_str("vtk-polydata"),
             Format::OffSimplices => f.write_str("off-simplices"),
             Format::StlBinary => f.write_str("stl-binary"),
@@ -721,7 +737,9 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
         Format::Medit => medit::read(path, opts),
         Format::Vtk | Format::VtkPolyData => vtk::read(path, opts),
         Format::Vtu | Format::Vtp => vtu::read(path, opts),
-        Format::Gmsh | Format::Gmsh22 | Format::GmshBinary => gmsh::read(path, opts),
+        Format::Gmsh | Format::Gmsh22 | Format::GmshBinary | Format::Gmsh22Binary => {
+            gmsh::read(path, opts)
+        }
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             stellar_ref::read(path, format, opts)
         }
@@ -799,7 +817,9 @@ pub fn read_stream(
         Format::Medit => medit::read_from(r, path, opts),
         Format::Vtk | Format::VtkPolyData => vtk::read_from(r, path, opts),
         Format::Vtu | Format::Vtp => vtu::read_from(r, path, opts),
-        Format::Gmsh | Format::Gmsh22 | Format::GmshBinary => gmsh::read_from(r, path, opts),
+        Format::Gmsh | Format::Gmsh22 | Format::GmshBinary | Format::Gmsh22Binary => {
+            gmsh::read_from(r, path, opts)
+        }
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             stellar_ref::read_from(r, path, format, opts)
         }
@@ -867,6 +887,7 @@ pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> R
         Format::Gmsh => atomic_write(path, |w| gmsh::write(w, complex)),
         Format::Gmsh22 => atomic_write(path, |w| gmsh::write_22(w, complex)),
         Format::GmshBinary => atomic_write(path, |w| gmsh::write_binary(w, complex)),
+        Format::Gmsh22Binary => atomic_write(path, |w| gmsh::write_22_binary(w, complex)),
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             unreachable!("refused by check_writable")
         }
@@ -908,7 +929,9 @@ pub fn check_writable(complex: &IndexedComplex, format: Format) -> Result<(), Io
         Format::VtkPolyData => vtk::check_polydata(complex),
         Format::Vtu => vtu::check(complex, false),
         Format::Vtp => vtu::check(complex, true),
-        Format::Gmsh | Format::Gmsh22 | Format::GmshBinary => gmsh::check_writable(complex, format),
+        Format::Gmsh | Format::Gmsh22 | Format::GmshBinary | Format::Gmsh22Binary => {
+            gmsh::check_writable(complex, format)
+        }
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => Err(IoErrorKind::CannotWrite {
             format,
             reason: format!(

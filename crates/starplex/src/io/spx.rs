@@ -1,11 +1,29 @@
 //! `.spx`, the starplex text format (see `FORMATS.md`):
 //!
 //! ```text
-//! SPX 1
+//! SPX 1                            (SPX 2 when attribute sections follow the cells)
 //! # comments anywhere
 //! <ambient_dim> <n_vertices> <n_cells>
 //! x_1 ... x_ambient_dim            (n_vertices lines)
 //! <type> <k> v_0 ... v_{k-1}       (n_cells lines; type line|tri|quad|tet|pyramid|prism|hex|simplex)
+//! attribute <vertex|cell> <int|float> <components> <name>   (version 2 only, any number of
+//! a_1 ... a_components                  sections: one value line per vertex or per cell)
+//! ```
+//!
+//! The writer writes version 1 for a complex without attributes (so older starplex reads it) and
+//! version 2 otherwise; the reader takes both. Names are percent-encoded into one token (`%20`
+//! for a space, `%` alone for the empty name); floats are written in their shortest round-trip
+//! form (`NaN`, `inf` included), so values come back exactly.
+//!
+//! ```
+//! use starplex::attr::{Attribute, Attributes};
+//! use starplex::io::{spx, ReadOptions};
+//! let text = "SPX 2\n1 2 1\n0\n1\nline 2 0 1\nattribute vertex float 2 my%20speed\n0.5 NaN\n-1 1e300\n";
+//! let r = spx::read_from(text.as_bytes(), "a.spx".as_ref(), &ReadOptions::default()).unwrap();
+//! assert_eq!(r.complex.attributes().vertex[0].name, "my speed");
+//! let mut out = Vec::new();
+//! spx::write(&mut out, &r.complex).unwrap();
+//! assert!(String::from_utf8(out).unwrap().starts_with("SPX 2\n"));
 //! ```
 //!
 //! ```
@@ -64,7 +82,7 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
 /// counts say, and the maximality checks of [`ComplexBuilder::build`].
 pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
     let mut lr = LineReader::new(r, path, Some(b'#'));
-    {
+    let version = {
         let l = lr.expect_line("the header 'SPX 1'")?;
         let mut t = l.tokens();
         if t.word("'SPX'")? != b"SPX" {
@@ -74,13 +92,14 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
             )));
         }
         let v = t.u64("the format version")?;
-        if v != 1 {
+        if v != 1 && v != 2 {
             return Err(l.err(format!(
-                "unsupported .spx version {v} (this starplex reads version 1)"
+                "unsupported .spx version {v} (this starplex reads versions 1 and 2)"
             )));
         }
         t.end()?;
-    }
+        v
+    };
     let (ambient, nv, nc) = {
         let l = lr.expect_line("the counts '<ambient_dim> <n_vertices> <n_cells>'")?;
         let mut t = l.tokens();
@@ -137,9 +156,21 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
         b.push_cell(kind, &verts)
             .map_err(|e| IoError::new(path, e).at(Location::Line(l.no)))?;
     }
-    if let Some(l) = lr.next_content_line()? {
+    if version >= 2 {
+        let line = lr.line_no() + 1;
+        let attrs = super::spx_attrs::read(&mut lr, nv, nc)?;
+        attrs.check(nv, nc).map_err(|e| {
+            IoError::new(path, crate::complex::ComplexError::from(e)).at(Location::Line(line))
+        })?;
+        b.set_attributes(attrs);
+    } else if let Some(l) = lr.next_content_line()? {
+        let hint = if l.bytes.starts_with(super::spx_attrs::KEYWORD) {
+            " (attribute sections need the header 'SPX 2')"
+        } else {
+            ""
+        };
         return Err(l.err(format!(
-            "unexpected content after the {nc} cells the header announced: '{}'",
+            "unexpected content after the {nc} cells the header announced: '{}'{hint}",
             String::from_utf8_lossy(&l.bytes[..l.bytes.len().min(60)])
         )));
     }
@@ -153,7 +184,8 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
     })
 }
 
-/// Writes `k` as `.spx`.
+/// Writes `k` as `.spx`: version 1 without attributes, version 2 with its attribute sections
+/// otherwise.
 ///
 /// ```
 /// use starplex::io::spx;
@@ -171,7 +203,8 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
 /// # Errors
 /// OS errors of the writer.
 pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
-    writeln!(w, "SPX 1")?;
+    let attrs = k.attributes();
+    writeln!(w, "SPX {}", if attrs.is_empty() { 1 } else { 2 })?;
     writeln!(w, "# written by starplex {}", env!("CARGO_PKG_VERSION"))?;
     writeln!(w, "{} {} {}", k.ambient_dim(), k.n_vertices(), k.n_cells())?;
     for p in k.coords().chunks_exact(k.ambient_dim()) {
@@ -197,5 +230,6 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
             w.write_all(line.as_bytes())?;
         }
     }
+    super::spx_attrs::write(w, attrs)?;
     Ok(())
 }

@@ -130,7 +130,15 @@ pub(super) fn build(
     drop(c.groups);
     timings.leaf_lists_s = t3.elapsed().as_secs_f64();
 
+    let attrs = if k.attributes().is_empty() {
+        crate::attr::Attributes::default()
+    } else {
+        k.attributes()
+            .gather_vertices(&v.v_orig)
+            .gather_cells(&c.c_orig)
+    };
     Ok(StellarTree {
+        attrs,
         ambient_dim: n as u32,
         kv,
         split,

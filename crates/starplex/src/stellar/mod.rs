@@ -33,6 +33,7 @@ pub mod iastar;
 pub mod queries;
 pub mod relations;
 mod save;
+mod save_attrs;
 pub mod sre;
 pub mod stats;
 pub mod validate;
@@ -382,6 +383,9 @@ pub struct StellarTree {
     /// Input cell id -> tree cell id.
     pub(crate) c_new: Vec<u32>,
     pub(crate) timings: BuildTimings,
+    /// The input's attributes, in tree order (vertex columns by tree vertex id, cell columns by
+    /// tree cell id).
+    pub(crate) attrs: crate::attr::Attributes,
 }
 
 impl StellarTree {
@@ -713,6 +717,51 @@ impl StellarTree {
     /// ```
     pub fn cell_to_input(&self) -> &[CellId] {
         bytemuck::cast_slice(&self.c_orig)
+    }
+
+    /// The input complex's attributes, renumbered with the tree (vertex columns indexed by tree
+    /// vertex id, cell columns by tree cell id); saved and loaded with the tree.
+    ///
+    /// ```
+    /// use starplex::attr::{Attribute, Attributes};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let mut k = b.build(&BuildOptions::default()).unwrap().0;
+    /// k.set_attributes(Attributes { vertex: vec![], cell: vec![Attribute::int("tag", 1, vec![5, 6])] }).unwrap();
+    /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let tags = &t.attributes().cell[0];
+    /// for (tree_id, input) in t.cell_to_input().iter().enumerate() {
+    ///     assert_eq!(tags.values.get_f64(tree_id), [5.0, 6.0][input.index()]);
+    /// }
+    /// assert_eq!(t.input_attributes(), *k.attributes()); // back in the input's order
+    /// ```
+    pub fn attributes(&self) -> &crate::attr::Attributes {
+        &self.attrs
+    }
+
+    /// The attributes in the input complex's order (what [`attributes`](Self::attributes) holds,
+    /// gathered back through the permutations).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for x in [0.0, 1.0] { b.push_vertex(&[x]).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+    /// assert!(t.input_attributes().is_empty());
+    /// ```
+    pub fn input_attributes(&self) -> crate::attr::Attributes {
+        self.attrs
+            .gather_vertices(&self.v_new)
+            .gather_cells(&self.c_new)
     }
     /// Permutation input cell id -> tree cell id.
     ///

@@ -5,7 +5,9 @@
 //! vertices, cells, nodes, leaves, SRE words, vertex references, uniform kind code, stride,
 //! flags: bit 0 = graph decomposition), the root block (2 x ambient `f64`), then the arrays: nodes, leaf vertex starts, leaf
 //! list offsets, SRE words, cell kinds (mixed only), cell offsets (mixed only), cell vertices,
-//! vertex permutation (tree -> input), cell permutation (tree -> input).
+//! vertex permutation (tree -> input), cell permutation (tree -> input). Version 2 (written only
+//! for a tree that carries attributes) appends the attribute section (`save_attrs`): the input's
+//! vertex and cell columns in tree order, so they follow the renumbering.
 //!
 //! ```
 //! # use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -63,6 +65,8 @@ pub fn is_saved_tree(path: &Path) -> bool {
 }
 const MAGIC: &[u8; 8] = SAVED_TREE_MAGIC;
 const VERSION: u64 = 1;
+/// The version of a tree saved with attributes.
+const VERSION_ATTRS: u64 = 2;
 const N_HEADER: usize = 13;
 /// Flags word: the vertices were split by connectivity ([`Decomposition::Graph`]).
 const FLAG_GRAPH: u64 = 1;
@@ -105,8 +109,13 @@ impl StellarTree {
                 SplitMode::Kd => 2u64,
                 _ => 1,
             };
+            let version = if self.attrs.is_empty() {
+                VERSION
+            } else {
+                VERSION_ATTRS
+            };
             let header: [u64; N_HEADER] = [
-                VERSION,
+                version,
                 self.ambient_dim as u64,
                 self.kv as u64,
                 split,
@@ -134,6 +143,9 @@ impl StellarTree {
             write_arr(w, &self.cells.verts)?;
             write_arr(w, &self.v_orig)?;
             write_arr(w, &self.c_orig)?;
+            if !self.attrs.is_empty() {
+                super::save_attrs::write(w, &self.attrs)?;
+            }
             Ok(())
         })
     }
@@ -194,6 +206,18 @@ impl StellarTree {
         let verts = r.arr::<u32>(h.nrefs)?;
         let v_orig = r.arr::<u32>(h.nv)?;
         let c_orig = r.arr::<u32>(h.nc)?;
+        let attrs = if h.version == VERSION_ATTRS {
+            let a = super::save_attrs::read(&mut |n| r.bytes(n), h.nv, h.nc, &err)?;
+            if r.pos != r.data.len() {
+                return Err(err(format!(
+                    "{} bytes after the attribute section",
+                    r.data.len() - r.pos
+                )));
+            }
+            a
+        } else {
+            crate::attr::Attributes::default()
+        };
         // ---- checks
         h.check_ranges(&leaf_vstart, &leaf_toff, &kinds, &offsets, &verts, &err)?;
         let v_new = inverse(&v_orig, "vertex", &err)?;
@@ -233,12 +257,14 @@ impl StellarTree {
             c_orig,
             c_new,
             timings: BuildTimings::default(),
+            attrs,
         })
     }
 }
 
 /// The counts and codes of a saved tree's header, range-checked.
 struct Header {
+    version: u64,
     amb: usize,
     kv: u32,
     split: SplitMode,
@@ -264,7 +290,7 @@ impl Header {
         err: LoadErr<'_>,
     ) -> Result<Header, StellarError> {
         let h: Vec<u64> = r.arr::<u64>(N_HEADER)?;
-        if h[0] != VERSION {
+        if h[0] != VERSION && h[0] != VERSION_ATTRS {
             return Err(err(format!("unsupported version {}", h[0])));
         }
         let lim = |x: u64, what: &str, max: u64| {
@@ -298,6 +324,7 @@ impl Header {
             Decomposition::Spatial
         };
         Ok(Header {
+            version: h[0],
             amb,
             kv,
             split,
@@ -439,14 +466,15 @@ struct Reader<'a, F: Fn(String) -> StellarError> {
     err: &'a F,
 }
 
-impl<F: Fn(String) -> StellarError> Reader<'_, F> {
-    fn bytes(&mut self, n: usize) -> Result<&[u8], StellarError> {
+impl<'a, F: Fn(String) -> StellarError> Reader<'a, F> {
+    fn bytes(&mut self, n: usize) -> Result<&'a [u8], StellarError> {
+        let data: &'a [u8] = self.data;
         let end = self
             .pos
             .checked_add(n)
             .filter(|&e| e <= self.data.len())
             .ok_or_else(|| (self.err)(format!("truncated at byte {}", self.pos)))?;
-        let s = &self.data[self.pos..end];
+        let s = &data[self.pos..end];
         self.pos = end;
         Ok(s)
     }
