@@ -1,5 +1,6 @@
 //! A tree saved by `starplex stellar --save` is used directly by `stellar`, `validate` and
-//! `query --structure stellar` (memory-mapped, no rebuild), with the same answers as the mesh.
+//! `query --structure stellar` (memory-mapped, no rebuild), with the same answers as the mesh;
+//! the verbs that need the mesh's coordinates (`info`, `convert`, ...) say so.
 use std::path::Path;
 use std::process::Command;
 
@@ -88,6 +89,16 @@ fn a_saved_tree_answers_like_the_mesh() {
     );
     assert_eq!(code, Some(2));
     assert!(err.contains("--structure stellar"), "{err}");
+    // the verbs that need a mesh recognise a saved tree and say what reads it
+    for verb in [&["info"][..], &["convert", "/dev/null", "--to", "off"][..]] {
+        let (code, _, err) = run(verb, &tree);
+        assert_eq!(code, Some(2), "{verb:?}: {err}");
+        assert!(err.contains("is a saved Stellar tree"), "{verb:?}: {err}");
+        assert!(
+            err.contains("hint: pass the mesh it was built from"),
+            "{err}"
+        );
+    }
     // a damaged tree is an input error, not a panic
     let bytes = std::fs::read(&tree).unwrap();
     let cut = dir.join("cut.tree");
