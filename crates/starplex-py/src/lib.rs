@@ -522,7 +522,7 @@ impl Complex {
             let dropped = fmt.dropped_attributes(k.attributes());
             if !dropped.is_empty() {
                 let msg = format!(
-                    "the attributes {} are not written: {fmt} cannot hold them (write .vtu or .vtk to keep them)",
+                    "the attributes {} are not written: {fmt} cannot hold them (write .vtu, .vtk, .spx or .spb to keep them)",
                     dropped.join(", ")
                 );
                 let cat = py.get_type::<pyo3::exceptions::PyUserWarning>();
