@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Reads starplex's own PLY/OFF/gmsh output (written by the test
-`own_outputs_for_independent_readers` of crates/starplex/tests/io_attrs_more.rs) back with meshio
+`own_outputs_for_independent_readers` of crates/starplex/tests/suite/io_attrs_more.rs) back with meshio
 and trimesh and compares every attribute with the reference columns (more_attrs.json).
 
-Usage: STARPLEX_ATTR_OUT=DIR cargo test -p starplex --test io_attrs_more own_outputs
+Usage: STARPLEX_ATTR_OUT=DIR cargo test -p starplex --test suite io_attrs_more::own_outputs
        /work/data/.venv/bin/python scripts/check_attrs_more.py DIR
 """
 import json

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Reads the output of starplex's newer writers back with independent readers and compares it with
 what starplex wrote (reference.json, written beside the files by the test `own_outputs_for_meshio`
-of crates/starplex/tests/io_writers_more.rs):
+of crates/starplex/tests/suite/io_writers_more.rs):
 
 - gmsh 4.1 ascii and binary with physical/geometrical tags as entities, and gmsh 2.2 binary with
   them as element tags: meshio (points, cells, gmsh:physical, gmsh:geometrical, data) and gmsh's
@@ -11,7 +11,7 @@ of crates/starplex/tests/io_writers_more.rs):
 - legacy VTK POLYDATA: meshio 5.3.5 reads no POLYDATA and the venv has no `vtk` module
   (reported, not counted).
 
-Usage: STARPLEX_WRITERS_OUT=DIR cargo test -p starplex --test io_writers_more own_outputs
+Usage: STARPLEX_WRITERS_OUT=DIR cargo test -p starplex --test suite io_writers_more::own_outputs
        /work/data/.venv/bin/python scripts/check_writers_more.py DIR
 """
 import json

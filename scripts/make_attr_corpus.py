@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the attribute test corpus for PLY, OFF and gmsh data sections
-(crates/starplex/tests/data/io/, read by crates/starplex/tests/io_attrs_more.rs) with independent
+(crates/starplex/tests/data/io/, read by crates/starplex/tests/suite/io_attrs_more.rs) with independent
 writers, and `more_attrs.json`: for every file, the vertex and cell columns a reader must find
 (name -> rows, cells in file order).
 

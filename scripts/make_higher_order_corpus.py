@@ -5,7 +5,7 @@ Needs the `gmsh` Python module (`pip install gmsh`). Each mesh is written first 
 raised with gmsh's `setOrder` (which keeps the corner nodes and their tags and adds the others),
 in the four encodings starplex reads: 4.1 and 2.2, ascii and binary. starplex reads a
 higher-order element as its first-order cell, so every higher-order file must read as the
-order-1 file does (`crates/starplex/tests/io_higher_order.rs`).
+order-1 file does (`crates/starplex/tests/suite/io_higher_order.rs`).
 
 - `ho_tet`: tetrahedra of a unit box (orders 2 and 3: types 11 and 29, with 9/21 triangles);
 - `ho_hex`: a transfinite, recombined 2x2x2 box of hexahedra (order 2: complete 27-node

@@ -5,7 +5,7 @@ Needs VTK's Python module (`pip install vtk`). `vtkCellTypeSource` makes the sam
 of cells at order 1 (the linear types) and at orders 2 and 3 (the Lagrange types 68-73 and the
 Bezier types 75-80); the higher-order files are written as legacy VTK (binary) and `.vtu`
 (appended raw), the linear ones as `.vtu`. starplex reads a higher-order cell as its linear
-cell (its first points are the corners), so `crates/starplex/tests/io_higher_order.rs` checks
+cell (its first points are the corners), so `crates/starplex/tests/suite/io_higher_order.rs` checks
 that every higher-order file's cells, compared by their corners' coordinates, are the linear
 file's cells. VTK itself has no arbitrary-order pyramid (types 74 and 81 have no cell class in
 VTK 9), so none is written.

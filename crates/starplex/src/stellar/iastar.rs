@@ -11,7 +11,7 @@
 //!
 //! It answers through the one IA* vocabulary, [`FacetAdjacency`] (and [`Storage`]), like the
 //! standalone IA* ([`crate::tds::iastar`]); the layout differs but the content is the same: the same slot per facet, the same non-manifold facets, the same representatives and
-//! the same reference count (checked by `tests/stellar_iastar.rs` on random complexes and the
+//! the same reference count (checked by `tests/suite/stellar_iastar.rs` on random complexes and the
 //! datasets).
 //!
 //! ```

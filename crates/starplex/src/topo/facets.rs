@@ -5,7 +5,7 @@
 //! Both IA* builders implement [`FacetAdjacency`]: the standalone one
 //! ([`crate::tds::iastar::IaStar`]) and the one generated from a Stellar tree, globally or for
 //! one leaf ([`crate::stellar::iastar::StellarIaStar`]). They answer identically (held equal by
-//! `tests/stellar_iastar.rs`), in input numbering.
+//! `tests/suite/stellar_iastar.rs`), in input numbering.
 //!
 //! Slot `j` of a simplex is the facet that omits its `j`-th vertex; a CP cell's slots follow
 //! its facet table ([`crate::cell::CellKind::cp_faces`]). Top edges and top vertices have no

@@ -467,7 +467,7 @@ pub fn default_label_attribute(attrs: &crate::attr::Attributes) -> Option<&'stat
 /// ([`link_condition::region_condition`]: `L` closed by a cone over its own boundary, which
 /// contains the interfaces). The plain link condition in `L` alone is not enough: a triangle
 /// of `L` with one side on an interface and one on the mesh boundary would fold onto its
-/// interface side, and `L` would lose that side (a test in `tests/simplify_labels.rs` found it).
+/// interface side, and `L` would lose that side (a test in `tests/suite/simplify_labels.rs` found it).
 ///
 /// ```
 /// use starplex::algo::simplify::label_interface_vertices;

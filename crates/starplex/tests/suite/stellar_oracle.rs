@@ -1,7 +1,7 @@
 //! Stellar tree on every small dataset: VT, VV and links of the oracle's vertex queries, and
 //! validation (components, boundary faces, non-manifold vertices and edges of surfaces) equal
 //! the third-party oracles.
-mod common_data;
+use crate::common_data;
 
 use serde_json::Value;
 use starplex::ids::VertexId;

@@ -2,7 +2,7 @@
 //! collapses keeping the topology (Euler characteristic and Z/2 Betti numbers by a rank
 //! computation), components on a mesh with boundary, orientation keeping the file's winding,
 //! local edits on triangle and tetrahedral meshes, conversions.
-mod common_data;
+use crate::common_data;
 
 use std::path::PathBuf;
 

@@ -1,6 +1,6 @@
 //! Every small dataset: `info` and the vertex queries equal the third-party oracle
 //! (GUDHI, gmsh, pymeshlab, trimesh, numpy — never starplex).
-mod common_data;
+use crate::common_data;
 
 use serde_json::Value;
 use starplex::algo::info::{info, InfoOptions};

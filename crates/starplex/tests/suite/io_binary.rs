@@ -1,7 +1,7 @@
 //! `.spb` binary format: round trips (mapped, no copy), a table of corrupted files, a byte-mutation
 //! property test (never a panic), and a round trip of every small dataset when `STARPLEX_DATA` is
 //! set.
-mod common_data;
+use crate::common_data;
 use std::path::PathBuf;
 
 use proptest::prelude::*;

@@ -2,7 +2,7 @@
 //! gluings, a 40-simplex, wedges of spheres, CP complexes), property tests against a dense
 //! Z/2 rank computation over all faces written here, and the `betti_z2` of every dataset
 //! oracle (computed by GUDHI).
-mod common_data;
+use crate::common_data;
 
 use std::collections::BTreeSet;
 

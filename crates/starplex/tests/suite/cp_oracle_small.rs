@@ -2,7 +2,7 @@
 //! tet/pyramid/prism/hex): the oracle's vertex queries (VT, VV, from numpy and gmsh), the
 //! f-vector (gmsh's unique edges and faces), boundary faces and faces in three or more top
 //! cells (numpy on the VTK face templates) — never values computed by starplex.
-mod common_data;
+use crate::common_data;
 
 use serde_json::Value;
 use starplex::ids::{CellId, VertexId};

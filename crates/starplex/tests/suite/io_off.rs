@@ -5,7 +5,7 @@
 //! Files under `../shared/datasets/small/` are used when present; files that only exist under
 //! `$STARPLEX_DATA/small/<name>/` are used when `STARPLEX_DATA` is set and skipped (with a printed
 //! reason) otherwise.
-mod common_data;
+use crate::common_data;
 use std::path::{Path, PathBuf};
 
 use proptest::prelude::*;

@@ -1,6 +1,6 @@
 //! IA* generated from the Stellar tree (global and local) against a brute-force model on
 //! random complexes, and the spec's storage anchors.
-mod common_data;
+use crate::common_data;
 
 use std::collections::BTreeSet;
 
@@ -352,7 +352,7 @@ fn tree_iastar_is_the_direct_iastar_on_the_small_datasets() {
         n += 1;
     }
     if n == 0 && !common_data::data_required() {
-        eprintln!("SKIPPED: no small datasets found (see tests/common_data.rs)");
+        eprintln!("SKIPPED: no small datasets found (see tests/suite/common_data.rs)");
         return;
     }
     assert!(n >= 7, "only {n} datasets");

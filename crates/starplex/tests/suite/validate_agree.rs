@@ -3,7 +3,7 @@
 //! non-manifold complexes (simplices of dimension 0-5 and CP cells) and on every small dataset.
 //! The manifold lists also equal `algo::manifold::singularities` under the global convention,
 //! and the local convention is checked against a brute-force reading of its definition.
-mod common_data;
+use crate::common_data;
 
 use proptest::prelude::*;
 use starplex::algo::manifold::{singularities, sphere_or_ball, Convention, Manifoldness};

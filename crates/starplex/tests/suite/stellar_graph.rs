@@ -4,7 +4,7 @@
 //! counts, top adjacency, validation, the IA* facet adjacency and vertex references), its leaves
 //! partition the vertices in blocks of at most k_V, every leaf list is the explicit list, and
 //! the tree is the same for any thread count and after a save and load.
-mod common_data;
+use crate::common_data;
 
 use std::collections::BTreeMap;
 

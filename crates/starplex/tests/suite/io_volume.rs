@@ -1,8 +1,8 @@
 //! Medit, legacy VTK and gmsh: round trips on fixtures built in code and on seeded random
 //! complexes, a table of broken inputs (each must fail with its line), and, when `STARPLEX_DATA`
 //! is set, the dataset files against their `.spx`.
+use crate::common_data;
 use std::collections::BTreeMap;
-mod common_data;
 use std::path::{Path, PathBuf};
 
 use starplex::cell::CellKind;

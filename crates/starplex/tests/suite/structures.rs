@@ -5,7 +5,7 @@
 //! and with the dataset oracles (vertex queries, f-vector, Euler characteristic). CP complexes
 //! (quads, hexahedra, prisms, pyramids, mixed) run the structures that hold them (incidence
 //! graph, IA*) against a model of cells from the face tables.
-mod common_data;
+use crate::common_data;
 
 use std::collections::BTreeSet;
 
@@ -854,7 +854,7 @@ fn every_structure_matches_the_oracles_on_the_small_datasets() {
             assert_eq!(got, u64s(&q["vv"]), "{name}/vt");
         }
         if !k.is_simplicial() {
-            // the structures that hold CP cells: VT and VV (tests/cp_oracle_small.rs checks more)
+            // the structures that hold CP cells: VT and VV (tests/suite/cp_oracle_small.rs checks more)
             let ig = IncidenceGraph::new(&k, &stored(1 << 30)).unwrap();
             let ia = IaStar::new(&k).unwrap();
             for (sname, s) in [("ig", &ig as &dyn Queries), ("ia*", &ia)] {

@@ -2,7 +2,7 @@
 //! dimensions 2–8 (and above, the sweep path), against the `vr_*` datasets (scipy cKDTree +
 //! networkx maximal cliques), for any thread count; the Sierpinski generator against the
 //! datasets' numpy generator.
-mod common_data;
+use crate::common_data;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -1,9 +1,9 @@
 //! The CASC paper's worked examples (Section 5.1 links, Fig. 5 / Table 1 decimation), checked
 //! through the runnable examples' own output.
-#[path = "../examples/casc_link.rs"]
+#[path = "../../examples/casc_link.rs"]
 mod casc_link;
 
-#[path = "../examples/casc_decimate.rs"]
+#[path = "../../examples/casc_decimate.rs"]
 mod casc_decimate;
 
 #[test]
