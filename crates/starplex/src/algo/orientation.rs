@@ -160,14 +160,66 @@ pub fn orient_tops(
     is_top: impl Fn(u32) -> bool,
     pairs: &[(u32, u32, i8)],
 ) -> Orientation {
-    let w = orient_walk(n_cells, is_top, pairs, |_| 1);
-    match w.conflict {
-        Some(conflict) => Orientation::NonOrientable { conflict },
-        None => Orientation::Orientable {
-            flips: (0..n_cells)
-                .filter(|&c| w.signs[c] < 0)
-                .map(|c| CellId(c as u32))
-                .collect(),
-        },
+    orient_walk(n_cells, is_top, pairs, |_| 1).orientation()
+}
+
+impl Walk {
+    /// The answer of [`orient_tops`] from a walk seeded with +1: its conflict, or the cells
+    /// whose sign is -1.
+    ///
+    /// ```
+    /// use starplex::algo::orientation::{orient_walk, Orientation};
+    /// use starplex::ids::CellId;
+    /// let w = orient_walk(3, |_| true, &[(0, 1, 1), (1, 2, 1)], |_| 1);
+    /// assert_eq!(w.orientation(), Orientation::Orientable { flips: vec![CellId(1)] });
+    /// ```
+    pub fn orientation(&self) -> Orientation {
+        match self.conflict {
+            Some(conflict) => Orientation::NonOrientable { conflict },
+            None => Orientation::Orientable {
+                flips: (0..self.signs.len())
+                    .filter(|&c| self.signs[c] < 0)
+                    .map(|c| CellId(c as u32))
+                    .collect(),
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::orient_walk;
+    use crate::algo::unionfind::UnionFind;
+
+    /// The walk's component count is what `finish_report` reports as the facet components when
+    /// no facet is in more than two cells: it must equal a union-find over the same pairs of
+    /// top cells, on random graphs with cells that are not tops.
+    #[test]
+    fn walk_components_equal_union_find() {
+        let mut rng = crate::testkit::XorShift::new(0x9E37_79B9_7F4A_7C15);
+        for _ in 0..500 {
+            let n = 1 + rng.below(40) as usize;
+            let top: Vec<bool> = (0..n).map(|_| rng.below(5) != 0).collect();
+            let m = rng.below(2 * n as u64) as usize;
+            let pairs: Vec<(u32, u32, i8)> = (0..m)
+                .map(|_| {
+                    let a = rng.below(n as u64) as u32;
+                    let b = rng.below(n as u64) as u32;
+                    (a, b, if rng.below(2) == 0 { 1 } else { -1 })
+                })
+                .filter(|p| p.0 != p.1)
+                .collect();
+            let is_top = |c: u32| top[c as usize];
+            let mut uf = UnionFind::new(n);
+            for &(a, b, _) in &pairs {
+                if is_top(a) && is_top(b) {
+                    uf.union(a, b);
+                }
+            }
+            let want = (0..n as u32)
+                .filter(|&c| is_top(c) && uf.find(c) == c)
+                .count();
+            assert_eq!(orient_walk(n, is_top, &pairs, |_| 1).n_components, want);
+        }
     }
 }

@@ -32,7 +32,7 @@
 //! ```
 use crate::algo::components::components;
 use crate::algo::manifold::{complex_dim, singularities_in_dim, Convention};
-use crate::algo::orientation::{orient_tops, Orientation};
+use crate::algo::orientation::{orient_walk, Orientation};
 use crate::cell::{listed_sign, oriented_facets_of, CellKind};
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
@@ -312,19 +312,11 @@ pub(crate) fn finish_report(
     // the top mask once: `is_top` may map ids and look up kinds
     let top: Vec<bool> = (0..n_cells as u32).map(is_top).collect();
     let is_top = |c: u32| top[c as usize];
-    let mut cuf = crate::algo::unionfind::UnionFind::new(n_cells);
-    for &(a, b, _) in pairs {
-        if is_top(a) && is_top(b) {
-            cuf.union(a, b);
-        }
-    }
-    r.n_facet_components = (0..n_cells as u32)
-        .filter(|&c| is_top(c) && cuf.find(c) == c)
-        .count() as u64;
-    r.facet_connected = r.n_facet_components == 1;
-    r.pseudo_manifold = r.pure && r.faces_in_more_than_two_cells.is_empty() && r.facet_connected;
     if r.faces_in_more_than_two_cells.is_empty() {
-        match orient_tops(n_cells, is_top, pairs) {
+        // the orientation walk counts the components it walks: no separate union-find
+        let w = orient_walk(n_cells, is_top, pairs, |_| 1);
+        r.n_facet_components = w.n_components as u64;
+        match w.orientation() {
             Orientation::Orientable { flips } => {
                 r.orientable = Some(true);
                 r.cells_to_flip = Some(flips);
@@ -334,7 +326,19 @@ pub(crate) fn finish_report(
                 r.orientation_conflict = Some(conflict);
             }
         }
+    } else {
+        let mut cuf = crate::algo::unionfind::UnionFind::new(n_cells);
+        for &(a, b, _) in pairs {
+            if is_top(a) && is_top(b) {
+                cuf.union(a, b);
+            }
+        }
+        r.n_facet_components = (0..n_cells as u32)
+            .filter(|&c| is_top(c) && cuf.find(c) == c)
+            .count() as u64;
     }
+    r.facet_connected = r.n_facet_components == 1;
+    r.pseudo_manifold = r.pure && r.faces_in_more_than_two_cells.is_empty() && r.facet_connected;
 }
 
 /// Validates any structure (see the [module docs](self)); the answer equals
@@ -372,7 +376,7 @@ pub fn validate<S: TopCells + VertexStar + ?Sized>(s: &S) -> ValidationReport {
 /// the report without the facet classes and orientation (`n_facet_components`,
 /// `facet_connected`, `pseudo_manifold`, `orientable`, ... left at their defaults), and the
 /// pairs of top `d`-cells sharing a facet, with the product of the orientations they induce on
-/// it (what [`orient_tops`] propagates). `starplex-mpi` runs it on each rank, where the stars of
+/// it (what [`orient_tops`](crate::algo::orientation::orient_tops) propagates). `starplex-mpi` runs it on each rank, where the stars of
 /// the vertices a rank does not own are empty, and merges the classes across ranks.
 ///
 /// ```

@@ -36,6 +36,7 @@ use crate::algo::manifold::{local_singularities_global, Singularities};
 use crate::algo::unionfind::UnionFind;
 use crate::algo::validate::{finish_report, ValidationReport};
 use crate::ids::{CellId, TreeVertexId, VertexId};
+use rayon::prelude::*;
 
 struct LeafOut {
     boundary: Vec<Vec<u32>>,
@@ -70,27 +71,16 @@ impl StellarTree {
             dim,
             ..Default::default()
         };
-        // components (sequential union-find on tree vertices)
-        let nv = self.n_vertices();
-        let mut uf = UnionFind::new(nv);
-        let mut used = vec![false; nv];
-        for c in 0..self.cells.n {
-            let vs = self.cells.verts(c);
-            for &v in vs {
-                used[v as usize] = true;
-                uf.union(vs[0], v);
-            }
-        }
-        r.n_connected_components = uf.n_sets() as u64;
-        drop(uf);
-        r.isolated_vertices = (0..nv)
-            .filter(|&v| !used[v])
-            .map(|v| VertexId(self.v_orig[v]))
-            .collect();
-        r.isolated_vertices.sort_unstable();
-        drop(used);
+        // the components (a sequential union-find) run beside the parallel leaf pass: with two
+        // threads one of them takes the union-find while the other works through the leaves
+        let ((n_components, isolated), outs) = rayon::join(
+            || self.vertex_components(),
+            || d.map_or_else(Vec::new, |d| self.leaf_outputs(d)),
+        );
+        r.n_connected_components = n_components;
+        r.isolated_vertices = isolated;
         let Some(d) = d else {
-            if nv > 0 {
+            if self.n_vertices() > 0 {
                 r.dim = 0;
             }
             r.pure = r.isolated_vertices.is_empty();
@@ -102,44 +92,81 @@ impl StellarTree {
             .collect();
         r.lower_dimensional_cells.sort_unstable();
         r.pure = r.lower_dimensional_cells.is_empty() && r.isolated_vertices.is_empty();
+        let pairs = self.merge_leaf_outputs(&mut r, outs);
+        let is_top = |c: u32| self.cells.get(self.c_new[c as usize]).0.dim() == d;
+        finish_report(&mut r, self.n_top_cells(), is_top, &pairs);
+        r
+    }
 
-        // facets, pairs, vertex and edge tests: one parallel pass over the leaves
-        let outs: Vec<LeafOut> = if d == 0 {
-            Vec::new()
-        } else {
-            let facet_part = self.par_facet_groups(|_, keys| {
-                let mut o = (Vec::new(), Vec::new(), Vec::new());
-                keys.for_each_group(|key, pays| {
-                    if key[0] as usize != d {
-                        return;
+    /// Connected components of the vertices through the cells (union-find on tree vertices),
+    /// and the isolated vertices (in no cell), input ids, sorted.
+    fn vertex_components(&self) -> (u64, Vec<VertexId>) {
+        let nv = self.n_vertices();
+        let mut uf = UnionFind::new(nv);
+        let mut used = vec![false; nv];
+        for c in 0..self.cells.n {
+            let vs = self.cells.verts(c);
+            for &v in vs {
+                used[v as usize] = true;
+                uf.union(vs[0], v);
+            }
+        }
+        let n = uf.n_sets() as u64;
+        drop(uf);
+        let mut isolated: Vec<VertexId> = (0..nv)
+            .filter(|&v| !used[v])
+            .map(|v| VertexId(self.v_orig[v]))
+            .collect();
+        isolated.sort_unstable();
+        (n, isolated)
+    }
+
+    /// Facets, pairs, vertex and edge tests: one parallel pass over the leaves.
+    fn leaf_outputs(&self, d: usize) -> Vec<LeafOut> {
+        if d == 0 {
+            return Vec::new();
+        }
+        let facet_part = self.par_facet_groups(|_, keys| {
+            let mut o = (Vec::new(), Vec::new(), Vec::new());
+            keys.for_each_group(|key, pays| {
+                if key[0] as usize != d {
+                    return;
+                }
+                match pays.len() {
+                    1 => o.0.push(key[1..].to_vec()),
+                    2 => {}
+                    _ => o.1.push(key[1..].to_vec()),
+                }
+                for i in 0..pays.len() {
+                    for j in i + 1..pays.len() {
+                        let (a, sa) = unpack(pays[i]);
+                        let (b, sb) = unpack(pays[j]);
+                        o.2.push((a, b, sa * sb));
                     }
-                    match pays.len() {
-                        1 => o.0.push(key[1..].to_vec()),
-                        2 => {}
-                        _ => o.1.push(key[1..].to_vec()),
-                    }
-                    for i in 0..pays.len() {
-                        for j in i + 1..pays.len() {
-                            let (a, sa) = unpack(pays[i]);
-                            let (b, sb) = unpack(pays[j]);
-                            o.2.push((a, b, sa * sb));
-                        }
-                    }
-                });
-                o
+                }
             });
-            let vertex_part = self.par_map_leaves(|view| self.leaf_manifold(view, d, true));
-            facet_part
-                .into_iter()
-                .zip(vertex_part)
-                .map(|((boundary, over2, pairs), sing)| LeafOut {
-                    boundary,
-                    over2,
-                    pairs,
-                    sing,
-                })
-                .collect()
-        };
+            o
+        });
+        let vertex_part = self.par_map_leaves(|view| self.leaf_manifold(view, d, true));
+        facet_part
+            .into_iter()
+            .zip(vertex_part)
+            .map(|((boundary, over2, pairs), sing)| LeafOut {
+                boundary,
+                over2,
+                pairs,
+                sing,
+            })
+            .collect()
+    }
+
+    /// Moves the leaves' findings into the report (input ids, sorted) and returns the facet
+    /// pairs in input cell ids.
+    fn merge_leaf_outputs(
+        &self,
+        r: &mut ValidationReport,
+        outs: Vec<LeafOut>,
+    ) -> Vec<(u32, u32, i8)> {
         let to_in = |v: u32| VertexId(self.v_orig[v as usize]);
         let tv_in = |v: &TreeVertexId| to_in(v.0);
         let face_in = |f: &Vec<u32>| {
@@ -155,7 +182,16 @@ impl StellarTree {
                 [b, a]
             }
         };
-        let mut pairs: Vec<(u32, u32, i8)> = Vec::new();
+        // (d-1)-connectedness and orientation: the shared walk, on input cell ids
+        let c_orig = &self.c_orig;
+        let pairs: Vec<(u32, u32, i8)> = outs
+            .par_iter()
+            .flat_map_iter(|o| {
+                o.pairs
+                    .iter()
+                    .map(|&(a, b, s)| (c_orig[a as usize], c_orig[b as usize], s))
+            })
+            .collect();
         for o in &outs {
             r.boundary_faces.extend(o.boundary.iter().map(face_in));
             r.faces_in_more_than_two_cells
@@ -168,27 +204,15 @@ impl StellarTree {
                 .extend(o.sing.non_manifold_edges.iter().map(edge_in));
             r.unknown_edges
                 .extend(o.sing.unknown_edges.iter().map(edge_in));
-            pairs.extend_from_slice(&o.pairs);
         }
         drop(outs);
-        if d == 0 {
-            // isolated points: every vertex is a 0-manifold (a top vertex cell)
-        }
         r.boundary_faces.sort_unstable();
         r.faces_in_more_than_two_cells.sort_unstable();
         r.non_manifold_vertices.sort_unstable();
         r.unknown_vertices.sort_unstable();
         r.non_manifold_edges.sort_unstable();
         r.unknown_edges.sort_unstable();
-
-        // (d-1)-connectedness and orientation: the shared walk, on input cell ids
-        let pairs: Vec<(u32, u32, i8)> = pairs
-            .iter()
-            .map(|&(a, b, s)| (self.c_orig[a as usize], self.c_orig[b as usize], s))
-            .collect();
-        let is_top = |c: u32| self.cells.get(self.c_new[c as usize]).0.dim() == d;
-        finish_report(&mut r, self.n_top_cells(), is_top, &pairs);
-        r
+        pairs
     }
 
     /// Manifold tests for the vertices of a leaf and the edges they own (the edge's smaller
