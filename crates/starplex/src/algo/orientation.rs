@@ -163,6 +163,108 @@ pub fn orient_tops(
     orient_walk(n_cells, is_top, pairs, |_| 1).orientation()
 }
 
+/// [`orient_tops`] for pairs numbered in a working order other than the answer's: `to_out`
+/// maps each working id to its answer id (a permutation of `0..n_cells`), and `is_top` and
+/// `pairs` use working ids. Returns the answer [`orient_tops`] gives on the pairs renumbered
+/// by `to_out`, and the number of components of top cells through the pairs.
+///
+/// Why: the depth-first walk reads each cell's neighbours at random. In an order where
+/// neighbours are near each other (the Stellar tree's, leaf by leaf) the walk stays in cache;
+/// in input order it may miss on every step (95 ms of 360 on an 832,000-triangle mesh). The
+/// walk runs in the working order, then each component takes the sign of its smallest answer
+/// id, which gives the same signs as the walk in answer ids. When a conflict is met, which
+/// conflict is reported depends on the order, so the pairs are renumbered and walked again
+/// by [`orient_walk`].
+///
+/// ```
+/// use starplex::algo::orientation::{orient_tops, orient_tops_renumbered};
+/// // a strip of three triangles, numbered backwards in the working order
+/// let to_out = [2, 1, 0];
+/// let pairs = [(2, 1, 1), (1, 0, 1)];
+/// let out: Vec<_> = pairs.iter().map(|&(a, b, r)| (to_out[a as usize], to_out[b as usize], r)).collect();
+/// let (o, n_components) = orient_tops_renumbered(3, |_| true, &pairs, &to_out);
+/// assert_eq!(o, orient_tops(3, |_| true, &out));
+/// assert_eq!(n_components, 1);
+/// ```
+pub fn orient_tops_renumbered(
+    n_cells: usize,
+    is_top: impl Fn(u32) -> bool,
+    pairs: &[(u32, u32, i8)],
+    to_out: &[u32],
+) -> (Orientation, usize) {
+    assert_eq!(to_out.len(), n_cells, "to_out maps every cell");
+    let canonical = || {
+        let out: Vec<(u32, u32, i8)> = pairs
+            .iter()
+            .map(|&(a, b, r)| (to_out[a as usize], to_out[b as usize], r))
+            .collect();
+        let mut top = vec![false; n_cells];
+        for c in 0..n_cells as u32 {
+            top[to_out[c as usize] as usize] = is_top(c);
+        }
+        let w = orient_walk(n_cells, |c| top[c as usize], &out, |_| 1);
+        (w.orientation(), w.n_components)
+    };
+    if n_cells >= 1 << 31 {
+        return canonical();
+    }
+    let top: Vec<bool> = (0..n_cells as u32).map(&is_top).collect();
+    // each row holds its neighbours directly, with the relation in the low bit: no second
+    // random read through the pair
+    let adj = Csr::from_fn(n_cells, |emit| {
+        for &(a, b, rel) in pairs {
+            if top[a as usize] && top[b as usize] {
+                let neg = u32::from(rel < 0);
+                emit(a, (b << 1) | neg);
+                emit(b, (a << 1) | neg);
+            }
+        }
+    });
+    const NONE: u32 = u32::MAX;
+    let mut sign = vec![0i8; n_cells];
+    let mut comp = vec![NONE; n_cells];
+    let mut n_comp = 0u32;
+    let mut stack = Vec::new();
+    for s in 0..n_cells as u32 {
+        if sign[s as usize] != 0 || !top[s as usize] {
+            continue;
+        }
+        sign[s as usize] = 1;
+        comp[s as usize] = n_comp;
+        stack.push(s);
+        while let Some(a) = stack.pop() {
+            let sa = sign[a as usize];
+            for &t in adj.row(a as usize) {
+                let b = (t >> 1) as usize;
+                let want = if t & 1 == 1 { sa } else { -sa };
+                if sign[b] == 0 {
+                    sign[b] = want;
+                    comp[b] = n_comp;
+                    stack.push(b as u32);
+                } else if sign[b] != want {
+                    return canonical();
+                }
+            }
+        }
+        n_comp += 1;
+    }
+    drop(adj);
+    // each component keeps the sign of its smallest answer id
+    let mut least = vec![(NONE, 0i8); n_comp as usize];
+    for c in 0..n_cells {
+        let k = comp[c];
+        if k != NONE && to_out[c] < least[k as usize].0 {
+            least[k as usize] = (to_out[c], sign[c]);
+        }
+    }
+    let mut flips: Vec<CellId> = (0..n_cells)
+        .filter(|&c| comp[c] != NONE && sign[c] * least[comp[c] as usize].1 < 0)
+        .map(|c| CellId(to_out[c]))
+        .collect();
+    flips.sort_unstable();
+    (Orientation::Orientable { flips }, n_comp as usize)
+}
+
 impl Walk {
     /// The answer of [`orient_tops`] from a walk seeded with +1: its conflict, or the cells
     /// whose sign is -1.
@@ -188,8 +290,59 @@ impl Walk {
 
 #[cfg(test)]
 mod tests {
-    use super::orient_walk;
+    use super::{orient_tops, orient_tops_renumbered, orient_walk};
     use crate::algo::unionfind::UnionFind;
+
+    /// The walk in a working order answers like `orient_tops` on the pairs renumbered, on
+    /// random graphs (orientable or not, several components, cells that are not tops) under
+    /// random permutations.
+    #[test]
+    fn renumbered_walk_equals_the_walk_in_answer_ids() {
+        let mut rng = crate::testkit::XorShift::new(0x0DDB_1A5E_5BAD_5EED);
+        let mut conflicts = 0;
+        for case in 0..600 {
+            let n = 1 + rng.below(30) as usize;
+            let top: Vec<bool> = (0..n).map(|_| rng.below(6) != 0).collect();
+            // a random spanning-ish tree with consistent signs, plus a few random extra pairs
+            let mut pairs: Vec<(u32, u32, i8)> = Vec::new();
+            for b in 1..n as u32 {
+                if rng.below(4) != 0 {
+                    pairs.push((rng.below(b as u64) as u32, b, -1));
+                }
+            }
+            for _ in 0..rng.below(if case % 2 == 0 { 7 } else { 1 }) {
+                let a = rng.below(n as u64) as u32;
+                let b = rng.below(n as u64) as u32;
+                if a != b {
+                    pairs.push((a, b, if rng.below(2) == 0 { 1 } else { -1 }));
+                }
+            }
+            // working id w is answer id to_out[w]
+            let mut to_out: Vec<u32> = (0..n as u32).collect();
+            for i in (1..n).rev() {
+                let j = rng.below(i as u64 + 1) as usize;
+                to_out.swap(i, j);
+            }
+            let mut to_work = vec![0u32; n];
+            for (w, &o) in to_out.iter().enumerate() {
+                to_work[o as usize] = w as u32;
+            }
+            let work: Vec<(u32, u32, i8)> = pairs
+                .iter()
+                .map(|&(a, b, r)| (to_work[a as usize], to_work[b as usize], r))
+                .collect();
+            let want = orient_tops(n, |c| top[c as usize], &pairs);
+            let n_want = orient_walk(n, |c| top[c as usize], &pairs, |_| 1).n_components;
+            let got =
+                orient_tops_renumbered(n, |w| top[to_out[w as usize] as usize], &work, &to_out);
+            assert_eq!(got, (want.clone(), n_want), "case {case}");
+            conflicts += usize::from(matches!(want, super::Orientation::NonOrientable { .. }));
+        }
+        assert!(
+            conflicts > 50 && conflicts < 550,
+            "{conflicts} non-orientable cases"
+        );
+    }
 
     /// The walk's component count is what `finish_report` reports as the facet components when
     /// no facet is in more than two cells: it must equal a union-find over the same pairs of

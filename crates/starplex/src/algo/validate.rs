@@ -32,7 +32,7 @@
 //! ```
 use crate::algo::components::components;
 use crate::algo::manifold::{complex_dim, singularities_in_dim, Convention};
-use crate::algo::orientation::{orient_walk, Orientation};
+use crate::algo::orientation::{orient_tops_renumbered, orient_walk, Orientation};
 use crate::cell::{listed_sign, oriented_facets_of, CellKind};
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
@@ -302,21 +302,30 @@ fn facet_groups<S: TopCells + VertexStar + ?Sized>(
 }
 
 /// Fills the parts of a report that follow from the facet pairs: (d-1)-connectedness,
-/// pseudo-manifoldness and the orientation. `pairs` are `(a, b, rel)` in input cell ids.
+/// pseudo-manifoldness and the orientation. `pairs` are `(a, b, rel)` in input cell ids, or, with
+/// `to_input`, in a working numbering that `to_input` maps to input ids (`is_top` then takes
+/// working ids too; see [`orient_tops_renumbered`]).
 pub(crate) fn finish_report(
     r: &mut ValidationReport,
     n_cells: usize,
     is_top: impl Fn(u32) -> bool,
     pairs: &[(u32, u32, i8)],
+    to_input: Option<&[u32]>,
 ) {
     // the top mask once: `is_top` may map ids and look up kinds
     let top: Vec<bool> = (0..n_cells as u32).map(is_top).collect();
     let is_top = |c: u32| top[c as usize];
     if r.faces_in_more_than_two_cells.is_empty() {
         // the orientation walk counts the components it walks: no separate union-find
-        let w = orient_walk(n_cells, is_top, pairs, |_| 1);
-        r.n_facet_components = w.n_components as u64;
-        match w.orientation() {
+        let (o, n_components) = match to_input {
+            Some(to_input) => orient_tops_renumbered(n_cells, is_top, pairs, to_input),
+            None => {
+                let w = orient_walk(n_cells, is_top, pairs, |_| 1);
+                (w.orientation(), w.n_components)
+            }
+        };
+        r.n_facet_components = n_components as u64;
+        match o {
             Orientation::Orientable { flips } => {
                 r.orientable = Some(true);
                 r.cells_to_flip = Some(flips);
@@ -327,6 +336,7 @@ pub(crate) fn finish_report(
             }
         }
     } else {
+        // the count does not depend on the numbering
         let mut cuf = crate::algo::unionfind::UnionFind::new(n_cells);
         for &(a, b, _) in pairs {
             if is_top(a) && is_top(b) {
@@ -367,7 +377,7 @@ pub fn validate<S: TopCells + VertexStar + ?Sized>(s: &S) -> ValidationReport {
     if let Some(d) = d {
         let nc = s.n_top_cells();
         let kinds: Vec<CellKind> = (0..nc).map(|c| s.top_cell_kind(CellId(c as u32))).collect();
-        finish_report(&mut r, nc, |c| kinds[c as usize].dim() == d, &pairs);
+        finish_report(&mut r, nc, |c| kinds[c as usize].dim() == d, &pairs, None);
     }
     r
 }

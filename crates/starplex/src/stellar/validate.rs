@@ -36,7 +36,6 @@ use crate::algo::manifold::{local_singularities_global, Singularities};
 use crate::algo::unionfind::UnionFind;
 use crate::algo::validate::{finish_report, ValidationReport};
 use crate::ids::{CellId, TreeVertexId, VertexId};
-use rayon::prelude::*;
 
 struct LeafOut {
     boundary: Vec<Vec<u32>>,
@@ -93,8 +92,15 @@ impl StellarTree {
         r.lower_dimensional_cells.sort_unstable();
         r.pure = r.lower_dimensional_cells.is_empty() && r.isolated_vertices.is_empty();
         let pairs = self.merge_leaf_outputs(&mut r, outs);
-        let is_top = |c: u32| self.cells.get(self.c_new[c as usize]).0.dim() == d;
-        finish_report(&mut r, self.n_top_cells(), is_top, &pairs);
+        // the walk in tree ids, where the neighbours of a cell are near it; answers in input ids
+        let is_top = |c: u32| self.cells.get(c).0.dim() == d;
+        finish_report(
+            &mut r,
+            self.n_top_cells(),
+            is_top,
+            &pairs,
+            Some(&self.c_orig),
+        );
         r
     }
 
@@ -161,7 +167,7 @@ impl StellarTree {
     }
 
     /// Moves the leaves' findings into the report (input ids, sorted) and returns the facet
-    /// pairs in input cell ids.
+    /// pairs in tree cell ids.
     fn merge_leaf_outputs(
         &self,
         r: &mut ValidationReport,
@@ -182,16 +188,9 @@ impl StellarTree {
                 [b, a]
             }
         };
-        // (d-1)-connectedness and orientation: the shared walk, on input cell ids
-        let c_orig = &self.c_orig;
-        let pairs: Vec<(u32, u32, i8)> = outs
-            .par_iter()
-            .flat_map_iter(|o| {
-                o.pairs
-                    .iter()
-                    .map(|&(a, b, s)| (c_orig[a as usize], c_orig[b as usize], s))
-            })
-            .collect();
+        // (d-1)-connectedness and orientation: the shared walk, on tree cell ids
+        let mut pairs: Vec<(u32, u32, i8)> =
+            Vec::with_capacity(outs.iter().map(|o| o.pairs.len()).sum());
         for o in &outs {
             r.boundary_faces.extend(o.boundary.iter().map(face_in));
             r.faces_in_more_than_two_cells
@@ -204,6 +203,7 @@ impl StellarTree {
                 .extend(o.sing.non_manifold_edges.iter().map(edge_in));
             r.unknown_edges
                 .extend(o.sing.unknown_edges.iter().map(edge_in));
+            pairs.extend_from_slice(&o.pairs);
         }
         drop(outs);
         r.boundary_faces.sort_unstable();
