@@ -1,6 +1,6 @@
 //! `HasseComplex`: the editable CASC Hasse complex with user data per level as NumPy columns.
 //!
-//! The Rust complex carries, per simplex of dimension 0 to 3, the *row* of its data in the
+//! The Rust complex carries, per simplex of dimension 0 to 11, the *row* of its data in the
 //! level's columns (and, for vertices, a 3D position for smoothing). Edits move rows with the
 //! simplices: a merge (collapse, decimate) keeps the row of the first merged simplex, as
 //! `KeepFirst`, and averages the positions; simplices an edit creates have no row (NaN in float
@@ -16,8 +16,9 @@ use starplex::ids::VertexId;
 use crate::{arr1, arr2, attrs, index_array, value_err, Complex};
 
 const NONE: u32 = u32::MAX;
-/// Levels with data: dimensions 0 to 3.
-const LEVELS: usize = 4;
+/// Levels with data: dimensions 0 to 11, as many as the Rust `Hasse` levels go (a Rips or
+/// flag complex of 3D points has simplices well above dimension 3).
+const LEVELS: usize = 12;
 
 #[derive(Clone, Copy, Debug)]
 struct Row(u32);
@@ -52,7 +53,61 @@ impl Position for V0 {
     }
 }
 
-type L = (V0, Row, Row, Row);
+type L = (V0, Row, Row, Row, Row, Row, Row, Row, Row, Row, Row, Row);
+
+/// `$body` with `$d` bound to the level data of dimension `$k` (1 to 11, each a `[Row]`), for
+/// the runtime dimension `$k`; `$other` for any other dimension.
+macro_rules! on_row_level {
+    ($k:expr, |$d:ident : $get:ident| $body:expr, $other:expr) => {
+        match $k {
+            1 => {
+                let $d = $get!(1);
+                $body
+            }
+            2 => {
+                let $d = $get!(2);
+                $body
+            }
+            3 => {
+                let $d = $get!(3);
+                $body
+            }
+            4 => {
+                let $d = $get!(4);
+                $body
+            }
+            5 => {
+                let $d = $get!(5);
+                $body
+            }
+            6 => {
+                let $d = $get!(6);
+                $body
+            }
+            7 => {
+                let $d = $get!(7);
+                $body
+            }
+            8 => {
+                let $d = $get!(8);
+                $body
+            }
+            9 => {
+                let $d = $get!(9);
+                $body
+            }
+            10 => {
+                let $d = $get!(10);
+                $body
+            }
+            11 => {
+                let $d = $get!(11);
+                $body
+            }
+            _ => $other,
+        }
+    };
+}
 
 /// Merges keep the first row; a merged vertex sits at the mean of the merged positions.
 struct PyMerge;
@@ -82,7 +137,7 @@ impl<const K: usize> Merge<K, Row> for PyMerge {
 ///
 /// `HasseComplex(c)` builds every simplex of a simplicial complex `c` (at most 3 coordinates);
 /// `c.point_data` becomes the vertex columns (`data(0)`) and, when every top cell is a
-/// simplex of one dimension at most 3, `c.cell_data` that level's columns. Simplices are named
+/// simplex of one dimension at most 11, `c.cell_data` that level's columns. Simplices are named
 /// by their vertex labels (the vertex ids of `c`; edits add fresh labels).
 ///
 /// >>> import numpy as np, starplex
@@ -112,24 +167,29 @@ fn labels(v: &[u32]) -> Vec<VertexId> {
 impl HasseComplex {
     fn row(&self, n: Node) -> u32 {
         let i = n.id.0 as usize;
-        match n.dim {
-            0 => self.h.level_data::<0>()[i].row,
-            1 => self.h.level_data::<1>()[i].0,
-            2 => self.h.level_data::<2>()[i].0,
-            3 => self.h.level_data::<3>()[i].0,
-            _ => NONE,
+        if n.dim == 0 {
+            return self.h.level_data::<0>()[i].row;
         }
+        macro_rules! get {
+            ($k:literal) => {
+                self.h.level_data::<$k>()
+            };
+        }
+        on_row_level!(n.dim, |d: get| d[i].0, NONE)
     }
 
     fn set_row(&mut self, n: Node, r: u32) {
         let i = n.id.0 as usize;
-        match n.dim {
-            0 => self.h.level_data_mut::<0>()[i].row = r,
-            1 => self.h.level_data_mut::<1>()[i].0 = r,
-            2 => self.h.level_data_mut::<2>()[i].0 = r,
-            3 => self.h.level_data_mut::<3>()[i].0 = r,
-            _ => {}
+        if n.dim == 0 {
+            self.h.level_data_mut::<0>()[i].row = r;
+            return;
         }
+        macro_rules! get {
+            ($k:literal) => {
+                self.h.level_data_mut::<$k>()
+            };
+        }
+        on_row_level!(n.dim, |d: get| d[i].0 = r, ())
     }
 
     fn check_level(&self, k: usize) -> PyResult<()> {
@@ -239,7 +299,7 @@ impl HasseComplex {
             cols,
             ambient_dim: d,
         };
-        // cell data on a level when every top cell is a simplex of that dimension (<= 3)
+        // cell data on a level when every top cell is a simplex of that dimension (<= 11)
         let top: Vec<_> = k.cells().map(|c| c.kind.dim()).collect();
         if let Some(&t) = top.first()
             && t < LEVELS

@@ -36,8 +36,9 @@ def test_columns_from_the_complex_and_set_data():
     assert h.data(1)["len"].ravel().tolist() == length.tolist()
     with pytest.raises(ValueError, match="'bad'.*expected 33"):
         h.set_data(1, "bad", np.zeros(5))
-    with pytest.raises(ValueError, match="levels 0 to 3"):
-        h.data(4)
+    assert h.data(4) == {}  # a level above the complex's dimension: no columns
+    with pytest.raises(ValueError, match="levels 0 to 11"):
+        h.data(12)
     assert h.positions.tolist() == pts[verts[:, 0]].tolist()
 
 
@@ -95,3 +96,32 @@ def test_decimate_and_errors():
         starplex.HasseComplex(starplex.Complex(np.zeros((3, 4)), [[0, 1, 2]]))
     with pytest.raises(ValueError):
         starplex.HasseComplex(starplex.Complex(np.zeros((4, 3)), {"quad": [[0, 1, 2, 3]]}))
+
+
+def test_levels_above_three():
+    # two 4-simplices of 3D points sharing the tetrahedron 1-2-3-4 (a Rips-like complex: its
+    # dimension is above its coordinates')
+    pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1], [2, 2, 2]], float)
+    cells = np.array([[0, 1, 2, 3, 4], [1, 2, 3, 4, 5]])
+    c = starplex.Complex(pts, cells, cell_data={"w": [7.5, 8.5]})
+    h = starplex.HasseComplex(c)
+    assert h.f_vector() == [6, 14, 16, 9, 2]
+    _, tv = h.simplices(4)
+    assert sorted(zip(map(tuple, tv.tolist()), h.data(4)["w"].ravel().tolist())) == [
+        ((0, 1, 2, 3, 4), 7.5),
+        ((1, 2, 3, 4, 5), 8.5),
+    ]
+    _, tets = h.simplices(3)
+    h.set_data(3, "n", np.arange(len(tets)))
+    assert h.data(3)["n"].ravel().tolist() == list(range(9))
+    # collapsing the edge 0-1 removes the 4-simplex that holds it: the other keeps its row
+    kept = h.collapse([0, 1])
+    assert h.f_vector() == [5, 10, 10, 5, 1]
+    _, tv = h.simplices(4)
+    assert tv.tolist() == [sorted([kept, 2, 3, 4, 5])]
+    assert h.data(4)["w"].ravel().tolist() == [8.5]
+    # a collapse creates no simplex: every tetrahedron left has a row (merged ones the first's)
+    assert h.has_data(3).all()
+    assert set(h.data(3)["n"].ravel().tolist()) <= set(range(9))
+    back = h.to_complex()
+    assert back.n_cells == 1
