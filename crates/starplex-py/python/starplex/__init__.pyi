@@ -251,7 +251,7 @@ class Hasse(Structure):
     def __init__(self, c: Complex) -> None: ...
 
 class HasseComplex:
-    """The editable CASC Hasse complex with per-level data as NumPy columns (levels 0-3).
+    """The editable CASC Hasse complex with per-level data as NumPy columns (levels 0-11).
     Simplices are named by vertex labels; ids are slots (stable under edits of others, freed
     slots reused). Merges keep the first row (positions: the mean); new simplices have no row
     (NaN / 0, has_data False).
