@@ -386,8 +386,9 @@ pub fn validate<S: TopCells + VertexStar + ?Sized>(s: &S) -> ValidationReport {
 /// the report without the facet classes and orientation (`n_facet_components`,
 /// `facet_connected`, `pseudo_manifold`, `orientable`, ... left at their defaults), and the
 /// pairs of top `d`-cells sharing a facet, with the product of the orientations they induce on
-/// it (what [`orient_tops`](crate::algo::orientation::orient_tops) propagates). `starplex-mpi` runs it on each rank, where the stars of
-/// the vertices a rank does not own are empty, and merges the classes across ranks.
+/// it (what [`orient_tops`](crate::algo::orientation::orient_tops) propagates).
+/// `starplex-mpi` runs it on each rank, where the stars of the vertices a rank does not own are
+/// empty, and merges the classes across ranks.
 ///
 /// ```
 /// use starplex::algo::validate::{validate, validate_parts};
