@@ -337,6 +337,15 @@ fn tree_iastar_is_the_direct_iastar() {
     on_random_complexes((5u8..9).boxed(), 64, 13, same_as_direct);
 }
 
+/// Triangles only: the tree's IA* takes its own path for them (the edges of each vertex's
+/// star grouped by their other vertex); on so few vertices non-manifold edges and vertices
+/// are common.
+#[test]
+fn tree_iastar_of_triangles_is_the_direct_iastar() {
+    on_random_complexes(Just(1u8).boxed(), 128, 14, same_as_direct);
+    on_random_complexes(Just(2u8).boxed(), 64, 15, check);
+}
+
 #[test]
 fn tree_iastar_is_the_direct_iastar_on_the_small_datasets() {
     let mut n = 0;

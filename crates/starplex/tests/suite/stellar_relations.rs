@@ -442,6 +442,34 @@ fn relations_equal_brute_force_on_random_complexes() {
         .unwrap();
 }
 
+/// Complexes whose cells are all simplices of one dimension (1 to 4), where the tree takes
+/// its own paths (edges counted over each vertex's star, the triangles' IA*); more cells on
+/// fewer vertices, so non-manifold edges and vertices are common.
+#[test]
+fn simplices_of_one_dimension_equal_brute_force() {
+    let mut runner = TestRunner::new(Config {
+        cases: 48,
+        rng_seed: RngSeed::Fixed(20261204),
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let strat = (1u8..=4, spec_strategy()).prop_map(|(kind, mut spec)| {
+        for c in &mut spec.cells {
+            c.0 = kind;
+        }
+        spec
+    });
+    runner
+        .run(&strat, |spec| {
+            let k = make(&spec);
+            for kv in [1u32, 10, 0] {
+                check(&k, kv, 2, SplitMode::Auto);
+            }
+            Ok(())
+        })
+        .unwrap();
+}
+
 #[test]
 fn same_tree_for_any_thread_count() {
     let spec = {
