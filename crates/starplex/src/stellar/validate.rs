@@ -35,7 +35,9 @@ use super::{LeafView, StellarTree};
 use crate::algo::manifold::{local_singularities_global, Singularities};
 use crate::algo::unionfind::UnionFind;
 use crate::algo::validate::{finish_report, ValidationReport};
-use crate::ids::{CellId, TreeVertexId, VertexId};
+use crate::cell::CellKind;
+use crate::ids::{CellId, LeafId, TreeVertexId, VertexId};
+use rayon::prelude::*;
 
 struct LeafOut {
     boundary: Vec<Vec<u32>>,
@@ -132,6 +134,9 @@ impl StellarTree {
         if d == 0 {
             return Vec::new();
         }
+        if self.cells.uniform == Some(CellKind::Simplex(2)) {
+            return self.leaf_outputs_tris();
+        }
         let facet_part = self.par_facet_groups(|_, keys| {
             let mut o = (Vec::new(), Vec::new(), Vec::new());
             keys.for_each_group(|key, pays| {
@@ -163,6 +168,127 @@ impl StellarTree {
                 pairs,
                 sing,
             })
+            .collect()
+    }
+
+    /// [`leaf_outputs`](Self::leaf_outputs) for a complex of triangles, in one pass over the
+    /// leaves instead of two (facet groups, then star tests): for each vertex `v` the edges
+    /// through `v` of its star's triangles, as 8-byte records (other vertex `w`, star index,
+    /// slot, sign), are sorted (a dozen) and grouped by `w`. Every group is a link vertex of
+    /// `v` (the test of `algo::manifold::tris`: `v` is manifold iff no group holds more than
+    /// two triangles and the groups join the triangles into one cluster); the groups with
+    /// `w > v` are the edges `v` owns: boundary (one triangle), in more than two, their
+    /// non-manifold flag, and the pairs with the product of their induced orientations. The
+    /// same findings in the same order as the general pass (a test compares the reports).
+    fn leaf_outputs_tris(&self) -> Vec<LeafOut> {
+        use crate::algo::unionfind::find_in as find;
+        let verts = &self.cells.verts;
+        (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(
+                || {
+                    (
+                        super::ExpandedLeaf::default(),
+                        Vec::<u64>::new(),
+                        Vec::<u32>::new(),
+                    )
+                },
+                |(e, recs, parent), l| {
+                    self.expand_leaf_into(LeafId(l), e);
+                    let mut o = LeafOut {
+                        boundary: Vec::new(),
+                        over2: Vec::new(),
+                        pairs: Vec::new(),
+                        sing: Singularities::default(),
+                    };
+                    for (iv, v) in (e.v_start..e.v_end).enumerate() {
+                        let star = &e.vt[e.vt_off[iv] as usize..e.vt_off[iv + 1] as usize];
+                        if star.is_empty() {
+                            // as the star tests say of a vertex of no cell in a 2-complex
+                            o.sing.non_manifold_vertices.push(TreeVertexId(v));
+                            continue;
+                        }
+                        // record: w << 32 | star index << 3 | slot << 1 | negative; the edge
+                        // omits the triangle's vertex `slot`, its induced orientation against
+                        // (v, w) sorted is (-1)^slot, times -1 when the two it keeps are
+                        // listed in decreasing order
+                        recs.clear();
+                        for (i, &c) in star.iter().enumerate() {
+                            let vs = &verts[c as usize * 3..c as usize * 3 + 3];
+                            let pv = vs.iter().position(|&w| w == v).expect("v in its star");
+                            for j in 0..3 {
+                                if j == pv {
+                                    continue;
+                                }
+                                let w = vs[3 - pv - j];
+                                let (a, b) = if j == 0 {
+                                    (1, 2)
+                                } else if j == 1 {
+                                    (0, 2)
+                                } else {
+                                    (0, 1)
+                                };
+                                let neg = (j == 1) != (vs[a] > vs[b]);
+                                recs.push(
+                                    ((w as u64) << 32)
+                                        | ((i as u64) << 3)
+                                        | ((j as u64) << 1)
+                                        | neg as u64,
+                                );
+                            }
+                        }
+                        recs.sort_unstable();
+                        parent.clear();
+                        parent.extend(0..star.len() as u32);
+                        let mut sets = star.len();
+                        let mut bad = false;
+                        let cell = |r: u64| star[(r as u32 >> 3) as usize];
+                        let sign = |r: u64| if r & 1 == 1 { -1i8 } else { 1 };
+                        let mut a = 0;
+                        while a < recs.len() {
+                            let w = (recs[a] >> 32) as u32;
+                            let mut b = a + 1;
+                            while b < recs.len() && (recs[b] >> 32) as u32 == w {
+                                let x = find(parent, recs[a] as u32 >> 3);
+                                let y = find(parent, recs[b] as u32 >> 3);
+                                if x != y {
+                                    parent[x as usize] = y;
+                                    sets -= 1;
+                                }
+                                b += 1;
+                            }
+                            let e_bad = b - a > 2;
+                            bad |= e_bad;
+                            if w > v {
+                                if e_bad {
+                                    o.sing
+                                        .non_manifold_edges
+                                        .push([TreeVertexId(v), TreeVertexId(w)]);
+                                }
+                                match b - a {
+                                    1 => o.boundary.push(vec![v, w]),
+                                    2 => {}
+                                    _ => o.over2.push(vec![v, w]),
+                                }
+                                for x in a..b {
+                                    for y in x + 1..b {
+                                        o.pairs.push((
+                                            cell(recs[x]),
+                                            cell(recs[y]),
+                                            sign(recs[x]) * sign(recs[y]),
+                                        ));
+                                    }
+                                }
+                            }
+                            a = b;
+                        }
+                        if bad || sets != 1 {
+                            o.sing.non_manifold_vertices.push(TreeVertexId(v));
+                        }
+                    }
+                    o
+                },
+            )
             .collect()
     }
 

@@ -244,6 +244,37 @@ proptest! {
         }
     }
 
+    /// Triangles only, where the Stellar tree validates in its own single pass: random
+    /// triangles on few vertices (non-manifold edges and vertices, isolated vertices), with
+    /// a Möbius or a plain strip glued on, so orientable and non-orientable inputs both occur.
+    #[test]
+    fn random_triangle_complexes_agree(
+        nv in 4usize..16,
+        seed in proptest::collection::vec(0u32..1000, 3..45),
+        strip_len in 0u32..6,
+        twist in proptest::bool::ANY,
+    ) {
+        let mut cells: Vec<(CellKind, Vec<u32>)> = Vec::new();
+        for ch in seed.chunks(3).filter(|ch| ch.len() == 3) {
+            let vs: Vec<u32> = ch.iter().map(|&x| x % nv as u32).collect();
+            if vs[0] != vs[1] && vs[1] != vs[2] && vs[0] != vs[2] {
+                cells.push((TRI, vs));
+            }
+        }
+        let base = nv as u32;
+        let mut n = nv;
+        if strip_len >= 3 {
+            cells.extend(strip(strip_len, twist).into_iter().map(|(k, vs)| {
+                (k, vs.into_iter().map(|v| v + base).collect())
+            }));
+            n += 2 * strip_len as usize;
+        }
+        if let Some(k) = complex(n, &cells) {
+            let r = agree("random triangles", &k);
+            prop_assert!(r.dim <= 2);
+        }
+    }
+
     /// The local convention, by its definition: a simplicial vertex star of one dimension k
     /// is manifold exactly when its link is a (k-1)-sphere or ball, and a star of mixed
     /// dimensions is not.
