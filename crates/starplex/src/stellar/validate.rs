@@ -137,6 +137,11 @@ impl StellarTree {
         if self.cells.uniform == Some(CellKind::Simplex(2)) {
             return self.leaf_outputs_tris();
         }
+        if self.cells.uniform == Some(CellKind::Simplex(3))
+            && let Some(outs) = self.leaf_outputs_tets()
+        {
+            return outs;
+        }
         let facet_part = self.par_facet_groups(|_, keys| {
             let mut o = (Vec::new(), Vec::new(), Vec::new());
             keys.for_each_group(|key, pays| {
@@ -290,6 +295,119 @@ impl StellarTree {
                 },
             )
             .collect()
+    }
+
+    /// [`leaf_outputs`](Self::leaf_outputs) for a complex of tetrahedra, in one pass over
+    /// the leaves instead of two: the star test of each vertex (`algo::manifold`'s
+    /// tetrahedral one, on the vertex's link) already groups the triangles through the
+    /// vertex with their tetrahedra, and those the vertex owns (its other two vertices
+    /// larger) are the facets the general pass would group in this leaf: boundary (one
+    /// tetrahedron), in more than two, and the pairs with the product of their induced
+    /// orientations, in the same order (sorted by the triangle, tetrahedra increasing).
+    /// `None` when a cell has a repeated vertex (a damaged tree file): the general pass then
+    /// runs.
+    fn leaf_outputs_tets(&self) -> Option<Vec<LeafOut>> {
+        use crate::algo::manifold::{tet_star_tests_and_triangles, Manifoldness, TetScratch};
+        use crate::topo::{LocalStar, PartStar};
+        let verts = &self.cells.verts;
+        // the induced orientation of facet j (omitting listed vertex j) of tetrahedron c,
+        // against its sorted vertices: (-1)^j times the parity of the three it keeps
+        let sign = |c: u32, j: usize| -> i8 {
+            let vs = &verts[c as usize * 4..c as usize * 4 + 4];
+            let mut k = [0u32; 3];
+            let mut m = 0;
+            for (x, &w) in vs.iter().enumerate() {
+                if x != j {
+                    k[m] = w;
+                    m += 1;
+                }
+            }
+            let inv = (k[0] > k[1]) as u32 + (k[0] > k[2]) as u32 + (k[1] > k[2]) as u32;
+            if (j as u32 + inv).is_multiple_of(2) {
+                1
+            } else {
+                -1
+            }
+        };
+        let outs: Vec<Option<LeafOut>> = (0..self.n_leaves() as u32)
+            .into_par_iter()
+            .map_init(
+                || {
+                    (
+                        super::ExpandedLeaf::default(),
+                        TetScratch::default(),
+                        Vec::<u32>::new(),
+                        Vec::<(u32, Manifoldness)>::new(),
+                        Vec::<([u32; 2], u32, u32)>::new(),
+                        Vec::<u32>::new(),
+                    )
+                },
+                |(e, ts, buf, edges, tris, cells), l| {
+                    self.expand_leaf_into(LeafId(l), e);
+                    let view = LeafView { tree: self, e };
+                    let mut o = LeafOut {
+                        boundary: Vec::new(),
+                        over2: Vec::new(),
+                        pairs: Vec::new(),
+                        sing: Singularities::default(),
+                    };
+                    for v in view.tree_vertices() {
+                        let star = view.local_star(TreeVertexId(v));
+                        if star.is_empty() {
+                            // as the star tests say of a vertex of no cell in a 3-complex
+                            o.sing.non_manifold_vertices.push(TreeVertexId(v));
+                            continue;
+                        }
+                        let ps = PartStar { part: &view, star };
+                        edges.clear();
+                        // (triangle, first cell index in `cells`, count)
+                        tris.clear();
+                        cells.clear();
+                        let m = tet_star_tests_and_triangles(v, &ps, ts, buf, edges, |t, cs| {
+                            tris.push((t, cells.len() as u32, cs.len() as u32));
+                            cells.extend_from_slice(cs);
+                        })?;
+                        if m == Manifoldness::NonManifold {
+                            o.sing.non_manifold_vertices.push(TreeVertexId(v));
+                        } else if m == Manifoldness::Unknown {
+                            o.sing.unknown_vertices.push(TreeVertexId(v));
+                        }
+                        for &(w, st) in edges.iter() {
+                            let edge = [TreeVertexId(v), TreeVertexId(w)];
+                            match st {
+                                Manifoldness::Manifold => {}
+                                Manifoldness::NonManifold => o.sing.non_manifold_edges.push(edge),
+                                Manifoldness::Unknown => o.sing.unknown_edges.push(edge),
+                            }
+                        }
+                        tris.sort_unstable();
+                        for &([a, b], at, n) in tris.iter() {
+                            let group = &cells[at as usize..(at + n) as usize];
+                            match n {
+                                1 => o.boundary.push(vec![v, a, b]),
+                                2 => {}
+                                _ => o.over2.push(vec![v, a, b]),
+                            }
+                            for x in 0..group.len() {
+                                for y in x + 1..group.len() {
+                                    let (p, q) =
+                                        (star[group[x] as usize].0, star[group[y] as usize].0);
+                                    let omit = |c: u32| {
+                                        let vs = &verts[c as usize * 4..c as usize * 4 + 4];
+                                        vs.iter()
+                                            .position(|&u| u != v && u != a && u != b)
+                                            .expect("a tetrahedron has a fourth vertex")
+                                    };
+                                    o.pairs.push((p, q, sign(p, omit(p)) * sign(q, omit(q))));
+                                }
+                            }
+                        }
+                    }
+                    Some(o)
+                },
+            )
+            .collect();
+        outs.into_iter().collect()
     }
 
     /// Moves the leaves' findings into the report (input ids, sorted) and returns the facet

@@ -275,6 +275,56 @@ proptest! {
         }
     }
 
+    /// Tetrahedra only, where the Stellar tree validates in its own single pass: random
+    /// tetrahedra on few vertices (non-manifold triangles, edges and vertices, isolated
+    /// vertices), some with their orientation reversed, and a Kuhn block of cubes with some
+    /// tetrahedra removed (manifold with boundary, or pinched).
+    #[test]
+    fn random_tetrahedra_complexes_agree(
+        nv in 5usize..14,
+        seed in proptest::collection::vec(0u32..1000, 4..48),
+        block in proptest::bool::ANY,
+        drop in proptest::collection::vec(0u32..12, 0..6),
+    ) {
+        let mut cells: Vec<(CellKind, Vec<u32>)> = Vec::new();
+        for ch in seed.chunks(4).filter(|ch| ch.len() == 4) {
+            let vs: Vec<u32> = ch.iter().map(|&x| x % nv as u32).collect();
+            let mut d = vs.clone();
+            d.sort_unstable();
+            d.dedup();
+            if d.len() == 4 {
+                cells.push((TET, vs));
+            }
+        }
+        let mut n = nv;
+        if block {
+            // 2x1x1 cubes of six tetrahedra each, on 12 lattice points after the random ones
+            let base = nv as u32;
+            let id = |x: u32, y: u32, z: u32| base + x + 3 * y + 6 * z;
+            let mut k = 0u32;
+            for x in 0..2 {
+                for p in [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]] {
+                    k += 1;
+                    if drop.contains(&(k % 12)) {
+                        continue;
+                    }
+                    let mut c = [x, 0, 0];
+                    let mut t = vec![id(c[0], c[1], c[2])];
+                    for axis in p {
+                        c[axis] += 1;
+                        t.push(id(c[0], c[1], c[2]));
+                    }
+                    cells.push((TET, t));
+                }
+            }
+            n += 12;
+        }
+        if let Some(k) = complex(n, &cells) {
+            let r = agree("random tetrahedra", &k);
+            prop_assert!(r.dim <= 3);
+        }
+    }
+
     /// The local convention, by its definition: a simplicial vertex star of one dimension k
     /// is manifold exactly when its link is a (k-1)-sphere or ball, and a star of mixed
     /// dimensions is not.

@@ -59,6 +59,32 @@ mod star;
 mod tets;
 mod tris;
 
+pub(crate) use tets::TetScratch;
+
+/// The star tests of a vertex whose non-empty star holds tetrahedra only, in a complex of
+/// dimension 3, with the triangles it owns: as [`StarTester`]'s global test (same answer,
+/// `edges_out` sorted by `w`), then `owned(tri, cells)` for every triangle `v a b` with
+/// `v < a < b` (star indices of its tetrahedra, increasing; triangles in no particular
+/// order). `None` (nothing pushed) for a cell with a repeated vertex, which only a damaged
+/// tree file holds: the caller then takes the general path.
+pub(crate) fn tet_star_tests_and_triangles<S: StarCells + ?Sized>(
+    v: u32,
+    star: &S,
+    s: &mut TetScratch,
+    buf: &mut Vec<u32>,
+    edges_out: &mut Vec<(u32, Manifoldness)>,
+    owned: impl FnMut([u32; 2], &[u32]),
+) -> Option<Manifoldness> {
+    let start = edges_out.len();
+    let m = tets::star_tests_tets(v, star, s, edges_out)?;
+    let new = &mut edges_out[start..];
+    if !new.is_sorted_by_key(|e| e.0) {
+        new.sort_unstable_by_key(|e| e.0);
+    }
+    s.owned_triangles(v, buf, owned);
+    Some(m)
+}
+
 /// The answer of a manifold test.
 ///
 /// ```

@@ -143,6 +143,33 @@ pub(crate) fn star_tests_tets<S: StarCells + ?Sized>(
 }
 
 impl TetScratch {
+    /// After [`star_tests_tets`] answered (`Some`) on the star of `v`: calls `f([a, b],
+    /// cells)` for every triangle `v a b` with `v < a < b` (the triangles `v` owns), `cells`
+    /// the star indices of its tetrahedra, increasing. The triangles come in no particular
+    /// order. `buf` is scratch.
+    pub(crate) fn owned_triangles(
+        &self,
+        v: u32,
+        buf: &mut Vec<u32>,
+        mut f: impl FnMut([u32; 2], &[u32]),
+    ) {
+        for (e, &(a, b)) in self.eab.iter().enumerate() {
+            let (ta, tb) = (self.lv[a as usize], self.lv[b as usize]);
+            if ta < v || tb < v {
+                continue;
+            }
+            buf.clear();
+            if self.ecnt[e] <= 2 {
+                buf.extend(self.etri[e].iter().copied().filter(|&t| t != EMPTY));
+            } else {
+                buf.extend((0..self.tri.len() as u32).filter(|&t| {
+                    self.tri[t as usize].contains(&a) && self.tri[t as usize].contains(&b)
+                }));
+            }
+            f(if ta < tb { [ta, tb] } else { [tb, ta] }, buf);
+        }
+    }
+
     /// The link triangle of every tetrahedron of `star` (its vertices other than `v`, as
     /// local ids from the vertex hash, increasing) into `tri`, the local vertices into `lv`;
     /// empties the hash again. Returns true when a cell has a repeated vertex (only in a
