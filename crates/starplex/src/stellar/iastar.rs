@@ -478,33 +478,7 @@ impl StellarTree {
         let nc = self.n_top_cells();
         let pieces: Vec<Pieces> =
             self.par_facet_groups_where(2, false, |_, keys| group_pieces_unordered(keys));
-        let mut off = vec![0u32; nc + 1];
-        for c in 0..nc {
-            off[c + 1] = off[c] + n_slots(self.cells.get(c as u32).0) as u32;
-        }
-        let mut adj = vec![NONE; off[nc] as usize];
-        let mut nm_cells = Csr {
-            offsets: vec![0],
-            targets: Vec::new(),
-        };
-        let mut nm_verts = nm_cells.clone();
-        for p in pieces {
-            let base = nm_cells.n_rows() as u32;
-            for (c, j, x) in p.slots {
-                let x = if x != NONE && x & NM != 0 {
-                    ((x & !NM) + base) | NM
-                } else {
-                    x
-                };
-                adj[(off[c as usize] + j) as usize] = x;
-            }
-            for (cs, vs) in p.nm_cells.iter().zip(&p.nm_verts) {
-                nm_cells.targets.extend_from_slice(cs);
-                nm_cells.offsets.push(nm_cells.targets.len() as u32);
-                nm_verts.targets.extend_from_slice(vs);
-                nm_verts.offsets.push(nm_verts.targets.len() as u32);
-            }
-        }
+        let (off, adj, nm_cells, nm_verts) = self.scatter_pieces(pieces);
         let stride = if let Some(kind) = self.cells.uniform {
             n_slots(kind)
         } else {
@@ -547,6 +521,41 @@ impl StellarTree {
             )
             .collect();
         self.global_iastar(off, adj, (nm_cells, nm_verts), per_leaf)
+    }
+
+    /// The slot offsets of every cell, the slots filled from the leaves' pieces (leaves in
+    /// order: the non-manifold facets are numbered leaf after leaf), and the non-manifold
+    /// facets' cells and vertices.
+    fn scatter_pieces(&self, pieces: Vec<Pieces>) -> (Vec<u32>, Vec<u32>, Csr, Csr) {
+        let nc = self.n_top_cells();
+        let mut off = vec![0u32; nc + 1];
+        for c in 0..nc {
+            off[c + 1] = off[c] + n_slots(self.cells.get(c as u32).0) as u32;
+        }
+        let mut adj = vec![NONE; off[nc] as usize];
+        let mut nm_cells = Csr {
+            offsets: vec![0],
+            targets: Vec::new(),
+        };
+        let mut nm_verts = nm_cells.clone();
+        for p in pieces {
+            let base = nm_cells.n_rows() as u32;
+            for (c, j, x) in p.slots {
+                let x = if x != NONE && x & NM != 0 {
+                    ((x & !NM) + base) | NM
+                } else {
+                    x
+                };
+                adj[(off[c as usize] + j) as usize] = x;
+            }
+            for (cs, vs) in p.nm_cells.iter().zip(&p.nm_verts) {
+                nm_cells.targets.extend_from_slice(cs);
+                nm_cells.offsets.push(nm_cells.targets.len() as u32);
+                nm_verts.targets.extend_from_slice(vs);
+                nm_verts.offsets.push(nm_verts.targets.len() as u32);
+            }
+        }
+        (off, adj, nm_cells, nm_verts)
     }
 
     /// Assembles the global IA* from its slots, non-manifold facets and per-leaf
@@ -594,7 +603,6 @@ impl StellarTree {
     /// two-vertex keys, ~75 per star) was slower than the general path (216-260 ms against
     /// 188-199 ms on tet_armadillo_m), so it is used for triangles only.
     fn iastar_by_stars(&self) -> StellarIaStar<'_> {
-        let nc = self.n_top_cells();
         let per_leaf: Vec<(Pieces, LeafRows)> = (0..self.n_leaves() as u32)
             .into_par_iter()
             .map_init(
@@ -618,32 +626,8 @@ impl StellarTree {
                 },
             )
             .collect();
-        let off: Vec<u32> = (0..=nc).map(|c| (c * 3) as u32).collect();
-        let mut adj = vec![NONE; nc * 3];
-        let mut nm_cells = Csr {
-            offsets: vec![0],
-            targets: Vec::new(),
-        };
-        let mut nm_verts = nm_cells.clone();
-        let mut rows = Vec::with_capacity(per_leaf.len());
-        for (p, r) in per_leaf {
-            let base = nm_cells.n_rows() as u32;
-            for (c, j, x) in p.slots {
-                let x = if x & NM != 0 {
-                    ((x & !NM) + base) | NM
-                } else {
-                    x
-                };
-                adj[c as usize * 3 + j as usize] = x;
-            }
-            for (cs, vs) in p.nm_cells.iter().zip(&p.nm_verts) {
-                nm_cells.targets.extend_from_slice(cs);
-                nm_cells.offsets.push(nm_cells.targets.len() as u32);
-                nm_verts.targets.extend_from_slice(vs);
-                nm_verts.offsets.push(nm_verts.targets.len() as u32);
-            }
-            rows.push(r);
-        }
+        let (pieces, rows): (Vec<Pieces>, Vec<LeafRows>) = per_leaf.into_iter().unzip();
+        let (off, adj, nm_cells, nm_verts) = self.scatter_pieces(pieces);
         self.global_iastar(off, adj, (nm_cells, nm_verts), rows)
     }
 
