@@ -186,7 +186,7 @@ impl StellarTree {
     /// non-manifold flag, and the pairs with the product of their induced orientations. The
     /// same findings in the same order as the general pass (a test compares the reports).
     fn leaf_outputs_tris(&self) -> Vec<LeafOut> {
-        use crate::algo::unionfind::find_in as find;
+        use crate::algo::manifold::{triangle_link_test, Manifoldness};
         let verts = &self.cells.verts;
         (0..self.n_leaves() as u32)
             .into_par_iter()
@@ -243,51 +243,29 @@ impl StellarTree {
                             }
                         }
                         recs.sort_unstable();
-                        parent.clear();
-                        parent.extend(0..star.len() as u32);
-                        let mut sets = star.len();
-                        let mut bad = false;
                         let cell = |r: u64| star[(r as u32 >> 3) as usize];
                         let sign = |r: u64| if r & 1 == 1 { -1i8 } else { 1 };
-                        let mut a = 0;
-                        while a < recs.len() {
-                            let w = (recs[a] >> 32) as u32;
-                            let mut b = a + 1;
-                            while b < recs.len() && (recs[b] >> 32) as u32 == w {
-                                let x = find(parent, recs[a] as u32 >> 3);
-                                let y = find(parent, recs[b] as u32 >> 3);
-                                if x != y {
-                                    parent[x as usize] = y;
-                                    sets -= 1;
-                                }
-                                b += 1;
+                        let m = triangle_link_test(star.len(), recs, parent, |w, g| {
+                            if w <= v {
+                                return;
                             }
-                            let e_bad = b - a > 2;
-                            bad |= e_bad;
-                            if w > v {
-                                if e_bad {
-                                    o.sing
-                                        .non_manifold_edges
-                                        .push([TreeVertexId(v), TreeVertexId(w)]);
-                                }
-                                match b - a {
-                                    1 => o.boundary.push(vec![v, w]),
-                                    2 => {}
-                                    _ => o.over2.push(vec![v, w]),
-                                }
-                                for x in a..b {
-                                    for y in x + 1..b {
-                                        o.pairs.push((
-                                            cell(recs[x]),
-                                            cell(recs[y]),
-                                            sign(recs[x]) * sign(recs[y]),
-                                        ));
-                                    }
+                            if g.len() > 2 {
+                                o.sing
+                                    .non_manifold_edges
+                                    .push([TreeVertexId(v), TreeVertexId(w)]);
+                            }
+                            match g.len() {
+                                1 => o.boundary.push(vec![v, w]),
+                                2 => {}
+                                _ => o.over2.push(vec![v, w]),
+                            }
+                            for (x, &rx) in g.iter().enumerate() {
+                                for &ry in &g[x + 1..] {
+                                    o.pairs.push((cell(rx), cell(ry), sign(rx) * sign(ry)));
                                 }
                             }
-                            a = b;
-                        }
-                        if bad || sets != 1 {
+                        });
+                        if m == Manifoldness::NonManifold {
                             o.sing.non_manifold_vertices.push(TreeVertexId(v));
                         }
                     }

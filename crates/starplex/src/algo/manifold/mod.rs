@@ -60,6 +60,7 @@ mod tets;
 mod tris;
 
 pub(crate) use tets::TetScratch;
+pub(crate) use tris::link_test as triangle_link_test;
 
 /// The star tests of a vertex whose non-empty star holds tetrahedra only, in a complex of
 /// dimension 3, with the triangles it owns: as [`StarTester`]'s global test (same answer,
@@ -242,6 +243,8 @@ impl<S: StarCells + ?Sized> StarCells for SubStar<'_, S> {
 pub(crate) struct Scratch {
     tet: tets::TetScratch,
     ew: Vec<(u32, u32)>,
+    /// Edge records of the triangles' test (`tris`).
+    recs: Vec<u64>,
     faces: Vec<(u128, u32, u32, u32)>,
     wpairs: Vec<(u32, u32, u32)>,
     bedges: Vec<(u32, u32)>,

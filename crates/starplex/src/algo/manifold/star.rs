@@ -31,7 +31,7 @@ pub(super) fn star_tests<S: StarCells + ?Sized>(
         return r;
     }
     if fast && d == 2 && star.all_of(CellKind::Simplex(2)) {
-        return super::tris::star_tests_tris(v, star, &mut s.ew, &mut s.parent, edges_out);
+        return super::tris::star_tests_tris(v, star, &mut s.recs, &mut s.parent, edges_out);
     }
     // edges at v: (w, local cell index)
     s.ew.clear();

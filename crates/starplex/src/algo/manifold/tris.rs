@@ -9,46 +9,70 @@ use super::{Manifoldness, StarCells};
 use crate::algo::unionfind::find_in as find;
 
 /// Tests vertex `v` whose star `star` holds triangles only, and every edge `vw` with `w > v`
-/// (pushed to `edges_out` in increasing `w`). `ew` and `parent` are scratch buffers.
+/// (pushed to `edges_out` in increasing `w`). `recs` and `parent` are scratch buffers.
 pub(super) fn star_tests_tris<S: StarCells + ?Sized>(
     v: u32,
     star: &S,
-    ew: &mut Vec<(u32, u32)>,
+    recs: &mut Vec<u64>,
     parent: &mut Vec<u32>,
     edges_out: &mut Vec<(u32, Manifoldness)>,
 ) -> Manifoldness {
-    use Manifoldness::*;
-    ew.clear();
+    recs.clear();
     for i in 0..star.len() {
         for &x in star.cell(i).1 {
             if x != v {
-                ew.push((x, i as u32));
+                recs.push(((x as u64) << 32) | ((i as u64) << 3));
             }
         }
     }
-    ew.sort_unstable();
+    recs.sort_unstable();
+    link_test(star.len(), recs, parent, |w, group| {
+        if w > v {
+            let bad = group.len() > 2;
+            edges_out.push((
+                w,
+                if bad {
+                    Manifoldness::NonManifold
+                } else {
+                    Manifoldness::Manifold
+                },
+            ));
+        }
+    })
+}
+
+/// The test of a vertex `v` whose star holds `n` triangles, on the edges through `v`:
+/// `recs` (sorted) holds one record per (triangle, edge through `v`), `w << 32 | star index
+/// << 3 | three bits of the caller's`, `w` the edge's other vertex. Calls `group(w, records)`
+/// for every `w` in increasing order (the edge `vw` is manifold iff its group holds at most two
+/// triangles) and answers whether `v` is manifold: every edge manifold and the triangles
+/// joined through the edges into one cluster. `parent` is scratch.
+pub(crate) fn link_test(
+    n: usize,
+    recs: &[u64],
+    parent: &mut Vec<u32>,
+    mut group: impl FnMut(u32, &[u64]),
+) -> Manifoldness {
+    use Manifoldness::*;
     parent.clear();
-    parent.extend(0..star.len() as u32);
-    let mut sets = star.len();
+    parent.extend(0..n as u32);
+    let mut sets = n;
     let mut bad = false;
     let mut a = 0;
-    while a < ew.len() {
-        let w = ew[a].0;
+    while a < recs.len() {
+        let w = (recs[a] >> 32) as u32;
         let mut b = a + 1;
-        while b < ew.len() && ew[b].0 == w {
-            let x = find(parent, ew[a].1);
-            let y = find(parent, ew[b].1);
+        while b < recs.len() && (recs[b] >> 32) as u32 == w {
+            let x = find(parent, recs[a] as u32 >> 3);
+            let y = find(parent, recs[b] as u32 >> 3);
             if x != y {
                 parent[x as usize] = y;
                 sets -= 1;
             }
             b += 1;
         }
-        let e_bad = b - a > 2;
-        bad |= e_bad;
-        if w > v {
-            edges_out.push((w, if e_bad { NonManifold } else { Manifold }));
-        }
+        bad |= b - a > 2;
+        group(w, &recs[a..b]);
         a = b;
     }
     if !bad && sets == 1 {
