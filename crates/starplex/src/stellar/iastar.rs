@@ -39,6 +39,8 @@ use rustc_hash::FxHashSet;
 
 use super::relations::{unpack, unpack_facet, FaceKeys};
 use super::{ExpandedLeaf, LeafView, StellarTree};
+use crate::algo::manifold::triangle_link_test;
+use crate::algo::unionfind::find_in;
 use crate::cell::CellKind;
 use crate::csr::Csr;
 use crate::ids::{CellId, LeafId, VertexId};
@@ -646,8 +648,8 @@ impl StellarTree {
     ) {
         let StarScratch { recs, uf, best } = sc;
         let verts = &self.cells.verts;
-        // record: other vertex << 32 | star index << 2 | slot (the edge omits vertex `slot`);
-        // a star of 2^30 triangles would not fit in memory
+        // record: other vertex << 32 | star index << 3 | slot (the edge omits vertex `slot`);
+        // a star of 2^29 triangles would not fit in memory
         recs.clear();
         for (i, &c) in star.iter().enumerate() {
             let vs = &verts[c as usize * 3..c as usize * 3 + 3];
@@ -655,25 +657,14 @@ impl StellarTree {
             for j in 0..3 {
                 if j != pv {
                     let w = vs[3 - pv - j] as u64;
-                    recs.push((w << 32) | ((i as u64) << 2) | j as u64);
+                    recs.push((w << 32) | ((i as u64) << 3) | j as u64);
                 }
             }
         }
         recs.sort_unstable();
-        let at = |r: u64| (((r as u32) >> 2) as usize, r as u32 & 3);
-        uf.clear();
-        uf.extend(0..star.len() as u32);
-        let mut s = 0;
-        while s < recs.len() {
-            let w = (recs[s] >> 32) as u32;
-            let mut e = s + 1;
-            while e < recs.len() && (recs[e] >> 32) as u32 == w {
-                e += 1;
-            }
-            let group = &recs[s..e];
-            for pair in group.windows(2) {
-                uf_union(uf, at(pair[0]).0 as u32, at(pair[1]).0 as u32);
-            }
+        let at = |r: u64| (((r as u32) >> 3) as usize, r as u32 & 3);
+        // the groups join the triangles into the clusters of v (the link test's union-find)
+        triangle_link_test(star.len(), recs, uf, |w, group| {
             if w > v && group.len() == 2 {
                 let ((ia, ja), (ib, jb)) = (at(group[0]), at(group[1]));
                 let (a, b) = (star[ia], star[ib]);
@@ -692,21 +683,20 @@ impl StellarTree {
                 p.nm_cells.push(cs);
                 p.nm_verts.push(vec![v, w]);
             }
-            s = e;
-        }
+        });
         // each cluster's triangle of smallest input id, in the order of the clusters' first
         // triangles
         best.clear();
         best.resize(star.len(), u32::MAX);
         for (i, &c) in star.iter().enumerate() {
-            let r = uf_find(uf, i as u32) as usize;
+            let r = find_in(uf, i as u32) as usize;
             let b = best[r];
             if b == u32::MAX || self.c_orig[c as usize] < self.c_orig[b as usize] {
                 best[r] = c;
             }
         }
         for i in 0..star.len() {
-            let r = uf_find(uf, i as u32) as usize;
+            let r = find_in(uf, i as u32) as usize;
             if best[r] != u32::MAX {
                 out.push(best[r]);
                 best[r] = u32::MAX;
@@ -1047,22 +1037,6 @@ struct StarScratch {
     recs: Vec<u64>,
     uf: Vec<u32>,
     best: Vec<u32>,
-}
-
-fn uf_find(uf: &mut [u32], mut x: u32) -> u32 {
-    while uf[x as usize] != x {
-        let up = uf[uf[x as usize] as usize];
-        uf[x as usize] = up;
-        x = up;
-    }
-    x
-}
-
-fn uf_union(uf: &mut [u32], a: u32, b: u32) {
-    let (ra, rb) = (uf_find(uf, a), uf_find(uf, b));
-    if ra != rb {
-        uf[ra.max(rb) as usize] = ra.min(rb);
-    }
 }
 
 #[derive(Default)]
