@@ -514,6 +514,27 @@ pub(crate) fn oriented_facets_of(kind: CellKind, mut f: impl FnMut(&[u8], i8)) {
     }
 }
 
+/// Induced orientation of facet `j` (the one omitting listed vertex `j`) of the simplex with
+/// listed vertices `vs` (at most 8), against the facet's sorted vertices: `(-1)^j` (see
+/// [`oriented_facets_of`]) times the parity of the vertices it keeps ([`listed_sign`]).
+#[inline]
+pub(crate) fn simplex_facet_sign(vs: &[u32], j: usize) -> i8 {
+    let mut kept = [0u32; 8];
+    let mut m = 0;
+    for (x, &w) in vs.iter().enumerate() {
+        if x != j {
+            kept[m] = w;
+            m += 1;
+        }
+    }
+    let s = listed_sign(&kept[..m], false);
+    if j.is_multiple_of(2) {
+        s
+    } else {
+        -s
+    }
+}
+
 /// Orientation of a listed facet relative to its sorted order: the parity of the sorting
 /// permutation, or for a polygon (CP facet) the cyclic direction.
 pub(crate) fn listed_sign(key: &[u32], polygon: bool) -> i8 {

@@ -35,7 +35,7 @@ use super::{LeafView, StellarTree};
 use crate::algo::manifold::{local_singularities_global, Singularities};
 use crate::algo::unionfind::UnionFind;
 use crate::algo::validate::{finish_report, ValidationReport};
-use crate::cell::CellKind;
+use crate::cell::{simplex_facet_sign, CellKind};
 use crate::ids::{CellId, LeafId, TreeVertexId, VertexId};
 use rayon::prelude::*;
 
@@ -213,10 +213,8 @@ impl StellarTree {
                             o.sing.non_manifold_vertices.push(TreeVertexId(v));
                             continue;
                         }
-                        // record: w << 32 | star index << 3 | slot << 1 | negative; the edge
-                        // omits the triangle's vertex `slot`, its induced orientation against
-                        // (v, w) sorted is (-1)^slot, times -1 when the two it keeps are
-                        // listed in decreasing order
+                        // record: w << 32 | star index << 3 | slot << 1 | negative (the edge
+                        // omits the triangle's vertex `slot`; its induced orientation)
                         recs.clear();
                         for (i, &c) in star.iter().enumerate() {
                             let vs = &verts[c as usize * 3..c as usize * 3 + 3];
@@ -226,14 +224,7 @@ impl StellarTree {
                                     continue;
                                 }
                                 let w = vs[3 - pv - j];
-                                let (a, b) = if j == 0 {
-                                    (1, 2)
-                                } else if j == 1 {
-                                    (0, 2)
-                                } else {
-                                    (0, 1)
-                                };
-                                let neg = (j == 1) != (vs[a] > vs[b]);
+                                let neg = simplex_facet_sign(vs, j) < 0;
                                 recs.push(
                                     ((w as u64) << 32)
                                         | ((i as u64) << 3)
@@ -288,25 +279,8 @@ impl StellarTree {
         use crate::algo::manifold::{tet_star_tests_and_triangles, Manifoldness, TetScratch};
         use crate::topo::{LocalStar, PartStar};
         let verts = &self.cells.verts;
-        // the induced orientation of facet j (omitting listed vertex j) of tetrahedron c,
-        // against its sorted vertices: (-1)^j times the parity of the three it keeps
-        let sign = |c: u32, j: usize| -> i8 {
-            let vs = &verts[c as usize * 4..c as usize * 4 + 4];
-            let mut k = [0u32; 3];
-            let mut m = 0;
-            for (x, &w) in vs.iter().enumerate() {
-                if x != j {
-                    k[m] = w;
-                    m += 1;
-                }
-            }
-            let inv = (k[0] > k[1]) as u32 + (k[0] > k[2]) as u32 + (k[1] > k[2]) as u32;
-            if (j as u32 + inv).is_multiple_of(2) {
-                1
-            } else {
-                -1
-            }
-        };
+        let sign =
+            |c: u32, j: usize| simplex_facet_sign(&verts[c as usize * 4..c as usize * 4 + 4], j);
         let outs: Vec<Option<LeafOut>> = (0..self.n_leaves() as u32)
             .into_par_iter()
             .map_init(
@@ -345,19 +319,7 @@ impl StellarTree {
                             tris.push((t, cells.len() as u32, cs.len() as u32));
                             cells.extend_from_slice(cs);
                         })?;
-                        if m == Manifoldness::NonManifold {
-                            o.sing.non_manifold_vertices.push(TreeVertexId(v));
-                        } else if m == Manifoldness::Unknown {
-                            o.sing.unknown_vertices.push(TreeVertexId(v));
-                        }
-                        for &(w, st) in edges.iter() {
-                            let edge = [TreeVertexId(v), TreeVertexId(w)];
-                            match st {
-                                Manifoldness::Manifold => {}
-                                Manifoldness::NonManifold => o.sing.non_manifold_edges.push(edge),
-                                Manifoldness::Unknown => o.sing.unknown_edges.push(edge),
-                            }
-                        }
+                        o.sing.record(TreeVertexId(v), m, edges);
                         tris.sort_unstable();
                         for &([a, b], at, n) in tris.iter() {
                             let group = &cells[at as usize..(at + n) as usize];

@@ -410,6 +410,25 @@ pub struct Singularities<V = VertexId> {
     pub unknown_edges: Vec<[V; 2]>,
 }
 
+impl<V: Copy + From<u32>> Singularities<V> {
+    /// Files the answers of one vertex's star tests: `v` by its answer `m`, and each edge
+    /// `[v, w]` of `edges` (`w` in the same numbering) by its own.
+    pub(crate) fn record(&mut self, v: V, m: Manifoldness, edges: &[(u32, Manifoldness)]) {
+        match m {
+            Manifoldness::Manifold => {}
+            Manifoldness::NonManifold => self.non_manifold_vertices.push(v),
+            Manifoldness::Unknown => self.unknown_vertices.push(v),
+        }
+        for &(w, st) in edges {
+            match st {
+                Manifoldness::Manifold => {}
+                Manifoldness::NonManifold => self.non_manifold_edges.push([v, V::from(w)]),
+                Manifoldness::Unknown => self.unknown_edges.push([v, V::from(w)]),
+            }
+        }
+    }
+}
+
 impl<V> Default for Singularities<V> {
     fn default() -> Self {
         Singularities {
@@ -711,18 +730,8 @@ fn scan_part<P: LocalStar + ?Sized>(
             star: part.local_star(v),
         };
         edges.clear();
-        match test(&mut tester, v.into(), &star, &mut edges) {
-            Manifoldness::Manifold => {}
-            Manifoldness::NonManifold => r.non_manifold_vertices.push(v),
-            Manifoldness::Unknown => r.unknown_vertices.push(v),
-        }
-        for &(w, st) in &edges {
-            match st {
-                Manifoldness::Manifold => {}
-                Manifoldness::NonManifold => r.non_manifold_edges.push([v, P::Vertex::from(w)]),
-                Manifoldness::Unknown => r.unknown_edges.push([v, P::Vertex::from(w)]),
-            }
-        }
+        let m = test(&mut tester, v.into(), &star, &mut edges);
+        r.record(v, m, &edges);
     }
     r
 }
