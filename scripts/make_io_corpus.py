@@ -12,7 +12,8 @@ with `vtk` installed too it also writes the `vtk_*.vtu` / `vtk_surface.vtp` file
   node blocks.
 
 Usage: scripts/make_io_corpus.py [OUT_DIR]
-       scripts/make_io_corpus.py --big N OUT.msh OUT.vtk   (a Kuhn grid of N^3 cubes, for benchmarks)
+       scripts/make_io_corpus.py --big N OUT.msh OUT.vtk [OUT.vtu]   (a Kuhn grid of N^3 cubes, for
+       benchmarks; the .vtu with raw appended data)
 """
 import json
 import os
@@ -350,6 +351,9 @@ if __name__ == "__main__":
         meshio.gmsh.write(sys.argv[3], m, fmt_version="4.1", binary=True)
         from meshio.vtk import _vtk_42
         _vtk_42.write(sys.argv[4], m, binary=True)
+        if len(sys.argv) > 5:
+            # raw appended data, little-endian, UInt64 headers: VTK's own layout for big files
+            vtu_appended(sys.argv[5], m, "raw", False, False, "UInt64")
     elif len(sys.argv) > 1 and sys.argv[1] == "--attributes":
         attributes(sys.argv[2] if len(sys.argv) > 2 else OUT)
     else:

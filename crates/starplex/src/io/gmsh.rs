@@ -260,6 +260,39 @@ impl TagMap {
     }
 }
 
+/// A column of element tags as runs `(count, tag)` of equal tags.
+#[derive(Default)]
+struct TagRuns {
+    runs: Vec<(u64, i64)>,
+    len: u64,
+}
+
+impl TagRuns {
+    /// Appends `n` elements with tag `t`.
+    fn push_n(&mut self, n: u64, t: i64) {
+        match self.runs.last_mut() {
+            Some((c, last)) if *last == t => *c += n,
+            _ if n > 0 => self.runs.push((n, t)),
+            _ => {}
+        }
+        self.len += n;
+    }
+
+    /// Whether some element has a tag other than 0.
+    fn any_nonzero(&self) -> bool {
+        self.runs.iter().any(|&(_, t)| t != 0)
+    }
+
+    /// One tag per element.
+    fn to_vec(&self) -> Vec<i64> {
+        let mut v = Vec::with_capacity(self.len as usize);
+        for &(c, t) in &self.runs {
+            v.resize(v.len() + c as usize, t);
+        }
+        v
+    }
+}
+
 /// What the element pass collects.
 #[derive(Default)]
 struct Elements {
@@ -268,9 +301,10 @@ struct Elements {
     points: usize,
     /// Elements of higher order read as their first-order cells.
     higher_order: usize,
-    /// Physical and elementary (geometrical) tag of every element kept, in file order.
-    physical: Vec<i64>,
-    geometrical: Vec<i64>,
+    /// Physical and elementary (geometrical) tag of every element kept, in file order, as
+    /// runs of equal tags (a block's elements share them; most files give none).
+    physical: TagRuns,
+    geometrical: TagRuns,
     /// Whether the file gave physical tags (2.2 tags, 4.1 `$Entities`).
     has_physical: bool,
     /// The element tag of every element kept, in file order; empty while every tag so far is
@@ -286,9 +320,23 @@ impl Elements {
         }
     }
 
+    /// The first element tag that keeps the usual numbering (position + 1), or `None` once
+    /// some tag broke it.
+    fn next_plain_tag(&self) -> Option<u64> {
+        self.tags.is_empty().then_some(self.physical.len + 1)
+    }
+
+    /// The vertex array of the current run of `kind` elements, started when the kind changes.
+    fn run_of(&mut self, kind: CellKind) -> &mut Vec<u32> {
+        if self.blocks.last().is_none_or(|(k, _)| *k != kind) {
+            self.blocks.push((kind, Vec::new()));
+        }
+        &mut self.blocks.last_mut().expect("just pushed").1
+    }
+
     /// Adds an element with its physical and elementary tags.
     fn push(&mut self, tag: u64, kind: CellKind, verts: &[u32], physical: i64, geometrical: i64) {
-        let n = self.physical.len() as u64;
+        let n = self.physical.len;
         if !self.tags.is_empty() || tag != n + 1 {
             if self.tags.is_empty() {
                 self.tags.extend(1..=n);
@@ -299,8 +347,8 @@ impl Elements {
             Some((k, v)) if *k == kind => v.extend_from_slice(verts),
             _ => self.blocks.push((kind, verts.to_vec())),
         }
-        self.physical.push(physical);
-        self.geometrical.push(geometrical);
+        self.physical.push_n(1, physical);
+        self.geometrical.push_n(1, geometrical);
     }
 }
 
@@ -585,42 +633,45 @@ fn assemble(
         }
     }
     let mut b = ComplexBuilder::new(3).map_err(|e| IoError::new(path, e))?;
-    let mut dropped_nodes = 0usize;
-    for (i, id) in new_id.iter_mut().enumerate() {
-        if *id == u32::MAX {
-            dropped_nodes += 1;
-            continue;
+    let dropped_nodes = new_id.iter().filter(|&&id| id == u32::MAX).count();
+    let kept: Vec<f64> = if dropped_nodes == 0 {
+        // every node is used: the ids stay as they are
+        for (i, id) in new_id.iter_mut().enumerate() {
+            *id = i as u32;
         }
-        *id = b
-            .push_vertex(&coords[3 * i..3 * i + 3])
-            .map_err(|e| IoError::new(path, e))?
-            .0;
-    }
-    for (kind, v) in &mut elems.blocks {
-        for x in v.iter_mut() {
-            *x = new_id[*x as usize];
+        coords
+    } else {
+        let mut kept = Vec::with_capacity(3 * (nv - dropped_nodes));
+        for (i, id) in new_id.iter_mut().enumerate() {
+            if *id != u32::MAX {
+                *id = (kept.len() / 3) as u32;
+                kept.extend_from_slice(&coords[3 * i..3 * i + 3]);
+            }
         }
-        let k = kind.n_vertices();
-        for cell in v.chunks_exact(k) {
-            b.push_cell(*kind, cell)
-                .map_err(|e| IoError::new(path, e))?;
+        for (_, v) in &mut elems.blocks {
+            for x in v.iter_mut() {
+                *x = new_id[*x as usize];
+            }
         }
+        kept
+    };
+    b.push_vertices(kept).map_err(|e| IoError::new(path, e))?;
+    for (kind, v) in std::mem::take(&mut elems.blocks) {
+        b.push_cells(kind, v).map_err(|e| IoError::new(path, e))?;
     }
     let mut attrs = Attributes::default();
-    let n_elems = elems.physical.len();
+    let n_elems = elems.physical.len as usize;
     // (gmsh's entity tags start at 1: all zeros means the file gave none)
-    if elems.has_physical && elems.physical.iter().any(|&t| t != 0) {
-        attrs.cell.push(Attribute::int(
-            "gmsh:physical",
-            1,
-            std::mem::take(&mut elems.physical),
-        ));
+    if elems.has_physical && elems.physical.any_nonzero() {
+        attrs
+            .cell
+            .push(Attribute::int("gmsh:physical", 1, elems.physical.to_vec()));
     }
-    if elems.geometrical.iter().any(|&t| t != 0) {
+    if elems.geometrical.any_nonzero() {
         attrs.cell.push(Attribute::int(
             "gmsh:geometrical",
             1,
-            std::mem::take(&mut elems.geometrical),
+            elems.geometrical.to_vec(),
         ));
     }
     let mut notes = Vec::new();
@@ -1230,6 +1281,115 @@ fn read_nodes_22_bin(
     Ok(())
 }
 
+/// Where the fields of a binary element record are: its tag, its node tags, its physical and
+/// elementary tags (2.2: per element; 4.1: per block, given as values).
+#[derive(Clone, Copy)]
+struct RecordLayout {
+    rec: usize,
+    /// Byte offset and width of the node tags.
+    nodes_at: usize,
+    width: usize,
+    e: Endian,
+    shape: (CellKind, usize),
+    /// Per-element tags (2.2): how many (the physical tag first, then the elementary one)
+    /// after the element tag; `None` for 4.1's per-block values.
+    n_tags: Option<usize>,
+}
+
+/// Decodes a chunk of whole element records (none a point element) in parallel straight into
+/// `elems`: node tags to ids, tags to the attribute columns. The fast path of the binary
+/// readers: it succeeds only when every record passes the element checks with distinct
+/// vertices and the element tags keep the usual numbering; otherwise it leaves `elems`
+/// unchanged and returns false, and the caller decodes the chunk record by record to name the
+/// problem or keep the tags.
+fn decode_records_par(
+    c: &[u8],
+    l: RecordLayout,
+    tags: &TagMap,
+    (physical, geometrical): (i64, i64),
+    elems: &mut Elements,
+) -> bool {
+    use rayon::prelude::*;
+    const PER: usize = 4096;
+    let (kind, _) = l.shape;
+    let k = kind.n_vertices();
+    let n = c.len() / l.rec;
+    let Some(first_tag) = elems.next_plain_tag() else {
+        return false;
+    };
+    // 2.2's per-element tags: the fast path takes a chunk whose elements share them
+    let tag_at = |r: &[u8], j: usize| get_i32(&r[4 * (1 + j)..], l.e) as i64;
+    let per_elem = l.n_tags.unwrap_or(0);
+    let (physical, geometrical) = match c.get(..l.rec) {
+        Some(r) if per_elem > 0 => (tag_at(r, 0), if per_elem > 1 { tag_at(r, 1) } else { 0 }),
+        _ => (physical, geometrical),
+    };
+    elems.run_of(kind);
+    let run = &mut elems.blocks.last_mut().expect("run_of pushed it").1;
+    let vbase = run.len();
+    run.resize(vbase + n * k, 0);
+    let ok = c
+        .par_chunks(l.rec * PER)
+        .zip(run[vbase..].par_chunks_mut(k * PER))
+        .enumerate()
+        .all(|(i, (src, dst))| {
+            let mut ok = true;
+            for (j, (r, d)) in src
+                .chunks_exact(l.rec)
+                .zip(dst.chunks_exact_mut(k))
+                .enumerate()
+            {
+                let want = first_tag + (i * PER + j) as u64;
+                ok &= get_uint(r, l.width, l.e) == want;
+                if per_elem > 0 {
+                    ok &= tag_at(r, 0) == physical;
+                }
+                if per_elem > 1 {
+                    ok &= tag_at(r, 1) == geometrical;
+                }
+                let mut raw = [0u32; 8];
+                for (x, slot) in r[l.nodes_at..]
+                    .chunks_exact(l.width)
+                    .take(k)
+                    .zip(raw.iter_mut())
+                {
+                    *slot = tags.get(get_uint(x, l.width, l.e)).unwrap_or(u32::MAX);
+                }
+                // higher-order nodes must name nodes too
+                for x in r[l.nodes_at..].chunks_exact(l.width).skip(k) {
+                    ok &= tags.get(get_uint(x, l.width, l.e)).is_some();
+                }
+                for a in 0..k {
+                    ok &= raw[a] != u32::MAX;
+                    for b in 0..a {
+                        ok &= raw[a] != raw[b];
+                    }
+                }
+                if kind == CellKind::Prism {
+                    for (slot, &p) in d.iter_mut().zip(PRISM_PERM.iter()) {
+                        *slot = raw[p];
+                    }
+                } else {
+                    d.copy_from_slice(&raw[..k]);
+                }
+            }
+            ok
+        });
+    if !ok {
+        run.truncate(vbase);
+        if run.is_empty() {
+            elems.blocks.pop();
+        }
+        return false;
+    }
+    elems.physical.push_n(n as u64, physical);
+    elems.geometrical.push_n(n as u64, geometrical);
+    if l.shape.1 > k {
+        elems.higher_order += n;
+    }
+    true
+}
+
 /// One binary element record's node tags (`width` bytes each) into `verts`, checked.
 #[allow(clippy::too_many_arguments)]
 fn element_bin(
@@ -1297,7 +1457,21 @@ fn read_elements_41_bin(
             .ok_or_else(|| byte_err(path, at, unsupported_type(ty as u32 as u64)))?;
         let kind = shape.0;
         let rec = (1 + shape.1) * sz;
+        let layout = RecordLayout {
+            rec,
+            nodes_at: sz,
+            width: sz,
+            e,
+            shape,
+            n_tags: None,
+        };
+        let physical = entities.get(&(dim, entity)).copied().unwrap_or(0);
         read_records(w, n, rec, "elements", |w, c, first| {
+            if kind != CellKind::Simplex(0)
+                && decode_records_par(c, layout, tags, (physical, entity), elems)
+            {
+                return Ok(());
+            }
             let start = w.offset() - c.len() as u64;
             for (j, r) in c.chunks_exact(rec).enumerate() {
                 let at = start + (j * rec) as u64;
@@ -1307,7 +1481,6 @@ fn read_elements_41_bin(
                 if kind == CellKind::Simplex(0) {
                     elems.points += 1;
                 } else {
-                    let physical = entities.get(&(dim, entity)).copied().unwrap_or(0);
                     elems.push(get_uint(r, sz, e), kind, &verts, physical, entity);
                 }
             }
@@ -1359,7 +1532,18 @@ fn read_elements_22_bin(
         elems.has_physical |= n_tags > 0;
         let rec = (1 + n_tags as usize + shape.1) * 4;
         let skip = (1 + n_tags as usize) * 4;
+        let layout = RecordLayout {
+            rec,
+            nodes_at: skip,
+            width: 4,
+            e,
+            shape,
+            n_tags: Some(n_tags as usize),
+        };
         read_records(w, follow as u64, rec, "elements", |w, c, first| {
+            if kind != CellKind::Simplex(0) && decode_records_par(c, layout, tags, (0, 0), elems) {
+                return Ok(());
+            }
             let start = w.offset() - c.len() as u64;
             for (j, r) in c.chunks_exact(rec).enumerate() {
                 let at = start + (j * rec) as u64;

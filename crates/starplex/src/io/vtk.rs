@@ -42,7 +42,7 @@ use std::io::{BufRead, Write};
 use std::path::Path;
 
 use super::faces::push_build_notes;
-use super::raw::{get_i32, get_i64, push_f32s, push_f64s, read_records, Endian};
+use super::raw::{get_i32, get_i64, get_u32, push_f32s, push_f64s, read_records, Endian};
 use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
@@ -427,6 +427,32 @@ pub(crate) fn push_cell(
             }
         }
     }
+}
+
+/// The run of cells `i..j` of one linear VTK type other than a vertex, each listing exactly its
+/// type's point count, from cell `i` (whose points start at `start` in the connectivity; `ends`
+/// are the cells' ends, none past `max_end`): the run's kind and `j`, or `None` when cell `i`
+/// is not such a cell. Readers push such runs whole ([`ComplexBuilder::push_cells`]).
+pub(crate) fn linear_run<T: Copy + Into<u64>>(
+    types: &[T],
+    ends: &[u64],
+    start: u64,
+    i: usize,
+    max_end: u64,
+) -> Option<(CellKind, usize)> {
+    let ty: u64 = (*types.get(i)?).into();
+    let kind = kind_of_vtk_type(ty).filter(|&k| k != CellKind::Simplex(0))?;
+    let k = kind.n_vertices() as u64;
+    let (mut j, mut prev) = (i, start);
+    while j < types.len().min(ends.len())
+        && types[j].into() == ty
+        && ends[j] == prev + k
+        && ends[j] <= max_end
+    {
+        prev = ends[j];
+        j += 1;
+    }
+    (j > i).then_some((kind, j))
 }
 
 /// Reads a `.vtk` file.
@@ -906,7 +932,8 @@ struct Sections {
     /// The line of the CELLS section (for the error of a missing CELL_TYPES).
     cells_line: u64,
     have_cells: bool,
-    types: Option<Vec<u64>>,
+    /// The cell types, checked (every type read is below 256).
+    types: Option<Vec<u8>>,
     point_data: Vec<Attribute>,
     cell_data: Vec<Attribute>,
     skipped: Vec<String>,
@@ -1019,21 +1046,30 @@ impl Sections {
         if binary {
             w.rest_of_line()?;
             let at = w.offset();
-            let mut tys: Vec<u64> = Vec::new();
+            let mut i = 0usize;
+            let ends = &self.ends;
+            // the type and point count of the last cell checked (most cells repeat them)
+            let mut last: Option<(u64, u64, u8)> = None;
             read_records(w, n, 4, "the cell types", |_, c, _| {
-                tys.extend(
-                    c.chunks_exact(4)
-                        .map(|x| get_i32(x, Endian::Big) as u32 as u64),
-                );
+                for x in c.chunks_exact(4) {
+                    let ty = get_u32(x, Endian::Big) as u64;
+                    let end = ends[i];
+                    let kind = match last {
+                        Some((t, k, kind)) if t == ty && k == end - start => kind,
+                        _ => {
+                            let kind = cell_type(i, ty, end - start).map_err(|m| {
+                                IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), m)
+                            })?;
+                            last = Some((ty, end - start, kind));
+                            kind
+                        }
+                    };
+                    start = end;
+                    kinds.push(kind);
+                    i += 1;
+                }
                 Ok(())
             })?;
-            for (i, (&ty, &end)) in tys.iter().zip(self.ends.iter()).enumerate() {
-                let kind = cell_type(i, ty, end - start).map_err(|m| {
-                    IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), m)
-                })?;
-                start = end;
-                kinds.push(kind);
-            }
         } else {
             for (i, &end) in self.ends.iter().enumerate() {
                 let ty = w.u64("a cell type")?;
@@ -1100,18 +1136,40 @@ impl Sections {
         }
         let mut stats = CellStats::default();
         let mut origin: Vec<u32> = Vec::new();
+        let mut one_to_one = true;
         if let Some(kinds) = &self.types {
             let mut start = 0usize;
-            for (i, (&ty, &end)) in kinds.iter().zip(self.ends.iter()).enumerate() {
-                let end = end as usize;
-                let verts = &self.conn[start..end];
-                start = end;
+            let mut i = 0usize;
+            while i < kinds.len() {
+                let ty = kinds[i] as u64;
                 let before = b.n_cells();
+                let max_end = self.conn.len() as u64;
+                if let Some((kind, j)) = linear_run(kinds, &self.ends, start as u64, i, max_end) {
+                    let end = self.ends[j - 1] as usize;
+                    let verts = if start == 0 && end == self.conn.len() {
+                        std::mem::take(&mut self.conn)
+                    } else {
+                        self.conn[start..end].to_vec()
+                    };
+                    b.push_cells(kind, verts)
+                        .map_err(|e| IoError::new(path, e))?;
+                    if !self.cell_data.is_empty() {
+                        origin.extend(i as u32..j as u32);
+                    }
+                    (start, i) = (end, j);
+                    continue;
+                }
+                let end = self.ends[i] as usize;
+                let verts = &self.conn[start..end];
                 push_cell(&mut b, &mut stats, ty, verts).map_err(|e| match e {
                     PushError::Complex(e) => IoError::new(path, e),
                     PushError::Cell(m) => IoError::parse(path, None, format!("cell {i}: {m}")),
                 })?;
-                origin.extend((before..b.n_cells()).map(|_| i as u32));
+                one_to_one &= b.n_cells() == before + 1;
+                if !self.cell_data.is_empty() {
+                    origin.extend((before..b.n_cells()).map(|_| i as u32));
+                }
+                (start, i) = (end, i + 1);
             }
         }
         let mut notes = Vec::new();
@@ -1124,7 +1182,11 @@ impl Sections {
         }
         b.set_attributes(Attributes {
             vertex: self.point_data,
-            cell: self.cell_data.iter().map(|a| a.gather(&origin)).collect(),
+            cell: if one_to_one {
+                self.cell_data
+            } else {
+                self.cell_data.iter().map(|a| a.gather(&origin)).collect()
+            },
         });
         let (complex, report) = b.build(&opts.build).map_err(|e| IoError::new(path, e))?;
         push_build_notes(&mut notes, &report);
@@ -1205,10 +1267,12 @@ const POLY_SECTIONS: [(&str, u64); 4] = [
 ];
 
 /// VTK type `ty` of cell `i` listing `n` points, or why it cannot be read.
-fn cell_type(i: usize, ty: u64, n: u64) -> Result<u64, String> {
+fn cell_type(i: usize, ty: u64, n: u64) -> Result<u8, String> {
     match arity_error(ty, n) {
         Some(m) => Err(format!("cell {i}: {m}")),
-        None => Ok(ty),
+        None => {
+            u8::try_from(ty).map_err(|_| format!("cell {i}: VTK cell type {ty} is not supported"))
+        }
     }
 }
 
@@ -1244,7 +1308,7 @@ fn read_points_bin(
     w.rest_of_line()?;
     let path = w.path();
     let mut p: Vec<f64> = Vec::with_capacity(3 * 4096);
-    read_records(w, n as u64, 3 * width, "the points", |w, c, first| {
+    read_records(w, n as u64, 3 * width, "the points", |w, c, _| {
         p.clear();
         if width == 8 {
             push_f64s(c, Endian::Big, &mut p);
@@ -1252,12 +1316,14 @@ fn read_points_bin(
             push_f32s(c, Endian::Big, &mut p);
         }
         let start = w.offset() - c.len() as u64;
-        for (j, q) in p.chunks_exact(3).enumerate() {
-            b.push_vertex(q).map_err(|e| {
-                IoError::new(path, e).at(Location::Byte(start + (3 * width * j) as u64))
-            })?;
-        }
-        let _ = first;
+        let first = b.n_vertices();
+        b.push_vertices(std::mem::take(&mut p)).map_err(|e| {
+            let at = match e {
+                ComplexError::NonFiniteCoordinate { vertex, .. } => vertex as usize - first,
+                _ => 0,
+            };
+            IoError::new(path, e).at(Location::Byte(start + (3 * width * at) as u64))
+        })?;
         Ok(())
     })
 }
@@ -1300,7 +1366,20 @@ fn read_classic_bin(
         )));
     }
     let at = w.offset();
-    let flat = read_ints_bin(w, size, 4, "the cell list")?;
+    let mut flat: Vec<u32> = Vec::new();
+    read_records(w, size, 4, "the cell list", |_, c, _| {
+        flat.extend(c.chunks_exact(4).map(|x| get_u32(x, Endian::Big)));
+        Ok(())
+    })?;
+    if classic_cells_fast(&mut flat, n, nv, build, ends) {
+        if conn.is_empty() {
+            *conn = flat;
+        } else {
+            conn.extend_from_slice(&flat);
+        }
+        return Ok(());
+    }
+    let flat: Vec<u64> = flat.iter().map(|&x| x as i32 as i64 as u64).collect();
     let path = w.path();
     let bad =
         |i: usize, msg: String| IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), msg);
@@ -1347,6 +1426,112 @@ fn read_classic_bin(
         ));
     }
     Ok(())
+}
+
+/// The fast path of a classic cell list `k v_0 .. v_{k-1}` (`flat`, `n` cells): when every
+/// cell lists 1 to 64 points, all below `nv` and, unless degenerate cells are dropped by the
+/// build, pairwise distinct, and the cells fill the list exactly, compacts `flat` in place into
+/// the cells' vertices and appends their ends (offset by `ends`' last end) to `ends`.
+/// Otherwise returns false with both unchanged: the checked loop then names the problem.
+fn classic_cells_fast(
+    flat: &mut Vec<u32>,
+    n: u64,
+    nv: usize,
+    build: &BuildOptions,
+    ends: &mut Vec<u64>,
+) -> bool {
+    let e0 = ends.len();
+    let base = ends.last().copied().unwrap_or(0);
+    // one cell size throughout (a mesh of one kind): checked in parallel, compacted at once
+    let uniform = match flat.first() {
+        Some(&2) => uniform_cells::<2>(flat, n, nv, build),
+        Some(&3) => uniform_cells::<3>(flat, n, nv, build),
+        Some(&4) => uniform_cells::<4>(flat, n, nv, build),
+        Some(&5) => uniform_cells::<5>(flat, n, nv, build),
+        Some(&6) => uniform_cells::<6>(flat, n, nv, build),
+        Some(&8) => uniform_cells::<8>(flat, n, nv, build),
+        _ => None,
+    };
+    if let Some(k) = uniform {
+        ends.extend((1..=n).map(|c| base + c * k as u64));
+        return true;
+    }
+    ends.reserve(n as usize);
+    let (mut i, mut out) = (0usize, 0usize);
+    let mut ok = true;
+    let mut max = 0u32;
+    for _ in 0..n {
+        let Some(&k) = flat.get(i) else {
+            ok = false;
+            break;
+        };
+        let k = k as usize;
+        if !(1..=64).contains(&k) || i + 1 + k > flat.len() {
+            ok = false;
+            break;
+        }
+        let c = &flat[i + 1..i + 1 + k];
+        for a in 1..k {
+            for b in 0..a {
+                ok &= build.drop_degenerate || c[a] != c[b];
+            }
+        }
+        max = c.iter().fold(max, |m, &v| m.max(v));
+        out += k;
+        ends.push(base + out as u64);
+        i += 1 + k;
+    }
+    if !(ok && i == flat.len() && (n == 0 || (max as usize) < nv)) {
+        ends.truncate(e0);
+        return false;
+    }
+    // checked: drop each cell's count, in place
+    let (mut from, mut to) = (0usize, 0usize);
+    for &end in &ends[e0..] {
+        let k = (end - base) as usize - to;
+        flat.copy_within(from + 1..from + 1 + k, to);
+        (from, to) = (from + 1 + k, to + k);
+    }
+    flat.truncate(out);
+    true
+}
+
+/// [`classic_cells_fast`] for `n` cells of `K` points each: when `flat` is exactly that and
+/// passes the checks, compacts it in place and returns `Some(K)`; otherwise leaves it unchanged.
+fn uniform_cells<const K: usize>(
+    flat: &mut Vec<u32>,
+    n: u64,
+    nv: usize,
+    build: &BuildOptions,
+) -> Option<usize> {
+    use rayon::prelude::*;
+    if flat.len() as u64 != n * (K as u64 + 1) {
+        return None;
+    }
+    let ok = flat.par_chunks(4096 * (K + 1)).all(|part| {
+        let mut ok = true;
+        for c in part.chunks_exact(K + 1) {
+            ok &= c[0] as usize == K;
+            for a in 1..=K {
+                ok &= (c[a] as usize) < nv;
+                for b in 1..a {
+                    ok &= build.drop_degenerate || c[a] != c[b];
+                }
+            }
+        }
+        ok
+    });
+    if !ok {
+        return None;
+    }
+    for c in 0..n as usize {
+        let (from, to) = (c * (K + 1) + 1, c * K);
+        for j in 0..K {
+            flat[to + j] = flat[from + j];
+        }
+    }
+    flat.truncate(n as usize * K);
+    Some(K)
 }
 
 /// The offset count of a version-5 `CELLS` header: cells + 1, at least 1, ids within 32 bits.

@@ -48,7 +48,7 @@ use base64::Engine as _;
 use quick_xml::events::{BytesStart, Event};
 
 use super::faces::push_build_notes;
-use super::vtk::{push_cell, vtk_type, CellStats};
+use super::vtk::{linear_run, push_cell, vtk_type, CellStats};
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
 use crate::attr::{AttrValues, Attribute, Attributes};
 use crate::cell::CellKind;
@@ -422,9 +422,7 @@ impl Assembly {
                 ),
             ));
             }
-            for q in xs.chunks_exact(3) {
-                b.push_vertex(q).map_err(|e| IoError::new(path, e))?;
-            }
+            b.push_vertices(xs).map_err(|e| IoError::new(path, e))?;
         }
         Ok(())
     }
@@ -450,13 +448,26 @@ impl Assembly {
                 format!("<{sec}> has connectivity but no offsets"),
             ));
         };
-        let conn_v = decode_index(conn, header, appended, path, nv)?;
-        let offs_v = decode_index(offs, header, appended, path, u64::MAX)?;
+        // the point ids of the whole complex (nv below the 32-bit limit the builder checks)
+        let global = |v: u64| (v + base) as u32;
+        let mut conn_v = match fast_index(conn, header, appended, path, nv, global) {
+            Some(v) => v,
+            None => {
+                let v = decode_index(conn, header, appended, path, nv)?;
+                v.into_iter().map(global).collect()
+            }
+        };
+        let index = |a: &ArraySpec<'_>| match fast_index(a, header, appended, path, u64::MAX, |v| v)
+        {
+            Some(v) => Ok(v),
+            None => decode_index(a, header, appended, path, u64::MAX),
+        };
+        let offs_v = index(offs)?;
         let types_v = if sec == "Cells" {
             let Some(t) = find(sec, Some("types")) else {
                 return Err(perr(path, conn.pos, "<Cells> has no types array"));
             };
-            let v = decode_index(t, header, appended, path, u64::MAX)?;
+            let v = index(t)?;
             if v.len() != offs_v.len() {
                 return Err(perr(
                     path,
@@ -473,8 +484,33 @@ impl Assembly {
             None
         };
         let mut start = 0u64;
-        let mut verts: Vec<u32> = Vec::new();
-        for (i, &end) in offs_v.iter().enumerate() {
+        let mut i = 0usize;
+        while i < offs_v.len() {
+            // a run of cells of one linear type is pushed whole
+            let max_end = conn_v.len() as u64;
+            if let Some((kind, j)) = types_v
+                .as_deref()
+                .and_then(|t| linear_run(t, &offs_v, start, i, max_end))
+            {
+                let end = offs_v[j - 1];
+                let verts = if start == 0 && end == max_end && j == offs_v.len() {
+                    std::mem::take(&mut conn_v)
+                } else {
+                    conn_v[start as usize..end as usize].to_vec()
+                };
+                self.b
+                    .push_cells(kind, verts)
+                    .map_err(|e| perr(path, conn.pos, format!("<{sec}> cell {i}: {e}")))?;
+                let first = self.n_file_cells;
+                self.n_file_cells += (j - i) as u64;
+                if self.n_file_cells > u32::MAX as u64 {
+                    return Err(perr(path, conn.pos, "more than 2^32 cells in one file"));
+                }
+                self.origin.extend(first as u32..self.n_file_cells as u32);
+                (start, i) = (end, j);
+                continue;
+            }
+            let end = offs_v[i];
             if end < start || end > conn_v.len() as u64 {
                 return Err(perr(
                     path,
@@ -485,12 +521,7 @@ impl Assembly {
                     ),
                 ));
             }
-            verts.clear();
-            verts.extend(
-                conn_v[start as usize..end as usize]
-                    .iter()
-                    .map(|&v| (v + base) as u32),
-            );
+            let verts = &conn_v[start as usize..end as usize];
             start = end;
             let ty = match (&types_v, sec) {
                 (Some(t), _) => t[i],
@@ -500,13 +531,14 @@ impl Assembly {
                 _ => 7,
             };
             let before = self.b.n_cells();
-            push_cell(&mut self.b, &mut self.stats, ty, &verts)
+            push_cell(&mut self.b, &mut self.stats, ty, verts)
                 .map_err(|e| perr(path, conn.pos, format!("<{sec}> cell {i}: {e}")))?;
             let file_cell = u32::try_from(self.n_file_cells)
                 .map_err(|_| perr(path, conn.pos, "more than 2^32 cells in one file"))?;
             self.origin
                 .extend((before..self.b.n_cells()).map(|_| file_cell));
             self.n_file_cells += 1;
+            i += 1;
         }
         Ok(())
     }
@@ -804,11 +836,6 @@ fn decode<T>(
     mut conv: impl FnMut(usize, Val) -> Result<T, String>,
 ) -> Result<Vec<T>, IoError> {
     let mut out: Vec<T> = Vec::new();
-    let mut f = |v: Val| {
-        let x = conv(out.len(), v)?;
-        out.push(x);
-        Ok::<(), String>(())
-    };
     let Some((width, kind)) = type_info(&a.ty) else {
         return Err(perr(
             path,
@@ -827,6 +854,11 @@ fn decode<T>(
         )
     };
     if a.format == "ascii" {
+        let mut f = |v: Val| {
+            let x = conv(out.len(), v)?;
+            out.push(x);
+            Ok::<(), String>(())
+        };
         for tok in a.text.split_ascii_whitespace() {
             let v = match kind {
                 Kind::Float => fast_float2::parse::<f64, _>(tok).ok().map(Val::F),
@@ -840,36 +872,7 @@ fn decode<T>(
         }
         return Ok(out);
     }
-    let bytes: Cow<'_, [u8]> = match a.format.as_str() {
-        "binary" => {
-            let t: String = a.text.split_ascii_whitespace().collect();
-            Cow::Owned(decode_base64_array(t.as_bytes(), h).map_err(here)?)
-        }
-        "appended" => {
-            let Some(app) = app else {
-                return Err(here(
-                    "format=\"appended\" but the file has no <AppendedData>".into(),
-                ));
-            };
-            let Some(off) = a.offset else {
-                return Err(here("format=\"appended\" without an offset".into()));
-            };
-            let Some(at) = app.start.checked_add(off).filter(|&s| s <= app.data.len()) else {
-                return Err(here(format!("offset {off} is past the end of the file")));
-            };
-            let rest = &app.data[at..];
-            if app.base64 {
-                Cow::Owned(decode_base64_array(base64_prefix(rest), h).map_err(here)?)
-            } else {
-                decode_raw_array(rest, h).map_err(here)?
-            }
-        }
-        other => {
-            return Err(here(format!(
-                "unknown format '{other}' (expected ascii, binary or appended)"
-            )))
-        }
-    };
+    let bytes = array_bytes(a, h, app, path)?;
     if !bytes.len().is_multiple_of(width) {
         return Err(here(format!(
             "{} bytes of data are not whole {} values",
@@ -915,6 +918,52 @@ fn decode<T>(
     Ok(out)
 }
 
+/// The bytes of a binary (base64) or appended array, decoded and inflated.
+fn array_bytes<'d>(
+    a: &ArraySpec<'_>,
+    h: &Header,
+    app: Option<&Appended<'d>>,
+    path: &Path,
+) -> Result<Cow<'d, [u8]>, IoError> {
+    let here = |m: String| {
+        perr(
+            path,
+            a.pos,
+            format!("array '{}' in <{}>: {m}", a.name, a.section),
+        )
+    };
+    Ok(match a.format.as_str() {
+        "binary" => {
+            let t: String = a.text.split_ascii_whitespace().collect();
+            Cow::Owned(decode_base64_array(t.as_bytes(), h).map_err(here)?)
+        }
+        "appended" => {
+            let Some(app) = app else {
+                return Err(here(
+                    "format=\"appended\" but the file has no <AppendedData>".into(),
+                ));
+            };
+            let Some(off) = a.offset else {
+                return Err(here("format=\"appended\" without an offset".into()));
+            };
+            let Some(at) = app.start.checked_add(off).filter(|&s| s <= app.data.len()) else {
+                return Err(here(format!("offset {off} is past the end of the file")));
+            };
+            let rest = &app.data[at..];
+            if app.base64 {
+                Cow::Owned(decode_base64_array(base64_prefix(rest), h).map_err(here)?)
+            } else {
+                decode_raw_array(rest, h).map_err(here)?
+            }
+        }
+        other => {
+            return Err(here(format!(
+                "unknown format '{other}' (expected ascii, binary or appended)"
+            )))
+        }
+    })
+}
+
 /// A token shortened for an error message.
 fn shown(tok: &str) -> String {
     tok.chars().take(40).collect()
@@ -958,6 +1007,62 @@ fn decode_index(
         }
         Ok(x)
     })
+}
+
+/// The values of a binary or appended integer array when every one is in `0..limit` (else
+/// `None`: [`decode_index`] then names the bad value), each mapped by `f`: one tight loop per
+/// type, without the per-value checks of the general decoder.
+fn fast_index<T: Send>(
+    a: &ArraySpec<'_>,
+    h: &Header,
+    app: Option<&Appended<'_>>,
+    path: &Path,
+    limit: u64,
+    f: impl Fn(u64) -> T + Sync,
+) -> Option<Vec<T>> {
+    use rayon::prelude::*;
+    let (width, kind) = type_info(&a.ty)?;
+    if a.format == "ascii" || kind == Kind::Float {
+        return None;
+    }
+    let bytes = array_bytes(a, h, app, path).ok()?;
+    if !bytes.len().is_multiple_of(width) {
+        return None;
+    }
+    let be = h.big_endian;
+    macro_rules! each {
+        ($t:ty) => {{
+            const W: usize = std::mem::size_of::<$t>();
+            let get = |c: &[u8]| {
+                let b: [u8; W] = c.try_into().expect("W bytes");
+                if be {
+                    <$t>::from_be_bytes(b)
+                } else {
+                    <$t>::from_le_bytes(b)
+                }
+            };
+            // (negative values of signed types wrap to huge ones: out of range)
+            let ok = bytes
+                .par_chunks(W << 16)
+                .all(|p| p.chunks_exact(W).all(|c| (get(c) as u64) < limit));
+            ok.then(|| {
+                bytes
+                    .par_chunks_exact(W)
+                    .map(|c| f(get(c) as u64))
+                    .collect()
+            })
+        }};
+    }
+    match (kind, width) {
+        (Kind::UInt, 1) => each!(u8),
+        (Kind::UInt, 2) => each!(u16),
+        (Kind::UInt, 4) => each!(u32),
+        (Kind::UInt, _) => each!(u64),
+        (Kind::Int, 1) => each!(i8),
+        (Kind::Int, 2) => each!(i16),
+        (Kind::Int, 4) => each!(i32),
+        (_, _) => each!(i64),
+    }
 }
 
 /// The base64 characters at the start of `rest` (until the first byte that is not base64).

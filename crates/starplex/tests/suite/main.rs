@@ -12,6 +12,7 @@ mod io_attrs_more;
 mod io_binary;
 mod io_binary_mesh;
 mod io_broken;
+mod io_fast_paths;
 mod io_garbage;
 mod io_higher_order;
 mod io_mutations;
