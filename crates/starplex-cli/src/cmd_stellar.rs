@@ -172,7 +172,12 @@ pub fn run(ctx: &Ctx, a: &StellarArgs) -> Result<(), CliError> {
     }
     if let Some(out) = &a.save {
         let t1 = Instant::now();
-        t.save(out).map_err(|e| CliError::Other(e.to_string()))?;
+        // with the mesh's coordinates, so that the saved tree also reads as the mesh
+        match &k {
+            Some(k) => t.save_with_coords(out, k.coords()),
+            None => t.save(out),
+        }
+        .map_err(|e| CliError::Other(e.to_string()))?;
         timings["save_s"] = json!(t1.elapsed().as_secs_f64());
     }
     if a.json {

@@ -238,22 +238,6 @@ pub fn progress_bar(ctx: &Ctx, len: u64, msg: &str) -> indicatif::ProgressBar {
 pub fn load(ctx: &Ctx, args: &InputArgs) -> Result<ReadResult, CliError> {
     let opts = args.read_options()?;
     let name = args.file.display().to_string();
-    // (regular files only: peeking at a pipe would eat what the reader needs)
-    if std::fs::metadata(&args.file).is_ok_and(|m| m.is_file())
-        && starplex::stellar::is_saved_tree(&args.file)
-    {
-        return Err(CliError::Input(
-            format!(
-                "{name} is a saved Stellar tree: it holds the tree and the cells, not the \
-                 coordinates of a mesh, so this command cannot read it"
-            ),
-            Some(
-                "pass the mesh it was built from; `stellar`, `validate` and `query --structure \
-                 stellar` read saved trees"
-                    .into(),
-            ),
-        ));
-    }
     let r = with_spinner(ctx, &format!("reading {name}"), || {
         io::read(&args.file, &opts)
     })?;

@@ -107,6 +107,11 @@ pub enum Format {
     Sierp,
     /// `.hex` (Stellar reference: hexahedra, 1-based, its own corner order).
     Hex,
+    /// A Stellar tree saved by `starplex stellar MESH --save OUT` (named `stellar-tree`;
+    /// recognised by its magic whatever its name): read as the complex it was built from when
+    /// it was saved with the coordinates ([`StellarTree::to_complex`](crate::stellar::StellarTree::to_complex)).
+    /// Written by `stellar --save`, not by [`write()`].
+    StellarTree,
 }
 
 impl Format {
@@ -114,13 +119,13 @@ impl Format {
     ///
     /// ```
     /// use starplex::io::Format;
-    /// assert_eq!(Format::ALL.len(), 21);
+    /// assert_eq!(Format::ALL.len(), 22);
     /// let writable: Vec<String> = Format::ALL.iter().filter(|f| f.can_write()).map(|f| f.to_string()).collect();
     /// assert_eq!(writable, ["spx", "spb", "off", "off-simplices", "ply", "obj", "stl", "stl-binary",
     ///                       "mesh", "vtk", "vtk-polydata", "vtu", "vtp", "msh", "msh22", "msh-binary",
     ///                       "msh22-binary"]);
     /// ```
-    pub const ALL: [Format; 21] = [
+    pub const ALL: [Format; 22] = [
         Format::Spx,
         Format::Binary,
         Format::Off,
@@ -142,6 +147,7 @@ impl Format {
         Format::Ts,
         Format::Sierp,
         Format::Hex,
+        Format::StellarTree,
     ];
 
     /// The format named by a file's extension (case-insensitive).
@@ -191,6 +197,7 @@ impl Format {
             "ts" => Format::Ts,
             "sierp" => Format::Sierp,
             "hex" => Format::Hex,
+            "stellar-tree" | "tree" => Format::StellarTree,
             _ => return None,
         })
     }
@@ -275,6 +282,7 @@ impl Format {
             Format::Ts => "ts",
             Format::Sierp => "sierp",
             Format::Hex => "hex",
+            Format::StellarTree => "tree",
         }
     }
 
@@ -286,7 +294,10 @@ impl Format {
     /// assert!(!Format::Hex.can_write()); // the Stellar reference formats are read only
     /// ```
     pub fn can_write(self) -> bool {
-        !matches!(self, Format::Tri | Format::Ts | Format::Sierp | Format::Hex)
+        !matches!(
+            self,
+            Format::Tri | Format::Ts | Format::Sierp | Format::Hex | Format::StellarTree
+        )
     }
 
     /// The attributes of `a` that a file of this format cannot hold (`kind name`, e.g.
@@ -716,9 +727,14 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
         r.notes.push("decompressed gzip input".into());
         return Ok(r);
     }
-    let format = match named.or_else(|| Format::sniff(head)) {
-        Some(f) => f,
-        None => return Err(unknown()),
+    // a saved Stellar tree whatever its name (`.tree`, `.stl`, ...), unless a format is asked
+    let saved_tree = head.starts_with(crate::stellar::SAVED_TREE_MAGIC);
+    let format = match opts.format {
+        None if saved_tree => Format::StellarTree,
+        _ => match named.or_else(|| Format::sniff(head)) {
+            Some(f) => f,
+            None => return Err(unknown()),
+        },
     };
     let mut r = match format {
         Format::Spx => spx::read(path, opts),
@@ -743,12 +759,38 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<ReadResult, IoError> {
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             stellar_ref::read(path, format, opts)
         }
+        Format::StellarTree => read_saved_tree(path),
     }?;
     if !matches!(format, Format::Vtu | Format::Vtp) {
         // (a VTK XML file says itself whether it is an unstructured grid or poly data)
         r.format = format;
     }
     Ok(r)
+}
+
+/// The complex of a saved Stellar tree (its vertices, cells and attributes in the numbering of
+/// the mesh it was built from).
+fn read_saved_tree(path: &Path) -> Result<ReadResult, IoError> {
+    let fail = |reason: String, hint: &str| IoError::parse(path, None, format!("{reason}; {hint}"));
+    let t = crate::stellar::StellarTree::load(path).map_err(|e| {
+        fail(
+            e.to_string(),
+            "rebuild it with `starplex stellar MESH --save OUT`",
+        )
+    })?;
+    let complex = t.to_complex().map_err(|e| {
+        fail(
+            e.to_string(),
+            "save it again from its mesh (`starplex stellar MESH --save OUT` now saves the \
+             coordinates), or use a verb that reads trees (`stellar`, `validate`, `query \
+             --structure stellar`)",
+        )
+    })?;
+    Ok(ReadResult {
+        complex,
+        format: Format::StellarTree,
+        notes: vec!["read the complex a saved Stellar tree was built from".into()],
+    })
 }
 
 /// The first two bytes of a gzip stream.
@@ -823,7 +865,7 @@ pub fn read_stream(
         Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
             stellar_ref::read_from(r, path, format, opts)
         }
-        Format::Binary | Format::Stl | Format::StlBinary => {
+        Format::Binary | Format::Stl | Format::StlBinary | Format::StellarTree => {
             Err(IoError::new(path, IoErrorKind::NeedsFile(format)))
         }
     }?;
@@ -888,7 +930,7 @@ pub fn write(path: &Path, complex: &IndexedComplex, format: Option<Format>) -> R
         Format::Gmsh22 => atomic_write(path, |w| gmsh::write_22(w, complex)),
         Format::GmshBinary => atomic_write(path, |w| gmsh::write_binary(w, complex)),
         Format::Gmsh22Binary => atomic_write(path, |w| gmsh::write_22_binary(w, complex)),
-        Format::Tri | Format::Ts | Format::Sierp | Format::Hex => {
+        Format::Tri | Format::Ts | Format::Sierp | Format::Hex | Format::StellarTree => {
             unreachable!("refused by check_writable")
         }
     }
@@ -938,6 +980,10 @@ pub fn check_writable(complex: &IndexedComplex, format: Format) -> Result<(), Io
                 "starplex reads this format but does not write it; it writes {}",
                 Format::writable_names()
             ),
+        }),
+        Format::StellarTree => Err(IoErrorKind::CannotWrite {
+            format,
+            reason: "`starplex stellar MESH --save OUT` writes saved trees".into(),
         }),
     }
 }

@@ -139,6 +139,7 @@ pub(super) fn build(
     };
     Ok(StellarTree {
         attrs,
+        coords: None,
         ambient_dim: n as u32,
         kv,
         split,

@@ -175,6 +175,15 @@ pub enum StellarError {
     /// A vertex id out of range.
     #[error("vertex {0} out of range ({1} vertices)")]
     NoSuchVertex(u32, usize),
+    /// The complex asked of a tree that holds no coordinates.
+    #[error(
+        "the Stellar tree holds no coordinates: it was built in memory, or saved by a starplex \
+         that did not save them"
+    )]
+    NoCoordinates,
+    /// The complex of a loaded tree failed the complex's checks.
+    #[error("rebuilding the complex of the Stellar tree: {0}")]
+    Rebuild(String),
     /// A bad or truncated tree file.
     #[error("stellar tree file {path}: {reason}")]
     File {
@@ -386,6 +395,9 @@ pub struct StellarTree {
     /// The input's attributes, in tree order (vertex columns by tree vertex id, cell columns by
     /// tree cell id).
     pub(crate) attrs: crate::attr::Attributes,
+    /// The vertices' coordinates in tree order, when the tree was loaded from a file saved with
+    /// them ([`StellarTree::save_with_coords`]); a tree built from a complex leaves them there.
+    pub(crate) coords: Option<Vec<f64>>,
 }
 
 impl StellarTree {
@@ -763,6 +775,90 @@ impl StellarTree {
             .gather_vertices(&self.v_new)
             .gather_cells(&self.c_new)
     }
+    /// The complex the tree was built from, in the input's numbering (vertices, cells and
+    /// attributes), when the tree holds the coordinates (a tree saved by
+    /// [`save_with_coords`](Self::save_with_coords), as `starplex stellar MESH --save OUT`
+    /// does, and loaded). The verbs that need a mesh read a saved tree through this.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// assert!(t.to_complex().is_err()); // built in memory: the complex is the caller's
+    /// let path = std::env::temp_dir().join(format!("starplex-doc-tocomplex-{}.tree", std::process::id()));
+    /// t.save_with_coords(&path, k.coords()).unwrap();
+    /// let u = StellarTree::load(&path).unwrap();
+    /// assert_eq!(u.to_complex().unwrap(), k);
+    /// # std::fs::remove_file(&path).ok();
+    /// ```
+    ///
+    /// # Errors
+    /// [`StellarError::NoCoordinates`] when the tree holds no coordinates.
+    pub fn to_complex(&self) -> Result<crate::complex::IndexedComplex, StellarError> {
+        let Some(tc) = &self.coords else {
+            return Err(StellarError::NoCoordinates);
+        };
+        let d = self.ambient_dim as usize;
+        let mut coords = vec![0.0; tc.len()];
+        for (t, p) in tc.chunks_exact(d).enumerate() {
+            let v = self.v_orig[t] as usize;
+            coords[d * v..d * v + d].copy_from_slice(p);
+        }
+        let re = |e: crate::complex::ComplexError| StellarError::Rebuild(e.to_string());
+        let mut b = crate::complex::ComplexBuilder::new(d).map_err(re)?;
+        b.push_vertices(coords).map_err(re)?;
+        let mut run: Option<(crate::cell::CellKind, Vec<u32>)> = None;
+        for &tcell in &self.c_new {
+            let (kind, verts) = self.cells.get(tcell);
+            match &mut run {
+                Some((k, v)) if *k == kind => {
+                    v.extend(verts.iter().map(|&x| self.v_orig[x as usize]))
+                }
+                _ => {
+                    if let Some((k, v)) = run.take() {
+                        b.push_cells(k, v).map_err(re)?;
+                    }
+                    run = Some((
+                        kind,
+                        verts.iter().map(|&x| self.v_orig[x as usize]).collect(),
+                    ));
+                }
+            }
+        }
+        if let Some((k, v)) = run {
+            b.push_cells(k, v).map_err(re)?;
+        }
+        b.set_attributes(self.input_attributes());
+        let opts = crate::complex::BuildOptions {
+            trust_maximality: true,
+            ..Default::default()
+        };
+        Ok(b.build(&opts).map_err(re)?.0)
+    }
+
+    /// Whether the tree holds its vertices' coordinates (see [`to_complex`](Self::to_complex)).
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(1).unwrap();
+    /// # for p in [[0.0], [1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(1), &[0, 1]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+    /// assert!(!t.has_coords());
+    /// ```
+    pub fn has_coords(&self) -> bool {
+        self.coords.is_some()
+    }
+
     /// Permutation input cell id -> tree cell id.
     ///
     /// ```

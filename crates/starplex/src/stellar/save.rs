@@ -70,6 +70,8 @@ const VERSION_ATTRS: u64 = 2;
 const N_HEADER: usize = 13;
 /// Flags word: the vertices were split by connectivity ([`Decomposition::Graph`]).
 const FLAG_GRAPH: u64 = 1;
+/// Flags word: the vertices' coordinates follow the cell permutation (tree order).
+const FLAG_COORDS: u64 = 2;
 /// The header's kind code for a tree whose cells have several kinds (per-cell codes follow).
 const MIXED: u8 = 255;
 
@@ -103,6 +105,55 @@ impl StellarTree {
     /// # std::fs::remove_file(&path).ok();
     /// ```
     pub fn save(&self, path: &Path) -> Result<(), crate::io::IoError> {
+        self.save_coords(path, self.coords.as_deref())
+    }
+
+    /// [`save`](Self::save) with the vertices' coordinates (`coords`, in the input's vertex
+    /// order, as [`IndexedComplex::coords`](crate::complex::IndexedComplex::coords) gives
+    /// them): the saved tree then also reads back as its complex
+    /// ([`to_complex`](Self::to_complex)), so `info` and `convert` take it like a mesh.
+    ///
+    /// ```
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # use starplex::stellar::{StellarTree, StellarOptions};
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let t = StellarTree::build(&k, &StellarOptions { kv: Some(1), ..Default::default() }).unwrap();
+    /// let path = std::env::temp_dir().join(format!("starplex-doc-savec-{}.tree", std::process::id()));
+    /// t.save_with_coords(&path, k.coords()).unwrap();
+    /// assert!(StellarTree::load(&path).unwrap().has_coords());
+    /// assert!(t.save_with_coords(&path, &[0.0]).is_err()); // not 4 points of 2 coordinates
+    /// # std::fs::remove_file(&path).ok();
+    /// ```
+    ///
+    /// # Errors
+    /// A coordinate array of another length than vertices × ambient dimension; the writer's
+    /// errors.
+    pub fn save_with_coords(&self, path: &Path, coords: &[f64]) -> Result<(), crate::io::IoError> {
+        let d = self.ambient_dim as usize;
+        if coords.len() != d * self.v_orig.len() {
+            return Err(crate::io::IoError::new(
+                path,
+                std::io::Error::other(format!(
+                    "{} coordinates for {} vertices of {d} coordinates",
+                    coords.len(),
+                    self.v_orig.len()
+                )),
+            ));
+        }
+        let mut tree_order = Vec::with_capacity(coords.len());
+        for &v in &self.v_orig {
+            tree_order.extend_from_slice(&coords[d * v as usize..d * v as usize + d]);
+        }
+        self.save_coords(path, Some(&tree_order))
+    }
+
+    /// Writes the tree, with `coords` (tree order) when given.
+    fn save_coords(&self, path: &Path, coords: Option<&[f64]>) -> Result<(), crate::io::IoError> {
         crate::io::atomic_write(path, |w| {
             w.write_all(MAGIC)?;
             let split = match self.split {
@@ -127,7 +178,8 @@ impl StellarTree {
                 self.cells.verts.len() as u64,
                 self.cells.uniform.map_or(MIXED, kind_code) as u64,
                 self.cells.stride as u64,
-                u64::from(self.decomposition == Decomposition::Graph) * FLAG_GRAPH,
+                (u64::from(self.decomposition == Decomposition::Graph) * FLAG_GRAPH)
+                    | (u64::from(coords.is_some()) * FLAG_COORDS),
             ];
             write_arr(w, &header)?;
             write_arr(w, &self.bbox.0)?;
@@ -143,6 +195,9 @@ impl StellarTree {
             write_arr(w, &self.cells.verts)?;
             write_arr(w, &self.v_orig)?;
             write_arr(w, &self.c_orig)?;
+            if let Some(c) = coords {
+                write_arr(w, c)?;
+            }
             if !self.attrs.is_empty() {
                 super::save_attrs::write(w, &self.attrs)?;
             }
@@ -206,6 +261,18 @@ impl StellarTree {
         let verts = r.arr::<u32>(h.nrefs)?;
         let v_orig = r.arr::<u32>(h.nv)?;
         let c_orig = r.arr::<u32>(h.nc)?;
+        let coords = if h.coords {
+            let c = r.arr::<f64>(h.amb * h.nv)?;
+            if let Some(i) = c.iter().position(|x| !x.is_finite()) {
+                return Err(err(format!(
+                    "tree vertex {} has a non-finite coordinate",
+                    i / h.amb.max(1)
+                )));
+            }
+            Some(c)
+        } else {
+            None
+        };
         let attrs = if h.version == VERSION_ATTRS {
             let a = super::save_attrs::read(&mut |n| r.bytes(n), h.nv, h.nc, &err)?;
             if r.pos != r.data.len() {
@@ -257,6 +324,7 @@ impl StellarTree {
             c_orig,
             c_new,
             timings: BuildTimings::default(),
+            coords,
             attrs,
         })
     }
@@ -277,6 +345,8 @@ struct Header {
     uniform: u8,
     stride: u32,
     decomposition: Decomposition,
+    /// The coordinates follow the cell permutation.
+    coords: bool,
 }
 
 /// The error of [`StellarTree::load`] for one reason.
@@ -315,7 +385,7 @@ impl Header {
         let nrefs = lim(h[9], "vertex references", u32::MAX as u64)?;
         let uniform = lim(h[10], "kind code", 255)? as u8;
         let stride = lim(h[11], "stride", 65)? as u32;
-        if h[12] & !FLAG_GRAPH != 0 {
+        if h[12] & !(FLAG_GRAPH | FLAG_COORDS) != 0 {
             return Err(err(format!("unknown flags {:#x}", h[12])));
         }
         let decomposition = if h[12] & FLAG_GRAPH != 0 {
@@ -337,6 +407,7 @@ impl Header {
             uniform,
             stride,
             decomposition,
+            coords: h[12] & FLAG_COORDS != 0,
         })
     }
 

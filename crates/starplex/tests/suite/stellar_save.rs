@@ -38,8 +38,32 @@ fn round_trip_and_damaged_files() {
         assert_eq!(u.cell_to_input(), t.cell_to_input());
         assert_eq!(u.stats(), t.stats());
         assert_eq!(u.validate(), t.validate());
+        // without coordinates the tree is no mesh; saved with them, it reads back as the mesh
+        assert!(u.to_complex().is_err());
+        let pc = dir.join(format!("c{kv}.stl"));
+        t.save_with_coords(&pc, k.coords()).unwrap();
+        let uc = StellarTree::load(&pc).unwrap();
+        assert_eq!(uc.to_complex().unwrap(), k);
+        assert_eq!(uc.vt_all(), t.vt_all());
+        uc.save(&p).unwrap(); // re-saved, still with them
+        assert_eq!(std::fs::read(&p).unwrap(), std::fs::read(&pc).unwrap());
+        t.save(&p).unwrap();
         if kv != 7 {
             continue;
+        }
+        let bytes = std::fs::read(&pc).unwrap();
+        let bad = dir.join("bad.stl");
+        for cut in (0..bytes.len()).step_by(31) {
+            std::fs::write(&bad, &bytes[..cut]).unwrap();
+            assert!(StellarTree::load(&bad).is_err(), "cut at {cut}");
+        }
+        for i in (0..bytes.len()).step_by(11) {
+            let mut b2 = bytes.clone();
+            b2[i] ^= 0xA5;
+            std::fs::write(&bad, &b2).unwrap();
+            if let Ok(t2) = StellarTree::load(&bad) {
+                let _ = t2.to_complex();
+            }
         }
         // every truncation and a sweep of single-byte corruptions: an error or a tree, no panic
         let bytes = std::fs::read(&p).unwrap();
