@@ -10,7 +10,7 @@ secs=${1:-60}
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-    targets=(spx off stellar_ref medit vtk gmsh obj ply stl spb surface vtu gzip)
+    targets=(spx off stellar_ref medit vtk gmsh obj ply stl spb surface vtu gzip tree)
 fi
 export RUSTC_BOOTSTRAP=1
 status=0
