@@ -462,6 +462,18 @@ impl Header {
         if let Some(v) = verts.iter().find(|&&v| v as usize >= nv) {
             return Err(err(format!("vertex index {v} out of range")));
         }
+        // a tree is built from a checked complex: no cell repeats a vertex
+        let distinct = |c: &[u32]| (1..c.len()).all(|i| !c[..i].contains(&c[i]));
+        let repeated = if uniform == MIXED {
+            (0..nc).find(|&c| !distinct(&verts[offsets[c] as usize..offsets[c + 1] as usize]))
+        } else {
+            verts
+                .chunks_exact(stride as usize)
+                .position(|c| !distinct(c))
+        };
+        if let Some(c) = repeated {
+            return Err(err(format!("cell {c} repeats a vertex")));
+        }
         Ok(())
     }
 

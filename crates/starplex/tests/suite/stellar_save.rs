@@ -86,3 +86,15 @@ fn round_trip_and_damaged_files() {
     assert!(StellarTree::load(&dir.join("missing.stl")).is_err());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_saved_cell_that_repeats_a_vertex_is_refused() {
+    // found by the `tree` fuzz target: a tetrahedron listing a vertex twice passed the loader's
+    // range checks, and validation then looked for a fourth vertex that was not there
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/stellar/repeated_vertex.tree");
+    let e = StellarTree::load(&p).unwrap_err();
+    assert!(e.to_string().contains("repeats a vertex"), "{e}");
+    let e = starplex::io::read(&p, &Default::default()).unwrap_err();
+    assert!(e.to_string().contains("repeats a vertex"), "{e}");
+}
