@@ -739,6 +739,21 @@ pub fn sort_flat<T: Ord + Copy>(v: &mut Vec<T>, stride: usize) {
     *v = out;
 }
 
+/// Three vertex ids sorted by a three-comparison sorting network, by value (so the ids stay in
+/// registers: the triangle keys of the per-leaf and per-star passes, once per triangle on hot
+/// paths).
+///
+/// ```
+/// assert_eq!(starplex::topo::sort3([7, 2, 5]), [2, 5, 7]);
+/// ```
+#[inline]
+pub fn sort3([a, b, c]: [u32; 3]) -> [u32; 3] {
+    let (a, b) = (a.min(b), a.max(b));
+    let (b, c) = (b.min(c), b.max(c));
+    let (a, b) = (a.min(b), a.max(b));
+    [a, b, c]
+}
+
 /// Sorts a simplex given in any order and checks it has no repeated vertex.
 ///
 /// # Errors

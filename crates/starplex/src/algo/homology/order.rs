@@ -447,16 +447,8 @@ impl Flat {
         match self.uniform {
             Some(k) if k.is_simplex() && self.arity == 3 => {
                 for c in self.verts.chunks_exact_mut(3) {
-                    // a sorting network
-                    if c[0] > c[1] {
-                        c.swap(0, 1);
-                    }
-                    if c[1] > c[2] {
-                        c.swap(1, 2);
-                    }
-                    if c[0] > c[1] {
-                        c.swap(0, 1);
-                    }
+                    let t = crate::topo::sort3([c[0], c[1], c[2]]);
+                    c.copy_from_slice(&t);
                 }
             }
             Some(k) if k.is_simplex() && self.arity > 0 => {

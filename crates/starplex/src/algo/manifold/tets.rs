@@ -224,15 +224,7 @@ impl TetScratch {
             }
             // a cell with a repeated vertex (only in a damaged tree file)
             degenerate |= m != 3;
-            if t[0] > t[1] {
-                t.swap(0, 1);
-            }
-            if t[1] > t[2] {
-                t.swap(1, 2);
-            }
-            if t[0] > t[1] {
-                t.swap(0, 1);
-            }
+            t = crate::topo::sort3(t);
             tri.push(t);
         }
         for &h in lslot.iter() {

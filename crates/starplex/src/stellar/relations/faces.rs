@@ -376,15 +376,7 @@ impl StellarTree {
                             for y in x + 1..stride {
                                 for z in y + 1..stride {
                                     let mut t = [vs[x], vs[y], vs[z]];
-                                    if t[0] > t[1] {
-                                        t.swap(0, 1);
-                                    }
-                                    if t[1] > t[2] {
-                                        t.swap(1, 2);
-                                    }
-                                    if t[0] > t[1] {
-                                        t.swap(0, 1);
-                                    }
+                                    t = crate::topo::sort3(t);
                                     if t[0] < lo || t[0] >= hi {
                                         continue;
                                     }
