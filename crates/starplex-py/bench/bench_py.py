@@ -36,6 +36,24 @@ def rss_mb():
     return float("nan")
 
 
+# anonymous resident memory a Complex adds, from two .npy files: "shared" reads them as
+# read-only memory maps, "copy" as ordinary arrays
+CHILD = """
+import json, sys, numpy as np, starplex
+def anon():
+    for line in open("/proc/self/status"):
+        if line.startswith("RssAnon:"):
+            return int(line.split()[1]) / 1024
+p = np.load(sys.argv[1], mmap_mode="r")
+t = np.load(sys.argv[2], mmap_mode="r")
+if sys.argv[3] == "copy":
+    p, t = np.array(p), np.array(t)
+r0 = anon()
+c = starplex.Complex(p, t)
+print(json.dumps({"grew_mb": anon() - r0}))
+"""
+
+
 def emit(**kw):
     print(json.dumps(kw), flush=True)
 
@@ -49,7 +67,7 @@ def main():
     name = os.path.basename(a.mesh)
 
     t_read, c = best(lambda: starplex.read(a.mesh), 1)
-    pts = c.points
+    pts = np.array(c.points)  # writeable float64 (c.points is a read-only view, shared)
     cells = c.cells.astype(np.int64)  # what numpy users usually hold
     k = cells.shape[1]
     emit(bench="read", mesh=name, s=t_read, n_vertices=c.n_vertices, n_cells=c.n_cells)
@@ -78,6 +96,32 @@ def main():
     except ImportError:
         row.update(gudhi="not installed")
     emit(**row)
+
+    # 1b. the same arrays as read-only memory maps (float64 points, uint32 cells): shared, not
+    # copied; anonymous resident memory of the complex against the copying build
+    tmp = os.path.join("/tmp", f"bench-py-{os.getpid()}")
+    os.makedirs(tmp, exist_ok=True)
+    np.save(os.path.join(tmp, "p.npy"), pts)
+    np.save(os.path.join(tmp, "t.npy"), cells.astype(np.uint32))
+    mp = np.load(os.path.join(tmp, "p.npy"), mmap_mode="r")
+    mt = np.load(os.path.join(tmp, "t.npy"), mmap_mode="r")
+    t_sh, c3 = best(lambda: starplex.Complex(mp, mt), a.repeat)
+    shared = bool(np.shares_memory(c3.points, mp) and np.shares_memory(c3.cells, mt))
+    del c2, c3
+    growth = {}  # measured in a fresh child process each: this one has freed memory to reuse
+    for what in ["copy", "shared"]:
+        out = subprocess.run([sys.executable, "-c", CHILD, os.path.join(tmp, "p.npy"),
+                              os.path.join(tmp, "t.npy"), what],
+                             capture_output=True, text=True, check=True)
+        growth[what] = json.loads(out.stdout)["grew_mb"]
+    emit(bench="build_from_memory_maps", mesh=name, starplex_complex_shared_s=t_sh,
+         starplex_complex_copied_s=t_cx, shares_memory=shared,
+         arrays_mb=(pts.nbytes + len(cells) * k * 4) / 2**20,
+         anon_growth_copied_mb=growth["copy"], anon_growth_shared_mb=growth["shared"])
+    del mp, mt
+    for f in ["p.npy", "t.npy"]:
+        os.remove(os.path.join(tmp, f))
+    os.rmdir(tmp)
 
     # 2. VT of every vertex as CSR vs trimesh's vertex_faces
     s = starplex.IaStar(c)

@@ -1,10 +1,12 @@
 //! Python bindings of starplex: the `starplex._starplex` extension module, re-exported by the
 //! pure-Python package `starplex` (see `python/starplex/__init__.py` and its `.pyi` stubs).
 //!
-//! The binding is thin: arrays in are checked and copied into an [`IndexedComplex`], every query
-//! goes through [`starplex::topo::batch`] (the same code as `starplex query --all --out`), and
-//! answers leave as NumPy arrays that take ownership of the Rust vectors (no copy). Every call
-//! that does real work releases the GIL.
+//! The binding is thin: arrays in are checked and copied into an [`IndexedComplex`], or shared
+//! when their memory is immutable (see `frozen`); every query goes through
+//! [`starplex::topo::batch`] (the same code as `starplex query --all --out`); answers leave as
+//! NumPy arrays that take ownership of the Rust vectors, and a complex's points and cells as
+//! read-only views of its memory (no copy either way). Every call that does real work releases
+//! the GIL.
 #![allow(clippy::useless_conversion)] // pyo3's generated code
 
 mod attrs;
@@ -83,7 +85,9 @@ fn query_err(e: QueryError) -> PyErr {
 /// An integer array of ids, checked (non-negative, below `u32::MAX`) and copied to `u32`,
 /// with its shape. Anything NumPy can turn into an integer array is accepted; floats, bools,
 /// strings and ragged lists are refused with a message naming `what`.
-fn index_array(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<u32>, Vec<usize>)> {
+/// Integer ids as `u32`: a read-only, C-contiguous `uint32` array whose memory nobody can
+/// write ([`frozen`]) is shared without a copy; anything else is checked and copied.
+fn index_array(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Buf<u32>, Vec<usize>)> {
     let py = obj.py();
     let np = py.import("numpy")?;
     let arr = np
@@ -94,7 +98,7 @@ fn index_array(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<u32>, Vec<us
         .map_err(|_| PyTypeError::new_err(format!("{what}: not an array")))?;
     let shape = a.shape().to_vec();
     if a.len() == 0 {
-        return Ok((Vec::new(), shape));
+        return Ok((Buf::default(), shape));
     }
     let kind = a.dtype().kind();
     let (unsigned, signed) = (kind == b'u', kind == b'i');
@@ -111,13 +115,27 @@ fn index_array(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<u32>, Vec<us
             "{what}{pos}: {v} is not a valid id (ids are 0 ..= {max})"
         ))
     };
+    if let Ok(a32) = arr.cast::<numpy::PyArrayDyn<u32>>() {
+        // ids as they are stored: shared when frozen, else one copy
+        let shared = frozen(a32)?.and_then(Buf::<u32>::shared);
+        let c = np.call_method1("ascontiguousarray", (a32,))?;
+        let c = c.cast::<numpy::PyArrayDyn<u32>>()?.readonly();
+        let s = c.as_slice()?;
+        return match py.detach(|| s.iter().position(|&x| x as u64 > max)) {
+            Some(i) => Err(bad(i, s[i].to_string())),
+            None => Ok((shared.unwrap_or_else(|| Buf::from(s.to_vec())), shape)),
+        };
+    }
     if unsigned {
         let c = np.call_method1("ascontiguousarray", (&arr, "uint64"))?;
         let c = c.cast::<numpy::PyArrayDyn<u64>>()?.readonly();
         let s = c.as_slice()?;
         match py.detach(|| s.iter().position(|&x| x > max)) {
             Some(i) => Err(bad(i, s[i].to_string())),
-            None => Ok((py.detach(|| s.iter().map(|&x| x as u32).collect()), shape)),
+            None => Ok((
+                Buf::from(py.detach(|| s.iter().map(|&x| x as u32).collect::<Vec<_>>())),
+                shape,
+            )),
         }
     } else {
         let c = np.call_method1("ascontiguousarray", (&arr, "int64"))?;
@@ -125,9 +143,91 @@ fn index_array(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<u32>, Vec<us
         let s = c.as_slice()?;
         match py.detach(|| s.iter().position(|&x| x < 0 || x as u64 > max)) {
             Some(i) => Err(bad(i, s[i].to_string())),
-            None => Ok((py.detach(|| s.iter().map(|&x| x as u32).collect()), shape)),
+            None => Ok((
+                Buf::from(py.detach(|| s.iter().map(|&x| x as u32).collect::<Vec<_>>())),
+                shape,
+            )),
         }
     }
+}
+
+// ---------------------------------------------------------------- arrays shared, not copied
+
+/// The memory of a NumPy array that nobody can write to, kept alive by a reference to the
+/// array: what a [`Buf::Shared`] of an input borrows.
+struct Frozen {
+    _array: Py<PyAny>,
+    ptr: *const u8,
+    len: usize,
+}
+
+// SAFETY: `ptr .. ptr + len` is the data of `_array`, which this value keeps alive; numpy never
+// moves an array's data, and `frozen` admitted it only when no one can write it (every array on
+// the way to its owner read-only, the owner a read-only buffer). Reading immutable memory from
+// any thread is sound, and pyo3 defers the decref of a `Py` dropped without the GIL.
+unsafe impl Send for Frozen {}
+unsafe impl Sync for Frozen {}
+
+impl starplex::buf::SharedBytes for Frozen {
+    fn bytes(&self) -> &[u8] {
+        // SAFETY: see the `Send`/`Sync` impls: valid, immutable memory for the value's life
+        unsafe { std::slice::from_raw_parts(self.ptr, self.len) }
+    }
+}
+
+/// `a`'s bytes, for sharing without a copy, when `a` is C-contiguous and aligned and its memory
+/// is immutable: `a` and every array it views are read-only, and the memory's owner is not an
+/// array (whose flag could be set back to writeable) but an object with a read-only buffer — a
+/// read-only memory map (`np.load(f, mmap_mode="r")`), `bytes`, or a starplex answer. `None`
+/// otherwise (the caller copies).
+/// A view of a complex (`c.points`, `c.cells`) counts as frozen too.
+fn frozen<T: numpy::Element>(
+    a: &Bound<'_, numpy::PyArrayDyn<T>>,
+) -> PyResult<Option<Arc<dyn starplex::buf::SharedBytes>>> {
+    if !a.is_c_contiguous() || !a.is_aligned() || !a.dtype().is_native_byteorder().unwrap_or(false)
+    {
+        return Ok(None);
+    }
+    let py = a.py();
+    let mut x = a.clone().into_any();
+    while let Ok(arr) = x.cast::<PyUntypedArray>() {
+        let writeable: bool = arr.getattr("flags")?.getattr("writeable")?.extract()?;
+        if writeable {
+            return Ok(None);
+        }
+        let base = arr.getattr("base")?;
+        if base.is_none() {
+            return Ok(None);
+        }
+        x = base;
+    }
+    if x.is_instance_of::<ComplexMemory>() {
+        return Ok(Some(shared_bytes(a)));
+    }
+    let readonly = py
+        .import("builtins")?
+        .getattr("memoryview")?
+        .call1((&x,))
+        .and_then(|m| {
+            let r = m.getattr("readonly")?.extract::<bool>();
+            m.call_method0("release")?;
+            r
+        });
+    if !matches!(readonly, Ok(true)) {
+        return Ok(None);
+    }
+    Ok(Some(shared_bytes(a)))
+}
+
+/// The bytes of `a` (C-contiguous), kept alive by a reference to it.
+fn shared_bytes<T: numpy::Element>(
+    a: &Bound<'_, numpy::PyArrayDyn<T>>,
+) -> Arc<dyn starplex::buf::SharedBytes> {
+    Arc::new(Frozen {
+        _array: a.clone().into_any().unbind(),
+        ptr: a.data() as *const u8,
+        len: a.len() * std::mem::size_of::<T>(),
+    })
 }
 
 /// `[i, j]` for flat index `i` of an array of `shape` (empty for a scalar).
@@ -151,8 +251,9 @@ fn unravel(mut i: usize, shape: &[usize]) -> String {
     )
 }
 
-/// Coordinates: an `(n, d)` array of numbers, copied to `f64`.
-fn points_array(obj: &Bound<'_, PyAny>) -> PyResult<(Vec<f64>, usize)> {
+/// Coordinates: an `(n, d)` array of numbers, copied to `f64`, or shared without a copy when it
+/// is a read-only C-contiguous `float64` array whose memory nobody can write ([`frozen`]).
+fn points_array(obj: &Bound<'_, PyAny>) -> PyResult<(Buf<f64>, usize)> {
     let py = obj.py();
     let np = py.import("numpy")?;
     let arr = np
@@ -175,10 +276,15 @@ fn points_array(obj: &Bound<'_, PyAny>) -> PyResult<(Vec<f64>, usize)> {
         )));
     }
     let d = a.shape()[1];
+    if let Ok(a64) = arr.cast::<numpy::PyArrayDyn<f64>>()
+        && let Some(b) = frozen(a64)?.and_then(Buf::<f64>::shared)
+    {
+        return Ok((b, d));
+    }
     let c = np.call_method1("ascontiguousarray", (&arr, "float64"))?;
     let c = c.cast::<numpy::PyArray2<f64>>()?.readonly();
     let s = c.as_slice()?;
-    Ok((py.detach(|| s.to_vec()), d))
+    Ok((Buf::from(py.detach(|| s.to_vec())), d))
 }
 
 /// One block of cells: a kind name (optional) and an `(m, k)` array.
@@ -186,7 +292,7 @@ fn cell_block(
     kind: Option<&str>,
     arr: &Bound<'_, PyAny>,
     what: &str,
-) -> PyResult<(CellKind, Vec<u32>)> {
+) -> PyResult<(CellKind, Buf<u32>)> {
     let (v, shape) = index_array(arr, what)?;
     if shape.len() != 2 {
         return Err(value_err(format!(
@@ -223,7 +329,7 @@ fn cell_block(
 
 /// The `cells` argument: one array, a list of arrays or `(kind, array)` pairs, or a dict
 /// `{kind: array}`.
-fn cell_blocks(obj: &Bound<'_, PyAny>) -> PyResult<Vec<(CellKind, Vec<u32>)>> {
+fn cell_blocks(obj: &Bound<'_, PyAny>) -> PyResult<Vec<(CellKind, Buf<u32>)>> {
     if let Ok(d) = obj.cast::<PyDict>() {
         let mut out = Vec::new();
         for (k, v) in d.iter() {
@@ -284,6 +390,29 @@ fn arr2<'py, T: numpy::Element>(
     Ok(PyArray2::from_owned_array(py, a).into_any())
 }
 
+/// Keeps a complex alive for the NumPy arrays that view its memory (their `base`).
+#[pyclass(frozen, module = "starplex._starplex")]
+struct ComplexMemory(#[allow(dead_code)] Arc<IndexedComplex>);
+
+/// `data` (inside `k`) as a read-only `(rows, width)` array without a copy; its base keeps `k`
+/// alive. NumPy cannot make it writeable again: its base exports no buffer.
+fn view2<'py, T: numpy::Element>(
+    py: Python<'py>,
+    k: &Arc<IndexedComplex>,
+    data: &[T],
+    width: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let rows = data.len().checked_div(width).unwrap_or(0);
+    let v = numpy::ndarray::ArrayView2::from_shape((rows, width), data).map_err(value_err)?;
+    let keep = Bound::new(py, ComplexMemory(Arc::clone(k)))?.into_any();
+    // SAFETY: `data` lies in `k`, which `keep` (the array's base) keeps alive; a complex behind
+    // an `Arc` is never changed in place while another `Arc` holds it (`Complex`'s setters go
+    // through `Arc::make_mut`, which copies then), so the memory neither moves nor changes.
+    let a = unsafe { PyArray2::borrow_from_array(&v, keep) };
+    a.readwrite().make_nonwriteable();
+    Ok(a.into_any())
+}
+
 /// A CSR answer as `(offsets int64, values uint32)`: values are ids (1-D, `width` 0) or
 /// simplices of `width` vertices (shape `(n, width)`), offsets count rows.
 fn csr_out<'py>(py: Python<'py>, c: Answers, width: usize) -> PyResult<Bound<'py, PyAny>> {
@@ -319,6 +448,10 @@ fn row_out<'py>(py: Python<'py>, c: Answers, width: usize) -> PyResult<Bound<'py
 /// or a dict `{kind: array}` with kinds `line`, `tri`, `quad`, `tet`, `pyramid`, `prism`, `hex`,
 /// `simplex_D`. Duplicate cells and cells that are faces of others are errors unless
 /// `drop_duplicates` / `drop_faces`.
+///
+/// Arrays are copied, except a C-contiguous `float64` points array or `uint32` cell array whose
+/// memory nobody can write (a read-only memory map such as `np.load(f, mmap_mode="r")`, an
+/// array over `bytes`, another complex's `points` / `cells`): those are shared, not copied.
 ///
 /// >>> import numpy as np, starplex
 /// >>> c = starplex.Complex(np.eye(3), [[0, 1, 2]])
@@ -385,16 +518,7 @@ impl Complex {
             drop_degenerate: false,
         };
         let k = py
-            .detach(|| {
-                let blocks = blocks.into_iter().map(|(k, v)| (k, Buf::from(v))).collect();
-                IndexedComplex::from_parts_with_attributes(
-                    d,
-                    Buf::from(coords),
-                    blocks,
-                    attrs,
-                    &opts,
-                )
-            })
+            .detach(|| IndexedComplex::from_parts_with_attributes(d, coords, blocks, attrs, &opts))
             .map_err(value_err)?;
         Ok(Complex::wrap(k.0))
     }
@@ -462,19 +586,29 @@ impl Complex {
         self.k().dim()
     }
 
-    /// The coordinates, an `(n, d)` float64 array (a copy).
+    /// The coordinates, an `(n, d)` float64 array: a read-only view of the complex's memory,
+    /// no copy (`np.array(c.points)` for a writeable copy). A complex built from a read-only
+    /// memory map (`np.load(f, mmap_mode="r")`) views that map.
+    ///
+    /// >>> import numpy as np, starplex
+    /// >>> c = starplex.Complex(np.eye(3), [[0, 1, 2]])
+    /// >>> p = c.points
+    /// >>> p.flags.writeable, p.shape
+    /// (False, (3, 3))
     #[getter]
     fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        arr2(py, self.k().coords().to_vec(), self.k().ambient_dim())
+        let k = self.k();
+        view2(py, &k, k.coords(), k.ambient_dim())
     }
 
     /// The cells as `[(kind, (m, k) uint32 array), ...]`, one entry per run of one kind in id
-    /// order.
+    /// order; read-only views of the complex's memory, as `points`.
     #[getter]
     fn cell_blocks<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let mut out = Vec::new();
-        for b in self.k().blocks() {
-            let a = arr2(py, b.vertices.to_vec(), b.kind.n_vertices())?;
+        let k = self.k();
+        for b in k.blocks() {
+            let a = view2(py, &k, &b.vertices, b.kind.n_vertices())?;
             out.push(PyTuple::new(
                 py,
                 [PyString::new(py, &b.kind.type_name()).into_any(), a],
@@ -484,17 +618,17 @@ impl Complex {
     }
 
     /// The cells: one `(m, k)` uint32 array when the complex has one kind of cell, else a list
-    /// of arrays, one per block of `cell_blocks`.
+    /// of arrays, one per block of `cell_blocks`; read-only views, as `points`.
     #[getter]
     fn cells<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let k = self.k();
         let blocks = k.blocks();
         if blocks.len() == 1 {
-            return arr2(py, blocks[0].vertices.to_vec(), blocks[0].kind.n_vertices());
+            return view2(py, &k, &blocks[0].vertices, blocks[0].kind.n_vertices());
         }
         let mut out = Vec::new();
         for b in blocks {
-            out.push(arr2(py, b.vertices.to_vec(), b.kind.n_vertices())?);
+            out.push(view2(py, &k, &b.vertices, b.kind.n_vertices())?);
         }
         Ok(PyList::new(py, out)?.into_any())
     }
@@ -1070,7 +1204,8 @@ impl Structure {
             }
             (vec![x as u32], vec![])
         } else {
-            index_array(obj, &format!("{what} ids"))?
+            let (v, shape) = index_array(obj, &format!("{what} ids"))?;
+            (v.into_vec(), shape)
         };
         batch::check_items(&v, n, what).map_err(value_err)?;
         match shape.len() {
@@ -1102,6 +1237,7 @@ impl Structure {
             };
         }
         let (v, shape) = index_array(obj, "simplices")?;
+        let v = v.into_vec();
         batch::check_items(&v, n, "vertex").map_err(value_err)?;
         match shape.len() {
             1 => Ok((v, 1, false)),

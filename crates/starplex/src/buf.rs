@@ -1,4 +1,5 @@
-//! [`Buf`]: a read-only array that is either owned or borrowed from a memory map.
+//! [`Buf`]: a read-only array that is owned, borrowed from a memory map, or borrowed from
+//! another owner's immutable memory ([`SharedBytes`]: a read-only NumPy array, for instance).
 //!
 //! The binary format is loaded without copying: its arrays stay in the mapped file and are read
 //! through `Buf`. Mutation first makes an owned copy ([`Buf::to_mut`]).
@@ -13,7 +14,30 @@
 use std::ops::Deref;
 use std::sync::Arc;
 
-/// Owned or memory-mapped array of plain-old-data values.
+/// Memory that some other owner keeps alive and never changes while it is shared: the bytes
+/// behind a [`Buf::Shared`]. The Python bindings implement it for read-only NumPy arrays, so a
+/// complex can be built over them without a copy.
+///
+/// ```
+/// use std::sync::Arc;
+/// use starplex::buf::{Buf, SharedBytes};
+/// struct Frozen(Vec<u32>); // stands for memory owned elsewhere
+/// impl SharedBytes for Frozen {
+///     fn bytes(&self) -> &[u8] {
+///         bytemuck::cast_slice(&self.0)
+///     }
+/// }
+/// let b: Buf<u32> = Buf::shared(Arc::new(Frozen(vec![1, 2]))).unwrap();
+/// assert_eq!(&b[..], &[1, 2]);
+/// assert!(b.is_shared() && !b.is_mapped());
+/// ```
+pub trait SharedBytes: Send + Sync + 'static {
+    /// The bytes; the same slice (address and length) on every call, never written to while
+    /// the value lives.
+    fn bytes(&self) -> &[u8];
+}
+
+/// Owned or borrowed (memory-mapped or shared) array of plain-old-data values.
 ///
 /// ```
 /// use starplex::buf::Buf;
@@ -35,6 +59,9 @@ pub enum Buf<T: bytemuck::Pod> {
         /// Number of values.
         len: usize,
     },
+    /// All of another owner's immutable bytes (aligned for `T`, a whole number of values);
+    /// made by [`Buf::shared`], which checks both.
+    Shared(Arc<dyn SharedBytes>),
 }
 
 impl<T: bytemuck::Pod> Buf<T> {
@@ -47,13 +74,43 @@ impl<T: bytemuck::Pod> Buf<T> {
     /// assert_eq!(&b[..], &[1, 2, 3]);
     /// ```
     pub fn to_mut(&mut self) -> &mut Vec<T> {
-        if let Buf::Mapped { .. } = self {
+        if !matches!(self, Buf::Owned(_)) {
             *self = Buf::Owned(self.deref().to_vec());
         }
         match self {
             Buf::Owned(v) => v,
-            Buf::Mapped { .. } => unreachable!("converted to owned above"),
+            Buf::Mapped { .. } | Buf::Shared(_) => unreachable!("converted to owned above"),
         }
+    }
+
+    /// A buffer over all of `owner`'s bytes, without a copy; `None` when they are not aligned
+    /// for `T` or not a whole number of values.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use starplex::buf::{Buf, SharedBytes};
+    /// struct Three([u8; 3]);
+    /// impl SharedBytes for Three {
+    ///     fn bytes(&self) -> &[u8] { &self.0 }
+    /// }
+    /// assert!(Buf::<u8>::shared(Arc::new(Three([1, 2, 3]))).is_some());
+    /// assert!(Buf::<u16>::shared(Arc::new(Three([1, 2, 3]))).is_none()); // 1.5 values
+    /// ```
+    pub fn shared(owner: Arc<dyn SharedBytes>) -> Option<Buf<T>> {
+        let b = owner.bytes();
+        let size = std::mem::size_of::<T>();
+        let aligned = (b.as_ptr() as usize).is_multiple_of(std::mem::align_of::<T>());
+        (aligned && b.len().is_multiple_of(size.max(1))).then_some(Buf::Shared(owner))
+    }
+
+    /// True when the values are borrowed from another owner ([`Buf::shared`]).
+    ///
+    /// ```
+    /// use starplex::buf::Buf;
+    /// assert!(!Buf::from(vec![1u32]).is_shared());
+    /// ```
+    pub fn is_shared(&self) -> bool {
+        matches!(self, Buf::Shared(_))
     }
 
     /// True when the values live in a memory map.
@@ -77,7 +134,7 @@ impl<T: bytemuck::Pod> Buf<T> {
     pub fn into_vec(self) -> Vec<T> {
         match self {
             Buf::Owned(v) => v,
-            Buf::Mapped { .. } => self.deref().to_vec(),
+            Buf::Mapped { .. } | Buf::Shared(_) => self.deref().to_vec(),
         }
     }
 }
@@ -92,6 +149,8 @@ impl<T: bytemuck::Pod> Deref for Buf<T> {
                 let bytes = &map[*offset..*offset + *len * std::mem::size_of::<T>()];
                 bytemuck::cast_slice(bytes)
             }
+            // alignment and length checked by `Buf::shared`, and the owner's bytes never change
+            Buf::Shared(owner) => bytemuck::cast_slice(owner.bytes()),
         }
     }
 }
@@ -113,6 +172,7 @@ impl<T: bytemuck::Pod + std::fmt::Debug> std::fmt::Debug for Buf<T> {
         let s: &[T] = self;
         f.debug_struct("Buf")
             .field("mapped", &self.is_mapped())
+            .field("shared", &self.is_shared())
             .field("len", &s.len())
             .finish()
     }

@@ -131,10 +131,11 @@ def to_meshio(c):
     """``c`` as a ``meshio.Mesh`` (imports meshio), with its ``point_data`` and ``cell_data``
     (split per cell block, one-component columns as ``(n,)`` arrays)."""
     import meshio  # noqa: PLC0415 (imported only when asked)
+    import numpy as np  # noqa: PLC0415
 
     _kind_map(c, _TO_MESHIO, "to_meshio")
     blocks = c.cell_blocks
-    cells = [(_TO_MESHIO[kind], a) for kind, a in blocks]
+    cells = [(_TO_MESHIO[kind], np.array(a)) for kind, a in blocks]  # writeable copies
     ends, n = [], 0
     for _, a in blocks:
         n += len(a)
@@ -144,7 +145,7 @@ def to_meshio(c):
         a = _column(a)
         cell_data[name] = [a[e - len(b):e] for e, (_, b) in zip(ends, blocks)]
     point_data = {name: _column(a) for name, a in c.point_data.items()}
-    return meshio.Mesh(c.points, cells, point_data=point_data, cell_data=cell_data)
+    return meshio.Mesh(np.array(c.points), cells, point_data=point_data, cell_data=cell_data)
 
 
 def to_pyvista(c):
@@ -160,7 +161,7 @@ def to_pyvista(c):
     import numpy as np  # noqa: PLC0415
 
     _kind_map(c, _VTK_TYPE, "to_pyvista")
-    pts = c.points
+    pts = np.array(c.points)  # a writeable copy: the grid owns its points
     if pts.shape[1] > 3:
         raise ValueError(f"to_pyvista: needs at most 3 coordinates, these have {pts.shape[1]}")
     if pts.shape[1] < 3:
@@ -192,7 +193,7 @@ def to_trimesh(c, **options):
     import numpy as np  # noqa: PLC0415
 
     faces = np.concatenate(tris) if tris else np.zeros((0, 3), dtype=np.uint32)
-    pts = c.points
+    pts = np.array(c.points)  # a writeable copy: the mesh owns its vertices
     if pts.shape[1] != 3:
         raise ValueError(f"to_trimesh: needs 3D points, these have {pts.shape[1]} coordinates")
     options.setdefault("process", False)

@@ -57,7 +57,12 @@ class Complex:
     ) -> None:
         """`point_data` / `cell_data`: one row per vertex / per given cell (cells dropped by
         `drop_faces` / `drop_duplicates` take their rows along); wrong lengths raise ValueError
-        naming the attribute."""
+        naming the attribute.
+
+        Arrays are copied, except a C-contiguous float64 `points` / uint32 cell array whose
+        memory nobody can write: a read-only memory map (`np.load(f, mmap_mode="r")`), an array
+        over `bytes`, or another complex's `points` / `cells`. Those are shared (checked, never
+        copied) and kept alive by the complex."""
     @property
     def n_vertices(self) -> int: ...
     @property
@@ -82,13 +87,15 @@ class Complex:
     def dim(self) -> Optional[int]: ...
     @property
     def points(self) -> npt.NDArray[np.float64]:
-        """(n, d) float64 coordinates (a copy)."""
+        """(n, d) float64 coordinates: a read-only view of the complex's memory, no copy
+        (`np.array(c.points)` for a writeable copy)."""
     @property
     def cells(self) -> Union[IdArray, List[IdArray]]:
-        """One (m, k) uint32 array for one kind of cell, else one array per block."""
+        """One (m, k) uint32 array for one kind of cell, else one array per block (read-only
+        views, as `points`)."""
     @property
     def cell_blocks(self) -> List[Tuple[str, IdArray]]:
-        """[(kind, (m, k) uint32 array)] in cell-id order."""
+        """[(kind, (m, k) uint32 array)] in cell-id order (read-only views, as `points`)."""
     def vt(self) -> CSR:
         """VT of every vertex straight from the complex (no structure built)."""
     def write(self, path: Path, format: Optional[str] = None) -> None:
