@@ -72,10 +72,11 @@ struct Ctx<'a> {
 
 const PAR_MIN: usize = 32_768;
 
-pub(super) fn build(
-    k: &IndexedComplex,
+/// The checks and parameters of a build: the context of the split, the split mode and k_V.
+fn setup<'a>(
+    k: &'a IndexedComplex,
     opts: &StellarOptions,
-) -> Result<StellarTree, StellarError> {
+) -> Result<(Ctx<'a>, SplitMode, u32), StellarError> {
     let nc = k.n_cells();
     if nc as u64 >= RUN_FLAG as u64 {
         return Err(StellarError::TooManyCells(nc as u64));
@@ -109,6 +110,31 @@ pub(super) fn build(
         regular: split == SplitMode::Regular,
         max_depth,
     };
+    Ok((ctx, split, kv))
+}
+
+/// The vertex half of [`build`]: the input vertices in tree order and the first tree vertex of
+/// every leaf (then the vertex count), exactly as the tree built with `opts` has them
+/// (`vertex_to_input` and the leaves' vertex ranges), without filing the cells.
+pub(super) fn vertex_order(
+    k: &IndexedComplex,
+    opts: &StellarOptions,
+) -> Result<(Vec<u32>, Vec<u32>), StellarError> {
+    let (ctx, _, _) = setup(k, opts)?;
+    let graph = opts.decomposition == Decomposition::Graph;
+    let input = InputCells::new(k);
+    let d = decompose(&ctx, k.n_vertices(), graph.then_some(&input));
+    let v = reindex_vertices(d.idx, &d.leaf_vstart);
+    Ok((v.v_orig, d.leaf_vstart))
+}
+
+pub(super) fn build(
+    k: &IndexedComplex,
+    opts: &StellarOptions,
+) -> Result<StellarTree, StellarError> {
+    let (ctx, split, kv) = setup(k, opts)?;
+    let n = ctx.n;
+    let graph = opts.decomposition == Decomposition::Graph;
     let mut timings = BuildTimings::default();
 
     let t0 = Instant::now();

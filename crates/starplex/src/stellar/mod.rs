@@ -422,6 +422,33 @@ impl StellarTree {
         build::build(k, opts)
     }
 
+    /// The vertex decomposition alone, without filing the top cells: the input vertices in
+    /// tree order and the first tree vertex of every leaf, then the vertex count — what
+    /// [`vertex_to_input`](Self::vertex_to_input) and [`leaf_vertices`](Self::leaf_vertices)
+    /// of the tree [`build`](Self::build) makes with the same options would say.
+    ///
+    /// ```
+    /// use starplex::generate::kuhn_grid;
+    /// use starplex::ids::LeafId;
+    /// use starplex::stellar::{StellarOptions, StellarTree};
+    /// let k = kuhn_grid(&[6, 6]).unwrap();
+    /// let opts = StellarOptions { kv: Some(5), ..Default::default() };
+    /// let (order, starts) = StellarTree::vertex_order(&k, &opts).unwrap();
+    /// let t = StellarTree::build(&k, &opts).unwrap();
+    /// assert!(order.iter().zip(t.vertex_to_input()).all(|(&a, b)| a == b.0));
+    /// assert_eq!(starts.len(), t.n_leaves() + 1);
+    /// assert_eq!(t.leaf_vertices(LeafId(1)), starts[1]..starts[2]);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`build`](Self::build).
+    pub fn vertex_order(
+        k: &IndexedComplex,
+        opts: &StellarOptions,
+    ) -> Result<(Vec<u32>, Vec<u32>), StellarError> {
+        build::vertex_order(k, opts)
+    }
+
     /// Number of vertices.
     ///
     /// ```

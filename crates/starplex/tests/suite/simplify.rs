@@ -193,11 +193,12 @@ proptest! {
     }
 }
 
-/// Random pure triangle complexes on `n` vertices (boundaries, non-manifold edges and
-/// vertices, several components): the stars the triangle-only link test handles.
-fn random_triangles() -> impl Strategy<Value = (usize, Vec<Vec<u32>>)> {
-    (4usize..=8).prop_flat_map(|n| {
-        let tri = proptest::collection::btree_set(0..n as u32, 3..=3);
+/// Random pure complexes of simplices of `k` vertices on `n` vertices (boundaries, non-manifold
+/// faces and vertices, several components): with `k` 3 (triangles) or 4 (tetrahedra), the stars
+/// the specialised link tests handle.
+fn random_simplices(k: usize) -> impl Strategy<Value = (usize, Vec<Vec<u32>>)> {
+    (k + 1..=8).prop_flat_map(move |n| {
+        let tri = proptest::collection::btree_set(0..n as u32, k..=k);
         (Just(n), proptest::collection::btree_set(tri, 1..=14)).prop_map(|(n, tris)| {
             (
                 n,
@@ -220,31 +221,53 @@ proptest! {
     /// also after contractions (the in-place edit of the tops); contracting greedily with the
     /// extended condition keeps the brute-force Betti numbers.
     #[test]
-    fn triangle_link_condition_is_the_definition((n, tops) in random_triangles()) {
-        let mut w = TopSimplices::from_tops(n, &tops).unwrap();
-        let before = betti_brute(&w.sorted_tops());
-        let mut scratch = LinkScratch::default();
-        loop {
-            let mut next = None;
-            for (a, b) in edges(&w) {
-                for mode in [LinkMode::Homology, LinkMode::Manifold] {
-                    let full = link_condition_full(&w, a, b, mode, 1 << 24).unwrap();
-                    for (s, t) in [(a, b), (b, a)] {
-                        let fast = link_condition(&w, s, t, mode, &mut scratch);
-                        prop_assert_eq!(fast, full, "{:?} {}-{} of {:?}", mode, s, t, w.sorted_tops());
-                    }
-                    if full && mode == LinkMode::Manifold && next.is_none() {
-                        next = Some((a, b));
-                    }
+    fn triangle_link_condition_is_the_definition((n, tops) in random_simplices(3)) {
+        fast_test_is_the_definition(n, &tops)?;
+    }
+
+    /// The same on 300 random pure tetrahedral complexes (boundaries, non-manifold edges and
+    /// vertices), where the test takes its tetrahedral-star path until a contraction leaves a
+    /// triangle as a top.
+    #[test]
+    fn tetrahedral_link_condition_is_the_definition((n, tops) in random_simplices(4)) {
+        fast_test_is_the_definition(n, &tops)?;
+    }
+}
+
+/// The body of the two tests above.
+fn fast_test_is_the_definition(n: usize, tops: &[Vec<u32>]) -> Result<(), TestCaseError> {
+    let mut w = TopSimplices::from_tops(n, tops).unwrap();
+    let before = betti_brute(&w.sorted_tops());
+    let mut scratch = LinkScratch::default();
+    loop {
+        let mut next = None;
+        for (a, b) in edges(&w) {
+            for mode in [LinkMode::Homology, LinkMode::Manifold] {
+                let full = link_condition_full(&w, a, b, mode, 1 << 24).unwrap();
+                for (s, t) in [(a, b), (b, a)] {
+                    let fast = link_condition(&w, s, t, mode, &mut scratch);
+                    prop_assert_eq!(
+                        fast,
+                        full,
+                        "{:?} {}-{} of {:?}",
+                        mode,
+                        s,
+                        t,
+                        w.sorted_tops()
+                    );
+                }
+                if full && mode == LinkMode::Manifold && next.is_none() {
+                    next = Some((a, b));
                 }
             }
-            let Some((a, b)) = next else { break };
-            prop_assert!(w.contract(a, b));
-            prop_assert_eq!(&betti_brute(&w.sorted_tops()), &before, "after {}-{}", a, b);
-            let st = w.sorted_tops();
-            prop_assert!(TopSimplices::from_tops(n, &st).is_ok(), "{:?}", st);
         }
+        let Some((a, b)) = next else { break };
+        prop_assert!(w.contract(a, b));
+        prop_assert_eq!(&betti_brute(&w.sorted_tops()), &before, "after {}-{}", a, b);
+        let st = w.sorted_tops();
+        prop_assert!(TopSimplices::from_tops(n, &st).is_ok(), "{:?}", st);
     }
+    Ok(())
 }
 
 /// Random complexes whose cells are local in the vertex ids (each cell within a window of 6

@@ -18,7 +18,7 @@
 use fixedbitset::FixedBitSet;
 use rayon::prelude::*;
 
-use super::contract::{ContractStats, Sweeper};
+use super::contract::{Changes, ContractStats, Sweeper};
 use super::tops::TopSimplices;
 use super::{SimplifyError, Target};
 use crate::stellar::StellarTree;
@@ -48,6 +48,9 @@ pub struct Blocks {
     block_of: Vec<u32>,
     /// Per vertex: its position in its block (empty for a single block).
     local_of: Vec<u32>,
+    /// Per block: its number of vertices as made, before [`retain_alive`](Self::retain_alive)
+    /// (what a block's share of a count target is proportional to).
+    sizes: Vec<usize>,
 }
 
 impl Blocks {
@@ -62,6 +65,7 @@ impl Blocks {
             starts: vec![0, n],
             block_of: Vec::new(),
             local_of: Vec::new(),
+            sizes: vec![n],
         }
     }
 
@@ -108,6 +112,7 @@ impl Blocks {
             starts: cuts.to_vec(),
             block_of,
             local_of,
+            sizes: cuts.windows(2).map(|c| c[1] - c[0]).collect(),
         })
     }
 
@@ -126,20 +131,46 @@ impl Blocks {
     /// assert_eq!((0..b.len()).map(|x| b.block(x).len()).sum::<usize>(), 81);
     /// ```
     pub fn from_stellar(tree: &StellarTree, min_vertices: usize) -> Blocks {
-        let n = tree.n_vertices();
+        let order: Vec<u32> = tree.vertex_to_input().iter().map(|v| v.0).collect();
+        let mut starts: Vec<u32> = (0..tree.n_leaves())
+            .map(|l| tree.leaf_vertices(crate::ids::LeafId(l as u32)).start)
+            .collect();
+        starts.push(tree.n_vertices() as u32);
+        Blocks::from_leaves(order, &starts, min_vertices)
+    }
+
+    /// [`from_stellar`](Self::from_stellar) from the vertex decomposition alone
+    /// ([`StellarTree::vertex_order`]: the vertices in tree order and the first vertex of
+    /// every leaf, then the count).
+    ///
+    /// ```
+    /// use starplex::algo::simplify::Blocks;
+    /// use starplex::generate::kuhn_grid;
+    /// use starplex::stellar::{StellarOptions, StellarTree};
+    /// let k = kuhn_grid(&[8, 8]).unwrap();
+    /// let opts = StellarOptions { kv: Some(8), ..Default::default() };
+    /// let (order, starts) = StellarTree::vertex_order(&k, &opts).unwrap();
+    /// let b = Blocks::from_leaves(order, &starts, 20);
+    /// let t = StellarTree::build(&k, &opts).unwrap();
+    /// let c = Blocks::from_stellar(&t, 20);
+    /// assert!(b.len() >= 2 && (0..b.len()).all(|x| b.block(x) == c.block(x)));
+    /// ```
+    pub fn from_leaves(order: Vec<u32>, leaf_starts: &[u32], min_vertices: usize) -> Blocks {
+        let n = order.len();
         let min_vertices = min_vertices.max(1);
         if n < 2 * min_vertices {
             return Blocks::single(n);
         }
-        let order: Vec<u32> = tree.vertex_to_input().iter().map(|v| v.0).collect();
         let mut cuts = vec![0];
-        for l in 0..tree.n_leaves() {
-            let end = tree.leaf_vertices(crate::ids::LeafId(l as u32)).end as usize;
+        for &end in leaf_starts.iter().skip(1) {
+            let end = end as usize;
             if end - cuts[cuts.len() - 1] >= min_vertices && n - end >= min_vertices {
                 cuts.push(end);
             }
         }
-        cuts.push(n);
+        if cuts.last() != Some(&n) {
+            cuts.push(n);
+        }
         Blocks::from_order(&order, &cuts).unwrap_or_else(|_| Blocks::single(n))
     }
 
@@ -173,8 +204,43 @@ impl Blocks {
             .unwrap_or(&[])
     }
 
+    /// Drops the vertices of `w` contracted away from every block (they never come back), so
+    /// that the next round's cuts and pastes cost what is alive, not what the blocks held at
+    /// first. Positions stay in increasing id order, so the sweeps decide as before.
+    ///
+    /// ```
+    /// use starplex::algo::simplify::{Blocks, TopSimplices};
+    /// let mut w = TopSimplices::from_tops(4, &[vec![0, 1], vec![1, 2], vec![2, 3]]).unwrap();
+    /// let mut b = Blocks::from_order(&[0, 1, 2, 3], &[0, 2, 4]).unwrap();
+    /// w.contract(2, 3);
+    /// b.retain_alive(&w);
+    /// assert_eq!((b.block(0), b.block(1)), (&[0, 1][..], &[2][..]));
+    /// ```
+    pub fn retain_alive(&mut self, w: &TopSimplices) {
+        if self.block_of.is_empty() {
+            return;
+        }
+        let mut out = 0;
+        for x in 0..self.len() {
+            let (from, to) = (self.starts[x], self.starts[x + 1]);
+            self.starts[x] = out;
+            for i in from..to {
+                let v = self.verts[i];
+                if w.is_alive(v) {
+                    self.local_of[v as usize] = (out - self.starts[x]) as u32;
+                    self.verts[out] = v;
+                    out += 1;
+                }
+            }
+        }
+        let last = self.starts.len() - 1;
+        self.starts[last] = out;
+        self.verts.truncate(out);
+    }
+
     /// The block sweeps of one round: every block's inner edges contracted on its own part, in
-    /// parallel waves, pasted back in block order. Marks the vertices contracted (`touched`)
+    /// parallel waves, pasted back in block order (skipping the edges refused last round whose
+    /// stars did not change since, and recording the stars changed in `changes`). Marks the vertices contracted (`touched`)
     /// and the inner vertices of the blocks swept to the end (`tried`); `in_part` is a cleared
     /// bitset over the top slots.
     #[allow(clippy::too_many_arguments)]
@@ -186,6 +252,7 @@ impl Blocks {
         touched: &mut FixedBitSet,
         tried: &mut FixedBitSet,
         in_part: &mut FixedBitSet,
+        changes: &mut Changes,
         stats: &mut ContractStats,
     ) {
         let n = w.n_vertices() as u128;
@@ -199,12 +266,14 @@ impl Blocks {
         let ids: Vec<usize> = (0..self.len()).collect();
         for wave in ids.chunks(WAVE) {
             let shared: &TopSimplices = w;
+            let changes_now: &Changes = changes;
             let done: Vec<_> = wave
                 .par_iter()
                 .map(|&x| {
                     let verts = self.block(x);
                     let mut part = shared.cut(verts, &self.block_of, &self.local_of, x as u32);
-                    let share = |left: u128| (left * verts.len() as u128 / n.max(1)) as usize;
+                    let size = self.sizes[x] as u128;
+                    let share = |left: u128| (left * size / n.max(1)) as usize;
                     let max_tops = left_tops.map(share);
                     let max_vertices = left_vertices.map(share);
                     let (tops0, verts0) = (part.w.n_alive_tops(), part.w.n_alive_vertices());
@@ -220,17 +289,25 @@ impl Blocks {
                             && max_vertices.is_none_or(|m| verts0 - p.n_alive_vertices() < m)
                     };
                     let order = 0..verts.len() as u32;
-                    let complete =
-                        s.sweep(&mut part.w, order, &mut local, None, &mut st, allow, |_| {
-                            false
-                        });
+                    let mut ch = changes_now.restrict(verts);
+                    let complete = s.sweep(
+                        &mut part.w,
+                        order,
+                        &mut local,
+                        None,
+                        &mut ch,
+                        &mut st,
+                        allow,
+                        |_| false,
+                    );
                     local.difference_with(&frozen);
-                    (part, local, st, complete)
+                    (part, local, st, complete, ch)
                 })
                 .collect();
-            for (&x, (part, contracted, st, complete)) in wave.iter().zip(done) {
+            for (&x, (part, contracted, st, complete, ch)) in wave.iter().zip(done) {
                 let verts = self.block(x);
                 w.paste(verts, &part, in_part);
+                changes.absorb(&ch, verts);
                 for i in contracted.ones() {
                     touched.insert(verts[i] as usize);
                 }

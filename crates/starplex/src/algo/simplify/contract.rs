@@ -184,6 +184,8 @@ pub fn contract_homology_blocks(
     // inner vertices whose block sweep ran to its end: their pairs were all tried this round
     let mut tried = FixedBitSet::with_capacity(n);
     let mut in_part = FixedBitSet::with_capacity(w.n_top_slots());
+    let mut blocks = blocks.clone();
+    let mut changes = Changes::all(n);
     while !target.reached(w) {
         stats.rounds += 1;
         touched.clear();
@@ -197,6 +199,7 @@ pub fn contract_homology_blocks(
                 &mut touched,
                 &mut tried,
                 &mut in_part,
+                &mut changes,
                 &mut stats,
             );
         }
@@ -207,6 +210,7 @@ pub fn contract_homology_blocks(
                 all,
                 &mut touched,
                 Some(&tried),
+                &mut changes,
                 &mut stats,
                 |_, _, _| true,
                 |w| target.reached(w),
@@ -215,8 +219,67 @@ pub fn contract_homology_blocks(
         if stats.n_contractions == before {
             break;
         }
+        // the vertices contracted away leave the blocks: cuts and pastes cost what is alive
+        blocks.retain_alive(w);
+        changes.next_round();
     }
     stats
+}
+
+/// The vertices whose star changed in the last round and in this one, so that a sweep skips
+/// the edges it tested and refused last round: the link condition (and the region test) of
+/// `ab` reads only the stars of `a` and `b`, and every edge of a vertex left untouched by a
+/// round was tested in it. An edge whose two ends kept their stars since the last round is
+/// refused again, so skipping it changes nothing but the time.
+pub(super) struct Changes {
+    /// Changed in the last round (every vertex before the first).
+    prev: FixedBitSet,
+    /// Changed in this round.
+    cur: FixedBitSet,
+}
+
+impl Changes {
+    /// Before the first round: every vertex counts as changed.
+    pub(super) fn all(n: usize) -> Changes {
+        let mut prev = FixedBitSet::with_capacity(n);
+        prev.insert_range(..);
+        Changes {
+            prev,
+            cur: FixedBitSet::with_capacity(n),
+        }
+    }
+
+    /// The changes of the vertices `verts` (a block's part numbering: vertex `i` is
+    /// `verts[i]`), this round's empty.
+    pub(super) fn restrict(&self, verts: &[u32]) -> Changes {
+        let mut prev = FixedBitSet::with_capacity(verts.len());
+        for (i, &v) in verts.iter().enumerate() {
+            prev.set(
+                i,
+                self.prev.contains(v as usize) || self.cur.contains(v as usize),
+            );
+        }
+        Changes {
+            prev,
+            cur: FixedBitSet::with_capacity(verts.len()),
+        }
+    }
+
+    /// Adds the changes a part made this round (vertex `i` of the part is `verts[i]`).
+    pub(super) fn absorb(&mut self, part: &Changes, verts: &[u32]) {
+        for i in part.cur.ones() {
+            self.cur.insert(verts[i] as usize);
+        }
+    }
+
+    fn unchanged(&self, v: u32) -> bool {
+        !self.prev.contains(v as usize) && !self.cur.contains(v as usize)
+    }
+
+    fn next_round(&mut self) {
+        std::mem::swap(&mut self.prev, &mut self.cur);
+        self.cur.clear();
+    }
 }
 
 /// One sweep of [`contract_homology_blocks`]: its mode, callback and reused buffers.
@@ -225,6 +288,7 @@ pub(super) struct Sweeper<'a> {
     progress: Option<&'a Progress>,
     scratch: LinkScratch,
     nb: Vec<u32>,
+    nb_t: Vec<u32>,
 }
 
 impl<'a> Sweeper<'a> {
@@ -234,6 +298,7 @@ impl<'a> Sweeper<'a> {
             progress,
             scratch: LinkScratch::default(),
             nb: Vec::new(),
+            nb_t: Vec::new(),
         }
     }
 
@@ -244,7 +309,9 @@ impl<'a> Sweeper<'a> {
 
     /// Every vertex of `order` not `touched` absorbs (or is absorbed by) its first untouched
     /// neighbour, in id order, whose edge passes the link condition; both ends become touched.
-    /// A pair of two `tried` vertices is skipped (already tried this round). `allow(w, s, t)`
+    /// A pair of two `tried` vertices is skipped (already tried this round), and so is a pair
+    /// whose two stars are as when it was refused last round (`changes`, which records the
+    /// stars each contraction changes). `allow(w, s, t)`
     /// is asked before contracting `t` into `s` (false ends the sweep), `done(w)` after each
     /// contraction (true ends it). Returns false when a callback ended the sweep.
     #[allow(clippy::too_many_arguments)]
@@ -254,6 +321,7 @@ impl<'a> Sweeper<'a> {
         order: impl Iterator<Item = u32>,
         touched: &mut FixedBitSet,
         tried: Option<&FixedBitSet>,
+        changes: &mut Changes,
         stats: &mut ContractStats,
         mut allow: impl FnMut(&TopSimplices, u32, u32) -> bool,
         mut done: impl FnMut(&TopSimplices) -> bool,
@@ -267,7 +335,10 @@ impl<'a> Sweeper<'a> {
             let a_tried = was_tried(a);
             for i in 0..self.nb.len() {
                 let b = self.nb[i];
-                if touched.contains(b as usize) || (a_tried && was_tried(b)) {
+                if touched.contains(b as usize)
+                    || (a_tried && was_tried(b))
+                    || (changes.unchanged(a) && changes.unchanged(b))
+                {
                     continue;
                 }
                 // a locked vertex survives; two locked ones are never merged
@@ -281,6 +352,11 @@ impl<'a> Sweeper<'a> {
                 {
                     if !allow(w, s, t) {
                         return false;
+                    }
+                    // the stars that change: those of t's neighbours (s among them) and t's
+                    w.neighbours_into(t, &mut self.nb_t);
+                    for &x in self.nb_t.iter().chain([&t]) {
+                        changes.cur.insert(x as usize);
                     }
                     w.contract(s, t);
                     touched.insert(a as usize);

@@ -63,6 +63,29 @@ pub struct LinkScratch {
     tau: Vec<u32>,
     filtered: Vec<u32>,
     tri: TriScratch,
+    tet: TetScratch,
+}
+
+/// Buffers of the tetrahedral-star test ([`tet_link_condition`]).
+#[derive(Default, Debug)]
+struct TetScratch {
+    /// The edges of a star's link triangles (sorted pairs, to find the boundary).
+    edges: Vec<[u32; 2]>,
+    /// The link triangles of `a` (`b`) not through `b` (`a`), sorted triples (ω = [`OMEGA`]).
+    ta: Vec<[u32; 3]>,
+    tb: Vec<[u32; 3]>,
+    /// Their edges and vertices, sorted and deduplicated.
+    ea: Vec<[u32; 2]>,
+    eb: Vec<[u32; 2]>,
+    va: Vec<u32>,
+    vb: Vec<u32>,
+    /// Lk(ab): its edges (`xy` for each tetrahedron `abxy`, `zω` for each boundary triangle
+    /// `abz`) and their vertices.
+    lab_e: Vec<[u32; 2]>,
+    lab_v: Vec<u32>,
+    /// Per vertex: `epoch` when it is in a top through `b`, `epoch + 1` when in Lk(ab).
+    mark: Vec<u32>,
+    epoch: u32,
 }
 
 /// Buffers of the triangle-star test ([`tri_link_condition`]).
@@ -199,6 +222,11 @@ pub fn link_condition_in(
     }
     if region.is_none()
         && let Some(answer) = tri_link_condition(w, a, b, mode, &mut scratch.tri)
+    {
+        return answer;
+    }
+    if region.is_none()
+        && let Some(answer) = tet_link_condition(w, a, b, mode, &mut scratch.tet)
     {
         return answer;
     }
@@ -351,6 +379,193 @@ fn link_elements(
         i = j;
     }
     boundary_other
+}
+
+/// The same top-based test specialised to stars made of tetrahedra only (`None` otherwise):
+/// the usual case of volume-mesh simplification, with no top copied and no pairwise
+/// intersection.
+///
+/// With the tops written as link triangles (`xyz` for the tetrahedron `axyz`, `xyω` for the
+/// boundary triangle `axy` in `Manifold` mode), `Lk(a) ∩ Lk(b)` holds vertices, edges and
+/// triangles, and `Lk(ab)` (`xy` for `abxy`, `zω` for the boundary triangle `abz`) has no
+/// triangle. So the condition is: (1) no link triangle of `a` is one of `b`; (2) every edge of
+/// a link triangle of `a` and of one of `b` is an edge of `Lk(ab)`; (3) every vertex of both is
+/// a vertex of `Lk(ab)` — counting only the link triangles of `a` not through `b` and of `b`
+/// not through `a` (a simplex of `Lk(a)` through `b` is not in `Lk(b)`, and one that is a face
+/// of a triangle through `b` is in `Lk(ab)` already).
+fn tet_link_condition(
+    w: &TopSimplices,
+    a: u32,
+    b: u32,
+    mode: LinkMode,
+    s: &mut TetScratch,
+) -> Option<bool> {
+    let (sa, sb) = (w.star(a), w.star(b));
+    if sa.iter().chain(sb).any(|&t| w.top(t).len() != 4) {
+        return None;
+    }
+    s.lab_e.clear();
+    for &t in sa {
+        let top = w.top(t);
+        if top.contains(&b) {
+            let mut e = [u32::MAX; 2];
+            let mut n = 0;
+            for &x in top {
+                if x != a && x != b {
+                    e[n] = x;
+                    n += 1;
+                }
+            }
+            s.lab_e.push([e[0].min(e[1]), e[0].max(e[1])]);
+        }
+    }
+    if s.lab_e.is_empty() {
+        return Some(false);
+    }
+    // first the cheapest and most often failing part of (3): the real vertices adjacent to
+    // both `a` and `b` are in Lk(ab) (the same in both modes), with marks instead of sorting
+    if s.mark.len() < w.n_vertices() {
+        s.mark.resize(w.n_vertices(), 0);
+    }
+    if s.epoch >= u32::MAX - 2 {
+        s.mark.iter_mut().for_each(|m| *m = 0);
+        s.epoch = 0;
+    }
+    s.epoch += 2;
+    let (in_b, in_ab) = (s.epoch, s.epoch + 1);
+    for &t in sb {
+        for &x in w.top(t) {
+            s.mark[x as usize] = in_b;
+        }
+    }
+    for e in &s.lab_e {
+        for &x in e {
+            s.mark[x as usize] = in_ab;
+        }
+    }
+    for &t in sa {
+        if w.top(t)
+            .iter()
+            .any(|&x| x != a && x != b && s.mark[x as usize] == in_b)
+        {
+            return Some(false);
+        }
+    }
+    let manifold = mode == LinkMode::Manifold;
+    link_triangles(
+        w,
+        a,
+        b,
+        manifold,
+        &mut s.edges,
+        &mut s.ta,
+        Some(&mut s.lab_e),
+    );
+    link_triangles(w, b, a, manifold, &mut s.edges, &mut s.tb, None);
+    s.lab_e.sort_unstable();
+    s.lab_e.dedup();
+    s.lab_v.clear();
+    s.lab_v.extend(s.lab_e.iter().flatten());
+    s.lab_v.sort_unstable();
+    s.lab_v.dedup();
+    // (1): no shared link triangle
+    if sorted_common(&s.ta, &s.tb, |_| true) {
+        return Some(false);
+    }
+    // (2), (3): the shared edges and vertices are in Lk(ab)
+    for (t, e, v) in [(&s.ta, &mut s.ea, &mut s.va), (&s.tb, &mut s.eb, &mut s.vb)] {
+        e.clear();
+        v.clear();
+        for &[x, y, z] in t.iter() {
+            e.extend([[x, y], [x, z], [y, z]]);
+            v.extend([x, y, z]);
+        }
+        e.sort_unstable();
+        e.dedup();
+        v.sort_unstable();
+        v.dedup();
+    }
+    let lab_e = &s.lab_e;
+    let lab_v = &s.lab_v;
+    let bad_edge = sorted_common(&s.ea, &s.eb, |e| lab_e.binary_search(e).is_err());
+    let bad_vertex = sorted_common(&s.va, &s.vb, |v| lab_v.binary_search(v).is_err());
+    Some(!bad_edge && !bad_vertex)
+}
+
+/// True when the sorted, deduplicated `x` and `y` share an item for which `bad` holds.
+fn sorted_common<T: Ord>(x: &[T], y: &[T], bad: impl Fn(&T) -> bool) -> bool {
+    let (mut i, mut j) = (0, 0);
+    while i < x.len() && j < y.len() {
+        match x[i].cmp(&y[j]) {
+            std::cmp::Ordering::Less => i += 1,
+            std::cmp::Ordering::Greater => j += 1,
+            std::cmp::Ordering::Equal => {
+                if bad(&x[i]) {
+                    return true;
+                }
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    false
+}
+
+/// The link triangles of `v` not through `other` (its star is made of tetrahedra), sorted:
+/// `xyz` for each tetrahedron `vxyz`, and in `Manifold` mode `xyω` for each boundary triangle
+/// `vxy` (in one tetrahedron of the star). The boundary triangles through `v other` add their
+/// `zω` to `lab` (the edges of `Lk(v other)`) when it is given.
+fn link_triangles(
+    w: &TopSimplices,
+    v: u32,
+    other: u32,
+    manifold: bool,
+    edges: &mut Vec<[u32; 2]>,
+    out: &mut Vec<[u32; 3]>,
+    mut lab: Option<&mut Vec<[u32; 2]>>,
+) {
+    out.clear();
+    edges.clear();
+    for &t in w.star(v) {
+        let mut f = [0u32; 3];
+        let mut n = 0;
+        for &x in w.top(t) {
+            if x != v {
+                f[n] = x;
+                n += 1;
+            }
+        }
+        let [x, y, z] = crate::topo::sort3(f);
+        if manifold {
+            edges.extend([[x, y], [x, z], [y, z]]);
+        }
+        if x != other && y != other && z != other {
+            out.push([x, y, z]);
+        }
+    }
+    if manifold {
+        edges.sort_unstable();
+        let mut i = 0;
+        while i < edges.len() {
+            let e = edges[i];
+            let mut j = i + 1;
+            while j < edges.len() && edges[j] == e {
+                j += 1;
+            }
+            if j - i == 1 {
+                let [x, y] = e;
+                if x == other || y == other {
+                    if let Some(lab) = lab.as_deref_mut() {
+                        lab.push([if x == other { y } else { x }, OMEGA]);
+                    }
+                } else {
+                    out.push([x, y, OMEGA]);
+                }
+            }
+            i = j;
+        }
+    }
+    out.sort_unstable();
 }
 
 /// When the tops are labelled ([`TopSimplices::set_cell_labels`]): the extended link condition

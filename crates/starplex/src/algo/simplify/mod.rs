@@ -405,10 +405,11 @@ pub fn simplify(
     Ok((out, report))
 }
 
-/// The blocks of the parallel rounds of homology mode: the leaves of a Stellar tree of `k`
-/// (by coordinates; by connectivity when the coordinates do not separate the vertices)
-/// grouped by [`blocks::BLOCK_VERTICES`]; one block for a small complex. They depend on the
-/// complex alone, so the result is the same for any number of threads.
+/// The blocks of the parallel rounds of homology mode: the leaves of a Stellar tree of `k` (by
+/// coordinates; by connectivity when the coordinates do not separate the vertices) grouped by
+/// [`blocks::BLOCK_VERTICES`]; one block for a small complex. Only the tree's vertex
+/// decomposition is made ([`StellarTree::vertex_order`](crate::stellar::StellarTree::vertex_order)).
+/// The blocks depend on the complex alone, so the result is the same for any number of threads.
 ///
 /// ```
 /// use starplex::algo::simplify::homology_blocks;
@@ -427,8 +428,9 @@ pub fn homology_blocks(k: &IndexedComplex) -> Blocks {
             decomposition,
             ..Default::default()
         };
-        if let Ok(tree) = StellarTree::build(k, &opts) {
-            let b = Blocks::from_stellar(&tree, blocks::BLOCK_VERTICES);
+        // the tree's vertex decomposition is all the blocks need: its cells are not filed
+        if let Ok((order, starts)) = StellarTree::vertex_order(k, &opts) {
+            let b = Blocks::from_leaves(order, &starts, blocks::BLOCK_VERTICES);
             if b.len() > 1 {
                 return b;
             }
