@@ -83,9 +83,48 @@ struct TetScratch {
     /// `abz`) and their vertices.
     lab_e: Vec<[u32; 2]>,
     lab_v: Vec<u32>,
-    /// Per vertex: `epoch` when it is in a top through `b`, `epoch + 1` when in Lk(ab).
+    marks: Marks,
+}
+
+/// Per-vertex marks for [`Marks::vertex_condition`].
+#[derive(Default, Debug)]
+struct Marks {
+    /// Per vertex: `epoch` when it is in a top through `b`, `epoch + 1` when also in one
+    /// through `ab`.
     mark: Vec<u32>,
     epoch: u32,
+}
+
+impl Marks {
+    /// The vertex part of the link condition, in any dimension and either mode: every real
+    /// vertex adjacent to both `a` and `b` is in a top through `ab` (the cone of
+    /// [`LinkMode::Manifold`] adds no edge between real vertices). A necessary condition, in
+    /// `O(|St(a)| + |St(b)|)` with no sorting: most refused edges fail it.
+    fn vertex_condition(&mut self, w: &TopSimplices, a: u32, b: u32) -> bool {
+        if self.mark.len() < w.n_vertices() {
+            self.mark.resize(w.n_vertices(), 0);
+        }
+        if self.epoch >= u32::MAX - 2 {
+            self.mark.iter_mut().for_each(|m| *m = 0);
+            self.epoch = 0;
+        }
+        self.epoch += 2;
+        let (in_b, in_ab) = (self.epoch, self.epoch + 1);
+        for &t in w.star(b) {
+            let top = w.top(t);
+            let mark = if top.contains(&a) { in_ab } else { in_b };
+            for &x in top {
+                if self.mark[x as usize] != in_ab {
+                    self.mark[x as usize] = mark;
+                }
+            }
+        }
+        w.star(a).iter().all(|&t| {
+            w.top(t)
+                .iter()
+                .all(|&x| x == a || x == b || self.mark[x as usize] != in_b)
+        })
+    }
 }
 
 /// Buffers of the triangle-star test ([`tri_link_condition`]).
@@ -229,6 +268,9 @@ pub fn link_condition_in(
         && let Some(answer) = tet_link_condition(w, a, b, mode, &mut scratch.tet)
     {
         return answer;
+    }
+    if region.is_none() && !scratch.tet.marks.vertex_condition(w, a, b) {
+        return false;
     }
     let LinkScratch {
         sa,
@@ -422,34 +464,9 @@ fn tet_link_condition(
     if s.lab_e.is_empty() {
         return Some(false);
     }
-    // first the cheapest and most often failing part of (3): the real vertices adjacent to
-    // both `a` and `b` are in Lk(ab) (the same in both modes), with marks instead of sorting
-    if s.mark.len() < w.n_vertices() {
-        s.mark.resize(w.n_vertices(), 0);
-    }
-    if s.epoch >= u32::MAX - 2 {
-        s.mark.iter_mut().for_each(|m| *m = 0);
-        s.epoch = 0;
-    }
-    s.epoch += 2;
-    let (in_b, in_ab) = (s.epoch, s.epoch + 1);
-    for &t in sb {
-        for &x in w.top(t) {
-            s.mark[x as usize] = in_b;
-        }
-    }
-    for e in &s.lab_e {
-        for &x in e {
-            s.mark[x as usize] = in_ab;
-        }
-    }
-    for &t in sa {
-        if w.top(t)
-            .iter()
-            .any(|&x| x != a && x != b && s.mark[x as usize] == in_b)
-        {
-            return Some(false);
-        }
+    // first the cheapest and most often failing part of (3)
+    if !s.marks.vertex_condition(w, a, b) {
+        return Some(false);
     }
     let manifold = mode == LinkMode::Manifold;
     link_triangles(

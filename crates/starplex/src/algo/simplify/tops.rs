@@ -173,6 +173,8 @@ struct ContractScratch {
     /// images (an edge image `ax` as `[x, x, x]`).
     other_keys: Vec<[u32; 3]>,
     image_keys: Vec<[u32; 3]>,
+    /// General case: the tops through the survivor that were not through the removed vertex.
+    others: Vec<u32>,
 }
 
 impl TopSimplices {
@@ -668,32 +670,41 @@ impl TopSimplices {
     /// place) are no face of another image or of another top through `a` (`sc.keep`), and
     /// which other tops through `a` became a face of a kept image (`sc.swallowed`).
     fn keep_images(&self, a: u32, sc: &mut ContractScratch) {
-        // the tops through a that were not through b
-        let others = |u: &u32, ids: &[u32]| !ids.contains(u);
-        for (i, &ti) in sc.ids.iter().enumerate() {
+        let ContractScratch {
+            ids,
+            keep,
+            swallowed,
+            others,
+            ..
+        } = sc;
+        // the tops through a that were not through b, listed once
+        others.clear();
+        others.extend(
+            self.vt[a as usize]
+                .iter()
+                .copied()
+                .filter(|u| !ids.contains(u)),
+        );
+        for (i, &ti) in ids.iter().enumerate() {
             let t = self.tops.get(ti as usize);
-            let dominated_by_image = sc.ids.iter().enumerate().any(|(j, &u)| {
+            let dominated_by_image = ids.iter().enumerate().any(|(j, &u)| {
                 let u = self.tops.get(u as usize);
                 j != i && is_subset(t, u) && (t.len() < u.len() || j < i)
             });
             let dominated = dominated_by_image
-                || self.vt[a as usize]
+                || others
                     .iter()
-                    .filter(|u| others(u, &sc.ids))
                     .any(|&u| is_subset(t, self.tops.get(u as usize)));
-            sc.keep.push(!dominated);
+            keep.push(!dominated);
         }
-        for &u in self.vt[a as usize].iter() {
-            if !others(&u, &sc.ids) {
-                continue;
-            }
+        for &u in others.iter() {
             let ut = self.tops.get(u as usize);
-            let swallowed = sc.ids.iter().zip(&sc.keep).any(|(&t, &k)| {
+            let swallowed_by_image = ids.iter().zip(keep.iter()).any(|(&t, &k)| {
                 let t = self.tops.get(t as usize);
                 k && ut.len() < t.len() && is_subset(ut, t)
             });
-            if swallowed {
-                sc.swallowed.push(u);
+            if swallowed_by_image {
+                swallowed.push(u);
             }
         }
     }
