@@ -355,19 +355,9 @@ fn tri_link_condition(
         v.dedup();
     }
     // (1): the common vertices are in Lk(ab)
-    let (mut i, mut j) = (0, 0);
-    while i < s.va.len() && j < s.vb.len() {
-        match s.va[i].cmp(&s.vb[j]) {
-            std::cmp::Ordering::Less => i += 1,
-            std::cmp::Ordering::Greater => j += 1,
-            std::cmp::Ordering::Equal => {
-                if !s.lab.contains(&s.va[i]) {
-                    return Some(false);
-                }
-                i += 1;
-                j += 1;
-            }
-        }
+    let lab = &s.lab;
+    if sorted_common(&s.va, &s.vb, |v| !lab.contains(v)) {
+        return Some(false);
     }
     // (2): no shared link edge
     Some(!s.ea.iter().any(|e| s.eb.contains(e)))
