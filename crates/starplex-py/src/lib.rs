@@ -84,9 +84,8 @@ fn query_err(e: QueryError) -> PyErr {
 
 /// An integer array of ids, checked (non-negative, below `u32::MAX`) and copied to `u32`,
 /// with its shape. Anything NumPy can turn into an integer array is accepted; floats, bools,
-/// strings and ragged lists are refused with a message naming `what`.
-/// Integer ids as `u32`: a read-only, C-contiguous `uint32` array whose memory nobody can
-/// write ([`frozen`]) is shared without a copy; anything else is checked and copied.
+/// strings and ragged lists are refused with a message naming `what`. A C-contiguous `uint32`
+/// array whose memory nobody can write ([`frozen`]) is checked and shared, not copied.
 fn index_array(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Buf<u32>, Vec<usize>)> {
     let py = obj.py();
     let np = py.import("numpy")?;
@@ -178,9 +177,8 @@ impl starplex::buf::SharedBytes for Frozen {
 /// `a`'s bytes, for sharing without a copy, when `a` is C-contiguous and aligned and its memory
 /// is immutable: `a` and every array it views are read-only, and the memory's owner is not an
 /// array (whose flag could be set back to writeable) but an object with a read-only buffer — a
-/// read-only memory map (`np.load(f, mmap_mode="r")`), `bytes`, or a starplex answer. `None`
-/// otherwise (the caller copies).
-/// A view of a complex (`c.points`, `c.cells`) counts as frozen too.
+/// read-only memory map (`np.load(f, mmap_mode="r")`), `bytes`, or a complex whose views
+/// (`c.points`, `c.cells`) these are. `None` otherwise (the caller copies).
 fn frozen<T: numpy::Element>(
     a: &Bound<'_, numpy::PyArrayDyn<T>>,
 ) -> PyResult<Option<Arc<dyn starplex::buf::SharedBytes>>> {

@@ -240,9 +240,9 @@ impl Blocks {
 
     /// The block sweeps of one round: every block's inner edges contracted on its own part, in
     /// parallel waves, pasted back in block order (skipping the edges refused last round whose
-    /// stars did not change since, and recording the stars changed in `changes`). Marks the vertices contracted (`touched`)
-    /// and the inner vertices of the blocks swept to the end (`tried`); `in_part` is a cleared
-    /// bitset over the top slots.
+    /// stars did not change since, and recording the stars changed in `changes`). Marks the
+    /// vertices contracted (`touched`) and the inner vertices of the blocks swept to the end
+    /// (`tried`); `in_part` is a cleared bitset over the top slots.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn sweep_parts(
         &self,

@@ -93,6 +93,9 @@ struct Marks {
     /// through `ab`.
     mark: Vec<u32>,
     epoch: u32,
+    /// Tests made with these buffers: the per-vertex array is made on the second (a one-off
+    /// test, such as [`TopSimplices::can_contract`], sorts its stars instead).
+    calls: u32,
 }
 
 impl Marks {
@@ -101,7 +104,11 @@ impl Marks {
     /// [`LinkMode::Manifold`] adds no edge between real vertices). A necessary condition, in
     /// `O(|St(a)| + |St(b)|)` with no sorting: most refused edges fail it.
     fn vertex_condition(&mut self, w: &TopSimplices, a: u32, b: u32) -> bool {
+        self.calls = self.calls.saturating_add(1);
         if self.mark.len() < w.n_vertices() {
+            if self.calls < 2 {
+                return vertex_condition_sorted(w, a, b);
+            }
             self.mark.resize(w.n_vertices(), 0);
         }
         if self.epoch >= u32::MAX - 2 {
@@ -411,6 +418,25 @@ fn link_elements(
         i = j;
     }
     boundary_other
+}
+
+/// [`Marks::vertex_condition`] by sorting the two stars' vertices (no per-vertex array).
+fn vertex_condition_sorted(w: &TopSimplices, a: u32, b: u32) -> bool {
+    let verts = |x: u32, y: u32, through_both: bool| {
+        let mut v: Vec<u32> = w
+            .star(x)
+            .iter()
+            .map(|&t| w.top(t))
+            .filter(|top| !through_both || top.contains(&y))
+            .flat_map(|top| top.iter().copied())
+            .filter(|&u| u != x && u != y)
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let (va, vb, lab) = (verts(a, b, false), verts(b, a, false), verts(a, b, true));
+    !sorted_common(&va, &vb, |v| lab.binary_search(v).is_err())
 }
 
 /// The same top-based test specialised to stars made of tetrahedra only (`None` otherwise):
