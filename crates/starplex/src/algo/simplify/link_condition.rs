@@ -64,6 +64,8 @@ pub struct LinkScratch {
     filtered: Vec<u32>,
     tri: TriScratch,
     tet: TetScratch,
+    /// The vertex part of the test, shared by the tetrahedral and the general paths.
+    marks: Marks,
 }
 
 /// Buffers of the tetrahedral-star test ([`tet_link_condition`]).
@@ -83,7 +85,6 @@ struct TetScratch {
     /// `abz`) and their vertices.
     lab_e: Vec<[u32; 2]>,
     lab_v: Vec<u32>,
-    marks: Marks,
 }
 
 /// Per-vertex marks for [`Marks::vertex_condition`].
@@ -272,11 +273,12 @@ pub fn link_condition_in(
         return answer;
     }
     if region.is_none()
-        && let Some(answer) = tet_link_condition(w, a, b, mode, &mut scratch.tet)
+        && let Some(answer) =
+            tet_link_condition(w, a, b, mode, &mut scratch.tet, &mut scratch.marks)
     {
         return answer;
     }
-    if region.is_none() && !scratch.tet.marks.vertex_condition(w, a, b) {
+    if region.is_none() && !scratch.marks.vertex_condition(w, a, b) {
         return false;
     }
     let LinkScratch {
@@ -457,6 +459,7 @@ fn tet_link_condition(
     b: u32,
     mode: LinkMode,
     s: &mut TetScratch,
+    marks: &mut Marks,
 ) -> Option<bool> {
     let (sa, sb) = (w.star(a), w.star(b));
     if sa.iter().chain(sb).any(|&t| w.top(t).len() != 4) {
@@ -481,7 +484,7 @@ fn tet_link_condition(
         return Some(false);
     }
     // first the cheapest and most often failing part of (3)
-    if !s.marks.vertex_condition(w, a, b) {
+    if !marks.vertex_condition(w, a, b) {
         return Some(false);
     }
     let manifold = mode == LinkMode::Manifold;
