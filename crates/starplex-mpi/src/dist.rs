@@ -126,6 +126,11 @@ pub struct Split {
     lo: Vec<f64>,
     scale: Vec<f64>,
     splitters: Vec<(u64, u32)>,
+    /// Shifted split: `P` splitters at the quantiles `(i + 1/2) / P`, the last range wrapping
+    /// around to rank 0 (see [`split`]).
+    wrap: bool,
+    /// Every vertex to rank 0 ([`SplitKind::Rank0`]).
+    rank0: bool,
     /// The bounding box of all vertices (`None` without vertices).
     pub bbox: Option<(Vec<f64>, Vec<f64>)>,
 }
@@ -156,14 +161,37 @@ impl Split {
 
     /// The rank owning vertex `v` at `p`.
     pub fn owner(&self, v: u32, p: &[f64]) -> usize {
+        if self.rank0 {
+            return 0;
+        }
         let kv = (self.key(p), v);
-        self.splitters.partition_point(|s| *s <= kv)
+        let r = self.splitters.partition_point(|s| *s <= kv);
+        if self.wrap && r == self.splitters.len() {
+            0
+        } else {
+            r
+        }
     }
+}
+
+/// Which split [`split`] makes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SplitKind {
+    /// `P` ranges of Morton keys, balanced by owned top cells.
+    Plain,
+    /// Every boundary of the plain split moved to the middle of a rank's range: the `P`
+    /// splitters are the quantiles `(i + 1/2) / P` of the sample and the keys above the last one
+    /// go to rank 0 with those below the first. (`simplify` alternates the two, so what one
+    /// round left near a boundary is inside a rank in the next.)
+    Shifted,
+    /// Every vertex to rank 0 (`simplify`'s last round on a complex already made small).
+    Rank0,
 }
 
 /// Agrees on the split: bounding box, then splitters from a regular sample of Morton keys (of
 /// the smallest vertex of this rank's slice of cells; of its vertex slice without cells).
-pub fn split(w: &World, f: &Spb) -> Result<Split, Failure> {
+pub fn split(w: &World, f: &Spb, kind: SplitKind) -> Result<Split, Failure> {
+    let shifted = kind == SplitKind::Shifted;
     let (rank, p) = (w.rank() as usize, w.size() as usize);
     let d = f.h.ambient_dim;
     let (v0, v1) = slice(f.h.n_vertices, rank, p);
@@ -199,6 +227,8 @@ pub fn split(w: &World, f: &Spb) -> Result<Split, Failure> {
         lo: lo[..k].to_vec(),
         scale,
         splitters: Vec::new(),
+        wrap: shifted && p > 1,
+        rank0: kind == SplitKind::Rank0,
         bbox: (f.h.n_vertices > 0).then(|| (lo.clone(), hi.clone())),
     };
     // the sample the splitters are chosen from: balanced by top cells when there are cells
@@ -222,11 +252,18 @@ pub fn split(w: &World, f: &Spb) -> Result<Split, Failure> {
     all.sort_unstable();
     // the splitters cut the sorted sample in P equal parts; equal keys of the same vertex
     // (cells sharing their smallest vertex) fall on one side of a splitter, as they must
-    s.splitters = (1..p)
-        .filter_map(|i| all.get(i * all.len() / p).copied())
-        .collect();
+    s.splitters = if s.wrap {
+        (0..p)
+            .filter_map(|i| all.get((2 * i + 1) * all.len() / (2 * p)).copied())
+            .collect()
+    } else {
+        (1..p)
+            .filter_map(|i| all.get(i * all.len() / p).copied())
+            .collect()
+    };
     // fewer samples than ranks: the last ranks own nothing
-    while s.splitters.len() < p - 1 {
+    let want = if s.wrap { p } else { p - 1 };
+    while s.splitters.len() < want {
         s.splitters.push((u64::MAX, u32::MAX));
     }
     Ok(s)

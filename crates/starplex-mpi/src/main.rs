@@ -5,6 +5,8 @@
 //! mpirun -np P starplex-mpi validate FILE.spb [--json] [--max-list N] [--stats]
 //! mpirun -np P starplex-mpi stellar FILE.spb [--json] [--kv N] [--vt-vv-out PREFIX] [--stats]
 //! mpirun -np P starplex-mpi homology FILE.spb [--json] [--stats]
+//! mpirun -np P starplex-mpi simplify FILE.spb -o OUT.spb [--mode homology|qem] [--ratio R]
+//!     [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N] [--json]
 //! ```
 //!
 //! Rank 0 prints what `starplex info` / `starplex validate` print on the same file (the
@@ -34,13 +36,15 @@ mod dist;
 mod fault;
 mod homology;
 mod labels;
+mod simplify;
 mod stellar;
+mod write;
 
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]";
-const VERBS: [&str; 4] = ["info", "validate", "stellar", "homology"];
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
+const VERBS: [&str; 5] = ["info", "validate", "stellar", "homology", "simplify"];
 
 #[derive(Debug)]
 struct Args {
@@ -52,6 +56,15 @@ struct Args {
     max_list: usize,
     kv: Option<u32>,
     vt_vv_out: Option<PathBuf>,
+    out: Option<PathBuf>,
+    mode: Option<starplex::algo::simplify::Mode>,
+    ratio: Option<f64>,
+    faces: Option<u64>,
+    max_error: Option<f64>,
+    keep_manifold: bool,
+    lock_boundary: bool,
+    rounds: u32,
+    gather_below: u64,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -65,6 +78,15 @@ fn parse_args() -> Result<Args, String> {
         max_list: 1000,
         kv: None,
         vt_vv_out: None,
+        out: None,
+        mode: None,
+        ratio: None,
+        faces: None,
+        max_error: None,
+        keep_manifold: false,
+        lock_boundary: false,
+        rounds: 8,
+        gather_below: 2_000_000,
     };
     let mut pos = Vec::new();
     while let Some(x) = it.next() {
@@ -90,19 +112,54 @@ fn parse_args() -> Result<Args, String> {
                         .ok_or(format!("--vt-vv-out needs a value\n{USAGE}"))?,
                 ))
             }
+            "-o" | "--out" => {
+                a.out = Some(PathBuf::from(
+                    it.next().ok_or(format!("{x} needs a value\n{USAGE}"))?,
+                ))
+            }
+            "--mode" => {
+                let m = it.next().ok_or(format!("--mode needs a value\n{USAGE}"))?;
+                a.mode = Some(starplex::algo::simplify::Mode::parse(&m).ok_or(format!(
+                    "--mode {m}: unknown mode (use --mode homology or --mode qem)"
+                ))?)
+            }
+            "--ratio" | "--max-error" => {
+                let v = it.next().ok_or(format!("{x} needs a value\n{USAGE}"))?;
+                let f: f64 = v
+                    .parse()
+                    .map_err(|_| format!("{x}: '{v}' is not a number\n{USAGE}"))?;
+                if x == "--ratio" {
+                    a.ratio = Some(f)
+                } else {
+                    a.max_error = Some(f)
+                }
+            }
+            "--faces" => a.faces = Some(num("--faces")? as u64),
+            "--gather-below" => a.gather_below = num("--gather-below")? as u64,
+            "--rounds" => {
+                a.rounds = u32::try_from(num("--rounds")?)
+                    .ok()
+                    .filter(|&r| r > 0)
+                    .ok_or(format!("--rounds: between 1 and 2^32 - 1\n{USAGE}"))?
+            }
+            "--keep-manifold" => a.keep_manifold = true,
+            "--lock-boundary" => a.lock_boundary = true,
             "-h" | "--help" => return Err(USAGE.to_string()),
             s if s.starts_with('-') => return Err(format!("unknown option {s}\n{USAGE}")),
             _ => pos.push(x),
         }
     }
     match pos.as_slice() {
+        [v, _] if v == "simplify" && a.out.is_none() => Err(format!(
+            "simplify needs the output file: -o OUT.spb\n{USAGE}"
+        )),
         [v, f] if VERBS.contains(&v.as_str()) => {
             a.verb = v.clone();
             a.file = PathBuf::from(f);
             Ok(a)
         }
         [v, _] => Err(format!(
-            "unknown verb '{v}' (this version distributes info, validate, stellar and homology)\n{USAGE}"
+            "unknown verb '{v}' (this version distributes info, validate, stellar, homology and simplify)\n{USAGE}"
         )),
         _ => Err(USAGE.to_string()),
     }
@@ -140,9 +197,25 @@ fn run(w: &World) -> Result<(), Failure> {
     let a = agree(w, parse_args())?;
     let t0 = Instant::now();
     fault::guard_sigbus(&a.file);
+    if a.verb == "simplify" {
+        let out = a.out.as_deref().unwrap_or(std::path::Path::new(""));
+        let s = simplify::SimplifyArgs {
+            out,
+            mode: a.mode,
+            ratio: a.ratio,
+            faces: a.faces,
+            max_error: a.max_error,
+            keep_manifold: a.keep_manifold,
+            lock_boundary: a.lock_boundary,
+            max_rounds: a.rounds,
+            gather_below: a.gather_below,
+            json: a.json,
+        };
+        return simplify::run(w, &s, &a.file);
+    }
     let f = agree(w, Spb::open(&a.file))?;
     fault::test_pause();
-    let split = dist::split(w, &f)?;
+    let split = dist::split(w, &f, dist::SplitKind::Plain)?;
     let l = dist::distribute(w, &f, &split)?;
     agree(w, f.check_unchanged())?;
     let mut ld = Loaded {

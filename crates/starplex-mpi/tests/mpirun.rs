@@ -564,3 +564,232 @@ fn a_file_truncated_during_the_read_ends_with_status_2() {
     assert!(err.contains("changed"), "{err}");
     std::fs::remove_dir_all(&tmp).ok();
 }
+
+/// The complex of a `.spb` as (coordinates, sorted list of cells): equality up to the order of
+/// the cells.
+fn cells_of(path: &str) -> (Vec<f64>, Vec<(String, Vec<u32>)>) {
+    let k = starplex::io::read(Path::new(path), &Default::default())
+        .unwrap_or_else(|e| panic!("{path}: {e}"))
+        .complex;
+    let mut cells: Vec<(String, Vec<u32>)> = k
+        .cells()
+        .map(|c| (c.kind.type_name(), c.vertices.to_vec()))
+        .collect();
+    cells.sort();
+    (k.coords().to_vec(), cells)
+}
+
+/// `starplex homology --json` and `validate --json` of a file: (Betti numbers over Z/2,
+/// non-manifold vertices, non-manifold edges).
+fn topology(cli: &Path, spb: &str) -> (serde_json::Value, u64, u64) {
+    let limit = Duration::from_secs(300);
+    let (code, out, err) = run(
+        Command::new(cli).args(["--quiet", "homology", spb, "--json"]),
+        limit,
+    );
+    assert_eq!(code, Some(0), "homology {spb}: {err}");
+    let h = without_timings(&out, spb);
+    let (code, out, err) = run(
+        Command::new(cli).args(["--quiet", "validate", spb, "--json"]),
+        limit,
+    );
+    assert_eq!(code, Some(0), "validate {spb}: {err}");
+    let v = without_timings(&out, spb);
+    let n = |k: &str| {
+        v[k].as_u64()
+            .unwrap_or_else(|| panic!("{spb}: no {k} in {v}"))
+    };
+    (
+        h["betti_z2"].clone(),
+        n("n_non_manifold_vertices"),
+        n("n_non_manifold_edges"),
+    )
+}
+
+/// Betti numbers without their trailing zeros (a simplified complex can lose dimensions).
+fn trimmed(b: &serde_json::Value) -> Vec<u64> {
+    let mut v: Vec<u64> = b
+        .as_array()
+        .map(|a| a.iter().filter_map(|x| x.as_u64()).collect())
+        .unwrap_or_default();
+    while v.last() == Some(&0) {
+        v.pop();
+    }
+    v
+}
+
+/// `simplify` on every small simplicial dataset: with one rank the result is the single-process
+/// `starplex simplify` result (the same complex, up to the order of the cells); with 2-4 ranks,
+/// with and without the last round on rank 0 (`--gather-below 0` keeps every round
+/// distributed, every rank locking what is not interior to it), the Betti numbers are kept and
+/// the complex shrinks. Homology mode everywhere; on the triangle and tetrahedral meshes also
+/// QEM at ratio 0.3 and homology mode with `--keep-manifold`, where no non-manifold vertex or
+/// edge may appear either.
+#[test]
+fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
+    let Some(cli) = ready() else { return };
+    let data = small_datasets();
+    if data.is_empty() {
+        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+        return;
+    }
+    let tmp = std::env::temp_dir().join(format!("starplex-mpi-simplify-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let limit = Duration::from_secs(600);
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for src in &data {
+        let name = src.file_stem().unwrap().to_string_lossy().into_owned();
+        let spb = to_spb(&cli, src, &tmp);
+        let k = starplex::io::read(Path::new(&spb), &Default::default())
+            .unwrap()
+            .complex;
+        if !k.is_simplicial() {
+            continue;
+        }
+        let qem = starplex::algo::simplify::default_mode(&k) == starplex::algo::simplify::Mode::Qem;
+        let before = topology(&cli, &spb);
+        // (options, whether no non-manifold vertex or edge may appear: homology mode keeps
+        // the Betti numbers only, unless --keep-manifold)
+        let mut modes = vec![(vec!["--mode", "homology"], false)];
+        if qem {
+            modes.push((vec!["--mode", "qem", "--ratio", "0.3"], true));
+            modes.push((vec!["--mode", "homology", "--keep-manifold"], true));
+        }
+        for (m, manifold) in &modes {
+            let one = tmp
+                .join(format!("{name}.one.spb"))
+                .to_string_lossy()
+                .into_owned();
+            let mut args = vec!["--quiet", "simplify", &spb, &one, "--no-report"];
+            args.extend(m.iter().copied());
+            let (code, _, err) = run(Command::new(&cli).args(&args), limit);
+            assert_eq!(code, Some(0), "starplex simplify {name} {m:?}: {err}");
+            for np in ranks() {
+                for gather in ["2000000", "0"] {
+                    if np == 1 && gather == "0" {
+                        continue;
+                    }
+                    let out = tmp
+                        .join(format!("{name}.p{np}.spb"))
+                        .to_string_lossy()
+                        .into_owned();
+                    let mut args = vec![
+                        "simplify",
+                        &spb,
+                        "-o",
+                        &out,
+                        "--json",
+                        "--gather-below",
+                        gather,
+                    ];
+                    args.extend(m.iter().copied());
+                    let what = format!("-np {np} simplify {name} {m:?} --gather-below {gather}");
+                    let (code, stdout, err) = run(&mut mpi(np, &args), limit);
+                    if code != Some(0) {
+                        failures.push(format!("{what}: status {code:?}: {err}"));
+                        continue;
+                    }
+                    checked += 1;
+                    let v = without_timings(&stdout, &what);
+                    if np == 1 && cells_of(&out) != cells_of(&one) {
+                        failures.push(format!("{what}: differs from the single process"));
+                    }
+                    let after = topology(&cli, &out);
+                    if trimmed(&after.0) != trimmed(&before.0)
+                        || (*manifold && (after.1 > before.1 || after.2 > before.2))
+                    {
+                        failures.push(format!(
+                            "{what}: topology (betti, nm vertices, nm edges) {after:?}, was {before:?}"
+                        ));
+                    }
+                    let cells = &v["cells"];
+                    if cells[1].as_u64() >= cells[0].as_u64()
+                        || v["n_contractions"].as_u64() == Some(0)
+                    {
+                        failures.push(format!("{what}: nothing contracted: {v}"));
+                    }
+                    if cells[1].as_u64() != Some(cells_of(&out).1.len() as u64) {
+                        failures.push(format!(
+                            "{what}: the report's cell count is not the file's: {v}"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    std::fs::remove_dir_all(&tmp).ok();
+    assert!(checked > 0, "no simplicial dataset found");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// `simplify`'s refusals: CP cells (with the command that triangulates), no output named, an
+/// output that is a stream, a ratio out of range; each ends every rank with status 2 and leaves
+/// no file behind.
+#[test]
+fn simplify_refuses_what_it_cannot_do() {
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    if ready().is_none() {
+        return;
+    }
+    let tmp =
+        std::env::temp_dir().join(format!("starplex-mpi-simplify-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let write = |name: &str, kind: CellKind, cells: &[&[u32]]| {
+        let mut b = ComplexBuilder::new(2).unwrap();
+        for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] {
+            b.push_vertex(&p).unwrap();
+        }
+        for c in cells {
+            b.push_cell(kind, c).unwrap();
+        }
+        let k = b.build(&BuildOptions::default()).unwrap().0;
+        let mut bytes = Vec::new();
+        starplex::io::binary::write(&mut bytes, &k).unwrap();
+        let p = tmp.join(name);
+        std::fs::write(&p, &bytes).unwrap();
+        p.to_string_lossy().into_owned()
+    };
+    let quad = write("q.spb", CellKind::Quad, &[&[0, 1, 3, 2]]);
+    let tri = write("t.spb", CellKind::Simplex(2), &[&[0, 1, 2], &[1, 3, 2]]);
+    let out = tmp.join("out.spb").to_string_lossy().into_owned();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["simplify", &quad, "-o", &out], "triangulate"),
+        (vec!["simplify", &tri], "-o OUT.spb"),
+        (vec!["simplify", &tri, "-o", "/dev/stdout"], "regular file"),
+        (
+            vec!["simplify", &tri, "-o", &out, "--ratio", "1.5"],
+            "between 0 and 1",
+        ),
+        (
+            vec![
+                "simplify",
+                &tri,
+                "-o",
+                &out,
+                "--mode",
+                "homology",
+                "--max-error",
+                "1",
+            ],
+            "qem",
+        ),
+    ];
+    for np in [1, 2] {
+        for (args, want) in &cases {
+            let (code, _, err) = run(&mut mpi(np, args), Duration::from_secs(60));
+            assert_eq!(code, Some(2), "-np {np} {args:?}: {err}");
+            assert!(err.contains(want), "-np {np} {args:?}: {err}");
+            assert!(!Path::new(&out).exists(), "-np {np} {args:?} wrote {out}");
+        }
+    }
+    let left: Vec<_> = std::fs::read_dir(&tmp)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains("starplex-mpi"))
+        .collect();
+    assert!(left.is_empty(), "temporary files left: {left:?}");
+    std::fs::remove_dir_all(&tmp).ok();
+}

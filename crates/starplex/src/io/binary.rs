@@ -278,6 +278,117 @@ fn layout(
     })
 }
 
+/// Where the arrays of a version-1 `.spb` (no attributes) go, and its first bytes: what a writer
+/// that writes the arrays in pieces needs (`starplex-mpi`: every rank writes its own byte ranges
+/// of one file). The header bytes (header, checksum, block table) start the file; the
+/// coordinates start at `coords_offset`, block `b`'s vertex ids at `block_offsets[b]`; the file
+/// is `file_len` bytes long, zero between the arrays.
+///
+/// ```
+/// use starplex::io::binary::{self, SpbPlan};
+/// use starplex::complex::{ComplexBuilder, BuildOptions};
+/// use starplex::cell::CellKind;
+/// let mut b = ComplexBuilder::new(2).unwrap();
+/// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] {
+///     b.push_vertex(&p).unwrap();
+/// }
+/// b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// let (k, _) = b.build(&BuildOptions::default()).unwrap();
+/// let plan = SpbPlan::new(2, 3, &[(CellKind::Simplex(2), 1)]).unwrap();
+/// // the pieces, put where the plan says, are the bytes `write` writes
+/// let mut bytes = vec![0u8; plan.file_len as usize];
+/// bytes[..plan.header.len()].copy_from_slice(&plan.header);
+/// let at = plan.coords_offset as usize;
+/// for (i, x) in k.coords().iter().enumerate() {
+///     bytes[at + 8 * i..at + 8 * i + 8].copy_from_slice(&x.to_le_bytes());
+/// }
+/// let at = plan.block_offsets[0] as usize;
+/// for (i, v) in k.blocks()[0].vertices.iter().enumerate() {
+///     bytes[at + 4 * i..at + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
+/// }
+/// let mut whole = Vec::new();
+/// binary::write(&mut whole, &k).unwrap();
+/// assert_eq!(bytes, whole);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SpbPlan {
+    /// The first bytes of the file: header, checksum, block table.
+    pub header: Vec<u8>,
+    /// Byte offset of the coordinate array.
+    pub coords_offset: u64,
+    /// Byte offset of each block's vertex array.
+    pub block_offsets: Vec<u64>,
+    /// Length of the file.
+    pub file_len: u64,
+}
+
+impl SpbPlan {
+    /// The plan of a version-1 file with `n_vertices` points of `ambient_dim` coordinates and
+    /// `blocks` (kind, number of cells); `None` when the sizes overflow the layout.
+    ///
+    /// ```
+    /// use starplex::io::binary::SpbPlan;
+    /// use starplex::cell::CellKind;
+    /// let p = SpbPlan::new(3, 4, &[(CellKind::Simplex(3), 1)]).unwrap();
+    /// assert_eq!((p.coords_offset, p.block_offsets[0], p.file_len), (96, 192, 208));
+    /// assert!(SpbPlan::new(3, u64::MAX, &[]).is_none());
+    /// ```
+    pub fn new(ambient_dim: usize, n_vertices: u64, blocks: &[(CellKind, u64)]) -> Option<SpbPlan> {
+        let lay = layout(ambient_dim as u64, n_vertices, blocks, None, &[])?;
+        let n_cells = blocks
+            .iter()
+            .try_fold(0u64, |a, &(_, n)| a.checked_add(n))?;
+        let (mut header, table) = header_parts(
+            VERSION_NO_ATTRIBUTES,
+            ambient_dim,
+            n_vertices,
+            n_cells,
+            blocks,
+            &lay,
+        );
+        let sum = fnv1a(&[&header, &table]);
+        header.extend_from_slice(&sum.to_le_bytes());
+        header.extend_from_slice(&table);
+        Some(SpbPlan {
+            header,
+            coords_offset: lay.coords,
+            block_offsets: lay.blocks,
+            file_len: lay.file_len,
+        })
+    }
+}
+
+/// The header up to its checksum, and the block table.
+fn header_parts(
+    version: u32,
+    ambient_dim: usize,
+    n_vertices: u64,
+    n_cells: u64,
+    blocks: &[(CellKind, u64)],
+    lay: &Layout,
+) -> (Vec<u8>, Vec<u8>) {
+    let mut head = Vec::with_capacity(HEADER_LEN);
+    head.extend_from_slice(&MAGIC);
+    head.extend_from_slice(&version.to_le_bytes());
+    head.extend_from_slice(&ENDIAN_TAG.to_le_bytes());
+    head.extend_from_slice(&(ambient_dim as u32).to_le_bytes());
+    head.extend_from_slice(&(blocks.len() as u32).to_le_bytes());
+    head.extend_from_slice(&n_vertices.to_le_bytes());
+    head.extend_from_slice(&n_cells.to_le_bytes());
+    head.extend_from_slice(&lay.coords.to_le_bytes());
+    head.extend_from_slice(&lay.file_len.to_le_bytes());
+    let mut table = Vec::with_capacity(BLOCK_ENTRY_LEN * blocks.len());
+    for (&(kind, n), &off) in blocks.iter().zip(&lay.blocks) {
+        let (code, dim) = kind_code(kind);
+        table.extend_from_slice(&code.to_le_bytes());
+        table.extend_from_slice(&dim.to_le_bytes());
+        table.extend_from_slice(&n.to_le_bytes());
+        table.extend_from_slice(&off.to_le_bytes());
+        table.extend_from_slice(&0u64.to_le_bytes());
+    }
+    (head, table)
+}
+
 /// Writes `k` as `.spb`: version 1 without attributes, version 2 with its attribute table and
 /// arrays otherwise.
 ///
@@ -311,31 +422,20 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     let n_values: Vec<u64> = cols.iter().map(|(_, c)| c.values.len() as u64).collect();
     let lay =
         layout(k.ambient_dim() as u64, nv, &blocks, attr_table, &n_values).ok_or_else(too_large)?;
-    let (coords_offset, offs, file_len) = (lay.coords, &lay.blocks, lay.file_len);
+    let (coords_offset, file_len) = (lay.coords, lay.file_len);
     let version = if cols.is_empty() {
         VERSION_NO_ATTRIBUTES
     } else {
         VERSION
     };
-    let mut head = Vec::with_capacity(HEADER_LEN);
-    head.extend_from_slice(&MAGIC);
-    head.extend_from_slice(&version.to_le_bytes());
-    head.extend_from_slice(&ENDIAN_TAG.to_le_bytes());
-    head.extend_from_slice(&(k.ambient_dim() as u32).to_le_bytes());
-    head.extend_from_slice(&(blocks.len() as u32).to_le_bytes());
-    head.extend_from_slice(&nv.to_le_bytes());
-    head.extend_from_slice(&(k.n_cells() as u64).to_le_bytes());
-    head.extend_from_slice(&coords_offset.to_le_bytes());
-    head.extend_from_slice(&file_len.to_le_bytes());
-    let mut table = Vec::with_capacity(BLOCK_ENTRY_LEN * blocks.len());
-    for (&(kind, n), &off) in blocks.iter().zip(offs) {
-        let (code, dim) = kind_code(kind);
-        table.extend_from_slice(&code.to_le_bytes());
-        table.extend_from_slice(&dim.to_le_bytes());
-        table.extend_from_slice(&n.to_le_bytes());
-        table.extend_from_slice(&off.to_le_bytes());
-        table.extend_from_slice(&0u64.to_le_bytes());
-    }
+    let (mut head, table) = header_parts(
+        version,
+        k.ambient_dim(),
+        nv,
+        k.n_cells() as u64,
+        &blocks,
+        &lay,
+    );
     let atable = if cols.is_empty() {
         Vec::new()
     } else {
@@ -356,7 +456,7 @@ pub fn write(w: &mut dyn Write, k: &IndexedComplex) -> Result<(), IoErrorKind> {
     pad(w, &mut pos, coords_offset)?;
     write_le_f64(w, k.coords())?;
     pos += 8 * k.coords().len() as u64;
-    for (b, &off) in k.blocks().iter().zip(offs) {
+    for (b, &off) in k.blocks().iter().zip(&lay.blocks) {
         pad(w, &mut pos, off)?;
         write_le_u32(w, &b.vertices)?;
         pos += 4 * b.vertices.len() as u64;

@@ -1,0 +1,441 @@
+//! `simplify`: edge contraction distributed over the ranks, in rounds, with the library's
+//! [`simplify`] (homology mode or QEM, the link condition and every geometric check) run
+//! unchanged on each rank's local complex.
+//!
+//! **What a rank may change.** A vertex is *interior* to its rank when the rank owns it and every
+//! vertex of every cell of its star too. No other rank holds a cell of an interior vertex's star
+//! (cells go only to the owners of their vertices), and the rank holds the full star of every
+//! vertex it owns. So each rank locks every local vertex that is not interior (locked vertices
+//! are neither removed nor moved, `SimplifyOptions::keep_vertices`): every contraction removes an
+//! interior vertex into an owned neighbour, whose star, link and quadric are complete locally, so
+//! the link condition and the geometric tests decide exactly as they would on the whole complex,
+//! and the cells it changes are held by this rank alone.
+//!
+//! **Rounds.** Vertices near the boundaries between ranks are locked in a round, so the next
+//! round splits the complex again with every boundary moved to the middle of a rank
+//! (`dist::split`, shifted every other round) and goes on from the previous round's output
+//! (written in parallel to a temporary `.spb` beside the output). Rounds end when one makes no
+//! contraction (after the second), when the target is reached, or after `--rounds`. A
+//! simplified complex has long cells, whose stars reach across ranks, so the locked share grows
+//! round after round: once a round leaves at most `--gather-below` top cells (default 2M), the
+//! last round gives the whole rest to rank 0, which simplifies it with no lock. One rank needs
+//! one round: the result is then the single-process `starplex simplify` result (up to the
+//! order of the cells).
+//!
+//! **Targets.** `--ratio` and `--faces` give a global number of top cells; each round every rank
+//! aims at its share, proportional to the top cells it owns. `--max-error` bounds each QEM
+//! contraction, which is a local decision.
+//!
+//! **Output.** Each rank writes the cells it owns (those whose smallest vertex, by global id, it
+//! owns) and the surviving vertices it owns, numbered rank after rank in increasing input id,
+//! into one `.spb` ([`crate::write`]).
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use fixedbitset::FixedBitSet;
+use rustc_hash::FxHashMap;
+use serde_json::json;
+use starplex::algo::simplify::{simplify, Mode, SimplifyOptions, Target};
+use starplex::attr::{AttrValues, Attribute, Attributes};
+use starplex::cell::CellKind;
+
+use mpi::traits::Communicator;
+
+use crate::comm::{self, agree, Failure, World};
+use crate::dist::{self, Local, Spb, SplitKind};
+use crate::write::{self, Part};
+
+/// Options of the verb.
+pub struct SimplifyArgs<'a> {
+    /// The output `.spb`.
+    pub out: &'a Path,
+    /// `None`: QEM for a pure triangle mesh in 2D/3D or a pure tetrahedral mesh in 3D, homology
+    /// otherwise (as `starplex simplify`).
+    pub mode: Option<Mode>,
+    /// Target share of the input's top cells.
+    pub ratio: Option<f64>,
+    /// Target number of top cells.
+    pub faces: Option<u64>,
+    /// QEM: largest quadric error of a contraction.
+    pub max_error: Option<f64>,
+    /// Homology mode: the extended link condition (a manifold stays one).
+    pub keep_manifold: bool,
+    /// QEM: boundary vertices neither move nor disappear.
+    pub lock_boundary: bool,
+    /// At most this many rounds.
+    pub max_rounds: u32,
+    /// When a round leaves at most this many top cells, the last round runs on rank 0 alone
+    /// (0: never).
+    pub gather_below: u64,
+    /// One JSON object.
+    pub json: bool,
+}
+
+/// The name of the column that carries each local vertex's id through the library's
+/// simplification (vertex columns follow the surviving vertices).
+const LOCAL_ID: &str = "starplex-mpi:local-id";
+
+/// One round on one rank.
+struct RoundOut {
+    part: Part,
+    contractions: u64,
+    owned_tops_after: u64,
+    locked: u64,
+}
+
+/// The mode `starplex simplify` picks, from the blocks of the file.
+fn default_mode(f: &Spb) -> Mode {
+    let dims: std::collections::BTreeSet<usize> =
+        f.h.blocks.iter().map(|&(k, _, _)| k.dim()).collect();
+    let simplicial = f.h.blocks.iter().all(|&(k, _, _)| k.is_simplex());
+    match (dims.iter().next(), dims.len(), f.h.ambient_dim) {
+        (Some(2), 1, 2 | 3) | (Some(3), 1, 3) if simplicial => Mode::Qem,
+        _ => Mode::Homology,
+    }
+}
+
+/// Top cells this rank owns: owned cells and owned isolated vertices.
+fn owned_tops(l: &Local) -> u64 {
+    let used = l.k.used_vertices();
+    l.n_owned_cells + l.owned.ones().filter(|&v| !used.contains(v)).count() as u64
+}
+
+/// The local vertices this rank must not remove nor move: every vertex that is not interior.
+fn locked(l: &Local) -> Vec<u32> {
+    let n = l.vertex_gid.len();
+    let mut near = FixedBitSet::with_capacity(n);
+    for c in l.k.cells() {
+        if c.vertices.iter().any(|&v| !l.owned.contains(v as usize)) {
+            for &v in c.vertices {
+                near.insert(v as usize);
+            }
+        }
+    }
+    (0..n)
+        .filter(|&v| !l.owned.contains(v) || near.contains(v))
+        .map(|v| v as u32)
+        .collect()
+}
+
+/// Simplifies this rank's local complex and keeps what it owns, numbered for the output.
+fn round(
+    w: &World,
+    l: &mut Local,
+    mode: Mode,
+    a: &SimplifyArgs,
+    faces: Option<u64>,
+) -> Result<RoundOut, Failure> {
+    let (rank, p) = (w.rank() as usize, w.size() as usize);
+    let n = l.vertex_gid.len();
+    let keep = locked(l);
+    let mine = owned_tops(l);
+    let all_owned = comm::sum(w, mine);
+    let local_tops = (l.k.n_cells() + l.k.n_isolated_vertices()) as u64;
+    // this rank's share of the global target, in local top cells (ghosts stay as they are)
+    let local_target = faces.map(|t| {
+        let share = if all_owned > 0 {
+            ((mine as f64) * (t as f64) / (all_owned as f64)).round() as u64
+        } else {
+            0
+        };
+        (local_tops - mine + share.min(mine)) as usize
+    });
+    let ids = Attribute::int(LOCAL_ID, 1, (0..n as i64).collect());
+    agree(
+        w,
+        l.k.set_attributes(Attributes {
+            vertex: vec![ids],
+            cell: vec![],
+        })
+        .map_err(|e| e.to_string()),
+    )?;
+    let opts = SimplifyOptions {
+        mode: Some(mode),
+        target: Target {
+            faces: local_target,
+            max_error: a.max_error,
+            ..Default::default()
+        },
+        lock_boundary: a.lock_boundary,
+        keep_manifold: a.keep_manifold,
+        keep_vertices: keep.clone(),
+        ..Default::default()
+    };
+    let done = if l.k.n_cells() == 0 {
+        // nothing to simplify here (an empty rank): the vertices as they are
+        Ok(None)
+    } else {
+        simplify(&l.k, &opts).map(Some).map_err(|e| e.to_string())
+    };
+    let done = agree(w, done)?;
+    let (out, contractions) = match done {
+        Some((out, r)) => (out, r.n_contractions),
+        None => (l.k.clone(), 0),
+    };
+    let local_of: Vec<u32> = match out.attributes().vertex.iter().find(|c| c.name == LOCAL_ID) {
+        Some(Attribute {
+            values: AttrValues::Int(v),
+            ..
+        }) => v.iter().map(|&x| x as u32).collect(),
+        _ => (0..out.n_vertices() as u32).collect(),
+    };
+    // owned surviving vertices, in increasing global id (local ids increase with global ids)
+    let owned_out: Vec<u32> = (0..out.n_vertices() as u32)
+        .filter(|&i| l.owned.contains(local_of[i as usize] as usize))
+        .collect();
+    let counts = comm::all_gather(w, &[owned_out.len() as u64]);
+    let first: u64 = counts[..rank].iter().sum();
+    let mut new_id = vec![u32::MAX; out.n_vertices()];
+    for (j, &i) in owned_out.iter().enumerate() {
+        new_id[i as usize] = (first + j as u64) as u32;
+    }
+    let gid = |i: u32| l.vertex_gid[local_of[i as usize] as usize];
+    let owner = |i: u32| l.vertex_owner[local_of[i as usize] as usize] as usize;
+    // the cells this rank writes: those whose smallest vertex (global id) it owns
+    let owns = |c: &[u32]| {
+        let m = c.iter().copied().min_by_key(|&i| gid(i)).unwrap_or(0);
+        owner(m) == rank
+    };
+    // new ids of the ghost vertices of those cells, from their owners
+    let mut ask: Vec<Vec<u32>> = vec![Vec::new(); p];
+    for c in out.cells() {
+        if owns(c.vertices) {
+            for &i in c.vertices {
+                if owner(i) != rank {
+                    ask[owner(i)].push(gid(i));
+                }
+            }
+        }
+    }
+    for v in &mut ask {
+        v.sort_unstable();
+        v.dedup();
+    }
+    let asked = comm::exchange(w, &ask)?;
+    let owned_gids: Vec<u32> = owned_out.iter().map(|&i| gid(i)).collect();
+    let mut missing = None;
+    let answers: Vec<Vec<u32>> = asked
+        .iter()
+        .map(|q| {
+            q.iter()
+                .map(|g| match owned_gids.binary_search(g) {
+                    Ok(j) => (first + j as u64) as u32,
+                    Err(_) => {
+                        missing.get_or_insert(*g);
+                        u32::MAX
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    agree(
+        w,
+        missing.map_or(Ok(()), |g| {
+            Err(format!(
+                "internal error: vertex {g} is used by another rank's cell but did not survive here"
+            ))
+        }),
+    )?;
+    let replies = comm::exchange(w, &answers)?;
+    let mut ghost: FxHashMap<u32, u32> = FxHashMap::default();
+    for (q, r) in ask.iter().zip(&replies) {
+        ghost.extend(q.iter().copied().zip(r.iter().copied()));
+    }
+    let mut blocks: Vec<(CellKind, Vec<u32>)> = Vec::new();
+    let mut owned_cells = 0u64;
+    for c in out.cells() {
+        if !owns(c.vertices) {
+            continue;
+        }
+        owned_cells += 1;
+        let at = match blocks.iter().position(|(k, _)| *k == c.kind) {
+            Some(i) => i,
+            None => {
+                blocks.push((c.kind, Vec::new()));
+                blocks.len() - 1
+            }
+        };
+        let dst = &mut blocks[at].1;
+        for &i in c.vertices {
+            dst.push(if owner(i) == rank {
+                new_id[i as usize]
+            } else {
+                ghost[&gid(i)]
+            });
+        }
+    }
+    let d = out.ambient_dim();
+    let mut coords = Vec::with_capacity(owned_out.len() * d);
+    for &i in &owned_out {
+        coords.extend_from_slice(out.point(starplex::ids::VertexId(i)));
+    }
+    let used = out.used_vertices();
+    let isolated = owned_out
+        .iter()
+        .filter(|&&i| !used.contains(i as usize))
+        .count() as u64;
+    Ok(RoundOut {
+        part: Part { coords, blocks },
+        contractions,
+        owned_tops_after: owned_cells + isolated,
+        locked: keep.len() as u64,
+    })
+}
+
+/// The temporary file of round `r` beside the output.
+fn round_path(target: &Path, r: u32) -> PathBuf {
+    let mut name = target
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_default();
+    name.push(format!(".round{r}.starplex-mpi.spb"));
+    target.with_file_name(name)
+}
+
+/// Removes a temporary round file (rank 0).
+fn remove(w: &World, path: Option<PathBuf>) {
+    if let (Some(p), 0) = (path, w.rank()) {
+        let _ = std::fs::remove_file(p);
+    }
+}
+
+/// The verb (collective).
+pub fn run(w: &World, a: &SimplifyArgs, file: &Path) -> Result<(), Failure> {
+    let t0 = Instant::now();
+    let target = agree(w, write::target_of(a.out))?;
+    let p = w.size() as u32;
+    let mut input = file.to_path_buf();
+    let mut temp: Option<PathBuf> = None;
+    let mut rows = Vec::new();
+    let (mut before, mut mode, mut goal) = ((0u64, 0u64), Mode::Homology, None);
+    let mut total = 0u64;
+    let mut tops_now = 0u64;
+    let mut r = 0u32;
+    let mut kind = SplitKind::Plain;
+    let written = loop {
+        // reading a round's file back: on any error, the file goes too
+        let read = (|| {
+            let f = agree(w, Spb::open(&input))?;
+            let split = dist::split(w, &f, kind)?;
+            let l = dist::distribute(w, &f, &split)?;
+            agree(w, f.check_unchanged())?;
+            Ok((f, l))
+        })();
+        let (f, mut l) = match read {
+            Ok(x) => x,
+            Err(e) => {
+                remove(w, temp.take());
+                return Err(e);
+            }
+        };
+        if r == 0 {
+            if let Some(&(k, _, _)) = f.h.blocks.iter().find(|&&(k, _, _)| !k.is_simplex()) {
+                return Err(Failure(format!(
+                    "{}: the complex has {} cells; simplify contracts edges of simplicial complexes only: triangulate first (starplex convert --triangulate {} triangulated.spb)",
+                    file.display(),
+                    k.type_name(),
+                    file.display()
+                )));
+            }
+            mode = a.mode.unwrap_or_else(|| default_mode(&f));
+            if mode == Mode::Homology && a.max_error.is_some() {
+                return Err(Failure(
+                    "--max-error is a quadric error: it needs --mode qem".into(),
+                ));
+            }
+            let tops = comm::sum(w, owned_tops(&l));
+            tops_now = tops;
+            before = (f.h.n_vertices, f.h.n_cells);
+            if let Some(x) = a.ratio.filter(|x| !(0.0..=1.0).contains(x)) {
+                return Err(Failure(format!("--ratio {x}: it must be between 0 and 1")));
+            }
+            let by_ratio = a.ratio.map(|x| (x * tops as f64).round() as u64);
+            goal = match (a.faces, by_ratio) {
+                (Some(f), Some(g)) => Some(f.max(g)),
+                (f, g) => f.or(g),
+            };
+            if let Some(g) = goal.filter(|&g| g > tops) {
+                return Err(Failure(format!(
+                    "{g} faces asked, the complex has {tops} top cells"
+                )));
+            }
+        }
+        let d = f.h.ambient_dim;
+        drop(f);
+        remove(w, temp.take());
+        // with several ranks, the first round stops short of the target (90 % of the way), so
+        // that the next round (another split, or rank 0 alone) does the rest over the first
+        // round's locked bands instead of leaving them denser than the rest
+        let round_goal = match goal {
+            Some(g) if p > 1 && r == 0 && kind != SplitKind::Rank0 => {
+                Some(g + (tops_now.saturating_sub(g)) / 10)
+            }
+            g => g,
+        };
+        let out = round(w, &mut l, mode, a, round_goal)?;
+        drop(l);
+        let contractions = comm::sum(w, out.contractions);
+        let tops_after = comm::sum(w, out.owned_tops_after);
+        let locked = comm::sum(w, out.locked);
+        total += contractions;
+        tops_now = tops_after;
+        rows.push(json!({"round": r + 1, "split": format!("{kind:?}").to_lowercase(), "contractions": contractions, "top_cells": tops_after, "locked_vertices": locked}));
+        let next = if tops_after <= a.gather_below {
+            SplitKind::Rank0
+        } else if kind == SplitKind::Plain {
+            SplitKind::Shifted
+        } else {
+            SplitKind::Plain
+        };
+        let last = p == 1
+            || kind == SplitKind::Rank0
+            || r + 1 >= a.max_rounds
+            || (contractions == 0 && r >= 1 && next != SplitKind::Rank0)
+            || goal.is_some_and(|g| tops_after <= g);
+        kind = next;
+        let path = if last {
+            target.clone()
+        } else {
+            round_path(&target, r)
+        };
+        let written = write::write(w, &path, d, &out.part)?;
+        if last {
+            break written;
+        }
+        temp = Some(path.clone());
+        input = path;
+        r += 1;
+    };
+    let time_s = t0.elapsed().as_secs_f64();
+    if w.rank() != 0 {
+        return Ok(());
+    }
+    let v = json!({
+        "input": file.display().to_string(),
+        "output": a.out.display().to_string(),
+        "mode": mode.name(),
+        "ranks": p,
+        "target_faces": goal,
+        "n_contractions": total,
+        "rounds": rows.len(),
+        "per_round": rows,
+        "vertices": [before.0, written.n_vertices],
+        "cells": [before.1, written.n_cells],
+        "bytes": written.bytes,
+        "time_s": time_s,
+    });
+    if a.json {
+        crate::print_json(&v);
+    } else {
+        println!("{} -> {}", file.display(), a.out.display());
+        println!("  mode                {} ({} ranks)", mode.name(), p);
+        println!(
+            "  vertices            {} -> {}",
+            before.0, written.n_vertices
+        );
+        println!("  top cells           {} -> {}", before.1, written.n_cells);
+        println!("  contractions        {total} in {} rounds", rows.len());
+        println!("  time                {time_s:.3} s");
+    }
+    Ok(())
+}
