@@ -64,24 +64,7 @@ impl StructureKind {
     }
 }
 
-/// The relations.
-#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RelationKind {
-    /// Top cells incident to a vertex.
-    Vt,
-    /// Vertices adjacent to a vertex.
-    Vv,
-    /// Link of a vertex.
-    Link,
-    /// Star of a vertex.
-    Star,
-    /// p-faces: the co-boundaries R_{0,q} of a vertex; with --all every p-simplex.
-    Pfaces,
-    /// Adjacency: R_{0,0} of a vertex; with --all R_{k,k} of every top k-simplex.
-    Adj,
-    /// The IA* relations extracted through the interface: adjacent tops across each facet.
-    IaStar,
-}
+pub use starplex_cli::export::RelationKind;
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct QueryArgs {
@@ -337,7 +320,7 @@ pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {
 fn checked_args(ctx: &Ctx, a: &QueryArgs) -> Result<QueryArgs, CliError> {
     let mut a_vertex = a.vertex.clone();
     if let Some(f) = &a.vertex_file {
-        a_vertex.extend(crate::export::read_ids(f)?);
+        a_vertex.extend(starplex_cli::export::read_ids(f)?);
     }
     if a.relation.len() > 1 && (a.all || a.out.is_some()) {
         return Err(CliError::Input(
@@ -346,7 +329,7 @@ fn checked_args(ctx: &Ctx, a: &QueryArgs) -> Result<QueryArgs, CliError> {
         ));
     }
     if let Some(out) = &a.out {
-        crate::export::OutFormat::from_path(out)?;
+        starplex_cli::export::OutFormat::from_path(out)?;
     }
     let a = QueryArgs {
         vertex: a_vertex,
@@ -380,7 +363,7 @@ fn write_out(
         .num_threads(a.threads.max(1))
         .build()
         .map_err(|e| CliError::Other(e.to_string()))?;
-    let (n, total) = pool.install(|| crate::export::write(s, relation, items, out))?;
+    let (n, total) = pool.install(|| starplex_cli::export::write(s, relation, items, out))?;
     let secs = t.elapsed().as_secs_f64();
     if a.json {
         println!(

@@ -190,7 +190,7 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
 /// ask to keep.
 fn keep_vertices(a: &SimplifyArgs, k: &IndexedComplex, name: &str) -> Result<Vec<u32>, CliError> {
     let mut keep_vertices = match &a.keep_vertices {
-        Some(f) => crate::export::read_ids(f)?,
+        Some(f) => starplex_cli::export::read_ids(f)?,
         None => Vec::new(),
     };
     if let Some(n) = &a.keep_vertex_attribute {

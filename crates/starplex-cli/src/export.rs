@@ -9,13 +9,43 @@ use starplex::io::{output, IoErrorKind};
 use starplex::topo::batch::{self, Answers, Relation};
 use starplex::topo::{Queries, QueryError};
 
-use crate::cmd_query::RelationKind;
-use crate::common::CliError;
+use crate::error::CliError;
+
+/// The relations of `query --relation` (and of `starplex-mpi query`).
+///
+/// ```
+/// use clap::ValueEnum;
+/// use starplex_cli::export::RelationKind;
+/// assert_eq!(RelationKind::from_str("ia-star", false), Ok(RelationKind::IaStar));
+/// ```
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RelationKind {
+    /// Top cells incident to a vertex.
+    Vt,
+    /// Vertices adjacent to a vertex.
+    Vv,
+    /// Link of a vertex.
+    Link,
+    /// Star of a vertex.
+    Star,
+    /// p-faces: the co-boundaries R_{0,q} of a vertex; with --all every p-simplex.
+    Pfaces,
+    /// Adjacency: R_{0,0} of a vertex; with --all R_{k,k} of every top k-simplex.
+    Adj,
+    /// The IA* relations extracted through the interface: adjacent tops across each facet.
+    IaStar,
+}
 
 /// Items answered (and held in memory) per block of a streamed output.
 const BLOCK: usize = 1 << 16;
 
-/// The output formats.
+/// The output formats of `query --out`.
+///
+/// ```
+/// use starplex_cli::export::OutFormat;
+/// assert_eq!(OutFormat::from_path("a.npz".as_ref()).unwrap(), OutFormat::Npz);
+/// assert!(OutFormat::from_path("a.txt".as_ref()).is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum OutFormat {
     Jsonl,
@@ -24,6 +54,15 @@ pub enum OutFormat {
 }
 
 impl OutFormat {
+    /// The format named by the output's extension (`.jsonl`, `.npz`, `.csv`).
+    ///
+    /// ```
+    /// use starplex_cli::export::OutFormat;
+    /// assert_eq!(OutFormat::from_path("x.jsonl".as_ref()).unwrap(), OutFormat::Jsonl);
+    /// ```
+    ///
+    /// # Errors
+    /// Any other extension, with a hint.
     pub fn from_path(p: &Path) -> Result<OutFormat, CliError> {
         match p.extension().and_then(|e| e.to_str()) {
             Some("jsonl") => Ok(OutFormat::Jsonl),
@@ -39,6 +78,16 @@ impl OutFormat {
 
 /// Reads vertex ids from a file (`-`: standard input): integers separated by white space or
 /// commas.
+///
+/// ```
+/// let p = std::env::temp_dir().join(format!("starplex-doc-ids-{}.txt", std::process::id()));
+/// std::fs::write(&p, "1 2,3\n4").unwrap();
+/// assert_eq!(starplex_cli::export::read_ids(&p).unwrap(), vec![1, 2, 3, 4]);
+/// # std::fs::remove_file(&p).ok();
+/// ```
+///
+/// # Errors
+/// An unreadable file, a token that is not a vertex id (with its line).
 pub fn read_ids(p: &Path) -> Result<Vec<u32>, CliError> {
     let text = if p.as_os_str() == "-" {
         let mut s = String::new();
@@ -126,13 +175,110 @@ fn names(r: RelationKind, all: bool) -> (&'static str, &'static str) {
     }
 }
 
+/// Global ids of a structure's vertices and top cells: [`write_mapped`] writes them instead of
+/// the structure's own (a rank of `starplex-mpi` answers for its local complex in the file's
+/// numbering).
+///
+/// ```
+/// use starplex_cli::export::IdMap;
+/// let m = IdMap { vertices: &[3, 7, 9], cells: &[5] };
+/// assert_eq!((m.vertices[1], m.cells[0]), (7, 5));
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct IdMap<'a> {
+    /// Global id of each vertex.
+    pub vertices: &'a [u32],
+    /// Global id of each top cell.
+    pub cells: &'a [u32],
+}
+
+/// Which numbering the items and the answer elements of a plan are in.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Ids {
+    Vertex,
+    Cell,
+}
+
+fn id_kinds(p: &Plan) -> (Ids, Ids) {
+    match p {
+        Plan::Ids(Relation::Vt) => (Ids::Vertex, Ids::Cell),
+        Plan::Ids(Relation::Tt) => (Ids::Cell, Ids::Cell),
+        Plan::Ids(Relation::Tv) | Plan::AdjTops => (Ids::Cell, Ids::Vertex),
+        _ => (Ids::Vertex, Ids::Vertex),
+    }
+}
+
+impl IdMap<'_> {
+    fn table(&self, k: Ids) -> &[u32] {
+        match k {
+            Ids::Vertex => self.vertices,
+            Ids::Cell => self.cells,
+        }
+    }
+}
+
+/// `values` in the numbering of `map` (unchanged without one).
+fn map_in_place(map: Option<&IdMap>, k: Ids, values: &mut [u32]) {
+    if let Some(m) = map {
+        let t = m.table(k);
+        for v in values {
+            *v = t[*v as usize];
+        }
+    }
+}
+
 /// Writes relation `r` of `items` (None: every vertex or top cell) to `out`. Returns the number
 /// of items and of answer elements (ids or simplices).
+///
+/// ```
+/// use starplex_cli::export::{write, RelationKind};
+/// use starplex::structures::Structure;
+/// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap();
+/// let s = Structure::Stellar.build(&k, &Default::default()).unwrap();
+/// let out = std::env::temp_dir().join(format!("starplex-doc-export-{}.jsonl", std::process::id()));
+/// let (items, values) = write(s.as_ref(), RelationKind::Vt, Some(&[4]), &out).unwrap();
+/// assert_eq!((items, values), (1, 6)); // the centre of a 2x2 grid is in 6 triangles
+/// let line = std::fs::read_to_string(&out).unwrap();
+/// assert!(line.starts_with("{\"vertex\":4,\"incident_top_cells\":["));
+/// # std::fs::remove_file(&out).ok();
+/// ```
+///
+/// # Errors
+/// An unknown output extension, items out of range, a relation that needs `all`, a query or
+/// write error.
 pub fn write(
     s: &(dyn Queries + Sync),
     r: RelationKind,
     items: Option<&[u32]>,
     out: &Path,
+) -> Result<(u64, u64), CliError> {
+    write_mapped(s, r, items, out, None)
+}
+
+/// [`write`], with every item and answer element written in the numbering of `map` (the items
+/// are given in the structure's own numbering).
+///
+/// ```
+/// use starplex_cli::export::{write_mapped, IdMap, RelationKind};
+/// use starplex::structures::Structure;
+/// let k = starplex::generate::kuhn_grid(&[1, 1]).unwrap(); // 4 vertices, 2 triangles
+/// let s = Structure::Stellar.build(&k, &Default::default()).unwrap();
+/// let out = std::env::temp_dir().join(format!("starplex-doc-export-map-{}.csv", std::process::id()));
+/// let map = IdMap { vertices: &[10, 11, 12, 13], cells: &[20, 21] };
+/// write_mapped(s.as_ref(), RelationKind::Vv, Some(&[0]), &out, Some(&map)).unwrap();
+/// let text = std::fs::read_to_string(&out).unwrap();
+/// assert!(text.lines().skip(1).all(|l| l.starts_with("10,1")));
+/// # std::fs::remove_file(&out).ok();
+/// ```
+///
+/// # Errors
+/// As [`write`].
+pub fn write_mapped(
+    s: &(dyn Queries + Sync),
+    r: RelationKind,
+    items: Option<&[u32]>,
+    out: &Path,
+    map: Option<&IdMap>,
 ) -> Result<(u64, u64), CliError> {
     let fmt = OutFormat::from_path(out)?;
     let all = items.is_none();
@@ -160,6 +306,8 @@ pub fn write(
         }
     };
     let (item_key, answer_key) = names(r, all);
+    let (item_ids, value_ids) = id_kinds(&p);
+    let item_id = |i: u32| map.map_or(i, |m| m.table(item_ids)[i as usize]);
     let mut counts = (0u64, 0u64);
     let tops = |chunk: &[u32]| -> Result<(Vec<u32>, Vec<usize>), QueryError> {
         // the top cells' vertices, and each cell's size
@@ -168,7 +316,7 @@ pub fn write(
         Ok((c.values, w))
     };
     // one block of answers: (per-level CSR, the width of one simplex per row or level)
-    let answer_block = |chunk: &[u32]| -> Result<(Vec<Answers>, Widths), QueryError> {
+    let answer_block_local = |chunk: &[u32]| -> Result<(Vec<Answers>, Widths), QueryError> {
         Ok(match &p {
             Plan::Ids(rel) => (vec![batch::gather(s, *rel, chunk)?], Widths::Ids),
             Plan::Levels { link } => (batch::levels(s, *link, chunk)?, Widths::Levels),
@@ -200,6 +348,13 @@ pub fn write(
             Plan::Faces => unreachable!("levels are written whole"),
         })
     };
+    let answer_block = |chunk: &[u32]| -> Result<(Vec<Answers>, Widths), QueryError> {
+        let (mut lv, widths) = answer_block_local(chunk)?;
+        for c in &mut lv {
+            map_in_place(map, value_ids, &mut c.values);
+        }
+        Ok((lv, widths))
+    };
     output::write_with(out, |w| {
         match fmt {
             OutFormat::Jsonl | OutFormat::Csv => {
@@ -214,7 +369,7 @@ pub fn write(
                         s.for_each_simplex(dim, &mut |x| {
                             if err.is_ok() {
                                 counts.1 += 1;
-                                err = write_simplex_line(w, csv, dim, x);
+                                err = write_simplex_line(w, csv, dim, x, map);
                             }
                         })
                         .map_err(qerr)?;
@@ -226,6 +381,7 @@ pub fn write(
                     let (lv, widths) = answer_block(chunk).map_err(qerr)?;
                     for (j, &item) in chunk.iter().enumerate() {
                         counts.0 += 1;
+                        let item = item_id(item);
                         write_item(w, csv, item_key, answer_key, item, j, &lv, &widths)?;
                     }
                     counts.1 += lv.iter().map(|c| c.values.len() as u64).sum::<u64>();
@@ -237,14 +393,16 @@ pub fn write(
                 if let Plan::Faces = p {
                     let f = s.f_vector().map_err(qerr)?;
                     for (dim, &n) in f.iter().enumerate() {
-                        let v = batch::faces(s, dim).map_err(qerr)?;
+                        let mut v = batch::faces(s, dim).map_err(qerr)?;
+                        map_in_place(map, Ids::Vertex, &mut v);
                         counts.1 += n;
                         arrays.push((format!("faces_{dim}"), Array::U32(v, dim + 1)));
                     }
                 } else {
                     let (lv, widths) = answer_block(items).map_err(qerr)?;
                     counts.0 = items.len() as u64;
-                    arrays.push(("ids".into(), Array::U32(items.to_vec(), 0)));
+                    let ids = items.iter().map(|&i| item_id(i)).collect();
+                    arrays.push(("ids".into(), Array::U32(ids, 0)));
                     let single = lv.len() == 1 && !matches!(widths, Widths::Levels);
                     for (p, c) in lv.into_iter().enumerate() {
                         counts.1 += c.values.len() as u64;
@@ -323,8 +481,12 @@ fn write_simplex_line(
     csv: bool,
     dim: usize,
     x: &[starplex::ids::VertexId],
+    map: Option<&IdMap>,
 ) -> Result<(), IoErrorKind> {
-    let ids: Vec<u32> = x.iter().map(|v| v.0).collect();
+    let ids: Vec<u32> = x
+        .iter()
+        .map(|v| map.map_or(v.0, |m| m.vertices[v.index()]))
+        .collect();
     if csv {
         writeln!(w, "{dim},{}", space_ids(&ids))?;
     } else {

@@ -20,7 +20,6 @@ mod cmd_simplify;
 mod cmd_stellar;
 mod cmd_validate;
 mod common;
-mod export;
 
 /// Topology of meshes and complexes.
 #[derive(Parser, Debug)]
