@@ -252,11 +252,13 @@ pub fn write(
     items: Option<&[u32]>,
     out: &Path,
 ) -> Result<(u64, u64), CliError> {
-    write_mapped(s, r, items, out, None)
+    write_mapped(s, r, items, items.is_none(), out, None)
 }
 
 /// [`write`], with every item and answer element written in the numbering of `map` (the items
-/// are given in the structure's own numbering).
+/// are given in the structure's own numbering). `all` asks for what `--all` writes (adjacent
+/// tops and IA* of top cells, every simplex for p-faces); with `items` as well, only those
+/// items (top cells for adj and ia-star).
 ///
 /// ```
 /// use starplex_cli::export::{write_mapped, IdMap, RelationKind};
@@ -265,7 +267,7 @@ pub fn write(
 /// let s = Structure::Stellar.build(&k, &Default::default()).unwrap();
 /// let out = std::env::temp_dir().join(format!("starplex-doc-export-map-{}.csv", std::process::id()));
 /// let map = IdMap { vertices: &[10, 11, 12, 13], cells: &[20, 21] };
-/// write_mapped(s.as_ref(), RelationKind::Vv, Some(&[0]), &out, Some(&map)).unwrap();
+/// write_mapped(s.as_ref(), RelationKind::Vv, Some(&[0]), false, &out, Some(&map)).unwrap();
 /// let text = std::fs::read_to_string(&out).unwrap();
 /// assert!(text.lines().skip(1).all(|l| l.starts_with("10,1")));
 /// # std::fs::remove_file(&out).ok();
@@ -277,11 +279,11 @@ pub fn write_mapped(
     s: &(dyn Queries + Sync),
     r: RelationKind,
     items: Option<&[u32]>,
+    all: bool,
     out: &Path,
     map: Option<&IdMap>,
 ) -> Result<(u64, u64), CliError> {
     let fmt = OutFormat::from_path(out)?;
-    let all = items.is_none();
     let p = plan(r, all)?;
     let n_items = match &p {
         Plan::Ids(rel) => rel.n_items(s),

@@ -325,6 +325,19 @@ pub struct Local {
 }
 
 impl Local {
+    /// Nothing held (a placeholder while a local complex is rebuilt).
+    pub fn empty() -> Local {
+        Local {
+            k: IndexedComplex::from_parts(1, Buf::Owned(Vec::new()), Vec::new())
+                .expect("the empty complex is valid"),
+            vertex_gid: Vec::new(),
+            cell_gid: Vec::new(),
+            owned: FixedBitSet::new(),
+            vertex_owner: Vec::new(),
+            n_owned_cells: 0,
+        }
+    }
+
     /// True when this rank owns local cell `c` (it owns the cell's smallest vertex).
     pub fn owns_cell(&self, c: usize) -> bool {
         let cell = self.k.cell(starplex::ids::CellId(c as u32));
@@ -388,6 +401,18 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
     agree(w, bad.map_or(Ok(()), Err))?;
     let got = comm::exchange(w, &out)?;
     drop(out);
+    assemble(w, f, s, owned_gids, got)
+}
+
+/// The local complex of the cell records `[global id, block, global vertex ids...]` in `got`
+/// (any order; a cell given twice is kept once), this rank owning `owned_gids` (sorted).
+fn assemble(
+    w: &World,
+    f: &Spb,
+    s: &Split,
+    owned_gids: Vec<u32>,
+    got: Vec<Vec<u32>>,
+) -> Result<Local, Failure> {
     // parse the records: (cell id, block, offset of its vertices in `flat`)
     let mut recs: Vec<(u32, u32, usize, usize)> = Vec::new();
     for (src, g) in got.iter().enumerate() {
@@ -400,6 +425,7 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
         }
     }
     recs.sort_unstable_by_key(|r| r.0);
+    recs.dedup_by_key(|r| r.0);
     let mut gids: Vec<u32> = owned_gids.clone();
     for &(_, b, src, at) in &recs {
         let a = f.h.blocks[b as usize].0.n_vertices();
@@ -458,4 +484,71 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
     };
     l.n_owned_cells = (0..l.k.n_cells()).filter(|&c| l.owns_cell(c)).count() as u64;
     Ok(l)
+}
+
+/// Widens the ghost layer of `l` by one ring: every rank also receives, from their owners, the
+/// stars of the ghost vertices of the cells it owns. Afterwards a rank holds every cell that
+/// shares a vertex with a cell it owns, so relations between top cells (adjacency across
+/// facets, IA*) are exact for its owned cells. Ownership does not change.
+pub fn widen(w: &World, f: &Spb, s: &Split, l: Local) -> Result<Local, Failure> {
+    let (rank, p) = (w.rank() as usize, w.size() as usize);
+    // the ghost vertices of owned cells, asked from their owners
+    let mut ask: Vec<Vec<u32>> = vec![Vec::new(); p];
+    for c in l.k.cells() {
+        if !l.owns_cell(c.id.index()) {
+            continue;
+        }
+        for &v in c.vertices {
+            let o = l.vertex_owner[v as usize] as usize;
+            if o != rank {
+                ask[o].push(l.vertex_gid[v as usize]);
+            }
+        }
+    }
+    for a in &mut ask {
+        a.sort_unstable();
+        a.dedup();
+    }
+    let asked = comm::exchange(w, &ask)?;
+    drop(ask);
+    // the stars asked for: each cell once per asking rank
+    let n = l.vertex_gid.len();
+    let wanted: Vec<FixedBitSet> = asked
+        .iter()
+        .map(|q| {
+            let mut b = FixedBitSet::with_capacity(n);
+            for g in q {
+                if let Ok(i) = l.vertex_gid.binary_search(g) {
+                    b.insert(i);
+                }
+            }
+            b
+        })
+        .collect();
+    let block_of = |cid: u32| f.block_of(cid as u64) as u32;
+    let record = |dst: &mut Vec<u32>, cid: u32, verts: &[u32]| {
+        dst.push(cid);
+        dst.push(block_of(cid));
+        dst.extend(verts.iter().map(|&v| l.vertex_gid[v as usize]));
+    };
+    let mut out: Vec<Vec<u32>> = vec![Vec::new(); p];
+    for c in l.k.cells() {
+        let cid = l.cell_gid[c.id.index()];
+        for (r, b) in wanted.iter().enumerate() {
+            if r != rank && c.vertices.iter().any(|&v| b.contains(v as usize)) {
+                record(&mut out[r], cid, c.vertices);
+            }
+        }
+    }
+    let mut got = comm::exchange(w, &out)?;
+    drop(out);
+    // this rank's own cells, as records too
+    let mut mine = Vec::new();
+    for c in l.k.cells() {
+        record(&mut mine, l.cell_gid[c.id.index()], c.vertices);
+    }
+    got.push(mine);
+    let owned: Vec<u32> = l.owned.ones().map(|v| l.vertex_gid[v]).collect();
+    drop(l);
+    assemble(w, f, s, owned, got)
 }

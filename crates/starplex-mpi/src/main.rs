@@ -5,6 +5,8 @@
 //! mpirun -np P starplex-mpi validate FILE.spb [--json] [--max-list N] [--stats]
 //! mpirun -np P starplex-mpi stellar FILE.spb [--json] [--kv N] [--vt-vv-out PREFIX] [--stats]
 //! mpirun -np P starplex-mpi homology FILE.spb [--json] [--stats]
+//! mpirun -np P starplex-mpi query FILE.spb --relation R --all --out OUT.jsonl|csv|npz
+//!     [--structure S] [--per-rank]
 //! mpirun -np P starplex-mpi simplify FILE.spb -o OUT.spb [--mode homology|qem] [--ratio R]
 //!     [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N] [--json]
 //! ```
@@ -36,6 +38,7 @@ mod dist;
 mod fault;
 mod homology;
 mod labels;
+mod query;
 mod simplify;
 mod stellar;
 mod write;
@@ -43,8 +46,10 @@ mod write;
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
-const VERBS: [&str; 5] = ["info", "validate", "stellar", "homology", "simplify"];
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       query: --relation vt|vv|link|star|adj|ia-star --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
+const VERBS: [&str; 6] = [
+    "info", "validate", "stellar", "homology", "query", "simplify",
+];
 
 #[derive(Debug)]
 struct Args {
@@ -65,6 +70,10 @@ struct Args {
     lock_boundary: bool,
     rounds: u32,
     gather_below: u64,
+    relation: Option<starplex_cli::export::RelationKind>,
+    structure: starplex::structures::Structure,
+    all: bool,
+    per_rank: bool,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -87,6 +96,10 @@ fn parse_args() -> Result<Args, String> {
         lock_boundary: false,
         rounds: 8,
         gather_below: 2_000_000,
+        relation: None,
+        structure: starplex::structures::Structure::Stellar,
+        all: false,
+        per_rank: false,
     };
     let mut pos = Vec::new();
     while let Some(x) = it.next() {
@@ -142,6 +155,35 @@ fn parse_args() -> Result<Args, String> {
                     .filter(|&r| r > 0)
                     .ok_or(format!("--rounds: between 1 and 2^32 - 1\n{USAGE}"))?
             }
+            "--relation" => {
+                use starplex_cli::export::RelationKind as R;
+                let r = it
+                    .next()
+                    .ok_or(format!("--relation needs a value\n{USAGE}"))?;
+                a.relation = Some(match r.as_str() {
+                    "vt" => R::Vt,
+                    "vv" => R::Vv,
+                    "link" => R::Link,
+                    "star" => R::Star,
+                    "pfaces" => R::Pfaces,
+                    "adj" => R::Adj,
+                    "ia-star" => R::IaStar,
+                    _ => {
+                        return Err(format!(
+                            "--relation {r}: unknown (vt, vv, link, star, adj, ia-star)\n{USAGE}"
+                        ))
+                    }
+                })
+            }
+            "--structure" => {
+                let n = it
+                    .next()
+                    .ok_or(format!("--structure needs a value\n{USAGE}"))?;
+                a.structure = starplex::structures::Structure::from_name(&n)
+                    .ok_or(format!("--structure {n}: unknown\n{USAGE}"))?
+            }
+            "--all" => a.all = true,
+            "--per-rank" => a.per_rank = true,
             "--keep-manifold" => a.keep_manifold = true,
             "--lock-boundary" => a.lock_boundary = true,
             "-h" | "--help" => return Err(USAGE.to_string()),
@@ -153,13 +195,18 @@ fn parse_args() -> Result<Args, String> {
         [v, _] if v == "simplify" && a.out.is_none() => Err(format!(
             "simplify needs the output file: -o OUT.spb\n{USAGE}"
         )),
+        [v, _] if v == "query" && (a.relation.is_none() || !a.all || a.out.is_none()) => Err(
+            format!(
+                "query writes every answer of one relation: --relation R --all --out OUT.jsonl (single items: `starplex query` on one machine)\n{USAGE}"
+            ),
+        ),
         [v, f] if VERBS.contains(&v.as_str()) => {
             a.verb = v.clone();
             a.file = PathBuf::from(f);
             Ok(a)
         }
         [v, _] => Err(format!(
-            "unknown verb '{v}' (this version distributes info, validate, stellar, homology and simplify)\n{USAGE}"
+            "unknown verb '{v}' (this version distributes info, validate, stellar, homology, query and simplify)\n{USAGE}"
         )),
         _ => Err(USAGE.to_string()),
     }
@@ -239,6 +286,17 @@ fn run(w: &World) -> Result<(), Failure> {
             ld.read_s,
         )?,
         "homology" => homology::run(w, a.json, &a.file, &ld.f, &ld.l, ld.read_s, a.max_faces)?,
+        "query" => {
+            let q = query::QueryArgs {
+                relation: a.relation.unwrap_or(starplex_cli::export::RelationKind::Vt),
+                structure: a.structure,
+                out: a.out.as_deref().unwrap_or(std::path::Path::new("")),
+                per_rank: a.per_rank,
+                kv: a.kv,
+                json: a.json,
+            };
+            query::run(w, &q, &a.file, &ld.f, &ld.split, &mut ld.l, ld.read_s)?
+        }
         _ => run_validate(w, &a, &ld)?,
     }
     if a.stats {

@@ -793,3 +793,140 @@ fn simplify_refuses_what_it_cannot_do() {
     assert!(left.is_empty(), "temporary files left: {left:?}");
     std::fs::remove_dir_all(&tmp).ok();
 }
+
+/// `query --relation R --all --out`: the merged `.jsonl` and `.csv` of 1-4 ranks are the bytes
+/// `starplex query FILE --structure S --relation R --all --out` writes, for every small dataset
+/// and every relation the single process answers on it (vertex relations from the owners'
+/// stars; top-cell relations after the ghost layer is widened); `--per-rank` files hold every
+/// item once.
+#[test]
+fn query_all_out_equals_the_single_process_bytes() {
+    let Some(cli) = ready() else { return };
+    let data = small_datasets();
+    if data.is_empty() {
+        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+        return;
+    }
+    let tmp = std::env::temp_dir().join(format!("starplex-mpi-query-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let limit = Duration::from_secs(300);
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for (d, src) in data.iter().enumerate() {
+        let name = src.file_stem().unwrap().to_string_lossy().into_owned();
+        let spb = to_spb(&cli, src, &tmp);
+        for (i, rel) in ["vt", "vv", "link", "star", "adj", "ia-star"]
+            .iter()
+            .enumerate()
+        {
+            // csv for some, jsonl for all; ranks 1-4 spread over the cases
+            let exts: &[&str] = if (d + i) % 3 == 0 {
+                &["jsonl", "csv"]
+            } else {
+                &["jsonl"]
+            };
+            for ext in exts {
+                let one = tmp
+                    .join(format!("{name}.{rel}.one.{ext}"))
+                    .to_string_lossy()
+                    .into_owned();
+                let (code, _, _) = run(
+                    Command::new(&cli).args([
+                        "--quiet",
+                        "query",
+                        &spb,
+                        "--structure",
+                        "stellar",
+                        "--relation",
+                        rel,
+                        "--all",
+                        "--out",
+                        &one,
+                    ]),
+                    limit,
+                );
+                if code != Some(0) {
+                    continue; // not answered on this complex (a link of CP cells)
+                }
+                let want = std::fs::read(&one).unwrap();
+                for np in [1 + (d + i) % 4, 1 + (d + i + 2) % 4] {
+                    let out = tmp
+                        .join(format!("{name}.{rel}.p{np}.{ext}"))
+                        .to_string_lossy()
+                        .into_owned();
+                    let what = format!("-np {np} query {name} --relation {rel} --out .{ext}");
+                    let (code, _, err) = run(
+                        &mut mpi(
+                            np,
+                            &["query", &spb, "--relation", rel, "--all", "--out", &out],
+                        ),
+                        limit,
+                    );
+                    checked += 1;
+                    if code != Some(0) {
+                        failures.push(format!("{what}: status {code:?}: {err}"));
+                    } else if std::fs::read(&out).unwrap() != want {
+                        failures.push(format!("{what}: differs from the single process"));
+                    }
+                }
+            }
+        }
+        // one file per rank: every line of the single process in exactly one of them
+        if d % 4 == 0 {
+            let one = tmp.join(format!("{name}.vt.one.jsonl"));
+            let mut want: Vec<String> = std::fs::read_to_string(&one)
+                .unwrap()
+                .lines()
+                .map(String::from)
+                .collect();
+            want.sort();
+            let out = tmp
+                .join(format!("{name}.pr.jsonl"))
+                .to_string_lossy()
+                .into_owned();
+            let (code, _, err) = run(
+                &mut mpi(
+                    3,
+                    &[
+                        "query",
+                        &spb,
+                        "--relation",
+                        "vt",
+                        "--all",
+                        "--out",
+                        &out,
+                        "--per-rank",
+                    ],
+                ),
+                limit,
+            );
+            assert_eq!(code, Some(0), "--per-rank {name}: {err}");
+            let mut got = Vec::new();
+            for r in 0..3 {
+                let p = tmp.join(format!("{name}.pr.rank{r}.jsonl"));
+                got.extend(
+                    std::fs::read_to_string(&p)
+                        .unwrap()
+                        .lines()
+                        .map(String::from),
+                );
+            }
+            got.sort();
+            if got != want {
+                failures.push(format!(
+                    "--per-rank {name}: the parts are not the single process's lines"
+                ));
+            }
+        }
+    }
+    let left: Vec<_> = std::fs::read_dir(&tmp)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains("starplex-mpi"))
+        .collect();
+    std::fs::remove_dir_all(&tmp).ok();
+    assert!(left.is_empty(), "parts left behind: {left:?}");
+    assert!(checked > 50, "only {checked} runs");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
