@@ -72,8 +72,31 @@ fn displs(counts: &[i32]) -> Vec<i32> {
     d
 }
 
-/// All-to-all: `out[r]` goes to rank `r`; returns what every rank sent here, by source rank.
-pub fn exchange<T>(w: &World, out: &[Vec<T>]) -> Result<Vec<Vec<T>>, Failure>
+/// What every rank sent here in an [`exchange`], by source rank, in one array (no copy per
+/// source).
+pub struct Received<T> {
+    flat: Vec<T>,
+    starts: Vec<usize>,
+}
+
+impl<T> Received<T> {
+    /// What rank `r` sent.
+    pub fn part(&self, r: usize) -> &[T] {
+        &self.flat[self.starts[r]..self.starts[r + 1]]
+    }
+    /// The parts, by source rank.
+    pub fn parts(&self) -> impl Iterator<Item = &[T]> {
+        (0..self.starts.len() - 1).map(|r| self.part(r))
+    }
+    /// Everything received, in source-rank order.
+    pub fn into_flat(self) -> Vec<T> {
+        self.flat
+    }
+}
+
+/// All-to-all: `out[r]` goes to rank `r` (each part freed as it is packed, so the send side
+/// costs about one copy of what is sent); returns what every rank sent here, by source rank.
+pub fn exchange<T>(w: &World, out: Vec<Vec<T>>) -> Result<Received<T>, Failure>
 where
     T: Equivalence + Default + Clone,
 {
@@ -100,7 +123,10 @@ where
         .map(|(_, v)| v.len())
         .sum();
     BYTES_SENT.fetch_add((sent * std::mem::size_of::<T>()) as u64, Ordering::Relaxed);
-    let flat: Vec<T> = out.concat();
+    let mut flat: Vec<T> = Vec::with_capacity(out.iter().map(Vec::len).sum());
+    for part in out {
+        flat.extend_from_slice(&part);
+    }
     let (sd, rd) = (displs(&send_counts), displs(&recv_counts));
     let mut recv = vec![T::default(); total as usize];
     {
@@ -109,14 +135,9 @@ where
         w.all_to_all_varcount_into(&s, &mut r);
     }
     drop(flat);
-    let mut parts = Vec::with_capacity(p);
-    let mut rest = recv.as_slice();
-    for &c in &recv_counts {
-        let (a, b) = rest.split_at(c as usize);
-        parts.push(a.to_vec());
-        rest = b;
-    }
-    Ok(parts)
+    let mut starts: Vec<usize> = rd.iter().map(|&d| d as usize).collect();
+    starts.push(total as usize);
+    Ok(Received { flat: recv, starts })
 }
 
 /// Gathers every rank's `v` on rank 0 (in rank order); `None` on the other ranks.

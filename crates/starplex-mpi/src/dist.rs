@@ -357,7 +357,7 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
     for v in v0..v1 {
         out[s.owner(v as u32, f.point(v as u32))].push(v as u32);
     }
-    let mut owned_gids: Vec<u32> = comm::exchange(w, &out)?.concat();
+    let mut owned_gids: Vec<u32> = comm::exchange(w, out)?.into_flat();
     owned_gids.sort_unstable();
     // cells: [id, block, vertices...] to the owner of each vertex
     let (c0, c1) = slice(f.h.n_cells, rank, p);
@@ -399,40 +399,59 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
         }
     }
     agree(w, bad.map_or(Ok(()), Err))?;
-    let got = comm::exchange(w, &out)?;
-    drop(out);
-    assemble(w, f, s, owned_gids, got)
+    let got = comm::exchange(w, out)?;
+    let streams: Vec<&[u32]> = got.parts().collect();
+    assemble(w, f, s, owned_gids, &streams)
 }
 
-/// The local complex of the cell records `[global id, block, global vertex ids...]` in `got`
-/// (any order; a cell given twice is kept once), this rank owning `owned_gids` (sorted).
+/// The local complex of the cell records `[global id, block, global vertex ids...]` of
+/// `streams`, each sorted by global cell id (a cell in two streams is kept once), this rank
+/// owning `owned_gids` (sorted). The streams are merged in place: no record array, no sort.
 fn assemble(
     w: &World,
     f: &Spb,
     s: &Split,
     owned_gids: Vec<u32>,
-    got: Vec<Vec<u32>>,
+    streams: &[&[u32]],
 ) -> Result<Local, Failure> {
-    // parse the records: (cell id, block, offset of its vertices in `flat`)
-    let mut recs: Vec<(u32, u32, usize, usize)> = Vec::new();
-    for (src, g) in got.iter().enumerate() {
+    let arity = |b: u32| f.h.blocks[b as usize].0.n_vertices();
+    // every stream sorted by cell id (the senders walk their cells in that order)
+    let sorted = streams.iter().all(|g| {
+        let (mut i, mut last) = (0, None);
+        while i + 1 < g.len() {
+            if last.is_some_and(|l| g[i] <= l) {
+                return false;
+            }
+            last = Some(g[i]);
+            i += 2 + arity(g[i + 1]);
+        }
+        true
+    });
+    agree(
+        w,
+        if sorted {
+            Ok(())
+        } else {
+            Err("internal error: cell records out of order".to_string())
+        },
+    )?;
+    // the vertices held: a bit per vertex of the file
+    let mut held = FixedBitSet::with_capacity(f.h.n_vertices as usize);
+    for &g in &owned_gids {
+        held.insert(g as usize);
+    }
+    for g in streams {
         let mut i = 0;
         while i < g.len() {
-            let (cid, b) = (g[i], g[i + 1] as usize);
-            let a = f.h.blocks[b].0.n_vertices();
-            recs.push((cid, b as u32, src, i + 2));
+            let a = arity(g[i + 1]);
+            for &v in &g[i + 2..i + 2 + a] {
+                held.insert(v as usize);
+            }
             i += 2 + a;
         }
     }
-    recs.sort_unstable_by_key(|r| r.0);
-    recs.dedup_by_key(|r| r.0);
-    let mut gids: Vec<u32> = owned_gids.clone();
-    for &(_, b, src, at) in &recs {
-        let a = f.h.blocks[b as usize].0.n_vertices();
-        gids.extend_from_slice(&got[src][at..at + a]);
-    }
-    gids.sort_unstable();
-    gids.dedup();
+    let gids: Vec<u32> = held.ones().map(|v| v as u32).collect();
+    drop(held);
     let local: FxHashMap<u32, u32> = gids
         .iter()
         .enumerate()
@@ -442,20 +461,35 @@ fn assemble(
     for g in &owned_gids {
         owned.insert(local[g] as usize);
     }
-    // one local block per global block, cells in increasing global id
+    // one local block per global block, cells in increasing global id: a merge of the streams
     let mut blocks: Vec<(CellKind, Vec<u32>)> =
         f.h.blocks
             .iter()
             .map(|&(k, _, _)| (k, Vec::new()))
             .collect();
-    let mut cell_gid = Vec::with_capacity(recs.len());
-    for &(cid, b, src, at) in &recs {
-        let a = f.h.blocks[b as usize].0.n_vertices();
-        let dst = &mut blocks[b as usize].1;
-        dst.extend(got[src][at..at + a].iter().map(|g| local[g]));
-        cell_gid.push(cid);
+    let mut cell_gid = Vec::new();
+    let mut heads: std::collections::BinaryHeap<std::cmp::Reverse<(u32, usize)>> = streams
+        .iter()
+        .enumerate()
+        .filter(|(_, g)| !g.is_empty())
+        .map(|(k, g)| std::cmp::Reverse((g[0], k)))
+        .collect();
+    let mut at = vec![0usize; streams.len()];
+    while let Some(std::cmp::Reverse((cid, k))) = heads.pop() {
+        let g = streams[k];
+        let i = at[k];
+        let (b, a) = (g[i + 1], arity(g[i + 1]));
+        if cell_gid.last() != Some(&cid) {
+            blocks[b as usize]
+                .1
+                .extend(g[i + 2..i + 2 + a].iter().map(|v| local[v]));
+            cell_gid.push(cid);
+        }
+        at[k] = i + 2 + a;
+        if at[k] < g.len() {
+            heads.push(std::cmp::Reverse((g[at[k]], k)));
+        }
     }
-    drop(got);
     let d = f.h.ambient_dim;
     let mut coords = Vec::with_capacity(gids.len() * d);
     let mut vertex_owner = Vec::with_capacity(gids.len());
@@ -509,12 +543,11 @@ pub fn widen(w: &World, f: &Spb, s: &Split, l: Local) -> Result<Local, Failure> 
         a.sort_unstable();
         a.dedup();
     }
-    let asked = comm::exchange(w, &ask)?;
-    drop(ask);
+    let asked = comm::exchange(w, ask)?;
     // the stars asked for: each cell once per asking rank
     let n = l.vertex_gid.len();
     let wanted: Vec<FixedBitSet> = asked
-        .iter()
+        .parts()
         .map(|q| {
             let mut b = FixedBitSet::with_capacity(n);
             for g in q {
@@ -540,15 +573,15 @@ pub fn widen(w: &World, f: &Spb, s: &Split, l: Local) -> Result<Local, Failure> 
             }
         }
     }
-    let mut got = comm::exchange(w, &out)?;
-    drop(out);
+    let got = comm::exchange(w, out)?;
     // this rank's own cells, as records too
     let mut mine = Vec::new();
     for c in l.k.cells() {
         record(&mut mine, l.cell_gid[c.id.index()], c.vertices);
     }
-    got.push(mine);
     let owned: Vec<u32> = l.owned.ones().map(|v| l.vertex_gid[v]).collect();
     drop(l);
-    assemble(w, f, s, owned, got)
+    let mut streams: Vec<&[u32]> = got.parts().collect();
+    streams.push(&mine);
+    assemble(w, f, s, owned, &streams)
 }

@@ -91,14 +91,13 @@ pub fn merge(w: &World, e: &Elements) -> Result<Merged, Failure> {
             req_idx[e.owner[i] as usize].push(i);
         }
     }
-    let asked = comm::exchange(w, &req)?;
-    drop(req);
+    let asked = comm::exchange(w, req)?;
     let index: FxHashMap<u32, usize> = (0..n)
         .filter(|&i| e.owner[i] == me)
         .map(|i| (e.gid[i], i))
         .collect();
     let asked: Result<Vec<Vec<usize>>, String> = asked
-        .iter()
+        .parts()
         .map(|ids| {
             ids.iter()
                 .map(|g| {
@@ -118,9 +117,9 @@ pub fn merge(w: &World, e: &Elements) -> Result<Merged, Failure> {
             .iter()
             .map(|ix| ix.iter().flat_map(|&i| [lab[i], enc(par[i])]).collect())
             .collect();
-        let got = comm::exchange(w, &reply)?;
+        let got = comm::exchange(w, reply)?;
         let (mut glab, mut gpar) = (lab.clone(), par.clone());
-        for (r, g) in got.iter().enumerate() {
+        for (r, g) in got.parts().enumerate() {
             for (k, &i) in req_idx[r].iter().enumerate() {
                 glab[i] = g[2 * k];
                 gpar[i] = dec(g[2 * k + 1]);
@@ -160,8 +159,8 @@ pub fn merge(w: &World, e: &Elements) -> Result<Merged, Failure> {
                 })
                 .collect();
         }
-        let got = comm::exchange(w, &prop)?;
-        for (r, g) in got.iter().enumerate() {
+        let got = comm::exchange(w, prop)?;
+        for (r, g) in got.parts().enumerate() {
             for (k, &i) in asked[r].iter().enumerate() {
                 let ls = (g[2 * k], dec(g[2 * k + 1]));
                 offer(&mut lab, &mut par, i, ls, &mut changed, &mut conflict);

@@ -211,11 +211,11 @@ fn round(
         v.sort_unstable();
         v.dedup();
     }
-    let asked = comm::exchange(w, &ask)?;
+    let asked = comm::exchange(w, ask.clone())?;
     let owned_gids: Vec<u32> = owned_out.iter().map(|&i| gid(i)).collect();
     let mut missing = None;
     let answers: Vec<Vec<u32>> = asked
-        .iter()
+        .parts()
         .map(|q| {
             q.iter()
                 .map(|g| match owned_gids.binary_search(g) {
@@ -236,9 +236,9 @@ fn round(
             ))
         }),
     )?;
-    let replies = comm::exchange(w, &answers)?;
+    let replies = comm::exchange(w, answers)?;
     let mut ghost: FxHashMap<u32, u32> = FxHashMap::default();
-    for (q, r) in ask.iter().zip(&replies) {
+    for (q, r) in ask.iter().zip(replies.parts()) {
         ghost.extend(q.iter().copied().zip(r.iter().copied()));
     }
     let mut blocks: Vec<(CellKind, Vec<u32>)> = Vec::new();
