@@ -94,14 +94,28 @@ impl<T> Received<T> {
     }
 }
 
-/// All-to-all: `out[r]` goes to rank `r` (each part freed as it is packed, so the send side
-/// costs about one copy of what is sent); returns what every rank sent here, by source rank.
+/// All-to-all: `out[r]` goes to rank `r` (each part freed as it is packed); returns what
+/// every rank sent here, by source rank.
 pub fn exchange<T>(w: &World, out: Vec<Vec<T>>) -> Result<Received<T>, Failure>
 where
     T: Equivalence + Default + Clone,
 {
+    let counts: Vec<usize> = out.iter().map(Vec::len).collect();
+    let mut flat: Vec<T> = Vec::with_capacity(counts.iter().sum());
+    for part in out {
+        flat.extend_from_slice(&part);
+    }
+    exchange_packed(w, flat, &counts)
+}
+
+/// All-to-all of a send buffer already packed by destination: the first `counts[0]` values go
+/// to rank 0, the next `counts[1]` to rank 1, and so on.
+pub fn exchange_packed<T>(w: &World, flat: Vec<T>, counts: &[usize]) -> Result<Received<T>, Failure>
+where
+    T: Equivalence + Default + Clone,
+{
     let p = w.size() as usize;
-    let send_counts = agree(w, counts_of(out.iter().map(|v| v.len())))?;
+    let send_counts = agree(w, counts_of(counts.iter().copied()))?;
     let mut recv_counts = vec![0i32; p];
     w.all_to_all_into(&send_counts[..], &mut recv_counts[..]);
     let total: i64 = recv_counts.iter().map(|&c| c as i64).sum();
@@ -116,17 +130,13 @@ where
         },
     )?;
     let me = rank_of(w);
-    let sent: usize = out
+    let sent: usize = counts
         .iter()
         .enumerate()
         .filter(|&(r, _)| r != me)
-        .map(|(_, v)| v.len())
+        .map(|(_, &c)| c)
         .sum();
     BYTES_SENT.fetch_add((sent * std::mem::size_of::<T>()) as u64, Ordering::Relaxed);
-    let mut flat: Vec<T> = Vec::with_capacity(out.iter().map(Vec::len).sum());
-    for part in out {
-        flat.extend_from_slice(&part);
-    }
     let (sd, rd) = (displs(&send_counts), displs(&recv_counts));
     let mut recv = vec![T::default(); total as usize];
     {

@@ -93,6 +93,20 @@ impl Spb {
         Ok(())
     }
 
+    /// Drops the pages of the map this rank has read from its resident memory (once the local
+    /// complex holds what it needs): they are clean pages of a read-only file mapping, so a
+    /// later read faults them back in from the file. Advisory: an error is ignored.
+    pub fn release_pages(&self) {
+        // SAFETY: MADV_DONTNEED on a shared read-only file mapping only unmaps this process's
+        // page references; the memory stays valid and reads return the file's bytes again (a
+        // file truncated meanwhile raises SIGBUS, which `fault::guard_sigbus` turns into an
+        // error). No reference into the map is invalidated.
+        let _ = unsafe {
+            self.map
+                .unchecked_advise(memmap2::UncheckedAdvice::DontNeed)
+        };
+    }
+
     /// Coordinates of vertex `v` (checked in range by the caller).
     pub fn point(&self, v: u32) -> &[f64] {
         let d = self.h.ambient_dim;
@@ -346,6 +360,9 @@ impl Local {
     }
 }
 
+/// Called with (destination rank, global cell id, block, vertices) for each cell sent.
+type CellVisit<'a> = dyn FnMut(usize, u64, usize, &[u32]) + 'a;
+
 /// Reads this rank's slices, sends every cell to the owners of its vertices, builds the local
 /// complex.
 pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
@@ -359,14 +376,16 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
     }
     let mut owned_gids: Vec<u32> = comm::exchange(w, out)?.into_flat();
     owned_gids.sort_unstable();
-    // cells: [id, block, vertices...] to the owner of each vertex
+    // cells: [id, block, vertices...] to the owner of each vertex, packed by destination in
+    // two passes (count, then fill), so the send buffer is the only copy
     let (c0, c1) = slice(f.h.n_cells, rank, p);
-    let mut out: Vec<Vec<u32>> = vec![Vec::new(); p];
-    let mut bad = None;
     let mut ranks: Vec<usize> = Vec::with_capacity(8);
-    if c0 < c1 {
+    let mut walk = |visit: &mut CellVisit| -> Result<(), String> {
+        if c0 >= c1 {
+            return Ok(());
+        }
         let (b0, b1) = (f.block_of(c0), f.block_of(c1 - 1));
-        'blocks: for b in b0..=b1 {
+        for b in b0..=b1 {
             let (kind, _, _) = f.h.blocks[b];
             let a = kind.n_vertices();
             let lo = c0.max(f.starts[b]) - f.starts[b];
@@ -375,31 +394,46 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
             for (i, cv) in verts.chunks_exact(a).enumerate() {
                 let cid = f.starts[b] + lo + i as u64;
                 if let Some(&x) = cv.iter().find(|&&x| x as u64 >= nv) {
-                    bad = Some(format!(
+                    return Err(format!(
                         "{}: cell {cid} has vertex {x}, but the file has {nv} vertices",
                         f.path
                     ));
-                    break 'blocks;
                 }
                 if (1..a).any(|j| cv[..j].contains(&cv[j])) {
-                    bad = Some(format!("{}: cell {cid} repeats a vertex: {cv:?}", f.path));
-                    break 'blocks;
+                    return Err(format!("{}: cell {cid} repeats a vertex: {cv:?}", f.path));
                 }
                 ranks.clear();
                 ranks.extend(cv.iter().map(|&x| s.owner(x, f.point(x))));
                 ranks.sort_unstable();
                 ranks.dedup();
                 for &r in &ranks {
-                    let o = &mut out[r];
-                    o.push(cid as u32);
-                    o.push(b as u32);
-                    o.extend_from_slice(cv);
+                    visit(r, cid, b, cv);
                 }
             }
         }
-    }
-    agree(w, bad.map_or(Ok(()), Err))?;
-    let got = comm::exchange(w, out)?;
+        Ok(())
+    };
+    let mut counts = vec![0usize; p];
+    let counted = walk(&mut |r, _, _, cv| counts[r] += 2 + cv.len());
+    agree(w, counted)?;
+    let mut at: Vec<usize> = counts
+        .iter()
+        .scan(0, |acc, &c| {
+            let start = *acc;
+            *acc += c;
+            Some(start)
+        })
+        .collect();
+    let mut flat = vec![0u32; counts.iter().sum()];
+    let filled = walk(&mut |r, cid, b, cv| {
+        let o = &mut flat[at[r]..at[r] + 2 + cv.len()];
+        o[0] = cid as u32;
+        o[1] = b as u32;
+        o[2..].copy_from_slice(cv);
+        at[r] += 2 + cv.len();
+    });
+    agree(w, filled)?;
+    let got = comm::exchange_packed(w, flat, &counts)?;
     let streams: Vec<&[u32]> = got.parts().collect();
     assemble(w, f, s, owned_gids, &streams)
 }

@@ -265,6 +265,7 @@ fn run(w: &World) -> Result<(), Failure> {
     let split = dist::split(w, &f, dist::SplitKind::Plain)?;
     let l = dist::distribute(w, &f, &split)?;
     agree(w, f.check_unchanged())?;
+    f.release_pages();
     let mut ld = Loaded {
         f,
         split,

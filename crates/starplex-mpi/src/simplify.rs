@@ -319,6 +319,7 @@ pub fn run(w: &World, a: &SimplifyArgs, file: &Path) -> Result<(), Failure> {
             let split = dist::split(w, &f, kind)?;
             let l = dist::distribute(w, &f, &split)?;
             agree(w, f.check_unchanged())?;
+            f.release_pages();
             Ok((f, l))
         })();
         let (f, mut l) = match read {
