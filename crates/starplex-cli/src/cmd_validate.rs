@@ -3,7 +3,6 @@
 use std::time::Instant;
 
 use serde_json::json;
-use starplex::algo::validate::ValidationReport;
 
 use crate::cmd_stellar::{build_tree, with_threads};
 use crate::common::{self, CliError, Ctx, InputArgs};
@@ -43,58 +42,7 @@ pub struct ValidateArgs {
     pub render: Option<std::path::PathBuf>,
 }
 
-/// A property `validate --fail-on` can fail on.
-#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Defect {
-    NonManifold,
-    NonPure,
-    NonOrientable,
-    Isolated,
-    Boundary,
-    Disconnected,
-    Undecided,
-}
-
-/// The defects of `r` among `wanted`, each with its count, in words.
-pub fn defects_found(r: &ValidationReport, wanted: &[Defect]) -> Vec<String> {
-    let mut out = Vec::new();
-    for &d in wanted {
-        let found = match d {
-            Defect::NonManifold => {
-                let (v, e, f) = (
-                    r.non_manifold_vertices.len(),
-                    r.non_manifold_edges.len(),
-                    r.faces_in_more_than_two_cells.len(),
-                );
-                (v + e + f > 0).then(|| {
-                    format!("{v} non-manifold vertices, {e} non-manifold edges, {f} faces in more than two top cells")
-                })
-            }
-            Defect::NonPure => (!r.lower_dimensional_cells.is_empty()).then(|| {
-                format!(
-                    "{} lower-dimensional top cells (not pure)",
-                    r.lower_dimensional_cells.len()
-                )
-            }),
-            Defect::NonOrientable => {
-                (r.orientable == Some(false)).then(|| "not orientable".to_string())
-            }
-            Defect::Isolated => (!r.isolated_vertices.is_empty())
-                .then(|| format!("{} isolated vertices", r.isolated_vertices.len())),
-            Defect::Boundary => (!r.boundary_faces.is_empty())
-                .then(|| format!("{} boundary faces", r.boundary_faces.len())),
-            Defect::Disconnected => (r.n_connected_components > 1)
-                .then(|| format!("{} connected components", r.n_connected_components)),
-            Defect::Undecided => {
-                let (v, e) = (r.unknown_vertices.len(), r.unknown_edges.len());
-                (v + e > 0).then(|| format!("{v} vertices and {e} edges not classified"))
-            }
-        };
-        out.extend(found);
-    }
-    out
-}
-
+pub use starplex_cli::report::{defects_found, Defect};
 pub use starplex_cli::report::{print_validation as print_human, validation_json as to_json};
 
 /// `--decomposition` on a saved tree: it keeps the decomposition it was built with.
@@ -149,19 +97,7 @@ pub fn run(ctx: &Ctx, a: &ValidateArgs) -> Result<(), CliError> {
         print_human(&rep, a.max_list);
         println!("  time                read {read_s:.3} s, Stellar tree {build_s:.3} s, validation {validate_s:.3} s");
     }
-    let mut wanted = a.fail_on.clone();
-    if a.check {
-        for d in [
-            Defect::NonManifold,
-            Defect::NonPure,
-            Defect::NonOrientable,
-            Defect::Isolated,
-        ] {
-            if !wanted.contains(&d) {
-                wanted.push(d);
-            }
-        }
-    }
+    let wanted = Defect::wanted(a.check, &a.fail_on);
     if let Some(out) = &a.render {
         crate::cmd_render::shortcut(
             ctx,

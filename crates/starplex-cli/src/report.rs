@@ -303,3 +303,97 @@ pub fn print_stellar_stats(s: &StellarStats) {
         mb(st.in_memory_bytes)
     );
 }
+
+/// A property `validate --fail-on` can fail on.
+///
+/// ```
+/// use starplex_cli::report::Defect;
+/// let w = Defect::wanted(true, &[Defect::Boundary]);
+/// assert_eq!(w, vec![Defect::Boundary, Defect::NonManifold, Defect::NonPure, Defect::NonOrientable, Defect::Isolated]);
+/// ```
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Defect {
+    /// Non-manifold vertices or edges, or faces in more than two top cells.
+    NonManifold,
+    /// Lower-dimensional top cells.
+    NonPure,
+    /// Not orientable.
+    NonOrientable,
+    /// Isolated vertices.
+    Isolated,
+    /// Boundary faces.
+    Boundary,
+    /// More than one connected component.
+    Disconnected,
+    /// Links not classified (d >= 4).
+    Undecided,
+}
+
+impl Defect {
+    /// The defects `--fail-on LIST` asks for, plus what `--check` stands for (non-manifold,
+    /// non-pure, non-orientable, isolated) when `check`. Example: [`Defect`].
+    pub fn wanted(check: bool, fail_on: &[Defect]) -> Vec<Defect> {
+        let mut wanted = fail_on.to_vec();
+        if check {
+            for d in [
+                Defect::NonManifold,
+                Defect::NonPure,
+                Defect::NonOrientable,
+                Defect::Isolated,
+            ] {
+                if !wanted.contains(&d) {
+                    wanted.push(d);
+                }
+            }
+        }
+        wanted
+    }
+}
+
+/// The defects of `r` among `wanted`, each with its count, in words.
+///
+/// ```
+/// use starplex_cli::report::{defects_found, Defect};
+/// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap();
+/// let r = starplex::algo::validate::validate(&starplex::topo::naive::VtIndex::new(&k));
+/// assert_eq!(defects_found(&r, &[Defect::Boundary]), vec!["8 boundary faces".to_string()]);
+/// assert!(defects_found(&r, &[Defect::NonManifold]).is_empty());
+/// ```
+pub fn defects_found(r: &ValidationReport, wanted: &[Defect]) -> Vec<String> {
+    let mut out = Vec::new();
+    for &d in wanted {
+        let found = match d {
+            Defect::NonManifold => {
+                let (v, e, f) = (
+                    r.non_manifold_vertices.len(),
+                    r.non_manifold_edges.len(),
+                    r.faces_in_more_than_two_cells.len(),
+                );
+                (v + e + f > 0).then(|| {
+                    format!("{v} non-manifold vertices, {e} non-manifold edges, {f} faces in more than two top cells")
+                })
+            }
+            Defect::NonPure => (!r.lower_dimensional_cells.is_empty()).then(|| {
+                format!(
+                    "{} lower-dimensional top cells (not pure)",
+                    r.lower_dimensional_cells.len()
+                )
+            }),
+            Defect::NonOrientable => {
+                (r.orientable == Some(false)).then(|| "not orientable".to_string())
+            }
+            Defect::Isolated => (!r.isolated_vertices.is_empty())
+                .then(|| format!("{} isolated vertices", r.isolated_vertices.len())),
+            Defect::Boundary => (!r.boundary_faces.is_empty())
+                .then(|| format!("{} boundary faces", r.boundary_faces.len())),
+            Defect::Disconnected => (r.n_connected_components > 1)
+                .then(|| format!("{} connected components", r.n_connected_components)),
+            Defect::Undecided => {
+                let (v, e) = (r.unknown_vertices.len(), r.unknown_edges.len());
+                (v + e > 0).then(|| format!("{v} vertices and {e} edges not classified"))
+            }
+        };
+        out.extend(found);
+    }
+    out
+}

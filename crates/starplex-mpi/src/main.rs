@@ -3,6 +3,7 @@
 //! ```text
 //! mpirun -np P starplex-mpi info FILE.spb [--json] [--max-faces N] [--stats]
 //! mpirun -np P starplex-mpi validate FILE.spb [--json] [--max-list N] [--stats]
+//!     [--check | --fail-on DEFECTS]
 //! mpirun -np P starplex-mpi stellar FILE.spb [--json] [--kv N] [--vt-vv-out PREFIX] [--stats]
 //! mpirun -np P starplex-mpi homology FILE.spb [--json] [--stats]
 //! mpirun -np P starplex-mpi query FILE.spb --relation R --all --out OUT.jsonl|csv|npz
@@ -14,7 +15,8 @@
 //! Rank 0 prints what `starplex info` / `starplex validate` print on the same file (the
 //! timings aside); `--stats` adds one line per rank on stderr (vertices and cells owned and held,
 //! ghost share, bytes sent, peak RSS). Every error, on any rank, ends every rank with status 2
-//! and rank 0 printing it. See the crate's DESIGN section "Distributed (MPI)".
+//! and rank 0 printing it; `validate --check` / `--fail-on` end every rank with status 1 when
+//! the complex has one of the defects, as `starplex validate` does. See the crate's DESIGN section "Distributed (MPI)".
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -46,7 +48,7 @@ mod write;
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       query: --relation vt|vv|link|star|adj|ia-star --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
 const VERBS: [&str; 6] = [
     "info", "validate", "stellar", "homology", "query", "simplify",
 ];
@@ -74,6 +76,8 @@ struct Args {
     structure: starplex::structures::Structure,
     all: bool,
     per_rank: bool,
+    check: bool,
+    fail_on: Vec<starplex_cli::report::Defect>,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -100,6 +104,8 @@ fn parse_args() -> Result<Args, String> {
         structure: starplex::structures::Structure::Stellar,
         all: false,
         per_rank: false,
+        check: false,
+        fail_on: Vec::new(),
     };
     let mut pos = Vec::new();
     while let Some(x) = it.next() {
@@ -182,6 +188,25 @@ fn parse_args() -> Result<Args, String> {
                 a.structure = starplex::structures::Structure::from_name(&n)
                     .ok_or(format!("--structure {n}: unknown\n{USAGE}"))?
             }
+            "--check" => a.check = true,
+            "--fail-on" => {
+                use starplex_cli::report::Defect as D;
+                let list = it
+                    .next()
+                    .ok_or(format!("--fail-on needs a value\n{USAGE}"))?;
+                for d in list.split(',').filter(|d| !d.is_empty()) {
+                    a.fail_on.push(match d {
+                        "non-manifold" => D::NonManifold,
+                        "non-pure" => D::NonPure,
+                        "non-orientable" => D::NonOrientable,
+                        "isolated" => D::Isolated,
+                        "boundary" => D::Boundary,
+                        "disconnected" => D::Disconnected,
+                        "undecided" => D::Undecided,
+                        _ => return Err(format!("--fail-on: unknown defect '{d}'\n{USAGE}")),
+                    });
+                }
+            }
             "--all" => a.all = true,
             "--per-rank" => a.per_rank = true,
             "--keep-manifold" => a.keep_manifold = true,
@@ -220,7 +245,7 @@ fn main() -> ExitCode {
     let w = universe.world();
     let r = run(&w);
     let code = match r {
-        Ok(()) => 0,
+        Ok(code) => code,
         Err(Failure(msg)) => {
             if w.rank() == 0 {
                 eprintln!("error: {msg}");
@@ -240,7 +265,9 @@ struct Loaded {
     read_s: f64,
 }
 
-fn run(w: &World) -> Result<(), Failure> {
+/// Runs the verb; `Ok(1)` when `validate --check` / `--fail-on` found a defect (rank 0 said
+/// which).
+fn run(w: &World) -> Result<u8, Failure> {
     let a = agree(w, parse_args())?;
     let t0 = Instant::now();
     fault::guard_sigbus(&a.file);
@@ -258,7 +285,11 @@ fn run(w: &World) -> Result<(), Failure> {
             gather_below: a.gather_below,
             json: a.json,
         };
-        return simplify::run(w, &s, &a.file);
+        simplify::run(w, &s, &a.file)?;
+        if a.stats {
+            print_peaks(w)?;
+        }
+        return Ok(0);
     }
     let f = agree(w, Spb::open(&a.file))?;
     fault::test_pause();
@@ -272,6 +303,7 @@ fn run(w: &World) -> Result<(), Failure> {
         l,
         read_s: t0.elapsed().as_secs_f64(),
     };
+    let mut code = 0;
     match a.verb.as_str() {
         "info" => run_info(w, &a, &mut ld)?,
         "stellar" => stellar::run(
@@ -298,12 +330,12 @@ fn run(w: &World) -> Result<(), Failure> {
             };
             query::run(w, &q, &a.file, &ld.f, &ld.split, &mut ld.l, ld.read_s)?
         }
-        _ => run_validate(w, &a, &ld)?,
+        _ => code = run_validate(w, &a, &ld)?,
     }
     if a.stats {
         print_stats(w, &ld)?;
     }
-    Ok(())
+    Ok(code)
 }
 
 /// Connected components of the 1-skeleton (isolated vertices count): local union-find over
@@ -577,7 +609,8 @@ fn facet_classes(
     labels::merge(w, &e)
 }
 
-fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<(), Failure> {
+/// `validate`; returns the exit status (1: a defect `--check` / `--fail-on` asked about).
+fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<u8, Failure> {
     let (f, l) = (&ld.f, &ld.l);
     let t1 = Instant::now();
     let view = OwnedStars {
@@ -663,9 +696,48 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<(), Failure> {
         },
     )?;
     agree(w, f.check_unchanged())?;
-    if w.rank() != 0 {
-        return Ok(());
+    let report = if w.rank() == 0 {
+        Some(validation_report(rep, d, gathered))
+    } else {
+        None
+    };
+    let wanted = starplex_cli::report::Defect::wanted(a.check, &a.fail_on);
+    let found = report
+        .as_ref()
+        .map(|r| starplex_cli::report::defects_found(r, &wanted))
+        .unwrap_or_default();
+    let failed = comm::max(w, u64::from(!found.is_empty())) > 0;
+    if let Some(rep) = report {
+        if a.json {
+            let mut v = starplex_cli::report::validation_json(&rep, a.max_list);
+            v["timings"] =
+                json!({"read_s": ld.read_s, "build_s": build_s, "validate_s": validate_s});
+            print_json(&v);
+        } else {
+            println!("{}", a.file.display());
+            starplex_cli::report::print_validation(&rep, a.max_list);
+            println!(
+                "  time                read {:.3} s, Stellar tree {build_s:.3} s, validation {validate_s:.3} s",
+                ld.read_s
+            );
+        }
+        if failed {
+            eprintln!(
+                "error: {}: validation failed: {}",
+                a.file.display(),
+                found.join("; ")
+            );
+        }
     }
+    Ok(u8::from(failed))
+}
+
+/// Rank 0's report from the gathered lists (global ids, sorted as the single process sorts).
+fn validation_report(
+    mut rep: ValidationReport,
+    d: Option<usize>,
+    gathered: [Option<Vec<u32>>; 9],
+) -> ValidationReport {
     let [Some(iso), Some(low), Some(nmv), Some(unv), Some(nme), Some(une), Some(bnd), Some(more), Some(neg)] =
         gathered
     else {
@@ -695,24 +767,25 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<(), Failure> {
             }
         }
     }
-    if a.json {
-        let mut v = starplex_cli::report::validation_json(&rep, a.max_list);
-        v["timings"] = json!({"read_s": ld.read_s, "build_s": build_s, "validate_s": validate_s});
-        print_json(&v);
-    } else {
-        println!("{}", a.file.display());
-        starplex_cli::report::print_validation(&rep, a.max_list);
-        println!(
-            "  time                read {:.3} s, Stellar tree {build_s:.3} s, validation {validate_s:.3} s",
-            ld.read_s
-        );
-    }
-    Ok(())
+    rep
 }
 
 /// Peak resident set of this process in KiB (`VmHWM`), 0 when unknown.
 fn peak_rss_kib() -> u64 {
     starplex::measure::memory().map_or(0, |m| m.peak / 1024)
+}
+
+/// `--stats` of `simplify` (the local complexes change every round): bytes sent and peak
+/// memory of every rank.
+fn print_peaks(w: &World) -> Result<(), Failure> {
+    let row = [w.rank() as u64, comm::bytes_sent(), peak_rss_kib()];
+    if let Some(all) = comm::gather(w, &row)? {
+        eprintln!("rank bytes_sent peak_rss_kib");
+        for r in all.chunks_exact(row.len()) {
+            eprintln!("{} {} {}", r[0], r[1], r[2]);
+        }
+    }
+    Ok(())
 }
 
 fn print_stats(w: &World, ld: &Loaded) -> Result<(), Failure> {

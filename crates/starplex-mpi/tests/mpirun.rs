@@ -930,3 +930,51 @@ fn query_all_out_equals_the_single_process_bytes() {
     assert!(checked > 50, "only {checked} runs");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `validate --check` and `--fail-on`: every small dataset gives the exit status of
+/// `starplex validate` with the same options (1 when a defect asked about is found, 0
+/// otherwise), with the same list of defects in the message, on 1-4 ranks.
+#[test]
+fn validate_check_and_fail_on_exit_as_the_single_process() {
+    let Some(cli) = ready() else { return };
+    let data = small_datasets();
+    if data.is_empty() {
+        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+        return;
+    }
+    let tmp = std::env::temp_dir().join(format!("starplex-mpi-check-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let limit = Duration::from_secs(300);
+    let found = |err: &str| {
+        err.split_once("validation failed: ")
+            .map(|(_, r)| r.lines().next().unwrap_or("").trim().to_string())
+    };
+    let mut failures = Vec::new();
+    let mut statuses = std::collections::BTreeSet::new();
+    for (d, src) in data.iter().enumerate() {
+        let name = src.file_stem().unwrap().to_string_lossy().into_owned();
+        let spb = to_spb(&cli, src, &tmp);
+        for opts in [vec!["--check"], vec!["--fail-on", "boundary,disconnected"]] {
+            let mut args = vec!["--quiet", "validate", spb.as_str(), "--json"];
+            args.extend(opts.iter().copied());
+            let (want_code, _, want_err) = run(Command::new(&cli).args(&args), limit);
+            statuses.insert(want_code);
+            let np = 1 + d % 4;
+            let mut margs = vec!["validate", spb.as_str(), "--json"];
+            margs.extend(opts.iter().copied());
+            let (code, _, err) = run(&mut mpi(np, &margs), limit);
+            let what = format!("-np {np} validate {name} {opts:?}");
+            if code != want_code || found(&err) != found(&want_err) {
+                failures.push(format!(
+                    "{what}: status {code:?} ({err}), the single process {want_code:?} ({want_err})"
+                ));
+            }
+        }
+    }
+    std::fs::remove_dir_all(&tmp).ok();
+    assert!(
+        statuses.contains(&Some(0)) && statuses.contains(&Some(1)),
+        "the datasets should give both statuses: {statuses:?}"
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
