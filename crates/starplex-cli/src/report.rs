@@ -102,6 +102,56 @@ fn ids<T: Clone>(v: &[T], max: usize) -> Vec<T> {
     v[..v.len().min(max)].to_vec()
 }
 
+/// The lengths of the lists of a [`ValidationReport`]: what the reports print as counts. A
+/// report whose lists were cut (`starplex-mpi validate` gathers only the first entries of
+/// each rank's lists) comes with the complete counts.
+///
+/// ```
+/// use starplex_cli::report::ListCounts;
+/// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap();
+/// let r = starplex::algo::validate::validate(&starplex::topo::naive::VtIndex::new(&k));
+/// let c = ListCounts::of(&r);
+/// assert_eq!((c.boundary_faces, c.cells_to_flip), (8, Some(4))); // the grid alternates orientations
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ListCounts {
+    /// Boundary faces.
+    pub boundary_faces: usize,
+    /// Faces in more than two top cells.
+    pub faces_in_more_than_two_cells: usize,
+    /// Non-manifold vertices.
+    pub non_manifold_vertices: usize,
+    /// Non-manifold edges.
+    pub non_manifold_edges: usize,
+    /// Vertices whose link is not classified.
+    pub unknown_vertices: usize,
+    /// Edges whose link is not classified.
+    pub unknown_edges: usize,
+    /// Isolated vertices.
+    pub isolated_vertices: usize,
+    /// Lower-dimensional top cells.
+    pub lower_dimensional_cells: usize,
+    /// Cells to flip (when orientable).
+    pub cells_to_flip: Option<usize>,
+}
+
+impl ListCounts {
+    /// The counts of a report's (complete) lists. Example: [`ListCounts`].
+    pub fn of(r: &ValidationReport) -> ListCounts {
+        ListCounts {
+            boundary_faces: r.boundary_faces.len(),
+            faces_in_more_than_two_cells: r.faces_in_more_than_two_cells.len(),
+            non_manifold_vertices: r.non_manifold_vertices.len(),
+            non_manifold_edges: r.non_manifold_edges.len(),
+            unknown_vertices: r.unknown_vertices.len(),
+            unknown_edges: r.unknown_edges.len(),
+            isolated_vertices: r.isolated_vertices.len(),
+            lower_dimensional_cells: r.lower_dimensional_cells.len(),
+            cells_to_flip: r.cells_to_flip.as_ref().map(Vec::len),
+        }
+    }
+}
+
 /// The JSON object of `starplex validate --json` before the `timings` and `notes` keys; every
 /// list is cut to its first `max` entries (the counts are complete).
 ///
@@ -121,6 +171,21 @@ fn ids<T: Clone>(v: &[T], max: usize) -> Vec<T> {
 /// starplex_cli::report::print_validation(&r, 2);
 /// ```
 pub fn validation_json(r: &ValidationReport, max: usize) -> Value {
+    validation_json_counted(r, &ListCounts::of(r), max)
+}
+
+/// [`validation_json`] of a report whose lists may be cut, with their complete counts `c`.
+///
+/// ```
+/// use starplex_cli::report::{validation_json_counted, ListCounts};
+/// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap();
+/// let mut r = starplex::algo::validate::validate(&starplex::topo::naive::VtIndex::new(&k));
+/// let c = ListCounts::of(&r);
+/// r.boundary_faces.truncate(3);
+/// let v = validation_json_counted(&r, &c, 3);
+/// assert_eq!((v["n_boundary_faces"].as_u64(), v["boundary_faces"].as_array().unwrap().len()), (Some(8), 3));
+/// ```
+pub fn validation_json_counted(r: &ValidationReport, c: &ListCounts, max: usize) -> Value {
     let vids = |v: &[starplex::ids::VertexId]| ids(v, max).iter().map(|x| x.0).collect::<Vec<_>>();
     let edges = |e: &[[starplex::ids::VertexId; 2]]| {
         ids(e, max)
@@ -137,20 +202,20 @@ pub fn validation_json(r: &ValidationReport, max: usize) -> Value {
     json!({
         "dim": r.dim,
         "n_connected_components": r.n_connected_components,
-        "n_boundary_faces": r.boundary_faces.len(),
-        "n_faces_shared_by_more_than_2_top_cells": r.faces_in_more_than_two_cells.len(),
-        "n_non_manifold_vertices": r.non_manifold_vertices.len(),
-        "n_non_manifold_edges": r.non_manifold_edges.len(),
-        "n_unknown_vertices": r.unknown_vertices.len(),
-        "n_unknown_edges": r.unknown_edges.len(),
-        "n_isolated_vertices": r.isolated_vertices.len(),
-        "n_lower_dimensional_cells": r.lower_dimensional_cells.len(),
+        "n_boundary_faces": c.boundary_faces,
+        "n_faces_shared_by_more_than_2_top_cells": c.faces_in_more_than_two_cells,
+        "n_non_manifold_vertices": c.non_manifold_vertices,
+        "n_non_manifold_edges": c.non_manifold_edges,
+        "n_unknown_vertices": c.unknown_vertices,
+        "n_unknown_edges": c.unknown_edges,
+        "n_isolated_vertices": c.isolated_vertices,
+        "n_lower_dimensional_cells": c.lower_dimensional_cells,
         "n_facet_components": r.n_facet_components,
         "pure": r.pure,
         "facet_connected": r.facet_connected,
         "pseudo_manifold": r.pseudo_manifold,
         "orientable": r.orientable,
-        "n_cells_to_flip": r.cells_to_flip.as_ref().map(|c| c.len()),
+        "n_cells_to_flip": c.cells_to_flip,
         "orientation_conflict": r.orientation_conflict.map(|(a, b)| [a.0, b.0]),
         "non_manifold_vertices": vids(&r.non_manifold_vertices),
         "non_manifold_edges": edges(&r.non_manifold_edges),
@@ -166,13 +231,19 @@ pub fn validation_json(r: &ValidationReport, max: usize) -> Value {
 /// Prints the human output of `starplex validate` (without the file name and time lines).
 /// Example: [`validation_json`].
 pub fn print_validation(r: &ValidationReport, max: usize) {
+    print_validation_counted(r, &ListCounts::of(r), max)
+}
+
+/// [`print_validation`] of a report whose lists may be cut, with their complete counts `c`.
+/// Example: [`validation_json_counted`].
+pub fn print_validation_counted(r: &ValidationReport, c: &ListCounts, max: usize) {
     let yes = |b: bool| if b { "yes" } else { "no" };
     println!("  components          {}", r.n_connected_components);
     println!(
         "  pure                {} ({} isolated vertices, {} lower-dimensional cells)",
         yes(r.pure),
-        r.isolated_vertices.len(),
-        r.lower_dimensional_cells.len()
+        c.isolated_vertices,
+        c.lower_dimensional_cells
     );
     println!(
         "  (d-1)-connected     {} ({} classes of top cells)",
@@ -182,10 +253,9 @@ pub fn print_validation(r: &ValidationReport, max: usize) {
     println!("  pseudo-manifold     {}", yes(r.pseudo_manifold));
     println!(
         "  boundary faces      {} ({} faces in more than 2 top cells)",
-        r.boundary_faces.len(),
-        r.faces_in_more_than_two_cells.len()
+        c.boundary_faces, c.faces_in_more_than_two_cells
     );
-    let show = |v: Vec<String>| {
+    let show = |v: Vec<String>, n: usize| {
         if v.is_empty() {
             String::new()
         } else {
@@ -196,42 +266,42 @@ pub fn print_validation(r: &ValidationReport, max: usize) {
                     .cloned()
                     .collect::<Vec<_>>()
                     .join(" "),
-                if v.len() > 10 { " ..." } else { "" }
+                if n > 10 { " ..." } else { "" }
             )
         }
     };
     println!(
         "  non-manifold        {} vertices{}",
-        r.non_manifold_vertices.len(),
+        c.non_manifold_vertices,
         show(
             r.non_manifold_vertices
                 .iter()
                 .map(|v| v.to_string())
-                .collect()
+                .collect(),
+            c.non_manifold_vertices
         )
     );
     println!(
         "                      {} edges{}",
-        r.non_manifold_edges.len(),
+        c.non_manifold_edges,
         show(
             r.non_manifold_edges
                 .iter()
                 .map(|e| format!("{}-{}", e[0], e[1]))
-                .collect()
+                .collect(),
+            c.non_manifold_edges
         )
     );
-    if !r.unknown_vertices.is_empty() || !r.unknown_edges.is_empty() {
+    if c.unknown_vertices + c.unknown_edges > 0 {
         println!(
             "  undecided (d >= 4)  {} vertices, {} edges",
-            r.unknown_vertices.len(),
-            r.unknown_edges.len()
+            c.unknown_vertices, c.unknown_edges
         );
     }
-    match (r.orientable, &r.cells_to_flip, r.orientation_conflict) {
-        (Some(true), Some(f), _) => println!(
-            "  orientable          yes ({} cells to flip for a consistent orientation)",
-            f.len()
-        ),
+    match (r.orientable, c.cells_to_flip, r.orientation_conflict) {
+        (Some(true), Some(f), _) => {
+            println!("  orientable          yes ({f} cells to flip for a consistent orientation)")
+        }
         (Some(false), _, Some((a, b))) => {
             println!("  orientable          no (cells {a} and {b} cannot agree)")
         }
@@ -360,36 +430,55 @@ impl Defect {
 /// assert!(defects_found(&r, &[Defect::NonManifold]).is_empty());
 /// ```
 pub fn defects_found(r: &ValidationReport, wanted: &[Defect]) -> Vec<String> {
+    defects_found_counted(r, &ListCounts::of(r), wanted)
+}
+
+/// [`defects_found`] of a report whose lists may be cut, with their complete counts `c`.
+///
+/// ```
+/// use starplex_cli::report::{defects_found_counted, Defect, ListCounts};
+/// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap();
+/// let mut r = starplex::algo::validate::validate(&starplex::topo::naive::VtIndex::new(&k));
+/// let c = ListCounts::of(&r);
+/// r.boundary_faces.clear();
+/// assert_eq!(defects_found_counted(&r, &c, &[Defect::Boundary]), vec!["8 boundary faces".to_string()]);
+/// ```
+pub fn defects_found_counted(
+    r: &ValidationReport,
+    c: &ListCounts,
+    wanted: &[Defect],
+) -> Vec<String> {
     let mut out = Vec::new();
     for &d in wanted {
         let found = match d {
             Defect::NonManifold => {
                 let (v, e, f) = (
-                    r.non_manifold_vertices.len(),
-                    r.non_manifold_edges.len(),
-                    r.faces_in_more_than_two_cells.len(),
+                    c.non_manifold_vertices,
+                    c.non_manifold_edges,
+                    c.faces_in_more_than_two_cells,
                 );
                 (v + e + f > 0).then(|| {
                     format!("{v} non-manifold vertices, {e} non-manifold edges, {f} faces in more than two top cells")
                 })
             }
-            Defect::NonPure => (!r.lower_dimensional_cells.is_empty()).then(|| {
+            Defect::NonPure => (c.lower_dimensional_cells > 0).then(|| {
                 format!(
                     "{} lower-dimensional top cells (not pure)",
-                    r.lower_dimensional_cells.len()
+                    c.lower_dimensional_cells
                 )
             }),
             Defect::NonOrientable => {
                 (r.orientable == Some(false)).then(|| "not orientable".to_string())
             }
-            Defect::Isolated => (!r.isolated_vertices.is_empty())
-                .then(|| format!("{} isolated vertices", r.isolated_vertices.len())),
-            Defect::Boundary => (!r.boundary_faces.is_empty())
-                .then(|| format!("{} boundary faces", r.boundary_faces.len())),
+            Defect::Isolated => (c.isolated_vertices > 0)
+                .then(|| format!("{} isolated vertices", c.isolated_vertices)),
+            Defect::Boundary => {
+                (c.boundary_faces > 0).then(|| format!("{} boundary faces", c.boundary_faces))
+            }
             Defect::Disconnected => (r.n_connected_components > 1)
                 .then(|| format!("{} connected components", r.n_connected_components)),
             Defect::Undecided => {
-                let (v, e) = (r.unknown_vertices.len(), r.unknown_edges.len());
+                let (v, e) = (c.unknown_vertices, c.unknown_edges);
                 (v + e > 0).then(|| format!("{v} vertices and {e} edges not classified"))
             }
         };

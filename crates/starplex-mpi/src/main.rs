@@ -672,17 +672,44 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<u8, Failure> {
         conflict = m.conflict;
     }
     let validate_s = t2.elapsed().as_secs_f64();
+    // complete counts, and only the first --max-list entries of each rank's lists (rank 0
+    // keeps the first --max-list of their union: O(ranks x max-list), not O(boundary))
+    let counts = comm::sums(
+        w,
+        &[
+            bnd_len(&bnd) as u64,
+            bnd_len(&more) as u64,
+            nm_v.len() as u64,
+            (nm_e.len() / 2) as u64,
+            un_v.len() as u64,
+            (un_e.len() / 2) as u64,
+            isolated.len() as u64,
+            lower.len() as u64,
+            negative.len() as u64,
+        ],
+    );
+    let max = a.max_list;
     let gathered = [
-        comm::gather(w, &isolated)?,
-        comm::gather(w, &lower)?,
-        comm::gather(w, &nm_v)?,
-        comm::gather(w, &un_v)?,
-        comm::gather(w, &nm_e)?,
-        comm::gather(w, &un_e)?,
-        comm::gather(w, &bnd)?,
-        comm::gather(w, &more)?,
-        comm::gather(w, &negative)?,
+        comm::gather(w, &first_ids(isolated, max))?,
+        comm::gather(w, &first_ids(lower, max))?,
+        comm::gather(w, &first_ids(nm_v, max))?,
+        comm::gather(w, &first_ids(un_v, max))?,
+        comm::gather(w, &first_edges(nm_e, max))?,
+        comm::gather(w, &first_edges(un_e, max))?,
+        comm::gather(w, &first_faces(&bnd, max))?,
+        comm::gather(w, &first_faces(&more, max))?,
     ];
+    let c = starplex_cli::report::ListCounts {
+        boundary_faces: counts[0] as usize,
+        faces_in_more_than_two_cells: counts[1] as usize,
+        non_manifold_vertices: counts[2] as usize,
+        non_manifold_edges: counts[3] as usize,
+        unknown_vertices: counts[4] as usize,
+        unknown_edges: counts[5] as usize,
+        isolated_vertices: counts[6] as usize,
+        lower_dimensional_cells: counts[7] as usize,
+        cells_to_flip: (d.is_some() && counts[1] == 0).then_some(counts[8] as usize),
+    };
     let unsupported = d.is_some() && n_more == 0 && conflict;
     agree(
         w,
@@ -697,25 +724,25 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<u8, Failure> {
     )?;
     agree(w, f.check_unchanged())?;
     let report = if w.rank() == 0 {
-        Some(validation_report(rep, d, gathered))
+        Some(validation_report(rep, d, &c, max, gathered))
     } else {
         None
     };
     let wanted = starplex_cli::report::Defect::wanted(a.check, &a.fail_on);
     let found = report
         .as_ref()
-        .map(|r| starplex_cli::report::defects_found(r, &wanted))
+        .map(|r| starplex_cli::report::defects_found_counted(r, &c, &wanted))
         .unwrap_or_default();
     let failed = comm::max(w, u64::from(!found.is_empty())) > 0;
     if let Some(rep) = report {
         if a.json {
-            let mut v = starplex_cli::report::validation_json(&rep, a.max_list);
+            let mut v = starplex_cli::report::validation_json_counted(&rep, &c, a.max_list);
             v["timings"] =
                 json!({"read_s": ld.read_s, "build_s": build_s, "validate_s": validate_s});
             print_json(&v);
         } else {
             println!("{}", a.file.display());
-            starplex_cli::report::print_validation(&rep, a.max_list);
+            starplex_cli::report::print_validation_counted(&rep, &c, a.max_list);
             println!(
                 "  time                read {:.3} s, Stellar tree {build_s:.3} s, validation {validate_s:.3} s",
                 ld.read_s
@@ -732,42 +759,91 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<u8, Failure> {
     Ok(u8::from(failed))
 }
 
-/// Rank 0's report from the gathered lists (global ids, sorted as the single process sorts).
+/// Rank 0's report from the gathered first entries of the lists (global ids, sorted as the
+/// single process sorts them, cut to `max`) and the complete counts `c`.
 fn validation_report(
     mut rep: ValidationReport,
     d: Option<usize>,
-    gathered: [Option<Vec<u32>>; 9],
+    c: &starplex_cli::report::ListCounts,
+    max: usize,
+    gathered: [Option<Vec<u32>>; 8],
 ) -> ValidationReport {
-    let [Some(iso), Some(low), Some(nmv), Some(unv), Some(nme), Some(une), Some(bnd), Some(more), Some(neg)] =
+    let [Some(iso), Some(low), Some(nmv), Some(unv), Some(nme), Some(une), Some(bnd), Some(more)] =
         gathered
     else {
         unreachable!("rank 0 holds every gathered list");
     };
-    rep.isolated_vertices = vids(iso);
+    let cut = |mut v: Vec<VertexId>| {
+        v.truncate(max);
+        v
+    };
+    rep.isolated_vertices = cut(vids(iso));
     let mut low = low;
     low.sort_unstable();
+    low.truncate(max);
     rep.lower_dimensional_cells = low.into_iter().map(CellId).collect();
-    rep.non_manifold_vertices = vids(nmv);
-    rep.unknown_vertices = vids(unv);
+    rep.non_manifold_vertices = cut(vids(nmv));
+    rep.unknown_vertices = cut(vids(unv));
     rep.non_manifold_edges = edges(nme);
+    rep.non_manifold_edges.truncate(max);
     rep.unknown_edges = edges(une);
+    rep.unknown_edges.truncate(max);
     rep.boundary_faces = unflat_faces(&bnd);
+    rep.boundary_faces.truncate(max);
     rep.faces_in_more_than_two_cells = unflat_faces(&more);
+    rep.faces_in_more_than_two_cells.truncate(max);
     match d {
-        None => rep.pure = rep.isolated_vertices.is_empty(),
+        None => rep.pure = c.isolated_vertices == 0,
         Some(_) => {
-            rep.pure = rep.lower_dimensional_cells.is_empty() && rep.isolated_vertices.is_empty();
+            rep.pure = c.lower_dimensional_cells == 0 && c.isolated_vertices == 0;
             rep.pseudo_manifold =
-                rep.pure && rep.faces_in_more_than_two_cells.is_empty() && rep.facet_connected;
-            if rep.faces_in_more_than_two_cells.is_empty() {
+                rep.pure && c.faces_in_more_than_two_cells == 0 && rep.facet_connected;
+            if c.faces_in_more_than_two_cells == 0 {
                 rep.orientable = Some(true);
-                let mut neg = neg;
-                neg.sort_unstable();
-                rep.cells_to_flip = Some(neg.into_iter().map(CellId).collect());
+                // only the count is reported; the ids stay on their ranks
+                rep.cells_to_flip = Some(Vec::new());
             }
         }
     }
     rep
+}
+
+/// The first `max` ids of a rank's list, sorted.
+fn first_ids(mut v: Vec<u32>, max: usize) -> Vec<u32> {
+    v.sort_unstable();
+    v.truncate(max);
+    v
+}
+
+/// The first `max` edges (flat pairs) in the single process's order: by first vertex, each
+/// vertex's edges in the order found (a vertex's edges all come from its owner).
+fn first_edges(v: Vec<u32>, max: usize) -> Vec<u32> {
+    let mut e: Vec<[u32; 2]> = v.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
+    e.sort_by_key(|e| e[0]);
+    e.truncate(max);
+    e.into_iter().flatten().collect()
+}
+
+/// Number of faces of a flat face list (`n, v.., n, v..`).
+fn bnd_len(x: &[u32]) -> usize {
+    let (mut i, mut n) = (0, 0);
+    while i < x.len() {
+        i += 1 + x[i] as usize;
+        n += 1;
+    }
+    n
+}
+
+/// The first `max` faces of a flat face list, sorted, flat again.
+fn first_faces(x: &[u32], max: usize) -> Vec<u32> {
+    let mut f = unflat_faces(x);
+    f.truncate(max);
+    let mut out = Vec::new();
+    for g in f {
+        out.push(g.len() as u32);
+        out.extend(g.iter().map(|v| v.0));
+    }
+    out
 }
 
 /// Peak resident set of this process in KiB (`VmHWM`), 0 when unknown.

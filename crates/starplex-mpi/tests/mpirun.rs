@@ -931,9 +931,10 @@ fn query_all_out_equals_the_single_process_bytes() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// `validate --check` and `--fail-on`: every small dataset gives the exit status of
-/// `starplex validate` with the same options (1 when a defect asked about is found, 0
-/// otherwise), with the same list of defects in the message, on 1-4 ranks.
+/// `validate --check`, `--fail-on` and `--max-list`: every small dataset gives the exit status
+/// and the JSON of `starplex validate` with the same options (1 when a defect asked about is
+/// found, 0 otherwise; lists cut to `--max-list` while each rank sends only its first
+/// entries), with the same list of defects in the message, on 1-4 ranks.
 #[test]
 fn validate_check_and_fail_on_exit_as_the_single_process() {
     let Some(cli) = ready() else { return };
@@ -954,16 +955,30 @@ fn validate_check_and_fail_on_exit_as_the_single_process() {
     for (d, src) in data.iter().enumerate() {
         let name = src.file_stem().unwrap().to_string_lossy().into_owned();
         let spb = to_spb(&cli, src, &tmp);
-        for opts in [vec!["--check"], vec!["--fail-on", "boundary,disconnected"]] {
+        for opts in [
+            vec!["--check"],
+            vec!["--fail-on", "boundary,disconnected"],
+            vec!["--max-list", "7"],
+        ] {
             let mut args = vec!["--quiet", "validate", spb.as_str(), "--json"];
             args.extend(opts.iter().copied());
-            let (want_code, _, want_err) = run(Command::new(&cli).args(&args), limit);
+            let (want_code, want_out, want_err) = run(Command::new(&cli).args(&args), limit);
             statuses.insert(want_code);
             let np = 1 + d % 4;
             let mut margs = vec!["validate", spb.as_str(), "--json"];
             margs.extend(opts.iter().copied());
-            let (code, _, err) = run(&mut mpi(np, &margs), limit);
+            let (code, out, err) = run(&mut mpi(np, &margs), limit);
             let what = format!("-np {np} validate {name} {opts:?}");
+            // the JSON too: lists cut to --max-list on every rank, counts complete
+            if want_code == Some(0) || want_code == Some(1) {
+                let (a, b) = (
+                    without_timings(&want_out, &what),
+                    without_timings(&out, &what),
+                );
+                if a != b {
+                    failures.push(format!("{what}: JSON differs\n got {b}\nwant {a}"));
+                }
+            }
             if code != want_code || found(&err) != found(&want_err) {
                 failures.push(format!(
                     "{what}: status {code:?} ({err}), the single process {want_code:?} ({want_err})"
