@@ -5,7 +5,8 @@
 //! mpirun -np P starplex-mpi validate FILE.spb [--json] [--max-list N] [--stats]
 //!     [--check | --fail-on DEFECTS]
 //! mpirun -np P starplex-mpi stellar FILE.spb [--json] [--kv N] [--vt-vv-out PREFIX] [--stats]
-//! mpirun -np P starplex-mpi homology FILE.spb [--json] [--stats]
+//! mpirun -np P starplex-mpi homology FILE.spb [--json] [--stats] [--field 2|p|q|z]
+//!     [--method contract|algebraic] [--tmp-dir DIR]
 //! mpirun -np P starplex-mpi query FILE.spb --relation R --all --out OUT.jsonl|csv|npz
 //!     [--structure S] [--per-rank]
 //! mpirun -np P starplex-mpi simplify FILE.spb -o OUT.spb [--mode homology|qem] [--ratio R]
@@ -48,7 +49,7 @@ mod write;
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
 const VERBS: [&str; 6] = [
     "info", "validate", "stellar", "homology", "query", "simplify",
 ];
@@ -78,6 +79,9 @@ struct Args {
     per_rank: bool,
     check: bool,
     fail_on: Vec<starplex_cli::report::Defect>,
+    field: starplex::algo::homology::Field,
+    algebraic: bool,
+    tmp_dir: Option<PathBuf>,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -106,6 +110,9 @@ fn parse_args() -> Result<Args, String> {
         per_rank: false,
         check: false,
         fail_on: Vec::new(),
+        field: starplex::algo::homology::Field::Z2,
+        algebraic: false,
+        tmp_dir: None,
     };
     let mut pos = Vec::new();
     while let Some(x) = it.next() {
@@ -187,6 +194,28 @@ fn parse_args() -> Result<Args, String> {
                     .ok_or(format!("--structure needs a value\n{USAGE}"))?;
                 a.structure = starplex::structures::Structure::from_name(&n)
                     .ok_or(format!("--structure {n}: unknown\n{USAGE}"))?
+            }
+            "--field" => {
+                let v = it.next().ok_or(format!("--field needs a value\n{USAGE}"))?;
+                a.field = starplex::algo::homology::Field::parse(&v).map_err(|e| {
+                    format!("--field: {e} (use 2, a prime such as 3, q or z)\n{USAGE}")
+                })?
+            }
+            "--method" => {
+                let v = it
+                    .next()
+                    .ok_or(format!("--method needs a value\n{USAGE}"))?;
+                a.algebraic = match v.as_str() {
+                    "contract" => false,
+                    "algebraic" => true,
+                    _ => return Err(format!("--method {v}: contract or algebraic\n{USAGE}")),
+                }
+            }
+            "--tmp-dir" => {
+                a.tmp_dir = Some(PathBuf::from(
+                    it.next()
+                        .ok_or(format!("--tmp-dir needs a value\n{USAGE}"))?,
+                ))
             }
             "--check" => a.check = true,
             "--fail-on" => {
@@ -290,6 +319,32 @@ fn run(w: &World) -> Result<u8, Failure> {
             print_peaks(w)?;
         }
         return Ok(0);
+    }
+    if a.verb == "homology" {
+        // simplicial complexes with cells: by contraction, over any field; else the algebraic
+        // reduction (Z/2)
+        let f = agree(w, Spb::open(&a.file))?;
+        let contractible = f.h.n_cells > 0 && f.h.blocks.iter().all(|&(k, _, _)| k.is_simplex());
+        drop(f);
+        if !a.algebraic && contractible {
+            let dir = a.tmp_dir.clone().unwrap_or_else(|| {
+                a.file
+                    .parent()
+                    .filter(|p| !p.as_os_str().is_empty())
+                    .map_or_else(|| PathBuf::from("."), PathBuf::from)
+            });
+            homology::run_by_contraction(w, a.json, &a.file, a.field, &dir)?;
+            if a.stats {
+                print_peaks(w)?;
+            }
+            return Ok(0);
+        }
+        if a.field != starplex::algo::homology::Field::Z2 {
+            return Err(Failure(format!(
+                "--field {}: the algebraic method (CP cells, or --method algebraic) computes over Z/2 only",
+                a.field
+            )));
+        }
     }
     let f = agree(w, Spb::open(&a.file))?;
     fault::test_pause();

@@ -301,6 +301,78 @@ fn remove(w: &World, path: Option<PathBuf>) {
 
 /// The verb (collective).
 pub fn run(w: &World, a: &SimplifyArgs, file: &Path) -> Result<(), Failure> {
+    let o = rounds(w, a, file)?;
+    if w.rank() != 0 {
+        return Ok(());
+    }
+    let v = o.json(file, a.out, w.size() as u32);
+    if a.json {
+        crate::print_json(&v);
+    } else {
+        println!("{} -> {}", file.display(), a.out.display());
+        println!(
+            "  mode                {} ({} ranks)",
+            o.mode.name(),
+            w.size()
+        );
+        println!(
+            "  vertices            {} -> {}",
+            o.before.0, o.written.n_vertices
+        );
+        println!(
+            "  top cells           {} -> {}",
+            o.before.1, o.written.n_cells
+        );
+        println!(
+            "  contractions        {} in {} rounds",
+            o.contractions,
+            o.rows.len()
+        );
+        println!("  time                {:.3} s", o.time_s);
+    }
+    Ok(())
+}
+
+/// What the rounds did.
+pub struct Outcome {
+    /// The mode that ran.
+    pub mode: Mode,
+    /// Vertices and top cells of the input.
+    pub before: (u64, u64),
+    /// The output file's counts.
+    pub written: write::Written,
+    /// Edges contracted in all.
+    pub contractions: u64,
+    /// The global target of top cells, if any.
+    pub goal: Option<u64>,
+    /// One JSON object per round.
+    pub rows: Vec<serde_json::Value>,
+    /// Seconds (the slowest rank's view: every round ends collectively).
+    pub time_s: f64,
+}
+
+impl Outcome {
+    /// The report of `simplify --json`.
+    pub fn json(&self, file: &Path, out: &Path, ranks: u32) -> serde_json::Value {
+        json!({
+            "input": file.display().to_string(),
+            "output": out.display().to_string(),
+            "mode": self.mode.name(),
+            "ranks": ranks,
+            "target_faces": self.goal,
+            "n_contractions": self.contractions,
+            "rounds": self.rows.len(),
+            "per_round": self.rows,
+            "vertices": [self.before.0, self.written.n_vertices],
+            "cells": [self.before.1, self.written.n_cells],
+            "bytes": self.written.bytes,
+            "time_s": self.time_s,
+        })
+    }
+}
+
+/// The rounds (collective): reads `file`, writes `a.out`.
+pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failure> {
     let t0 = Instant::now();
     let target = agree(w, write::target_of(a.out))?;
     let p = w.size() as u32;
@@ -407,36 +479,13 @@ pub fn run(w: &World, a: &SimplifyArgs, file: &Path) -> Result<(), Failure> {
         input = path;
         r += 1;
     };
-    let time_s = t0.elapsed().as_secs_f64();
-    if w.rank() != 0 {
-        return Ok(());
-    }
-    let v = json!({
-        "input": file.display().to_string(),
-        "output": a.out.display().to_string(),
-        "mode": mode.name(),
-        "ranks": p,
-        "target_faces": goal,
-        "n_contractions": total,
-        "rounds": rows.len(),
-        "per_round": rows,
-        "vertices": [before.0, written.n_vertices],
-        "cells": [before.1, written.n_cells],
-        "bytes": written.bytes,
-        "time_s": time_s,
-    });
-    if a.json {
-        crate::print_json(&v);
-    } else {
-        println!("{} -> {}", file.display(), a.out.display());
-        println!("  mode                {} ({} ranks)", mode.name(), p);
-        println!(
-            "  vertices            {} -> {}",
-            before.0, written.n_vertices
-        );
-        println!("  top cells           {} -> {}", before.1, written.n_cells);
-        println!("  contractions        {total} in {} rounds", rows.len());
-        println!("  time                {time_s:.3} s");
-    }
-    Ok(())
+    Ok(Outcome {
+        mode,
+        before,
+        written,
+        contractions: total,
+        goal,
+        rows,
+        time_s: t0.elapsed().as_secs_f64(),
+    })
 }

@@ -159,7 +159,13 @@ fn comparable(verb: &str, v: serde_json::Value) -> serde_json::Value {
     if verb != "homology" {
         return v;
     }
-    let keys = ["field", "betti", "betti_z2", "euler_characteristic"];
+    let keys = [
+        "field",
+        "betti",
+        "betti_z2",
+        "euler_characteristic",
+        "torsion",
+    ];
     serde_json::Value::Object(
         keys.iter()
             .map(|k| (k.to_string(), v[*k].clone()))
@@ -434,9 +440,78 @@ fn owned_top_cells_are_balanced() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `homology --field 2|q|z` of the 6-vertex real projective plane (H_1 = Z/2: Betti [1,1,1]
+/// over Z/2, [1,0,0] over Q and Z with torsion [[], [2], []]) on 1-3 ranks: the contraction
+/// method keeps the torsion.
+#[test]
+fn homology_of_the_projective_plane_keeps_the_torsion() {
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    if ready().is_none() {
+        return;
+    }
+    let tmp = std::env::temp_dir().join(format!("starplex-mpi-rp2-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let mut b = ComplexBuilder::new(3).unwrap();
+    for i in 0..6 {
+        let a = i as f64;
+        b.push_vertex(&[a.cos(), a.sin(), a * 0.1]).unwrap();
+    }
+    for t in [
+        [0, 1, 2],
+        [0, 2, 3],
+        [0, 3, 4],
+        [0, 4, 5],
+        [0, 5, 1],
+        [1, 2, 4],
+        [2, 3, 5],
+        [3, 4, 1],
+        [4, 5, 2],
+        [5, 1, 3],
+    ] {
+        b.push_cell(CellKind::Simplex(2), &t).unwrap();
+    }
+    let k = b.build(&BuildOptions::default()).unwrap().0;
+    let spb = tmp.join("rp2.spb");
+    let mut bytes = Vec::new();
+    starplex::io::binary::write(&mut bytes, &k).unwrap();
+    std::fs::write(&spb, &bytes).unwrap();
+    let spb = spb.to_string_lossy().into_owned();
+    let want = [
+        ("2", serde_json::json!([1, 1, 1]), serde_json::Value::Null),
+        ("q", serde_json::json!([1, 0, 0]), serde_json::Value::Null),
+        (
+            "z",
+            serde_json::json!([1, 0, 0]),
+            serde_json::json!([[], ["2"], []]),
+        ),
+    ];
+    for np in [1, 2, 3] {
+        for (field, betti, torsion) in &want {
+            let (code, out, err) = run(
+                &mut mpi(np, &["homology", &spb, "--json", "--field", field]),
+                Duration::from_secs(60),
+            );
+            assert_eq!(code, Some(0), "-np {np} --field {field}: {err}");
+            let v = without_timings(&out, "rp2");
+            assert_eq!(&v["betti"], betti, "-np {np} --field {field}: {v}");
+            assert_eq!(&v["torsion"], torsion, "-np {np} --field {field}: {v}");
+        }
+    }
+    let left: Vec<_> = std::fs::read_dir(&tmp)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != "rp2.spb")
+        .collect();
+    assert!(left.is_empty(), "temporary files left: {left:?}");
+    std::fs::remove_dir_all(&tmp).ok();
+}
+
 /// `homology` on random complexes (seeded): tetrahedra, triangles and edges over few vertices,
 /// non-manifold and with holes, so that interfaces between ranks carry every kind of face;
-/// the Betti numbers equal the single process's for 2-4 ranks.
+/// the Betti numbers (and torsion) equal the single process's for 2-4 ranks, over Z/2 by
+/// contraction and by the algebraic reduction, over Z and over Q by contraction.
 #[test]
 fn homology_of_random_complexes_equals_the_single_process() {
     use starplex::cell::CellKind;
@@ -447,7 +522,7 @@ fn homology_of_random_complexes_equals_the_single_process() {
     std::fs::create_dir_all(&tmp).unwrap();
     let mut rng = XorShift::new(17);
     let mut failures = Vec::new();
-    for case in 0..12 {
+    for case in 0..16 {
         let nv = 8 + (rng.next_u64() % 10) as u32;
         let mut cells: Vec<Vec<u32>> = Vec::new();
         let n_cells = 4 + rng.next_u64() % 14;
@@ -490,18 +565,26 @@ fn homology_of_random_complexes_equals_the_single_process() {
         starplex::io::binary::write(&mut bytes, &k).unwrap();
         std::fs::write(&spb, &bytes).unwrap();
         let spb_s = spb.to_string_lossy().into_owned();
+        // Z/2 by contraction and by the algebraic reduction; Z (torsion) and Q by contraction
+        let methods: [(&str, &[&str]); 4] = [
+            ("2", &[]),
+            ("2", &["--method", "algebraic"]),
+            ("z", &[]),
+            ("q", &[]),
+        ];
+        let (field, extra) = methods[case % 4];
         let (code, out, err) = run(
-            Command::new(&cli).args(["--quiet", "homology", &spb_s, "--json"]),
+            Command::new(&cli).args(["--quiet", "homology", &spb_s, "--json", "--field", field]),
             Duration::from_secs(60),
         );
         assert_eq!(code, Some(0), "starplex homology case {case}: {err}");
         let want = comparable("homology", without_timings(&out, "single"));
         for np in [2, 3, 4] {
-            let what = format!("-np {np} homology case {case} ({keep:?})");
-            let (code, out, err) = run(
-                &mut mpi(np, &["homology", &spb_s, "--json"]),
-                Duration::from_secs(60),
-            );
+            let what =
+                format!("-np {np} homology --field {field} {extra:?} case {case} ({keep:?})");
+            let mut args = vec!["homology", spb_s.as_str(), "--json", "--field", field];
+            args.extend_from_slice(extra);
+            let (code, out, err) = run(&mut mpi(np, &args), Duration::from_secs(60));
             if code != Some(0) {
                 failures.push(format!("{what}: status {code:?}: {err}"));
                 continue;
