@@ -81,6 +81,11 @@ impl Spb {
         })
     }
 
+    /// The largest dimension of the file's cells (`None` without cells).
+    pub fn dim(&self) -> Option<usize> {
+        self.h.blocks.iter().map(|&(k, _, _)| k.dim()).max()
+    }
+
     /// An error when the file's length or modification time changed since it was opened.
     pub fn check_unchanged(&self) -> Result<(), String> {
         let now = stamp(Path::new(&self.path))?;

@@ -476,12 +476,7 @@ pub fn run(
     max_faces: u128,
 ) -> Result<(), Failure> {
     let t1 = Instant::now();
-    let dims =
-        f.h.blocks
-            .iter()
-            .map(|&(k, _, _)| k.dim())
-            .max()
-            .unwrap_or(0);
+    let dims = f.dim().unwrap_or(0);
     let mut parts = agree(
         w,
         local_reduction(l, max_faces).map_err(|e| format!("{}: {e}", file.display())),
@@ -584,12 +579,7 @@ pub fn run_by_contraction(
     use starplex::algo::homology::{homology_indexed, Field, HomologyOptions};
     let t0 = Instant::now();
     let f = agree(w, Spb::open(file))?;
-    let dims =
-        f.h.blocks
-            .iter()
-            .map(|&(k, _, _)| k.dim())
-            .max()
-            .unwrap_or(0);
+    let dims = f.dim().unwrap_or(0);
     drop(f);
     // one name on every rank: rank 0's process id
     let token = comm::all_gather(w, &[u64::from(std::process::id())])[0];

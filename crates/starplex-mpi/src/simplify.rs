@@ -128,6 +128,7 @@ fn round(
     let (rank, p) = (w.rank() as usize, w.size() as usize);
     let n = l.vertex_gid.len();
     let keep = locked(l);
+    let n_locked = keep.len() as u64;
     let mine = owned_tops(l);
     let all_owned = comm::sum(w, mine);
     let local_tops = (l.k.n_cells() + l.k.n_isolated_vertices()) as u64;
@@ -158,7 +159,7 @@ fn round(
         },
         lock_boundary: a.lock_boundary,
         keep_manifold: a.keep_manifold,
-        keep_vertices: keep.clone(),
+        keep_vertices: keep,
         ..Default::default()
     };
     let done = if l.k.n_cells() == 0 {
@@ -278,7 +279,7 @@ fn round(
         part: Part { coords, blocks },
         contractions,
         owned_tops_after: owned_cells + isolated,
-        locked: keep.len() as u64,
+        locked: n_locked,
     })
 }
 

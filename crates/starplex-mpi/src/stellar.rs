@@ -114,7 +114,7 @@ pub fn run(
     l: &Local,
     read_s: f64,
 ) -> Result<(), Failure> {
-    let gdim = f.h.blocks.iter().map(|&(k, _, _)| k.dim()).max();
+    let gdim = f.dim();
     let kv = a.kv.unwrap_or(if gdim.is_some_and(|d| d >= 3) {
         400
     } else {

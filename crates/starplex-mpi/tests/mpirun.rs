@@ -152,6 +152,30 @@ fn ready() -> Option<PathBuf> {
     Some(cli)
 }
 
+/// The CLI, the small datasets and a fresh temporary directory `TAG-PID`; `None` (the test
+/// skips) without mpirun, the CLI or datasets.
+fn setup(tag: &str) -> Option<(PathBuf, Vec<PathBuf>, PathBuf)> {
+    let cli = ready()?;
+    let data = small_datasets();
+    if data.is_empty() {
+        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+        return None;
+    }
+    let tmp = std::env::temp_dir().join(format!("{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    Some((cli, data, tmp))
+}
+
+/// Names of the files in `dir` that `keep` does not expect (temporary files left behind).
+fn leftovers(dir: &Path, keep: impl Fn(&str) -> bool) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| !keep(n))
+        .collect()
+}
+
 /// The keys compared: everything for `info` and `validate`; for `homology` the answer (field,
 /// Betti numbers, Euler characteristic), not the size of the reduced complex, which depends on
 /// how it was reduced.
@@ -191,14 +215,9 @@ fn to_spb(cli: &Path, src: &Path, dir: &Path) -> String {
 
 #[test]
 fn info_validate_and_homology_equal_the_single_process_cli() {
-    let Some(cli) = ready() else { return };
-    let data = small_datasets();
-    if data.is_empty() {
-        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+    let Some((cli, data, tmp)) = setup("starplex-mpi-test") else {
         return;
-    }
-    let tmp = std::env::temp_dir().join(format!("starplex-mpi-test-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    };
     let limit = Duration::from_secs(600); // single-process homology of hex_knot1 took 70 s under load 14
     let mut failures = Vec::new();
     for src in &data {
@@ -305,14 +324,9 @@ fn bad_input_ends_every_rank_with_status_2() {
 fn stellar_counts_and_vt_vv_of_owned_vertices_equal_the_single_process() {
     use starplex::ids::VertexId;
     use starplex::stellar::{StellarOptions, StellarTree};
-    let Some(cli) = ready() else { return };
-    let data = small_datasets();
-    if data.is_empty() {
-        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+    let Some((cli, data, tmp)) = setup("starplex-mpi-stellar") else {
         return;
-    }
-    let tmp = std::env::temp_dir().join(format!("starplex-mpi-stellar-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    };
     let limit = Duration::from_secs(120);
     let mut failures = Vec::new();
     for src in &data {
@@ -402,14 +416,9 @@ fn stellar_counts_and_vt_vv_of_owned_vertices_equal_the_single_process() {
 /// sample of the cells' smallest vertices; all cells are sampled below 4,096 a rank).
 #[test]
 fn owned_top_cells_are_balanced() {
-    let Some(cli) = ready() else { return };
-    let data = small_datasets();
-    if data.is_empty() {
-        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+    let Some((cli, data, tmp)) = setup("starplex-mpi-balance") else {
         return;
-    }
-    let tmp = std::env::temp_dir().join(format!("starplex-mpi-balance-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    };
     let mut failures = Vec::new();
     for src in &data {
         let name = src.file_stem().unwrap().to_string_lossy().into_owned();
@@ -498,12 +507,7 @@ fn homology_of_the_projective_plane_keeps_the_torsion() {
             assert_eq!(&v["torsion"], torsion, "-np {np} --field {field}: {v}");
         }
     }
-    let left: Vec<_> = std::fs::read_dir(&tmp)
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n != "rp2.spb")
-        .collect();
+    let left = leftovers(&tmp, |n| n == "rp2.spb");
     assert!(left.is_empty(), "temporary files left: {left:?}");
     std::fs::remove_dir_all(&tmp).ok();
 }
@@ -710,14 +714,9 @@ fn trimmed(b: &serde_json::Value) -> Vec<u64> {
 /// edge may appear either.
 #[test]
 fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
-    let Some(cli) = ready() else { return };
-    let data = small_datasets();
-    if data.is_empty() {
-        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+    let Some((cli, data, tmp)) = setup("starplex-mpi-simplify") else {
         return;
-    }
-    let tmp = std::env::temp_dir().join(format!("starplex-mpi-simplify-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    };
     let limit = Duration::from_secs(600);
     let mut failures = Vec::new();
     let mut checked = 0;
@@ -867,12 +866,7 @@ fn simplify_refuses_what_it_cannot_do() {
             assert!(!Path::new(&out).exists(), "-np {np} {args:?} wrote {out}");
         }
     }
-    let left: Vec<_> = std::fs::read_dir(&tmp)
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.contains("starplex-mpi"))
-        .collect();
+    let left = leftovers(&tmp, |n| !n.contains("starplex-mpi"));
     assert!(left.is_empty(), "temporary files left: {left:?}");
     std::fs::remove_dir_all(&tmp).ok();
 }
@@ -884,14 +878,9 @@ fn simplify_refuses_what_it_cannot_do() {
 /// item once.
 #[test]
 fn query_all_out_equals_the_single_process_bytes() {
-    let Some(cli) = ready() else { return };
-    let data = small_datasets();
-    if data.is_empty() {
-        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+    let Some((cli, data, tmp)) = setup("starplex-mpi-query") else {
         return;
-    }
-    let tmp = std::env::temp_dir().join(format!("starplex-mpi-query-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    };
     let limit = Duration::from_secs(300);
     let mut failures = Vec::new();
     let mut checked = 0;
@@ -1002,12 +991,7 @@ fn query_all_out_equals_the_single_process_bytes() {
             }
         }
     }
-    let left: Vec<_> = std::fs::read_dir(&tmp)
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.contains("starplex-mpi"))
-        .collect();
+    let left = leftovers(&tmp, |n| !n.contains("starplex-mpi"));
     std::fs::remove_dir_all(&tmp).ok();
     assert!(left.is_empty(), "parts left behind: {left:?}");
     assert!(checked > 50, "only {checked} runs");
@@ -1020,14 +1004,9 @@ fn query_all_out_equals_the_single_process_bytes() {
 /// entries), with the same list of defects in the message, on 1-4 ranks.
 #[test]
 fn validate_check_and_fail_on_exit_as_the_single_process() {
-    let Some(cli) = ready() else { return };
-    let data = small_datasets();
-    if data.is_empty() {
-        skip_or_fail("no small datasets (set STARPLEX_DATA)");
+    let Some((cli, data, tmp)) = setup("starplex-mpi-check") else {
         return;
-    }
-    let tmp = std::env::temp_dir().join(format!("starplex-mpi-check-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    };
     let limit = Duration::from_secs(300);
     let found = |err: &str| {
         err.split_once("validation failed: ")
