@@ -182,6 +182,13 @@ pub fn sum(w: &World, x: u64) -> u64 {
     y
 }
 
+/// Minimum over ranks.
+pub fn min(w: &World, x: u64) -> u64 {
+    let mut y = 0u64;
+    w.all_reduce_into(&x, &mut y, SystemOperation::min());
+    y
+}
+
 /// Maximum over ranks.
 pub fn max(w: &World, x: u64) -> u64 {
     let mut y = 0u64;

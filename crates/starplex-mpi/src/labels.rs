@@ -26,6 +26,9 @@ pub struct Merged {
     /// Global ids of the elements this rank owns whose sign is -1 relative to their class's
     /// smallest element (the cells to flip).
     pub negative: Vec<u32>,
+    /// When `conflict`: the final sign of every element this rank holds (owned and ghost)
+    /// relative to its class's smallest element, which some pair must contradict; else empty.
+    pub signs: Vec<i8>,
 }
 
 /// One rank's elements: global id, owner rank, local class and sign relative to the class root.
@@ -174,9 +177,26 @@ pub fn merge(w: &World, e: &Elements) -> Result<Merged, Failure> {
     let n_roots = owned.clone().filter(|&i| lab[i] == e.gid[i]).count() as u64;
     let mut negative: Vec<u32> = owned.filter(|&i| par[i] < 0).map(|i| e.gid[i]).collect();
     negative.sort_unstable();
+    let conflict = comm::max(w, u64::from(conflict)) > 0;
+    let mut signs = Vec::new();
+    if conflict {
+        // the owners' final signs, to the ranks holding ghost copies
+        let reply: Vec<Vec<u32>> = asked
+            .iter()
+            .map(|ix| ix.iter().map(|&i| enc(par[i])).collect())
+            .collect();
+        let got = comm::exchange(w, reply)?;
+        signs = par.clone();
+        for (r, g) in got.parts().enumerate() {
+            for (k, &i) in req_idx[r].iter().enumerate() {
+                signs[i] = dec(g[k]);
+            }
+        }
+    }
     Ok(Merged {
         n_classes: comm::sum(w, n_roots),
-        conflict: comm::max(w, u64::from(conflict)) > 0,
+        conflict,
         negative,
+        signs,
     })
 }

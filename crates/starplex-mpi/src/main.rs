@@ -620,6 +620,36 @@ fn edges(x: Vec<u32>) -> Vec<[VertexId; 2]> {
     e
 }
 
+/// A witness that the complex cannot be oriented: the smallest pair `(a, b)` (global ids,
+/// `a < b`, packed as `a << 32 | b`; `u64::MAX` when none here) among this rank's facet pairs
+/// whose final signs contradict their induced orientations (`signs[x] * signs[y] == s`, where
+/// a consistent pair has `-s`). The single process names the first conflict its sequential
+/// walk meets, which a distributed run cannot reproduce: this is another such pair.
+fn conflict_witness(l: &Local, d: usize, pairs: &[(u32, u32, i8)], signs: &[i8]) -> u64 {
+    // element index of each top cell (the order `facet_classes` lists them in)
+    let mut elem = vec![u32::MAX; l.k.n_cells()];
+    let mut next = 0u32;
+    for (c, e) in elem.iter_mut().enumerate() {
+        if l.k.cell(CellId(c as u32)).kind.dim() == d {
+            *e = next;
+            next += 1;
+        }
+    }
+    let mut best = u64::MAX;
+    for &(x, y, s) in pairs {
+        let (ex, ey) = (elem[x as usize], elem[y as usize]);
+        if ex == u32::MAX || ey == u32::MAX {
+            continue;
+        }
+        if signs[ex as usize] * signs[ey as usize] == s {
+            let (a, b) = (l.cell_gid[x as usize], l.cell_gid[y as usize]);
+            let (a, b) = (a.min(b), a.max(b));
+            best = best.min((u64::from(a) << 32) | u64::from(b));
+        }
+    }
+    best
+}
+
 /// The facet-connected classes of the top cells and their orientation signs: the local walk over
 /// the facet `pairs`, then the merge across ranks.
 fn facet_classes(
@@ -710,7 +740,6 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<u8, Failure> {
     );
     let bnd = flat_faces(l, &r.boundary_faces);
     let more = flat_faces(l, &r.faces_in_more_than_two_cells);
-    let n_more = comm::sum(w, r.faces_in_more_than_two_cells.len() as u64);
     let n_components = components(w, l)?;
     // facet classes and orientation: local walk, then the merge across ranks
     let mut rep = ValidationReport {
@@ -719,8 +748,12 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<u8, Failure> {
         ..Default::default()
     };
     let (mut negative, mut conflict) = (Vec::new(), false);
+    let mut witness = u64::MAX;
     if let Some(d) = d {
         let m = facet_classes(w, l, d, &pairs)?;
+        if m.conflict {
+            witness = conflict_witness(l, d, &pairs, &m.signs);
+        }
         rep.n_facet_components = m.n_classes;
         rep.facet_connected = m.n_classes == 1;
         negative = m.negative;
@@ -763,23 +796,15 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<u8, Failure> {
         unknown_edges: counts[5] as usize,
         isolated_vertices: counts[6] as usize,
         lower_dimensional_cells: counts[7] as usize,
-        cells_to_flip: (d.is_some() && counts[1] == 0).then_some(counts[8] as usize),
+        cells_to_flip: (d.is_some() && counts[1] == 0 && !conflict).then_some(counts[8] as usize),
     };
-    let unsupported = d.is_some() && n_more == 0 && conflict;
-    agree(
-        w,
-        if unsupported {
-            Err(format!(
-                "{}: the complex is not orientable; starplex-mpi detects this but cannot yet name the pair of cells in conflict that `starplex validate` reports (its depth-first walk is sequential): run `starplex validate` on this file",
-                a.file.display()
-            ))
-        } else {
-            Ok(())
-        },
-    )?;
+    // non-orientable: the smallest pair (global ids) whose signs contradict, over all ranks
+    let witness = comm::min(w, witness);
+    let conflict_pair =
+        (conflict && witness != u64::MAX).then_some(((witness >> 32) as u32, witness as u32));
     agree(w, f.check_unchanged())?;
     let report = if w.rank() == 0 {
-        Some(validation_report(rep, d, &c, max, gathered))
+        Some(validation_report(rep, d, &c, max, conflict_pair, gathered))
     } else {
         None
     };
@@ -821,6 +846,7 @@ fn validation_report(
     d: Option<usize>,
     c: &starplex_cli::report::ListCounts,
     max: usize,
+    conflict: Option<(u32, u32)>,
     gathered: [Option<Vec<u32>>; 8],
 ) -> ValidationReport {
     let [Some(iso), Some(low), Some(nmv), Some(unv), Some(nme), Some(une), Some(bnd), Some(more)] =
@@ -854,9 +880,17 @@ fn validation_report(
             rep.pseudo_manifold =
                 rep.pure && c.faces_in_more_than_two_cells == 0 && rep.facet_connected;
             if c.faces_in_more_than_two_cells == 0 {
-                rep.orientable = Some(true);
-                // only the count is reported; the ids stay on their ranks
-                rep.cells_to_flip = Some(Vec::new());
+                match conflict {
+                    Some((a, b)) => {
+                        rep.orientable = Some(false);
+                        rep.orientation_conflict = Some((CellId(a), CellId(b)));
+                    }
+                    None => {
+                        rep.orientable = Some(true);
+                        // only the count is reported; the ids stay on their ranks
+                        rep.cells_to_flip = Some(Vec::new());
+                    }
+                }
             }
         }
     }

@@ -512,6 +512,129 @@ fn homology_of_the_projective_plane_keeps_the_torsion() {
     std::fs::remove_dir_all(&tmp).ok();
 }
 
+/// `validate` of non-orientable surfaces (the projective plane, a Möbius strip, a Klein
+/// bottle made of a grid): every rank count equals `starplex validate`'s, `orientable` is
+/// false, and the conflicting pair named is two top cells that share an edge (the single
+/// process names the first pair its sequential walk meets; the distributed run another one).
+#[test]
+fn validate_names_a_conflict_on_non_orientable_surfaces() {
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    let Some(cli) = ready() else { return };
+    let tmp = std::env::temp_dir().join(format!("starplex-mpi-nonorient-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    // an n x m grid of squares, two triangles each, glued: the last column to the first
+    // with a flip (Möbius strip), and for the Klein bottle the last row to the first as well
+    let surface = |n: u32, m: u32, klein: bool| {
+        let rows = if klein { m } else { m + 1 };
+        let id = |i: u32, j: u32| {
+            let (i, j) = if i == n { (0, m - j) } else { (i, j) };
+            let j = if klein { j % m } else { j };
+            i * rows + j
+        };
+        let mut b = ComplexBuilder::new(3).unwrap();
+        for i in 0..n {
+            for j in 0..rows {
+                let (a, t) = (i as f64 / n as f64 * 6.28, j as f64);
+                b.push_vertex(&[a.cos() * (3.0 + t), a.sin() * (3.0 + t), t * 0.7 + a])
+                    .unwrap();
+            }
+        }
+        for i in 0..n {
+            for j in 0..m {
+                let (p, q, r, s) = (id(i, j), id(i + 1, j), id(i, j + 1), id(i + 1, j + 1));
+                b.push_cell(CellKind::Simplex(2), &[p, q, s]).unwrap();
+                b.push_cell(CellKind::Simplex(2), &[p, s, r]).unwrap();
+            }
+        }
+        b.build(&BuildOptions::default()).unwrap().0
+    };
+    let mut rp2 = ComplexBuilder::new(3).unwrap();
+    for i in 0..6 {
+        let a = i as f64;
+        rp2.push_vertex(&[a.cos(), a.sin(), a * 0.1]).unwrap();
+    }
+    for t in [
+        [0, 1, 2],
+        [0, 2, 3],
+        [0, 3, 4],
+        [0, 4, 5],
+        [0, 5, 1],
+        [1, 2, 4],
+        [2, 3, 5],
+        [3, 4, 1],
+        [4, 5, 2],
+        [5, 1, 3],
+    ] {
+        rp2.push_cell(CellKind::Simplex(2), &t).unwrap();
+    }
+    let cases = [
+        ("rp2", rp2.build(&BuildOptions::default()).unwrap().0),
+        ("moebius", surface(24, 3, false)),
+        ("klein", surface(30, 6, true)),
+    ];
+    let mut failures = Vec::new();
+    for (name, k) in &cases {
+        let spb = tmp.join(format!("{name}.spb"));
+        let mut bytes = Vec::new();
+        starplex::io::binary::write(&mut bytes, k).unwrap();
+        std::fs::write(&spb, &bytes).unwrap();
+        let spb = spb.to_string_lossy().into_owned();
+        let (code, out, err) = run(
+            Command::new(&cli).args(["--quiet", "validate", &spb, "--json"]),
+            Duration::from_secs(60),
+        );
+        assert_eq!(code, Some(0), "starplex validate {name}: {err}");
+        let mut want = without_timings(&out, name);
+        assert_eq!(
+            want["orientable"], false,
+            "{name} should not be orientable: {want}"
+        );
+        want.as_object_mut().unwrap().remove("orientation_conflict");
+        for np in [1, 2, 3, 4] {
+            let what = format!("-np {np} validate {name}");
+            let (code, out, err) = run(
+                &mut mpi(np, &["validate", &spb, "--json"]),
+                Duration::from_secs(60),
+            );
+            if code != Some(0) {
+                failures.push(format!("{what}: status {code:?}: {err}"));
+                continue;
+            }
+            let mut got = without_timings(&out, &what);
+            let pair = got
+                .as_object_mut()
+                .unwrap()
+                .remove("orientation_conflict")
+                .unwrap_or_default();
+            if got != want {
+                failures.push(format!("{what}: differs\n got {got}\nwant {want}"));
+            }
+            let ab: Vec<usize> = pair
+                .as_array()
+                .map(|a| {
+                    a.iter()
+                        .filter_map(|x| x.as_u64())
+                        .map(|x| x as usize)
+                        .collect()
+                })
+                .unwrap_or_default();
+            let shares_an_edge = ab.len() == 2 && ab[0] != ab[1] && {
+                let ca = k.cell(starplex::ids::CellId(ab[0] as u32)).vertices;
+                let cb = k.cell(starplex::ids::CellId(ab[1] as u32)).vertices;
+                ca.iter().filter(|v| cb.contains(v)).count() == 2
+            };
+            if !shares_an_edge {
+                failures.push(format!(
+                    "{what}: conflict {pair} is not two triangles sharing an edge"
+                ));
+            }
+        }
+    }
+    std::fs::remove_dir_all(&tmp).ok();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// `homology` on random complexes (seeded): tetrahedra, triangles and edges over few vertices,
 /// non-manifold and with holes, so that interfaces between ranks carry every kind of face;
 /// the Betti numbers (and torsion) equal the single process's for 2-4 ranks, over Z/2 by
