@@ -535,7 +535,7 @@ fn validate_names_a_conflict_on_non_orientable_surfaces() {
         let mut b = ComplexBuilder::new(3).unwrap();
         for i in 0..n {
             for j in 0..rows {
-                let (a, t) = (i as f64 / n as f64 * 6.28, j as f64);
+                let (a, t) = (i as f64 / n as f64 * std::f64::consts::TAU, j as f64);
                 b.push_vertex(&[a.cos() * (3.0 + t), a.sin() * (3.0 + t), t * 0.7 + a])
                     .unwrap();
             }
