@@ -151,7 +151,7 @@ const BUCKETED_FROM: usize = 1 << 19;
 
 /// More references than this go straight to their rows as well: the buckets would take
 /// 8 bytes per reference on top of the 4 of the answer (1 GiB at this size).
-const BUCKETED_UP_TO: usize = 1 << 27;
+const BUCKETED_UP_TO: usize = 1 << 25;
 
 /// The fill pass of a counting sort: `each(sink)` calls [`Sink::emit`] for every (row, target)
 /// pair, in the same order as the count pass that made `offsets`; targets keep that order
