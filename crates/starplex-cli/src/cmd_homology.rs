@@ -5,9 +5,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-use serde_json::{json, Value};
+use serde_json::json;
 use starplex::algo::homology::{
-    homology_indexed, homology_owned, write_generators_obj, Field, Homology, HomologyOptions,
+    homology_indexed, homology_owned, write_generators_obj, Field, HomologyOptions,
 };
 
 use crate::common::{self, CliError, Ctx, InputArgs};
@@ -184,43 +184,4 @@ fn groups(betti: &[u64], torsion: &[Vec<u128>]) -> String {
         .join(", ")
 }
 
-pub fn to_json(h: &Homology) -> Value {
-    let mut v = json!({
-        "field": h.field.to_string(),
-        "betti": h.betti,
-        "euler_characteristic": h.euler_characteristic(),
-        "critical_cells": h.critical,
-    });
-    if h.field == Field::Z2 {
-        v["betti_z2"] = json!(h.betti);
-    }
-    if h.field == Field::Z {
-        v["torsion"] = json!(h
-            .torsion
-            .iter()
-            .map(|t| t.iter().map(|x| x.to_string()).collect::<Vec<_>>())
-            .collect::<Vec<_>>());
-    }
-    if let Some(comps) = &h.components {
-        v["components"] = Value::Array(
-            comps
-                .iter()
-                .map(|c| {
-                    json!({
-                        "first_vertex": c.first_vertex,
-                        "betti": c.betti,
-                        "torsion": c.torsion.iter().map(|t| t.iter().map(|x| x.to_string()).collect::<Vec<_>>()).collect::<Vec<_>>(),
-                        "surface": c.surface.map(|s| json!({
-                            "orientable": s.orientable,
-                            "genus": s.genus,
-                            "boundary_loops": s.boundary_loops,
-                            "euler_characteristic": s.euler_characteristic,
-                            "summary": s.to_string(),
-                        })),
-                    })
-                })
-                .collect(),
-        );
-    }
-    v
-}
+pub use starplex_cli::report::homology_json as to_json;

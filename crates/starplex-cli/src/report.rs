@@ -486,3 +486,57 @@ pub fn defects_found_counted(
     }
     out
 }
+
+/// The JSON object of `starplex homology --json` before the `timings` key (shared with
+/// `starplex-mpi homology`): field, Betti numbers, Euler characteristic, critical cells,
+/// `betti_z2` over Z/2, torsion over Z (as strings: they can exceed 2^53), components when
+/// computed.
+///
+/// ```
+/// use starplex::algo::homology::{homology_indexed, Field, HomologyOptions};
+/// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap();
+/// let h = homology_indexed(&k, &HomologyOptions { field: Field::Z, ..Default::default() }).unwrap();
+/// let v = starplex_cli::report::homology_json(&h);
+/// assert_eq!((v["betti"].clone(), v["torsion"].clone()), (serde_json::json!([1, 0, 0]), serde_json::json!([[], [], []])));
+/// ```
+pub fn homology_json(h: &starplex::algo::homology::Homology) -> Value {
+    use starplex::algo::homology::Field;
+    let mut v = json!({
+        "field": h.field.to_string(),
+        "betti": h.betti,
+        "euler_characteristic": h.euler_characteristic(),
+        "critical_cells": h.critical,
+    });
+    if h.field == Field::Z2 {
+        v["betti_z2"] = json!(h.betti);
+    }
+    if h.field == Field::Z {
+        v["torsion"] = json!(h
+            .torsion
+            .iter()
+            .map(|t| t.iter().map(|x| x.to_string()).collect::<Vec<_>>())
+            .collect::<Vec<_>>());
+    }
+    if let Some(comps) = &h.components {
+        v["components"] = Value::Array(
+            comps
+                .iter()
+                .map(|c| {
+                    json!({
+                        "first_vertex": c.first_vertex,
+                        "betti": c.betti,
+                        "torsion": c.torsion.iter().map(|t| t.iter().map(|x| x.to_string()).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                        "surface": c.surface.map(|s| json!({
+                            "orientable": s.orientable,
+                            "genus": s.genus,
+                            "boundary_loops": s.boundary_loops,
+                            "euler_characteristic": s.euler_characteristic,
+                            "summary": s.to_string(),
+                        })),
+                    })
+                })
+                .collect(),
+        );
+    }
+    v
+}

@@ -638,32 +638,15 @@ pub fn run_by_contraction(
     let total_s = t0.elapsed().as_secs_f64();
     let scheme = "the ranks contract edges under the link condition (homotopy type kept), each removing only vertices whose stars it alone holds; rank 0 computes the homology of the complex left";
     if json_out {
-        let mut v = json!({
-            "field": h.field.to_string(),
-            "betti": h.betti,
-            "euler_characteristic": h.euler_characteristic(),
-            "critical_cells": h.critical,
-            "ranks": w.size(),
-            "distributed": {
-                "scheme": scheme,
-                "contractions": o.contractions,
-                "reduced_complex": {"vertices": o.written.n_vertices, "cells": o.written.n_cells},
-                "critical_cells": "of the Morse complex of the reduced complex",
-            },
-            "timings": {"contract_s": contract_s, "homology_s": total_s},
+        let mut v = starplex_cli::report::homology_json(&h);
+        v["ranks"] = json!(w.size());
+        v["distributed"] = json!({
+            "scheme": scheme,
+            "contractions": o.contractions,
+            "reduced_complex": {"vertices": o.written.n_vertices, "cells": o.written.n_cells},
+            "critical_cells": "of the Morse complex of the reduced complex",
         });
-        if h.field == Field::Z2 {
-            v["betti_z2"] = json!(h.betti);
-        }
-        if h.field == Field::Z {
-            // as `starplex homology`: torsion coefficients as strings (they can exceed 2^53)
-            let t: Vec<Vec<String>> = h
-                .torsion
-                .iter()
-                .map(|t| t.iter().map(|x| x.to_string()).collect())
-                .collect();
-            v["torsion"] = json!(t);
-        }
+        v["timings"] = json!({"contract_s": contract_s, "homology_s": total_s});
         crate::print_json(&v);
     } else {
         println!("{}", file.display());

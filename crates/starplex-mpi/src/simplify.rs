@@ -283,16 +283,6 @@ fn round(
     })
 }
 
-/// The temporary file of round `r` beside the output.
-fn round_path(target: &Path, r: u32) -> PathBuf {
-    let mut name = target
-        .file_name()
-        .map(|n| n.to_os_string())
-        .unwrap_or_default();
-    name.push(format!(".round{r}.starplex-mpi.spb"));
-    target.with_file_name(name)
-}
-
 /// Removes a temporary round file (rank 0).
 fn remove(w: &World, path: Option<PathBuf>) {
     if let (Some(p), 0) = (path, w.rank()) {
@@ -470,7 +460,7 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         let path = if last {
             target.clone()
         } else {
-            round_path(&target, r)
+            write::beside(&target, &format!(".round{r}.starplex-mpi.spb"))
         };
         let written = write::write(w, &path, d, &out.part)?;
         if last {

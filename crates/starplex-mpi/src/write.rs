@@ -52,13 +52,13 @@ fn kind_of(i: usize) -> CellKind {
     }
 }
 
-/// The temporary file a target is written through.
-fn part_path(target: &Path) -> PathBuf {
+/// `target`'s file name with `suffix` appended, in the same directory (temporary files).
+pub fn beside(target: &Path, suffix: &str) -> PathBuf {
     let mut name = target
         .file_name()
         .map(|n| n.to_os_string())
         .unwrap_or_default();
-    name.push(".starplex-mpi-part");
+    name.push(suffix);
     target.with_file_name(name)
 }
 
@@ -118,7 +118,7 @@ pub fn write(
             )
         }),
     )?;
-    let tmp = part_path(target);
+    let tmp = beside(target, ".starplex-mpi-part");
     let created = if rank == 0 {
         (|| -> std::io::Result<()> {
             let f = std::fs::File::create(&tmp)?;

@@ -176,6 +176,32 @@ fn leftovers(dir: &Path, keep: impl Fn(&str) -> bool) -> Vec<String> {
         .collect()
 }
 
+/// The 6-vertex real projective plane (10 triangles; H_1 over Z is Z/2).
+fn rp2() -> starplex::complex::IndexedComplex {
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    let mut b = ComplexBuilder::new(3).unwrap();
+    for i in 0..6 {
+        let a = i as f64;
+        b.push_vertex(&[a.cos(), a.sin(), a * 0.1]).unwrap();
+    }
+    for t in [
+        [0, 1, 2],
+        [0, 2, 3],
+        [0, 3, 4],
+        [0, 4, 5],
+        [0, 5, 1],
+        [1, 2, 4],
+        [2, 3, 5],
+        [3, 4, 1],
+        [4, 5, 2],
+        [5, 1, 3],
+    ] {
+        b.push_cell(CellKind::Simplex(2), &t).unwrap();
+    }
+    b.build(&BuildOptions::default()).unwrap().0
+}
+
 /// The keys compared: everything for `info` and `validate`; for `homology` the answer (field,
 /// Betti numbers, Euler characteristic), not the size of the reduced complex, which depends on
 /// how it was reduced.
@@ -454,33 +480,12 @@ fn owned_top_cells_are_balanced() {
 /// method keeps the torsion.
 #[test]
 fn homology_of_the_projective_plane_keeps_the_torsion() {
-    use starplex::cell::CellKind;
-    use starplex::complex::{BuildOptions, ComplexBuilder};
     if ready().is_none() {
         return;
     }
     let tmp = std::env::temp_dir().join(format!("starplex-mpi-rp2-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    let mut b = ComplexBuilder::new(3).unwrap();
-    for i in 0..6 {
-        let a = i as f64;
-        b.push_vertex(&[a.cos(), a.sin(), a * 0.1]).unwrap();
-    }
-    for t in [
-        [0, 1, 2],
-        [0, 2, 3],
-        [0, 3, 4],
-        [0, 4, 5],
-        [0, 5, 1],
-        [1, 2, 4],
-        [2, 3, 5],
-        [3, 4, 1],
-        [4, 5, 2],
-        [5, 1, 3],
-    ] {
-        b.push_cell(CellKind::Simplex(2), &t).unwrap();
-    }
-    let k = b.build(&BuildOptions::default()).unwrap().0;
+    let k = rp2();
     let spb = tmp.join("rp2.spb");
     let mut bytes = Vec::new();
     starplex::io::binary::write(&mut bytes, &k).unwrap();
@@ -549,27 +554,8 @@ fn validate_names_a_conflict_on_non_orientable_surfaces() {
         }
         b.build(&BuildOptions::default()).unwrap().0
     };
-    let mut rp2 = ComplexBuilder::new(3).unwrap();
-    for i in 0..6 {
-        let a = i as f64;
-        rp2.push_vertex(&[a.cos(), a.sin(), a * 0.1]).unwrap();
-    }
-    for t in [
-        [0, 1, 2],
-        [0, 2, 3],
-        [0, 3, 4],
-        [0, 4, 5],
-        [0, 5, 1],
-        [1, 2, 4],
-        [2, 3, 5],
-        [3, 4, 1],
-        [4, 5, 2],
-        [5, 1, 3],
-    ] {
-        rp2.push_cell(CellKind::Simplex(2), &t).unwrap();
-    }
     let cases = [
-        ("rp2", rp2.build(&BuildOptions::default()).unwrap().0),
+        ("rp2", rp2()),
         ("moebius", surface(24, 3, false)),
         ("klein", surface(30, 6, true)),
     ];
