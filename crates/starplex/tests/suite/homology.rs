@@ -514,6 +514,73 @@ fn cp_complexes() {
     assert_eq!(betti(&k, Field::Z2), vec![1, 1, 0, 0]);
 }
 
+/// Every triangle split into 3 quads (corner, edge midpoints, centroid), numbered as the
+/// datasets' generator does: the old vertices, then the midpoints, then the centroids.
+fn quads_from_triangles(nv: u32, tris: &[Vec<u32>]) -> Vec<(CellKind, Vec<u32>)> {
+    let mut mid = std::collections::BTreeMap::new();
+    for t in tris {
+        for i in 0..3 {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            let n = nv + mid.len() as u32;
+            mid.entry((a.min(b), a.max(b))).or_insert(n);
+        }
+    }
+    let first_centroid = nv + mid.len() as u32;
+    let mut q = Vec::new();
+    for (c, t) in tris.iter().enumerate() {
+        let m = |a: u32, b: u32| mid[&(a.min(b), a.max(b))];
+        let centre = first_centroid + c as u32;
+        for i in 0..3 {
+            let (a, b, p) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+            q.push((CellKind::Quad, vec![a, m(a, b), centre, m(p, a)]));
+        }
+    }
+    q
+}
+
+#[test]
+fn quads_from_triangles_leave_few_critical_cells() {
+    // the breadth-first order treats a quad's diagonal as a neighbour: numbering the edge
+    // neighbours only left about 15x more critical cells on such meshes
+    let (n, m) = (60u32, 60u32);
+    // a torus with the diagonals of its squares chosen at random and its vertices shuffled
+    let mut seed = 13u64;
+    let mut rng = move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        seed >> 33
+    };
+    let mut perm: Vec<u32> = (0..n * m).collect();
+    for i in (1..perm.len()).rev() {
+        perm.swap(i, rng() as usize % (i + 1));
+    }
+    let mut tris = Vec::new();
+    for t in grid_surface(n, m, false).chunks(2) {
+        let (a, b, c, d) = (t[0][0], t[0][1], t[0][2], t[1][2]);
+        if rng() % 2 == 0 {
+            tris.extend([vec![a, b, c], vec![a, c, d]]);
+        } else {
+            tris.extend([vec![a, b, d], vec![b, c, d]]);
+        }
+    }
+    for t in &mut tris {
+        for x in t.iter_mut() {
+            *x = perm[*x as usize];
+        }
+    }
+    let k = complex(&quads_from_triangles(n * m, &tris));
+    let o = HomologyOptions {
+        order: VertexOrder::BreadthFirst,
+        ..Default::default()
+    };
+    let h = homology_owned(k.clone(), &o).unwrap();
+    assert_eq!(h.betti, vec![1, 2, 1]);
+    // 176 critical cells of 21,600 quads; numbering edge neighbours only gave 3,204
+    assert!(h.critical.iter().sum::<u64>() <= 400, "{:?}", h.critical);
+    assert_eq!(homology(&VtIndex::new(&k), &o).unwrap(), h);
+}
+
 #[test]
 fn per_component_and_surfaces() {
     // a torus, a Klein bottle (quads), a disk, and a point

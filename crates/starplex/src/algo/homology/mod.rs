@@ -205,7 +205,8 @@ pub enum VertexOrder {
     Input,
     /// First appearance in the top cells.
     FirstAppearance,
-    /// Breadth-first from the first vertex (in first-appearance order) of each component.
+    /// Breadth-first from the first vertex (in first-appearance order) of each component, two
+    /// vertices being neighbours when a top cell holds both (a quad's diagonal included).
     BreadthFirst,
 }
 

@@ -10,23 +10,6 @@ use crate::cell::CellKind;
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
 
-/// Appends the edge neighbours of `v` in top cell `c` (all other vertices for a simplex).
-fn neighbours(kind: CellKind, verts: &[VertexId], v: VertexId, out: &mut Vec<u32>) {
-    match kind.cp_faces(1) {
-        None => out.extend(verts.iter().filter(|&&x| x != v).map(|x| x.0)),
-        Some(edges) => {
-            for e in edges {
-                let (a, b) = (verts[e[0] as usize], verts[e[1] as usize]);
-                if a == v {
-                    out.push(b.0);
-                } else if b == v {
-                    out.push(a.0);
-                }
-            }
-        }
-    }
-}
-
 /// The cells of an indexed complex as vertex slices, in cell id order (the kind's vertex
 /// order: what [`TopCells::top_cell_vertices`] gives, without the copies).
 pub(crate) fn complex_cells(
@@ -143,7 +126,10 @@ pub(crate) fn bfs_order<S: TopCells + VertexStar + ?Sized>(s: &S) -> Vec<u32> {
             for &c in &cells {
                 verts.clear();
                 s.top_cell_vertices(c, &mut verts);
-                neighbours(s.top_cell_kind(c), &verts, VertexId(v), &mut nb);
+                // every other vertex of the cell, also across a quad or a hexahedron: the
+                // breadth-first ball then grows by whole cells (numbering the edge
+                // neighbours only left 15x more critical cells on quads made from triangles)
+                nb.extend(verts.iter().filter(|&&x| x != VertexId(v)).map(|x| x.0));
             }
             // new neighbours in the order met (marked as numbered when met: no sort needed)
             for &w in &nb {
