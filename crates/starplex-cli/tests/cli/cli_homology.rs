@@ -71,6 +71,20 @@ fn homology_of_a_torus() {
     assert!(o.status.success());
     let obj = std::fs::read_to_string(&g).unwrap();
     assert!(obj.contains("g h1_0") && obj.contains("g h1_1") && obj.contains("g h2_0"));
+    // each H_1 class is one closed polyline, once around the 3 x 3 torus (3 edges)
+    for g in ["g h1_0\n", "g h1_1\n"] {
+        let after = &obj[obj.find(g).unwrap() + g.len()..];
+        let line = after.lines().next().unwrap();
+        let ids: Vec<&str> = line.split_whitespace().skip(1).collect();
+        assert!(
+            line.starts_with("l ") && ids.len() == 4 && ids[0] == ids[3],
+            "{line}"
+        );
+        assert!(
+            after.lines().nth(1).unwrap().starts_with("g "),
+            "one line per loop"
+        );
+    }
     // info --betti
     let o = starplex(&["info", f.to_str().unwrap(), "--json", "--betti"]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();

@@ -8,7 +8,8 @@ use std::collections::BTreeSet;
 
 use proptest::prelude::*;
 use starplex::algo::homology::{
-    homology, homology_owned, Field, Homology, HomologyError, HomologyOptions, VertexOrder,
+    homology, homology_indexed, homology_owned, Field, Generator, Homology, HomologyError,
+    HomologyOptions, VertexOrder,
 };
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
@@ -704,6 +705,143 @@ fn generators_are_cycles_with_the_right_count() {
         // the H_2 generator is the whole torus
         assert_eq!(h.generators[3].cells.len(), 18);
     }
+}
+
+/// Z/2 rank of sets of edges (dense elimination).
+fn z2_rank(rows: &[Vec<usize>], n: usize) -> usize {
+    let words = n.div_ceil(64);
+    let mut m: Vec<Vec<u64>> = rows
+        .iter()
+        .map(|r| {
+            let mut b = vec![0u64; words];
+            for &i in r {
+                b[i / 64] ^= 1 << (i % 64);
+            }
+            b
+        })
+        .collect();
+    let mut rank = 0;
+    for bit in 0..n {
+        let Some(p) = (rank..m.len()).find(|&j| m[j][bit / 64] >> (bit % 64) & 1 == 1) else {
+            continue;
+        };
+        m.swap(rank, p);
+        let pr = m[rank].clone();
+        for (j, row) in m.iter_mut().enumerate() {
+            if j != rank && row[bit / 64] >> (bit % 64) & 1 == 1 {
+                row.iter_mut().zip(&pr).for_each(|(a, b)| *a ^= b);
+            }
+        }
+        rank += 1;
+    }
+    rank
+}
+
+/// Checks that the H_1 generators of `h` are simple closed edge paths of the complex of
+/// `cells` (triangles and edges), independent modulo the triangles' boundaries over Z/2;
+/// returns their lengths.
+fn check_loops(cells: &[Vec<u32>], h: &Homology) -> Vec<usize> {
+    let mut edges: BTreeSet<Vec<u32>> = BTreeSet::new();
+    for c in cells {
+        for i in 0..c.len() {
+            for j in i + 1..c.len() {
+                edges.insert(vec![c[i].min(c[j]), c[i].max(c[j])]);
+            }
+        }
+    }
+    let edges: Vec<Vec<u32>> = edges.into_iter().collect();
+    let id = |e: &[u32]| {
+        let k = vec![e[0].min(e[1]), e[0].max(e[1])];
+        edges.binary_search(&k).expect("an edge of the complex")
+    };
+    let mut rows: Vec<Vec<usize>> = cells
+        .iter()
+        .filter(|c| c.len() == 3)
+        .map(|t| vec![id(&[t[0], t[1]]), id(&[t[0], t[2]]), id(&[t[1], t[2]])])
+        .collect();
+    let base = z2_rank(&rows, edges.len());
+    let loops: Vec<&Generator> = h.generators.iter().filter(|g| g.dim == 1).collect();
+    let mut lens = Vec::new();
+    for g in &loops {
+        // a simple closed path: every vertex on it has two of its edges, and it is connected
+        let mut deg: std::collections::BTreeMap<u32, usize> = Default::default();
+        for (e, _) in &g.cells {
+            assert_eq!(e.len(), 2);
+            *deg.entry(e[0]).or_default() += 1;
+            *deg.entry(e[1]).or_default() += 1;
+        }
+        assert!(deg.values().all(|&d| d == 2), "not a simple loop: {g:?}");
+        for w in g.cells.windows(2) {
+            assert!(
+                w[0].0.iter().any(|v| w[1].0.contains(v)),
+                "not listed along the loop"
+            );
+        }
+        rows.push(g.cells.iter().map(|(e, _)| id(e)).collect());
+        lens.push(g.cells.len());
+    }
+    assert_eq!(
+        z2_rank(&rows, edges.len()),
+        base + loops.len(),
+        "dependent loops"
+    );
+    assert_eq!(loops.len() as u64, h.betti[1]);
+    lens
+}
+
+#[test]
+fn h1_generators_are_short_closed_paths() {
+    let gens = |cells: &[Vec<u32>], field: Field| {
+        let k = simplices(cells);
+        let o = HomologyOptions {
+            field,
+            generators: true,
+            ..Default::default()
+        };
+        let h = homology(&VtIndex::new(&k), &o).unwrap();
+        // the indexed path (lengths from the coordinates) and the consuming path agree
+        assert_eq!(
+            homology_owned(k.clone(), &o).unwrap(),
+            homology_indexed(&k, &o).unwrap()
+        );
+        h
+    };
+    // a 12 x 7 torus: the shortest loops go once around each way (7 and 12 edges)
+    let torus = grid_surface(12, 7, false);
+    for field in [Field::Z2, Field::Zp(3)] {
+        let h = gens(&torus, field);
+        assert_eq!(check_loops(&torus, &h), vec![7, 12], "{field}");
+    }
+    // an annulus (the torus cut open along a row): one loop, around it
+    let annulus: Vec<Vec<u32>> = torus[..2 * 7 * 11].to_vec();
+    assert_eq!(check_loops(&annulus, &gens(&annulus, Field::Z2)), vec![7]);
+    // a Klein bottle over Z/2: two loops; over Z/3 (no coherent orientation) the Morse
+    // generators are kept, still cycles
+    let kb = grid_surface(12, 7, true);
+    assert_eq!(check_loops(&kb, &gens(&kb, Field::Z2)).len(), 2);
+    let h3 = gens(&kb, Field::Zp(3));
+    assert_eq!(h3.betti[1], 1);
+    assert_eq!(h3.generators.iter().filter(|g| g.dim == 1).count(), 1);
+    // a graph: a triangle and a square sharing a vertex, and a dangling edge
+    let graph: Vec<Vec<u32>> = [
+        [0, 1],
+        [1, 2],
+        [0, 2],
+        [0, 3],
+        [3, 4],
+        [4, 5],
+        [0, 5],
+        [5, 6],
+    ]
+    .iter()
+    .map(|e| e.to_vec())
+    .collect();
+    assert_eq!(check_loops(&graph, &gens(&graph, Field::Z2)), vec![3, 4]);
+    // three triangles on one edge (not a surface): the Morse generators are kept
+    let fan: Vec<Vec<u32>> = vec![vec![0, 1, 2], vec![0, 1, 3], vec![0, 1, 4], vec![2, 3, 5]];
+    let h = gens(&fan, Field::Z2);
+    assert_eq!(h.betti, vec![1, 1, 0]);
+    assert_eq!(h.generators.iter().filter(|g| g.dim == 1).count(), 1);
 }
 
 fn threads<T: Send>(n: usize, f: impl FnOnce() -> T + Send) -> T {

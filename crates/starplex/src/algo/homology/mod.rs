@@ -42,10 +42,11 @@ use rayon::prelude::*;
 
 use crate::algo::components::components;
 use crate::complex::IndexedComplex;
-use crate::ids::CellId;
+use crate::ids::{CellId, VertexId};
 use crate::topo::{naive::VtIndex, QueryError, TopCells, VertexStar};
 
 mod cells;
+mod loops;
 mod morse;
 mod order;
 mod reduce;
@@ -433,9 +434,32 @@ pub fn homology<S: TopCells + VertexStar + Sync + ?Sized>(
     s: &S,
     opts: &HomologyOptions,
 ) -> Result<Homology, HomologyError> {
-    match choose_order(s, opts.order) {
+    let mut h = match choose_order(s, opts.order) {
         None => homology_ordered(s, None, opts, None),
         Some((f, to_old)) => homology_ordered(&f, f.fast_star(), opts, Some(&to_old)),
+    }?;
+    if opts.generators {
+        short_h1(s, &mut h, &|_, _| 1.0);
+    }
+    Ok(h)
+}
+
+/// Replaces the H_1 generators by short closed edge paths where the tree–cotree construction
+/// applies (edges in at most two 2-cells; over Z/p, orientable), else keeps the Morse ones.
+fn short_h1<S: TopCells + ?Sized>(s: &S, h: &mut Homology, length: &dyn Fn(u32, u32) -> f64) {
+    let m = match h.field {
+        Field::Z2 => 2,
+        Field::Zp(p) => p as i64,
+        Field::Q | Field::Z => return,
+    };
+    let b1 = h.betti.get(1).copied().unwrap_or(0);
+    if b1 == 0 {
+        return;
+    }
+    if let Some(l) = loops::short_loops(s, m, b1, length) {
+        let at = h.generators.iter().take_while(|g| g.dim == 0).count();
+        h.generators.retain(|g| g.dim != 1);
+        h.generators.splice(at..at, l);
     }
 }
 
@@ -460,7 +484,7 @@ pub fn homology_indexed(
     k: &IndexedComplex,
     opts: &HomologyOptions,
 ) -> Result<Homology, HomologyError> {
-    match pick_order(k, opts.order, None, Some(k)) {
+    let mut h = match pick_order(k, opts.order, None, Some(k)) {
         None => input_order(k, opts),
         Some(fa) => {
             let t = std::time::Instant::now();
@@ -473,7 +497,19 @@ pub fn homology_indexed(
                 None => input_order(k, opts),
             }
         }
+    }?;
+    if opts.generators {
+        let length = |a: u32, b: u32| {
+            let (p, q) = (k.point(VertexId(a)), k.point(VertexId(b)));
+            p.iter()
+                .zip(q)
+                .map(|(x, y)| (x - y) * (x - y))
+                .sum::<f64>()
+                .sqrt()
+        };
+        short_h1(k, &mut h, &length);
     }
+    Ok(h)
 }
 
 /// [`homology_ordered`] in the input order of `k`, through its vertex → cells relation (read
@@ -513,6 +549,10 @@ pub fn homology_owned(
     k: IndexedComplex,
     opts: &HomologyOptions,
 ) -> Result<Homology, HomologyError> {
+    if opts.generators {
+        // the loops are measured on the coordinates, which this path frees
+        return homology_indexed(&k, opts);
+    }
     let Some(fa) = pick_order(&k, opts.order, Some(k.n_refs() as u64), Some(&k)) else {
         // the input order: one block of simplices is taken over (coordinates freed)
         let t = std::time::Instant::now();
@@ -1174,25 +1214,57 @@ fn coboundary_pairs<S: TopCells + VertexStar + Sync + ?Sized>(
     Ok(Some(next))
 }
 
+/// The vertices of a 1-cycle listed as one closed path (each edge sharing its first vertex
+/// with the end of the previous one, the last closing on the first), else `None`.
+fn closed_path(g: &Generator) -> Option<Vec<u32>> {
+    if g.dim != 1 || g.cells.len() < 3 {
+        return None;
+    }
+    let (first, second) = (&g.cells[0].0, &g.cells[1].0);
+    // the start: the vertex of the first edge that is not on the second
+    let start = *first.iter().find(|v| !second.contains(v))?;
+    let mut path = vec![start];
+    let mut at = start;
+    for (e, _) in &g.cells {
+        let [a, b] = e[..] else { return None };
+        at = if a == at {
+            b
+        } else if b == at {
+            a
+        } else {
+            return None;
+        };
+        path.push(at);
+    }
+    (path.pop() == Some(start)).then_some(path)
+}
+
 /// Writes generators as an OBJ file a viewer can show: every vertex of the complex (`v x y z`,
 /// coordinates padded or cut to 3), then one group per generator (`g h1_0`, `g h2_0`, ...)
 /// holding its cells: `p` for vertices, `l` for edges, `f` for triangles and quads, and for
 /// cells of dimension 3 or more their boundary triangles as `f` lines (a comment line
 /// `# cell a b c d` names each such cell). Coefficients other than 1 are written as comments.
+/// An H_1 generator whose edges are listed along one closed path (the short loops of surfaces
+/// and graphs) is written as a single polyline `l a b c ... a`, its direction giving the signs.
 ///
 /// ```
 /// use starplex::algo::homology::{write_generators_obj, Generator};
 /// # use starplex::complex::{ComplexBuilder, BuildOptions};
 /// # use starplex::cell::CellKind;
 /// let mut b = ComplexBuilder::new(2).unwrap();
-/// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
-/// for e in [[0, 1], [1, 2], [0, 2]] { b.push_cell(CellKind::Simplex(1), &e).unwrap(); }
+/// for p in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// for e in [[0, 1], [1, 2], [2, 3], [0, 3]] { b.push_cell(CellKind::Simplex(1), &e).unwrap(); }
 /// let k = b.build(&BuildOptions::default()).unwrap().0;
-/// let g = Generator { dim: 1, cells: vec![(vec![0, 1], 1), (vec![1, 2], 1), (vec![0, 2], 1)] };
+/// let edges = |l: &[[u32; 2]]| l.iter().map(|e| (e.to_vec(), 1)).collect();
+/// let g = Generator { dim: 1, cells: edges(&[[0, 1], [1, 2], [2, 3], [0, 3]]) };
 /// let mut out = Vec::new();
 /// write_generators_obj(&k, &[g], &mut out).unwrap();
-/// let text = String::from_utf8(out).unwrap();
-/// assert!(text.contains("g h1_0\nl 1 2\nl 2 3\nl 1 3\n"));
+/// assert!(String::from_utf8(out).unwrap().contains("g h1_0\nl 1 2 3 4 1\n"));
+/// // edges not listed along their path: one line each
+/// let g = Generator { dim: 1, cells: edges(&[[0, 1], [0, 3], [1, 2], [2, 3]]) };
+/// let mut out = Vec::new();
+/// write_generators_obj(&k, &[g], &mut out).unwrap();
+/// assert!(String::from_utf8(out).unwrap().contains("g h1_0\nl 1 2\nl 1 4\nl 2 3\nl 3 4\n"));
 /// ```
 ///
 /// # Errors
@@ -1216,6 +1288,11 @@ pub fn write_generators_obj(
         let i = count.entry(g.dim).or_insert(0);
         writeln!(w, "g h{}_{}", g.dim, i)?;
         *i += 1;
+        if let Some(path) = closed_path(g) {
+            let idx: Vec<String> = path.iter().map(|v| (v + 1).to_string()).collect();
+            writeln!(w, "l {} {}", idx.join(" "), idx[0])?;
+            continue;
+        }
         for (cell, coef) in &g.cells {
             if *coef != 1 {
                 writeln!(w, "# coefficient {coef}")?;
