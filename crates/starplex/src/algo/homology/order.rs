@@ -80,6 +80,9 @@ pub(crate) fn bfs_order_flat(f: &Flat) -> Vec<u32> {
     let mut next = 0u32;
     // the queue is the numbering itself: vertices are dequeued in the order they are numbered
     let mut order: Vec<u32> = Vec::with_capacity(n);
+    // a cell met again holds only numbered vertices: each cell is read once (the same
+    // numbering, a third of the reads on triangles)
+    let mut seen = fixedbitset::FixedBitSet::with_capacity(f.n_cells);
     for root in 0..n {
         if to_new[root] != u32::MAX {
             continue;
@@ -92,6 +95,9 @@ pub(crate) fn bfs_order_flat(f: &Flat) -> Vec<u32> {
             let v = order[head];
             head += 1;
             for &c in fs.vt.row(v as usize) {
+                if seen.put(c as usize) {
+                    continue;
+                }
                 for &w in &fs.verts[c as usize * a..(c as usize + 1) * a] {
                     // a simplex: every other vertex is a neighbour, met in the stored order
                     if w != v && to_new[w as usize] == u32::MAX {
