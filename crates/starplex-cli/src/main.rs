@@ -83,6 +83,7 @@ fn default_sigpipe() {
 
 fn main() -> ExitCode {
     default_sigpipe();
+    starplex_cli::alloc::tune();
     let cli = Cli::parse();
     let ctx = common::Ctx { quiet: cli.quiet };
     let result = match cli.command {

@@ -267,6 +267,7 @@ fn parse_args() -> Result<Args, String> {
 }
 
 fn main() -> ExitCode {
+    starplex_cli::alloc::tune();
     let Some(universe) = mpi::initialize() else {
         eprintln!("error: MPI could not be initialized (run under mpirun)");
         return ExitCode::from(2);
