@@ -754,6 +754,22 @@ pub fn sort3([a, b, c]: [u32; 3]) -> [u32; 3] {
     [a, b, c]
 }
 
+/// Four vertex ids sorted by a five-comparison sorting network, by value (the tetrahedra of
+/// the homology orders, once per tetrahedron and renumbering).
+///
+/// ```
+/// assert_eq!(starplex::topo::sort4([7, 2, 9, 5]), [2, 5, 7, 9]);
+/// ```
+#[inline]
+pub fn sort4([a, b, c, d]: [u32; 4]) -> [u32; 4] {
+    let (a, b) = (a.min(b), a.max(b));
+    let (c, d) = (c.min(d), c.max(d));
+    let (a, c) = (a.min(c), a.max(c));
+    let (b, d) = (b.min(d), b.max(d));
+    let (b, c) = (b.min(c), b.max(c));
+    [a, b, c, d]
+}
+
 /// Sorts a simplex given in any order and checks it has no repeated vertex.
 ///
 /// # Errors

@@ -812,7 +812,7 @@ fn scan_kinds<S: TopCells + Sync + ?Sized>(
 /// decision itself depends only on the plans, so it is the same for any thread count).
 fn morse_gradient<'a, S: TopCells + VertexStar + Sync + ?Sized>(
     s: &'a S,
-    fast: Option<morse::FastStar<'_>>,
+    fast: Option<morse::FastStar<'a>>,
     opts: &HomologyOptions,
     simplicial: bool,
     dmax: usize,
@@ -896,7 +896,12 @@ fn morse_gradient<'a, S: TopCells + VertexStar + Sync + ?Sized>(
     for l in &mut crit {
         l.sort_unstable_by(|a, b| a.key.cmp(&b.key));
     }
-    let g = Gradient { s, apex, crit };
+    let g = Gradient {
+        s,
+        fast,
+        apex,
+        crit,
+    };
     debug_time("critical cells", t0);
     Ok(g)
 }

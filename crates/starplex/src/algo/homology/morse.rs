@@ -43,6 +43,8 @@ pub(crate) struct Scratch {
     /// The cells of L(v) when masks do not apply (CP cells, more than 64 lower vertices).
     general: Vec<Cell>,
     facet_buf: Vec<(Cell, i8)>,
+    /// Zero between uses; see [`dense_masks`].
+    table: Vec<u32>,
     m: Matching,
     /// Every top cell is known to be a simplex (their kinds need not be read).
     simplicial: bool,
@@ -183,12 +185,15 @@ fn read_lower_sets<S: TopCells + VertexStar + ?Sized>(
 /// distinct *maximal* lower sets as masks into `w.tops`. False when there are more than 64
 /// lower vertices (masks do not apply).
 fn maximal_masks(w: &mut Scratch) -> bool {
+    // the distinct lower vertices, sorted, by insertion (a star lists each a few times)
     w.lv.clear();
-    w.lv.extend_from_slice(&w.lower);
-    w.lv.sort_unstable();
-    w.lv.dedup();
-    if w.lv.len() > 64 {
-        return false;
+    for &x in &w.lower {
+        if let Err(i) = w.lv.binary_search(&x) {
+            if w.lv.len() == 64 {
+                return false;
+            }
+            w.lv.insert(i, x);
+        }
     }
     // the maximal masks, kept incrementally (a star has few): a mask inside a kept one is
     // dropped, kept masks inside a new one are removed (the set, not its order, matters)
@@ -356,20 +361,81 @@ fn mask_cell(lv: &[u32], mask: u64, v: u32) -> Cell {
     Cell::simplex(key)
 }
 
+/// Lower stars with at most this many distinct lower vertices are enumerated through a table
+/// indexed by mask (2^10 entries a worker) instead of a sort and binary searches.
+const DENSE_BITS: usize = 10;
+
+/// The mask form of [`enumerate`] through `w.table`: the same `w.masks` (increasing) and the
+/// same facet relation. Every subset of a maximal mask is marked, the marks are read in
+/// increasing order (numbering the cells), and a facet's index is read from the table.
+fn dense_masks(w: &mut Scratch) {
+    let size = 1usize << w.lv.len();
+    if w.table.len() < size {
+        w.table.resize(size, 0);
+    }
+    let table = &mut w.table[..size];
+    for &top in &w.tops {
+        let mut sub = top;
+        loop {
+            table[sub as usize] = 1;
+            if sub == 0 {
+                break;
+            }
+            sub = (sub - 1) & top;
+        }
+    }
+    w.masks.clear();
+    for (mask, t) in table.iter_mut().enumerate() {
+        if *t != 0 {
+            w.masks.push(mask as u64);
+            *t = w.masks.len() as u32; // index + 1
+        }
+    }
+    let m = &mut w.m;
+    for &c in &w.masks {
+        m.fstart.push(m.facets.len() as u32);
+        m.dims.push(c.count_ones() as u8);
+        let mut r = c;
+        while r != 0 {
+            let f = c & !(r & r.wrapping_neg());
+            r &= r - 1;
+            let j = table[f as usize];
+            debug_assert!(j != 0, "facet of a lower-star cell missing");
+            m.facets.push(j.wrapping_sub(1));
+        }
+    }
+    m.fstart.push(m.facets.len() as u32);
+    for &c in &w.masks {
+        table[c as usize] = 0;
+    }
+}
+
 /// Enumerates L(v) into `w.masks` (mask form, returns true) or `w.general` (sorted by key), and
 /// its facet relation into `w.m`.
-fn enumerate<S: TopCells + VertexStar + ?Sized>(s: &S, v: u32, w: &mut Scratch) -> bool {
+fn enumerate<S: TopCells + VertexStar + ?Sized>(
+    s: &S,
+    fast: Option<FastStar<'_>>,
+    v: u32,
+    w: &mut Scratch,
+) -> bool {
     // the star just read by `plan_vertex`, or a fresh read
     let masks = match w.planned.take() {
         Some((pv, masks)) if pv == v => masks,
         _ => {
-            let (_, all, _) = read_lower_sets(s, v, w);
+            let (_, all, _) = match fast {
+                Some(f) => read_lower_sets_fast(f, v, w),
+                None => read_lower_sets(s, v, w),
+            };
             all && maximal_masks(w)
         }
     };
     w.m.fstart.clear();
     w.m.facets.clear();
     w.m.dims.clear();
+    if masks && w.lv.len() <= DENSE_BITS {
+        dense_masks(w);
+        return true;
+    }
     if masks {
         let m = &mut w.m;
         w.masks.clear();
@@ -567,8 +633,13 @@ impl Matching {
 }
 
 /// Enumerates and matches L(v) in the scratch buffers; true in mask form.
-fn match_lower_star<S: TopCells + VertexStar + ?Sized>(s: &S, v: u32, w: &mut Scratch) -> bool {
-    let masks = enumerate(s, v, w);
+fn match_lower_star<S: TopCells + VertexStar + ?Sized>(
+    s: &S,
+    fast: Option<FastStar<'_>>,
+    v: u32,
+    w: &mut Scratch,
+) -> bool {
+    let masks = enumerate(s, fast, v, w);
     w.m.run();
     masks
 }
@@ -576,10 +647,11 @@ fn match_lower_star<S: TopCells + VertexStar + ?Sized>(s: &S, v: u32, w: &mut Sc
 /// Enumerates and matches L(v).
 pub(crate) fn lower_star<S: TopCells + VertexStar + ?Sized>(
     s: &S,
+    fast: Option<FastStar<'_>>,
     v: u32,
     w: &mut Scratch,
 ) -> LowerStar {
-    let masks = match_lower_star(s, v, w);
+    let masks = match_lower_star(s, fast, v, w);
     LowerStar {
         v,
         lv: if masks { w.lv.clone() } else { Vec::new() },
@@ -610,7 +682,8 @@ pub(crate) fn critical_cells<S: TopCells + VertexStar + ?Sized>(
     match apex {
         ALONE => out.push(Cell::simplex(SmallVec::from_slice(&[v]))),
         EXPLICIT => {
-            let masks = match_lower_star(s, v, w);
+            // the star was just read by `plan_vertex`
+            let masks = match_lower_star(s, None, v, w);
             for (i, st) in w.m.status.iter().enumerate() {
                 if matches!(st, None | Some(Status::Critical)) {
                     out.push(if masks {
@@ -663,6 +736,8 @@ pub(crate) fn mul_c(a: i64, b: i64, m: i64) -> Result<i64, Overflow> {
 /// dimension.
 pub(crate) struct Gradient<'a, S: ?Sized> {
     pub s: &'a S,
+    /// Direct access to the cells of `s`, when it has it.
+    pub fast: Option<FastStar<'a>>,
     pub apex: Vec<u32>,
     /// Critical cells per dimension, sorted by key.
     pub crit: Vec<Vec<Cell>>,
@@ -689,7 +764,9 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
                 None => Look::Down,
             },
             EXPLICIT => {
-                let ls = cache.entry(v).or_insert_with(|| lower_star(self.s, v, w));
+                let ls = cache
+                    .entry(v)
+                    .or_insert_with(|| lower_star(self.s, self.fast, v, w));
                 let Some(i) = ls.find(&tau.key) else {
                     debug_assert!(false, "cell not in its lower star");
                     return Look::Down;
@@ -889,7 +966,9 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
                 None => CoLook::Up,
             },
             EXPLICIT => {
-                let ls = cache.entry(v).or_insert_with(|| lower_star(self.s, v, w));
+                let ls = cache
+                    .entry(v)
+                    .or_insert_with(|| lower_star(self.s, self.fast, v, w));
                 let Some(i) = ls.find(&tau.key) else {
                     debug_assert!(false, "cell not in its lower star");
                     return CoLook::Up;
