@@ -251,10 +251,9 @@ fn renumber(verts: &mut [u32], arity: usize, simplices: bool, to_new: &[u32]) {
     });
 }
 
-/// The cells of `arity` `A` (flat) copied to the slots of a stable counting sort on their
-/// smallest vertex; `count[v]`: the first slot of the cells whose smallest vertex is `v`.
-fn place<const A: usize>(verts: &[u32], count: &mut [u32]) -> Vec<u32> {
-    let mut out = vec![0u32; verts.len()];
+/// The cells of arity `A` (flat) copied into `out` at the slots of a stable counting sort on
+/// their smallest vertex; `count[v]`: the first slot of the cells whose smallest vertex is `v`.
+fn place<const A: usize>(verts: &[u32], count: &mut [u32], out: &mut [u32]) {
     for c in verts.chunks_exact(A) {
         let c: [u32; A] = c.try_into().unwrap_or([0; A]);
         let mn = c.iter().copied().min().unwrap_or(0) as usize;
@@ -264,19 +263,38 @@ fn place<const A: usize>(verts: &[u32], count: &mut [u32]) -> Vec<u32> {
             o.copy_from_slice(&c);
         }
     }
-    out
 }
 
 /// [`place`] for any arity.
-fn place_any(verts: &[u32], arity: usize, count: &mut [u32]) -> Vec<u32> {
-    let mut out = vec![0u32; verts.len()];
+fn place_any(verts: &[u32], arity: usize, count: &mut [u32], out: &mut [u32]) {
     for c in verts.chunks_exact(arity) {
         let mn = c.iter().copied().min().unwrap_or(0) as usize;
         let d = count[mn] as usize;
         count[mn] += 1;
         out[d * arity..(d + 1) * arity].copy_from_slice(c);
     }
-    out
+}
+
+/// Places flat cells of `arity` vertices by a stable counting sort on their smallest vertex,
+/// out of place (a cycle-by-cycle permutation in place chases one cache miss after another):
+/// `count` (n_vertices + 1 entries, any content) and `out` (as long as `verts`, any content)
+/// are work buffers; returns the placed cells, in `out`'s buffer, and gives `verts`'s buffer
+/// back in `out`, so that no array is allocated.
+fn place_by_min(verts: Vec<u32>, arity: usize, count: &mut [u32], out: &mut Vec<u32>) -> Vec<u32> {
+    count.fill(0);
+    for c in verts.chunks_exact(arity) {
+        let mn = c.iter().copied().min().unwrap_or(0);
+        count[mn as usize + 1] += 1;
+    }
+    for i in 1..count.len() {
+        count[i] += count[i - 1];
+    }
+    match arity {
+        3 => place::<3>(&verts, count, out),
+        4 => place::<4>(&verts, count, out),
+        _ => place_any(&verts, arity, count, out),
+    }
+    std::mem::replace(out, verts)
 }
 
 impl Flat {
@@ -390,24 +408,10 @@ impl Flat {
         // renumber (simplices sorted: their smallest vertex comes first), and place the cells
         // by a stable counting sort on their smallest new vertex
         renumber(&mut verts, arity, kind.is_simplex(), to_new);
-        let mut count = vec![0u32; nv + 1];
-        for c in verts.chunks_exact(arity) {
-            let mn = c.iter().copied().min().unwrap_or(0);
-            count[mn as usize + 1] += 1;
-        }
-        for i in 0..nv {
-            count[i + 1] += count[i];
-        }
-        // place each cell at its slot (out of place: a cycle-by-cycle permutation in place
-        // chased one cache miss after another, 3x slower on 832K triangles)
-        let placed = match arity {
-            3 => place::<3>(&verts, &mut count),
-            4 => place::<4>(&verts, &mut count),
-            _ => place_any(&verts, arity, &mut count),
-        };
-        drop((verts, count));
-        let verts = placed;
-        let refs = verts.len();
+        // the relation's buffers are the work buffers of the placement
+        let mut offsets = vec![0u32; nv + 1];
+        let mut targets = vec![0u32; verts.len()];
+        let verts = place_by_min(verts, arity, &mut offsets, &mut targets);
         let mut f = Flat {
             n_vertices: nv,
             n_cells: nc,
@@ -416,10 +420,7 @@ impl Flat {
             arity,
             starts: Vec::new(),
             verts,
-            vt: crate::csr::Csr {
-                offsets: vec![0u32; nv + 1],
-                targets: vec![0u32; refs],
-            },
+            vt: crate::csr::Csr { offsets, targets },
         };
         // the simplices were sorted by `renumber`
         f.index();
@@ -462,12 +463,18 @@ impl Flat {
         matches!(k.blocks(), [b] if b.kind.is_simplex()) && (k.n_refs() as u64) < u32::MAX as u64
     }
 
-    /// Renumbers the vertices in place (`to_new[old]`): cells keep their places, simplices
-    /// are sorted again and the vertex → cells relation is rebuilt in its own buffers.
+    /// Renumbers the vertices (`to_new[old]`) and rebuilds the vertex → cells relation;
+    /// simplices are sorted again. Cells of one kind are also placed again by their smallest
+    /// new vertex (as [`Flat::from_complex`] does), so that a vertex's star lies close to its
+    /// neighbours' in memory; mixed cells keep their places.
     pub(crate) fn relabel(&mut self, to_new: &[u32]) {
         match self.uniform {
             Some(k) if self.arity > 0 => {
-                renumber(&mut self.verts, self.arity, k.is_simplex(), to_new);
+                let a = self.arity;
+                renumber(&mut self.verts, a, k.is_simplex(), to_new);
+                // the relation is rebuilt below: its buffers are the placement's work buffers
+                let verts = std::mem::take(&mut self.verts);
+                self.verts = place_by_min(verts, a, &mut self.vt.offsets, &mut self.vt.targets);
                 self.index();
             }
             _ => {
