@@ -94,6 +94,19 @@ pub(crate) fn bfs_order_flat(f: &Flat) -> Vec<u32> {
         order.push(root as u32);
         let mut head = order.len() - 1;
         while head < order.len() {
+            // the queue is known a few steps ahead: its rows and cells are fetched early
+            if let Some(&u) = order.get(head + 8) {
+                super::prefetch(&fs.vt.offsets, u as usize);
+            }
+            if let Some(&u) = order.get(head + 4) {
+                let o = &fs.vt.offsets;
+                super::prefetch(&fs.vt.targets, o[u as usize] as usize);
+            }
+            if let Some(&u) = order.get(head + 2) {
+                for &c in fs.vt.row(u as usize) {
+                    super::prefetch(fs.verts, c as usize * a);
+                }
+            }
             let v = order[head];
             head += 1;
             for &c in fs.vt.row(v as usize) {
