@@ -1041,3 +1041,114 @@ proptest! {
         }
     }
 }
+
+/// Homology of `k` through every structure that answers `TopCells` + `VertexStar`: Betti
+/// numbers, torsion and the per-component summaries equal those of the vertex → cells index
+/// (the critical cells may differ: a structure may number its top cells in its own order,
+/// which the vertex orders follow).
+fn same_homology_on_every_structure(name: &str, k: &IndexedComplex, fields: &[Field]) {
+    use starplex::hasse::HasseQueries;
+    use starplex::limits::Limits;
+    use starplex::stellar::{StellarOptions, StellarTree};
+    use starplex::tds::iastar::IaStar;
+    use starplex::tds::ig::IncidenceGraph;
+    use starplex::tds::is::Is;
+    use starplex::tds::simplex_tree::{SimplexTree, SimplexTreeOptions};
+    let lim = Limits {
+        stored_simplices: 1 << 24,
+        ..Limits::default()
+    };
+    for &field in fields {
+        let o = HomologyOptions {
+            field,
+            per_component: true,
+            ..Default::default()
+        };
+        let want = homology(&VtIndex::new(k), &o).unwrap();
+        let check = |s: &str, h: Homology| {
+            assert_eq!(h.betti, want.betti, "{name} {field} {s}");
+            assert_eq!(h.torsion, want.torsion, "{name} {field} {s}");
+            assert_eq!(h.components, want.components, "{name} {field} {s}");
+        };
+        check("ia*", homology(&IaStar::new(k).unwrap(), &o).unwrap());
+        check(
+            "ig",
+            homology(&IncidenceGraph::new(k, &lim).unwrap(), &o).unwrap(),
+        );
+        for kv in [Some(1), Some(0)] {
+            let t = StellarTree::build(
+                k,
+                &StellarOptions {
+                    kv,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            check(&format!("stellar kv={kv:?}"), homology(&t, &o).unwrap());
+            check(
+                &format!("stellar-ia* kv={kv:?}"),
+                homology(&t.iastar(), &o).unwrap(),
+            );
+        }
+        // the simplicial-only structures
+        if k.blocks().iter().all(|b| b.kind.is_simplex()) {
+            check(
+                "hasse",
+                homology(&HasseQueries::new(k, &lim).unwrap(), &o).unwrap(),
+            );
+            check("is", homology(&Is::new(k, &lim).unwrap(), &o).unwrap());
+            let st = SimplexTree::new(k, &SimplexTreeOptions::default()).unwrap();
+            check("simplex tree", homology(&st, &o).unwrap());
+        }
+    }
+}
+
+#[test]
+fn every_structure_gives_the_same_homology_on_the_fixtures() {
+    let all = [Field::Z2, Field::Zp(3), Field::Z];
+    same_homology_on_every_structure("torus", &simplices(&grid_surface(3, 3, false)), &all);
+    same_homology_on_every_structure("klein", &simplices(&grid_surface(4, 4, true)), &all);
+    let rp2: Vec<Vec<u32>> = RP2.iter().map(|t| t.to_vec()).collect();
+    same_homology_on_every_structure("rp2", &simplices(&rp2), &all);
+    let mut a = tetra_boundary(0);
+    a.extend(tetra_boundary(3));
+    same_homology_on_every_structure("two spheres on a vertex", &simplices(&a), &all);
+    let book = vec![
+        (CellKind::Simplex(2), vec![0, 1, 2]),
+        (CellKind::Simplex(2), vec![0, 1, 3]),
+        (CellKind::Simplex(2), vec![0, 1, 4]),
+        (CellKind::Simplex(1), vec![4, 5]),
+    ];
+    same_homology_on_every_structure("book", &complex_n(7, &book), &all);
+    // CP cells: a quad torus and a quad Klein bottle
+    same_homology_on_every_structure("quad torus", &complex(&quad_grid(4, 3, false)), &all);
+    same_homology_on_every_structure("quad klein", &complex(&quad_grid(4, 4, true)), &all);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 100, rng_algorithm: proptest::test_runner::RngAlgorithm::ChaCha, ..ProptestConfig::default() })]
+    /// Random simplicial complexes (any dimension, non-pure, isolated vertices): the same
+    /// homology from every structure, over Z/2 and Z.
+    #[test]
+    fn every_structure_gives_the_same_homology_on_random_complexes(
+        nv in 1usize..9,
+        raw in proptest::collection::vec(proptest::collection::btree_set(0u32..9, 1..5), 1..8),
+    ) {
+        let mut cells: Vec<Vec<u32>> = raw
+            .into_iter()
+            .map(|s| s.into_iter().filter(|&v| (v as usize) < nv).collect::<Vec<u32>>())
+            .filter(|s: &Vec<u32>| !s.is_empty())
+            .collect();
+        cells.sort();
+        cells.dedup();
+        let all = cells.clone();
+        cells.retain(|c| !all.iter().any(|d| d != c && c.iter().all(|x| d.contains(x))));
+        prop_assume!(!cells.is_empty());
+        let typed: Vec<(CellKind, Vec<u32>)> = cells
+            .iter()
+            .map(|c| (CellKind::Simplex((c.len() - 1) as u8), c.clone()))
+            .collect();
+        let k = complex_n(nv, &typed);
+        same_homology_on_every_structure("random", &k, &[Field::Z2, Field::Z]);
+    }
+}
