@@ -844,6 +844,27 @@ fn h1_generators_are_short_closed_paths() {
     assert_eq!(h.generators.iter().filter(|g| g.dim == 1).count(), 1);
 }
 
+/// The maximal ones among drawn vertex sets, vertices below `nv` (sorted, distinct).
+fn maximal_cells(nv: usize, raw: Vec<BTreeSet<u32>>) -> Vec<Vec<u32>> {
+    let mut cells: Vec<Vec<u32>> = raw
+        .into_iter()
+        .map(|s| {
+            s.into_iter()
+                .filter(|&v| (v as usize) < nv)
+                .collect::<Vec<u32>>()
+        })
+        .filter(|s: &Vec<u32>| !s.is_empty())
+        .collect();
+    cells.sort();
+    cells.dedup();
+    let all = cells.clone();
+    cells.retain(|c| {
+        !all.iter()
+            .any(|d| d != c && c.iter().all(|x| d.contains(x)))
+    });
+    cells
+}
+
 fn threads<T: Send>(n: usize, f: impl FnOnce() -> T + Send) -> T {
     rayon::ThreadPoolBuilder::new()
         .num_threads(n)
@@ -860,16 +881,7 @@ proptest! {
         raw in proptest::collection::vec(proptest::collection::btree_set(0u32..10, 1..6), 0..9),
         perm_seed in 0u64..1000,
     ) {
-        // maximal simplices only, vertices in range
-        let mut cells: Vec<Vec<u32>> = raw
-            .into_iter()
-            .map(|s| s.into_iter().filter(|&v| (v as usize) < nv).collect::<Vec<u32>>())
-            .filter(|s: &Vec<u32>| !s.is_empty())
-            .collect();
-        cells.sort();
-        cells.dedup();
-        let all = cells.clone();
-        cells.retain(|c| !all.iter().any(|d| d != c && c.iter().all(|x| d.contains(x))));
+        let cells = maximal_cells(nv, raw);
         // a vertex relabeling, so lower stars see many orders
         let mut perm: Vec<u32> = (0..nv as u32).collect();
         let mut s = perm_seed;
@@ -1134,15 +1146,7 @@ proptest! {
         nv in 1usize..9,
         raw in proptest::collection::vec(proptest::collection::btree_set(0u32..9, 1..5), 1..8),
     ) {
-        let mut cells: Vec<Vec<u32>> = raw
-            .into_iter()
-            .map(|s| s.into_iter().filter(|&v| (v as usize) < nv).collect::<Vec<u32>>())
-            .filter(|s: &Vec<u32>| !s.is_empty())
-            .collect();
-        cells.sort();
-        cells.dedup();
-        let all = cells.clone();
-        cells.retain(|c| !all.iter().any(|d| d != c && c.iter().all(|x| d.contains(x))));
+        let cells = maximal_cells(nv, raw);
         prop_assume!(!cells.is_empty());
         let typed: Vec<(CellKind, Vec<u32>)> = cells
             .iter()

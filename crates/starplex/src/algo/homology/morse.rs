@@ -361,6 +361,25 @@ fn mask_cell(lv: &[u32], mask: u64, v: u32) -> Cell {
     Cell::simplex(key)
 }
 
+/// The facet relation of lower-star cells in mask form (`v` implied in every cell) into `m`:
+/// `index(f)` is the index of the cell of mask `f` (a facet keeps `v`: the masks less one bit).
+fn mask_facets(masks: &[u64], m: &mut Matching, index: impl Fn(u64) -> Option<u32>) {
+    for &c in masks {
+        m.fstart.push(m.facets.len() as u32);
+        m.dims.push(c.count_ones() as u8);
+        let mut r = c;
+        while r != 0 {
+            let f = c & !(r & r.wrapping_neg());
+            r &= r - 1;
+            match index(f) {
+                Some(j) => m.facets.push(j),
+                None => debug_assert!(false, "facet of a lower-star cell missing"),
+            }
+        }
+    }
+    m.fstart.push(m.facets.len() as u32);
+}
+
 /// Lower stars with at most this many distinct lower vertices are enumerated through a table
 /// indexed by mask (2^10 entries a worker) instead of a sort and binary searches.
 const DENSE_BITS: usize = 10;
@@ -391,20 +410,7 @@ fn dense_masks(w: &mut Scratch) {
             *t = w.masks.len() as u32; // index + 1
         }
     }
-    let m = &mut w.m;
-    for &c in &w.masks {
-        m.fstart.push(m.facets.len() as u32);
-        m.dims.push(c.count_ones() as u8);
-        let mut r = c;
-        while r != 0 {
-            let f = c & !(r & r.wrapping_neg());
-            r &= r - 1;
-            let j = table[f as usize];
-            debug_assert!(j != 0, "facet of a lower-star cell missing");
-            m.facets.push(j.wrapping_sub(1));
-        }
-    }
-    m.fstart.push(m.facets.len() as u32);
+    mask_facets(&w.masks, &mut w.m, |f| table[f as usize].checked_sub(1));
     for &c in &w.masks {
         table[c as usize] = 0;
     }
@@ -451,20 +457,8 @@ fn enumerate<S: TopCells + VertexStar + ?Sized>(
         }
         w.masks.sort_unstable();
         w.masks.dedup();
-        for &c in &w.masks {
-            m.fstart.push(m.facets.len() as u32);
-            m.dims.push(c.count_ones() as u8);
-            let mut r = c;
-            while r != 0 {
-                let f = c & !(r & r.wrapping_neg());
-                r &= r - 1;
-                match w.masks.binary_search(&f) {
-                    Ok(j) => m.facets.push(j as u32),
-                    Err(_) => debug_assert!(false, "facet of a lower-star cell missing"),
-                }
-            }
-        }
-        m.fstart.push(m.facets.len() as u32);
+        let masks = &w.masks;
+        mask_facets(masks, m, |f| masks.binary_search(&f).ok().map(|j| j as u32));
         return true;
     }
     w.general.clear();
