@@ -71,13 +71,13 @@ pub(crate) fn first_appearance_slices<'a>(
 }
 
 /// [`bfs_order`] of a [`Flat`] (the same numbering), reading its slices directly when its
-/// cells are simplices of one kind.
+/// cells are all of one kind (simplices, quads, hexahedra, ...).
 pub(crate) fn bfs_order_flat(f: &Flat) -> Vec<u32> {
-    let Some(fs) = f.fast_star() else {
+    if f.uniform.is_none() || f.arity == 0 {
         return bfs_order(f);
-    };
+    }
+    let (verts, vt, a) = (&f.verts[..], &f.vt, f.arity);
     let n = f.n_vertices;
-    let a = fs.arity;
     let mut to_new = vec![u32::MAX; n];
     let mut next = 0u32;
     // the queue is the numbering itself: vertices are dequeued in the order they are numbered
@@ -96,25 +96,26 @@ pub(crate) fn bfs_order_flat(f: &Flat) -> Vec<u32> {
         while head < order.len() {
             // the queue is known a few steps ahead: its rows and cells are fetched early
             if let Some(&u) = order.get(head + 8) {
-                super::prefetch(&fs.vt.offsets, u as usize);
+                super::prefetch(&vt.offsets, u as usize);
             }
             if let Some(&u) = order.get(head + 4) {
-                let o = &fs.vt.offsets;
-                super::prefetch(&fs.vt.targets, o[u as usize] as usize);
+                let o = &vt.offsets;
+                super::prefetch(&vt.targets, o[u as usize] as usize);
             }
             if let Some(&u) = order.get(head + 2) {
-                for &c in fs.vt.row(u as usize) {
-                    super::prefetch(fs.verts, c as usize * a);
+                for &c in vt.row(u as usize) {
+                    super::prefetch(verts, c as usize * a);
                 }
             }
             let v = order[head];
             head += 1;
-            for &c in fs.vt.row(v as usize) {
+            for &c in vt.row(v as usize) {
                 if seen.put(c as usize) {
                     continue;
                 }
-                for &w in &fs.verts[c as usize * a..(c as usize + 1) * a] {
-                    // a simplex: every other vertex is a neighbour, met in the stored order
+                for &w in &verts[c as usize * a..(c as usize + 1) * a] {
+                    // every other vertex of the cell is a neighbour (across a quad or a
+                    // hexahedron too, as in `bfs_order`), met in the stored order
                     if w != v && to_new[w as usize] == u32::MAX {
                         to_new[w as usize] = next;
                         next += 1;
