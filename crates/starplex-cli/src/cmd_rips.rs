@@ -242,6 +242,7 @@ pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
         (None, None) => unreachable!("points or a matrix were read"),
     };
     let read_s = t0.elapsed().as_secs_f64();
+    let t_nn = Instant::now();
     let (eps, nn) = match (a.eps, a.eps_nn) {
         (Some(e), _) => (e, None),
         (None, Some(f)) => {
@@ -263,6 +264,7 @@ pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
         }
         (None, None) => unreachable!("clap requires one of --eps, --eps-nn"),
     };
+    let nn_s = nn.map(|_| t_nn.elapsed().as_secs_f64());
     let pb = common::progress_bar(ctx, n_points as u64, "maximal cliques");
     let progress = |n: u64| pb.inc(n);
     let opts = RipsOptions {
@@ -300,6 +302,7 @@ pub fn run_rips(ctx: &Ctx, a: &RipsArgs) -> Result<(), CliError> {
             "metric": a.metric.name(),
             "eps": eps,
             "median_nn_distance": nn,
+            "timings": {"nn_s": nn_s},
         }),
         (read_s, build_s),
     )
@@ -371,7 +374,19 @@ fn finish(
             .collect::<serde_json::Map<_, _>>());
         summary["max_dim"] = json!(b.max_dim);
         summary["output"] = json!(common::shown(&b.out));
-        summary["timings"] = json!({"read_s": read_s, "build_s": build_s, "write_s": write_s});
+        let p = built.phases;
+        let mut t = json!({
+            "read_s": read_s,
+            "build_s": build_s,
+            "graph_s": p.graph_s,
+            "cliques_s": p.cliques_s,
+            "complex_s": p.complex_s,
+            "write_s": write_s,
+        });
+        if let Some(nn_s) = summary["timings"]["nn_s"].as_f64() {
+            t["nn_s"] = json!(nn_s);
+        }
+        summary["timings"] = t;
         println!(
             "{}",
             serde_json::to_string_pretty(&summary).unwrap_or_default()

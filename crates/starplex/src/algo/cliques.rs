@@ -417,15 +417,15 @@ struct Budget {
 }
 
 impl Budget {
-    /// Accounts for one more clique of `size` vertices; false once over budget.
-    #[inline]
-    fn take(&self, size: usize) -> bool {
-        self.take_n(1, size)
-    }
     /// `count` cliques of `size` vertices at once (one pair of atomic updates).
     fn take_n(&self, count: usize, size: usize) -> bool {
+        self.take_refs(count, count * size)
+    }
+
+    /// `count` cliques of `refs` vertex references in all.
+    fn take_refs(&self, count: usize, refs: usize) -> bool {
         self.found.fetch_add(count as u64, Ordering::Relaxed);
-        let add = (count * size) as u64;
+        let add = refs as u64;
         let r = self.refs.fetch_add(add, Ordering::Relaxed) + add;
         if r > self.max_refs {
             self.stop.store(true, Ordering::Relaxed);
@@ -448,15 +448,23 @@ impl Local {
     }
 }
 
-/// Per-thread output: one flat array per clique size.
+/// One chunk's output: one flat array per clique size, and the cliques found since the last
+/// report to the shared budget (reported in batches, so that threads do not write one shared
+/// cache line per clique).
 #[derive(Default)]
 struct Sink {
     by_size: Vec<Vec<u32>>,
+    unflushed: usize,
+    unflushed_refs: usize,
 }
 
+/// Cliques a [`Sink`] holds back from the budget at most (vertex references).
+const SINK_BATCH: usize = 1 << 12;
+
 impl Sink {
-    /// Appends `clique`, sorted in place in the flat array (no vector per clique).
-    fn push(&mut self, clique: &[u32]) {
+    /// Appends `clique`, sorted in place in the flat array (no vector per clique); false once
+    /// the budget is exceeded.
+    fn push(&mut self, clique: &[u32], budget: &Budget) -> bool {
         let s = clique.len();
         if self.by_size.len() <= s {
             self.by_size.resize_with(s + 1, Vec::new);
@@ -465,19 +473,36 @@ impl Sink {
         let at = v.len();
         v.extend_from_slice(clique);
         v[at..].sort_unstable();
+        self.unflushed += 1;
+        self.unflushed_refs += s;
+        self.unflushed_refs < SINK_BATCH || self.flush(budget)
     }
-    fn merge(mut self, other: Sink) -> Sink {
-        if self.by_size.len() < other.by_size.len() {
-            self.by_size.resize_with(other.by_size.len(), Vec::new);
-        }
-        for (s, v) in other.by_size.into_iter().enumerate() {
-            if self.by_size[s].is_empty() {
-                self.by_size[s] = v;
-            } else {
-                self.by_size[s].extend_from_slice(&v);
-            }
-        }
-        self
+
+    /// Reports the held-back cliques to the budget; false once it is exceeded.
+    fn flush(&mut self, budget: &Budget) -> bool {
+        let (n, refs) = (self.unflushed, self.unflushed_refs);
+        (self.unflushed, self.unflushed_refs) = (0, 0);
+        n == 0 || budget.take_refs(n, refs)
+    }
+
+    /// The sinks' arrays concatenated size by size (one allocation per size).
+    fn concat(sinks: Vec<Sink>) -> Vec<Vec<u32>> {
+        let sizes = sinks.iter().map(|k| k.by_size.len()).max().unwrap_or(0);
+        (0..sizes)
+            .map(|s| {
+                let len = sinks
+                    .iter()
+                    .map(|k| k.by_size.get(s).map_or(0, Vec::len))
+                    .sum();
+                let mut out = Vec::with_capacity(len);
+                for k in &sinks {
+                    if let Some(v) = k.by_size.get(s) {
+                        out.extend_from_slice(v);
+                    }
+                }
+                out
+            })
+            .collect()
     }
 }
 
@@ -527,11 +552,11 @@ pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, Graph
     let mut blocks = Vec::new();
     if limit >= 2 {
         let progress = if k.is_none() { opts.progress } else { None };
-        let (sink, done) = maximal_from_starts(g, limit, &budget, progress);
+        let (by_size, done) = maximal_from_starts(g, limit, &budget, progress);
         if budget.stop.load(Ordering::Relaxed) {
             return Err(over(done));
         }
-        for (s, flat) in sink.by_size.into_iter().enumerate() {
+        for (s, flat) in by_size.into_iter().enumerate() {
             if s < 2 || flat.is_empty() {
                 continue;
             }
@@ -564,7 +589,7 @@ fn maximal_from_starts(
     limit: usize,
     budget: &Budget,
     progress: Option<&(dyn Fn(u64) + Sync)>,
-) -> (Sink, usize) {
+) -> (Vec<Vec<u32>>, usize) {
     let n = g.n_vertices();
     let (order, _) = degeneracy_order(g);
     let mut rank = vec![0u32; n];
@@ -573,25 +598,27 @@ fn maximal_from_starts(
     }
     let done = AtomicUsize::new(0);
     // Work per vertex is very uneven; small chunks keep both cores busy, and the result does
-    // not depend on how the vertices are split.
-    let sink = order
-        .par_iter()
-        .with_min_len(64)
-        .fold(Sink::default, |mut sink, &v| {
-            if budget.stop.load(Ordering::Relaxed) {
-                return sink;
+    // not depend on how the vertices are split. Shared counters are updated once per chunk.
+    let sinks: Vec<Sink> = order
+        .par_chunks(64)
+        .map(|chunk| {
+            let mut sink = Sink::default();
+            for &v in chunk {
+                if budget.stop.load(Ordering::Relaxed) {
+                    return sink;
+                }
+                from_vertex(g, &rank, v, limit, budget, &mut sink);
             }
-            from_vertex(g, &rank, v, limit, budget, &mut sink);
-            if !budget.stop.load(Ordering::Relaxed) {
-                done.fetch_add(1, Ordering::Relaxed);
+            if sink.flush(budget) && !budget.stop.load(Ordering::Relaxed) {
+                done.fetch_add(chunk.len(), Ordering::Relaxed);
                 if let Some(p) = progress {
-                    p(1);
+                    p(chunk.len() as u64);
                 }
             }
             sink
         })
-        .reduce(Sink::default, Sink::merge);
-    (sink, done.load(Ordering::Relaxed))
+        .collect();
+    (Sink::concat(sinks), done.load(Ordering::Relaxed))
 }
 
 /// Sorts the `s`-vertex rows of `flat` lexicographically.
@@ -619,40 +646,178 @@ fn from_vertex(g: &Graph, rank: &[u32], v: u32, limit: usize, budget: &Budget, s
     if nb.iter().all(|&u| rank[u as usize] < rv) {
         return; // no later neighbour: every clique through v starts at an earlier vertex
     }
-    let m = nb.len();
-    let words = m.div_ceil(64);
-    let mut loc = Local {
-        local: nb.to_vec(),
-        words,
-        adj: vec![0u64; m * words],
+    let start = Start {
+        g,
+        rank,
+        v,
+        limit,
+        budget,
     };
-    // local adjacency by merging sorted rows
-    for i in 0..m {
-        let row = g.neighbours(nb[i]);
-        let (mut a, mut b) = (0usize, 0usize);
-        while a < row.len() && b < m {
-            match row[a].cmp(&nb[b]) {
-                std::cmp::Ordering::Less => a += 1,
-                std::cmp::Ordering::Greater => b += 1,
-                std::cmp::Ordering::Equal => {
-                    loc.adj[i * words + (b >> 6)] |= 1 << (b & 63);
-                    a += 1;
-                    b += 1;
+    match nb.len().div_ceil(64) {
+        1 => start.fixed::<1>(sink),
+        2 => start.fixed::<2>(sink),
+        3 | 4 if nb.len() < 255 => start.fixed::<4>(sink),
+        _ => start.general(sink),
+    }
+}
+
+/// One start vertex of the enumeration and what every level of its search reads.
+struct Start<'a> {
+    g: &'a Graph,
+    rank: &'a [u32],
+    v: u32,
+    limit: usize,
+    budget: &'a Budget,
+}
+
+thread_local! {
+    /// Per-thread scratch of [`Start::fixed`]: the local index of each neighbour of the start
+    /// vertex (`u32::MAX` elsewhere, restored after each start) and the bit rows.
+    static SCRATCH: std::cell::RefCell<(Vec<u8>, Vec<u64>)> = const {
+        std::cell::RefCell::new((Vec::new(), Vec::new()))
+    };
+}
+
+impl Start<'_> {
+    /// The search for a neighbourhood of at most `64 W` vertices, on fixed-width bit rows: no
+    /// allocation below the start. Only the rows of the later neighbours (P) are read from the
+    /// graph (by a scan of each one's adjacency against the local index); the rows of the
+    /// earlier ones (X) are only ever used against P, and are their transpose.
+    fn fixed<const W: usize>(&self, sink: &mut Sink) {
+        let nb = self.g.neighbours(self.v);
+        let m = nb.len();
+        let rv = self.rank[self.v as usize];
+        SCRATCH.with(|s| {
+            let (pos, rows) = &mut *s.borrow_mut();
+            if pos.len() < self.g.n_vertices() {
+                pos.resize(self.g.n_vertices(), u8::MAX);
+            }
+            rows.clear();
+            rows.resize(m * W, 0);
+            let (mut p, mut x) = ([0u64; W], [0u64; W]);
+            for (i, &u) in nb.iter().enumerate() {
+                pos[u as usize] = i as u8;
+                let set = if self.rank[u as usize] > rv {
+                    &mut p
+                } else {
+                    &mut x
+                };
+                set[i >> 6] |= 1 << (i & 63);
+            }
+            let pos_s: &[u8] = pos;
+            for i in ones(&p) {
+                let row: &mut BitRow<W> = (&mut rows[i * W..(i + 1) * W]).try_into().unwrap();
+                for &w in self.g.neighbours(nb[i]) {
+                    // branch-free: a vertex outside the neighbourhood ORs a zero; j < m <= 64 W
+                    // and W is a power of two, so the mask only drops the bounds check
+                    let j = pos_s[w as usize];
+                    row[(j as usize >> 6) & (W - 1)] |= ((j != u8::MAX) as u64) << (j & 63);
+                }
+            }
+            for &u in nb {
+                pos[u as usize] = u8::MAX;
+            }
+            for i in ones(&p) {
+                let xs: BitRow<W> = std::array::from_fn(|k| rows[i * W + k] & x[k]);
+                for j in ones(&xs) {
+                    rows[j * W + (i >> 6)] |= 1 << (i & 63);
+                }
+            }
+            let mut r = Vec::with_capacity(self.limit.min(m + 1));
+            r.push(self.v);
+            self.bk_fixed::<W>(rows, nb, &mut r, p, x, sink);
+        });
+    }
+
+    /// Bron–Kerbosch with Tomita's pivot on `W`-word rows (see [`Start::fixed`]). Cliques of
+    /// more than `limit` vertices are not reported (nor searched for).
+    fn bk_fixed<const W: usize>(
+        &self,
+        rows: &[u64],
+        nb: &[u32],
+        r: &mut Vec<u32>,
+        mut p: BitRow<W>,
+        mut x: BitRow<W>,
+        sink: &mut Sink,
+    ) {
+        let row = |i: usize| -> BitRow<W> { std::array::from_fn(|k| rows[i * W + k]) };
+        if self.budget.stop.load(Ordering::Relaxed) {
+            return;
+        }
+        let np = row_count(&p);
+        if np == 0 {
+            if x.iter().all(|&w| w == 0) && r.len() <= self.limit {
+                sink.push(r, self.budget);
+            }
+            return;
+        }
+        if r.len() >= self.limit {
+            return; // only larger cliques below
+        }
+        // pivot: the vertex of P ∪ X with the most neighbours in P
+        let px: BitRow<W> = std::array::from_fn(|k| p[k] | x[k]);
+        let (mut best, mut best_n) = (usize::MAX, 0usize);
+        for u in ones(&px) {
+            let c = row_count(&row_and(&row(u), &p));
+            if best == usize::MAX || c > best_n {
+                (best, best_n) = (u, c);
+                if c == np {
+                    break; // no candidate is left outside its neighbourhood
                 }
             }
         }
-    }
-    let mut p: Bits = vec![0; words];
-    let mut x: Bits = vec![0; words];
-    for (i, &u) in nb.iter().enumerate() {
-        if rank[u as usize] > rv {
-            bit_set(&mut p, i);
-        } else {
-            bit_set(&mut x, i);
+        let pr = row(best);
+        let cand: BitRow<W> = std::array::from_fn(|k| p[k] & !pr[k]);
+        for w in ones(&cand) {
+            let rw = row(w);
+            r.push(nb[w]);
+            self.bk_fixed::<W>(rows, nb, r, row_and(&p, &rw), row_and(&x, &rw), sink);
+            r.pop();
+            p[w >> 6] &= !(1 << (w & 63));
+            x[w >> 6] |= 1 << (w & 63);
         }
     }
-    let mut r = vec![v];
-    bk_pivot(&loc, &mut r, p, x, limit, budget, sink);
+
+    /// The search for a large neighbourhood: one bit matrix over all of it.
+    fn general(&self, sink: &mut Sink) {
+        let (g, rank, v, limit, budget) = (self.g, self.rank, self.v, self.limit, self.budget);
+        let nb = g.neighbours(v);
+        let rv = rank[v as usize];
+        let m = nb.len();
+        let words = m.div_ceil(64);
+        let mut loc = Local {
+            local: nb.to_vec(),
+            words,
+            adj: vec![0u64; m * words],
+        };
+        // local adjacency by merging sorted rows
+        for i in 0..m {
+            let row = g.neighbours(nb[i]);
+            let (mut a, mut b) = (0usize, 0usize);
+            while a < row.len() && b < m {
+                match row[a].cmp(&nb[b]) {
+                    std::cmp::Ordering::Less => a += 1,
+                    std::cmp::Ordering::Greater => b += 1,
+                    std::cmp::Ordering::Equal => {
+                        loc.adj[i * words + (b >> 6)] |= 1 << (b & 63);
+                        a += 1;
+                        b += 1;
+                    }
+                }
+            }
+        }
+        let mut p: Bits = vec![0; words];
+        let mut x: Bits = vec![0; words];
+        for (i, &u) in nb.iter().enumerate() {
+            if rank[u as usize] > rv {
+                bit_set(&mut p, i);
+            } else {
+                bit_set(&mut x, i);
+            }
+        }
+        let mut r = vec![v];
+        bk_pivot(&loc, &mut r, p, x, limit, budget, sink);
+    }
 }
 
 /// Bron–Kerbosch with Tomita's pivot on the local bit matrix. Cliques of more than `limit`
@@ -671,8 +836,8 @@ fn bk_pivot(
     }
     let p_empty = p.iter().all(|&w| w == 0);
     if p_empty {
-        if x.iter().all(|&w| w == 0) && r.len() <= limit && budget.take(r.len()) {
-            sink.push(r);
+        if x.iter().all(|&w| w == 0) && r.len() <= limit {
+            sink.push(r, budget);
         }
         return;
     }
@@ -1236,6 +1401,107 @@ mod tests {
             ..Default::default()
         };
         assert_eq!(maximal_cliques(&g, &o).unwrap().count(), 142_506);
+    }
+
+    /// Maximal cliques (of two or more vertices) by Bron–Kerbosch with Tomita's pivot on
+    /// ordered sets: an independent reference, sorted by (size, vertices).
+    fn reference_maximal(n: usize, edges: &[(u32, u32)]) -> Vec<Vec<u32>> {
+        use std::collections::BTreeSet;
+        let mut adj = vec![BTreeSet::new(); n];
+        for &(a, b) in edges {
+            adj[a as usize].insert(b);
+            adj[b as usize].insert(a);
+        }
+        fn bk(
+            adj: &[BTreeSet<u32>],
+            r: &mut Vec<u32>,
+            mut p: BTreeSet<u32>,
+            mut x: BTreeSet<u32>,
+            out: &mut Vec<Vec<u32>>,
+        ) {
+            if p.is_empty() {
+                if x.is_empty() && r.len() > 1 {
+                    let mut c = r.clone();
+                    c.sort_unstable();
+                    out.push(c);
+                }
+                return;
+            }
+            let pivot = *p
+                .union(&x)
+                .max_by_key(|&&u| p.intersection(&adj[u as usize]).count())
+                .unwrap();
+            let cand: Vec<u32> = p.difference(&adj[pivot as usize]).copied().collect();
+            for w in cand {
+                let nw = &adj[w as usize];
+                r.push(w);
+                bk(
+                    adj,
+                    r,
+                    p.intersection(nw).copied().collect(),
+                    x.intersection(nw).copied().collect(),
+                    out,
+                );
+                r.pop();
+                p.remove(&w);
+                x.insert(w);
+            }
+        }
+        let mut out = Vec::new();
+        bk(
+            &adj,
+            &mut Vec::new(),
+            (0..n as u32).collect(),
+            BTreeSet::new(),
+            &mut out,
+        );
+        out.sort_by(|a, b| (a.len(), a).cmp(&(b.len(), b)));
+        out
+    }
+
+    /// Neighbourhoods of every width (one word, two, four, and the general matrix above 254
+    /// vertices), with large cliques inside them, against the set-based reference.
+    #[test]
+    fn wide_neighbourhoods_equal_the_reference() {
+        let n = 2100usize;
+        let mut e = random_graph(n, 0.004, 21);
+        e.retain(|&(a, b)| a.min(b) > 2);
+        // vertex 0 sees everything (general path), 1 sees 200 vertices (4 words), 2 sees 100
+        e.extend((3..n as u32).map(|u| (0, u)));
+        e.extend(
+            (3..203u32)
+                .map(|u| (1, u * 7 % n as u32))
+                .filter(|&(_, u)| u > 2),
+        );
+        e.extend(
+            (3..103u32)
+                .map(|u| (2, u * 11 % n as u32))
+                .filter(|&(_, u)| u > 2),
+        );
+        // a K40 and a K17 that the hubs see in part
+        e.extend((500..540u32).flat_map(|a| (a + 1..540).map(move |b| (a, b))));
+        e.extend((3..20u32).flat_map(|a| (a + 1..20).map(move |b| (a, b))));
+        e.extend((500..530u32).map(|u| (1, u)));
+        let g = Graph::from_edges(n, &e).unwrap();
+        for v in 0..3 {
+            assert!(
+                g.neighbours(v).len() > [254, 128, 64][v as usize],
+                "hub {v}"
+            );
+        }
+        let got = maximal_cliques(&g, &CliqueOptions::default())
+            .unwrap()
+            .to_vecs();
+        let want = reference_maximal(n, &e);
+        assert!(want.len() > 2000 && want.iter().any(|c| c.len() >= 41));
+        assert_eq!(got, want);
+        // G(150, 0.5): every start has a two-word neighbourhood
+        let e = random_graph(150, 0.5, 4);
+        let g = Graph::from_edges(150, &e).unwrap();
+        let got = maximal_cliques(&g, &CliqueOptions::default())
+            .unwrap()
+            .to_vecs();
+        assert_eq!(got, reference_maximal(150, &e));
     }
 
     #[test]

@@ -423,9 +423,13 @@ pub fn rips_from_distances(
     eps: f64,
     opts: &RipsOptions,
 ) -> Result<Built, RipsError> {
+    let t = std::time::Instant::now();
     let g = d.graph(eps, &opts.cliques.limits)?;
+    let graph_s = t.elapsed().as_secs_f64();
     let coords: Vec<f64> = (0..d.n).map(|i| i as f64).collect();
-    complex_of(coords, 1, &g, opts)
+    let mut b = complex_of(coords, 1, &g, opts)?;
+    b.phases.graph_s = graph_s;
+    Ok(b)
 }
 
 /// The median of values (numpy's: the mean of the two middle ones for an even count), after
@@ -473,6 +477,25 @@ pub struct Built {
     /// Vertices in no top cell (isolated points; every vertex with `max_dim` 0), counted from
     /// the graph: the same as `complex.n_isolated_vertices()` without a pass over the cells.
     pub n_isolated: usize,
+    /// Wall-clock seconds of each phase.
+    pub phases: Phases,
+}
+
+/// Wall-clock seconds of the phases of a build from data (what `rips --json` reports).
+///
+/// ```
+/// use starplex::algo::rips::flag_complex;
+/// let f = flag_complex(3, &[(0, 1), (1, 2), (0, 2)], &Default::default()).unwrap();
+/// assert!(f.phases.cliques_s >= 0.0 && f.phases.graph_s >= 0.0);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Phases {
+    /// The neighbourhood graph (ε-graph of the points, or the edge list's graph).
+    pub graph_s: f64,
+    /// The clique enumeration (degeneracy order, Bron–Kerbosch, the sorted blocks).
+    pub cliques_s: f64,
+    /// The complex from the cliques (its checks included).
+    pub complex_s: f64,
 }
 
 /// The Vietoris–Rips complex at scale `eps` of `coords` (flat, `dim` coordinates per point):
@@ -521,8 +544,12 @@ pub fn rips_complex_with(
     if !(eps.is_finite() && eps > 0.0) {
         return Err(RipsError::BadScale(eps));
     }
+    let t = std::time::Instant::now();
     let g = neighbourhood_graph_metric(coords, dim, eps, metric, &opts.cliques.limits)?;
-    complex_of(coords.to_vec(), dim, &g, opts)
+    let graph_s = t.elapsed().as_secs_f64();
+    let mut b = complex_of(coords.to_vec(), dim, &g, opts)?;
+    b.phases.graph_s = graph_s;
+    Ok(b)
 }
 
 /// The flag complex of the graph on `n` vertices with these edges. The vertices have one
@@ -544,9 +571,13 @@ pub fn flag_complex(
     edges: &[(u32, u32)],
     opts: &RipsOptions,
 ) -> Result<Built, RipsError> {
+    let t = std::time::Instant::now();
     let g = Graph::from_edges(n, edges)?;
+    let graph_s = t.elapsed().as_secs_f64();
     let coords: Vec<f64> = (0..n).map(|i| i as f64).collect();
-    complex_of(coords, 1, &g, opts)
+    let mut b = complex_of(coords, 1, &g, opts)?;
+    b.phases.graph_s = graph_s;
+    Ok(b)
 }
 
 /// The complex whose top cells are the cliques of `g` (see [`maximal_cliques`]).
@@ -571,7 +602,9 @@ pub fn complex_of(
     if opts.max_dim.is_some() {
         co.max_dim = opts.max_dim;
     }
+    let t = std::time::Instant::now();
     let cl = maximal_cliques(g, &co)?;
+    let cliques_s = t.elapsed().as_secs_f64();
     let n = g.n_vertices();
     let n_isolated = if co.max_dim == Some(0) {
         n
@@ -580,7 +613,14 @@ pub fn complex_of(
             .filter(|&v| g.neighbours(v).is_empty())
             .count()
     };
-    complex_from_cliques(coords, dim, g.n_edges(), n_isolated, cl)
+    let t = std::time::Instant::now();
+    let mut b = complex_from_cliques(coords, dim, g.n_edges(), n_isolated, cl)?;
+    b.phases = Phases {
+        graph_s: 0.0,
+        cliques_s,
+        complex_s: t.elapsed().as_secs_f64(),
+    };
+    Ok(b)
 }
 
 fn complex_from_cliques(
@@ -606,6 +646,7 @@ fn complex_from_cliques(
         n_edges,
         by_dim,
         n_isolated,
+        phases: Phases::default(),
     })
 }
 
