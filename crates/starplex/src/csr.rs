@@ -140,6 +140,35 @@ impl Csr {
     pub fn bytes(&self) -> usize {
         4 * (self.offsets.len() + self.targets.len())
     }
+
+    /// Sorts every row and removes repeated targets, in place.
+    ///
+    /// ```
+    /// use starplex::csr::Csr;
+    /// let mut r = Csr::from_pairs(2, &[(1, 9), (0, 4), (1, 2), (1, 9)]);
+    /// r.sort_dedup_rows();
+    /// assert_eq!((r.row(0), r.row(1)), (&[4][..], &[2, 9][..]));
+    /// ```
+    pub fn sort_dedup_rows(&mut self) {
+        let n = self.n_rows();
+        let mut w = 0usize;
+        let mut start = 0usize;
+        for v in 0..n {
+            let end = self.offsets[v + 1] as usize;
+            self.targets[start..end].sort_unstable();
+            let row_start = w;
+            for i in start..end {
+                let t = self.targets[i];
+                if w == row_start || self.targets[w - 1] != t {
+                    self.targets[w] = t;
+                    w += 1;
+                }
+            }
+            start = end;
+            self.offsets[v + 1] = w as u32;
+        }
+        self.targets.truncate(w);
+    }
 }
 
 /// Rows per bucket of [`scatter`]'s first pass: a bucket's share of the targets (about

@@ -152,7 +152,7 @@ impl Graph {
                 push(b, a);
             }
         });
-        sort_dedup_rows(&mut adj);
+        adj.sort_dedup_rows();
         Ok(Graph { adj })
     }
 
@@ -216,27 +216,6 @@ impl Graph {
     pub fn bytes(&self) -> usize {
         self.adj.bytes()
     }
-}
-
-fn sort_dedup_rows(adj: &mut Csr) {
-    let n = adj.n_rows();
-    let mut w = 0usize;
-    let mut start = 0usize;
-    for v in 0..n {
-        let end = adj.offsets[v + 1] as usize;
-        adj.targets[start..end].sort_unstable();
-        let row_start = w;
-        for i in start..end {
-            let t = adj.targets[i];
-            if w == row_start || adj.targets[w - 1] != t {
-                adj.targets[w] = t;
-                w += 1;
-            }
-        }
-        start = end;
-        adj.offsets[v + 1] = w as u32;
-    }
-    adj.targets.truncate(w);
 }
 
 /// A degeneracy ordering (smallest-last, Matula–Beck): `order[i]` is the i-th vertex; each

@@ -7,9 +7,13 @@
 //! children, until a block has at most k_V vertices. Each half is a "ball" around its end of
 //! the block, the graph counterpart of a kD tree's halves, so cells seldom span many leaves.
 //!
-//! The search walks the vertex–top-cell incidence, never the vertex graph itself (a clique of
-//! s vertices is read once per search, not s² times), and every search is deterministic: the
-//! order depends on the complex alone, not on the number of threads.
+//! The search reads a cell of at most [`SMALL`] vertices as its other vertices, stored with
+//! each vertex (a graph's edges are then a plain adjacency list: no cell is looked up), and a
+//! larger cell through the vertex–top-cell incidence, once per search (a clique of s vertices
+//! is read once, not s² times). A child block's search starts from the end of the parent's
+//! search that lies in it (its first or its last vertex), so only the root looks for a
+//! pseudo-peripheral vertex of its components. Every search is deterministic: the order
+//! depends on the complex alone, not on the number of threads.
 //!
 //! ```
 //! use starplex::complex::{ComplexBuilder, BuildOptions};
@@ -34,9 +38,14 @@ use crate::csr::Csr;
 /// At most this many searches to find a pseudo-peripheral vertex of a component.
 const PERIPHERAL_TRIES: usize = 4;
 
+/// Cells of at most this many vertices are stored as each vertex's co-vertices.
+const SMALL: usize = 3;
+
 /// Scratch of the searches: stamps instead of cleared flags.
 struct Walk<'a> {
-    /// Vertex -> its top cells.
+    /// Vertex -> the other vertices of its small top cells (sorted, without repeats).
+    near: Csr,
+    /// Vertex -> its top cells of more than [`SMALL`] vertices.
     vt: Csr,
     /// The top cells' vertices.
     cells: &'a InputCells<'a>,
@@ -75,6 +84,13 @@ impl Walk<'_> {
             }
             let v = out[head];
             head += 1;
+            for &u in self.near.row(v as usize) {
+                let ui = u as usize;
+                if self.block[ui] == b && self.seen[ui] != s {
+                    self.seen[ui] = s;
+                    out.push(u);
+                }
+            }
             for &c in self.vt.row(v as usize) {
                 if self.cell_seen[c as usize] == s {
                     continue;
@@ -106,7 +122,7 @@ impl Walk<'_> {
             let x = scratch[last..]
                 .iter()
                 .copied()
-                .min_by_key(|&u| (self.vt.degree(u as usize), u))
+                .min_by_key(|&u| (self.near.degree(u as usize) + self.vt.degree(u as usize), u))
                 .unwrap_or(r);
             if x == r {
                 break;
@@ -117,7 +133,10 @@ impl Walk<'_> {
     }
 
     /// Orders `idx` (a block) component by component and splits it in two halves, recursively.
-    fn split(&mut self, idx: &mut [u32], offset: u32, depth: u32) -> T {
+    /// `start`, when given, is a vertex of the block at an end of its graph (the parent's
+    /// search reached it first or last): its component is searched from it without a search
+    /// for a peripheral vertex.
+    fn split(&mut self, idx: &mut [u32], offset: u32, depth: u32, start: Option<u32>) -> T {
         let len = idx.len();
         let end = offset + len as u32;
         if len <= self.kv || depth >= self.max_depth {
@@ -142,11 +161,15 @@ impl Walk<'_> {
         }
         let mut order = Vec::with_capacity(len);
         let mut scratch = Vec::new();
-        for &v in idx.iter() {
+        for v in start.into_iter().chain(idx.iter().copied()) {
             if self.placed[v as usize] == b {
                 continue;
             }
-            let r = self.peripheral(v, b, &mut scratch);
+            let r = if Some(v) == start {
+                v
+            } else {
+                self.peripheral(v, b, &mut scratch)
+            };
             let from = order.len();
             self.bfs(r, b, &mut order);
             for &u in &order[from..] {
@@ -158,8 +181,9 @@ impl Walk<'_> {
         drop((order, scratch));
         let half = len / 2;
         let (a, c) = idx.split_at_mut(half);
-        let left = self.split(a, offset, depth + 1);
-        let right = self.split(c, offset + half as u32, depth + 1);
+        let (first, last) = (a[0], c[c.len() - 1]);
+        let left = self.split(a, offset, depth + 1, Some(first));
+        let right = self.split(c, offset + half as u32, depth + 1, Some(last));
         T::Inner(offset, end, vec![left, right])
     }
 }
@@ -174,12 +198,31 @@ pub(super) fn graph_split(cells: &InputCells<'_>, idx: &mut [u32], kv: usize, ma
     let nc = cells.len();
     let vt = Csr::from_fn(nv, |push| {
         for c in 0..nc as u32 {
-            for &v in cells.get(c).1 {
-                push(v, c);
+            let vs = cells.get(c).1;
+            if vs.len() > SMALL {
+                for &v in vs {
+                    push(v, c);
+                }
             }
         }
     });
+    let mut near = Csr::from_fn(nv, |push| {
+        for c in 0..nc as u32 {
+            let vs = cells.get(c).1;
+            if vs.len() <= SMALL {
+                for &v in vs {
+                    for &u in vs {
+                        if u != v {
+                            push(v, u);
+                        }
+                    }
+                }
+            }
+        }
+    });
+    near.sort_dedup_rows();
     let mut w = Walk {
+        near,
         vt,
         cells,
         block: vec![0; nv],
@@ -190,5 +233,5 @@ pub(super) fn graph_split(cells: &InputCells<'_>, idx: &mut [u32], kv: usize, ma
         kv,
         max_depth,
     };
-    w.split(idx, 0, 0)
+    w.split(idx, 0, 0, None)
 }
