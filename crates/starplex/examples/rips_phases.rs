@@ -2,7 +2,7 @@
 //! order, clique enumeration, complex assembly), medians of `REPS` runs on the current rayon
 //! pool (`RAYON_NUM_THREADS=1` for one thread).
 //!
-//! `cargo run --release --example rips_phases -- POINTS EPS_NN [MAX_DIM|-] [REPS]`; with
+//! `cargo run --release --example rips_phases -- POINTS EPS_NN|=EPS [MAX_DIM|-] [REPS]`; with
 //! `ONLY=cliques` (or `graph`) it runs that phase REPS times and prints nothing, for
 //! `perf record`.
 use starplex::algo::cliques::{degeneracy_order, maximal_cliques, CliqueOptions};
@@ -17,11 +17,15 @@ fn median(mut v: Vec<f64>) -> f64 {
 fn main() {
     let a: Vec<String> = std::env::args().collect();
     let pc = read_points(std::path::Path::new(&a[1])).unwrap_or_else(|e| panic!("{e}"));
-    let f: f64 = a[2].parse().expect("EPS_NN");
+    // EPS_NN: a multiple of the median nearest-neighbour distance, or `=E` for ε itself
+    let (f, absolute) = match a[2].strip_prefix('=') {
+        Some(e) => (e.parse::<f64>().expect("=EPS"), true),
+        None => (a[2].parse::<f64>().expect("EPS_NN"), false),
+    };
     let max_dim: Option<usize> = a.get(3).and_then(|s| s.parse().ok());
     let reps: usize = a.get(4).map_or(5, |s| s.parse().expect("REPS"));
     let nn = rips::median_nn_distance(&pc.coords, pc.dim).unwrap();
-    let eps = f * nn;
+    let eps = if absolute { f } else { f * nn };
     let g = rips::neighbourhood_graph(&pc.coords, pc.dim, eps).unwrap();
     let co = CliqueOptions {
         max_dim,

@@ -539,7 +539,7 @@ pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, Graph
             if s < 2 || flat.is_empty() {
                 continue;
             }
-            blocks.push((s, sort_rows(flat, s)));
+            blocks.push((s, sort_rows(flat, s, n)));
         }
     }
     // The skeleton's other maximal simplices: every clique of k + 1 vertices, listed in order.
@@ -575,10 +575,14 @@ fn maximal_from_starts(
     for (i, &v) in order.iter().enumerate() {
         rank[v as usize] = i as u32;
     }
+    drop(order);
+    let ids: Vec<u32> = (0..n as u32).collect();
     let done = AtomicUsize::new(0);
     // Work per vertex is very uneven; small chunks keep both cores busy, and the result does
     // not depend on how the vertices are split. Shared counters are updated once per chunk.
-    let sinks: Vec<Sink> = order
+    // The starts go in id order (the ranks only decide each start's P and X): neighbouring ids
+    // are usually neighbouring points, whose rows are then read while still in cache.
+    let sinks: Vec<Sink> = ids
         .par_chunks(64)
         .map(|chunk| {
             let mut sink = Sink::default();
@@ -600,16 +604,47 @@ fn maximal_from_starts(
     (Sink::concat(sinks), done.load(Ordering::Relaxed))
 }
 
-/// Sorts the `s`-vertex rows of `flat` lexicographically.
-fn sort_rows(flat: Vec<u32>, s: usize) -> Vec<u32> {
+/// Sorts the `s`-vertex rows of `flat` (each ascending, vertices below `n`)
+/// lexicographically: a counting sort by first vertex, then a sort of each (small) run of
+/// rows sharing it.
+fn sort_rows(flat: Vec<u32>, s: usize, n: usize) -> Vec<u32> {
     let m = flat.len() / s;
-    let mut idx: Vec<u32> = (0..m as u32).collect();
-    idx.par_sort_unstable_by(|&a, &b| {
-        flat[a as usize * s..(a as usize + 1) * s].cmp(&flat[b as usize * s..(b as usize + 1) * s])
-    });
+    let mut start = vec![0u32; n + 1];
+    for r in flat.chunks_exact(s) {
+        start[r[0] as usize + 1] += 1;
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut idx = vec![0u32; m];
+    let mut next = start.clone();
+    for (i, r) in flat.chunks_exact(s).enumerate() {
+        let f = r[0] as usize;
+        idx[next[f] as usize] = i as u32;
+        next[f] += 1;
+    }
+    drop(next);
+    let row = |i: u32| &flat[i as usize * s..(i as usize + 1) * s];
+    // runs of equal first vertex, sorted in parallel in chunks of whole runs
+    let mut runs: Vec<&mut [u32]> = Vec::new();
+    let mut rest = &mut idx[..];
+    for v in 0..n {
+        let len = (start[v + 1] - start[v]) as usize;
+        if len > 1 {
+            let (a, b) = std::mem::take(&mut rest).split_at_mut(len);
+            runs.push(a);
+            rest = b;
+        } else {
+            rest = &mut std::mem::take(&mut rest)[len..];
+        }
+    }
+    runs.par_iter_mut()
+        .with_min_len(256)
+        .for_each(|r| r.sort_unstable_by(|&a, &b| row(a).cmp(row(b))));
+    drop(runs);
     let mut out = Vec::with_capacity(flat.len());
-    for i in idx {
-        out.extend_from_slice(&flat[i as usize * s..(i as usize + 1) * s]);
+    for &i in &idx {
+        out.extend_from_slice(row(i));
     }
     out
 }
