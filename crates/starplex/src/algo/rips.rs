@@ -752,9 +752,9 @@ pub fn neighbourhood_graph_metric(
     let n = coords.len() / dim;
     // rows of later neighbours, each sorted
     let rows: Vec<Vec<u32>> = match dim {
-        1 => later_kd::<1>(coords, eps, metric, max_bytes)?,
-        2 => later_kd::<2>(coords, eps, metric, max_bytes)?,
-        3 => later_kd::<3>(coords, eps, metric, max_bytes)?,
+        1 => later_grid::<1>(coords, eps, metric, max_bytes)?,
+        2 => later_grid::<2>(coords, eps, metric, max_bytes)?,
+        3 => later_grid::<3>(coords, eps, metric, max_bytes)?,
         4 => later_kd::<4>(coords, eps, metric, max_bytes)?,
         5 => later_kd::<5>(coords, eps, metric, max_bytes)?,
         6 => later_kd::<6>(coords, eps, metric, max_bytes)?,
@@ -781,6 +781,163 @@ pub fn neighbourhood_graph_metric(
         }
     });
     Ok(Graph::from_sorted_rows(adj))
+}
+
+/// At most this many grid cells per point (else the kd-tree is used).
+const GRID_CELLS_PER_POINT: usize = 16;
+
+/// Later neighbours of every point by a uniform grid of cells of side just over ε, in 1–3
+/// dimensions: in each metric a coordinate difference is at most the distance, so every pair
+/// within ε lies in the same or adjacent cells, and each point is tested against the points of
+/// its 3^K cells. The kd-tree ([`later_kd`]) takes over when the grid would have more than
+/// [`GRID_CELLS_PER_POINT`] cells per point (sparse or spread-out points), or when coordinates
+/// are so large against ε that rounding could move a point by a cell.
+fn later_grid<const K: usize>(
+    coords: &[f64],
+    eps: f64,
+    metric: Metric,
+    max_bytes: u64,
+) -> Result<Vec<Vec<u32>>, RipsError> {
+    let n = coords.len() / K;
+    let (mut lo, mut hi) = ([f64::INFINITY; K], [f64::NEG_INFINITY; K]);
+    for c in coords.chunks_exact(K) {
+        for a in 0..K {
+            lo[a] = lo[a].min(c[a]);
+            hi[a] = hi[a].max(c[a]);
+        }
+    }
+    let side = eps * (1.0 + 1e-6);
+    let mut dims = [0usize; K];
+    let mut total = 1usize;
+    for a in 0..K {
+        let scale = lo[a].abs().max(hi[a].abs());
+        let cells = ((hi[a] - lo[a]) / side).floor() + 1.0;
+        if !(scale / side < (1u64 << 30) as f64 && cells.is_finite()) {
+            return later_kd::<K>(coords, eps, metric, max_bytes);
+        }
+        dims[a] = cells as usize;
+        total = total.saturating_mul(dims[a]);
+    }
+    if n == 0 || total > GRID_CELLS_PER_POINT.saturating_mul(n) + 1024 {
+        return later_kd::<K>(coords, eps, metric, max_bytes);
+    }
+    let p = |i: usize| -> &[f64] { &coords[i * K..(i + 1) * K] };
+    let cell_of = |i: usize| -> [usize; K] {
+        std::array::from_fn(|a| (((p(i)[a] - lo[a]) / side) as usize).min(dims[a] - 1))
+    };
+    let key = |c: &[usize; K]| c.iter().zip(&dims).fold(0usize, |k, (&x, &d)| k * d + x);
+    // counting sort of the points by cell: each cell's points ascending
+    let keys: Vec<u32> = (0..n)
+        .into_par_iter()
+        .map(|i| key(&cell_of(i)) as u32)
+        .collect();
+    let mut start = vec![0u32; total + 1];
+    for &k in &keys {
+        start[k as usize + 1] += 1;
+    }
+    for c in 0..total {
+        start[c + 1] += start[c];
+    }
+    let mut pts = vec![0u32; n];
+    let mut next = start.clone();
+    for (i, &k) in keys.iter().enumerate() {
+        pts[next[k as usize] as usize] = i as u32;
+        next[k as usize] += 1;
+    }
+    drop((keys, next));
+    let e2 = metric.key_of(eps);
+    // coordinates in cell order, read contiguously
+    let sorted: Vec<[f64; K]> = pts
+        .iter()
+        .map(|&j| std::array::from_fn(|a| p(j as usize)[a]))
+        .collect();
+    let grid = Grid {
+        dims,
+        start: &start,
+        pts: &pts,
+        sorted: &sorted,
+        e2,
+    };
+    let mine =
+        |i: usize| -> ([f64; K], [usize; K]) { (std::array::from_fn(|a| p(i)[a]), cell_of(i)) };
+    // one loop per metric, so that the distance is inlined
+    match metric {
+        Metric::Euclidean => grid.rows(n, max_bytes, mine, |a, b| {
+            a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+        }),
+        Metric::Manhattan => grid.rows(n, max_bytes, mine, |a, b| {
+            a.iter().zip(b).map(|(x, y)| (x - y).abs()).sum()
+        }),
+        Metric::Chebyshev => grid.rows(n, max_bytes, mine, |a, b| {
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f64::max)
+        }),
+    }
+}
+
+/// The cells of [`later_grid`]: `pts[start[c]..start[c + 1]]` are cell `c`'s points (ascending),
+/// `sorted` their coordinates in the same order.
+struct Grid<'a, const K: usize> {
+    dims: [usize; K],
+    start: &'a [u32],
+    pts: &'a [u32],
+    sorted: &'a [[f64; K]],
+    e2: f64,
+}
+
+impl<const K: usize> Grid<'_, K> {
+    /// The later neighbours of every point (`mine(i)`: its coordinates and cell), under the
+    /// metric key `key`.
+    fn rows(
+        &self,
+        n: usize,
+        max_bytes: u64,
+        mine: impl Fn(usize) -> ([f64; K], [usize; K]) + Sync,
+        key: impl Fn(&[f64; K], &[f64; K]) -> f64 + Sync,
+    ) -> Result<Vec<Vec<u32>>, RipsError> {
+        let later = |i: usize, out: &mut Vec<u32>| {
+            let (q, c) = mine(i);
+            let mut at = [0usize; K];
+            'cells: for o in 0..3usize.pow(K as u32) {
+                let mut r = o;
+                for a in 0..K {
+                    let x = (c[a] + r % 3).wrapping_sub(1);
+                    r /= 3;
+                    if x >= self.dims[a] {
+                        continue 'cells;
+                    }
+                    at[a] = x;
+                }
+                let k = at
+                    .iter()
+                    .zip(&self.dims)
+                    .fold(0usize, |k, (&x, &d)| k * d + x);
+                let (s, e) = (self.start[k] as usize, self.start[k + 1] as usize);
+                for (&j, b) in self.pts[s..e].iter().zip(&self.sorted[s..e]) {
+                    if j as usize > i && key(&q, b) <= self.e2 {
+                        out.push(j);
+                    }
+                }
+            }
+            out.sort_unstable();
+        };
+        check_sample(n, max_bytes, |i| {
+            let mut v = Vec::new();
+            later(i, &mut v);
+            // the later neighbours stand for half of the degree
+            2 * v.len()
+        })?;
+        Ok((0..n)
+            .into_par_iter()
+            .map(|i| {
+                let mut r = Vec::new();
+                later(i, &mut r);
+                r
+            })
+            .collect())
+    }
 }
 
 /// Later neighbours of every point by a kd-tree in `K` dimensions.
@@ -1065,4 +1222,62 @@ fn kd_tree<const K: usize>(pts: &[[f64; K]]) -> Option<ImmutableKdTree<f64, K>> 
         return None;
     }
     ImmutableKdTree::new_from_slice(pts).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The grid and the kd-tree find the same later neighbours: 1–3 dimensions, every metric,
+    /// integer coordinates (many pairs at exactly ε) and jittered ones, dense and spread out
+    /// (the spread-out cloud takes the kd-tree inside `later_grid` itself).
+    #[test]
+    fn grid_rows_equal_kd_rows() {
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        for k in 1..=3usize {
+            for (n, range, jitter) in [
+                (3000, 12u64, false),
+                (3000, 12, true),
+                (500, 1 << 20, false),
+            ] {
+                let coords: Vec<f64> = (0..n * k)
+                    .map(|_| {
+                        let x = (next() % range) as f64;
+                        if jitter {
+                            x + (next() % 1000) as f64 / 1000.0
+                        } else {
+                            x
+                        }
+                    })
+                    .collect();
+                for metric in [Metric::Euclidean, Metric::Manhattan, Metric::Chebyshev] {
+                    for eps in [1.0, 2.0, 2.5] {
+                        let (g, t) = match k {
+                            1 => (
+                                later_grid::<1>(&coords, eps, metric, u64::MAX),
+                                later_kd::<1>(&coords, eps, metric, u64::MAX),
+                            ),
+                            2 => (
+                                later_grid::<2>(&coords, eps, metric, u64::MAX),
+                                later_kd::<2>(&coords, eps, metric, u64::MAX),
+                            ),
+                            _ => (
+                                later_grid::<3>(&coords, eps, metric, u64::MAX),
+                                later_kd::<3>(&coords, eps, metric, u64::MAX),
+                            ),
+                        };
+                        let (g, t) = (g.unwrap(), t.unwrap());
+                        assert!(g.iter().map(Vec::len).sum::<usize>() > 0 || range > 1000);
+                        assert_eq!(g, t, "dim {k} n {n} jitter {jitter} {metric:?} eps {eps}");
+                    }
+                }
+            }
+        }
+    }
 }
