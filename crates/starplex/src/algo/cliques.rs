@@ -608,22 +608,15 @@ fn maximal_from_starts(
 /// lexicographically: a counting sort by first vertex, then a sort of each (small) run of
 /// rows sharing it.
 fn sort_rows(flat: Vec<u32>, s: usize, n: usize) -> Vec<u32> {
-    let m = flat.len() / s;
-    let mut start = vec![0u32; n + 1];
-    for r in flat.chunks_exact(s) {
-        start[r[0] as usize + 1] += 1;
-    }
-    for v in 0..n {
-        start[v + 1] += start[v];
-    }
-    let mut idx = vec![0u32; m];
-    let mut next = start.clone();
-    for (i, r) in flat.chunks_exact(s).enumerate() {
-        let f = r[0] as usize;
-        idx[next[f] as usize] = i as u32;
-        next[f] += 1;
-    }
-    drop(next);
+    let by_first = Csr::from_fn(n, |push| {
+        for (i, r) in flat.chunks_exact(s).enumerate() {
+            push(r[0], i as u32);
+        }
+    });
+    let Csr {
+        offsets: start,
+        targets: mut idx,
+    } = by_first;
     let row = |i: u32| &flat[i as usize * s..(i as usize + 1) * s];
     // runs of equal first vertex, sorted in parallel in chunks of whole runs
     let mut runs: Vec<&mut [u32]> = Vec::new();

@@ -826,25 +826,18 @@ fn later_grid<const K: usize>(
         std::array::from_fn(|a| (((p(i)[a] - lo[a]) / side) as usize).min(dims[a] - 1))
     };
     let key = |c: &[usize; K]| c.iter().zip(&dims).fold(0usize, |k, (&x, &d)| k * d + x);
-    // counting sort of the points by cell: each cell's points ascending
+    // the points by cell (a counting sort): each cell's points ascending
     let keys: Vec<u32> = (0..n)
         .into_par_iter()
         .map(|i| key(&cell_of(i)) as u32)
         .collect();
-    let mut start = vec![0u32; total + 1];
-    for &k in &keys {
-        start[k as usize + 1] += 1;
-    }
-    for c in 0..total {
-        start[c + 1] += start[c];
-    }
-    let mut pts = vec![0u32; n];
-    let mut next = start.clone();
-    for (i, &k) in keys.iter().enumerate() {
-        pts[next[k as usize] as usize] = i as u32;
-        next[k as usize] += 1;
-    }
-    drop((keys, next));
+    let by_cell = Csr::from_fn(total, |push| {
+        for (i, &k) in keys.iter().enumerate() {
+            push(k, i as u32);
+        }
+    });
+    drop(keys);
+    let (start, pts) = (&by_cell.offsets[..], &by_cell.targets[..]);
     let e2 = metric.key_of(eps);
     // coordinates in cell order, read contiguously
     let sorted: Vec<[f64; K]> = pts
@@ -853,8 +846,8 @@ fn later_grid<const K: usize>(
         .collect();
     let grid = Grid {
         dims,
-        start: &start,
-        pts: &pts,
+        start,
+        pts,
         sorted: &sorted,
         e2,
     };
