@@ -414,19 +414,6 @@ impl Budget {
     }
 }
 
-/// One start vertex's neighbourhood as a bit matrix: local index i is `local[i]`.
-struct Local {
-    local: Vec<u32>,
-    words: usize,
-    adj: Vec<u64>, // local.len() rows of `words` words
-}
-
-impl Local {
-    fn row(&self, i: usize) -> &[u64] {
-        &self.adj[i * self.words..(i + 1) * self.words]
-    }
-}
-
 /// One chunk's output: one flat array per clique size, and the cliques found since the last
 /// report to the shared budget (reported in batches, so that threads do not write one shared
 /// cache line per clique).
@@ -441,9 +428,9 @@ struct Sink {
 const SINK_BATCH: usize = 1 << 12;
 
 impl Sink {
-    /// Appends `clique`, sorted in place in the flat array (no vector per clique); false once
-    /// the budget is exceeded.
-    fn push(&mut self, clique: &[u32], budget: &Budget) -> bool {
+    /// Appends `clique`, sorted in place in the flat array (no vector per clique); reports to
+    /// the budget every [`SINK_BATCH`] references (which sets its `stop` flag once exceeded).
+    fn push(&mut self, clique: &[u32], budget: &Budget) {
         let s = clique.len();
         if self.by_size.len() <= s {
             self.by_size.resize_with(s + 1, Vec::new);
@@ -454,7 +441,9 @@ impl Sink {
         v[at..].sort_unstable();
         self.unflushed += 1;
         self.unflushed_refs += s;
-        self.unflushed_refs < SINK_BATCH || self.flush(budget)
+        if self.unflushed_refs >= SINK_BATCH {
+            self.flush(budget);
+        }
     }
 
     /// Reports the held-back cliques to the budget; false once it is exceeded.
@@ -677,9 +666,13 @@ struct Start<'a> {
     budget: &'a Budget,
 }
 
+/// A later neighbour with more than this many times the start vertex's degree is searched
+/// by looking each neighbourhood vertex up in its row, not by scanning the row.
+const HUB_RATIO: usize = 16;
+
 thread_local! {
     /// Per-thread scratch of [`Start::fixed`]: the local index of each neighbour of the start
-    /// vertex (`u32::MAX` elsewhere, restored after each start) and the bit rows.
+    /// vertex (`u8::MAX` elsewhere, restored after each start) and the bit rows.
     static SCRATCH: std::cell::RefCell<(Vec<u8>, Vec<u64>)> = const {
         std::cell::RefCell::new((Vec::new(), Vec::new()))
     };
@@ -714,7 +707,17 @@ impl Start<'_> {
             let pos_s: &[u8] = pos;
             for i in ones(&p) {
                 let row: &mut BitRow<W> = (&mut rows[i * W..(i + 1) * W]).try_into().unwrap();
-                for &w in self.g.neighbours(nb[i]) {
+                let nu = self.g.neighbours(nb[i]);
+                if nu.len() > HUB_RATIO * m {
+                    // a hub: look the few neighbourhood vertices up in its long row instead
+                    for (j, w) in nb.iter().enumerate() {
+                        if nu.binary_search(w).is_ok() {
+                            row[j >> 6] |= 1 << (j & 63);
+                        }
+                    }
+                    continue;
+                }
+                for &w in nu {
                     // branch-free: a vertex outside the neighbourhood ORs a zero; j < m <= 64 W
                     // and W is a power of two, so the mask only drops the bounds check
                     let j = pos_s[w as usize];
@@ -785,117 +788,150 @@ impl Start<'_> {
         }
     }
 
-    /// The search for a large neighbourhood: one bit matrix over all of it.
+    /// The search for a large neighbourhood (a hub: many earlier neighbours X, few later ones
+    /// P, at most the degeneracy). Local indices put P first; only P's rows are read from the
+    /// graph (over all of the neighbourhood), and X's rows are kept over P only (their
+    /// transpose), so the matrix is |P| × m bits, not m × m. The candidate and pivot sets live
+    /// in P's words, the excluded set in the whole neighbourhood's.
     fn general(&self, sink: &mut Sink) {
-        let (g, rank, v, limit, budget) = (self.g, self.rank, self.v, self.limit, self.budget);
-        let nb = g.neighbours(v);
-        let rv = rank[v as usize];
-        let m = nb.len();
-        let words = m.div_ceil(64);
-        let mut loc = Local {
-            local: nb.to_vec(),
-            words,
-            adj: vec![0u64; m * words],
-        };
-        // local adjacency by merging sorted rows
-        for i in 0..m {
-            let row = g.neighbours(nb[i]);
-            let (mut a, mut b) = (0usize, 0usize);
-            while a < row.len() && b < m {
-                match row[a].cmp(&nb[b]) {
-                    std::cmp::Ordering::Less => a += 1,
-                    std::cmp::Ordering::Greater => b += 1,
-                    std::cmp::Ordering::Equal => {
-                        loc.adj[i * words + (b >> 6)] |= 1 << (b & 63);
-                        a += 1;
-                        b += 1;
+        let nb = self.g.neighbours(self.v);
+        let rv = self.rank[self.v as usize];
+        let later = |u: &u32| self.rank[*u as usize] > rv;
+        let local: Vec<u32> = nb
+            .iter()
+            .filter(|u| later(u))
+            .chain(nb.iter().filter(|u| !later(u)))
+            .copied()
+            .collect();
+        let (m, np) = (local.len(), nb.iter().filter(|u| later(u)).count());
+        let (wm, wp) = (m.div_ceil(64), np.div_ceil(64));
+        let mut prow = vec![0u64; np * wm];
+        let mut xrow = vec![0u64; m * wp];
+        WIDE_POS.with(|s| {
+            let pos = &mut *s.borrow_mut();
+            if pos.len() < self.g.n_vertices() {
+                pos.resize(self.g.n_vertices(), u32::MAX);
+            }
+            for (i, &u) in local.iter().enumerate() {
+                pos[u as usize] = i as u32;
+            }
+            for i in 0..np {
+                let row = &mut prow[i * wm..(i + 1) * wm];
+                for &w in self.g.neighbours(local[i]) {
+                    let j = pos[w as usize];
+                    if j != u32::MAX {
+                        bit_set(row, j as usize);
                     }
                 }
             }
-        }
-        let mut p: Bits = vec![0; words];
-        let mut x: Bits = vec![0; words];
-        for (i, &u) in nb.iter().enumerate() {
-            if rank[u as usize] > rv {
-                bit_set(&mut p, i);
-            } else {
-                bit_set(&mut x, i);
+            for &u in &local {
+                pos[u as usize] = u32::MAX;
+            }
+        });
+        for i in 0..np {
+            for j in ones(&prow[i * wm..(i + 1) * wm]) {
+                bit_set(&mut xrow[j * wp..(j + 1) * wp], i);
             }
         }
-        let mut r = vec![v];
-        bk_pivot(&loc, &mut r, p, x, limit, budget, sink);
+        let wide = Wide {
+            local: &local,
+            np,
+            wm,
+            wp,
+            prow: &prow,
+            xrow: &xrow,
+        };
+        let mut p = vec![0u64; wp];
+        for i in 0..np {
+            bit_set(&mut p, i);
+        }
+        let mut x = vec![0u64; wm];
+        for j in np..m {
+            bit_set(&mut x, j);
+        }
+        let mut r = vec![self.v];
+        self.bk_wide(&wide, &mut r, p, x, sink);
+    }
+
+    /// Bron–Kerbosch with Tomita's pivot on the rows of [`Start::general`]: `p` over P's
+    /// words, `x` over the whole neighbourhood's.
+    fn bk_wide(&self, w: &Wide, r: &mut Vec<u32>, mut p: Bits, mut x: Bits, sink: &mut Sink) {
+        if self.budget.stop.load(Ordering::Relaxed) {
+            return;
+        }
+        let np: usize = p.iter().map(|q| q.count_ones() as usize).sum();
+        if np == 0 {
+            if x.iter().all(|&q| q == 0) && r.len() <= self.limit {
+                sink.push(r, self.budget);
+            }
+            return;
+        }
+        if r.len() >= self.limit {
+            return; // only larger cliques below
+        }
+        // pivot: the vertex of P ∪ X with the most neighbours in P
+        let (mut best, mut best_n) = (usize::MAX, 0usize);
+        for u in ones(&p).chain(ones(&x)) {
+            let c = and_count(w.in_p(u), &p);
+            if best == usize::MAX || c > best_n {
+                (best, best_n) = (u, c);
+                if c == np {
+                    break;
+                }
+            }
+        }
+        let pr = w.in_p(best);
+        let cand: Bits = p.iter().zip(pr).map(|(a, b)| a & !b).collect();
+        for v in ones(&cand) {
+            let row = &w.prow[v * w.wm..(v + 1) * w.wm];
+            let p2: Bits = p.iter().zip(row).map(|(a, b)| a & b).collect();
+            let x2: Bits = x.iter().zip(row).map(|(a, b)| a & b).collect();
+            r.push(w.local[v]);
+            self.bk_wide(w, r, p2, x2, sink);
+            r.pop();
+            bit_clear(&mut p, v);
+            bit_set(&mut x, v);
+        }
     }
 }
 
-/// Bron–Kerbosch with Tomita's pivot on the local bit matrix. Cliques of more than `limit`
-/// vertices are not reported (nor searched for).
-fn bk_pivot(
-    loc: &Local,
-    r: &mut Vec<u32>,
-    mut p: Bits,
-    mut x: Bits,
-    limit: usize,
-    budget: &Budget,
-    sink: &mut Sink,
-) {
-    if budget.stop.load(Ordering::Relaxed) {
-        return;
-    }
-    let p_empty = p.iter().all(|&w| w == 0);
-    if p_empty {
-        if x.iter().all(|&w| w == 0) && r.len() <= limit {
-            sink.push(r, budget);
-        }
-        return;
-    }
-    if r.len() >= limit {
-        return; // only larger cliques below
-    }
-    // pivot: the vertex of P ∪ X with the most neighbours in P
-    let mut best = usize::MAX;
-    let mut best_n = -1i64;
-    for (a, b) in [(&p, true), (&x, false)] {
-        let _ = b;
-        for u in ones(a) {
-            let c: u32 = loc
-                .row(u)
-                .iter()
-                .zip(p.iter())
-                .map(|(r, q)| (r & q).count_ones())
-                .sum();
-            if c as i64 > best_n {
-                best_n = c as i64;
-                best = u;
-            }
+thread_local! {
+    /// Per-thread scratch of [`Start::general`]: the local index of each neighbour of the
+    /// start vertex (`u32::MAX` elsewhere, restored after each start).
+    static WIDE_POS: std::cell::RefCell<Vec<u32>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The rows of a large neighbourhood (see [`Start::general`]).
+struct Wide<'a> {
+    /// Local index -> vertex: P (the later neighbours) first.
+    local: &'a [u32],
+    np: usize,
+    /// Words of a row over the whole neighbourhood, and over P.
+    wm: usize,
+    wp: usize,
+    /// P's rows, `wm` words each.
+    prow: &'a [u64],
+    /// Every vertex's neighbours in P, `wp` words each (P's own rows: their first words).
+    xrow: &'a [u64],
+}
+
+impl Wide<'_> {
+    /// The neighbours of local vertex `u` in P, as `wp` words.
+    fn in_p(&self, u: usize) -> &[u64] {
+        if u < self.np {
+            &self.prow[u * self.wm..u * self.wm + self.wp]
+        } else {
+            &self.xrow[u * self.wp..(u + 1) * self.wp]
         }
     }
-    let pivot_row = loc.row(best);
-    let cand: Vec<usize> = p
-        .iter()
-        .zip(pivot_row)
-        .enumerate()
-        .flat_map(|(w, (&q, &nr))| {
-            let mut m = q & !nr;
-            std::iter::from_fn(move || {
-                if m == 0 {
-                    return None;
-                }
-                let t = m.trailing_zeros() as usize;
-                m &= m - 1;
-                Some(w * 64 + t)
-            })
-        })
-        .collect();
-    for w in cand {
-        let row = loc.row(w);
-        let p2: Bits = p.iter().zip(row).map(|(a, b)| a & b).collect();
-        let x2: Bits = x.iter().zip(row).map(|(a, b)| a & b).collect();
-        r.push(loc.local[w]);
-        bk_pivot(loc, r, p2, x2, limit, budget, sink);
-        r.pop();
-        bit_clear(&mut p, w);
-        bit_set(&mut x, w);
-    }
+}
+
+/// |a ∩ b| of two bit sets of the same width.
+fn and_count(a: &[u64], b: &[u64]) -> usize {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x & y).count_ones() as usize)
+        .sum()
 }
 
 /// Where the (K+1)-cliques go: counted, or written.
@@ -1505,6 +1541,29 @@ mod tests {
         let want = reference_maximal(n, &e);
         assert!(want.len() > 2000 && want.iter().any(|c| c.len() >= 41));
         assert_eq!(got, want);
+        // a wide start (vertex 1, 300 neighbours) whose later neighbour 0 is a hub of more
+        // than 16 times its degree: the hub's row is searched, not scanned
+        let n = 5000usize;
+        let mut e = random_graph(n, 0.001, 8);
+        e.retain(|&(a, b)| a.min(b) > 1);
+        e.extend((2..n as u32).map(|u| (0, u)));
+        let ring: Vec<u32> = (2..302u32).map(|u| u * 13 % n as u32).collect();
+        e.extend(ring.iter().map(|&u| (1, u)));
+        e.push((0, 1));
+        e.extend(
+            ring[..12]
+                .iter()
+                .enumerate()
+                .flat_map(|(i, &a)| ring[i + 1..12].iter().map(move |&b| (a, b))),
+        );
+        let g = Graph::from_edges(n, &e).unwrap();
+        assert!(g.neighbours(1).len() > 254 && g.neighbours(0).len() > 16 * 301);
+        let got = maximal_cliques(&g, &CliqueOptions::default())
+            .unwrap()
+            .to_vecs();
+        let want = reference_maximal(n, &e);
+        assert!(want.iter().any(|c| c.len() == 14));
+        assert_eq!(got, want);
         // G(150, 0.5): every start has a two-word neighbourhood
         let e = random_graph(150, 0.5, 4);
         let g = Graph::from_edges(150, &e).unwrap();
@@ -1512,6 +1571,53 @@ mod tests {
             .unwrap()
             .to_vecs();
         assert_eq!(got, reference_maximal(150, &e));
+    }
+
+    /// The wide search from a start whose 300 neighbours are all later (a rank that puts it
+    /// first; one of them a hub adjacent to everything, others forming a K12): every maximal
+    /// clique through the start, against the set-based reference.
+    #[test]
+    fn wide_start_with_every_neighbour_later_equals_the_reference() {
+        let n = 3000usize;
+        let mut e = random_graph(n, 0.003, 8);
+        e.retain(|&(a, b)| a.min(b) > 1);
+        e.extend((2..n as u32).map(|u| (0, u)));
+        let ring: Vec<u32> = (2..302u32).map(|u| u * 7 % n as u32).collect();
+        e.extend(ring.iter().map(|&u| (1, u)));
+        e.push((0, 1));
+        for (i, &a) in ring[..12].iter().enumerate() {
+            e.extend(ring[i + 1..12].iter().map(|&b| (a, b)));
+        }
+        let g = Graph::from_edges(n, &e).unwrap();
+        assert!(g.neighbours(1).len() > 254);
+        let mut rank: Vec<u32> = (1..=n as u32).collect();
+        rank[1] = 0;
+        let budget = Budget {
+            refs: AtomicU64::new(0),
+            found: AtomicU64::new(0),
+            max_refs: u64::MAX,
+            stop: AtomicBool::new(false),
+        };
+        let mut sink = Sink::default();
+        let start = Start {
+            g: &g,
+            rank: &rank,
+            v: 1,
+            limit: usize::MAX,
+            budget: &budget,
+        };
+        start.general(&mut sink);
+        let mut got: Vec<Vec<u32>> = Vec::new();
+        for (s, flat) in Sink::concat(vec![sink]).iter().enumerate().skip(1) {
+            got.extend(flat.chunks_exact(s).map(|c| c.to_vec()));
+        }
+        got.sort_by(|a, b| (a.len(), a).cmp(&(b.len(), b)));
+        let want: Vec<Vec<u32>> = reference_maximal(n, &e)
+            .into_iter()
+            .filter(|c| c.contains(&1))
+            .collect();
+        assert!(want.len() > 250 && want.iter().any(|c| c.len() == 14));
+        assert_eq!(got, want);
     }
 
     #[test]
