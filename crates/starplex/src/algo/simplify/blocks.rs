@@ -31,6 +31,11 @@ pub const BLOCK_VERTICES: usize = 16_384;
 /// the result does not depend on it).
 const WAVE: usize = 8;
 
+/// A part runs another round of its own while its last one refused at most this many edges
+/// per contraction; past that (the dense end of a volume mesh), the rounds over the whole
+/// structure go on, which test fewer edges that are refused again.
+const RETRY: u64 = 2;
+
 /// A partition of the vertices into blocks (see the [module](self)).
 ///
 /// ```
@@ -239,10 +244,11 @@ impl Blocks {
     }
 
     /// The block sweeps of one round: every block's inner edges contracted on its own part, in
-    /// parallel waves, pasted back in block order (skipping the edges refused last round whose
-    /// stars did not change since, and recording the stars changed in `changes`). Marks the
-    /// vertices contracted (`touched`) and the inner vertices of the blocks swept to the end
-    /// (`tried`); `in_part` is a cleared bitset over the top slots.
+    /// rounds of its own while they pay (see [`RETRY`]) and until it meets its share of a count
+    /// target, in parallel waves, pasted back in block order (skipping the edges refused
+    /// before that no contraction since can have changed, and recording what changed in
+    /// `changes`). Marks the vertices contracted (`touched`) and the inner vertices of the
+    /// blocks swept to the end (`tried`); `in_part` is a cleared bitset over the top slots.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn sweep_parts(
         &self,
@@ -288,20 +294,37 @@ impl Blocks {
                         max_tops.is_none_or(|m| bound <= m)
                             && max_vertices.is_none_or(|m| verts0 - p.n_alive_vertices() < m)
                     };
-                    let order = 0..verts.len() as u32;
                     let mut ch = changes_now.restrict(verts);
-                    let complete = s.sweep(
-                        &mut part.w,
-                        order,
-                        &mut local,
-                        None,
-                        &mut ch,
-                        &mut st,
-                        allow,
-                        |_| false,
-                    );
-                    local.difference_with(&frozen);
-                    (part, local, st, complete, ch)
+                    // rounds on the part while they pay: one cut and one paste for all
+                    let mut contracted = FixedBitSet::with_capacity(verts.len());
+                    let mut changed = [
+                        FixedBitSet::with_capacity(verts.len()),
+                        FixedBitSet::with_capacity(verts.len()),
+                    ];
+                    let complete = loop {
+                        let (before, refused) = (st.n_contractions, st.n_refused);
+                        let complete = s.sweep(
+                            &mut part.w,
+                            0..verts.len() as u32,
+                            &mut local,
+                            None,
+                            &mut ch,
+                            &mut st,
+                            &allow,
+                            |_| false,
+                        );
+                        local.difference_with(&frozen);
+                        contracted.union_with(&local);
+                        let made = st.n_contractions - before;
+                        // another round while it pays: most of the tests still contract
+                        if !complete || made == 0 || st.n_refused - refused > RETRY * made {
+                            break complete;
+                        }
+                        ch.next_round_into(&mut changed);
+                        local.clone_from(&frozen);
+                    };
+                    ch.add_changed(&changed);
+                    (part, contracted, st, complete, ch)
                 })
                 .collect();
             for (&x, (part, contracted, st, complete, ch)) in wave.iter().zip(done) {

@@ -151,8 +151,8 @@ pub fn contract_homology(
 /// [`contract_homology`] over blocks of vertices (for instance the leaves of a Stellar tree,
 /// [`Blocks::from_stellar`]), both cores at work. Each round first sweeps every block on its
 /// own, in parallel: a block contracts only edges whose two stars lie inside it (its *inner*
-/// vertices), on a part cut out of the structure, in increasing vertex id order; the parts are
-/// pasted back in block order. Then one sweep over all the vertices, in id order, takes the
+/// vertices), on a part cut out of the structure, in increasing vertex id order, in sweeps of
+/// its own while most of their tests contract; the parts are pasted back in block order. Then one sweep over all the vertices, in id order, takes the
 /// edges across blocks (and the vertices left untouched). With a count target, each block gets
 /// a share of what is left to remove in proportion to its size and stops before a contraction
 /// that could exceed it, so the sequential sweep stops exactly at the target. The result
@@ -226,59 +226,125 @@ pub fn contract_homology_blocks(
     stats
 }
 
-/// The vertices whose star changed in the last round and in this one, so that a sweep skips
-/// the edges it tested and refused last round: the link condition (and the region test) of
-/// `ab` reads only the stars of `a` and `b`, and every edge of a vertex left untouched by a
-/// round was tested in it. An edge whose two ends kept their stars since the last round is
-/// refused again, so skipping it changes nothing but the time.
-pub(super) struct Changes {
-    /// Changed in the last round (every vertex before the first).
+/// Per vertex, a flag set in the last round or in this one.
+#[derive(Clone)]
+struct Window {
+    /// Set in the last round.
     prev: FixedBitSet,
-    /// Changed in this round.
+    /// Set in this round.
     cur: FixedBitSet,
 }
 
-impl Changes {
-    /// Before the first round: every vertex counts as changed.
-    pub(super) fn all(n: usize) -> Changes {
+impl Window {
+    fn new(n: usize, set: bool) -> Window {
         let mut prev = FixedBitSet::with_capacity(n);
-        prev.insert_range(..);
-        Changes {
+        if set {
+            prev.insert_range(..);
+        }
+        Window {
             prev,
             cur: FixedBitSet::with_capacity(n),
+        }
+    }
+
+    fn has(&self, v: u32) -> bool {
+        self.prev.contains(v as usize) || self.cur.contains(v as usize)
+    }
+
+    fn restrict(&self, verts: &[u32]) -> Window {
+        let mut w = Window::new(verts.len(), false);
+        for (i, &v) in verts.iter().enumerate() {
+            w.prev.set(i, self.has(v));
+        }
+        w
+    }
+
+    fn absorb(&mut self, part: &Window, verts: &[u32]) {
+        for i in part.cur.ones() {
+            self.cur.insert(verts[i] as usize);
+        }
+    }
+
+    fn next_round(&mut self) {
+        std::mem::swap(&mut self.prev, &mut self.cur);
+        self.cur.clear();
+    }
+}
+
+/// What the last round and this one changed, so that a sweep skips the edges it tested and
+/// refused last round that no contraction since can have changed. The link condition (and
+/// the region test) of `xy` reads the complex around `x` and `y` only, and contracting `t`
+/// into `s` replaces the simplices through `t` by their images through `s`: it changes the
+/// links of `t`'s neighbours (`s` among them) and of `t` (*changed*), and an element of
+/// `Lk(x) ∩ Lk(y)` or of `Lk(xy)` only when `x` and `y` both lie in `{s} ∪ N(s) ∪ N(t)`
+/// (*near*: a changed element of `Lk(x)` passes through `s` or `t`, and is one of `Lk(y)`
+/// only if `y` is adjacent to it). An edge is tested again only when one of its ends changed
+/// and both are near, in the last round or in this one; every edge of a vertex was tested in
+/// the round before (or skipped by this same rule), so skipping changes nothing but the time.
+pub(super) struct Changes {
+    changed: Window,
+    near: Window,
+}
+
+impl Changes {
+    /// Before the first round: every vertex counts as changed and near.
+    pub(super) fn all(n: usize) -> Changes {
+        Changes {
+            changed: Window::new(n, true),
+            near: Window::new(n, true),
         }
     }
 
     /// The changes of the vertices `verts` (a block's part numbering: vertex `i` is
     /// `verts[i]`), this round's empty.
     pub(super) fn restrict(&self, verts: &[u32]) -> Changes {
-        let mut prev = FixedBitSet::with_capacity(verts.len());
-        for (i, &v) in verts.iter().enumerate() {
-            prev.set(
-                i,
-                self.prev.contains(v as usize) || self.cur.contains(v as usize),
-            );
-        }
         Changes {
-            prev,
-            cur: FixedBitSet::with_capacity(verts.len()),
+            changed: self.changed.restrict(verts),
+            near: self.near.restrict(verts),
         }
     }
 
     /// Adds the changes a part made this round (vertex `i` of the part is `verts[i]`).
     pub(super) fn absorb(&mut self, part: &Changes, verts: &[u32]) {
-        for i in part.cur.ones() {
-            self.cur.insert(verts[i] as usize);
+        self.changed.absorb(&part.changed, verts);
+        self.near.absorb(&part.near, verts);
+    }
+
+    /// Ends a round of a part's own rounds: this round's changes become the last round's and
+    /// are added to `acc` (what the part changed over all its rounds).
+    pub(super) fn next_round_into(&mut self, acc: &mut [FixedBitSet; 2]) {
+        acc[0].union_with(&self.changed.cur);
+        acc[1].union_with(&self.near.cur);
+        self.next_round();
+    }
+
+    /// Counts the changes `acc` (of [`next_round_into`](Self::next_round_into)) as made in
+    /// this round.
+    pub(super) fn add_changed(&mut self, acc: &[FixedBitSet; 2]) {
+        self.changed.cur.union_with(&acc[0]);
+        self.near.cur.union_with(&acc[1]);
+    }
+
+    /// Records the contraction of `t` into `s`: `nb_t` and `nb_s` are their neighbours
+    /// before it.
+    fn record(&mut self, s: u32, t: u32, nb_s: &[u32], nb_t: &[u32]) {
+        for &x in nb_t.iter().chain([&t]) {
+            self.changed.cur.insert(x as usize);
+            self.near.cur.insert(x as usize);
+        }
+        for &x in nb_s.iter().chain([&s]) {
+            self.near.cur.insert(x as usize);
         }
     }
 
-    fn unchanged(&self, v: u32) -> bool {
-        !self.prev.contains(v as usize) && !self.cur.contains(v as usize)
+    /// False when the edge `ab`, refused before, cannot have changed since.
+    fn may_differ(&self, a: u32, b: u32) -> bool {
+        (self.changed.has(a) || self.changed.has(b)) && self.near.has(a) && self.near.has(b)
     }
 
     fn next_round(&mut self) {
-        std::mem::swap(&mut self.prev, &mut self.cur);
-        self.cur.clear();
+        self.changed.next_round();
+        self.near.next_round();
     }
 }
 
@@ -288,6 +354,7 @@ pub(super) struct Sweeper<'a> {
     progress: Option<&'a Progress>,
     scratch: LinkScratch,
     nb: Vec<u32>,
+    nb_s: Vec<u32>,
     nb_t: Vec<u32>,
 }
 
@@ -298,6 +365,7 @@ impl<'a> Sweeper<'a> {
             progress,
             scratch: LinkScratch::default(),
             nb: Vec::new(),
+            nb_s: Vec::new(),
             nb_t: Vec::new(),
         }
     }
@@ -337,7 +405,7 @@ impl<'a> Sweeper<'a> {
                 let b = self.nb[i];
                 if touched.contains(b as usize)
                     || (a_tried && was_tried(b))
-                    || (changes.unchanged(a) && changes.unchanged(b))
+                    || !changes.may_differ(a, b)
                 {
                     continue;
                 }
@@ -353,11 +421,15 @@ impl<'a> Sweeper<'a> {
                     if !allow(w, s, t) {
                         return false;
                     }
-                    // the stars that change: those of t's neighbours (s among them) and t's
+                    // what the contraction changes (see `Changes`)
                     w.neighbours_into(t, &mut self.nb_t);
-                    for &x in self.nb_t.iter().chain([&t]) {
-                        changes.cur.insert(x as usize);
-                    }
+                    let nb_s = if s == a {
+                        &self.nb
+                    } else {
+                        w.neighbours_into(s, &mut self.nb_s);
+                        &self.nb_s
+                    };
+                    changes.record(s, t, nb_s, &self.nb_t);
                     w.contract(s, t);
                     touched.insert(a as usize);
                     touched.insert(b as usize);
