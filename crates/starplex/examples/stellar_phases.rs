@@ -3,7 +3,7 @@
 //! medians of `REPS` runs on the current rayon pool (`RAYON_NUM_THREADS=1` for one thread).
 //!
 //! `cargo run --release --example stellar_phases -- FILE KV [REPS]`; with `ONLY=iastar`
-//! (or `pfaces1`, `pfaces2`, `vt`, `validate`) it runs that phase REPS times and prints
+//! (or `pfaces1`, `pfaces2`, `vt`, `vtall`, `validate`) it runs that phase REPS times and prints
 //! nothing, for `perf record`.
 use starplex::io::{self, ReadOptions};
 use starplex::stellar::{StellarOptions, StellarTree};
@@ -49,6 +49,11 @@ fn main() {
                 "vt" => {
                     std::hint::black_box(t.vt_all());
                 }
+                "vtall" => {
+                    t.par_for_each_vt(|_, c| {
+                        std::hint::black_box(c);
+                    });
+                }
                 "validate" => {
                     std::hint::black_box(t.validate());
                 }
@@ -69,6 +74,11 @@ fn main() {
             s.fetch_add(c.len() as u64, std::sync::atomic::Ordering::Relaxed);
         });
         std::hint::black_box(s);
+    });
+    time("vt_all (black_box)", &mut || {
+        t.par_for_each_vt(|_, c| {
+            std::hint::black_box(c);
+        });
     });
     let d = t.dim().unwrap_or(0);
     let counts: Vec<u64> = (1..d).map(|p| t.count_p_faces(p).unwrap_or(0)).collect();

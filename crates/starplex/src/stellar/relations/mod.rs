@@ -51,25 +51,6 @@ struct VtRows {
     rows: Vec<u32>,
 }
 
-/// Sorts a nearly sorted slice: insertion sort (O(n + inversions)) when short, else the
-/// library sort.
-#[inline]
-fn insertion_sort(v: &mut [u32]) {
-    if v.len() > 48 {
-        v.sort_unstable();
-        return;
-    }
-    for i in 1..v.len() {
-        let x = v[i];
-        let mut j = i;
-        while j > 0 && v[j - 1] > x {
-            v[j] = v[j - 1];
-            j -= 1;
-        }
-        v[j] = x;
-    }
-}
-
 impl StellarTree {
     /// Distinct kinds of the top cells.
     pub(crate) fn kinds(&self) -> Vec<CellKind> {
@@ -119,8 +100,8 @@ impl StellarTree {
 
     /// Calls `f(v, cells)` for every tree vertex `v` of leaf `l`, cells = VT(v) in input ids,
     /// sorted. The rows are bucketed straight in input ids (`buf` holds the decoded cells and
-    /// the rows); each is nearly sorted (a few increasing runs: cells are reindexed by leaf
-    /// tuple, input order inside), so an insertion sort finishes it.
+    /// the rows); each is made of a few increasing runs (cells are reindexed by leaf tuple,
+    /// input order inside), sorted then.
     fn leaf_vt_rows(&self, l: LeafId, buf: &mut VtRows, mut f: impl FnMut(u32, &[u32])) {
         let r = self.leaf_vertices(l);
         buf.cells.clear();
@@ -136,7 +117,9 @@ impl StellarTree {
         );
         for (i, v) in r.enumerate() {
             let row = &mut buf.rows[buf.off[i] as usize..buf.off[i + 1] as usize];
-            insertion_sort(row);
+            // a few increasing runs, a few to a few dozen cells: the library's small-sort
+            // network beats an insertion sort (16.0 vs 18.7 ms for tet_armadillo_m's rows)
+            row.sort_unstable();
             f(v, row);
         }
     }
