@@ -332,7 +332,12 @@ pub fn simplify(
             ));
         }
     }
-    let mut w = TopSimplices::from_complex(k)?;
+    // the working structure and homology mode's blocks both read only `k`: built side by side
+    let (w, blocks) = rayon::join(
+        || TopSimplices::from_complex(k),
+        || (mode == Mode::Homology).then(|| homology_blocks(k)),
+    );
+    let mut w = w?;
     for &v in &opts.keep_vertices {
         if v as usize >= k.n_vertices() {
             return Err(SimplifyError::BadVertex {
@@ -368,7 +373,7 @@ pub fn simplify(
             } else {
                 link_condition::LinkMode::Homology
             };
-            let blocks = homology_blocks(k);
+            let blocks = blocks.unwrap_or_else(|| homology_blocks(k));
             let s = contract::contract_homology_blocks(&mut w, &target, lm, progress, &blocks);
             report.n_contractions = s.n_contractions;
             report.rounds = s.rounds;
