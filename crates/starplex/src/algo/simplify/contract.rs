@@ -152,8 +152,9 @@ pub fn contract_homology(
 /// [`Blocks::from_stellar`]), both cores at work. Each round first sweeps every block on its
 /// own, in parallel: a block contracts only edges whose two stars lie inside it (its *inner*
 /// vertices), on a part cut out of the structure, in increasing vertex id order, in sweeps of
-/// its own while most of their tests contract; the parts are pasted back in block order. Then one sweep over all the vertices, in id order, takes the
-/// edges across blocks (and the vertices left untouched). With a count target, each block gets
+/// its own while most of their tests contract; the parts are pasted back in block order.
+/// Then one sweep over all the vertices, in id order, takes the edges across blocks (and the
+/// vertices left untouched). With a count target, each block gets
 /// a share of what is left to remove in proportion to its size and stops before a contraction
 /// that could exceed it, so the sequential sweep stops exactly at the target. The result
 /// depends on the blocks, never on the number of threads; with one block it is
@@ -272,15 +273,19 @@ impl Window {
 }
 
 /// What the last round and this one changed, so that a sweep skips the edges it tested and
-/// refused last round that no contraction since can have changed. The link condition (and
-/// the region test) of `xy` reads the complex around `x` and `y` only, and contracting `t`
-/// into `s` replaces the simplices through `t` by their images through `s`: it changes the
-/// links of `t`'s neighbours (`s` among them) and of `t` (*changed*), and an element of
-/// `Lk(x) ∩ Lk(y)` or of `Lk(xy)` only when `x` and `y` both lie in `{s} ∪ N(s) ∪ N(t)`
-/// (*near*: a changed element of `Lk(x)` passes through `s` or `t`, and is one of `Lk(y)`
-/// only if `y` is adjacent to it). An edge is tested again only when one of its ends changed
-/// and both are near, in the last round or in this one; every edge of a vertex was tested in
-/// the round before (or skipped by this same rule), so skipping changes nothing but the time.
+/// refused before that no contraction since can have changed.
+///
+/// Contracting `t` into `s` replaces the simplices through `t` by their images through `s`.
+/// It changes the links of `t` and of its neighbours, `s` among them (*changed*). It changes
+/// an element of `Lk(x) ∩ Lk(y)` or of `Lk(xy)` only when `x` and `y` both lie in
+/// `{s} ∪ N(s) ∪ N(t)` (*near*): a changed element of `Lk(x)` passes through `s` or `t`, and
+/// is one of `Lk(y)` only if `y` is adjacent to `s` or `t`. The same holds in the complex closed
+/// by a cone over its boundary ([`LinkMode::Manifold`], and the region test within a label's
+/// region), whose apex adds no edge between real vertices.
+///
+/// So an edge is tested again only when one of its ends changed and both are near, in the last
+/// round or in this one. Every edge was tested in the round before, or skipped by this same
+/// rule, so skipping changes nothing but the time.
 pub(super) struct Changes {
     changed: Window,
     near: Window,
