@@ -3,7 +3,7 @@
 //! medians of `REPS` runs on the current rayon pool (`RAYON_NUM_THREADS=1` for one thread).
 //!
 //! `cargo run --release --example stellar_phases -- FILE KV [REPS]`; with `ONLY=iastar`
-//! (or `pfaces1`, `pfaces2`, `vt`, `vtall`, `validate`) it runs that phase REPS times and prints
+//! (or `pfaces1`, `pfaces2`, `vt`, `vtall`, `validate`, `build`) it runs that phase REPS times and prints
 //! nothing, for `perf record`.
 use starplex::io::{self, ReadOptions};
 use starplex::stellar::{StellarOptions, StellarTree};
@@ -56,6 +56,9 @@ fn main() {
                 }
                 "validate" => {
                     std::hint::black_box(t.validate());
+                }
+                "build" => {
+                    std::hint::black_box(StellarTree::build(&r.complex, &opts).expect("build"));
                 }
                 _ => panic!("ONLY"),
             }
