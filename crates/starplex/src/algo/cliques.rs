@@ -739,6 +739,23 @@ impl Start<'_> {
         });
     }
 
+    /// The start of a Bron–Kerbosch level, both searches' (`np` = |P|, `x` the excluded set):
+    /// true when it ends here — stopped by the budget, or P empty (R is reported when X is
+    /// empty too and R is within the size limit), or R at the size limit (only larger cliques
+    /// below).
+    fn ends_here(&self, r: &[u32], np: usize, x: &[u64], sink: &mut Sink) -> bool {
+        if self.budget.stop.load(Ordering::Relaxed) {
+            return true;
+        }
+        if np == 0 {
+            if x.iter().all(|&q| q == 0) && r.len() <= self.limit {
+                sink.push(r, self.budget);
+            }
+            return true;
+        }
+        r.len() >= self.limit
+    }
+
     /// Bron–Kerbosch with Tomita's pivot on `W`-word rows (see [`Start::fixed`]). Cliques of
     /// more than `limit` vertices are not reported (nor searched for).
     fn bk_fixed<const W: usize>(
@@ -751,18 +768,9 @@ impl Start<'_> {
         sink: &mut Sink,
     ) {
         let row = |i: usize| -> BitRow<W> { std::array::from_fn(|k| rows[i * W + k]) };
-        if self.budget.stop.load(Ordering::Relaxed) {
-            return;
-        }
         let np = row_count(&p);
-        if np == 0 {
-            if x.iter().all(|&w| w == 0) && r.len() <= self.limit {
-                sink.push(r, self.budget);
-            }
+        if self.ends_here(r, np, &x, sink) {
             return;
-        }
-        if r.len() >= self.limit {
-            return; // only larger cliques below
         }
         // pivot: the vertex of P ∪ X with the most neighbours in P
         let px: BitRow<W> = std::array::from_fn(|k| p[k] | x[k]);
@@ -856,18 +864,9 @@ impl Start<'_> {
     /// Bron–Kerbosch with Tomita's pivot on the rows of [`Start::general`]: `p` over P's
     /// words, `x` over the whole neighbourhood's.
     fn bk_wide(&self, w: &Wide, r: &mut Vec<u32>, mut p: Bits, mut x: Bits, sink: &mut Sink) {
-        if self.budget.stop.load(Ordering::Relaxed) {
-            return;
-        }
         let np: usize = p.iter().map(|q| q.count_ones() as usize).sum();
-        if np == 0 {
-            if x.iter().all(|&q| q == 0) && r.len() <= self.limit {
-                sink.push(r, self.budget);
-            }
+        if self.ends_here(r, np, &x, sink) {
             return;
-        }
-        if r.len() >= self.limit {
-            return; // only larger cliques below
         }
         // pivot: the vertex of P ∪ X with the most neighbours in P
         let (mut best, mut best_n) = (usize::MAX, 0usize);

@@ -825,11 +825,10 @@ fn later_grid<const K: usize>(
     let cell_of = |i: usize| -> [usize; K] {
         std::array::from_fn(|a| (((p(i)[a] - lo[a]) / side) as usize).min(dims[a] - 1))
     };
-    let key = |c: &[usize; K]| c.iter().zip(&dims).fold(0usize, |k, (&x, &d)| k * d + x);
     // the points by cell (a counting sort): each cell's points ascending
     let keys: Vec<u32> = (0..n)
         .into_par_iter()
-        .map(|i| key(&cell_of(i)) as u32)
+        .map(|i| cell_key(&cell_of(i), &dims) as u32)
         .collect();
     let by_cell = Csr::from_fn(total, |push| {
         for (i, &k) in keys.iter().enumerate() {
@@ -870,6 +869,11 @@ fn later_grid<const K: usize>(
     }
 }
 
+/// The index of grid cell `at` in a grid of `dims` cells (row-major).
+fn cell_key<const K: usize>(at: &[usize; K], dims: &[usize; K]) -> usize {
+    at.iter().zip(dims).fold(0, |k, (&x, &d)| k * d + x)
+}
+
 /// The cells of [`later_grid`]: `pts[start[c]..start[c + 1]]` are cell `c`'s points (ascending),
 /// `sorted` their coordinates in the same order.
 struct Grid<'a, const K: usize> {
@@ -903,10 +907,7 @@ impl<const K: usize> Grid<'_, K> {
                     }
                     at[a] = x;
                 }
-                let k = at
-                    .iter()
-                    .zip(&self.dims)
-                    .fold(0usize, |k, (&x, &d)| k * d + x);
+                let k = cell_key(&at, &self.dims);
                 let (s, e) = (self.start[k] as usize, self.start[k + 1] as usize);
                 for (&j, b) in self.pts[s..e].iter().zip(&self.sorted[s..e]) {
                     if j as usize > i && key(&q, b) <= self.e2 {
@@ -1226,13 +1227,7 @@ mod tests {
     /// (the spread-out cloud takes the kd-tree inside `later_grid` itself).
     #[test]
     fn grid_rows_equal_kd_rows() {
-        let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut rng = crate::testkit::XorShift::new(0x9e37_79b9_7f4a_7c15);
         for k in 1..=3usize {
             for (n, range, jitter) in [
                 (3000, 12u64, false),
@@ -1241,9 +1236,9 @@ mod tests {
             ] {
                 let coords: Vec<f64> = (0..n * k)
                     .map(|_| {
-                        let x = (next() % range) as f64;
+                        let x = rng.below(range) as f64;
                         if jitter {
-                            x + (next() % 1000) as f64 / 1000.0
+                            x + rng.below(1000) as f64 / 1000.0
                         } else {
                             x
                         }
