@@ -1,8 +1,12 @@
 //! Homology-preserving edge contraction (`--mode homology`): in rounds, every vertex (in id
-//! order) absorbs the first neighbour (in id order) whose edge passes the link condition; a
-//! vertex takes part in at most one contraction per round, so a round spreads the work over the
-//! complex instead of growing one star. Rounds repeat until nothing contracts or the target is
-//! reached. Any dimension, pure or not, manifold or not; the result is deterministic.
+//! order) not yet touched this round absorbs, one after the other, each of its neighbours (as
+//! they were when the round reached it, in id order) that is not touched either and whose edge
+//! passes the link condition; both ends become touched. A survivor grows by one ring per round,
+//! so a round spreads the work over the complex instead of growing one star without bound, yet
+//! clusters around survivors like the reference's queue of edges per leaf (absorbing only the
+//! first neighbour stopped a tetrahedral ball at 6.4x more vertices, and took 1.6x longer).
+//! Rounds repeat until nothing contracts or the target is reached. Any dimension, pure or not,
+//! manifold or not; the result is deterministic.
 //!
 //! ```
 //! use starplex::algo::simplify::{TopSimplices, Target, contract::contract_homology};
@@ -380,8 +384,9 @@ impl<'a> Sweeper<'a> {
         Sweeper::new(self.mode, self.progress)
     }
 
-    /// Every vertex of `order` not `touched` absorbs (or is absorbed by) its first untouched
-    /// neighbour, in id order, whose edge passes the link condition; both ends become touched.
+    /// Every vertex `a` of `order` not `touched` absorbs each untouched neighbour (of those it
+    /// had when the sweep reached it, in id order) whose edge passes the link condition, both
+    /// ends becoming touched; a locked neighbour absorbs `a` instead, which ends its turn.
     /// A pair of two `tried` vertices is skipped (already tried this round), and so is a pair
     /// whose two stars are as when it was refused last round (`changes`, which records the
     /// stars each contraction changes). `allow(w, s, t)`
@@ -428,13 +433,8 @@ impl<'a> Sweeper<'a> {
                     }
                     // what the contraction changes (see `Changes`)
                     w.neighbours_into(t, &mut self.nb_t);
-                    let nb_s = if s == a {
-                        &self.nb
-                    } else {
-                        w.neighbours_into(s, &mut self.nb_s);
-                        &self.nb_s
-                    };
-                    changes.record(s, t, nb_s, &self.nb_t);
+                    w.neighbours_into(s, &mut self.nb_s);
+                    changes.record(s, t, &self.nb_s, &self.nb_t);
                     w.contract(s, t);
                     touched.insert(a as usize);
                     touched.insert(b as usize);
@@ -445,7 +445,9 @@ impl<'a> Sweeper<'a> {
                     if done(w) {
                         return false;
                     }
-                    break;
+                    if s != a {
+                        break; // `a` was absorbed
+                    }
                 }
                 stats.n_refused += 1;
             }
