@@ -135,8 +135,8 @@ pub struct ContractStats {
 /// use starplex::algo::simplify::link_condition::LinkMode;
 /// // a path of 5 vertices contracts to one vertex (contractible), a circle to a triangle
 /// let mut w = TopSimplices::from_tops(5, &[vec![0, 1], vec![1, 2], vec![2, 3], vec![3, 4]]).unwrap();
-/// contract_homology(&mut w, &Target::default(), LinkMode::Homology, None);
-/// assert_eq!(w.n_alive_vertices(), 1);
+/// let s = contract_homology(&mut w, &Target::default(), LinkMode::Homology, None);
+/// assert_eq!((w.n_alive_vertices(), s.n_contractions, s.n_refused), (1, 4, 0));
 /// let circle: Vec<Vec<u32>> = (0..6).map(|i| vec![i, (i + 1) % 6]).collect();
 /// let mut w = TopSimplices::from_tops(6, &circle).unwrap();
 /// contract_homology(&mut w, &Target::default(), LinkMode::Homology, None);
@@ -448,6 +448,7 @@ impl<'a> Sweeper<'a> {
                     if s != a {
                         break; // `a` was absorbed
                     }
+                    continue;
                 }
                 stats.n_refused += 1;
             }
