@@ -234,7 +234,17 @@ proptest! {
     }
 }
 
-/// The body of the two tests above.
+/// A slab one cube thick (a 3x3x1 Freudenthal grid): its inner edges join its two faces, so
+/// in the complex closed by a cone over the boundary the two links of such an edge share the
+/// apex ω and nothing else outside `Lk(ab)`, a case the random complexes rarely build.
+#[test]
+fn slab_link_condition_is_the_definition() {
+    let slab = kuhn_grid(&[3, 3, 1]).unwrap();
+    let tops: Vec<Vec<u32>> = slab.cells().map(|c| c.vertices.to_vec()).collect();
+    fast_test_is_the_definition(slab.n_vertices(), &tops).unwrap();
+}
+
+/// The body of the tests above.
 fn fast_test_is_the_definition(n: usize, tops: &[Vec<u32>]) -> Result<(), TestCaseError> {
     let mut w = TopSimplices::from_tops(n, tops).unwrap();
     let before = betti_brute(&w.sorted_tops());

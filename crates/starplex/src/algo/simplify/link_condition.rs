@@ -73,18 +73,16 @@ pub struct LinkScratch {
 struct TetScratch {
     /// The edges of a star's link triangles (sorted pairs, to find the boundary).
     edges: Vec<[u32; 2]>,
-    /// The link triangles of `a` (`b`) not through `b` (`a`), sorted triples (ω = [`OMEGA`]).
+    /// The link triangles of `a` (`b`) not through `b` (`a`) that may be shared (every real
+    /// vertex in a top through `ab`, [`Marks::may_be_shared`]), sorted triples (ω = [`OMEGA`]).
     ta: Vec<[u32; 3]>,
     tb: Vec<[u32; 3]>,
-    /// Their edges and vertices, sorted and deduplicated.
+    /// The edges of all those link triangles that may be shared, sorted and deduplicated.
     ea: Vec<[u32; 2]>,
     eb: Vec<[u32; 2]>,
-    va: Vec<u32>,
-    vb: Vec<u32>,
     /// Lk(ab): its edges (`xy` for each tetrahedron `abxy`, `zω` for each boundary triangle
-    /// `abz`) and their vertices.
+    /// `abz`).
     lab_e: Vec<[u32; 2]>,
-    lab_v: Vec<u32>,
 }
 
 /// Per-vertex marks for [`Marks::vertex_condition`].
@@ -97,6 +95,8 @@ struct Marks {
     /// Tests made with these buffers: the per-vertex array is made on the second (a one-off
     /// test, such as [`TopSimplices::can_contract`], sorts its stars instead).
     calls: u32,
+    /// True when `mark` holds the last test's stars (false after the sorted test).
+    marked: bool,
 }
 
 impl Marks {
@@ -108,6 +108,7 @@ impl Marks {
         self.calls = self.calls.saturating_add(1);
         if self.mark.len() < w.n_vertices() {
             if self.calls < 2 {
+                self.marked = false;
                 return vertex_condition_sorted(w, a, b);
             }
             self.mark.resize(w.n_vertices(), 0);
@@ -117,6 +118,7 @@ impl Marks {
             self.epoch = 0;
         }
         self.epoch += 2;
+        self.marked = true;
         let (in_b, in_ab) = (self.epoch, self.epoch + 1);
         for &t in w.star(b) {
             let top = w.top(t);
@@ -132,6 +134,13 @@ impl Marks {
                 .iter()
                 .all(|&x| x == a || x == b || self.mark[x as usize] != in_b)
         })
+    }
+
+    /// After a [`vertex_condition`](Self::vertex_condition) that held: false when the real
+    /// vertex `x` is in no top through `ab`, so no simplex through `x` can be in both links
+    /// (ω, and every vertex when the test sorted instead of marking, may be).
+    fn may_be_shared(&self, x: u32) -> bool {
+        x == OMEGA || !self.marked || self.mark[x as usize] == self.epoch + 1
     }
 }
 
@@ -453,6 +462,12 @@ fn vertex_condition_sorted(w: &TopSimplices, a: u32, b: u32) -> bool {
 /// a vertex of `Lk(ab)` — counting only the link triangles of `a` not through `b` and of `b`
 /// not through `a` (a simplex of `Lk(a)` through `b` is not in `Lk(b)`, and one that is a face
 /// of a triangle through `b` is in `Lk(ab)` already).
+///
+/// (3) for real vertices is the vertex condition ([`Marks::vertex_condition`], tested first).
+/// Once it holds, every real vertex of a simplex in both links is in a top through `ab`, so
+/// (1) and (2) only look at the link triangles and edges whose real vertices all are: a few
+/// around `Lk(ab)`, however large the stars (a survivor's star grows as it absorbs), and only
+/// those are sorted. What is left of (3) is ω: in both links, it must be in `Lk(ab)`.
 fn tet_link_condition(
     w: &TopSimplices,
     a: u32,
@@ -488,44 +503,40 @@ fn tet_link_condition(
         return Some(false);
     }
     let manifold = mode == LinkMode::Manifold;
-    link_triangles(
+    let keep = |x: u32| marks.may_be_shared(x);
+    let omega_a = link_triangles(
         w,
         a,
         b,
         manifold,
+        keep,
         &mut s.edges,
-        &mut s.ta,
+        (&mut s.ta, &mut s.ea),
         Some(&mut s.lab_e),
     );
-    link_triangles(w, b, a, manifold, &mut s.edges, &mut s.tb, None);
+    let omega_b = link_triangles(
+        w,
+        b,
+        a,
+        manifold,
+        keep,
+        &mut s.edges,
+        (&mut s.tb, &mut s.eb),
+        None,
+    );
     s.lab_e.sort_unstable();
     s.lab_e.dedup();
-    s.lab_v.clear();
-    s.lab_v.extend(s.lab_e.iter().flatten());
-    s.lab_v.sort_unstable();
-    s.lab_v.dedup();
     // (1): no shared link triangle
     if sorted_common(&s.ta, &s.tb, |_| true) {
         return Some(false);
     }
-    // (2), (3): the shared edges and vertices are in Lk(ab)
-    for (t, e, v) in [(&s.ta, &mut s.ea, &mut s.va), (&s.tb, &mut s.eb, &mut s.vb)] {
-        e.clear();
-        v.clear();
-        for &[x, y, z] in t.iter() {
-            e.extend([[x, y], [x, z], [y, z]]);
-            v.extend([x, y, z]);
-        }
-        e.sort_unstable();
-        e.dedup();
-        v.sort_unstable();
-        v.dedup();
-    }
+    // (2): the shared edges are in Lk(ab)
     let lab_e = &s.lab_e;
-    let lab_v = &s.lab_v;
-    let bad_edge = sorted_common(&s.ea, &s.eb, |e| lab_e.binary_search(e).is_err());
-    let bad_vertex = sorted_common(&s.va, &s.vb, |v| lab_v.binary_search(v).is_err());
-    Some(!bad_edge && !bad_vertex)
+    if sorted_common(&s.ea, &s.eb, |e| lab_e.binary_search(e).is_err()) {
+        return Some(false);
+    }
+    // (3) for ω (ω is the largest id: last in a sorted pair)
+    Some(!(omega_a && omega_b) || lab_e.iter().any(|e| e[1] == OMEGA))
 }
 
 /// True when the sorted, deduplicated `x` and `y` share an item for which `bad` holds.
@@ -547,21 +558,39 @@ fn sorted_common<T: Ord>(x: &[T], y: &[T], bad: impl Fn(&T) -> bool) -> bool {
     false
 }
 
-/// The link triangles of `v` not through `other` (its star is made of tetrahedra), sorted:
-/// `xyz` for each tetrahedron `vxyz`, and in `Manifold` mode `xyω` for each boundary triangle
-/// `vxy` (in one tetrahedron of the star). The boundary triangles through `v other` add their
-/// `zω` to `lab` (the edges of `Lk(v other)`) when it is given.
+/// The link triangles of `v` not through `other` (its star is made of tetrahedra): `xyz` for
+/// each tetrahedron `vxyz`, and in `Manifold` mode `xyω` for each boundary triangle `vxy` (in
+/// one tetrahedron of the star). Into `out.0` go those whose every vertex passes `keep`,
+/// sorted; into `out.1` the edges of all of them whose two vertices pass it, sorted and
+/// deduplicated. The boundary triangles through `v other` add their `zω` to `lab` (the edges
+/// of `Lk(v other)`) when it is given. Returns true when a link triangle holds ω.
+#[allow(clippy::too_many_arguments)]
 fn link_triangles(
     w: &TopSimplices,
     v: u32,
     other: u32,
     manifold: bool,
+    keep: impl Fn(u32) -> bool,
     edges: &mut Vec<[u32; 2]>,
-    out: &mut Vec<[u32; 3]>,
+    out: (&mut Vec<[u32; 3]>, &mut Vec<[u32; 2]>),
     mut lab: Option<&mut Vec<[u32; 2]>>,
-) {
+) -> bool {
+    let (out, out_e) = out;
     out.clear();
+    out_e.clear();
     edges.clear();
+    let mut omega = false;
+    let mut add = |[x, y, z]: [u32; 3]| {
+        let (kx, ky, kz) = (keep(x), keep(y), keep(z));
+        if kx && ky && kz {
+            out.push([x, y, z]);
+        }
+        for (e, k) in [([x, y], kx && ky), ([x, z], kx && kz), ([y, z], ky && kz)] {
+            if k {
+                out_e.push(e);
+            }
+        }
+    };
     for &t in w.star(v) {
         let mut f = [0u32; 3];
         let mut n = 0;
@@ -576,7 +605,7 @@ fn link_triangles(
             edges.extend([[x, y], [x, z], [y, z]]);
         }
         if x != other && y != other && z != other {
-            out.push([x, y, z]);
+            add([x, y, z]);
         }
     }
     if manifold {
@@ -595,13 +624,17 @@ fn link_triangles(
                         lab.push([if x == other { y } else { x }, OMEGA]);
                     }
                 } else {
-                    out.push([x, y, OMEGA]);
+                    omega = true;
+                    add([x, y, OMEGA]);
                 }
             }
             i = j;
         }
     }
     out.sort_unstable();
+    out_e.sort_unstable();
+    out_e.dedup();
+    omega
 }
 
 /// When the tops are labelled ([`TopSimplices::set_cell_labels`]): the extended link condition
