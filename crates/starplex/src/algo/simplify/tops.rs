@@ -175,6 +175,9 @@ struct ContractScratch {
     image_keys: Vec<[u32; 3]>,
     /// General case: the tops through the survivor that were not through the removed vertex.
     others: Vec<u32>,
+    /// Uniform case: per top slot, `epoch` when it holds the survivor (made on first use).
+    through_a: Vec<u32>,
+    epoch: u32,
 }
 
 impl TopSimplices {
@@ -635,11 +638,13 @@ impl TopSimplices {
         sc.keep.clear();
         sc.swallowed.clear();
         let st_b = std::mem::take(&mut self.vt[b as usize]);
-        // the usual case of a surface: every top through a or b is a triangle
-        let triangles = st_b
+        // the usual cases: every top through a or b is a triangle (a surface) or has the same
+        // size (a tetrahedral mesh)
+        let len = st_b.first().map_or(0, |&t| self.tops.lens[t as usize]);
+        let uniform = st_b
             .iter()
             .chain(self.vt[a as usize].iter())
-            .all(|&t| self.tops.lens[t as usize] == 3);
+            .all(|&t| self.tops.lens[t as usize] == len);
         for &t in &st_b {
             let had_a = self.tops.contract_in(t as usize, a, b);
             sc.ids.push(t);
@@ -647,10 +652,10 @@ impl TopSimplices {
         }
         self.alive_v[b as usize] = false;
         self.n_alive_v -= 1;
-        if triangles {
-            self.keep_triangle_images(a, &mut sc);
-        } else {
-            self.keep_images(a, &mut sc);
+        match (uniform, len) {
+            (true, 3) => self.keep_triangle_images(a, &mut sc),
+            (true, 4..) => self.keep_uniform_images(a, &mut sc),
+            _ => self.keep_images(a, &mut sc),
         }
         for &u in &sc.swallowed {
             self.drop_top(u);
@@ -706,6 +711,52 @@ impl TopSimplices {
             if swallowed_by_image {
                 swallowed.push(u);
             }
+        }
+    }
+
+    /// [`contract`](Self::contract)'s maximality test when every top through `a` and through
+    /// the removed vertex had the same size, at least 4 (a tetrahedral mesh): no top through
+    /// `a` can be swallowed (none is smaller than an image), and an image is a face of another
+    /// top exactly when a top through one of its vertices `x ≠ a` holds it. So each image
+    /// looks only through the row of its vertex with the fewest tops (the survivor's row,
+    /// which grows as it absorbs, is never scanned), where every alive top through `x` is
+    /// listed, the images included. The same answers as [`keep_images`](Self::keep_images).
+    fn keep_uniform_images(&self, a: u32, sc: &mut ContractScratch) {
+        let ContractScratch {
+            ids,
+            keep,
+            through_a,
+            epoch,
+            ..
+        } = sc;
+        // the tops through a, marked by id, so a row is scanned without reading its tops
+        if through_a.len() < self.tops.len() {
+            through_a.resize(self.tops.len(), 0);
+        }
+        if *epoch == u32::MAX {
+            through_a.iter_mut().for_each(|e| *e = 0);
+            *epoch = 0;
+        }
+        *epoch += 1;
+        for &u in self.vt[a as usize].iter().chain(ids.iter()) {
+            through_a[u as usize] = *epoch;
+        }
+        for (i, &ti) in ids.iter().enumerate() {
+            let t = self.tops.get(ti as usize);
+            let x = t
+                .iter()
+                .copied()
+                .filter(|&x| x != a)
+                .min_by_key(|&x| self.vt[x as usize].len())
+                .expect("an image of a top of 4 or more vertices has a vertex besides a");
+            let dominated = self.vt[x as usize].iter().any(|&u| {
+                u != ti
+                    && through_a[u as usize] == *epoch
+                    && is_subset(t, self.tops.get(u as usize))
+                    // equal sets: another top through a, or an image listed before
+                    && (t.len() < self.tops.lens[u as usize] as usize || !ids[i..].contains(&u))
+            });
+            keep.push(!dominated);
         }
     }
 
@@ -1060,14 +1111,27 @@ mod tests {
     /// also after contractions.
     #[test]
     fn triangle_keep_is_the_general_keep() {
-        let mut r = XorShift::new(0x5eed);
+        fast_keep_is_the_general_keep(3, TopSimplices::keep_triangle_images);
+    }
+
+    /// The same for the test of stars of one size (tetrahedra, and 4-simplices).
+    #[test]
+    fn uniform_keep_is_the_general_keep() {
+        fast_keep_is_the_general_keep(4, TopSimplices::keep_uniform_images);
+        fast_keep_is_the_general_keep(5, TopSimplices::keep_uniform_images);
+    }
+
+    /// Random pure complexes of `k`-vertex tops; while the stars of an edge are all of that
+    /// size, `fast` and the general test judge its images alike.
+    fn fast_keep_is_the_general_keep(k: usize, fast: fn(&TopSimplices, u32, &mut ContractScratch)) {
+        let mut r = XorShift::new(0x5eed + k as u64);
         let mut compared = 0;
         for _ in 0..400 {
-            let n = 4 + r.below(5) as u32;
-            let mut tris: Vec<Vec<u32>> = Vec::new();
+            let n = k as u32 + 1 + r.below(5) as u32;
+            let mut tops: Vec<Vec<u32>> = Vec::new();
             for _ in 0..1 + r.below(12) {
                 let mut t: Vec<u32> = Vec::new();
-                while t.len() < 3 {
+                while t.len() < k {
                     let v = r.below(n as u64) as u32;
                     if !t.contains(&v) {
                         t.push(v);
@@ -1075,16 +1139,16 @@ mod tests {
                 }
                 let mut key = t.clone();
                 key.sort_unstable();
-                if !tris.iter().any(|u| {
+                if !tops.iter().any(|u| {
                     let mut k = u.clone();
                     k.sort_unstable();
                     k == key
                 }) {
-                    tris.push(t);
+                    tops.push(t);
                 }
             }
-            let mut w = TopSimplices::from_tops(n as usize, &tris).unwrap();
-            // contract random edges while the stars are all triangles
+            let mut w = TopSimplices::from_tops(n as usize, &tops).unwrap();
+            // contract random edges while the stars are all of size k
             for _ in 0..4 {
                 let edges: Vec<(u32, u32)> = (0..n)
                     .filter(|&a| w.is_alive(a))
@@ -1094,12 +1158,12 @@ mod tests {
                     break;
                 }
                 let (a, b) = edges[r.below(edges.len() as u64) as usize];
-                let all_tri = w
+                let uniform = w
                     .star(a)
                     .iter()
                     .chain(w.star(b))
-                    .all(|&t| w.top(t).len() == 3);
-                if all_tri {
+                    .all(|&t| w.top(t).len() == k);
+                if uniform {
                     // the images, edited as contract does, judged both ways
                     let mut c = w.clone();
                     let mut sc = ContractScratch::default();
@@ -1114,7 +1178,7 @@ mod tests {
                         had_a: sc.had_a.clone(),
                         ..Default::default()
                     };
-                    c.keep_triangle_images(a, &mut sc);
+                    fast(&c, a, &mut sc);
                     c.keep_images(a, &mut general);
                     assert_eq!(sc.keep, general.keep, "{a}-{b} in {:?}", w.sorted_tops());
                     assert!(general.swallowed.is_empty());
