@@ -435,7 +435,7 @@ impl<'a> Sweeper<'a> {
                     w.neighbours_into(t, &mut self.nb_t);
                     w.neighbours_into(s, &mut self.nb_s);
                     changes.record(s, t, &self.nb_s, &self.nb_t);
-                    w.contract(s, t);
+                    w.contract_linked(s, t);
                     touched.insert(a as usize);
                     touched.insert(b as usize);
                     stats.n_contractions += 1;

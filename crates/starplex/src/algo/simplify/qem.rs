@@ -441,7 +441,7 @@ pub fn simplify_qem(
                 stats.refused_geometry += 1;
                 continue;
             }
-            w.contract(s, t);
+            w.contract_linked(s, t);
             pos[s as usize] = p;
             let qs = quad[s as usize].sum(&quad[t as usize]);
             quad[s as usize] = qs;

@@ -619,6 +619,19 @@ impl TopSimplices {
     /// assert!(!w.contract(0, 3)); // not an edge
     /// ```
     pub fn contract(&mut self, a: u32, b: u32) -> bool {
+        self.contract_with(a, b, false)
+    }
+
+    /// [`contract`](Self::contract) right after [`link_condition`](super::link_condition::link_condition)
+    /// held for `ab` (in either mode): then no image of a top through `b` alone is a face of
+    /// another top when the stars are of one size, and only the images of the tops through
+    /// `ab` are tested (see [`keep_uniform_images`](Self::keep_uniform_images)). Debug builds
+    /// check the answers against the general test.
+    pub(super) fn contract_linked(&mut self, a: u32, b: u32) -> bool {
+        self.contract_with(a, b, true)
+    }
+
+    fn contract_with(&mut self, a: u32, b: u32, linked: bool) -> bool {
         if a == b || !self.is_alive(a) || !self.is_alive(b) {
             return false;
         }
@@ -654,7 +667,20 @@ impl TopSimplices {
         self.n_alive_v -= 1;
         match (uniform, len) {
             (true, 3) => self.keep_triangle_images(a, &mut sc),
-            (true, 4..) => self.keep_uniform_images(a, &mut sc),
+            (true, 4..) => {
+                self.keep_uniform_images(a, linked, &mut sc);
+                #[cfg(debug_assertions)]
+                {
+                    let mut general = ContractScratch {
+                        ids: sc.ids.clone(),
+                        had_a: sc.had_a.clone(),
+                        ..Default::default()
+                    };
+                    self.keep_images(a, &mut general);
+                    assert_eq!(sc.keep, general.keep, "contracting {b} into {a}");
+                    assert!(general.swallowed.is_empty());
+                }
+            }
             _ => self.keep_images(a, &mut sc),
         }
         for &u in &sc.swallowed {
@@ -721,9 +747,15 @@ impl TopSimplices {
     /// looks only through the row of its vertex with the fewest tops (the survivor's row,
     /// which grows as it absorbs, is never scanned), where every alive top through `x` is
     /// listed, the images included. The same answers as [`keep_images`](Self::keep_images).
-    fn keep_uniform_images(&self, a: u32, sc: &mut ContractScratch) {
+    ///
+    /// `linked`: the link condition of the edge holds. Then the image `aS` of a top `bS` (`k`
+    /// vertices) is kept without a look: were it a face of another top, that top would be
+    /// `aS` itself, and `S` a simplex of both `Lk(a)` and `Lk(b)` with `k - 1` vertices, too
+    /// many for `Lk(ab)` (whose simplices have at most `k - 2`).
+    fn keep_uniform_images(&self, a: u32, linked: bool, sc: &mut ContractScratch) {
         let ContractScratch {
             ids,
+            had_a,
             keep,
             through_a,
             epoch,
@@ -742,6 +774,10 @@ impl TopSimplices {
             through_a[u as usize] = *epoch;
         }
         for (i, &ti) in ids.iter().enumerate() {
+            if linked && !had_a[i] {
+                keep.push(true);
+                continue;
+            }
             let t = self.tops.get(ti as usize);
             let x = t
                 .iter()
@@ -1117,8 +1153,10 @@ mod tests {
     /// The same for the test of stars of one size (tetrahedra, and 4-simplices).
     #[test]
     fn uniform_keep_is_the_general_keep() {
-        fast_keep_is_the_general_keep(4, TopSimplices::keep_uniform_images);
-        fast_keep_is_the_general_keep(5, TopSimplices::keep_uniform_images);
+        let uniform =
+            |w: &TopSimplices, a, sc: &mut ContractScratch| w.keep_uniform_images(a, false, sc);
+        fast_keep_is_the_general_keep(4, uniform);
+        fast_keep_is_the_general_keep(5, uniform);
     }
 
     /// Random pure complexes of `k`-vertex tops; while the stars of an edge are all of that
