@@ -433,8 +433,15 @@ impl<'a> Sweeper<'a> {
                     }
                     // what the contraction changes (see `Changes`)
                     w.neighbours_into(t, &mut self.nb_t);
-                    w.neighbours_into(s, &mut self.nb_s);
-                    changes.record(s, t, &self.nb_s, &self.nb_t);
+                    // `a`'s neighbours when its turn began: those it gained since are the
+                    // neighbours of the vertices it absorbed, already recorded as near
+                    let nb_s = if s == a {
+                        &self.nb
+                    } else {
+                        w.neighbours_into(s, &mut self.nb_s);
+                        &self.nb_s
+                    };
+                    changes.record(s, t, nb_s, &self.nb_t);
                     w.contract_linked(s, t);
                     touched.insert(a as usize);
                     touched.insert(b as usize);
