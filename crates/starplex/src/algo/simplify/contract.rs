@@ -401,6 +401,25 @@ impl<'a> Sweeper<'a> {
         tried: Option<&FixedBitSet>,
         changes: &mut Changes,
         stats: &mut ContractStats,
+        allow: impl FnMut(&TopSimplices, u32, u32) -> bool,
+        done: impl FnMut(&TopSimplices) -> bool,
+    ) -> bool {
+        let complete = self.sweep_focused(w, order, touched, tried, changes, stats, allow, done);
+        self.scratch.unfocus();
+        complete
+    }
+
+    /// [`sweep`](Self::sweep), focusing the link tests on each vertex in its turn
+    /// ([`LinkScratch::focus`]).
+    #[allow(clippy::too_many_arguments)]
+    fn sweep_focused(
+        &mut self,
+        w: &mut TopSimplices,
+        order: impl Iterator<Item = u32>,
+        touched: &mut FixedBitSet,
+        tried: Option<&FixedBitSet>,
+        changes: &mut Changes,
+        stats: &mut ContractStats,
         mut allow: impl FnMut(&TopSimplices, u32, u32) -> bool,
         mut done: impl FnMut(&TopSimplices) -> bool,
     ) -> bool {
@@ -410,6 +429,7 @@ impl<'a> Sweeper<'a> {
                 continue;
             }
             w.neighbours_into(a, &mut self.nb);
+            self.scratch.focus(a);
             let a_tried = was_tried(a);
             for i in 0..self.nb.len() {
                 let b = self.nb[i];
@@ -443,6 +463,7 @@ impl<'a> Sweeper<'a> {
                     };
                     changes.record(s, t, nb_s, &self.nb_t);
                     w.contract_linked(s, t);
+                    self.scratch.focus(a);
                     touched.insert(a as usize);
                     touched.insert(b as usize);
                     stats.n_contractions += 1;

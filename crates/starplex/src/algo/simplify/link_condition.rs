@@ -68,6 +68,23 @@ pub struct LinkScratch {
     marks: Marks,
 }
 
+impl LinkScratch {
+    /// Promises that the star of `v` stays as it is until the next call of `focus` or
+    /// [`unfocus`](Self::unfocus): the tests of edges through `v` then share the work on its
+    /// star (a vertex absorbing its neighbours one after the other tests all its edges).
+    /// Call it again after changing the star of `v` (after a contraction).
+    pub(super) fn focus(&mut self, v: u32) {
+        self.marks.focus = Some(v);
+        self.marks.focus_marked = false;
+    }
+
+    /// Ends [`focus`](Self::focus).
+    pub(super) fn unfocus(&mut self) {
+        self.marks.focus = None;
+        self.marks.focus_marked = false;
+    }
+}
+
 /// Buffers of the tetrahedral-star test ([`tet_link_condition`]).
 #[derive(Default, Debug)]
 struct TetScratch {
@@ -97,6 +114,12 @@ struct Marks {
     calls: u32,
     /// True when `mark` holds the last test's stars (false after the sorted test).
     marked: bool,
+    /// The vertex whose star's vertices the caller said will not change between tests
+    /// ([`LinkScratch::focus`]), and whether `near` holds them (marked `near_stamp`).
+    focus: Option<u32>,
+    focus_marked: bool,
+    near: Vec<u32>,
+    near_stamp: u32,
 }
 
 impl Marks {
@@ -105,6 +128,11 @@ impl Marks {
     /// [`LinkMode::Manifold`] adds no edge between real vertices). A necessary condition, in
     /// `O(|St(a)| + |St(b)|)` with no sorting: most refused edges fail it.
     fn vertex_condition(&mut self, w: &TopSimplices, a: u32, b: u32) -> bool {
+        if let Some(f) = self.focus.filter(|&f| f == a || f == b) {
+            let answer = self.vertex_condition_focused(w, f, if f == a { b } else { a });
+            debug_assert_eq!(answer, vertex_condition_sorted(w, a, b), "{a}-{b}");
+            return answer;
+        }
         self.calls = self.calls.saturating_add(1);
         if self.mark.len() < w.n_vertices() {
             if self.calls < 2 {
@@ -133,6 +161,56 @@ impl Marks {
             w.top(t)
                 .iter()
                 .all(|&x| x == a || x == b || self.mark[x as usize] != in_b)
+        })
+    }
+
+    /// [`vertex_condition`](Self::vertex_condition) of `f o`, `f` the focus: the vertices of
+    /// `f`'s star are marked once (`near`) for all the tests of its turn, and each test reads
+    /// only `o`'s star: twice, first marking the vertices of the tops through `f o`, then
+    /// looking for a vertex of another top that is near `f` but not so marked. `O(|St(o)|)`
+    /// per test once the focus is marked, however large its star.
+    fn vertex_condition_focused(&mut self, w: &TopSimplices, f: u32, o: u32) -> bool {
+        if self.mark.len() < w.n_vertices() {
+            self.mark.resize(w.n_vertices(), 0);
+        }
+        if self.near.len() < w.n_vertices() {
+            self.near.resize(w.n_vertices(), 0);
+        }
+        if !self.focus_marked {
+            if self.near_stamp == u32::MAX {
+                self.near.iter_mut().for_each(|m| *m = 0);
+                self.near_stamp = 0;
+            }
+            self.near_stamp += 1;
+            for &t in w.star(f) {
+                for &x in w.top(t) {
+                    self.near[x as usize] = self.near_stamp;
+                }
+            }
+            self.focus_marked = true;
+        }
+        if self.epoch >= u32::MAX - 2 {
+            self.mark.iter_mut().for_each(|m| *m = 0);
+            self.epoch = 0;
+        }
+        self.epoch += 2;
+        self.marked = true;
+        let in_ab = self.epoch + 1;
+        for &t in w.star(o) {
+            let top = w.top(t);
+            if top.contains(&f) {
+                for &x in top {
+                    self.mark[x as usize] = in_ab;
+                }
+            }
+        }
+        w.star(o).iter().all(|&t| {
+            w.top(t).iter().all(|&x| {
+                x == f
+                    || x == o
+                    || self.near[x as usize] != self.near_stamp
+                    || self.mark[x as usize] == in_ab
+            })
         })
     }
 
