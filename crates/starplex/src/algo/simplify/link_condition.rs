@@ -120,6 +120,8 @@ struct Marks {
     focus_marked: bool,
     near: Vec<u32>,
     near_stamp: u32,
+    /// Once marked: the size of every top through the focus, when they all have one.
+    focus_len: Option<usize>,
 }
 
 impl Marks {
@@ -170,6 +172,20 @@ impl Marks {
     /// looking for a vertex of another top that is near `f` but not so marked. `O(|St(o)|)`
     /// per test once the focus is marked, however large its star.
     fn vertex_condition_focused(&mut self, w: &TopSimplices, f: u32, o: u32) -> bool {
+        let in_ab = self.mark_focus_and_edge(w, f, o);
+        w.star(o).iter().all(|&t| {
+            w.top(t).iter().all(|&x| {
+                x == f
+                    || x == o
+                    || self.near[x as usize] != self.near_stamp
+                    || self.mark[x as usize] == in_ab
+            })
+        })
+    }
+
+    /// Marks the vertices of the focus `f`'s star as `near` (once per focus), then those of
+    /// the tops through `f o` as `in_ab` in `mark` (returned).
+    fn mark_focus_and_edge(&mut self, w: &TopSimplices, f: u32, o: u32) -> u32 {
         if self.mark.len() < w.n_vertices() {
             self.mark.resize(w.n_vertices(), 0);
         }
@@ -182,8 +198,14 @@ impl Marks {
                 self.near_stamp = 0;
             }
             self.near_stamp += 1;
+            let first = w.star(f).first().map(|&t| w.top(t).len());
+            self.focus_len = first;
             for &t in w.star(f) {
-                for &x in w.top(t) {
+                let top = w.top(t);
+                if Some(top.len()) != first {
+                    self.focus_len = None;
+                }
+                for &x in top {
                     self.near[x as usize] = self.near_stamp;
                 }
             }
@@ -204,14 +226,67 @@ impl Marks {
                 }
             }
         }
-        w.star(o).iter().all(|&t| {
-            w.top(t).iter().all(|&x| {
-                x == f
-                    || x == o
-                    || self.near[x as usize] != self.near_stamp
-                    || self.mark[x as usize] == in_ab
-            })
-        })
+        in_ab
+    }
+
+    /// [`tri_link_condition`] in [`LinkMode::Homology`] for an edge through the focus, in
+    /// `O(|St(o)|)` once the focus is marked (`None` unless both stars are triangles; `f` the
+    /// focus, `o` the other end). (1) A vertex `x` of a link edge of `o` (a triangle `oxy`
+    /// without `f`) is a vertex of a link edge of `f` not through `o` exactly when it is near
+    /// `f` and not in `Lk(fo)` (were every triangle through `f x` also through `o`, `x` would
+    /// be in `Lk(fo)`). (2) A link edge `xy` of both has, by (1), both ends in `Lk(fo)`: only
+    /// such edges are looked up, in the row of one end.
+    fn tri_focused(&mut self, w: &TopSimplices, f: u32, o: u32) -> Option<bool> {
+        if w.star(o).iter().any(|&t| w.top(t).len() != 3) {
+            return None;
+        }
+        let in_ab = self.mark_focus_and_edge(w, f, o);
+        if self.focus_len != Some(3) {
+            return None;
+        }
+        let (near, mark, stamp) = (&self.near, &self.mark, self.near_stamp);
+        let mut any_edge = false;
+        for &t in w.star(o) {
+            let top = w.top(t);
+            if top.contains(&f) {
+                any_edge = true;
+                continue;
+            }
+            for &x in top {
+                if x != o && near[x as usize] == stamp && mark[x as usize] != in_ab {
+                    return Some(false);
+                }
+            }
+        }
+        if !any_edge {
+            return Some(false);
+        }
+        for &t in w.star(o) {
+            let top = w.top(t);
+            if top.contains(&f) {
+                continue;
+            }
+            let mut e = top.iter().copied().filter(|&x| x != o);
+            let (Some(x), Some(y)) = (e.next(), e.next()) else {
+                continue;
+            };
+            if mark[x as usize] != in_ab || mark[y as usize] != in_ab {
+                continue;
+            }
+            let (x, y) = if w.star(x).len() <= w.star(y).len() {
+                (x, y)
+            } else {
+                (y, x)
+            };
+            let shared = w.star(x).iter().any(|&u| {
+                let u = w.top(u);
+                u.contains(&f) && u.contains(&y)
+            });
+            if shared {
+                return Some(false);
+            }
+        }
+        Some(true)
     }
 
     /// After a [`vertex_condition`](Self::vertex_condition) that held: false when the real
@@ -353,6 +428,18 @@ pub fn link_condition_in(
 ) -> bool {
     if a == b || !w.is_alive(a) || !w.is_alive(b) {
         return false;
+    }
+    if region.is_none()
+        && mode == LinkMode::Homology
+        && let Some(f) = scratch.marks.focus.filter(|&f| f == a || f == b)
+        && let Some(answer) = scratch.marks.tri_focused(w, f, if f == a { b } else { a })
+    {
+        debug_assert_eq!(
+            Some(answer),
+            tri_link_condition(w, a, b, mode, &mut scratch.tri),
+            "{a}-{b}"
+        );
+        return answer;
     }
     if region.is_none()
         && let Some(answer) = tri_link_condition(w, a, b, mode, &mut scratch.tri)
