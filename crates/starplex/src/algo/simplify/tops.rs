@@ -666,8 +666,8 @@ impl TopSimplices {
         self.alive_v[b as usize] = false;
         self.n_alive_v -= 1;
         match (uniform, len) {
-            (true, 3) => self.keep_triangle_images(a, &mut sc),
-            (true, 4..) => {
+            (true, 3) if !linked => self.keep_triangle_images(a, &mut sc),
+            (true, 3..) => {
                 self.keep_uniform_images(a, linked, &mut sc);
                 #[cfg(debug_assertions)]
                 {
@@ -741,7 +741,7 @@ impl TopSimplices {
     }
 
     /// [`contract`](Self::contract)'s maximality test when every top through `a` and through
-    /// the removed vertex had the same size, at least 4 (a tetrahedral mesh): no top through
+    /// the removed vertex had the same size, at least 3 (a surface or a volume mesh): no top through
     /// `a` can be swallowed (none is smaller than an image), and an image is a face of another
     /// top exactly when a top through one of its vertices `x ≠ a` holds it. So each image
     /// looks only through the row of its vertex with the fewest tops (the survivor's row,
@@ -761,17 +761,12 @@ impl TopSimplices {
             epoch,
             ..
         } = sc;
-        // the tops through a, marked by id, so a row is scanned without reading its tops
-        if through_a.len() < self.tops.len() {
-            through_a.resize(self.tops.len(), 0);
-        }
-        if *epoch == u32::MAX {
-            through_a.iter_mut().for_each(|e| *e = 0);
-            *epoch = 0;
-        }
-        *epoch += 1;
-        for &u in self.vt[a as usize].iter().chain(ids.iter()) {
-            through_a[u as usize] = *epoch;
+        // the tops through a, marked by id, so a row is scanned without reading its tops;
+        // after the link condition, only the few images of the tops through ab look, and
+        // read the tops of their rows instead
+        let marked = !linked;
+        if marked {
+            self.mark_through(a, ids, through_a, epoch);
         }
         for (i, &ti) in ids.iter().enumerate() {
             if linked && !had_a[i] {
@@ -784,15 +779,30 @@ impl TopSimplices {
                 .copied()
                 .filter(|&x| x != a)
                 .min_by_key(|&x| self.vt[x as usize].len())
-                .expect("an image of a top of 4 or more vertices has a vertex besides a");
+                .expect("an image of a top of 3 or more vertices has a vertex besides a");
             let dominated = self.vt[x as usize].iter().any(|&u| {
                 u != ti
-                    && through_a[u as usize] == *epoch
+                    && (!marked || through_a[u as usize] == *epoch)
                     && is_subset(t, self.tops.get(u as usize))
                     // equal sets: another top through a, or an image listed before
                     && (t.len() < self.tops.lens[u as usize] as usize || !ids[i..].contains(&u))
             });
             keep.push(!dominated);
+        }
+    }
+
+    /// Marks the tops through `a` and the images `ids` with a new `epoch` in `through_a`.
+    fn mark_through(&self, a: u32, ids: &[u32], through_a: &mut Vec<u32>, epoch: &mut u32) {
+        if through_a.len() < self.tops.len() {
+            through_a.resize(self.tops.len(), 0);
+        }
+        if *epoch == u32::MAX {
+            through_a.iter_mut().for_each(|e| *e = 0);
+            *epoch = 0;
+        }
+        *epoch += 1;
+        for &u in self.vt[a as usize].iter().chain(ids.iter()) {
+            through_a[u as usize] = *epoch;
         }
     }
 
@@ -1150,11 +1160,12 @@ mod tests {
         fast_keep_is_the_general_keep(3, TopSimplices::keep_triangle_images);
     }
 
-    /// The same for the test of stars of one size (tetrahedra, and 4-simplices).
+    /// The same for the test of stars of one size (triangles, tetrahedra, 4-simplices).
     #[test]
     fn uniform_keep_is_the_general_keep() {
         let uniform =
             |w: &TopSimplices, a, sc: &mut ContractScratch| w.keep_uniform_images(a, false, sc);
+        fast_keep_is_the_general_keep(3, uniform);
         fast_keep_is_the_general_keep(4, uniform);
         fast_keep_is_the_general_keep(5, uniform);
     }
