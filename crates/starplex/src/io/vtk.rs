@@ -1508,18 +1508,22 @@ fn uniform_cells<const K: usize>(
     if flat.len() as u64 != n * (K as u64 + 1) {
         return None;
     }
+    let (drop, nv) = (build.drop_degenerate, nv.min(u32::MAX as usize) as u32);
     let ok = flat.par_chunks(4096 * (K + 1)).all(|part| {
-        let mut ok = true;
+        // branch-free over fixed-size records: one flag per chunk
+        let mut bad = 0u32;
         for c in part.chunks_exact(K + 1) {
-            ok &= c[0] as usize == K;
-            for a in 1..=K {
-                ok &= (c[a] as usize) < nv;
-                for b in 1..a {
-                    ok &= build.drop_degenerate || c[a] != c[b];
+            let (k, v) = (c[0], &c[1..]);
+            let v: &[u32; K] = v.try_into().expect("K + 1 values");
+            bad |= k ^ K as u32;
+            for a in 0..K {
+                bad |= (v[a] >= nv) as u32;
+                for b in 0..a {
+                    bad |= (v[a] == v[b] && !drop) as u32;
                 }
             }
         }
-        ok
+        bad == 0
     });
     if !ok {
         return None;
