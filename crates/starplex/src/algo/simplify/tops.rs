@@ -272,8 +272,52 @@ impl TopSimplices {
     /// # Errors
     /// As [`from_structure`](Self::from_structure).
     pub fn from_complex(k: &IndexedComplex) -> Result<TopSimplices, SimplifyError> {
-        // the cells straight from the complex: no vertex -> cells index is built
-        Self::from_structure(k, k.coords(), k.ambient_dim())
+        use rayon::prelude::*;
+        let n = k.n_vertices();
+        if n == 0 {
+            return Err(SimplifyError::Empty);
+        }
+        if let Some(b) = k.blocks().iter().find(|b| !b.kind.is_simplex()) {
+            return Err(SimplifyError::not_simplicial(b.first, b.kind));
+        }
+        // the tops are the cells, block by block (what `from_structure` makes, in id order),
+        // and the rows are the complex's vertex -> cells index (sorted by cell id, as the
+        // rows `assemble` pushes), both made side by side
+        let (vc, (mut verts, mut lens)) = rayon::join(
+            || k.vertex_cells(),
+            || {
+                let mut verts = Vec::with_capacity(k.n_refs());
+                let mut lens = Vec::with_capacity(k.n_cells() + 1);
+                for b in k.blocks() {
+                    verts.extend_from_slice(&b.vertices);
+                    lens.resize(lens.len() + b.len(), b.kind.n_vertices() as u8);
+                }
+                (verts, lens)
+            },
+        );
+        let mut origin: Vec<u32> = (0..k.n_cells() as u32).collect();
+        let mut vt: Vec<SmallVec<[u32; 8]>> = (0..n)
+            .into_par_iter()
+            .map(|v| SmallVec::from_slice(vc.row(v)))
+            .collect();
+        // a vertex in no cell is a 0-dimensional top
+        for (v, row) in vt.iter_mut().enumerate() {
+            if row.is_empty() {
+                row.push(lens.len() as u32);
+                verts.push(v as u32);
+                lens.push(1);
+                origin.push(NO_ORIGIN);
+            }
+        }
+        let coords = k.coords().to_vec();
+        Ok(Self::assemble_rows(
+            n,
+            FlatTops::new(verts, lens),
+            origin,
+            coords,
+            k.ambient_dim(),
+            vt,
+        ))
     }
 
     /// Builds the structure from lists of vertices (no coordinates), checking that they are
@@ -343,13 +387,40 @@ impl TopSimplices {
         coords: Vec<f64>,
         stride: usize,
     ) -> TopSimplices {
-        debug_assert_eq!(tops.len(), origin.len());
-        let mut vt: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];
+        let mut count = vec![0usize; n];
+        for i in 0..tops.len() {
+            for &v in tops.get(i) {
+                count[v as usize] += 1;
+            }
+        }
+        let mut vt: Vec<SmallVec<[u32; 8]>> =
+            count.into_iter().map(SmallVec::with_capacity).collect();
         for i in 0..tops.len() {
             for &v in tops.get(i) {
                 vt[v as usize].push(i as u32);
             }
         }
+        Self::assemble_rows(n, tops, origin, coords, stride, vt)
+    }
+
+    /// [`assemble`](Self::assemble) with the rows made: `vt[v]` the tops through `v`, in
+    /// increasing id order.
+    fn assemble_rows(
+        n: usize,
+        tops: FlatTops,
+        origin: Vec<u32>,
+        coords: Vec<f64>,
+        stride: usize,
+        vt: Vec<SmallVec<[u32; 8]>>,
+    ) -> TopSimplices {
+        debug_assert_eq!(tops.len(), origin.len());
+        debug_assert!(
+            (0..tops.len()).all(|i| tops
+                .get(i)
+                .iter()
+                .all(|&v| vt[v as usize].contains(&(i as u32)))),
+            "every top is in the rows of its vertices"
+        );
         TopSimplices {
             n_alive_tops: tops.len(),
             tops,
@@ -1151,6 +1222,47 @@ pub fn is_subset(s: &[u32], t: &[u32]) -> bool {
 mod tests {
     use super::*;
     use crate::testkit::XorShift;
+
+    /// `from_complex` (the complex's blocks and vertex index, side by side) builds what the
+    /// generic `from_structure` builds: the same tops in the same order, the same rows, the
+    /// same origins, vertices in no cell as 0-dimensional tops.
+    #[test]
+    fn from_complex_is_from_structure() {
+        let mut r = XorShift::new(7);
+        let mut b = ComplexBuilder::new(3).unwrap();
+        for i in 0..40 {
+            b.push_vertex(&[i as f64, (i * i % 7) as f64, 0.0]).unwrap();
+        }
+        for _ in 0..60 {
+            let k = 2 + r.below(3) as usize;
+            let mut c: Vec<u32> = Vec::new();
+            while c.len() < k {
+                let v = r.below(36) as u32; // 36..40 stay in no cell
+                if !c.contains(&v) {
+                    c.push(v);
+                }
+            }
+            b.push_cell(CellKind::simplex(k - 1).unwrap(), &c).unwrap();
+        }
+        let opts = BuildOptions {
+            drop_duplicates: true,
+            drop_face_cells: true,
+            ..Default::default()
+        };
+        let k = b.build(&opts).unwrap().0;
+        let fast = TopSimplices::from_complex(&k).unwrap();
+        let slow = TopSimplices::from_structure(&k, k.coords(), k.ambient_dim()).unwrap();
+        assert_eq!(fast.n_top_slots(), slow.n_top_slots());
+        assert!(fast.n_top_slots() > 4 + k.n_cells() / 2);
+        for t in 0..fast.n_top_slots() as u32 {
+            assert_eq!(fast.top(t), slow.top(t));
+        }
+        for v in 0..40 {
+            assert_eq!(fast.star(v), slow.star(v), "{v}");
+        }
+        assert_eq!(fast.cell_origins(), slow.cell_origins());
+        assert_eq!(fast.coords, slow.coords);
+    }
 
     /// The triangle maximality test of `contract` decides as the general one, on random pure
     /// triangle complexes (boundaries, non-manifold edges, duplicates excluded) and every edge,
