@@ -392,27 +392,12 @@ impl<'a> Sweeper<'a> {
     /// stars each contraction changes). `allow(w, s, t)`
     /// is asked before contracting `t` into `s` (false ends the sweep), `done(w)` after each
     /// contraction (true ends it). Returns false when a callback ended the sweep.
+    ///
+    /// Each turn focuses the link tests on `a` ([`LinkScratch::focus`]), again after each of
+    /// its contractions; the sweeper's buffers serve no other test, so no focus outlives a turn
+    /// that could be misread.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn sweep(
-        &mut self,
-        w: &mut TopSimplices,
-        order: impl Iterator<Item = u32>,
-        touched: &mut FixedBitSet,
-        tried: Option<&FixedBitSet>,
-        changes: &mut Changes,
-        stats: &mut ContractStats,
-        allow: impl FnMut(&TopSimplices, u32, u32) -> bool,
-        done: impl FnMut(&TopSimplices) -> bool,
-    ) -> bool {
-        let complete = self.sweep_focused(w, order, touched, tried, changes, stats, allow, done);
-        self.scratch.unfocus();
-        complete
-    }
-
-    /// [`sweep`](Self::sweep), focusing the link tests on each vertex in its turn
-    /// ([`LinkScratch::focus`]).
-    #[allow(clippy::too_many_arguments)]
-    fn sweep_focused(
         &mut self,
         w: &mut TopSimplices,
         order: impl Iterator<Item = u32>,

@@ -69,18 +69,12 @@ pub struct LinkScratch {
 }
 
 impl LinkScratch {
-    /// Promises that the star of `v` stays as it is until the next call of `focus` or
-    /// [`unfocus`](Self::unfocus): the tests of edges through `v` then share the work on its
-    /// star (a vertex absorbing its neighbours one after the other tests all its edges).
-    /// Call it again after changing the star of `v` (after a contraction).
+    /// Promises that the star of `v` stays as it is until the next call of `focus`: the tests
+    /// of edges through `v` then share the work on its star (a vertex absorbing its neighbours
+    /// one after the other tests all its edges). Call it again after changing the star of `v`
+    /// (after a contraction); a scratch that was focused serves no test of another complex.
     pub(super) fn focus(&mut self, v: u32) {
         self.marks.focus = Some(v);
-        self.marks.focus_marked = false;
-    }
-
-    /// Ends [`focus`](Self::focus).
-    pub(super) fn unfocus(&mut self) {
-        self.marks.focus = None;
         self.marks.focus_marked = false;
     }
 }
