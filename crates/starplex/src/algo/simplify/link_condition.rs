@@ -114,8 +114,8 @@ struct Marks {
     focus_marked: bool,
     near: Vec<u32>,
     near_stamp: u32,
-    /// Once marked: the size of every top through the focus, when they all have one.
-    focus_len: Option<usize>,
+    /// Once marked: every top through the focus is a triangle.
+    focus_triangles: bool,
 }
 
 impl Marks {
@@ -130,20 +130,12 @@ impl Marks {
             return answer;
         }
         self.calls = self.calls.saturating_add(1);
-        if self.mark.len() < w.n_vertices() {
-            if self.calls < 2 {
-                self.marked = false;
-                return vertex_condition_sorted(w, a, b);
-            }
-            self.mark.resize(w.n_vertices(), 0);
+        if self.mark.len() < w.n_vertices() && self.calls < 2 {
+            self.marked = false;
+            return vertex_condition_sorted(w, a, b);
         }
-        if self.epoch >= u32::MAX - 2 {
-            self.mark.iter_mut().for_each(|m| *m = 0);
-            self.epoch = 0;
-        }
-        self.epoch += 2;
-        self.marked = true;
-        let (in_b, in_ab) = (self.epoch, self.epoch + 1);
+        let in_b = self.next_epoch(w.n_vertices());
+        let in_ab = in_b + 1;
         for &t in w.star(b) {
             let top = w.top(t);
             let mark = if top.contains(&a) { in_ab } else { in_b };
@@ -180,9 +172,6 @@ impl Marks {
     /// Marks the vertices of the focus `f`'s star as `near` (once per focus), then those of
     /// the tops through `f o` as `in_ab` in `mark` (returned).
     fn mark_focus_and_edge(&mut self, w: &TopSimplices, f: u32, o: u32) -> u32 {
-        if self.mark.len() < w.n_vertices() {
-            self.mark.resize(w.n_vertices(), 0);
-        }
         if self.near.len() < w.n_vertices() {
             self.near.resize(w.n_vertices(), 0);
         }
@@ -192,26 +181,17 @@ impl Marks {
                 self.near_stamp = 0;
             }
             self.near_stamp += 1;
-            let first = w.star(f).first().map(|&t| w.top(t).len());
-            self.focus_len = first;
+            self.focus_triangles = true;
             for &t in w.star(f) {
                 let top = w.top(t);
-                if Some(top.len()) != first {
-                    self.focus_len = None;
-                }
+                self.focus_triangles &= top.len() == 3;
                 for &x in top {
                     self.near[x as usize] = self.near_stamp;
                 }
             }
             self.focus_marked = true;
         }
-        if self.epoch >= u32::MAX - 2 {
-            self.mark.iter_mut().for_each(|m| *m = 0);
-            self.epoch = 0;
-        }
-        self.epoch += 2;
-        self.marked = true;
-        let in_ab = self.epoch + 1;
+        let in_ab = self.next_epoch(w.n_vertices()) + 1;
         for &t in w.star(o) {
             let top = w.top(t);
             if top.contains(&f) {
@@ -235,7 +215,7 @@ impl Marks {
             return None;
         }
         let in_ab = self.mark_focus_and_edge(w, f, o);
-        if self.focus_len != Some(3) {
+        if !self.focus_triangles {
             return None;
         }
         let (near, mark, stamp) = (&self.near, &self.mark, self.near_stamp);
@@ -281,6 +261,20 @@ impl Marks {
             }
         }
         Some(true)
+    }
+
+    /// A fresh pair of marks (`epoch`, `epoch + 1`) over `n` vertices, for one test.
+    fn next_epoch(&mut self, n: usize) -> u32 {
+        if self.mark.len() < n {
+            self.mark.resize(n, 0);
+        }
+        if self.epoch >= u32::MAX - 2 {
+            self.mark.iter_mut().for_each(|m| *m = 0);
+            self.epoch = 0;
+        }
+        self.epoch += 2;
+        self.marked = true;
+        self.epoch
     }
 
     /// After a [`vertex_condition`](Self::vertex_condition) that held: false when the real
