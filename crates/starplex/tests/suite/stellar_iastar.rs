@@ -337,13 +337,20 @@ fn tree_iastar_is_the_direct_iastar() {
     on_random_complexes((5u8..9).boxed(), 64, 13, same_as_direct);
 }
 
-/// Triangles only: the tree's IA* takes its own path for them (the edges of each vertex's
-/// star grouped by their other vertex); on so few vertices non-manifold edges and vertices
-/// are common.
+/// Triangles only: facets paired in a hashed table per leaf (as for tetrahedra); on so few
+/// vertices non-manifold edges and vertices are common.
 #[test]
 fn tree_iastar_of_triangles_is_the_direct_iastar() {
     on_random_complexes(Just(1u8).boxed(), 128, 14, same_as_direct);
     on_random_complexes(Just(2u8).boxed(), 64, 15, check);
+}
+
+/// Tetrahedra only: facets paired in a hashed table per leaf, representatives by a flood
+/// over the slots.
+#[test]
+fn tree_iastar_of_tetrahedra_is_the_direct_iastar() {
+    on_random_complexes(Just(3u8).boxed(), 128, 16, same_as_direct);
+    on_random_complexes(Just(3u8).boxed(), 64, 17, check);
 }
 
 #[test]
