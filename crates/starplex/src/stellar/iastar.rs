@@ -503,10 +503,10 @@ impl StellarTree {
             .into_par_iter()
             .map_init(
                 || {
-                    // per worker: visit stamps over all cells (2 bytes per cell, zeroed
-                    // lazily by the allocator)
+                    // per worker: visit stamps over all cells and one more, the flood's
+                    // sink (2 bytes per cell, zeroed lazily by the allocator)
                     let sc = RepScratch {
-                        stamps: vec![0; nc],
+                        stamps: vec![0; nc + 1],
                         ..Default::default()
                     };
                     (ExpandedLeaf::default(), sc)
@@ -791,15 +791,24 @@ impl StellarTree {
     ) {
         let verts = &self.cells.verts;
         let orig = &self.c_orig;
+        // the last stamp is a sink that always holds the current stamp: slots that lead
+        // nowhere (the facet omits v, no neighbour) mark it instead of branching
+        let sink = stamps.len() - 1;
+        stamps[sink] = ep;
+        // every cell of the star is pushed at most once
         stack.clear();
+        stack.resize(star.len() + 1, 0);
         for &c in star {
             if stamps[c as usize] == ep {
                 continue;
             }
             stamps[c as usize] = ep;
             let (mut best, mut best_orig) = (c, orig[c as usize]);
-            stack.push(c);
-            while let Some(a) = stack.pop() {
+            stack[0] = c;
+            let mut top = 1usize;
+            while top > 0 {
+                top -= 1;
+                let a = stack[top];
                 let o = orig[a as usize];
                 if o < best_orig {
                     (best, best_orig) = (a, o);
@@ -807,20 +816,23 @@ impl StellarTree {
                 let a = a as usize;
                 let (vs, sl) = (&verts[a * s..a * s + s], &adj[a * s..a * s + s]);
                 for (&w, &x) in vs.iter().zip(sl) {
-                    if w == v || x == NONE {
-                        continue;
-                    }
-                    if x & NM != 0 {
+                    // NONE has the NM bit: one test excludes both
+                    let nm = x & NM != 0;
+                    if nm && x != NONE && w != v {
                         for &u in nm_cells.row((x & !NM) as usize) {
                             if stamps[u as usize] != ep {
                                 stamps[u as usize] = ep;
-                                stack.push(u);
+                                stack[top] = u;
+                                top += 1;
                             }
                         }
-                    } else if stamps[x as usize] != ep {
-                        stamps[x as usize] = ep;
-                        stack.push(x);
+                        continue;
                     }
+                    let i = if w != v && !nm { x as usize } else { sink };
+                    let fresh = stamps[i] != ep;
+                    stamps[i] = ep;
+                    stack[top] = x;
+                    top += fresh as usize;
                 }
             }
             out.push(best);
