@@ -210,8 +210,9 @@ pub fn orient_tops_renumbered(
     }
     let top: Vec<bool> = (0..n_cells as u32).map(&is_top).collect();
     // each row holds its neighbours directly, with the relation in the low bit: no second
-    // random read through the pair
-    let adj = Csr::from_fn(n_cells, |emit| {
+    // random read through the pair; the working order keeps the rows of successive pairs
+    // near each other, so they are filled directly (no buckets: 8 bytes per reference less)
+    let adj = Csr::from_fn_local(n_cells, |emit| {
         for &(a, b, rel) in pairs {
             if top[a as usize] && top[b as usize] {
                 let neg = u32::from(rel < 0);
