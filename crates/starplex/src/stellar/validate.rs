@@ -375,7 +375,8 @@ impl StellarTree {
         // (d-1)-connectedness and orientation: the shared walk, on tree cell ids
         let mut pairs: Vec<(u32, u32, i8)> =
             Vec::with_capacity(outs.iter().map(|o| o.pairs.len()).sum());
-        for o in &outs {
+        // each leaf's findings are freed once copied: the pairs are not held twice
+        for o in outs {
             r.boundary_faces.extend(o.boundary.iter().map(face_in));
             r.faces_in_more_than_two_cells
                 .extend(o.over2.iter().map(face_in));
@@ -389,7 +390,6 @@ impl StellarTree {
                 .extend(o.sing.unknown_edges.iter().map(edge_in));
             pairs.extend_from_slice(&o.pairs);
         }
-        drop(outs);
         r.boundary_faces.sort_unstable();
         r.faces_in_more_than_two_cells.sort_unstable();
         r.non_manifold_vertices.sort_unstable();
@@ -506,6 +506,55 @@ mod tests {
             check_short_cut(b, case, &mut seen_kinds);
         }
         assert!(seen_kinds.iter().all(|&n| n > 100), "{seen_kinds:?}");
+    }
+
+    /// Links of up to ~200 vertices (the tetrahedral test indexes the link edges directly up
+    /// to 64 link vertices and hashes them beyond): cones from vertex 0 over bipyramids on
+    /// rings of 20 to 100 vertices, some tetrahedra removed, sometimes a second cone on the
+    /// same apex or on a shared ring edge.
+    #[test]
+    fn tet_short_cut_equals_generic_on_wide_links() {
+        let mut rng = crate::testkit::XorShift::new(0x0005_EED0_FB16_11C5);
+        let mut seen_kinds = [0usize; 3];
+        for case in 0..60 {
+            let mut b = ComplexBuilder::new(3).unwrap();
+            let n = 20 + rng.below(81) as u32;
+            let second = rng.below(3);
+            // apex 0, poles 1 and 2, ring 3..3+n; a second ring (and poles) after it
+            let nv = 3 + 2 * n + 2;
+            for i in 0..nv {
+                let f = i as f64;
+                b.push_vertex(&[f.sin(), (1.3 * f).cos(), (0.7 * f).sin()])
+                    .unwrap();
+            }
+            let drop = rng.below(4);
+            let mut cone = |b: &mut ComplexBuilder, apex: u32, poles: [u32; 2], ring: &[u32]| {
+                for i in 0..ring.len() {
+                    let (r0, r1) = (ring[i], ring[(i + 1) % ring.len()]);
+                    for p in poles {
+                        if drop > 0 && rng.below(40) < drop {
+                            continue;
+                        }
+                        b.push_cell(CellKind::Simplex(3), &[apex, p, r0, r1])
+                            .unwrap();
+                    }
+                }
+            };
+            let ring: Vec<u32> = (3..3 + n).collect();
+            cone(&mut b, 0, [1, 2], &ring);
+            if second > 0 {
+                let base = 3 + n;
+                let mut ring2: Vec<u32> = (base..base + n).collect();
+                if second == 2 {
+                    // shares the ring edge (3, 4) with the first cone
+                    ring2[0] = 3;
+                    ring2[1] = 4;
+                }
+                cone(&mut b, 0, [nv - 2, nv - 1], &ring2);
+            }
+            check_short_cut(b, case, &mut seen_kinds);
+        }
+        assert!(seen_kinds.iter().all(|&n| n > 20), "{seen_kinds:?}");
     }
 
     /// On every leaf of trees with k_V 0, 2 and 5 over `k`, the short cuts answer like the

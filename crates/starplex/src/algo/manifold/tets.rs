@@ -38,6 +38,9 @@ pub(crate) struct TetScratch {
     ekeys: Vec<u64>,
     evals: Vec<u32>,
     eslot: Vec<u32>,
+    /// Links of at most [`DENSE`] vertices: edge index at `a * DENSE + b` (or EMPTY), in
+    /// place of the edge hash.
+    edense: Vec<u32>,
     /// Per link edge: endpoints (local, a < b), number of triangles, the first two.
     eab: Vec<(u32, u32)>,
     ecnt: Vec<u32>,
@@ -50,6 +53,9 @@ pub(crate) struct TetScratch {
     cuf: Vec<u32>,
     vuf: Vec<u32>,
 }
+
+/// Most link vertices for which the link edges are indexed directly (a 16 KB table).
+const DENSE: usize = 64;
 
 #[inline]
 fn hash1(x: u32, shift: u32) -> usize {
@@ -251,6 +257,36 @@ impl TetScratch {
         ecnt.clear();
         etri.clear();
         eslot.clear();
+        if self.lv.len() <= DENSE {
+            // local ids index the table directly: no hashing, no probing
+            let edense = &mut self.edense;
+            if edense.is_empty() {
+                edense.resize(DENSE * DENSE, EMPTY);
+            }
+            for (i, t) in tri.iter().enumerate() {
+                for (a, b) in [(t[0], t[1]), (t[0], t[2]), (t[1], t[2])] {
+                    let h = a as usize * DENSE + b as usize;
+                    let e = edense[h];
+                    if e != EMPTY {
+                        let e = e as usize;
+                        if ecnt[e] == 1 {
+                            etri[e][1] = i as u32;
+                        }
+                        ecnt[e] += 1;
+                    } else {
+                        edense[h] = eab.len() as u32;
+                        eslot.push(h as u32);
+                        eab.push((a, b));
+                        ecnt.push(1);
+                        etri.push([i as u32, EMPTY]);
+                    }
+                }
+            }
+            for &h in eslot.iter() {
+                edense[h as usize] = EMPTY;
+            }
+            return;
+        }
         for (i, t) in tri.iter().enumerate() {
             for (a, b) in [(t[0], t[1]), (t[0], t[2]), (t[1], t[2])] {
                 let key = ((a as u64) << 32) | b as u64;
