@@ -519,7 +519,7 @@ impl StellarTree {
     /// The per-leaf [`Pieces`] of a complex of one simplex kind of dimension 2 or 3 whose
     /// facet keys fit in 8 bytes (edges always; triangles with at most 2^21 vertices), as
     /// [`par_facet_groups_where`](Self::par_facet_groups_where) with
-    /// [`group_pieces_unordered`] gives them, without the face records: each leaf hashes the
+    /// [`group_pieces`] gives them, without the face records: each leaf hashes the
     /// facets of its cells whose smallest vertex it owns into an open-addressing table sized
     /// for the leaf. The second cell met on a facet pairs the two at once; a third makes the
     /// facet non-manifold, and the non-manifold facets of the leaf are numbered in key order
