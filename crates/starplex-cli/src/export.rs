@@ -576,45 +576,356 @@ enum Array {
     I64(Vec<i64>),
 }
 
+/// A `.npz` being written: a zip of `.npy` members, stored, streamed.
+type NpzOut<'w> = zip::ZipWriter<zip::write::StreamWriter<&'w mut dyn Write>>;
+
+fn zip_err(e: zip::result::ZipError) -> IoErrorKind {
+    IoErrorKind::Os(std::io::Error::other(e.to_string()))
+}
+
+/// Writes one `.npy` member `NAME.npy` of shape `shape`, its elements pushed by `fill`.
+fn npz_member<T: npyz::AutoSerialize>(
+    z: &mut NpzOut<'_>,
+    name: &str,
+    shape: &[u64],
+    fill: impl FnOnce(&mut dyn FnMut(T) -> std::io::Result<()>) -> std::io::Result<()>,
+) -> Result<(), IoErrorKind> {
+    use npyz::WriterBuilder;
+    let bytes = shape.iter().product::<u64>() * std::mem::size_of::<T>() as u64;
+    let opts = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Stored)
+        .large_file(bytes > (1u64 << 31));
+    z.start_file(format!("{name}.npy"), opts).map_err(zip_err)?;
+    let mut nw = npyz::WriteOptions::<T>::new()
+        .default_dtype()
+        .shape(shape)
+        .writer(&mut *z)
+        .begin_nd()?;
+    fill(&mut |x| nw.push(&x))?;
+    nw.finish()?;
+    Ok(())
+}
+
 /// Writes `arrays` as an uncompressed `.npz` (a zip of `.npy` files), streamed.
 fn write_npz(w: &mut dyn Write, arrays: Vec<(String, Array)>) -> Result<(), IoErrorKind> {
-    use npyz::WriterBuilder;
-    let zerr = |e: zip::result::ZipError| IoErrorKind::Os(std::io::Error::other(e.to_string()));
     let mut z = zip::ZipWriter::new_stream(w);
     for (name, a) in arrays {
-        let bytes = match &a {
-            Array::U32(v, _) => v.len() as u64 * 4,
-            Array::I64(v) => v.len() as u64 * 8,
-        };
-        let opts = zip::write::SimpleFileOptions::default()
-            .compression_method(zip::CompressionMethod::Stored)
-            .large_file(bytes > (1u64 << 31));
-        z.start_file(format!("{name}.npy"), opts).map_err(zerr)?;
         match a {
             Array::U32(v, width) => {
                 let shape: Vec<u64> = match v.len().checked_div(width) {
                     Some(rows) => vec![rows as u64, width as u64],
                     None => vec![v.len() as u64],
                 };
-                let mut nw = npyz::WriteOptions::<u32>::new()
-                    .default_dtype()
-                    .shape(&shape)
-                    .writer(&mut z)
-                    .begin_nd()?;
-                nw.extend(v)?;
-                nw.finish()?;
+                npz_member(&mut z, &name, &shape, |push| {
+                    v.into_iter().try_for_each(push)
+                })?;
             }
             Array::I64(v) => {
-                let mut nw = npyz::WriteOptions::<i64>::new()
-                    .default_dtype()
-                    .shape(&[v.len() as u64])
-                    .writer(&mut z)
-                    .begin_nd()?;
-                nw.extend(v)?;
-                nw.finish()?;
+                let shape = [v.len() as u64];
+                npz_member(&mut z, &name, &shape, |push| {
+                    v.into_iter().try_for_each(push)
+                })?;
             }
         }
     }
-    z.finish().map_err(zerr)?;
+    z.finish().map_err(zip_err)?;
     Ok(())
+}
+
+/// Merges `.npz` answer files of one relation, written by [`write_mapped`] for disjoint sets
+/// of items (each file's `ids` ascending), into `out` by item id: the bytes `write_mapped`
+/// writes for all their items at once. Streamed: each output array is made by reading the
+/// parts' arrays once, in order, so no more than a buffer per part is in memory (this is how
+/// `starplex-mpi query --out FILE.npz` gathers the ranks' answers).
+///
+/// ```
+/// use starplex_cli::export::{merge_npz, write, RelationKind};
+/// use starplex::structures::Structure;
+/// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap(); // 9 vertices
+/// let s = Structure::Stellar.build(&k, &Default::default()).unwrap();
+/// let dir = std::env::temp_dir();
+/// let f = |n: &str| dir.join(format!("starplex-doc-merge-{}-{n}.npz", std::process::id()));
+/// write(s.as_ref(), RelationKind::Star, Some(&[0, 2, 3, 7]), &f("a")).unwrap();
+/// write(s.as_ref(), RelationKind::Star, Some(&[1, 4, 5, 6, 8]), &f("b")).unwrap();
+/// write(s.as_ref(), RelationKind::Star, None, &f("all")).unwrap();
+/// merge_npz(&[f("a"), f("b")], &f("merged")).unwrap();
+/// assert_eq!(std::fs::read(f("merged")).unwrap(), std::fs::read(f("all")).unwrap());
+/// // an item in two parts is refused, and nothing is written
+/// let e = merge_npz(&[f("a"), f("b"), f("a")], &f("bad")).unwrap_err();
+/// assert!(e.to_string().contains("item 0 is in two parts"));
+/// assert!(!f("bad").exists());
+/// # for n in ["a", "b", "all", "merged"] { std::fs::remove_file(f(n)).ok(); }
+/// ```
+///
+/// # Errors
+/// A part that cannot be read, is not such a file, or disagrees with the others (its arrays or
+/// their shapes), an item in two parts, or a write error.
+pub fn merge_npz(parts: &[std::path::PathBuf], out: &Path) -> Result<(), CliError> {
+    let layout = NpzLayout::of(parts).map_err(CliError::Other)?;
+    output::write_with(out, |w| {
+        let mut z = zip::ZipWriter::new_stream(w);
+        layout.write(&mut z)?;
+        z.finish().map_err(zip_err)?;
+        Ok(())
+    })?;
+    Ok(())
+}
+
+/// The arrays of answer `.npz` parts ([`merge_npz`]).
+struct NpzLayout<'p> {
+    parts: &'p [std::path::PathBuf],
+    /// Per part, its number of items.
+    n_items: Vec<u64>,
+    /// The answer levels, by suffix (`""` for one unsuffixed level, else `_0`, `_1`, ...):
+    /// per part, its values' shape if it has the level.
+    levels: Vec<(String, Vec<Option<Vec<u64>>>)>,
+    /// The flag of adjacent cells of mixed sizes.
+    flat: bool,
+}
+
+/// An answer `.npz` part, open.
+type Part = zip::ZipArchive<std::io::BufReader<std::fs::File>>;
+
+/// One array of a part, streamed (`None`: the part does not have it).
+type Stream<'a, T> = Option<Box<dyn Iterator<Item = std::io::Result<T>> + 'a>>;
+
+/// The next element of a part's stream.
+fn next_of<T>(s: &mut Stream<'_, T>) -> std::io::Result<T> {
+    match s.as_mut().and_then(|s| s.next()) {
+        Some(x) => x,
+        None => Err(std::io::Error::other("a part's array ends early")),
+    }
+}
+
+/// Calls `each(part, id)` for the items of every part, in increasing id (each part's `ids`
+/// ascending, no id in two parts).
+fn merge_order(
+    ids: &mut [Stream<'_, u32>],
+    mut each: impl FnMut(usize, u32) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    use std::cmp::Reverse;
+    let mut heads = std::collections::BinaryHeap::new();
+    for (r, s) in ids.iter_mut().enumerate() {
+        if let Some(x) = s.as_mut().and_then(|s| s.next()) {
+            heads.push(Reverse((x?, r)));
+        }
+    }
+    let mut last = None;
+    while let Some(Reverse((id, r))) = heads.pop() {
+        if last.is_some_and(|l| l >= id) {
+            return Err(std::io::Error::other(format!(
+                "item {id} is in two parts, or a part's ids are not ascending"
+            )));
+        }
+        last = Some(id);
+        each(r, id)?;
+        if let Some(x) = ids[r].as_mut().and_then(|s| s.next()) {
+            heads.push(Reverse((x?, r)));
+        }
+    }
+    Ok(())
+}
+
+impl<'p> NpzLayout<'p> {
+    fn open(p: &Path) -> Result<Part, String> {
+        let f = std::fs::File::open(p).map_err(|e| format!("{}: {e}", p.display()))?;
+        zip::ZipArchive::new(std::io::BufReader::with_capacity(1 << 16, f))
+            .map_err(|e| format!("{}: not an .npz: {e}", p.display()))
+    }
+
+    /// The `.npy` member `name` of a part, its header read.
+    fn member<'a>(
+        a: &'a mut Part,
+        p: &Path,
+        name: &str,
+    ) -> Result<npyz::NpyFile<zip::read::ZipFile<'a, std::io::BufReader<std::fs::File>>>, String>
+    {
+        let m = a
+            .by_name(&format!("{name}.npy"))
+            .map_err(|e| format!("{}: {name}: {e}", p.display()))?;
+        npyz::NpyFile::new(m).map_err(|e| format!("{}: {name}: {e}", p.display()))
+    }
+
+    fn of(parts: &'p [std::path::PathBuf]) -> Result<Self, String> {
+        let mut n_items = Vec::with_capacity(parts.len());
+        let mut names: Vec<Vec<String>> = Vec::with_capacity(parts.len());
+        for p in parts {
+            let mut a = Self::open(p)?;
+            let ids = Self::member(&mut a, p, "ids")?;
+            if ids.shape().len() != 1 {
+                return Err(format!("{}: ids is not one-dimensional", p.display()));
+            }
+            n_items.push(ids.shape()[0]);
+            drop(ids);
+            names.push(
+                a.file_names()
+                    .filter_map(|n| n.ok().map(|n| n.into_owned()))
+                    .collect(),
+            );
+        }
+        let has = |i: usize, n: &str| names[i].iter().any(|x| *x == format!("{n}.npy"));
+        let single = (0..parts.len()).any(|i| has(i, "offsets"));
+        let n_levels = if single {
+            1
+        } else {
+            (0..)
+                .take_while(|l| (0..parts.len()).any(|i| has(i, &format!("offsets_{l}"))))
+                .count()
+        };
+        let mut levels = Vec::with_capacity(n_levels);
+        for l in 0..n_levels {
+            let sfx = if single {
+                String::new()
+            } else {
+                format!("_{l}")
+            };
+            let mut shapes = Vec::with_capacity(parts.len());
+            for (i, p) in parts.iter().enumerate() {
+                if !has(i, &format!("offsets{sfx}")) {
+                    shapes.push(None);
+                    continue;
+                }
+                let mut a = Self::open(p)?;
+                let shape = Self::member(&mut a, p, &format!("values{sfx}"))?
+                    .shape()
+                    .to_vec();
+                if shape.is_empty() || shape.len() > 2 {
+                    return Err(format!("{}: values{sfx} has shape {shape:?}", p.display()));
+                }
+                shapes.push(Some(shape));
+            }
+            let widths: Vec<&[u64]> = shapes.iter().flatten().map(|s| &s[1..]).collect();
+            if widths.windows(2).any(|w| w[0] != w[1]) {
+                return Err(format!("the parts' values{sfx} differ in shape"));
+            }
+            levels.push((sfx, shapes));
+        }
+        let flat = (0..parts.len()).any(|i| has(i, "values_are_flat_vertex_lists"));
+        Ok(NpzLayout {
+            parts,
+            n_items,
+            levels,
+            flat,
+        })
+    }
+
+    fn open_all(&self) -> Result<Vec<Part>, String> {
+        self.parts.iter().map(|p| Self::open(p)).collect()
+    }
+
+    /// Every part's `name` array, streamed.
+    fn streams<'a, T: npyz::Deserialize + 'a>(
+        &self,
+        archives: &'a mut [Part],
+        name: &str,
+    ) -> Result<Vec<Stream<'a, T>>, String> {
+        let mut out: Vec<Stream<'a, T>> = Vec::with_capacity(archives.len());
+        for (a, p) in archives.iter_mut().zip(self.parts) {
+            if a.index_for_name(&format!("{name}.npy")).is_none() {
+                out.push(None);
+                continue;
+            }
+            let m = Self::member(a, p, name)?;
+            let data = m
+                .data::<T>()
+                .map_err(|e| format!("{}: {name}: {e}", p.display()))?;
+            out.push(Some(Box::new(data)));
+        }
+        Ok(out)
+    }
+
+    /// Writes the merged arrays, in `write_mapped`'s order.
+    fn write(&self, z: &mut NpzOut<'_>) -> Result<(), IoErrorKind> {
+        let total: u64 = self.n_items.iter().sum();
+        let np = self.parts.len();
+        {
+            let mut a = self.open_all().map_err(IoErrorKind::Parse)?;
+            let mut ids = self
+                .streams::<u32>(&mut a, "ids")
+                .map_err(IoErrorKind::Parse)?;
+            npz_member(z, "ids", &[total], |push| {
+                merge_order(&mut ids, |_, id| push(id))
+            })?;
+        }
+        for (sfx, shapes) in &self.levels {
+            let (mut a, mut b, mut c) = (
+                self.open_all().map_err(IoErrorKind::Parse)?,
+                self.open_all().map_err(IoErrorKind::Parse)?,
+                self.open_all().map_err(IoErrorKind::Parse)?,
+            );
+            let name = format!("offsets{sfx}");
+            {
+                let mut ids = self
+                    .streams::<u32>(&mut a, "ids")
+                    .map_err(IoErrorKind::Parse)?;
+                let mut offs = self
+                    .streams::<i64>(&mut b, &name)
+                    .map_err(IoErrorKind::Parse)?;
+                npz_member::<i64>(z, &name, &[total + 1], |push| {
+                    // each part's offsets start at 0; a row's length is the next step
+                    let mut prev = vec![0i64; np];
+                    for (r, s) in offs.iter_mut().enumerate() {
+                        if s.is_some() {
+                            prev[r] = next_of(s)?;
+                        }
+                    }
+                    let mut acc = 0i64;
+                    push(acc)?;
+                    merge_order(&mut ids, |r, _| {
+                        if offs[r].is_some() {
+                            let x = next_of(&mut offs[r])?;
+                            acc += x - prev[r];
+                            prev[r] = x;
+                        }
+                        push(acc)
+                    })
+                })?;
+            }
+            // values: each item's row copied from its part, rows of `per_row` elements
+            let shape0 = shapes.iter().flatten().next();
+            let per_row = shape0.map_or(1, |s| s.get(1).copied().unwrap_or(1)) as i64;
+            let rows: u64 = shapes.iter().flatten().map(|s| s[0]).sum();
+            let shape: Vec<u64> = match shape0 {
+                Some(s) if s.len() == 2 => vec![rows, s[1]],
+                _ => vec![rows],
+            };
+            let (mut a, mut b) = (
+                self.open_all().map_err(IoErrorKind::Parse)?,
+                self.open_all().map_err(IoErrorKind::Parse)?,
+            );
+            let mut ids = self
+                .streams::<u32>(&mut a, "ids")
+                .map_err(IoErrorKind::Parse)?;
+            let mut offs = self
+                .streams::<i64>(&mut b, &name)
+                .map_err(IoErrorKind::Parse)?;
+            let mut vals = self
+                .streams::<u32>(&mut c, &format!("values{sfx}"))
+                .map_err(IoErrorKind::Parse)?;
+            npz_member::<u32>(z, &format!("values{sfx}"), &shape, |push| {
+                let mut prev = vec![0i64; np];
+                for (r, s) in offs.iter_mut().enumerate() {
+                    if s.is_some() {
+                        prev[r] = next_of(s)?;
+                    }
+                }
+                merge_order(&mut ids, |r, _| {
+                    if offs[r].is_none() {
+                        return Ok(());
+                    }
+                    let x = next_of(&mut offs[r])?;
+                    let len = (x - prev[r]) * per_row;
+                    prev[r] = x;
+                    for _ in 0..len {
+                        push(next_of(&mut vals[r])?)?;
+                    }
+                    Ok(())
+                })
+            })?;
+        }
+        if self.flat {
+            npz_member::<i64>(z, "values_are_flat_vertex_lists", &[1], |push| push(1))?;
+        }
+        Ok(())
+    }
 }

@@ -9,10 +9,9 @@
 //!   sharing a vertex with a cell it owns, hence every cell across each of its facets.
 //! - **Output.** `--per-rank` writes `STEM.rankR.EXT` on each rank (its items in increasing
 //!   id; `.npz` files carry their `ids`). Otherwise every rank writes its part beside the
-//!   output and rank 0 merges the parts by item id into `FILE` (`.jsonl` and `.csv`): the bytes
+//!   output and rank 0 merges the parts by item id into `FILE` (`.jsonl`, `.csv`, `.npz`): the bytes
 //!   `starplex query FILE --all --out` writes. Rank 0 streams the merge (one line per rank in
-//!   memory); a gathered `.npz` would need all arrays on one rank and is refused with the two
-//!   ways that work.
+//!   memory; for `.npz`, [`export::merge_npz`], a read buffer per rank and array).
 //! - `pfaces` (every simplex) is not distributed: `starplex-mpi info` gives the f-vector.
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
@@ -136,12 +135,6 @@ pub fn run(
             "--relation pfaces is not distributed: `starplex-mpi info` counts the faces of every dimension; `starplex query FILE --relation pfaces --all --out OUT` lists them on one machine".into(),
         ));
     }
-    if fmt == OutFormat::Npz && !a.per_rank {
-        return Err(Failure(format!(
-            "{}: a merged .npz would hold every answer on one rank: pass --per-rank (one .npz per rank, each with the ids of its items) or write .jsonl or .csv",
-            a.out.display()
-        )));
-    }
     let target = agree(w, crate::write::target_of(a.out))?;
     let t0 = Instant::now();
     if over_cells(a.relation) {
@@ -200,7 +193,11 @@ pub fn run(
         }
     };
     let merged = if !a.per_rank && rank == 0 {
-        let r = merge(&parts, &target, fmt == OutFormat::Csv);
+        let r = if fmt == OutFormat::Npz {
+            export::merge_npz(&parts, &target).map_err(|e| e.to_string())
+        } else {
+            merge(&parts, &target, fmt == OutFormat::Csv)
+        };
         for p in &parts {
             let _ = std::fs::remove_file(p);
         }

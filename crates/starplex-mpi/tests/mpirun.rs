@@ -980,7 +980,7 @@ fn simplify_refuses_what_it_cannot_do() {
     std::fs::remove_dir_all(&tmp).ok();
 }
 
-/// `query --relation R --all --out`: the merged `.jsonl` and `.csv` of 1-4 ranks are the bytes
+/// `query --relation R --all --out`: the merged `.jsonl`, `.csv` and `.npz` of 1-4 ranks are the bytes
 /// `starplex query FILE --structure S --relation R --all --out` writes, for every small dataset
 /// and every relation the single process answers on it (vertex relations from the owners'
 /// stars; top-cell relations after the ghost layer is widened); `--per-rank` files hold every
@@ -1000,11 +1000,11 @@ fn query_all_out_equals_the_single_process_bytes() {
             .iter()
             .enumerate()
         {
-            // csv for some, jsonl for all; ranks 1-4 spread over the cases
-            let exts: &[&str] = if (d + i) % 3 == 0 {
-                &["jsonl", "csv"]
-            } else {
-                &["jsonl"]
+            // csv or npz for some, jsonl for all; ranks 1-4 spread over the cases
+            let exts: &[&str] = match (d + i) % 3 {
+                0 => &["jsonl", "csv"],
+                1 => &["jsonl", "npz"],
+                _ => &["jsonl"],
             };
             for ext in exts {
                 let one = tmp
