@@ -258,7 +258,8 @@ pub fn write(
 /// [`write`], with every item and answer element written in the numbering of `map` (the items
 /// are given in the structure's own numbering). `all` asks for what `--all` writes (adjacent
 /// tops and IA* of top cells, every simplex for p-faces); with `items` as well, only those
-/// items (top cells for adj and ia-star).
+/// items (top cells for adj and ia-star; for p-faces, the simplices whose smallest vertex is
+/// one of them).
 ///
 /// ```
 /// use starplex_cli::export::{write_mapped, IdMap, RelationKind};
@@ -288,10 +289,10 @@ pub fn write_mapped(
     let n_items = match &p {
         Plan::Ids(rel) => rel.n_items(s),
         Plan::AdjTops => s.n_top_cells(),
-        Plan::Faces => 0,
         _ => s.n_vertices(),
     };
     let owned;
+    let given = items.is_some();
     let items: &[u32] = match items {
         Some(v) => {
             let what = if matches!(p, Plan::Ids(Relation::Tt) | Plan::AdjTops) {
@@ -302,10 +303,25 @@ pub fn write_mapped(
             batch::check_items(v, n_items, what).map_err(|m| CliError::Input(m, None))?;
             v
         }
+        // p-faces are not listed by item
+        None if matches!(p, Plan::Faces) => &[],
         None => {
             owned = batch::all(n_items);
             &owned
         }
+    };
+    // p-faces with items: the simplices whose smallest vertex is one of them
+    let keep: Option<Vec<bool>> = match (&p, given) {
+        (Plan::Faces, true) => {
+            let mut k = vec![false; n_items];
+            items.iter().for_each(|&v| k[v as usize] = true);
+            Some(k)
+        }
+        _ => None,
+    };
+    let kept = |smallest: Option<u32>| {
+        keep.as_ref()
+            .is_none_or(|k| smallest.is_some_and(|v| k[v as usize]))
     };
     let (item_key, answer_key) = names(r, all);
     let (item_ids, value_ids) = id_kinds(&p);
@@ -369,7 +385,7 @@ pub fn write_mapped(
                     for dim in 0..f.len() {
                         let mut err = Ok(());
                         s.for_each_simplex(dim, &mut |x| {
-                            if err.is_ok() {
+                            if err.is_ok() && kept(x.iter().map(|v| v.0).min()) {
                                 counts.1 += 1;
                                 err = write_simplex_line(w, csv, dim, x, map);
                             }
@@ -394,10 +410,21 @@ pub fn write_mapped(
                 let mut arrays: Vec<(String, Array)> = Vec::new();
                 if let Plan::Faces = p {
                     let f = s.f_vector().map_err(qerr)?;
-                    for (dim, &n) in f.iter().enumerate() {
+                    for dim in 0..f.len() {
                         let mut v = batch::faces(s, dim).map_err(qerr)?;
+                        if keep.is_some() {
+                            let mut at = 0;
+                            for i in 0..v.len() / (dim + 1) {
+                                let r = i * (dim + 1)..(i + 1) * (dim + 1);
+                                if kept(v[r.clone()].iter().copied().min()) {
+                                    v.copy_within(r, at);
+                                    at += dim + 1;
+                                }
+                            }
+                            v.truncate(at);
+                        }
                         map_in_place(map, Ids::Vertex, &mut v);
-                        counts.1 += n;
+                        counts.1 += (v.len() / (dim + 1)) as u64;
                         arrays.push((format!("faces_{dim}"), Array::U32(v, dim + 1)));
                     }
                 } else {
@@ -428,7 +455,7 @@ pub fn write_mapped(
             }
         }
     })?;
-    if matches!(fmt, OutFormat::Npz) && all {
+    if matches!(fmt, OutFormat::Npz) && all && !matches!(p, Plan::Faces) {
         counts.0 = items.len() as u64;
     }
     Ok(counts)
@@ -650,9 +677,17 @@ fn write_npz(w: &mut dyn Write, arrays: Vec<(String, Array)>) -> Result<(), IoEr
 /// write(s.as_ref(), RelationKind::Star, None, &f("all")).unwrap();
 /// merge_npz(&[f("a"), f("b")], &f("merged")).unwrap();
 /// assert_eq!(std::fs::read(f("merged")).unwrap(), std::fs::read(f("all")).unwrap());
+/// // every simplex, the parts split by their smallest vertex
+/// use starplex_cli::export::write_mapped;
+/// let pf = RelationKind::Pfaces;
+/// write_mapped(s.as_ref(), pf, Some(&[0, 2, 3, 7]), true, &f("a"), None).unwrap();
+/// write_mapped(s.as_ref(), pf, Some(&[1, 4, 5, 6, 8]), true, &f("b"), None).unwrap();
+/// write_mapped(s.as_ref(), pf, None, true, &f("all"), None).unwrap();
+/// merge_npz(&[f("a"), f("b")], &f("merged")).unwrap();
+/// assert_eq!(std::fs::read(f("merged")).unwrap(), std::fs::read(f("all")).unwrap());
 /// // an item in two parts is refused, and nothing is written
 /// let e = merge_npz(&[f("a"), f("b"), f("a")], &f("bad")).unwrap_err();
-/// assert!(e.to_string().contains("item 0 is in two parts"));
+/// assert!(e.to_string().contains("is in two parts"));
 /// assert!(!f("bad").exists());
 /// # for n in ["a", "b", "all", "merged"] { std::fs::remove_file(f(n)).ok(); }
 /// ```
@@ -661,13 +696,88 @@ fn write_npz(w: &mut dyn Write, arrays: Vec<(String, Array)>) -> Result<(), IoEr
 /// A part that cannot be read, is not such a file, or disagrees with the others (its arrays or
 /// their shapes), an item in two parts, or a write error.
 pub fn merge_npz(parts: &[std::path::PathBuf], out: &Path) -> Result<(), CliError> {
-    let layout = NpzLayout::of(parts).map_err(CliError::Other)?;
+    let faces = NpzLayout::faces_dims(parts).map_err(CliError::Other)?;
+    let layout = if faces == 0 {
+        Some(NpzLayout::of(parts).map_err(CliError::Other)?)
+    } else {
+        None
+    };
     output::write_with(out, |w| {
         let mut z = zip::ZipWriter::new_stream(w);
-        layout.write(&mut z)?;
+        match &layout {
+            Some(l) => l.write(&mut z)?,
+            None => merge_faces(parts, faces, &mut z)?,
+        }
         z.finish().map_err(zip_err)?;
         Ok(())
     })?;
+    Ok(())
+}
+
+/// The `faces_D` arrays of p-faces parts merged, dimension by dimension: the rows (each a
+/// simplex, ascending) of every part in lexicographic order, by a heap over the parts' next rows.
+fn merge_faces(
+    parts: &[std::path::PathBuf],
+    n_dims: usize,
+    z: &mut NpzOut<'_>,
+) -> Result<(), IoErrorKind> {
+    use std::cmp::Reverse;
+    for d in 0..n_dims {
+        let name = format!("faces_{d}");
+        let mut archives: Vec<Part> = parts
+            .iter()
+            .map(|p| NpzLayout::open(p))
+            .collect::<Result<_, _>>()
+            .map_err(IoErrorKind::Parse)?;
+        let mut rows = 0u64;
+        for (a, p) in archives.iter_mut().zip(parts) {
+            if a.index_for_name(&format!("{name}.npy")).is_some() {
+                let m = NpzLayout::member(a, p, &name).map_err(IoErrorKind::Parse)?;
+                if m.shape().len() != 2 || m.shape()[1] != d as u64 + 1 {
+                    let e = format!("{}: {name} has shape {:?}", p.display(), m.shape());
+                    return Err(IoErrorKind::Parse(e));
+                }
+                rows += m.shape()[0];
+            }
+        }
+        let mut s = NpzLayout::streams_of::<u32>(&mut archives, parts, &name)
+            .map_err(IoErrorKind::Parse)?;
+        npz_member::<u32>(z, &name, &[rows, d as u64 + 1], |push| {
+            let mut heads = std::collections::BinaryHeap::new();
+            let next = |r: usize, s: &mut [Stream<'_, u32>]| -> std::io::Result<Option<Vec<u32>>> {
+                if s[r].is_none() {
+                    return Ok(None);
+                }
+                let Some(x) = s[r].as_mut().and_then(|s| s.next()) else {
+                    return Ok(None);
+                };
+                let mut row = vec![x?];
+                for _ in 0..d {
+                    row.push(next_of(&mut s[r])?);
+                }
+                Ok(Some(row))
+            };
+            for r in 0..parts.len() {
+                if let Some(row) = next(r, &mut s)? {
+                    heads.push(Reverse((row, r)));
+                }
+            }
+            let mut last: Option<Vec<u32>> = None;
+            while let Some(Reverse((row, r))) = heads.pop() {
+                if last.as_ref().is_some_and(|l| *l >= row) {
+                    return Err(std::io::Error::other(format!(
+                        "simplex {row:?} is in two parts, or a part's rows are not in order"
+                    )));
+                }
+                row.iter().try_for_each(|&v| push(v))?;
+                last = Some(row);
+                if let Some(row) = next(r, &mut s)? {
+                    heads.push(Reverse((row, r)));
+                }
+            }
+            Ok(())
+        })?;
+    }
     Ok(())
 }
 
@@ -809,6 +919,19 @@ impl<'p> NpzLayout<'p> {
         })
     }
 
+    /// The number of `faces_D` arrays of p-faces parts (0 for other relations).
+    fn faces_dims(parts: &[std::path::PathBuf]) -> Result<usize, String> {
+        let mut n = 0;
+        for p in parts {
+            let a = Self::open(p)?;
+            let d = (0..)
+                .take_while(|d| a.index_for_name(&format!("faces_{d}.npy")).is_some())
+                .count();
+            n = n.max(d);
+        }
+        Ok(n)
+    }
+
     fn open_all(&self) -> Result<Vec<Part>, String> {
         self.parts.iter().map(|p| Self::open(p)).collect()
     }
@@ -819,8 +942,17 @@ impl<'p> NpzLayout<'p> {
         archives: &'a mut [Part],
         name: &str,
     ) -> Result<Vec<Stream<'a, T>>, String> {
+        Self::streams_of(archives, self.parts, name)
+    }
+
+    /// The `name` array of each part (`archives[i]` open on `parts[i]`), streamed.
+    fn streams_of<'a, T: npyz::Deserialize + 'a>(
+        archives: &'a mut [Part],
+        parts: &[std::path::PathBuf],
+        name: &str,
+    ) -> Result<Vec<Stream<'a, T>>, String> {
         let mut out: Vec<Stream<'a, T>> = Vec::with_capacity(archives.len());
-        for (a, p) in archives.iter_mut().zip(self.parts) {
+        for (a, p) in archives.iter_mut().zip(parts) {
             if a.index_for_name(&format!("{name}.npy")).is_none() {
                 out.push(None);
                 continue;

@@ -12,7 +12,9 @@
 //!   output and rank 0 merges the parts by item id into `FILE` (`.jsonl`, `.csv`, `.npz`): the bytes
 //!   `starplex query FILE --all --out` writes. Rank 0 streams the merge (one line per rank in
 //!   memory; for `.npz`, [`export::merge_npz`], a read buffer per rank and array).
-//! - `pfaces` (every simplex) is not distributed: `starplex-mpi info` gives the f-vector.
+//! - `pfaces` (every simplex): each rank lists the simplices whose smallest vertex it owns
+//!   (it holds the star of that vertex, hence the simplex), and the merge orders them by
+//!   dimension, then lexicographically, as the single process does.
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -59,19 +61,29 @@ fn over_cells(r: RelationKind) -> bool {
     matches!(r, RelationKind::Adj | RelationKind::IaStar)
 }
 
-/// The leading item id of a `.jsonl` line (`{"vertex":12,...`) or `.csv` line (`12,...`).
-fn item_of(line: &str, csv: bool) -> u64 {
+/// The sort key of a `.jsonl` or `.csv` line: its leading item id (`{"vertex":12,...` or
+/// `12,...`), or for p-faces (`faces`) every number of the line, the dimension then the
+/// simplex's vertices (`{"dim":2,"simplex":[4,7,9]}` or `2,4 7 9`).
+fn key_of(line: &str, csv: bool, faces: bool) -> Vec<u64> {
+    if faces {
+        return line
+            .split(|c: char| !c.is_ascii_digit())
+            .filter(|w| !w.is_empty())
+            .map(|w| w.parse().unwrap_or(u64::MAX))
+            .collect();
+    }
     let rest = if csv {
         line
     } else {
         line.split_once(':').map_or("", |(_, r)| r)
     };
     let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
-    rest[..digits].parse().unwrap_or(u64::MAX)
+    vec![rest[..digits].parse().unwrap_or(u64::MAX)]
 }
 
-/// Merges the parts (each sorted by item, every item in one part) into `out`, by item id.
-fn merge(parts: &[PathBuf], out: &Path, csv: bool) -> Result<(), String> {
+/// Merges the parts (each sorted by item or, for p-faces, by simplex; every item in one part)
+/// into `out`, in that order.
+fn merge(parts: &[PathBuf], out: &Path, csv: bool, faces: bool) -> Result<(), String> {
     let mut readers = Vec::with_capacity(parts.len());
     for p in parts {
         let f = std::fs::File::open(p).map_err(|e| format!("{}: {e}", p.display()))?;
@@ -100,12 +112,12 @@ fn merge(parts: &[PathBuf], out: &Path, csv: bool) -> Result<(), String> {
             let best = head
                 .iter()
                 .enumerate()
-                .filter_map(|(i, l)| l.as_ref().map(|l| (item_of(l, csv), i)))
+                .filter_map(|(i, l)| l.as_ref().map(|l| (key_of(l, csv, faces), i)))
                 .min();
             let Some((item, i)) = best else { break };
             // every line of this item (csv: one line per answer element)
             while let Some(l) = head[i].take() {
-                if item_of(&l, csv) != item {
+                if key_of(&l, csv, faces) != item {
                     head[i] = Some(l);
                     break;
                 }
@@ -130,11 +142,6 @@ pub fn run(
 ) -> Result<(), Failure> {
     let rank = w.rank() as usize;
     let fmt = agree(w, OutFormat::from_path(a.out).map_err(|e| e.to_string()))?;
-    if a.relation == RelationKind::Pfaces {
-        return Err(Failure(
-            "--relation pfaces is not distributed: `starplex-mpi info` counts the faces of every dimension; `starplex query FILE --relation pfaces --all --out OUT` lists them on one machine".into(),
-        ));
-    }
     let target = agree(w, crate::write::target_of(a.out))?;
     let t0 = Instant::now();
     if over_cells(a.relation) {
@@ -171,11 +178,13 @@ pub fn run(
         tagged(&target, &format!("part{rank}.starplex-mpi"))
     };
     let t1 = Instant::now();
+    // p-faces: the simplices whose smallest vertex this rank owns (it holds their stars)
+    let faces = a.relation == RelationKind::Pfaces;
     let wrote = export::write_mapped(
         s.as_ref(),
         a.relation,
         Some(&items),
-        over_cells(a.relation),
+        over_cells(a.relation) || faces,
         &mine,
         Some(&map),
     )
@@ -196,7 +205,7 @@ pub fn run(
         let r = if fmt == OutFormat::Npz {
             export::merge_npz(&parts, &target).map_err(|e| e.to_string())
         } else {
-            merge(&parts, &target, fmt == OutFormat::Csv)
+            merge(&parts, &target, fmt == OutFormat::Csv, faces)
         };
         for p in &parts {
             let _ = std::fs::remove_file(p);

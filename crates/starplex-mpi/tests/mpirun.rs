@@ -983,7 +983,8 @@ fn simplify_refuses_what_it_cannot_do() {
 /// `query --relation R --all --out`: the merged `.jsonl`, `.csv` and `.npz` of 1-4 ranks are the bytes
 /// `starplex query FILE --structure S --relation R --all --out` writes, for every small dataset
 /// and every relation the single process answers on it (vertex relations from the owners'
-/// stars; top-cell relations after the ghost layer is widened); `--per-rank` files hold every
+/// stars; top-cell relations after the ghost layer is widened; p-faces by the owner of each
+/// simplex's smallest vertex); `--per-rank` files hold every
 /// item once.
 #[test]
 fn query_all_out_equals_the_single_process_bytes() {
@@ -996,7 +997,7 @@ fn query_all_out_equals_the_single_process_bytes() {
     for (d, src) in data.iter().enumerate() {
         let name = src.file_stem().unwrap().to_string_lossy().into_owned();
         let spb = to_spb(&cli, src, &tmp);
-        for (i, rel) in ["vt", "vv", "link", "star", "adj", "ia-star"]
+        for (i, rel) in ["vt", "vv", "link", "star", "adj", "ia-star", "pfaces"]
             .iter()
             .enumerate()
         {
