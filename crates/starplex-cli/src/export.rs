@@ -381,8 +381,7 @@ pub fn write_mapped(
                     writeln!(w, "{item_key},{answer_key}")?;
                 }
                 if let Plan::Faces = p {
-                    let f = s.f_vector().map_err(qerr)?;
-                    for dim in 0..f.len() {
+                    for dim in 0..n_levels(s) {
                         let mut err = Ok(());
                         s.for_each_simplex(dim, &mut |x| {
                             if err.is_ok() && kept(x.iter().map(|v| v.0).min()) {
@@ -409,8 +408,7 @@ pub fn write_mapped(
             OutFormat::Npz => {
                 let mut arrays: Vec<(String, Array)> = Vec::new();
                 if let Plan::Faces = p {
-                    let f = s.f_vector().map_err(qerr)?;
-                    for dim in 0..f.len() {
+                    for dim in 0..n_levels(s) {
                         let mut v = batch::faces(s, dim).map_err(qerr)?;
                         if keep.is_some() {
                             let mut at = 0;
@@ -459,6 +457,15 @@ pub fn write_mapped(
         counts.0 = items.len() as u64;
     }
     Ok(counts)
+}
+
+/// The number of levels of simplices (the f-vector's length): the dimension + 1, 1 for
+/// vertices without cells, 0 for nothing. Counting the faces first would list them twice.
+fn n_levels(s: &(dyn Queries + Sync)) -> usize {
+    match starplex::algo::manifold::complex_dim(s) {
+        Some(d) => d + 1,
+        None => usize::from(s.n_vertices() > 0),
+    }
 }
 
 /// How the values of a block split into simplices.
@@ -623,13 +630,16 @@ fn npz_member<T: npyz::AutoSerialize>(
         .compression_method(zip::CompressionMethod::Stored)
         .large_file(bytes > (1u64 << 31));
     z.start_file(format!("{name}.npy"), opts).map_err(zip_err)?;
+    // the elements come one at a time: buffered, the zip's checksum runs over whole blocks
+    let mut bw = std::io::BufWriter::with_capacity(1 << 16, &mut *z);
     let mut nw = npyz::WriteOptions::<T>::new()
         .default_dtype()
         .shape(shape)
-        .writer(&mut *z)
+        .writer(&mut bw)
         .begin_nd()?;
     fill(&mut |x| nw.push(&x))?;
     nw.finish()?;
+    bw.flush()?;
     Ok(())
 }
 

@@ -407,9 +407,7 @@ pub fn levels<S: Queries + Sync + ?Sized>(
 /// # Errors
 /// The structure's own error (CP cells, over the budget).
 pub fn faces<S: Queries + ?Sized>(s: &S, p: usize) -> Result<Vec<u32>, QueryError> {
-    let mut out = Vec::new();
-    s.for_each_simplex(p, &mut |x| out.extend(x.iter().map(|v| v.0)))?;
-    Ok(out)
+    s.faces_flat(p)
 }
 
 fn gather_with<F>(items: &[u32], f: F) -> Result<Answers, QueryError>

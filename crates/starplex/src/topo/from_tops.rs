@@ -497,35 +497,97 @@ pub fn for_each_simplex<S: TopCells + VertexStar + ?Sized>(
     if est > budget {
         return Err(too_large(format!("the {p}-simplices"), est, budget));
     }
-    let mut cells = Vec::new();
-    let mut tv = Vec::new();
-    let mut local: Vec<VertexId> = Vec::new();
-    let mut buf = Vec::new();
-    let mut upper: Vec<VertexId> = Vec::new();
+    let mut sc = FaceScratch::default();
     for v in 0..st.n_vertices() {
-        let v = VertexId(v as u32);
-        st.vertex_top_cells(v, &mut cells);
-        local.clear();
-        for &c in &cells {
-            tv.clear();
-            st.top_cell_vertices(c, &mut tv);
-            upper.clear();
-            upper.extend(tv.iter().copied().filter(|&w| w > v));
-            if upper.len() < p {
-                continue;
-            }
-            upper.sort_unstable();
-            for_each_subset(&upper, p, &mut buf, &mut |sub| {
-                local.push(v);
-                local.extend_from_slice(sub);
-            });
-        }
-        sort_flat(&mut local, p + 1);
-        for s in local.chunks_exact(p + 1) {
+        simplices_from(st, VertexId(v as u32), p, &mut sc);
+        for s in sc.local.chunks_exact(p + 1) {
             f(s);
         }
     }
     Ok(())
+}
+
+/// Reused buffers of [`simplices_from`].
+#[derive(Default)]
+struct FaceScratch {
+    cells: Vec<CellId>,
+    tv: Vec<VertexId>,
+    buf: Vec<VertexId>,
+    upper: Vec<VertexId>,
+    /// The p-simplices found, flat and sorted.
+    local: Vec<VertexId>,
+}
+
+/// The p-simplices (p >= 1) whose smallest vertex is `v`, flat and sorted, into `sc.local`.
+fn simplices_from<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    v: VertexId,
+    p: usize,
+    sc: &mut FaceScratch,
+) {
+    st.vertex_top_cells(v, &mut sc.cells);
+    sc.local.clear();
+    for &c in &sc.cells {
+        sc.tv.clear();
+        st.top_cell_vertices(c, &mut sc.tv);
+        sc.upper.clear();
+        sc.upper.extend(sc.tv.iter().copied().filter(|&w| w > v));
+        if sc.upper.len() < p {
+            continue;
+        }
+        sc.upper.sort_unstable();
+        let local = &mut sc.local;
+        for_each_subset(&sc.upper, p, &mut sc.buf, &mut |sub| {
+            local.push(v);
+            local.extend_from_slice(sub);
+        });
+    }
+    sort_flat(&mut sc.local, p + 1);
+}
+
+/// Every p-simplex, flat (`p + 1` vertex ids each), in [`for_each_simplex`]'s order, the
+/// vertices split into ranges listed in parallel.
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops};
+/// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap(); // 8 triangles
+/// let idx = VtIndex::new(&k);
+/// let mut edges = Vec::new();
+/// from_tops::for_each_simplex(&idx, 1, 1000, &mut |e| edges.extend([e[0].0, e[1].0])).unwrap();
+/// assert_eq!(from_tops::faces_par(&idx, 1, 1000).unwrap(), edges);
+/// assert_eq!(edges.len(), 2 * 16);
+/// ```
+///
+/// # Errors
+/// As [`for_each_simplex`].
+pub fn faces_par<S: TopCells + VertexStar + Sync + ?Sized>(
+    st: &S,
+    p: usize,
+    budget: u128,
+) -> Result<Vec<u32>, QueryError> {
+    use rayon::prelude::*;
+    let n = st.n_vertices() as u32;
+    if p == 0 {
+        return Ok((0..n).collect());
+    }
+    check_simplicial(st, "level iteration")?;
+    let est = face_estimate(st, p);
+    if est > budget {
+        return Err(too_large(format!("the {p}-simplices"), est, budget));
+    }
+    const RANGE: u32 = 2048;
+    let parts: Vec<Vec<u32>> = (0..n.div_ceil(RANGE))
+        .into_par_iter()
+        .map_init(FaceScratch::default, |sc, r| {
+            let mut out = Vec::new();
+            for v in r * RANGE..((r + 1) * RANGE).min(n) {
+                simplices_from(st, VertexId(v), p, sc);
+                out.extend(sc.local.iter().map(|v| v.0));
+            }
+            out
+        })
+        .collect();
+    Ok(parts.concat())
 }
 
 /// The f-vector by level iteration.
@@ -645,6 +707,9 @@ macro_rules! impl_relations_from_tops {
                     $crate::topo::DEFAULT_BUDGET * 100,
                     f,
                 )
+            }
+            fn faces_flat(&self, p: usize) -> Result<Vec<u32>, $crate::topo::QueryError> {
+                $crate::topo::from_tops::faces_par(self, p, $crate::topo::DEFAULT_BUDGET * 100)
             }
         }
     };

@@ -446,6 +446,24 @@ pub trait Levels {
     /// # Errors
     /// [`QueryError::TooLarge`] when the level would enumerate more than the budget.
     fn for_each_simplex(&self, p: usize, f: &mut dyn FnMut(&[VertexId])) -> Result<(), QueryError>;
+
+    /// Every p-simplex, flat (`p + 1` vertex ids each), in
+    /// [`for_each_simplex`](Self::for_each_simplex)'s order; the structures built from their
+    /// top cells list the vertices' ranges in parallel.
+    ///
+    /// ```
+    /// use starplex::topo::{naive::VtIndex, Levels};
+    /// let k = starplex::generate::kuhn_grid(&[1, 1]).unwrap(); // two triangles
+    /// assert_eq!(VtIndex::new(&k).faces_flat(2).unwrap().len(), 2 * 3);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`for_each_simplex`](Self::for_each_simplex).
+    fn faces_flat(&self, p: usize) -> Result<Vec<u32>, QueryError> {
+        let mut out = Vec::new();
+        self.for_each_simplex(p, &mut |x| out.extend(x.iter().map(|v| v.0)))?;
+        Ok(out)
+    }
 }
 
 /// Size of a structure.

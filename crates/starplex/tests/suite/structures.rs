@@ -141,6 +141,10 @@ fn check_structure<S: Queries + ?Sized>(name: &str, s: &S, m: &Model, sorted_top
             .unwrap();
         let want: Vec<Vec<u32>> = m.all.iter().filter(|t| t.len() == p + 1).cloned().collect();
         assert_eq!(got, flat(&want), "{name}: level {p}");
+        // the flat listing (in parallel for some structures) in the same order
+        let flat_got: Vec<u32> = s.faces_flat(p).unwrap();
+        let got: Vec<u32> = got.iter().map(|v| v.0).collect();
+        assert_eq!(flat_got, got, "{name}: faces_flat({p})");
     }
     let (mut cells, mut vv, mut out) = (Vec::new(), Vec::new(), Vec::new());
     for v in 0..m.nv as u32 {
