@@ -498,8 +498,9 @@ pub fn for_each_simplex<S: TopCells + VertexStar + ?Sized>(
         return Err(too_large(format!("the {p}-simplices"), est, budget));
     }
     let mut sc = FaceScratch::default();
+    let vt = |v: VertexId, out: &mut Vec<CellId>| st.vertex_top_cells(v, out);
     for v in 0..st.n_vertices() {
-        simplices_from(st, VertexId(v as u32), p, &mut sc);
+        simplices_from(st, VertexId(v as u32), p, &mut sc, &vt);
         for s in sc.local.chunks_exact(p + 1) {
             f(s);
         }
@@ -518,14 +519,16 @@ struct FaceScratch {
     local: Vec<VertexId>,
 }
 
-/// The p-simplices (p >= 1) whose smallest vertex is `v`, flat and sorted, into `sc.local`.
-fn simplices_from<S: TopCells + VertexStar + ?Sized>(
+/// The p-simplices (p >= 1) whose smallest vertex is `v`, flat and sorted, into `sc.local`;
+/// `vt` gives the top cells incident to a vertex.
+fn simplices_from<S: TopCells + ?Sized>(
     st: &S,
     v: VertexId,
     p: usize,
     sc: &mut FaceScratch,
+    vt: &impl Fn(VertexId, &mut Vec<CellId>),
 ) {
-    st.vertex_top_cells(v, &mut sc.cells);
+    vt(v, &mut sc.cells);
     sc.local.clear();
     for &c in &sc.cells {
         sc.tv.clear();
@@ -565,6 +568,42 @@ pub fn faces_par<S: TopCells + VertexStar + Sync + ?Sized>(
     p: usize,
     budget: u128,
 ) -> Result<Vec<u32>, QueryError> {
+    faces_par_with(st, p, budget, || {
+        |v: VertexId, out: &mut Vec<CellId>| st.vertex_top_cells(v, out)
+    })
+}
+
+/// [`faces_par`] with the top cells incident to each vertex given by the function `make_vt`
+/// returns (called once the request is checked), for a structure that can list them all at
+/// once faster than one vertex at a time.
+///
+/// ```
+/// use starplex::ids::{CellId, VertexId};
+/// use starplex::topo::{naive::VtIndex, from_tops, VertexStar};
+/// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap();
+/// let idx = VtIndex::new(&k);
+/// let rows: Vec<Vec<CellId>> = (0..9).map(|v| {
+///     let mut c = Vec::new();
+///     idx.vertex_top_cells(VertexId(v), &mut c);
+///     c
+/// }).collect();
+/// let vt = || |v: VertexId, out: &mut Vec<CellId>| out.clone_from(&rows[v.0 as usize]);
+/// let got = from_tops::faces_par_with(&idx, 2, 1000, vt).unwrap();
+/// assert_eq!(got, from_tops::faces_par(&idx, 2, 1000).unwrap());
+/// ```
+///
+/// # Errors
+/// As [`for_each_simplex`].
+pub fn faces_par_with<S, F>(
+    st: &S,
+    p: usize,
+    budget: u128,
+    make_vt: impl FnOnce() -> F,
+) -> Result<Vec<u32>, QueryError>
+where
+    S: TopCells + Sync + ?Sized,
+    F: Fn(VertexId, &mut Vec<CellId>) + Sync,
+{
     use rayon::prelude::*;
     let n = st.n_vertices() as u32;
     if p == 0 {
@@ -575,13 +614,14 @@ pub fn faces_par<S: TopCells + VertexStar + Sync + ?Sized>(
     if est > budget {
         return Err(too_large(format!("the {p}-simplices"), est, budget));
     }
+    let vt = make_vt();
     const RANGE: u32 = 2048;
     let parts: Vec<Vec<u32>> = (0..n.div_ceil(RANGE))
         .into_par_iter()
         .map_init(FaceScratch::default, |sc, r| {
             let mut out = Vec::new();
             for v in r * RANGE..((r + 1) * RANGE).min(n) {
-                simplices_from(st, VertexId(v), p, sc);
+                simplices_from(st, VertexId(v), p, sc, &vt);
                 out.extend(sc.local.iter().map(|v| v.0));
             }
             out
@@ -640,10 +680,17 @@ pub fn f_vector<S: TopCells + VertexStar + ?Sized>(
 
 /// Implements `TopStar`, `Counts`, `Boundary`, `Coboundary`, `Adjacency`, `Star` and `Levels`
 /// for a type that implements `TopCells + VertexStar`, through this module's functions with
-/// [`DEFAULT_BUDGET`](super::DEFAULT_BUDGET).
+/// [`DEFAULT_BUDGET`](super::DEFAULT_BUDGET). A second argument, a function of the structure
+/// and `p`, replaces [`faces_par`] as `Levels::faces_flat` (the Stellar tree lists its VT rows
+/// leaf by leaf first, [`faces_par_with`]).
 #[macro_export]
 macro_rules! impl_relations_from_tops {
     ($t:ty) => {
+        $crate::impl_relations_from_tops!($t, |s: &$t, p: usize| {
+            $crate::topo::from_tops::faces_par(s, p, $crate::topo::DEFAULT_BUDGET * 100)
+        });
+    };
+    ($t:ty, $faces:expr) => {
         impl $crate::topo::TopStar for $t {
             fn top_star(
                 &self,
@@ -709,7 +756,7 @@ macro_rules! impl_relations_from_tops {
                 )
             }
             fn faces_flat(&self, p: usize) -> Result<Vec<u32>, $crate::topo::QueryError> {
-                $crate::topo::from_tops::faces_par(self, p, $crate::topo::DEFAULT_BUDGET * 100)
+                ($faces)(self, p)
             }
         }
     };
