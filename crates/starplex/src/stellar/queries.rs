@@ -21,17 +21,7 @@
 use super::StellarTree;
 use crate::topo::Storage;
 
-// every p-simplex from the VT rows of all vertices, decoded leaf by leaf at once (one vertex at
-// a time, each VT decodes its whole leaf)
-crate::impl_relations_from_tops!(StellarTree, |t: &StellarTree, p: usize| {
-    crate::topo::from_tops::faces_par_with(t, p, crate::topo::DEFAULT_BUDGET * 100, || {
-        let vt = t.vt_all();
-        move |v: crate::ids::VertexId, out: &mut Vec<crate::ids::CellId>| {
-            out.clear();
-            out.extend(vt.row(v.0 as usize).iter().map(|&c| crate::ids::CellId(c)));
-        }
-    })
-});
+crate::impl_relations_from_tops!(StellarTree);
 
 impl Storage for StellarTree {
     /// References of the COMPRESSED encoding (leaf lists and hierarchy) plus the base complex's

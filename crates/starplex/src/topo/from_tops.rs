@@ -549,7 +549,8 @@ fn simplices_from<S: TopCells + ?Sized>(
 }
 
 /// Every p-simplex, flat (`p + 1` vertex ids each), in [`for_each_simplex`]'s order, the
-/// vertices split into ranges listed in parallel.
+/// vertices split into ranges listed in parallel; from the VT rows of all vertices at once where
+/// the structure gives them ([`VertexStar::vertex_top_rows`]).
 ///
 /// ```
 /// use starplex::topo::{naive::VtIndex, from_tops};
@@ -569,7 +570,15 @@ pub fn faces_par<S: TopCells + VertexStar + Sync + ?Sized>(
     budget: u128,
 ) -> Result<Vec<u32>, QueryError> {
     faces_par_with(st, p, budget, || {
-        |v: VertexId, out: &mut Vec<CellId>| st.vertex_top_cells(v, out)
+        // all rows at once where the structure makes them faster so
+        let rows = st.vertex_top_rows();
+        move |v: VertexId, out: &mut Vec<CellId>| match &rows {
+            Some(r) => {
+                out.clear();
+                out.extend(r.row(v.index()).iter().map(|&c| CellId(c)));
+            }
+            None => st.vertex_top_cells(v, out),
+        }
     })
 }
 
@@ -680,17 +689,10 @@ pub fn f_vector<S: TopCells + VertexStar + ?Sized>(
 
 /// Implements `TopStar`, `Counts`, `Boundary`, `Coboundary`, `Adjacency`, `Star` and `Levels`
 /// for a type that implements `TopCells + VertexStar`, through this module's functions with
-/// [`DEFAULT_BUDGET`](super::DEFAULT_BUDGET). A second argument, a function of the structure
-/// and `p`, replaces [`faces_par`] as `Levels::faces_flat` (the Stellar tree lists its VT rows
-/// leaf by leaf first, [`faces_par_with`]).
+/// [`DEFAULT_BUDGET`](super::DEFAULT_BUDGET).
 #[macro_export]
 macro_rules! impl_relations_from_tops {
     ($t:ty) => {
-        $crate::impl_relations_from_tops!($t, |s: &$t, p: usize| {
-            $crate::topo::from_tops::faces_par(s, p, $crate::topo::DEFAULT_BUDGET * 100)
-        });
-    };
-    ($t:ty, $faces:expr) => {
         impl $crate::topo::TopStar for $t {
             fn top_star(
                 &self,
@@ -756,7 +758,7 @@ macro_rules! impl_relations_from_tops {
                 )
             }
             fn faces_flat(&self, p: usize) -> Result<Vec<u32>, $crate::topo::QueryError> {
-                ($faces)(self, p)
+                $crate::topo::from_tops::faces_par(self, p, $crate::topo::DEFAULT_BUDGET * 100)
             }
         }
     };

@@ -199,6 +199,25 @@ pub trait VertexStar {
     /// Replaces `out` with the top cells incident to `v`, sorted by id.
     fn vertex_top_cells(&self, v: VertexId, out: &mut Vec<CellId>);
 
+    /// [`vertex_top_cells`](Self::vertex_top_cells) of every vertex at once (row `v`), when the
+    /// structure makes them faster all together than one at a time (the Stellar tree decodes
+    /// each leaf once); `None` (the default) otherwise. Bulk answers use it.
+    ///
+    /// ```
+    /// use starplex::topo::{naive::VtIndex, VertexStar};
+    /// use starplex::stellar::{StellarTree, StellarOptions};
+    /// use starplex::ids::VertexId;
+    /// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap();
+    /// assert!(VtIndex::new(&k).vertex_top_rows().is_none());
+    /// let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+    /// let (rows, mut cells) = (t.vertex_top_rows().unwrap(), Vec::new());
+    /// t.vertex_top_cells(VertexId(4), &mut cells);
+    /// assert_eq!(rows.row(4), cells.iter().map(|c| c.0).collect::<Vec<u32>>());
+    /// ```
+    fn vertex_top_rows(&self) -> Option<crate::csr::Csr> {
+        None
+    }
+
     /// A fast membership answer: `Some(true)` when some top cell incident to `s[0]` contains
     /// the sorted simplex `s` (at least two vertices), `Some(false)` when none does, `None`
     /// when the structure has no faster way than scanning VT(`s[0]`) (the default).
@@ -226,6 +245,25 @@ pub trait VertexStar {
 pub trait VertexAdjacency {
     /// Replaces `out` with the neighbours of `v`, sorted.
     fn vertex_neighbours(&self, v: VertexId, out: &mut Vec<VertexId>);
+
+    /// [`vertex_neighbours`](Self::vertex_neighbours) of every vertex at once (row `v`), when
+    /// the structure makes them faster all together; `None` (the default) otherwise.
+    ///
+    /// ```
+    /// use starplex::topo::{naive::VtIndex, VertexAdjacency};
+    /// use starplex::stellar::{StellarTree, StellarOptions};
+    /// use starplex::ids::VertexId;
+    /// let k = starplex::generate::kuhn_grid(&[2, 2]).unwrap();
+    /// assert!(VtIndex::new(&k).vertex_neighbour_rows().is_none());
+    /// let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+    /// let (rows, mut vv) = (t.vertex_neighbour_rows().unwrap(), Vec::new());
+    /// t.vertex_neighbours(VertexId(4), &mut vv);
+    /// assert_eq!(rows.row(4), vv.iter().map(|v| v.0).collect::<Vec<u32>>());
+    /// assert_eq!(vv.len(), 6); // the centre of the grid
+    /// ```
+    fn vertex_neighbour_rows(&self) -> Option<crate::csr::Csr> {
+        None
+    }
 }
 
 /// St_T(σ): the top cells containing a simplex (any dimension).

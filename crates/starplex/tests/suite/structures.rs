@@ -147,10 +147,25 @@ fn check_structure<S: Queries + ?Sized>(name: &str, s: &S, m: &Model, sorted_top
         assert_eq!(flat_got, got, "{name}: faces_flat({p})");
     }
     let (mut cells, mut vv, mut out) = (Vec::new(), Vec::new(), Vec::new());
+    // the rows of every vertex at once, where the structure gives them
+    let (vt_rows, vv_rows) = (s.vertex_top_rows(), s.vertex_neighbour_rows());
     for v in 0..m.nv as u32 {
         s.vertex_top_cells(VertexId(v), &mut cells);
         let want: Vec<CellId> = m.top_star(&[v]).into_iter().map(CellId).collect();
         assert_eq!(cells, want, "{name}: VT({v})");
+        if let Some(r) = &vt_rows {
+            let want: Vec<u32> = want.iter().map(|c| c.0).collect();
+            assert_eq!(r.row(v as usize), &want[..], "{name}: vertex_top_rows({v})");
+        }
+        if let Some(r) = &vv_rows {
+            s.vertex_neighbours(VertexId(v), &mut vv);
+            let want: Vec<u32> = vv.iter().map(|w| w.0).collect();
+            assert_eq!(
+                r.row(v as usize),
+                &want[..],
+                "{name}: vertex_neighbour_rows({v})"
+            );
+        }
         s.vertex_neighbours(VertexId(v), &mut vv);
         let want: Vec<VertexId> = m
             .all

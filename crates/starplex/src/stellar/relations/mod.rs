@@ -438,6 +438,11 @@ impl VertexStar for StellarTree {
         out.sort_unstable();
     }
 
+    /// [`vt_all`](StellarTree::vt_all): every leaf decoded once.
+    fn vertex_top_rows(&self) -> Option<Csr> {
+        Some(self.vt_all())
+    }
+
     /// One scan of the leaf of `s[0]` (tree ids, no sort, no mapping back), for complexes of
     /// one simplex kind; `None` otherwise (a CP cell holding the vertices of `s` need not have
     /// `s` as a face).
@@ -477,5 +482,10 @@ impl VertexAdjacency for StellarTree {
         }
         out.sort_unstable();
         out.dedup();
+    }
+
+    /// [`vv_all`](StellarTree::vv_all): every leaf decoded once.
+    fn vertex_neighbour_rows(&self) -> Option<Csr> {
+        Some(self.vv_all())
     }
 }
