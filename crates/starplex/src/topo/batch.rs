@@ -242,7 +242,78 @@ pub fn gather<S: Queries + Sync + ?Sized>(
             });
         }
     }
+    if r == Relation::Tt
+        && items.len() >= 1024
+        && items.len() * 4 >= s.n_top_cells()
+        && let Some(a) = facet_neighbours_by_rows(s, items)
+    {
+        return a;
+    }
     gather_with(items, |i, sc, out| answer(s, r, i, sc, out))
+}
+
+/// [`Relation::Tt`] of many top cells of a simplicial complex from the VT rows of every vertex
+/// (the structure's own, [`VertexStar::vertex_top_rows`](super::VertexStar::vertex_top_rows),
+/// or counted from the top cells), not from one top star per facet: the cells of `c`'s
+/// dimension sharing exactly `d` of its `d + 1` vertices are those across its facets (two
+/// simplices sharing two facets share every vertex). `None` for a complex with a CP cell,
+/// whose cells may hold a facet's vertices without the facet.
+fn facet_neighbours_by_rows<S: Queries + Sync + ?Sized>(
+    s: &S,
+    items: &[u32],
+) -> Option<Result<Answers, QueryError>> {
+    let nc = s.n_top_cells();
+    let dims: Vec<u8> = (0..nc as u32)
+        .map(|c| {
+            let k = s.top_cell_kind(CellId(c));
+            if k.is_simplex() {
+                k.dim() as u8
+            } else {
+                u8::MAX
+            }
+        })
+        .collect();
+    if dims.contains(&u8::MAX) {
+        return None;
+    }
+    let vt = s.vertex_top_rows().unwrap_or_else(|| {
+        let mut tv = Vec::new();
+        crate::csr::Csr::from_fn(s.n_vertices(), |push| {
+            for c in 0..nc as u32 {
+                tv.clear();
+                s.top_cell_vertices(CellId(c), &mut tv);
+                tv.iter().for_each(|v| push(v.0, c));
+            }
+        })
+    });
+    Some(gather_with(items, |c, sc, out| {
+        let d = dims[c as usize] as usize;
+        if d == 0 {
+            return Ok(());
+        }
+        sc.verts.clear();
+        s.top_cell_vertices(CellId(c), &mut sc.verts);
+        // every cell through a vertex of c, once per shared vertex
+        sc.cells.clear();
+        for v in &sc.verts {
+            sc.cells
+                .extend(vt.row(v.index()).iter().map(|&u| CellId(u)));
+        }
+        sc.cells.sort_unstable();
+        let mut i = 0;
+        while i < sc.cells.len() {
+            let u = sc.cells[i];
+            let mut j = i + 1;
+            while j < sc.cells.len() && sc.cells[j] == u {
+                j += 1;
+            }
+            if j - i == d && u.0 != c && dims[u.index()] as usize == d {
+                out.push(u.0);
+            }
+            i = j;
+        }
+        Ok(())
+    }))
 }
 
 /// The vertices of simplices in `simplices` (flat, `width` ids each) that relation `f` gives, as
@@ -505,6 +576,55 @@ mod tests {
             let one = levels(&s, true, &[i as u32]).unwrap();
             for p in 0..2 {
                 assert_eq!(lk[p].row(i), one[p].row(0), "link level {p} of {i}");
+            }
+        }
+    }
+
+    /// The bulk TT of a simplicial complex (VT rows, cells sharing d vertices) equals the one
+    /// cell at a time answer (a top star per facet) on every cell: random tetrahedra, triangles
+    /// and edges over few vertices, so facets are shared by up to several cells (non-manifold)
+    /// and dimensions mix; for the VT index and the Stellar tree.
+    #[test]
+    fn bulk_facet_neighbours_equal_one_by_one() {
+        use crate::complex::{BuildOptions, ComplexBuilder};
+        use crate::stellar::{StellarOptions, StellarTree};
+        let mut rng = crate::testkit::XorShift::new(7);
+        let mut b = ComplexBuilder::new(3).unwrap();
+        let nv = 60u32;
+        for i in 0..nv {
+            b.push_vertex(&[i as f64, (i * i % 7) as f64, (i % 5) as f64])
+                .unwrap();
+        }
+        let mut seen = std::collections::BTreeSet::new();
+        while seen.len() < 3000 {
+            let k = [4, 4, 4, 3, 2][rng.below(5) as usize];
+            let mut c: Vec<u32> = Vec::new();
+            while c.len() < k {
+                let v = rng.below(nv as u64) as u32;
+                if !c.contains(&v) {
+                    c.push(v);
+                }
+            }
+            let mut key = c.clone();
+            key.sort_unstable();
+            if seen.insert(key) {
+                b.push_cell(CellKind::Simplex(k as u8 - 1), &c).unwrap();
+            }
+        }
+        let opts = BuildOptions {
+            drop_face_cells: true,
+            ..Default::default()
+        };
+        let k = b.build(&opts).unwrap().0;
+        let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+        let vt = VtIndex::new(&k);
+        let items = all(k.n_cells());
+        let structures: [&(dyn Queries + Sync); 2] = [&vt, &t];
+        for s in structures {
+            let bulk = gather(s, Relation::Tt, &items).unwrap();
+            for (i, &c) in items.iter().enumerate() {
+                let one = gather(s, Relation::Tt, &[c]).unwrap();
+                assert_eq!(bulk.row(i), one.row(0), "cell {c}");
             }
         }
     }
