@@ -817,6 +817,14 @@ fn next_of<T>(s: &mut Stream<'_, T>) -> std::io::Result<T> {
     }
 }
 
+/// Each part's first offset (0), read: a row's length is the step to the next one (0 for a
+/// part without the array, whose rows are empty).
+fn first_offsets(offs: &mut [Stream<'_, i64>]) -> std::io::Result<Vec<i64>> {
+    offs.iter_mut()
+        .map(|s| if s.is_some() { next_of(s) } else { Ok(0) })
+        .collect()
+}
+
 /// Calls `each(part, id)` for the items of every part, in increasing id (each part's `ids`
 /// ascending, no id in two parts).
 fn merge_order(
@@ -979,7 +987,6 @@ impl<'p> NpzLayout<'p> {
     /// Writes the merged arrays, in `write_mapped`'s order.
     fn write(&self, z: &mut NpzOut<'_>) -> Result<(), IoErrorKind> {
         let total: u64 = self.n_items.iter().sum();
-        let np = self.parts.len();
         {
             let mut a = self.open_all().map_err(IoErrorKind::Parse)?;
             let mut ids = self
@@ -990,13 +997,12 @@ impl<'p> NpzLayout<'p> {
             })?;
         }
         for (sfx, shapes) in &self.levels {
-            let (mut a, mut b, mut c) = (
-                self.open_all().map_err(IoErrorKind::Parse)?,
-                self.open_all().map_err(IoErrorKind::Parse)?,
-                self.open_all().map_err(IoErrorKind::Parse)?,
-            );
             let name = format!("offsets{sfx}");
             {
+                let (mut a, mut b) = (
+                    self.open_all().map_err(IoErrorKind::Parse)?,
+                    self.open_all().map_err(IoErrorKind::Parse)?,
+                );
                 let mut ids = self
                     .streams::<u32>(&mut a, "ids")
                     .map_err(IoErrorKind::Parse)?;
@@ -1004,13 +1010,7 @@ impl<'p> NpzLayout<'p> {
                     .streams::<i64>(&mut b, &name)
                     .map_err(IoErrorKind::Parse)?;
                 npz_member::<i64>(z, &name, &[total + 1], |push| {
-                    // each part's offsets start at 0; a row's length is the next step
-                    let mut prev = vec![0i64; np];
-                    for (r, s) in offs.iter_mut().enumerate() {
-                        if s.is_some() {
-                            prev[r] = next_of(s)?;
-                        }
-                    }
+                    let mut prev = first_offsets(&mut offs)?;
                     let mut acc = 0i64;
                     push(acc)?;
                     merge_order(&mut ids, |r, _| {
@@ -1031,7 +1031,8 @@ impl<'p> NpzLayout<'p> {
                 Some(s) if s.len() == 2 => vec![rows, s[1]],
                 _ => vec![rows],
             };
-            let (mut a, mut b) = (
+            let (mut a, mut b, mut c) = (
+                self.open_all().map_err(IoErrorKind::Parse)?,
                 self.open_all().map_err(IoErrorKind::Parse)?,
                 self.open_all().map_err(IoErrorKind::Parse)?,
             );
@@ -1045,12 +1046,7 @@ impl<'p> NpzLayout<'p> {
                 .streams::<u32>(&mut c, &format!("values{sfx}"))
                 .map_err(IoErrorKind::Parse)?;
             npz_member::<u32>(z, &format!("values{sfx}"), &shape, |push| {
-                let mut prev = vec![0i64; np];
-                for (r, s) in offs.iter_mut().enumerate() {
-                    if s.is_some() {
-                        prev[r] = next_of(s)?;
-                    }
-                }
+                let mut prev = first_offsets(&mut offs)?;
                 merge_order(&mut ids, |r, _| {
                     if offs[r].is_none() {
                         return Ok(());
