@@ -333,6 +333,21 @@ pub fn write_mapped(
         let w = (0..c.n_rows()).map(|i| c.row(i).len()).collect();
         Ok((c.values, w))
     };
+    // adjacent tops of many cells of a simplicial complex of dimension d >= 1: for a d-cell, the
+    // d-simplices across its facets are the d-cells there (every d-simplex is a top cell), read
+    // from the TT rows of every cell made at once
+    let tt_all: Option<(batch::Answers, usize)> =
+        match (&p, starplex::algo::manifold::complex_dim(s)) {
+            (Plan::AdjTops, Some(d))
+                if d >= 1 && items.len() >= 1024 && items.len() * 4 >= s.n_top_cells() =>
+            {
+                match batch::facet_neighbours_all(s) {
+                    Some(tt) => Some((tt.map_err(|e| CliError::Other(e.to_string()))?, d)),
+                    None => None,
+                }
+            }
+            _ => None,
+        };
     // one block of answers: (per-level CSR, the width of one simplex per row or level)
     let answer_block_local = |chunk: &[u32]| -> Result<(Vec<Answers>, Widths), QueryError> {
         Ok(match &p {
@@ -341,6 +356,28 @@ pub fn write_mapped(
             Plan::AdjVertices => (vec![batch::adjacent(s, chunk, 1)?], Widths::Fixed(1)),
             Plan::AdjTops => {
                 let (tv, w) = tops(chunk)?;
+                if let Some((tt, d)) = &tt_all
+                    && w.iter().all(|&k| k == d + 1)
+                {
+                    let mut c = Answers {
+                        offsets: vec![0],
+                        values: Vec::new(),
+                    };
+                    let (mut row, mut vs) = (Vec::new(), Vec::new());
+                    for &x in chunk {
+                        row.clear();
+                        for &u in tt.row(x as usize) {
+                            vs.clear();
+                            s.top_cell_vertices(starplex::ids::CellId(u), &mut vs);
+                            vs.sort_unstable();
+                            row.extend(vs.iter().map(|v| v.0));
+                        }
+                        starplex::topo::sort_flat(&mut row, d + 1);
+                        c.values.extend_from_slice(&row);
+                        c.offsets.push(c.values.len() as u64);
+                    }
+                    return Ok((vec![c], Widths::PerRow(w)));
+                }
                 if let Some(&k) = w.first().filter(|&&k| w.iter().all(|&x| x == k)) {
                     // one size of cell (the usual case): one batched call
                     return Ok((vec![batch::adjacent(s, &tv, k)?], Widths::PerRow(w)));

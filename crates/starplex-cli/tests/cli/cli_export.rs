@@ -403,3 +403,59 @@ fn export_reads_back_in_every_format() {
     assert!(err.contains("ids.txt:1: 'x' is not a vertex id"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `adj --all` of a pure simplicial complex of at least 1024 cells reads every cell's facet
+/// neighbours at once (`batch::facet_neighbours_all`): each line equals the one-cell answer (a
+/// coboundary per facet), on random tetrahedra over 40 vertices (facets in many cells), for the
+/// VT index and the Stellar tree.
+#[test]
+fn adjacent_tops_in_bulk_equal_one_cell_at_a_time() {
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    use starplex::structures::Structure;
+    use starplex_cli::export::{write_mapped, RelationKind};
+    let mut b = ComplexBuilder::new(3).unwrap();
+    for i in 0..40u32 {
+        b.push_vertex(&[i as f64, (i * i % 7) as f64, (i % 5) as f64])
+            .unwrap();
+    }
+    let (mut x, mut seen) = (12345u64, std::collections::BTreeSet::new());
+    while seen.len() < 2500 {
+        let mut c = Vec::new();
+        while c.len() < 4 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = (x % 40) as u32;
+            if !c.contains(&v) {
+                c.push(v);
+            }
+        }
+        let mut key = c.clone();
+        key.sort_unstable();
+        if seen.insert(key) {
+            b.push_cell(CellKind::Simplex(3), &c).unwrap();
+        }
+    }
+    let k = b.build(&BuildOptions::default()).unwrap().0;
+    let dir = std::env::temp_dir().join(format!("starplex-adj-bulk-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for st in [Structure::Vt, Structure::Stellar] {
+        let s = st.build(&k, &Default::default()).unwrap();
+        let all = dir.join("all.jsonl");
+        write_mapped(s.as_ref(), RelationKind::Adj, None, true, &all, None).unwrap();
+        let lines: Vec<String> = std::fs::read_to_string(&all)
+            .unwrap()
+            .lines()
+            .map(String::from)
+            .collect();
+        assert_eq!(lines.len(), 2500);
+        let one = dir.join("one.jsonl");
+        for c in (0..2500u32).step_by(7) {
+            write_mapped(s.as_ref(), RelationKind::Adj, Some(&[c]), true, &one, None).unwrap();
+            let want = std::fs::read_to_string(&one).unwrap();
+            assert_eq!(lines[c as usize], want.trim_end(), "{st:?}: cell {c}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

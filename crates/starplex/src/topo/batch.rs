@@ -252,6 +252,24 @@ pub fn gather<S: Queries + Sync + ?Sized>(
     gather_with(items, |i, sc, out| answer(s, r, i, sc, out))
 }
 
+/// [`Relation::Tt`] of every top cell (row `c`) by the bulk path of [`gather`], for a complex
+/// of simplices; `None` for a complex with a CP cell.
+///
+/// ```
+/// use starplex::topo::{batch, naive::VtIndex};
+/// let k = starplex::generate::kuhn_grid(&[1, 1]).unwrap(); // two triangles on a diagonal
+/// let tt = batch::facet_neighbours_all(&VtIndex::new(&k)).unwrap().unwrap();
+/// assert_eq!((tt.row(0), tt.row(1)), (&[1][..], &[0][..]));
+/// ```
+///
+/// # Errors
+/// The structure's own error.
+pub fn facet_neighbours_all<S: Queries + Sync + ?Sized>(
+    s: &S,
+) -> Option<Result<Answers, QueryError>> {
+    facet_neighbours_by_rows(s, &all(s.n_top_cells()))
+}
+
 /// [`Relation::Tt`] of many top cells of a simplicial complex from the VT rows of every vertex
 /// (the structure's own, [`VertexStar::vertex_top_rows`](super::VertexStar::vertex_top_rows),
 /// or counted from the top cells), not from one top star per facet: the cells of `c`'s
