@@ -554,7 +554,7 @@ impl StellarTree {
                         for (i, &x) in vs.iter().enumerate() {
                             r[i] = ((x as u64) << 8) | i as u64;
                         }
-                        let r = sort4_u64(r);
+                        let r = crate::topo::sort4(r);
                         let sv = r.map(|x| (x >> 8) as u32);
                         let si = r.map(|x| x as u8);
                         // the facet omitting the k-th smallest vertex (listed position si[k])
@@ -1041,17 +1041,6 @@ impl StellarTree {
             .map(|l| f(&self.local_iastar(LeafId(l))))
             .collect()
     }
-}
-
-/// Sorts four values with a branch-free network.
-#[inline(always)]
-fn sort4_u64([a, b, c, d]: [u64; 4]) -> [u64; 4] {
-    let (a, b) = (a.min(b), a.max(b));
-    let (c, d) = (c.min(d), c.max(d));
-    let (a, c) = (a.min(c), a.max(c));
-    let (b, d) = (b.min(d), b.max(d));
-    let (b, c) = (b.min(c), b.max(c));
-    [a, b, c, d]
 }
 
 /// The per-leaf table of [`StellarTree::facet_pieces_hashed`]: 8-byte facet keys (`EMPTY`

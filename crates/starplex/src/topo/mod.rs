@@ -815,9 +815,10 @@ pub fn sort3([a, b, c]: [u32; 3]) -> [u32; 3] {
 ///
 /// ```
 /// assert_eq!(starplex::topo::sort4([7, 2, 9, 5]), [2, 5, 7, 9]);
+/// assert_eq!(starplex::topo::sort4([7u64 << 40, 2, 9, 5]), [2, 5, 9, 7 << 40]);
 /// ```
-#[inline]
-pub fn sort4([a, b, c, d]: [u32; 4]) -> [u32; 4] {
+#[inline(always)]
+pub fn sort4<T: Ord + Copy>([a, b, c, d]: [T; 4]) -> [T; 4] {
     let (a, b) = (a.min(b), a.max(b));
     let (c, d) = (c.min(d), c.max(d));
     let (a, c) = (a.min(c), a.max(c));

@@ -57,6 +57,30 @@ pub(crate) struct TetScratch {
 /// Most link vertices for which the link edges are indexed directly (a 16 KB table).
 const DENSE: usize = 64;
 
+/// Triangle `i` meets link edge `e` again: one more, and the second one kept.
+#[inline(always)]
+fn edge_again(ecnt: &mut [u32], etri: &mut [[u32; 2]], e: usize, i: u32) {
+    if ecnt[e] == 1 {
+        etri[e][1] = i;
+    }
+    ecnt[e] += 1;
+}
+
+/// A link edge `ab` first met by triangle `i`: its index.
+#[inline(always)]
+fn edge_new(
+    eab: &mut Vec<(u32, u32)>,
+    ecnt: &mut Vec<u32>,
+    etri: &mut Vec<[u32; 2]>,
+    ab: (u32, u32),
+    i: u32,
+) -> u32 {
+    eab.push(ab);
+    ecnt.push(1);
+    etri.push([i, EMPTY]);
+    eab.len() as u32 - 1
+}
+
 #[inline]
 fn hash1(x: u32, shift: u32) -> usize {
     (x.wrapping_mul(0x9E37_79B1) >> shift) as usize
@@ -268,17 +292,10 @@ impl TetScratch {
                     let h = a as usize * DENSE + b as usize;
                     let e = edense[h];
                     if e != EMPTY {
-                        let e = e as usize;
-                        if ecnt[e] == 1 {
-                            etri[e][1] = i as u32;
-                        }
-                        ecnt[e] += 1;
+                        edge_again(ecnt, etri, e as usize, i as u32);
                     } else {
-                        edense[h] = eab.len() as u32;
+                        edense[h] = edge_new(eab, ecnt, etri, (a, b), i as u32);
                         eslot.push(h as u32);
-                        eab.push((a, b));
-                        ecnt.push(1);
-                        etri.push([i as u32, EMPTY]);
                     }
                 }
             }
@@ -294,20 +311,13 @@ impl TetScratch {
                 loop {
                     let k = ekeys[h];
                     if k == key {
-                        let e = evals[h] as usize;
-                        if ecnt[e] == 1 {
-                            etri[e][1] = i as u32;
-                        }
-                        ecnt[e] += 1;
+                        edge_again(ecnt, etri, evals[h] as usize, i as u32);
                         break;
                     }
                     if k == EMPTY2 {
                         ekeys[h] = key;
-                        evals[h] = eab.len() as u32;
+                        evals[h] = edge_new(eab, ecnt, etri, (a, b), i as u32);
                         eslot.push(h as u32);
-                        eab.push((a, b));
-                        ecnt.push(1);
-                        etri.push([i as u32, EMPTY]);
                         break;
                     }
                     h = (h + 1) & mask;
