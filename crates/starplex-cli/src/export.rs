@@ -338,9 +338,7 @@ pub fn write_mapped(
     // from the TT rows of every cell made at once
     let tt_all: Option<(batch::Answers, usize)> =
         match (&p, starplex::algo::manifold::complex_dim(s)) {
-            (Plan::AdjTops, Some(d))
-                if d >= 1 && items.len() >= 1024 && items.len() * 4 >= s.n_top_cells() =>
-            {
+            (Plan::AdjTops, Some(d)) if d >= 1 && batch::is_bulk(s, Relation::Tt, items.len()) => {
                 match batch::facet_neighbours_all(s) {
                     Some(tt) => Some((tt.map_err(|e| CliError::Other(e.to_string()))?, d)),
                     None => None,
@@ -431,7 +429,12 @@ pub fn write_mapped(
                     }
                     return Ok(());
                 }
-                for chunk in items.chunks(BLOCK) {
+                // answers in blocks, or in one when every row is made at once anyway
+                let block = match &p {
+                    Plan::Ids(rel) if batch::is_bulk(s, *rel, items.len()) => items.len(),
+                    _ => BLOCK,
+                };
+                for chunk in items.chunks(block.max(1)) {
                     let (lv, widths) = answer_block(chunk).map_err(qerr)?;
                     for (j, &item) in chunk.iter().enumerate() {
                         counts.0 += 1;

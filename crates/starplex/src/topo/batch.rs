@@ -229,7 +229,7 @@ pub fn gather<S: Queries + Sync + ?Sized>(
     items: &[u32],
 ) -> Result<Answers, QueryError> {
     // many vertices: all rows at once where the structure makes them faster so
-    if items.len() >= 1024 && items.len() * 4 >= s.n_vertices() {
+    if is_bulk(s, r, items.len()) {
         let rows = match r {
             Relation::Vt => s.vertex_top_rows(),
             Relation::Vv => s.vertex_neighbour_rows(),
@@ -243,13 +243,34 @@ pub fn gather<S: Queries + Sync + ?Sized>(
         }
     }
     if r == Relation::Tt
-        && items.len() >= 1024
-        && items.len() * 4 >= s.n_top_cells()
+        && is_bulk(s, r, items.len())
         && let Some(a) = facet_neighbours_by_rows(s, items)
     {
         return a;
     }
     gather_with(items, |i, sc, out| answer(s, r, i, sc, out))
+}
+
+/// True when [`gather`] answers `n` items of relation `r` in bulk: VT, VV or TT of at least
+/// 1024 items and a quarter of the vertices (cells for TT), where the rows of every item are
+/// made at once (where the structure or the complex allows it). A caller that answers items in
+/// blocks should ask for them in one block then, or each block makes every row again.
+///
+/// ```
+/// use starplex::topo::{batch::{self, Relation}, naive::VtIndex};
+/// let k = starplex::generate::kuhn_grid(&[40, 40]).unwrap(); // 1681 vertices
+/// let s = VtIndex::new(&k);
+/// assert!(batch::is_bulk(&s, Relation::Vt, 1681));
+/// assert!(!batch::is_bulk(&s, Relation::Vt, 100));
+/// assert!(!batch::is_bulk(&s, Relation::Tv, 3200));
+/// ```
+pub fn is_bulk<S: Queries + ?Sized>(s: &S, r: Relation, n: usize) -> bool {
+    let of = match r {
+        Relation::Vt | Relation::Vv => s.n_vertices(),
+        Relation::Tt => s.n_top_cells(),
+        Relation::Tv => return false,
+    };
+    n >= 1024 && n * 4 >= of
 }
 
 /// [`Relation::Tt`] of every top cell (row `c`) by the bulk path of [`gather`], for a complex
