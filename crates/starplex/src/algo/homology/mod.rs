@@ -46,6 +46,7 @@ use crate::ids::{CellId, VertexId};
 use crate::topo::{naive::VtIndex, QueryError, TopCells, VertexStar};
 
 mod cells;
+mod chain;
 mod loops;
 mod morse;
 mod order;
@@ -54,6 +55,7 @@ mod smith;
 mod surface;
 
 use cells::{Cell, Key};
+pub use chain::{chain_complex_homology, MorseComplex};
 use morse::{Gradient, Scratch, ALONE, EXPLICIT};
 
 /// Coefficients.
@@ -912,8 +914,8 @@ fn morse_gradient<'a, S: TopCells + VertexStar + Sync + ?Sized>(
     let g = Gradient {
         s,
         fast,
-        apex,
-        crit,
+        apex: apex.into(),
+        crit: crit.into(),
     };
     debug_time("critical cells", t0);
     Ok(g)

@@ -12,6 +12,7 @@
 //!   made only when the coface's other facets and the face's own facets are all classified;
 //!   when none is possible the lowest-dimensional free cell becomes critical). Expansions keep
 //!   the matching acyclic, and the classification time orders gradient paths.
+use std::borrow::Cow;
 use std::collections::{BTreeMap, BinaryHeap, VecDeque};
 
 use smallvec::SmallVec;
@@ -732,9 +733,9 @@ pub(crate) struct Gradient<'a, S: ?Sized> {
     pub s: &'a S,
     /// Direct access to the cells of `s`, when it has it.
     pub fast: Option<FastStar<'a>>,
-    pub apex: Vec<u32>,
+    pub apex: Cow<'a, [u32]>,
     /// Critical cells per dimension, sorted by key.
-    pub crit: Vec<Vec<Cell>>,
+    pub crit: Cow<'a, [Vec<Cell>]>,
 }
 
 /// A per-flow cache of enumerated lower stars (vertices above the flow's front are dropped).
@@ -825,6 +826,31 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
         &self,
         start: &[(Cell, i64)],
         m: i64,
+        chain: Option<&mut BTreeMap<Key, (Cell, i64)>>,
+        w: &mut Scratch,
+    ) -> Result<Vec<(u32, i64)>, Overflow> {
+        self.flow_from(start, true, m, chain, w)
+    }
+
+    /// The projection of the chain `start` onto the critical cells of its dimension: each cell
+    /// followed down the gradient (a critical cell gives itself, the upper cell of a pair
+    /// nothing). The chain map from the complex to its Morse complex.
+    pub fn project(
+        &self,
+        start: &[(Cell, i64)],
+        m: i64,
+        w: &mut Scratch,
+    ) -> Result<Vec<(u32, i64)>, Overflow> {
+        self.flow_from(start, false, m, None, w)
+    }
+
+    /// [`Gradient::flow`] (`facets`: the paths start at the facets of `start`) or
+    /// [`Gradient::project`] (they start at its cells).
+    fn flow_from(
+        &self,
+        start: &[(Cell, i64)],
+        facets: bool,
+        m: i64,
         mut chain: Option<&mut BTreeMap<Key, (Cell, i64)>>,
         w: &mut Scratch,
     ) -> Result<Vec<(u32, i64)>, Overflow> {
@@ -855,6 +881,11 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
             Ok(())
         };
         for (sigma, c0) in start {
+            if !facets {
+                let c = add_c(0, *c0, m)?;
+                add(sigma.clone(), c, &mut pending, &mut result, &mut cache, w)?;
+                continue;
+            }
             if let Some(ch) = chain.as_deref_mut() {
                 let e = ch.entry(sigma.key.clone()).or_insert((sigma.clone(), 0));
                 e.1 = add_c(e.1, *c0, m)?;
