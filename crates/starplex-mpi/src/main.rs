@@ -6,7 +6,7 @@
 //!     [--check | --fail-on DEFECTS]
 //! mpirun -np P starplex-mpi stellar FILE.spb [--json] [--kv N] [--vt-vv-out PREFIX] [--stats]
 //! mpirun -np P starplex-mpi homology FILE.spb [--json] [--stats] [--field 2|p|q|z]
-//!     [--method contract|algebraic] [--tmp-dir DIR]
+//!     [--method morse|contract|algebraic] [--tmp-dir DIR]
 //! mpirun -np P starplex-mpi query FILE.spb --relation R --all --out OUT.jsonl|csv|npz
 //!     [--structure S] [--per-rank]
 //! mpirun -np P starplex-mpi simplify FILE.spb -o OUT.spb [--mode homology|qem] [--ratio R]
@@ -41,6 +41,7 @@ mod dist;
 mod fault;
 mod homology;
 mod labels;
+mod morse;
 mod query;
 mod simplify;
 mod stellar;
@@ -49,7 +50,7 @@ mod write;
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method morse|contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
 const VERBS: [&str; 6] = [
     "info", "validate", "stellar", "homology", "query", "simplify",
 ];
@@ -80,8 +81,19 @@ struct Args {
     check: bool,
     fail_on: Vec<starplex_cli::report::Defect>,
     field: starplex::algo::homology::Field,
-    algebraic: bool,
+    method: Option<Method>,
     tmp_dir: Option<PathBuf>,
+}
+
+/// How `homology` is distributed.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Method {
+    /// Rank-local Morse reduction, the interface ranked on rank 0 (simplicial; any field).
+    Morse,
+    /// One round of homology-mode contraction, the rest on rank 0 (simplicial; any field).
+    Contract,
+    /// Rank-local Z/2 column reduction of every face (any cells; Z/2).
+    Algebraic,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -111,7 +123,7 @@ fn parse_args() -> Result<Args, String> {
         check: false,
         fail_on: Vec::new(),
         field: starplex::algo::homology::Field::Z2,
-        algebraic: false,
+        method: None,
         tmp_dir: None,
     };
     let mut pos = Vec::new();
@@ -205,11 +217,16 @@ fn parse_args() -> Result<Args, String> {
                 let v = it
                     .next()
                     .ok_or(format!("--method needs a value\n{USAGE}"))?;
-                a.algebraic = match v.as_str() {
-                    "contract" => false,
-                    "algebraic" => true,
-                    _ => return Err(format!("--method {v}: contract or algebraic\n{USAGE}")),
-                }
+                a.method = Some(match v.as_str() {
+                    "morse" => Method::Morse,
+                    "contract" => Method::Contract,
+                    "algebraic" => Method::Algebraic,
+                    _ => {
+                        return Err(format!(
+                            "--method {v}: morse, contract or algebraic\n{USAGE}"
+                        ))
+                    }
+                })
             }
             "--tmp-dir" => {
                 a.tmp_dir = Some(PathBuf::from(
@@ -322,12 +339,24 @@ fn run(w: &World) -> Result<u8, Failure> {
         return Ok(0);
     }
     if a.verb == "homology" {
-        // simplicial complexes with cells: by contraction, over any field; else the algebraic
-        // reduction (Z/2)
+        // simplicial complexes: by rank-local Morse reduction (or contraction when asked), over
+        // any field; else the algebraic reduction (Z/2)
         let f = agree(w, Spb::open(&a.file))?;
-        let contractible = f.h.n_cells > 0 && f.h.blocks.iter().all(|&(k, _, _)| k.is_simplex());
+        let simplicial = f.h.blocks.iter().all(|&(k, _, _)| k.is_simplex());
+        let contractible = f.h.n_cells > 0 && simplicial;
         drop(f);
-        if !a.algebraic && contractible {
+        let method = a.method.unwrap_or(if simplicial {
+            Method::Morse
+        } else {
+            Method::Algebraic
+        });
+        if method == Method::Contract && !contractible {
+            return Err(Failure(format!(
+                "{}: --method contract needs a simplicial complex with cells (use --method algebraic)",
+                a.file.display()
+            )));
+        }
+        if method == Method::Contract {
             let dir = a.tmp_dir.clone().unwrap_or_else(|| {
                 a.file
                     .parent()
@@ -340,7 +369,7 @@ fn run(w: &World) -> Result<u8, Failure> {
             }
             return Ok(0);
         }
-        if a.field != starplex::algo::homology::Field::Z2 {
+        if method == Method::Algebraic && a.field != starplex::algo::homology::Field::Z2 {
             return Err(Failure(format!(
                 "--field {}: the algebraic method (CP cells, or --method algebraic) computes over Z/2 only",
                 a.field
@@ -374,7 +403,22 @@ fn run(w: &World) -> Result<u8, Failure> {
             &ld.l,
             ld.read_s,
         )?,
-        "homology" => homology::run(w, a.json, &a.file, &ld.f, &ld.l, ld.read_s, a.max_faces)?,
+        "homology"
+            if a.method == Some(Method::Algebraic)
+                || !ld.f.h.blocks.iter().all(|&(k, _, _)| k.is_simplex()) =>
+        {
+            homology::run(w, a.json, &a.file, &ld.f, &ld.l, ld.read_s, a.max_faces)?
+        }
+        "homology" => morse::run(
+            w,
+            a.json,
+            &a.file,
+            ld.f.dim().unwrap_or(0) + 1,
+            &ld.l,
+            ld.read_s,
+            a.field,
+            a.max_faces,
+        )?,
         "query" => {
             let q = query::QueryArgs {
                 relation: a.relation.unwrap_or(starplex_cli::export::RelationKind::Vt),

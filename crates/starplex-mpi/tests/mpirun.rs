@@ -476,8 +476,8 @@ fn owned_top_cells_are_balanced() {
 }
 
 /// `homology --field 2|q|z` of the 6-vertex real projective plane (H_1 = Z/2: Betti [1,1,1]
-/// over Z/2, [1,0,0] over Q and Z with torsion [[], [2], []]) on 1-3 ranks: the contraction
-/// method keeps the torsion.
+/// over Z/2, [1,0,0] over Q and Z with torsion [[], [2], []]) on 1-3 ranks: the Morse and the
+/// contraction methods keep the torsion.
 #[test]
 fn homology_of_the_projective_plane_keeps_the_torsion() {
     if ready().is_none() {
@@ -502,14 +502,22 @@ fn homology_of_the_projective_plane_keeps_the_torsion() {
     ];
     for np in [1, 2, 3] {
         for (field, betti, torsion) in &want {
-            let (code, out, err) = run(
-                &mut mpi(np, &["homology", &spb, "--json", "--field", field]),
-                Duration::from_secs(60),
-            );
-            assert_eq!(code, Some(0), "-np {np} --field {field}: {err}");
-            let v = without_timings(&out, "rp2");
-            assert_eq!(&v["betti"], betti, "-np {np} --field {field}: {v}");
-            assert_eq!(&v["torsion"], torsion, "-np {np} --field {field}: {v}");
+            for method in ["morse", "contract"] {
+                let (code, out, err) = run(
+                    &mut mpi(
+                        np,
+                        &[
+                            "homology", &spb, "--json", "--field", field, "--method", method,
+                        ],
+                    ),
+                    Duration::from_secs(60),
+                );
+                let what = format!("-np {np} --field {field} --method {method}");
+                assert_eq!(code, Some(0), "{what}: {err}");
+                let v = without_timings(&out, "rp2");
+                assert_eq!(&v["betti"], betti, "{what}: {v}");
+                assert_eq!(&v["torsion"], torsion, "{what}: {v}");
+            }
         }
     }
     let left = leftovers(&tmp, |n| n == "rp2.spb");
@@ -623,8 +631,9 @@ fn validate_names_a_conflict_on_non_orientable_surfaces() {
 
 /// `homology` on random complexes (seeded): tetrahedra, triangles and edges over few vertices,
 /// non-manifold and with holes, so that interfaces between ranks carry every kind of face;
-/// the Betti numbers (and torsion) equal the single process's for 2-4 ranks, over Z/2 by
-/// contraction and by the algebraic reduction, over Z and over Q by contraction.
+/// the Betti numbers (and torsion) equal the single process's for 2-4 ranks, over Z/2, Z/3, Q
+/// and Z by the Morse reduction, over Z/2, Q and Z by contraction, over Z/2 by the algebraic
+/// reduction.
 #[test]
 fn homology_of_random_complexes_equals_the_single_process() {
     use starplex::cell::CellKind;
@@ -635,7 +644,7 @@ fn homology_of_random_complexes_equals_the_single_process() {
     std::fs::create_dir_all(&tmp).unwrap();
     let mut rng = XorShift::new(17);
     let mut failures = Vec::new();
-    for case in 0..16 {
+    for case in 0..24 {
         let nv = 8 + (rng.next_u64() % 10) as u32;
         let mut cells: Vec<Vec<u32>> = Vec::new();
         let n_cells = 4 + rng.next_u64() % 14;
@@ -678,14 +687,19 @@ fn homology_of_random_complexes_equals_the_single_process() {
         starplex::io::binary::write(&mut bytes, &k).unwrap();
         std::fs::write(&spb, &bytes).unwrap();
         let spb_s = spb.to_string_lossy().into_owned();
-        // Z/2 by contraction and by the algebraic reduction; Z (torsion) and Q by contraction
-        let methods: [(&str, &[&str]); 4] = [
+        // every field by the rank-local Morse reduction (the default) and by contraction, Z/2
+        // by the algebraic reduction
+        let methods: [(&str, &[&str]); 8] = [
             ("2", &[]),
             ("2", &["--method", "algebraic"]),
             ("z", &[]),
             ("q", &[]),
+            ("3", &[]),
+            ("z", &["--method", "contract"]),
+            ("2", &["--method", "contract"]),
+            ("q", &["--method", "contract"]),
         ];
-        let (field, extra) = methods[case % 4];
+        let (field, extra) = methods[case % methods.len()];
         let (code, out, err) = run(
             Command::new(&cli).args(["--quiet", "homology", &spb_s, "--json", "--field", field]),
             Duration::from_secs(60),
@@ -1164,4 +1178,56 @@ fn validate_check_and_fail_on_exit_as_the_single_process() {
         "the datasets should give both statuses: {statuses:?}"
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Eleven 11-simplices along a line (vertices `i..i+12`), split over two ranks: each cell
+/// that spans them has up to 2^12 interface faces. Over `--max-faces` the Morse method ends
+/// every rank with status 2 and says what to do; `--method contract` (no such bound) answers,
+/// and so does a budget that fits.
+#[test]
+fn homology_refuses_an_interface_over_the_face_budget() {
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    if ready().is_none() {
+        return;
+    }
+    let tmp = std::env::temp_dir().join(format!("starplex-mpi-budget-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let mut b = ComplexBuilder::new(3).unwrap();
+    for i in 0..22 {
+        b.push_vertex(&[i as f64, (i * i % 7) as f64, 0.0]).unwrap();
+    }
+    for i in 0..11 {
+        b.push_cell(CellKind::Simplex(11), &(i..i + 12).collect::<Vec<u32>>())
+            .unwrap();
+    }
+    let k = b.build(&BuildOptions::default()).unwrap().0;
+    let spb = tmp.join("line.spb");
+    let mut bytes = Vec::new();
+    starplex::io::binary::write(&mut bytes, &k).unwrap();
+    std::fs::write(&spb, &bytes).unwrap();
+    let spb = spb.to_string_lossy().into_owned();
+    let limit = Duration::from_secs(60);
+    let (code, _, err) = run(
+        &mut mpi(2, &["homology", &spb, "--json", "--max-faces", "1000"]),
+        limit,
+    );
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("interface faces") && err.contains("--method contract"),
+        "{err}"
+    );
+    for extra in [
+        vec!["--max-faces", "1000", "--method", "contract"],
+        vec!["--max-faces", "10000000"],
+    ] {
+        let mut args = vec!["homology", spb.as_str(), "--json"];
+        args.extend(extra.iter().copied());
+        let (code, out, err) = run(&mut mpi(2, &args), limit);
+        assert_eq!(code, Some(0), "{extra:?}: {err}");
+        let v = without_timings(&out, "line");
+        assert_eq!(v["betti"][0], 1, "{extra:?}: {v}");
+        assert_eq!(v["euler_characteristic"], 1, "{extra:?}: {v}");
+    }
+    std::fs::remove_dir_all(&tmp).ok();
 }

@@ -235,9 +235,9 @@ impl MorseComplex {
             return Err(HomologyError::Query(QueryError::NotInComplex(bad.to_vec())));
         }
         let g = self.gradient();
-        simplices
+        let cells: Vec<(Cell, i64)> = simplices
             .par_chunks(arity)
-            .map_init(Scratch::default, |w, s| {
+            .map(|s| {
                 let (key, sign) = match &self.to_new {
                     None => (cells::Key::from_slice(s), 1),
                     Some(t) => {
@@ -245,10 +245,40 @@ impl MorseComplex {
                         cells::sort_with_sign(&mapped)
                     }
                 };
-                g.project(&[(Cell::simplex(key), sign as i64)], self.m, w)
+                (Cell::simplex(key), sign as i64)
             })
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(flow_err)
+            .collect();
+        // batches of neighbouring cells share their gradient paths (one memo per batch)
+        let per = cells
+            .len()
+            .div_ceil(4 * rayon::current_num_threads())
+            .max(256);
+        let parts: Vec<Vec<Vec<(u32, i64)>>> = cells
+            .par_chunks(per)
+            .map_init(Scratch::default, |w, batch| {
+                let only: Vec<Cell> = batch.iter().map(|(c, _)| c.clone()).collect();
+                let mut pi = g.project_batch(&only, self.m, 1 << 22, w)?;
+                // the memo changes nothing: each cell followed alone gives the same chain
+                #[cfg(debug_assertions)]
+                for (c, x) in only.iter().zip(&pi) {
+                    debug_assert_eq!(&g.project(&[(c.clone(), 1)], self.m, w)?, x);
+                }
+                for (col, (_, sign)) in pi.iter_mut().zip(batch) {
+                    if *sign != 1 {
+                        for x in col.iter_mut() {
+                            x.1 = if self.m > 0 {
+                                (x.1 * sign).rem_euclid(self.m)
+                            } else {
+                                x.1 * sign
+                            };
+                        }
+                    }
+                }
+                Ok(pi)
+            })
+            .collect::<Result<_, _>>()
+            .map_err(flow_err)?;
+        Ok(parts.into_iter().flatten().collect())
     }
 }
 

@@ -834,7 +834,9 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
 
     /// The projection of the chain `start` onto the critical cells of its dimension: each cell
     /// followed down the gradient (a critical cell gives itself, the upper cell of a pair
-    /// nothing). The chain map from the complex to its Morse complex.
+    /// nothing). The chain map from the complex to its Morse complex. (The model that
+    /// [`Gradient::project_batch`] is checked against in debug builds.)
+    #[cfg(debug_assertions)]
     pub fn project(
         &self,
         start: &[(Cell, i64)],
@@ -842,6 +844,100 @@ impl<S: TopCells + VertexStar + ?Sized> Gradient<'_, S> {
         w: &mut Scratch,
     ) -> Result<Vec<(u32, i64)>, Overflow> {
         self.flow_from(start, false, m, None, w)
+    }
+
+    /// [`Gradient::project`] of each cell of `cells` (coefficient +1), with one memo of the
+    /// projections of every cell met on the way, so gradient paths shared by several cells are
+    /// followed once: `π(σ) = σ` for a critical cell, `0` for the upper cell of a pair, and
+    /// `π(σ) = -s Σ_{τ ≠ σ} [α : τ] π(τ)` when `σ` is paired with `α` (`s = [α : σ] = ±1`),
+    /// evaluated depth first (the gradient is acyclic). The memo and the lower stars are
+    /// dropped when they exceed `max_memo` entries (then paths are followed again).
+    pub fn project_batch(
+        &self,
+        cells: &[Cell],
+        m: i64,
+        max_memo: usize,
+        w: &mut Scratch,
+    ) -> Result<Vec<Vec<(u32, i64)>>, Overflow> {
+        type Chain = Vec<(u32, i64)>;
+        struct Frame {
+            cell: Cell,
+            /// `-s [α : τ]` for the facets `τ ≠ σ` of the pair's upper cell.
+            facets: Vec<(Cell, i64)>,
+            next: usize,
+        }
+        let mut memo: rustc_hash::FxHashMap<Key, Chain> = Default::default();
+        let mut cache: Cache = BTreeMap::new();
+        let mut buf: Vec<(Cell, i8)> = Vec::new();
+        let mut out = Vec::with_capacity(cells.len());
+        let mut stack: Vec<Frame> = Vec::new();
+        for start in cells {
+            if memo.len() > max_memo || cache.len() > max_memo / 64 + 1 {
+                memo.clear();
+                cache.clear();
+            }
+            if !memo.contains_key(&start.key) {
+                stack.push(Frame {
+                    cell: start.clone(),
+                    facets: Vec::new(),
+                    next: usize::MAX,
+                });
+            }
+            while let Some(top) = stack.last_mut() {
+                if top.next == usize::MAX {
+                    match self.look(&top.cell, &mut cache, w) {
+                        Look::Critical(i) => {
+                            let f = stack.pop().expect("a frame");
+                            memo.insert(f.cell.key, vec![(i, 1)]);
+                            continue;
+                        }
+                        Look::Down => {
+                            let f = stack.pop().expect("a frame");
+                            memo.insert(f.cell.key, Vec::new());
+                            continue;
+                        }
+                        Look::Up { alpha, sign, .. } => {
+                            buf.clear();
+                            alpha.facets(&mut buf);
+                            top.facets = buf
+                                .drain(..)
+                                .filter(|(f, _)| f.key != top.cell.key)
+                                .map(|(f, c)| (f, -(sign as i64) * c as i64))
+                                .collect();
+                            top.next = 0;
+                        }
+                    }
+                }
+                // the next facet whose projection is not known yet
+                while top.next < top.facets.len() && memo.contains_key(&top.facets[top.next].0.key)
+                {
+                    top.next += 1;
+                }
+                if top.next < top.facets.len() {
+                    let cell = top.facets[top.next].0.clone();
+                    stack.push(Frame {
+                        cell,
+                        facets: Vec::new(),
+                        next: usize::MAX,
+                    });
+                    continue;
+                }
+                let f = stack.pop().expect("a frame");
+                let mut acc: BTreeMap<u32, i64> = BTreeMap::new();
+                for (tau, c) in &f.facets {
+                    for &(i, x) in &memo[&tau.key] {
+                        let e = acc.entry(i).or_insert(0);
+                        *e = add_c(*e, mul_c(*c, x, m)?, m)?;
+                    }
+                }
+                memo.insert(
+                    f.cell.key,
+                    acc.into_iter().filter(|&(_, c)| c != 0).collect(),
+                );
+            }
+            out.push(memo[&start.key].clone());
+        }
+        Ok(out)
     }
 
     /// [`Gradient::flow`] (`facets`: the paths start at the facets of `start`) or
