@@ -1,5 +1,7 @@
-//! `homology`: Betti numbers over Z/2, each rank reducing what lies inside its own region, rank 0
-//! combining the small rest.
+//! `homology --method algebraic` (and CP complexes): Betti numbers over Z/2, each rank reducing
+//! what lies inside its own region by column reduction, rank 0 combining the small rest; and
+//! `--method contract`. The default for simplicial complexes is [`crate::morse`], the same
+//! scheme with the library's discrete gradient.
 //!
 //! **Scheme** (an exact algebraic reduction, not an approximation). Split the faces of the
 //! complex in two: `A = ⋃_r I_r`, where `I_r` holds the faces whose vertices are *all* owned by
@@ -561,7 +563,7 @@ pub fn run(
     Ok(())
 }
 
-/// Homology by contraction (the default for simplicial complexes): the ranks contract edges
+/// Homology by contraction (`--method contract`, simplicial complexes): the ranks contract edges
 /// under the link condition in one distributed round of `simplify --mode homology` (every
 /// contraction keeps the homotopy type, hence the integer homology), write the much smaller
 /// complex left as a temporary `.spb` in `tmp_dir` (every rank its part), and rank 0 computes

@@ -234,6 +234,10 @@ impl MorseComplex {
         }) {
             return Err(HomologyError::Query(QueryError::NotInComplex(bad.to_vec())));
         }
+        if self.crit[arity - 1].is_empty() {
+            // nothing critical in this dimension: every projection is zero
+            return Ok(vec![Vec::new(); simplices.len() / arity]);
+        }
         let g = self.gradient();
         let cells: Vec<(Cell, i64)> = simplices
             .par_chunks(arity)
@@ -248,16 +252,15 @@ impl MorseComplex {
                 (Cell::simplex(key), sign as i64)
             })
             .collect();
-        // batches of neighbouring cells share their gradient paths (one memo per batch)
-        let per = cells
-            .len()
-            .div_ceil(4 * rayon::current_num_threads())
-            .max(256);
+        // one batch of neighbouring cells per thread: a batch follows each gradient path once
+        // (its memo holds at most 2^18 cells, about 25 MB, then starts again: on grid95 over 4
+        // ranks, caps of 2^18 to 2^24 took the same time, and 2^20 and more 160 MB more)
+        let per = cells.len().div_ceil(rayon::current_num_threads()).max(256);
         let parts: Vec<Vec<Vec<(u32, i64)>>> = cells
             .par_chunks(per)
             .map_init(Scratch::default, |w, batch| {
                 let only: Vec<Cell> = batch.iter().map(|(c, _)| c.clone()).collect();
-                let mut pi = g.project_batch(&only, self.m, 1 << 22, w)?;
+                let mut pi = g.project_batch(&only, self.m, 1 << 18, w)?;
                 // the memo changes nothing: each cell followed alone gives the same chain
                 #[cfg(debug_assertions)]
                 for (c, x) in only.iter().zip(&pi) {
