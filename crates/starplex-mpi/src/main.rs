@@ -414,7 +414,7 @@ fn run(w: &World) -> Result<u8, Failure> {
             a.json,
             &a.file,
             ld.f.dim().unwrap_or(0) + 1,
-            &ld.l,
+            &mut ld.l,
             ld.read_s,
             a.field,
             a.max_faces,
@@ -1005,7 +1005,7 @@ fn print_stats(w: &World, ld: &Loaded) -> Result<(), Failure> {
         l.owned.count_ones(..) as u64,
         l.vertex_gid.len() as u64,
         l.n_owned_cells,
-        l.k.n_cells() as u64,
+        l.cell_gid.len() as u64, // held cells (a verb may have freed the local complex)
         comm::bytes_sent(),
         peak_rss_kib(),
     ];

@@ -32,7 +32,7 @@ use starplex::algo::homology::{
 };
 use starplex::buf::Buf;
 use starplex::cell::CellKind;
-use starplex::complex::{BuildOptions, IndexedComplex};
+use starplex::complex::IndexedComplex;
 
 use crate::comm::{self, agree, Failure, World};
 use crate::dist::Local;
@@ -86,7 +86,7 @@ struct LocalPart {
 /// interface faces and their global vertex ids; the number of projections and each as
 /// `arity, gids.., len, (row, coef)..`.
 fn local_part(
-    l: &Local,
+    l: &mut Local,
     me: u32,
     dims: usize,
     field: Field,
@@ -96,19 +96,27 @@ fn local_part(
     let t0 = Instant::now();
     let tm = |w: &str| {
         if std::env::var_os("STARPLEX_HOMOLOGY_TIMES").is_some() {
-            eprintln!("rank {me}: {w}: {:.3} s", t0.elapsed().as_secs_f64());
+            let m = starplex::measure::memory();
+            eprintln!(
+                "rank {me}: {w}: {:.3} s, resident {} MB, peak {} MB",
+                t0.elapsed().as_secs_f64(),
+                m.map_or(0, |m| m.resident >> 20),
+                m.map_or(0, |m| m.peak >> 20)
+            );
         }
     };
-    // 1. I_r: owned vertices numbered in increasing local (= global) order
+    tm("start");
+    // owned vertices numbered in increasing local (= global) order: I_r's vertices
     let mut kid = vec![u32::MAX; nl];
     let mut n_owned = 0u32;
     for v in l.owned.ones() {
         kid[v] = n_owned;
         n_owned += 1;
     }
-    let mut by_arity: Vec<Vec<u32>> = vec![Vec::new(); dims + 1];
+    // 2. (first, while the local complex is held) the interface faces of the cells that span
+    //    ranks: owned ones (smallest vertex mine), and those with exactly one vertex that is
+    //    not mine (a facet in I_r)
     let mut estimate: u128 = 0;
-    let mut sorted: Vec<u32> = Vec::new();
     for c in l.k.cells() {
         if !c.kind.is_simplex() {
             return Err(format!(
@@ -116,70 +124,22 @@ fn local_part(
                 c.kind
             ));
         }
-        sorted.clear();
-        sorted.extend(c.vertices.iter().filter(|&&v| kid[v as usize] != u32::MAX));
-        if sorted.is_empty() {
-            continue;
-        }
-        sorted.sort_unstable();
-        if sorted.len() < c.vertices.len() {
-            // a cell that spans ranks: up to 2^n interface faces (more than 40 vertices: refused)
+        let o0 = l.vertex_owner[c.vertices[0] as usize];
+        if c.vertices.iter().any(|&v| l.vertex_owner[v as usize] != o0) {
+            // up to 2^n interface faces (more than 40 vertices: refused below)
             let n = c.vertices.len() as u32;
             estimate = estimate.saturating_add(if n > 40 { u128::MAX } else { 1u128 << n });
         }
-        let a = sorted.len();
-        if a >= by_arity.len() {
-            by_arity.resize(a + 1, Vec::new());
-        }
-        by_arity[a].extend(sorted.iter().map(|&v| kid[v as usize]));
     }
     if estimate > max_faces {
         return Err(format!(
             "homology: about {estimate} interface faces (of cells spanning ranks) to list on one rank, over the budget of {max_faces} (raise --max-faces, or use --method contract)"
         ));
     }
-    let blocks: Vec<(CellKind, Buf<u32>)> = by_arity
-        .into_iter()
-        .enumerate()
-        .filter(|(a, v)| *a > 0 && !v.is_empty())
-        .map(|(a, v)| (CellKind::Simplex((a - 1) as u8), Buf::Owned(v)))
-        .collect();
-    let opts = BuildOptions {
-        drop_face_cells: true,
-        drop_duplicates: true,
-        ..Default::default()
-    };
-    let coords = Buf::Owned(vec![0.0f64; n_owned as usize]);
-    let (inner, _) = IndexedComplex::from_parts_checked(1, coords, blocks, &opts)
-        .map_err(|e| format!("the owned part of the complex: {e}"))?;
-    let n_inner_cells = inner.n_cells() as u64;
-    tm("owned complex");
-    let hopts = HomologyOptions {
-        field,
-        ..Default::default()
-    };
-    let m = MorseComplex::new(&inner, &hopts).map_err(|e| e.to_string())?;
-    drop(inner);
-    tm("gradient");
-    let mut crit = m.n_critical();
-    crit.resize(crit.len().max(dims), 0);
-    let mut msg: Vec<i64> = Vec::new();
-    msg.extend(crit[..dims].iter().map(|&x| x as i64));
-    for d in 1..dims {
-        for col in m.boundaries(d).map_err(|e| e.to_string())? {
-            msg.push(col.len() as i64);
-            for (r, c) in col {
-                msg.push(r as i64);
-                msg.push(c);
-            }
-        }
-    }
-    tm("boundaries");
-    // 2. interface faces of the cells that span ranks: owned ones (smallest vertex mine), and
-    //    those with exactly one vertex that is not mine (a facet in I_r)
     let mut owned_j: Vec<Vec<u32>> = vec![Vec::new(); dims + 1];
     let mut image_j: Vec<Vec<u32>> = vec![Vec::new(); dims + 1];
     let mut f: Vec<u32> = Vec::new();
+    let mut sorted: Vec<u32> = Vec::new();
     for c in l.k.cells() {
         let o0 = l.vertex_owner[c.vertices[0] as usize];
         if c.vertices.iter().all(|&v| l.vertex_owner[v as usize] == o0) {
@@ -233,6 +193,55 @@ fn local_part(
         }
     }
     tm("interface faces");
+    // 1. I_r: the owned part of every held cell (parts that are faces of others, or repeat,
+    //    add no face: `MorseComplex::new` takes them as they are)
+    let mut by_arity: Vec<Vec<u32>> = vec![Vec::new(); dims + 1];
+    for c in l.k.cells() {
+        sorted.clear();
+        sorted.extend(c.vertices.iter().filter(|&&v| kid[v as usize] != u32::MAX));
+        if sorted.is_empty() {
+            continue;
+        }
+        sorted.sort_unstable();
+        let a = sorted.len();
+        if a >= by_arity.len() {
+            by_arity.resize(a + 1, Vec::new());
+        }
+        by_arity[a].extend(sorted.iter().map(|&v| kid[v as usize]));
+    }
+    // the local complex is not needed any more (its cell count stays in `cell_gid`)
+    drop(std::mem::replace(&mut l.k, Local::empty().k));
+    let blocks: Vec<(CellKind, Buf<u32>)> = by_arity
+        .into_iter()
+        .enumerate()
+        .filter(|(a, v)| *a > 0 && !v.is_empty())
+        .map(|(a, v)| (CellKind::Simplex((a - 1) as u8), Buf::Owned(v)))
+        .collect();
+    let coords = Buf::Owned(vec![0.0f64; n_owned as usize]);
+    let inner = IndexedComplex::from_parts(1, coords, blocks)
+        .map_err(|e| format!("the owned part of the complex: {e}"))?;
+    let n_inner_cells = inner.n_cells() as u64;
+    tm("owned complex");
+    let hopts = HomologyOptions {
+        field,
+        ..Default::default()
+    };
+    let m = MorseComplex::from_complex(inner, &hopts).map_err(|e| e.to_string())?;
+    tm("gradient");
+    let mut crit = m.n_critical();
+    crit.resize(crit.len().max(dims), 0);
+    let mut msg: Vec<i64> = Vec::new();
+    msg.extend(crit[..dims].iter().map(|&x| x as i64));
+    for d in 1..dims {
+        for col in m.boundaries(d).map_err(|e| e.to_string())? {
+            msg.push(col.len() as i64);
+            for (r, c) in col {
+                msg.push(r as i64);
+                msg.push(c);
+            }
+        }
+    }
+    tm("boundaries");
     let g = |v: u32| l.vertex_gid[v as usize] as i64;
     let mut n_interface = 0u64;
     for d in 0..dims {
@@ -448,7 +457,7 @@ pub fn run(
     json_out: bool,
     file: &Path,
     dims: usize,
-    l: &Local,
+    l: &mut Local,
     read_s: f64,
     field: Field,
     max_faces: u128,

@@ -11,6 +11,7 @@ use starplex::algo::homology::{
     chain_complex_homology, homology, homology_indexed, homology_owned, Field, Generator, Homology,
     HomologyError, HomologyOptions, MorseComplex, VertexOrder,
 };
+use starplex::buf::Buf;
 use starplex::cell::CellKind;
 use starplex::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
 use starplex::io::{self, ReadOptions};
@@ -1166,6 +1167,7 @@ fn glued_homology(
     inside: &[bool],
     field: Field,
     order: VertexOrder,
+    raw_parts: bool,
 ) -> (Vec<u64>, Vec<Vec<u128>>) {
     // K: the inside part of every cell (maximal ones), vertices renumbered in increasing order
     let mut new_id = vec![u32::MAX; nv];
@@ -1176,6 +1178,11 @@ fn glued_homology(
             n_in += 1;
         }
     }
+    let opts = HomologyOptions {
+        field,
+        order,
+        ..Default::default()
+    };
     let raw: Vec<BTreeSet<u32>> = cells
         .iter()
         .map(|c| {
@@ -1185,18 +1192,29 @@ fn glued_homology(
                 .collect()
         })
         .collect();
-    let k_cells = maximal_cells(n_in as usize, raw);
-    let typed: Vec<(CellKind, Vec<u32>)> = k_cells
-        .iter()
-        .map(|c| (CellKind::Simplex((c.len() - 1) as u8), c.clone()))
-        .collect();
-    let k = complex_n(n_in as usize, &typed);
-    let opts = HomologyOptions {
-        field,
-        order,
-        ..Default::default()
+    // the inside parts as they come (some are faces of others, some repeat) when `raw_parts`,
+    // as the distributed homology hands them over, else the maximal ones
+    let k = if raw_parts {
+        let mut blocks: Vec<(CellKind, Buf<u32>)> = Vec::new();
+        for c in raw.iter().filter(|c| !c.is_empty()) {
+            let kind = CellKind::Simplex((c.len() - 1) as u8);
+            blocks.push((kind, Buf::Owned(c.iter().copied().collect())));
+        }
+        IndexedComplex::from_parts(1, Buf::Owned(vec![0.0; n_in as usize]), blocks).unwrap()
+    } else {
+        let k_cells = maximal_cells(n_in as usize, raw);
+        let typed: Vec<(CellKind, Vec<u32>)> = k_cells
+            .iter()
+            .map(|c| (CellKind::Simplex((c.len() - 1) as u8), c.clone()))
+            .collect();
+        complex_n(n_in as usize, &typed)
     };
-    let m = MorseComplex::new(&k, &opts).unwrap();
+    let m = if raw_parts {
+        MorseComplex::from_complex(k, &opts).unwrap()
+    } else {
+        MorseComplex::new(&k, &opts).unwrap()
+    };
+
     let crit = m.n_critical();
     // J: every face with a vertex outside, by dimension (sorted)
     let mut j: BTreeSet<Vec<u32>> = BTreeSet::new();
@@ -1273,12 +1291,12 @@ fn gluing_a_morse_complex_keeps_the_torsion() {
             VertexOrder::FirstAppearance,
             VertexOrder::BreadthFirst,
         ] {
-            let z = glued_homology(6, &rp2, &inside, Field::Z, order);
+            let z = glued_homology(6, &rp2, &inside, Field::Z, order, mask % 2 == 0);
             let want = (vec![1, 0, 0], vec![vec![], vec![2], vec![]]);
             assert_eq!(z, want, "inside {mask:06b} {order:?}");
-            let z2 = glued_homology(6, &rp2, &inside, Field::Z2, order);
+            let z2 = glued_homology(6, &rp2, &inside, Field::Z2, order, mask % 3 == 0);
             assert_eq!(z2.0, vec![1, 1, 1]);
-            let z3 = glued_homology(6, &rp2, &inside, Field::Zp(3), order);
+            let z3 = glued_homology(6, &rp2, &inside, Field::Zp(3), order, true);
             assert_eq!(z3.0, vec![1, 0, 0]);
         }
     }
@@ -1294,6 +1312,7 @@ proptest! {
         raw in proptest::collection::vec(proptest::collection::btree_set(0u32..10, 1..6), 0..9),
         inside_mask in 0u32..1024,
         order in 0usize..3,
+        raw_parts in any::<bool>(),
     ) {
         let cells = maximal_cells(nv, raw);
         let inside: Vec<bool> = (0..nv).map(|v| inside_mask >> v & 1 == 1).collect();
@@ -1305,7 +1324,7 @@ proptest! {
         let order = [VertexOrder::Auto, VertexOrder::FirstAppearance, VertexOrder::BreadthFirst][order];
         for field in [Field::Z2, Field::Zp(3), Field::Q, Field::Z] {
             let want = run(&l, field);
-            let (b, t) = glued_homology(nv, &cells, &inside, field, order);
+            let (b, t) = glued_homology(nv, &cells, &inside, field, order, raw_parts);
             let mut wb = want.betti.clone();
             wb.resize(b.len().max(wb.len()), 0);
             prop_assert_eq!(&b, &wb, "field {}", field);

@@ -62,7 +62,9 @@ pub struct MorseComplex {
 
 impl MorseComplex {
     /// Builds the gradient of a simplicial complex (vertex order, budgets and field from
-    /// `opts`; `per_component` and `generators` are ignored).
+    /// `opts`; `per_component` and `generators` are ignored). Top cells that are faces of
+    /// other top cells, or repeated, are accepted: they add no face (the lower stars are sets
+    /// of faces), so the gradient is that of the complex they generate.
     ///
     /// ```
     /// use starplex::algo::homology::{HomologyOptions, MorseComplex};
@@ -79,35 +81,74 @@ impl MorseComplex {
     /// [`HomologyError::Query`] when a cell is not a simplex; [`HomologyError::TooLarge`] as
     /// [`super::homology`]; also when the vertex references do not fit 32 bits.
     pub fn new(k: &IndexedComplex, opts: &HomologyOptions) -> Result<MorseComplex, HomologyError> {
-        if let Some(b) = k.blocks().iter().find(|b| !b.kind.is_simplex()) {
-            return Err(HomologyError::Query(QueryError::NotSimplicial(format!(
-                "a {} cell (the Morse complex is built for simplicial complexes)",
-                b.kind
-            ))));
-        }
-        let refs = || {
-            HomologyError::TooLarge(TooLarge::ids(
-                "homology: vertex references",
-                u32::MAX as u128,
-            ))
-        };
+        simplicial_only(k)?;
         let nv = k.n_vertices();
+        let dmax = k.blocks().iter().map(|b| b.kind.dim()).max().unwrap_or(0);
         let (flat, to_new) = match pick_order(k, opts.order, None, Some(k)) {
             None => {
                 let id: Vec<u32> = (0..nv as u32).collect();
-                (order::Flat::new(k, &id).ok_or_else(refs)?, None)
+                (order::Flat::new(k, &id).ok_or_else(refs_error)?, None)
             }
             Some(fa) => {
-                let f = order::Flat::new(k, &fa).ok_or_else(refs)?;
-                let (f, to_old) = finish_order(f, fa, opts.order);
-                let mut to_new = vec![0u32; nv];
-                for (new, &old) in to_old.iter().enumerate() {
-                    to_new[old as usize] = new as u32;
-                }
-                (f, Some(to_new))
+                let f = order::Flat::new(k, &fa).ok_or_else(refs_error)?;
+                reordered(f, fa, opts.order)
             }
         };
+        MorseComplex::build(flat, to_new, nv, dmax, opts)
+    }
+
+    /// [`MorseComplex::new`] consuming the complex: its cells are renumbered in place and its
+    /// coordinates freed before the gradient is built, so the input and the gradient's copy
+    /// never coexist (the least memory; the same answer).
+    ///
+    /// ```
+    /// use starplex::algo::homology::{HomologyOptions, MorseComplex};
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// let mut b = ComplexBuilder::new(2).unwrap();
+    /// for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// for e in [[0, 1], [1, 2], [0, 2]] { b.push_cell(CellKind::Simplex(1), &e).unwrap(); }
+    /// let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let m = MorseComplex::from_complex(k, &HomologyOptions::default()).unwrap();
+    /// assert_eq!(m.n_critical(), vec![1, 1]);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`MorseComplex::new`].
+    pub fn from_complex(
+        k: IndexedComplex,
+        opts: &HomologyOptions,
+    ) -> Result<MorseComplex, HomologyError> {
+        simplicial_only(&k)?;
+        let nv = k.n_vertices();
         let dmax = k.blocks().iter().map(|b| b.kind.dim()).max().unwrap_or(0);
+        let (flat, to_new) = match pick_order(&k, opts.order, Some(k.n_refs() as u64), Some(&k)) {
+            None if order::Flat::takes_over(&k) => {
+                (order::Flat::input_order(k).ok_or_else(refs_error)?, None)
+            }
+            None => {
+                let id: Vec<u32> = (0..nv as u32).collect();
+                (
+                    order::Flat::from_complex(k, &id).ok_or_else(refs_error)?,
+                    None,
+                )
+            }
+            Some(fa) => {
+                let f = order::Flat::from_complex(k, &fa).ok_or_else(refs_error)?;
+                reordered(f, fa, opts.order)
+            }
+        };
+        MorseComplex::build(flat, to_new, nv, dmax, opts)
+    }
+
+    /// The gradient over `flat` (in the numbering `to_new`, `None`: the input's).
+    fn build(
+        flat: order::Flat,
+        to_new: Option<Vec<u32>>,
+        nv: usize,
+        dmax: usize,
+        opts: &HomologyOptions,
+    ) -> Result<MorseComplex, HomologyError> {
         let (apex, crit) = if flat.n_top_cells() == 0 {
             // isolated vertices only: every vertex is critical
             let mut crit = vec![Vec::new(); dmax + 1];
@@ -283,6 +324,37 @@ impl MorseComplex {
             .map_err(flow_err)?;
         Ok(parts.into_iter().flatten().collect())
     }
+}
+
+fn simplicial_only(k: &IndexedComplex) -> Result<(), HomologyError> {
+    match k.blocks().iter().find(|b| !b.kind.is_simplex()) {
+        Some(b) => Err(HomologyError::Query(QueryError::NotSimplicial(format!(
+            "a {} cell (the Morse complex is built for simplicial complexes)",
+            b.kind
+        )))),
+        None => Ok(()),
+    }
+}
+
+fn refs_error() -> HomologyError {
+    HomologyError::TooLarge(TooLarge::ids(
+        "homology: vertex references",
+        u32::MAX as u128,
+    ))
+}
+
+/// The final order after the first-appearance one (`fa`) and `to_new[input]`.
+fn reordered(
+    f: order::Flat,
+    fa: Vec<u32>,
+    o: super::VertexOrder,
+) -> (order::Flat, Option<Vec<u32>>) {
+    let (f, to_old) = finish_order(f, fa, o);
+    let mut to_new = vec![0u32; to_old.len()];
+    for (new, &old) in to_old.iter().enumerate() {
+        to_new[old as usize] = new as u32;
+    }
+    (f, Some(to_new))
 }
 
 /// Betti numbers (and over Z the torsion of each `H_k`) of the chain complex with `n[k]` cells
