@@ -368,11 +368,23 @@ impl Local {
 /// Called with (destination rank, global cell id, block, vertices) for each cell sent.
 type CellVisit<'a> = dyn FnMut(usize, u64, usize, &[u32]) + 'a;
 
+/// Values (`u32`) a rank packs per round of the cell shuffle, at most (64 MB): the shuffle runs
+/// in as many rounds as the fullest rank needs, so its buffers stay bounded whatever the file.
+const ROUND_VALUES: usize = 1 << 24;
+
 /// Reads this rank's slices, sends every cell to the owners of its vertices, builds the local
 /// complex.
+///
+/// The cells go in rounds (each rank's slice cut into the same number of consecutive pieces,
+/// about [`ROUND_VALUES`] values each), after one exchange of counts per (destination, block):
+/// every receiver knows where each sender's cells go in its local blocks (senders in rank
+/// order are in cell-id order, and so are a sender's rounds), and writes every record straight
+/// there. The peak is the local complex plus one round's buffers, not the whole send and
+/// receive buffers beside it.
 pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
     let (rank, p) = (w.rank() as usize, w.size() as usize);
     let nv = f.h.n_vertices;
+    let nb = f.h.blocks.len();
     // owned vertices: each rank tells the owners of its vertex slice
     let (v0, v1) = slice(nv, rank, p);
     let mut out: Vec<Vec<u32>> = vec![Vec::new(); p];
@@ -381,20 +393,19 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
     }
     let mut owned_gids: Vec<u32> = comm::exchange(w, out)?.into_flat();
     owned_gids.sort_unstable();
-    // cells: [id, block, vertices...] to the owner of each vertex, packed by destination in
-    // two passes (count, then fill), so the send buffer is the only copy
+    // cells: [id, block, vertices...] to the owner of each vertex
     let (c0, c1) = slice(f.h.n_cells, rank, p);
     let mut ranks: Vec<usize> = Vec::with_capacity(8);
-    let mut walk = |visit: &mut CellVisit| -> Result<(), String> {
-        if c0 >= c1 {
+    let mut walk = |lo_c: u64, hi_c: u64, visit: &mut CellVisit| -> Result<(), String> {
+        if lo_c >= hi_c {
             return Ok(());
         }
-        let (b0, b1) = (f.block_of(c0), f.block_of(c1 - 1));
+        let (b0, b1) = (f.block_of(lo_c), f.block_of(hi_c - 1));
         for b in b0..=b1 {
             let (kind, _, _) = f.h.blocks[b];
             let a = kind.n_vertices();
-            let lo = c0.max(f.starts[b]) - f.starts[b];
-            let hi = c1.min(f.starts[b + 1]) - f.starts[b];
+            let lo = lo_c.max(f.starts[b]) - f.starts[b];
+            let hi = hi_c.min(f.starts[b + 1]) - f.starts[b];
             let verts = f.block_cells(b, lo, hi);
             for (i, cv) in verts.chunks_exact(a).enumerate() {
                 let cid = f.starts[b] + lo + i as u64;
@@ -418,33 +429,169 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
         }
         Ok(())
     };
-    let mut counts = vec![0usize; p];
-    let counted = walk(&mut |r, _, _, cv| counts[r] += 2 + cv.len());
-    agree(w, counted)?;
-    let mut at: Vec<usize> = counts
-        .iter()
-        .scan(0, |acc, &c| {
-            let start = *acc;
-            *acc += c;
-            Some(start)
-        })
-        .collect();
-    let mut flat = vec![0u32; counts.iter().sum()];
-    let filled = walk(&mut |r, cid, b, cv| {
-        let o = &mut flat[at[r]..at[r] + 2 + cv.len()];
-        o[0] = cid as u32;
-        o[1] = b as u32;
-        o[2..].copy_from_slice(cv);
-        at[r] += 2 + cv.len();
+    // cells per (destination, block), and the values to send
+    let mut cells_to = vec![0u32; p * nb];
+    let mut values = 0usize;
+    let counted = walk(c0, c1, &mut |r, _, b, cv| {
+        cells_to[r * nb + b] += 1;
+        values += 2 + cv.len();
     });
-    agree(w, filled)?;
-    // the slice is packed: its pages of the map (its cells, their vertices' coordinates) leave
-    // the resident set before the receive buffer and the local complex arrive (50M-tet grid,
-    // P = 4: the shuffle's peak 946 -> 729 MB per rank)
-    f.release_pages();
-    let got = comm::exchange_packed(w, flat, &counts)?;
-    let streams: Vec<&[u32]> = got.parts().collect();
-    assemble(w, f, s, owned_gids, &streams)
+    agree(w, counted)?;
+    let rounds = comm::max(w, values.div_ceil(ROUND_VALUES).max(1) as u64) as usize;
+    // what every sender will send here, per block: the places of its cells in the local blocks
+    let from = comm::exchange(w, cells_to.chunks(nb).map(<[u32]>::to_vec).collect())?;
+    let from: Vec<Vec<u32>> = from.parts().map(<[u32]>::to_vec).collect();
+    let arity = |b: usize| f.h.blocks[b].0.n_vertices();
+    let mut n_block = vec![0usize; nb];
+    // cursor[r][b]: where sender r's next cell of block b goes (cells), senders in rank order
+    let mut cursor = vec![vec![0usize; nb]; p];
+    for b in 0..nb {
+        for r in 0..p {
+            cursor[r][b] = n_block[b];
+            n_block[b] += from[r][b] as usize;
+        }
+    }
+    let mut block_cells: Vec<Vec<u32>> =
+        (0..nb).map(|b| vec![0u32; n_block[b] * arity(b)]).collect();
+    let mut block_gid: Vec<Vec<u32>> = (0..nb).map(|b| vec![0u32; n_block[b]]).collect();
+    let mut held = FixedBitSet::with_capacity(nv as usize);
+    for &g in &owned_gids {
+        held.insert(g as usize);
+    }
+    let mut counts = vec![0usize; p];
+    for t in 0..rounds {
+        let (lo, hi) = (
+            c0 + (c1 - c0) * t as u64 / rounds as u64,
+            c0 + (c1 - c0) * (t as u64 + 1) / rounds as u64,
+        );
+        // packed by destination in two passes (count, then fill): the send buffer is one copy
+        counts.iter_mut().for_each(|c| *c = 0);
+        agree(
+            w,
+            walk(lo, hi, &mut |r, _, _, cv| counts[r] += 2 + cv.len()),
+        )?;
+        let mut at: Vec<usize> = counts
+            .iter()
+            .scan(0, |acc, &c| {
+                let start = *acc;
+                *acc += c;
+                Some(start)
+            })
+            .collect();
+        let mut flat = vec![0u32; counts.iter().sum()];
+        agree(
+            w,
+            walk(lo, hi, &mut |r, cid, b, cv| {
+                let o = &mut flat[at[r]..at[r] + 2 + cv.len()];
+                o[0] = cid as u32;
+                o[1] = b as u32;
+                o[2..].copy_from_slice(cv);
+                at[r] += 2 + cv.len();
+            }),
+        )?;
+        // the pages of the map this round read leave the resident set
+        f.release_pages();
+        let got = comm::exchange_packed(w, flat, &counts)?;
+        let mut bad = None;
+        for (r, g) in got.parts().enumerate() {
+            let mut i = 0;
+            while i + 1 < g.len() {
+                let b = g[i + 1] as usize;
+                let a = if b < nb { arity(b) } else { usize::MAX };
+                if a == usize::MAX || i + 2 + a > g.len() || cursor[r][b] >= n_block[b] {
+                    bad = Some(format!("internal error: a bad cell record from rank {r}"));
+                    break;
+                }
+                let c = cursor[r][b];
+                block_gid[b][c] = g[i];
+                let dst = &mut block_cells[b][c * a..(c + 1) * a];
+                dst.copy_from_slice(&g[i + 2..i + 2 + a]);
+                for &v in dst.iter() {
+                    held.insert(v as usize);
+                }
+                cursor[r][b] = c + 1;
+                i += 2 + a;
+            }
+        }
+        agree(w, bad.map_or(Ok(()), Err))?;
+    }
+    // every cell arrived where it was announced
+    let complete = (0..p).all(|r| {
+        (0..nb).all(|b| {
+            let start: usize = (0..r).map(|q| from[q][b] as usize).sum();
+            cursor[r][b] == start + from[r][b] as usize
+        })
+    });
+    agree(
+        w,
+        if complete {
+            Ok(())
+        } else {
+            Err("internal error: cells missing after the shuffle".to_string())
+        },
+    )?;
+    // local numbering: vertices in increasing global id
+    let gids: Vec<u32> = held.ones().map(|v| v as u32).collect();
+    drop(held);
+    let local: FxHashMap<u32, u32> = gids
+        .iter()
+        .enumerate()
+        .map(|(i, &g)| (g, i as u32))
+        .collect();
+    let mut owned = FixedBitSet::with_capacity(gids.len());
+    for g in &owned_gids {
+        owned.insert(local[g] as usize);
+    }
+    for cells in &mut block_cells {
+        for v in cells.iter_mut() {
+            *v = local[v];
+        }
+    }
+    drop(local);
+    let cell_gid: Vec<u32> = block_gid.into_iter().flatten().collect();
+    let blocks: Vec<(CellKind, Buf<u32>)> = block_cells
+        .into_iter()
+        .enumerate()
+        .filter(|(_, v)| !v.is_empty())
+        .map(|(b, v)| (f.h.blocks[b].0, Buf::Owned(v)))
+        .collect();
+    local_complex(w, f, s, gids, owned, cell_gid, blocks)
+}
+
+/// The [`Local`] of numbered vertices (`gids`, increasing), owned ones, cells (in increasing
+/// global id, `cell_gid`) and their blocks in local vertex ids.
+fn local_complex(
+    w: &World,
+    f: &Spb,
+    s: &Split,
+    gids: Vec<u32>,
+    owned: FixedBitSet,
+    cell_gid: Vec<u32>,
+    blocks: Vec<(CellKind, Buf<u32>)>,
+) -> Result<Local, Failure> {
+    let d = f.h.ambient_dim;
+    let mut coords = Vec::with_capacity(gids.len() * d);
+    let mut vertex_owner = Vec::with_capacity(gids.len());
+    for &g in &gids {
+        let q = f.point(g);
+        coords.extend_from_slice(q);
+        vertex_owner.push(s.owner(g, q) as u32);
+    }
+    let k = agree(
+        w,
+        IndexedComplex::from_parts(d, Buf::Owned(coords), blocks)
+            .map_err(|e| format!("{}: {e}", f.path)),
+    )?;
+    let mut l = Local {
+        k,
+        vertex_gid: gids,
+        cell_gid,
+        owned,
+        vertex_owner,
+        n_owned_cells: 0,
+    };
+    l.n_owned_cells = (0..l.k.n_cells()).filter(|&c| l.owns_cell(c)).count() as u64;
+    Ok(l)
 }
 
 /// The local complex of the cell records `[global id, block, global vertex ids...]` of
@@ -533,34 +680,12 @@ fn assemble(
             heads.push(std::cmp::Reverse((g[at[k]], k)));
         }
     }
-    let d = f.h.ambient_dim;
-    let mut coords = Vec::with_capacity(gids.len() * d);
-    let mut vertex_owner = Vec::with_capacity(gids.len());
-    for &g in &gids {
-        let q = f.point(g);
-        coords.extend_from_slice(q);
-        vertex_owner.push(s.owner(g, q) as u32);
-    }
     let blocks: Vec<(CellKind, Buf<u32>)> = blocks
         .into_iter()
         .filter(|(_, v)| !v.is_empty())
         .map(|(k, v)| (k, Buf::Owned(v)))
         .collect();
-    let k = agree(
-        w,
-        IndexedComplex::from_parts(d, Buf::Owned(coords), blocks)
-            .map_err(|e| format!("{}: {e}", f.path)),
-    )?;
-    let mut l = Local {
-        k,
-        vertex_gid: gids,
-        cell_gid,
-        owned,
-        vertex_owner,
-        n_owned_cells: 0,
-    };
-    l.n_owned_cells = (0..l.k.n_cells()).filter(|&c| l.owns_cell(c)).count() as u64;
-    Ok(l)
+    local_complex(w, f, s, gids, owned, cell_gid, blocks)
 }
 
 /// Widens the ghost layer of `l` by one ring: every rank also receives, from their owners, the
