@@ -437,7 +437,13 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
         values += 2 + cv.len();
     });
     agree(w, counted)?;
-    let rounds = comm::max(w, values.div_ceil(ROUND_VALUES).max(1) as u64) as usize;
+    // (STARPLEX_MPI_ROUND_VALUES sets a smaller round, for the tests of many rounds)
+    let per_round = std::env::var("STARPLEX_MPI_ROUND_VALUES")
+        .ok()
+        .and_then(|x| x.parse::<usize>().ok())
+        .filter(|&x| x > 0)
+        .unwrap_or(ROUND_VALUES);
+    let rounds = comm::max(w, values.div_ceil(per_round).max(1) as u64) as usize;
     // what every sender will send here, per block: the places of its cells in the local blocks
     let from = comm::exchange(w, cells_to.chunks(nb).map(<[u32]>::to_vec).collect())?;
     let from: Vec<Vec<u32>> = from.parts().map(<[u32]>::to_vec).collect();
@@ -515,13 +521,13 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
         }
         agree(w, bad.map_or(Ok(()), Err))?;
     }
-    // every cell arrived where it was announced
+    // every cell arrived where it was announced, in increasing cell id
     let complete = (0..p).all(|r| {
         (0..nb).all(|b| {
             let start: usize = (0..r).map(|q| from[q][b] as usize).sum();
             cursor[r][b] == start + from[r][b] as usize
         })
-    });
+    }) && block_gid.iter().all(|g| g.windows(2).all(|x| x[0] < x[1]));
     agree(
         w,
         if complete {

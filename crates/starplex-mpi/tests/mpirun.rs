@@ -1231,3 +1231,42 @@ fn homology_refuses_an_interface_over_the_face_budget() {
     }
     std::fs::remove_dir_all(&tmp).ok();
 }
+
+/// The cell shuffle in many small rounds (`STARPLEX_MPI_ROUND_VALUES=64`: a few cells per
+/// round) builds the same local complexes: `info` and `validate` of every small dataset equal
+/// the single process's on 2 and 3 ranks.
+#[test]
+fn the_cell_shuffle_in_small_rounds_changes_nothing() {
+    let Some((cli, data, tmp)) = setup("starplex-mpi-rounds") else {
+        return;
+    };
+    let limit = Duration::from_secs(300);
+    let mut failures = Vec::new();
+    for src in &data {
+        let name = src.file_stem().unwrap().to_string_lossy().into_owned();
+        let spb_s = to_spb(&cli, src, &tmp);
+        for verb in ["info", "validate"] {
+            let (code, out, err) = run(
+                Command::new(&cli).args(["--quiet", verb, &spb_s, "--json"]),
+                limit,
+            );
+            assert_eq!(code, Some(0), "starplex {verb} {name}: {err}");
+            let want = without_timings(&out, &format!("starplex {verb} {name}"));
+            for np in [2, 3] {
+                let mut c = mpi(np, &[verb, &spb_s, "--json"]);
+                c.env("STARPLEX_MPI_ROUND_VALUES", "64");
+                let (code, out, err) = run(&mut c, limit);
+                let what = format!("-np {np} {verb} {name} in rounds of 64 values");
+                if code != Some(0) {
+                    failures.push(format!("{what}: status {code:?}: {err}"));
+                    continue;
+                }
+                if without_timings(&out, &what) != want {
+                    failures.push(format!("{what}: differs"));
+                }
+            }
+        }
+    }
+    std::fs::remove_dir_all(&tmp).ok();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
