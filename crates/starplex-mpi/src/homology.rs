@@ -598,6 +598,7 @@ pub fn run_by_contraction(
         max_error: None,
         keep_manifold: false,
         lock_boundary: false,
+        keep_vertices: None,
         max_rounds: 1,
         gather_below: 0,
         json: false,

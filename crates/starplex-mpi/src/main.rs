@@ -10,7 +10,8 @@
 //! mpirun -np P starplex-mpi query FILE.spb --relation R --all --out OUT.jsonl|csv|npz
 //!     [--structure S] [--per-rank]
 //! mpirun -np P starplex-mpi simplify FILE.spb -o OUT.spb [--mode homology|qem] [--ratio R]
-//!     [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N] [--json]
+//!     [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE]
+//!     [--rounds N] [--gather-below N] [--json]
 //! ```
 //!
 //! Rank 0 prints what `starplex info` / `starplex validate` print on the same file (the
@@ -50,7 +51,7 @@ mod write;
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method morse|contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--rounds N] [--gather-below N]";
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method morse|contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE] [--rounds N] [--gather-below N]";
 const VERBS: [&str; 6] = [
     "info", "validate", "stellar", "homology", "query", "simplify",
 ];
@@ -72,6 +73,7 @@ struct Args {
     max_error: Option<f64>,
     keep_manifold: bool,
     lock_boundary: bool,
+    keep_vertices: Option<PathBuf>,
     rounds: u32,
     gather_below: u64,
     relation: Option<starplex_cli::export::RelationKind>,
@@ -114,6 +116,7 @@ fn parse_args() -> Result<Args, String> {
         max_error: None,
         keep_manifold: false,
         lock_boundary: false,
+        keep_vertices: None,
         rounds: 8,
         gather_below: 2_000_000,
         relation: None,
@@ -257,6 +260,11 @@ fn parse_args() -> Result<Args, String> {
             "--per-rank" => a.per_rank = true,
             "--keep-manifold" => a.keep_manifold = true,
             "--lock-boundary" => a.lock_boundary = true,
+            "--keep-vertices" => {
+                a.keep_vertices = Some(PathBuf::from(it.next().ok_or(format!(
+                    "--keep-vertices needs a file of vertex ids\n{USAGE}"
+                ))?))
+            }
             "-h" | "--help" => return Err(USAGE.to_string()),
             s if s.starts_with('-') => return Err(format!("unknown option {s}\n{USAGE}")),
             _ => pos.push(x),
@@ -328,6 +336,7 @@ fn run(w: &World) -> Result<u8, Failure> {
             max_error: a.max_error,
             keep_manifold: a.keep_manifold,
             lock_boundary: a.lock_boundary,
+            keep_vertices: a.keep_vertices.as_deref(),
             max_rounds: a.rounds,
             gather_below: a.gather_below,
             json: a.json,

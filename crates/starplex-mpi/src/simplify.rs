@@ -62,6 +62,9 @@ pub struct SimplifyArgs<'a> {
     pub keep_manifold: bool,
     /// QEM: boundary vertices neither move nor disappear.
     pub lock_boundary: bool,
+    /// A file of input vertex ids that neither move nor disappear (as `starplex simplify
+    /// --keep-vertices`).
+    pub keep_vertices: Option<&'a Path>,
     /// At most this many rounds.
     pub max_rounds: u32,
     /// When a round leaves at most this many top cells, the last round runs on rank 0 alone
@@ -81,6 +84,8 @@ struct RoundOut {
     contractions: u64,
     owned_tops_after: u64,
     locked: u64,
+    /// The output ids of the kept vertices this rank owns: (index in the kept list, new id).
+    kept_new: Vec<(usize, u32)>,
 }
 
 /// The mode `starplex simplify` picks, from the blocks of the file.
@@ -124,11 +129,20 @@ fn round(
     mode: Mode,
     a: &SimplifyArgs,
     faces: Option<u64>,
+    kept: &[u32],
 ) -> Result<RoundOut, Failure> {
     let (rank, p) = (w.rank() as usize, w.size() as usize);
     let n = l.vertex_gid.len();
-    let keep = locked(l);
+    let mut keep = locked(l);
     let n_locked = keep.len() as u64;
+    // the vertices the user keeps (global ids of this round's input, sorted), where held here
+    keep.extend(
+        kept.iter()
+            .filter_map(|g| l.vertex_gid.binary_search(g).ok())
+            .map(|i| i as u32),
+    );
+    keep.sort_unstable();
+    keep.dedup();
     let mine = owned_tops(l);
     let all_owned = comm::sum(w, mine);
     let local_tops = (l.k.n_cells() + l.k.n_isolated_vertices()) as u64;
@@ -270,6 +284,22 @@ fn round(
     for &i in &owned_out {
         coords.extend_from_slice(out.point(starplex::ids::VertexId(i)));
     }
+    // where the kept vertices this rank owns go in the output (they all survive)
+    let mut kept_new = Vec::new();
+    for (x, g) in kept.iter().enumerate() {
+        if let Ok(i) = l.vertex_gid.binary_search(g) {
+            if l.owned.contains(i) {
+                match owned_gids.binary_search(g) {
+                    Ok(j) => kept_new.push((x, (first + j as u64) as u32)),
+                    Err(_) => {
+                        return Err(Failure(format!(
+                            "internal error: kept vertex {g} did not survive the round"
+                        )))
+                    }
+                }
+            }
+        }
+    }
     let used = out.used_vertices();
     let isolated = owned_out
         .iter()
@@ -280,6 +310,7 @@ fn round(
         contractions,
         owned_tops_after: owned_cells + isolated,
         locked: n_locked,
+        kept_new,
     })
 }
 
@@ -375,6 +406,8 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
     let mut tops_now = 0u64;
     let mut r = 0u32;
     let mut kind = SplitKind::Plain;
+    // the kept vertices, in the numbering of each round's input (sorted)
+    let mut kept: Vec<u32> = Vec::new();
     let written = loop {
         // reading a round's file back: on any error, the file goes too
         let read = (|| {
@@ -423,6 +456,23 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
                     "{g} faces asked, the complex has {tops} top cells"
                 )));
             }
+            if let Some(path) = a.keep_vertices {
+                let nv = f.h.n_vertices;
+                kept = agree(
+                    w,
+                    starplex_cli::export::read_ids(path)
+                        .map_err(|e| format!("--keep-vertices: {e}"))
+                        .and_then(|ids| match ids.iter().find(|&&v| v as u64 >= nv) {
+                            Some(v) => Err(format!(
+                                "--keep-vertices {}: vertex {v} is out of range (the input has {nv} vertices, ids from 0)",
+                                path.display()
+                            )),
+                            None => Ok(ids),
+                        }),
+                )?;
+                kept.sort_unstable();
+                kept.dedup();
+            }
         }
         let d = f.h.ambient_dim;
         drop(f);
@@ -436,14 +486,32 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
             }
             g => g,
         };
-        let out = round(w, &mut l, mode, a, round_goal)?;
+        let out = round(w, &mut l, mode, a, round_goal, &kept)?;
         drop(l);
+        // the kept vertices' ids in the round's output, from their owners
+        if !kept.is_empty() {
+            let mut at = vec![0u64; kept.len()];
+            for &(x, id) in &out.kept_new {
+                at[x] = u64::from(id) + 1;
+            }
+            let at = comm::sums(w, &at);
+            agree(
+                w,
+                if at.iter().all(|&x| x > 0) {
+                    Ok(())
+                } else {
+                    Err("internal error: a kept vertex has no owner".to_string())
+                },
+            )?;
+            kept = at.iter().map(|&x| (x - 1) as u32).collect();
+            kept.sort_unstable();
+        }
         let contractions = comm::sum(w, out.contractions);
         let tops_after = comm::sum(w, out.owned_tops_after);
         let locked = comm::sum(w, out.locked);
         total += contractions;
         tops_now = tops_after;
-        rows.push(json!({"round": r + 1, "split": format!("{kind:?}").to_lowercase(), "contractions": contractions, "top_cells": tops_after, "locked_vertices": locked}));
+        rows.push(json!({"round": r + 1, "split": format!("{kind:?}").to_lowercase(), "contractions": contractions, "top_cells": tops_after, "locked_vertices": locked, "kept_vertices": kept.len()}));
         let next = if tops_after <= a.gather_below {
             SplitKind::Rank0
         } else if kind == SplitKind::Plain {

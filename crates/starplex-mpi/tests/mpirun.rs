@@ -856,7 +856,29 @@ fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
         let before = topology(&cli, &spb);
         // (options, whether no non-manifold vertex or edge may appear: homology mode keeps
         // the Betti numbers only, unless --keep-manifold)
-        let mut modes = vec![(vec!["--mode", "homology"], false)];
+        // a few vertices to keep: every 7th, at most 60 (they must survive every rank count,
+        // at their input coordinates)
+        let keep: Vec<u32> = (0..k.n_vertices() as u32).step_by(7).take(60).collect();
+        let keep_file = tmp.join(format!("{name}.keep.txt"));
+        let keep_text: Vec<String> = keep.iter().map(u32::to_string).collect();
+        std::fs::write(&keep_file, keep_text.join("\n")).unwrap();
+        let keep_file = keep_file.to_string_lossy().into_owned();
+        let kept_points: Vec<Vec<u64>> = keep
+            .iter()
+            .map(|&v| {
+                k.point(starplex::ids::VertexId(v))
+                    .iter()
+                    .map(|x| x.to_bits())
+                    .collect()
+            })
+            .collect();
+        let mut modes = vec![
+            (vec!["--mode", "homology"], false),
+            (
+                vec!["--mode", "homology", "--keep-vertices", &keep_file],
+                false,
+            ),
+        ];
         if qem {
             modes.push((vec!["--mode", "qem", "--ratio", "0.3"], true));
             modes.push((vec!["--mode", "homology", "--keep-manifold"], true));
@@ -899,6 +921,20 @@ fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
                     let v = without_timings(&stdout, &what);
                     if np == 1 && cells_of(&out) != cells_of(&one) {
                         failures.push(format!("{what}: differs from the single process"));
+                    }
+                    if m.contains(&"--keep-vertices") {
+                        let (coords, _) = cells_of(&out);
+                        let d = k.ambient_dim();
+                        let have: std::collections::BTreeSet<Vec<u64>> = coords
+                            .chunks_exact(d)
+                            .map(|p| p.iter().map(|x| x.to_bits()).collect())
+                            .collect();
+                        if let Some(p) = kept_points.iter().find(|p| !have.contains(*p)) {
+                            failures.push(format!("{what}: a kept vertex is gone: {p:?}"));
+                        }
+                        if v["per_round"][0]["kept_vertices"].as_u64() != Some(keep.len() as u64) {
+                            failures.push(format!("{what}: the report's kept vertices: {v}"));
+                        }
                     }
                     let after = topology(&cli, &out);
                     if trimmed(&after.0) != trimmed(&before.0)
