@@ -287,15 +287,15 @@ fn round(
     // where the kept vertices this rank owns go in the output (they all survive)
     let mut kept_new = Vec::new();
     for (x, g) in kept.iter().enumerate() {
-        if let Ok(i) = l.vertex_gid.binary_search(g) {
-            if l.owned.contains(i) {
-                match owned_gids.binary_search(g) {
-                    Ok(j) => kept_new.push((x, (first + j as u64) as u32)),
-                    Err(_) => {
-                        return Err(Failure(format!(
-                            "internal error: kept vertex {g} did not survive the round"
-                        )))
-                    }
+        if let Ok(i) = l.vertex_gid.binary_search(g)
+            && l.owned.contains(i)
+        {
+            match owned_gids.binary_search(g) {
+                Ok(j) => kept_new.push((x, (first + j as u64) as u32)),
+                Err(_) => {
+                    return Err(Failure(format!(
+                        "internal error: kept vertex {g} did not survive the round"
+                    )))
                 }
             }
         }
