@@ -366,13 +366,7 @@ fn run(w: &World) -> Result<u8, Failure> {
             )));
         }
         if method == Method::Contract {
-            let dir = a.tmp_dir.clone().unwrap_or_else(|| {
-                a.file
-                    .parent()
-                    .filter(|p| !p.as_os_str().is_empty())
-                    .map_or_else(|| PathBuf::from("."), PathBuf::from)
-            });
-            homology::run_by_contraction(w, a.json, &a.file, a.field, &dir)?;
+            homology::run_by_contraction(w, a.json, &a.file, a.field, &tmp_dir(&a))?;
             if a.stats {
                 print_peaks(w)?;
             }
@@ -418,6 +412,17 @@ fn run(w: &World) -> Result<u8, Failure> {
         {
             homology::run(w, a.json, &a.file, &ld.f, &ld.l, ld.read_s, a.max_faces)?
         }
+        "homology"
+            if a.method.is_none() && {
+                // the default: Morse, unless the cells that span ranks have too many faces
+                // (high-dimensional complexes): then contraction, which has no such bound
+                let est = morse::interface_estimate(&ld.l);
+                comm::max(w, u64::try_from(est).unwrap_or(u64::MAX)) > morse::AUTO_FACES
+            } =>
+        {
+            ld.l = Local::empty();
+            homology::run_by_contraction(w, a.json, &a.file, a.field, &tmp_dir(&a))?
+        }
         "homology" => morse::run(
             w,
             a.json,
@@ -445,6 +450,17 @@ fn run(w: &World) -> Result<u8, Failure> {
         print_stats(w, &ld)?;
     }
     Ok(code)
+}
+
+/// Where `homology --method contract` writes its temporary file: `--tmp-dir`, else beside the
+/// input.
+fn tmp_dir(a: &Args) -> PathBuf {
+    a.tmp_dir.clone().unwrap_or_else(|| {
+        a.file
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .map_or_else(|| PathBuf::from("."), PathBuf::from)
+    })
 }
 
 /// Connected components of the 1-skeleton (isolated vertices count): local union-find over

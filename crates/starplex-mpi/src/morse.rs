@@ -37,6 +37,25 @@ use starplex::complex::IndexedComplex;
 use crate::comm::{self, agree, Failure, World};
 use crate::dist::Local;
 
+/// The most interface faces (on one rank) for which the default method is this one: above,
+/// `homology` without `--method` contracts instead (a cell of `n` vertices that spans ranks has
+/// up to `2^n` interface faces, which high-dimensional complexes reach quickly).
+pub const AUTO_FACES: u64 = 1 << 26;
+
+/// The interface faces this rank would list, at most: `2^n` for each held cell of `n`
+/// vertices whose vertices have several owners.
+pub fn interface_estimate(l: &Local) -> u128 {
+    let mut estimate: u128 = 0;
+    for c in l.k.cells() {
+        let o0 = l.vertex_owner[c.vertices[0] as usize];
+        if c.vertices.iter().any(|&v| l.vertex_owner[v as usize] != o0) {
+            let n = c.vertices.len() as u32;
+            estimate = estimate.saturating_add(if n > 40 { u128::MAX } else { 1u128 << n });
+        }
+    }
+    estimate
+}
+
 /// Sorts the runs of `arity` values of `flat` and removes repeated runs.
 fn sort_runs(flat: Vec<u32>, arity: usize) -> Vec<u32> {
     if arity == 0 || flat.is_empty() {
@@ -116,21 +135,13 @@ fn local_part(
     // 2. (first, while the local complex is held) the interface faces of the cells that span
     //    ranks: owned ones (smallest vertex mine), and those with exactly one vertex that is
     //    not mine (a facet in I_r)
-    let mut estimate: u128 = 0;
-    for c in l.k.cells() {
-        if !c.kind.is_simplex() {
-            return Err(format!(
-                "a {} cell: the Morse method needs a simplicial complex (use --method algebraic)",
-                c.kind
-            ));
-        }
-        let o0 = l.vertex_owner[c.vertices[0] as usize];
-        if c.vertices.iter().any(|&v| l.vertex_owner[v as usize] != o0) {
-            // up to 2^n interface faces (more than 40 vertices: refused below)
-            let n = c.vertices.len() as u32;
-            estimate = estimate.saturating_add(if n > 40 { u128::MAX } else { 1u128 << n });
-        }
+    if let Some(c) = l.k.cells().find(|c| !c.kind.is_simplex()) {
+        return Err(format!(
+            "a {} cell: the Morse method needs a simplicial complex (use --method algebraic)",
+            c.kind
+        ));
     }
+    let estimate = interface_estimate(l);
     if estimate > max_faces {
         return Err(format!(
             "homology: about {estimate} interface faces (of cells spanning ranks) to list on one rank, over the budget of {max_faces} (raise --max-faces, or use --method contract)"

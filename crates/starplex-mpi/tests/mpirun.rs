@@ -1306,3 +1306,45 @@ fn the_cell_shuffle_in_small_rounds_changes_nothing() {
     std::fs::remove_dir_all(&tmp).ok();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Fifteen 29-simplices along a line, split over 2-3 ranks: the cells that span ranks have
+/// ~2^30 interface faces, so `homology` without `--method` contracts instead of listing them
+/// (and says so); the Betti numbers are those of the single process.
+#[test]
+fn homology_of_high_dimensional_cells_falls_back_to_contraction() {
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    let Some(cli) = ready() else { return };
+    let tmp = std::env::temp_dir().join(format!("starplex-mpi-auto-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let mut b = ComplexBuilder::new(3).unwrap();
+    for i in 0..44 {
+        b.push_vertex(&[i as f64, (i * i % 7) as f64, 0.0]).unwrap();
+    }
+    for i in 0..15 {
+        b.push_cell(CellKind::Simplex(29), &(i..i + 30).collect::<Vec<u32>>())
+            .unwrap();
+    }
+    let k = b.build(&BuildOptions::default()).unwrap().0;
+    let spb = tmp.join("line30.spb");
+    let mut bytes = Vec::new();
+    starplex::io::binary::write(&mut bytes, &k).unwrap();
+    std::fs::write(&spb, &bytes).unwrap();
+    let spb = spb.to_string_lossy().into_owned();
+    let limit = Duration::from_secs(120);
+    let (code, out, err) = run(
+        Command::new(&cli).args(["--quiet", "homology", &spb, "--json"]),
+        limit,
+    );
+    assert_eq!(code, Some(0), "{err}");
+    let want = without_timings(&out, "single");
+    for np in [2, 3] {
+        let (code, out, err) = run(&mut mpi(np, &["homology", &spb, "--json"]), limit);
+        assert_eq!(code, Some(0), "-np {np}: {err}");
+        let v = without_timings(&out, "line30");
+        assert_eq!(v["betti"], want["betti"], "-np {np}: {v}");
+        let scheme = v["distributed"]["scheme"].as_str().unwrap_or("");
+        assert!(scheme.contains("contract"), "-np {np}: {v}");
+    }
+    std::fs::remove_dir_all(&tmp).ok();
+}
