@@ -620,7 +620,29 @@ impl SimplexSet {
         }
         let start = self.levels[p].len();
         self.levels[p].extend_from_slice(s);
-        self.levels[p][start..].sort_unstable();
+        // sorting networks for the small keys (most of a link's or star's faces), and no sort
+        // at all for a key given sorted
+        let t = &mut self.levels[p][start..];
+        match t.len() {
+            1 => {}
+            2 => {
+                if t[0] > t[1] {
+                    t.swap(0, 1);
+                }
+            }
+            3 => {
+                let (a, b, c) = (t[0].min(t[1]), t[0].max(t[1]), t[2]);
+                let (b, c) = (b.min(c), b.max(c));
+                let (a, b) = (a.min(b), a.max(b));
+                t.copy_from_slice(&[a, b, c]);
+            }
+            4 => t.copy_from_slice(&sort4([t[0], t[1], t[2], t[3]])),
+            _ => {
+                if !t.is_sorted() {
+                    t.sort_unstable();
+                }
+            }
+        }
     }
     /// Sorts and deduplicates every level, drops trailing empty levels.
     ///
@@ -779,6 +801,14 @@ pub fn sort_flat<T: Ord + Copy>(v: &mut Vec<T>, stride: usize) {
     if n < 2 {
         return;
     }
+    // keys of 2-4 ids (edges, triangles, tetrahedra): sorted as fixed-size arrays, not through
+    // an index compared by slices
+    match stride {
+        2 => return sort_fixed::<T, 2>(v),
+        3 => return sort_fixed::<T, 3>(v),
+        4 => return sort_fixed::<T, 4>(v),
+        _ => {}
+    }
     let mut idx: Vec<u32> = (0..n as u32).collect();
     idx.sort_unstable_by(|&a, &b| {
         v[a as usize * stride..(a as usize + 1) * stride]
@@ -793,6 +823,20 @@ pub fn sort_flat<T: Ord + Copy>(v: &mut Vec<T>, stride: usize) {
         out.extend_from_slice(t);
     }
     *v = out;
+}
+
+/// [`sort_flat`] for keys of `K` values.
+fn sort_fixed<T: Ord + Copy, const K: usize>(v: &mut Vec<T>) {
+    let mut a: Vec<[T; K]> = v
+        .chunks_exact(K)
+        .map(|c| std::array::from_fn(|i| c[i]))
+        .collect();
+    a.sort_unstable();
+    a.dedup();
+    v.clear();
+    for x in &a {
+        v.extend_from_slice(x);
+    }
 }
 
 /// Three vertex ids sorted by a three-comparison sorting network, by value (so the ids stay in
