@@ -473,7 +473,12 @@ pub fn levels<S: Queries + Sync + ?Sized>(
             let mut lv: Vec<Answers> = Vec::new();
             for (j, &v) in chunk.iter().enumerate() {
                 let set: SimplexSet = if link {
-                    generic::link(s, &[VertexId(v)])?
+                    // from the top cells around the vertex (no star listed first); a CP star
+                    // gets the structure's own answer (its error)
+                    match super::from_tops::link(s, &[VertexId(v)], super::DEFAULT_BUDGET) {
+                        Err(QueryError::NotSimplicial(_)) => generic::link(s, &[VertexId(v)])?,
+                        r => r?,
+                    }
                 } else {
                     s.star(&[VertexId(v)])?
                 };

@@ -222,6 +222,57 @@ pub fn star<S: TopCells + VertexStar + ?Sized>(
     Ok(set)
 }
 
+/// The link of `s` from the top cells around it: every nonempty subset of `t \ s` for each top
+/// cell `t ⊇ s`, i.e. the faces of the star that miss `s`, without listing the star first. The
+/// same answer, budget and errors as [`super::generic::link`] over [`star`].
+///
+/// ```
+/// use starplex::topo::{naive::VtIndex, from_tops, generic};
+/// use starplex::ids::VertexId;
+/// # use starplex::complex::{ComplexBuilder, BuildOptions};
+/// # use starplex::cell::CellKind;
+/// # let mut b = ComplexBuilder::new(2).unwrap();
+/// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+/// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+/// # b.push_cell(CellKind::Simplex(2), &[1, 3, 2]).unwrap();
+/// # let k = b.build(&BuildOptions::default()).unwrap().0;
+/// let vt = VtIndex::new(&k);
+/// let l = from_tops::link(&vt, &[VertexId(1)], u128::MAX).unwrap();
+/// assert_eq!(l.f_vector(), vec![3, 2]); // the path 0 - 2 - 3
+/// assert_eq!(l, generic::link(&vt, &[VertexId(1)]).unwrap());
+/// ```
+///
+/// # Errors
+/// [`QueryError::NotSimplicial`] when a top cell around `s` is not a simplex; `TooLarge` when
+/// the star's estimate exceeds `budget`; as [`star`] for a bad `s`.
+pub fn link<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    s: &[VertexId],
+    budget: u128,
+) -> Result<SimplexSet, QueryError> {
+    let s = sorted_simplex(s)?;
+    let tops = star_tops(st, &s, "star")?;
+    let est: u128 = tops
+        .iter()
+        .map(|t| 1u128 << (t.len() - s.len()).min(120))
+        .fold(1, |a, x| a.saturating_add(x));
+    if est > budget {
+        return Err(too_large(format!("star of {s:?}"), est, budget));
+    }
+    let mut set = SimplexSet::default();
+    let mut buf = Vec::new();
+    let mut rest: Vec<VertexId> = Vec::new();
+    for t in &tops {
+        rest.clear();
+        rest.extend(t.iter().copied().filter(|v| s.binary_search(v).is_err()));
+        for k in 1..=rest.len() {
+            for_each_subset(&rest, k, &mut buf, &mut |sub| set.insert(sub));
+        }
+    }
+    set.normalize();
+    Ok(set)
+}
+
 /// R_{p,q}, q > p: the q-simplices containing `s` (empty for q ≤ p).
 ///
 /// ```

@@ -193,6 +193,9 @@ fn check_structure<S: Queries + ?Sized>(name: &str, s: &S, m: &Model, sorted_top
         want_sorted.sort_by(|a, b| a.len().cmp(&b.len()).then(a.cmp(b)));
         assert_eq!(got, want_sorted, "{name}: St({sigma:?})");
         let link = generic::link(s, &sv).unwrap();
+        // the bulk answers' link, straight from the top cells, is the same set
+        let direct = starplex::topo::from_tops::link(s, &sv, u128::MAX).unwrap();
+        assert_eq!(direct, link, "{name}: Lk({sigma:?}) from the top cells");
         let want_link: BTreeSet<Vec<u32>> = want_star
             .iter()
             .filter(|t| t.len() > sigma.len())
