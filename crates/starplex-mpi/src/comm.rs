@@ -150,6 +150,11 @@ where
     Ok(Received { flat: recv, starts })
 }
 
+/// [`agree`] on a condition: every rank fails with `what` when it is false on any rank.
+pub fn agree_that(w: &World, ok: bool, what: &str) -> Result<(), Failure> {
+    agree(w, if ok { Ok(()) } else { Err(what.to_string()) })
+}
+
 /// Gathers every rank's `v` on rank 0 (in rank order); `None` on the other ranks.
 pub fn gather<T>(w: &World, v: &[T]) -> Result<Option<Vec<T>>, Failure>
 where

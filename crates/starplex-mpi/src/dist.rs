@@ -528,13 +528,10 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
             cursor[r][b] == start + from[r][b] as usize
         })
     }) && block_gid.iter().all(|g| g.windows(2).all(|x| x[0] < x[1]));
-    agree(
+    comm::agree_that(
         w,
-        if complete {
-            Ok(())
-        } else {
-            Err("internal error: cells missing after the shuffle".to_string())
-        },
+        complete,
+        "internal error: cells missing after the shuffle",
     )?;
     // local numbering: vertices in increasing global id
     let gids: Vec<u32> = held.ones().map(|v| v as u32).collect();
@@ -623,14 +620,7 @@ fn assemble(
         }
         true
     });
-    agree(
-        w,
-        if sorted {
-            Ok(())
-        } else {
-            Err("internal error: cell records out of order".to_string())
-        },
-    )?;
+    comm::agree_that(w, sorted, "internal error: cell records out of order")?;
     // the vertices held: a bit per vertex of the file
     let mut held = FixedBitSet::with_capacity(f.h.n_vertices as usize);
     for &g in &owned_gids {

@@ -495,13 +495,10 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
                 at[x] = u64::from(id) + 1;
             }
             let at = comm::sums(w, &at);
-            agree(
+            comm::agree_that(
                 w,
-                if at.iter().all(|&x| x > 0) {
-                    Ok(())
-                } else {
-                    Err("internal error: a kept vertex has no owner".to_string())
-                },
+                at.iter().all(|&x| x > 0),
+                "internal error: a kept vertex has no owner",
             )?;
             kept = at.iter().map(|&x| (x - 1) as u32).collect();
             kept.sort_unstable();

@@ -112,6 +112,25 @@ fn star_tops<S: TopCells + VertexStar + ?Sized>(
     Ok(tops)
 }
 
+/// `s` sorted and the top cells around it (sorted), refused when its star's faces (`Σ 2^(|t| -
+/// |s|)`) exceed `budget`: what [`star`] and [`link`] start from.
+fn star_tops_within<S: TopCells + VertexStar + ?Sized>(
+    st: &S,
+    s: &[VertexId],
+    budget: u128,
+) -> Result<(Vec<VertexId>, Vec<Vec<VertexId>>), QueryError> {
+    let s = sorted_simplex(s)?;
+    let tops = star_tops(st, &s, "star")?;
+    let est: u128 = tops
+        .iter()
+        .map(|t| 1u128 << (t.len() - s.len()).min(120))
+        .fold(1, |a, x| a.saturating_add(x));
+    if est > budget {
+        return Err(too_large(format!("star of {s:?}"), est, budget));
+    }
+    Ok((s, tops))
+}
+
 /// Calls `f` with every `k`-subset of `items` (in lexicographic order of positions).
 ///
 /// ```
@@ -194,15 +213,7 @@ pub fn star<S: TopCells + VertexStar + ?Sized>(
     s: &[VertexId],
     budget: u128,
 ) -> Result<SimplexSet, QueryError> {
-    let s = sorted_simplex(s)?;
-    let tops = star_tops(st, &s, "star")?;
-    let est: u128 = tops
-        .iter()
-        .map(|t| 1u128 << (t.len() - s.len()).min(120))
-        .fold(1, |a, x| a.saturating_add(x));
-    if est > budget {
-        return Err(too_large(format!("star of {s:?}"), est, budget));
-    }
+    let (s, tops) = star_tops_within(st, s, budget)?;
     let mut set = SimplexSet::default();
     set.insert(&s);
     let mut buf = Vec::new();
@@ -250,15 +261,7 @@ pub fn link<S: TopCells + VertexStar + ?Sized>(
     s: &[VertexId],
     budget: u128,
 ) -> Result<SimplexSet, QueryError> {
-    let s = sorted_simplex(s)?;
-    let tops = star_tops(st, &s, "star")?;
-    let est: u128 = tops
-        .iter()
-        .map(|t| 1u128 << (t.len() - s.len()).min(120))
-        .fold(1, |a, x| a.saturating_add(x));
-    if est > budget {
-        return Err(too_large(format!("star of {s:?}"), est, budget));
-    }
+    let (s, tops) = star_tops_within(st, s, budget)?;
     let mut set = SimplexSet::default();
     let mut buf = Vec::new();
     let mut rest: Vec<VertexId> = Vec::new();
