@@ -90,7 +90,7 @@ fn find_run(flat: &[u32], arity: usize, key: &[u32]) -> Option<usize> {
 
 /// What one rank found, before it is sent.
 struct LocalPart {
-    /// The message to rank 0 (see [`encode`]).
+    /// The message to rank 0 (laid out as [`local_part`] says).
     msg: Vec<i64>,
     /// Statistics: cells of `I_r`, critical cells, interface faces owned, projections sent.
     n_inner_cells: u64,
@@ -205,7 +205,7 @@ fn local_part(
     }
     tm("interface faces");
     // 1. I_r: the owned part of every held cell (parts that are faces of others, or repeat,
-    //    add no face: `MorseComplex::new` takes them as they are)
+    //    add no face: `MorseComplex::from_complex` takes them as they are)
     let mut by_arity: Vec<Vec<u32>> = vec![Vec::new(); dims + 1];
     for c in l.k.cells() {
         sorted.clear();
