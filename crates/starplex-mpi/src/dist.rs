@@ -534,17 +534,7 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
         "internal error: cells missing after the shuffle",
     )?;
     // local numbering: vertices in increasing global id
-    let gids: Vec<u32> = held.ones().map(|v| v as u32).collect();
-    drop(held);
-    let local: FxHashMap<u32, u32> = gids
-        .iter()
-        .enumerate()
-        .map(|(i, &g)| (g, i as u32))
-        .collect();
-    let mut owned = FixedBitSet::with_capacity(gids.len());
-    for g in &owned_gids {
-        owned.insert(local[g] as usize);
-    }
+    let (gids, local, owned) = numbering(held, &owned_gids);
     for cells in &mut block_cells {
         for v in cells.iter_mut() {
             *v = local[v];
@@ -559,6 +549,26 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
         .map(|(b, v)| (f.h.blocks[b].0, Buf::Owned(v)))
         .collect();
     local_complex(w, f, s, gids, owned, cell_gid, blocks)
+}
+
+/// The local numbering of the held vertices (a bit per vertex of the file): their global ids
+/// in increasing order, the map from global to local id, and the owned ones as local bits.
+fn numbering(
+    held: FixedBitSet,
+    owned_gids: &[u32],
+) -> (Vec<u32>, FxHashMap<u32, u32>, FixedBitSet) {
+    let gids: Vec<u32> = held.ones().map(|v| v as u32).collect();
+    drop(held);
+    let local: FxHashMap<u32, u32> = gids
+        .iter()
+        .enumerate()
+        .map(|(i, &g)| (g, i as u32))
+        .collect();
+    let mut owned = FixedBitSet::with_capacity(gids.len());
+    for g in owned_gids {
+        owned.insert(local[g] as usize);
+    }
+    (gids, local, owned)
 }
 
 /// The [`Local`] of numbered vertices (`gids`, increasing), owned ones, cells (in increasing
@@ -636,17 +646,7 @@ fn assemble(
             i += 2 + a;
         }
     }
-    let gids: Vec<u32> = held.ones().map(|v| v as u32).collect();
-    drop(held);
-    let local: FxHashMap<u32, u32> = gids
-        .iter()
-        .enumerate()
-        .map(|(i, &g)| (g, i as u32))
-        .collect();
-    let mut owned = FixedBitSet::with_capacity(gids.len());
-    for g in &owned_gids {
-        owned.insert(local[g] as usize);
-    }
+    let (gids, local, owned) = numbering(held, &owned_gids);
     // one local block per global block, cells in increasing global id: a merge of the streams
     let mut blocks: Vec<(CellKind, Vec<u32>)> =
         f.h.blocks
