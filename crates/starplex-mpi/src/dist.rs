@@ -22,6 +22,7 @@ use std::sync::Arc;
 
 use fixedbitset::FixedBitSet;
 use rustc_hash::FxHashMap;
+use starplex::attr::{AttrTarget, AttrValues, Attribute, Attributes};
 use starplex::buf::Buf;
 use starplex::cell::CellKind;
 use starplex::complex::IndexedComplex;
@@ -117,6 +118,42 @@ impl Spb {
         let d = self.h.ambient_dim;
         let at = self.h.coords_offset as usize + v as usize * d * 8;
         bytemuck::cast_slice(&self.map[at..at + d * 8])
+    }
+
+    /// The file's attribute columns for the given vertices and cells (global ids, checked in
+    /// range by the caller), in the file's column order: what a local complex over them
+    /// carries. The columns are fixed-width, so each value is read at its own offset.
+    pub fn attributes_of(&self, vertices: &[u32], cells: &[u32]) -> Attributes {
+        let mut a = Attributes::default();
+        for e in &self.h.attrs {
+            let c = e.components as usize;
+            let items: Vec<u64> = match e.target {
+                AttrTarget::Vertex => vertices.iter().map(|&v| u64::from(v)).collect(),
+                AttrTarget::Cell => cells.iter().map(|&v| u64::from(v)).collect(),
+            };
+            let word = |i: u64, j: usize| {
+                let at = e.offset as usize + (i as usize * c + j) * 8;
+                let mut b = [0u8; 8];
+                b.copy_from_slice(&self.map[at..at + 8]);
+                b
+            };
+            let words = items.iter().flat_map(|&i| (0..c).map(move |j| word(i, j)));
+            let values = if e.int {
+                AttrValues::Int(words.map(i64::from_le_bytes).collect())
+            } else {
+                AttrValues::Float(words.map(f64::from_le_bytes).collect())
+            };
+            let col = Attribute {
+                name: e.name.clone(),
+                components: c,
+                values,
+            };
+            match e.target {
+                AttrTarget::Vertex => a.vertex.push(col),
+                AttrTarget::Cell => a.cell.push(col),
+            }
+        }
+        a
     }
 
     /// The cells `[lo, hi)` of block `b`, as a flat vertex array.

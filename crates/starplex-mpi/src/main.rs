@@ -11,6 +11,7 @@
 //!     [--structure S] [--per-rank]
 //! mpirun -np P starplex-mpi simplify FILE.spb -o OUT.spb [--mode homology|qem] [--ratio R]
 //!     [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE]
+//!     [--keep-labels NAME | --ignore-labels] [--keep-vertex-attribute NAME]
 //!     [--rounds N] [--gather-below N] [--json]
 //! ```
 //!
@@ -51,7 +52,7 @@ mod write;
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method morse|contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE] [--rounds N] [--gather-below N]";
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method morse|contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE] [--keep-labels NAME | --ignore-labels] [--keep-vertex-attribute NAME] [--rounds N] [--gather-below N]";
 const VERBS: [&str; 6] = [
     "info", "validate", "stellar", "homology", "query", "simplify",
 ];
@@ -74,6 +75,9 @@ struct Args {
     keep_manifold: bool,
     lock_boundary: bool,
     keep_vertices: Option<PathBuf>,
+    keep_labels: Option<String>,
+    ignore_labels: bool,
+    keep_vertex_attribute: Option<String>,
     rounds: u32,
     gather_below: u64,
     relation: Option<starplex_cli::export::RelationKind>,
@@ -117,6 +121,9 @@ fn parse_args() -> Result<Args, String> {
         keep_manifold: false,
         lock_boundary: false,
         keep_vertices: None,
+        keep_labels: None,
+        ignore_labels: false,
+        keep_vertex_attribute: None,
         rounds: 8,
         gather_below: 2_000_000,
         relation: None,
@@ -265,12 +272,26 @@ fn parse_args() -> Result<Args, String> {
                     "--keep-vertices needs a file of vertex ids\n{USAGE}"
                 ))?))
             }
+            "--keep-labels" | "--keep-vertex-attribute" => {
+                let n = it
+                    .next()
+                    .ok_or(format!("{x} needs an attribute name\n{USAGE}"))?;
+                if x == "--keep-labels" {
+                    a.keep_labels = Some(n)
+                } else {
+                    a.keep_vertex_attribute = Some(n)
+                }
+            }
+            "--ignore-labels" => a.ignore_labels = true,
             "-h" | "--help" => return Err(USAGE.to_string()),
             s if s.starts_with('-') => return Err(format!("unknown option {s}\n{USAGE}")),
             _ => pos.push(x),
         }
     }
     match pos.as_slice() {
+        [v, _] if v == "simplify" && a.keep_labels.is_some() && a.ignore_labels => Err(format!(
+            "--keep-labels and --ignore-labels exclude each other\n{USAGE}"
+        )),
         [v, _] if v == "simplify" && a.out.is_none() => Err(format!(
             "simplify needs the output file: -o OUT.spb\n{USAGE}"
         )),
@@ -337,6 +358,10 @@ fn run(w: &World) -> Result<u8, Failure> {
             keep_manifold: a.keep_manifold,
             lock_boundary: a.lock_boundary,
             keep_vertices: a.keep_vertices.as_deref(),
+            keep_labels: a.keep_labels.as_deref(),
+            ignore_labels: a.ignore_labels,
+            keep_vertex_attribute: a.keep_vertex_attribute.as_deref(),
+            attributes: true,
             max_rounds: a.rounds,
             gather_below: a.gather_below,
             json: a.json,

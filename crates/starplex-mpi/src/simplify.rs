@@ -29,15 +29,26 @@
 //! **Output.** Each rank writes the cells it owns (those whose smallest vertex, by global id, it
 //! owns) and the surviving vertices it owns, numbered rank after rank in increasing input id,
 //! into one `.spb` ([`crate::write`]).
+//!
+//! **Attributes.** The `.spb` attribute columns are fixed-width, so each rank reads the values
+//! of the vertices and cells it holds by global id ([`Spb::attributes_of`]); the library carries
+//! them as `starplex simplify` does (a surviving vertex keeps its values, a cell has those of
+//! the input cell it is the image of), every round's file holds them, and each rank writes its
+//! part of every column. Labels are kept as `starplex simplify` keeps them (`--keep-labels`, the
+//! default `gmsh:physical` / `medit:ref`, `--ignore-labels`): whether a vertex is on a label
+//! interface is decided on its full star, which the rank holds for the vertices it may move.
+//! `--keep-vertex-attribute NAME` keeps the vertices of a non-zero value, read likewise.
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use fixedbitset::FixedBitSet;
 use rustc_hash::FxHashMap;
 use serde_json::json;
+use starplex::algo::simplify::default_label_attribute;
 use starplex::algo::simplify::{simplify, Mode, SimplifyOptions, Target};
-use starplex::attr::{AttrValues, Attribute, Attributes};
+use starplex::attr::{AttrTarget, AttrValues, Attribute};
 use starplex::cell::CellKind;
+use starplex::io::binary::SpbAttr;
 
 use mpi::traits::Communicator;
 
@@ -65,6 +76,15 @@ pub struct SimplifyArgs<'a> {
     /// A file of input vertex ids that neither move nor disappear (as `starplex simplify
     /// --keep-vertices`).
     pub keep_vertices: Option<&'a Path>,
+    /// Keep the regions of this cell attribute (as `starplex simplify --keep-labels`).
+    pub keep_labels: Option<&'a str>,
+    /// Do not keep the default label attribute's regions.
+    pub ignore_labels: bool,
+    /// Vertices whose value of this vertex attribute is not 0 neither move nor disappear.
+    pub keep_vertex_attribute: Option<&'a str>,
+    /// Carry the input's attribute columns to the output (off when only the topology of the
+    /// output is wanted).
+    pub attributes: bool,
     /// At most this many rounds.
     pub max_rounds: u32,
     /// When a round leaves at most this many top cells, the last round runs on rank 0 alone
@@ -86,6 +106,18 @@ struct RoundOut {
     locked: u64,
     /// The output ids of the kept vertices this rank owns: (index in the kept list, new id).
     kept_new: Vec<(usize, u32)>,
+    /// Owned vertices the user keeps (listed or by attribute).
+    user_kept: u64,
+}
+
+/// What the user asked to keep, resolved against the input's attribute columns.
+struct Keep<'a> {
+    /// The kept vertices, in the numbering of the round's input (sorted).
+    listed: &'a [u32],
+    /// The cell attribute whose regions are kept.
+    labels: Option<&'a str>,
+    /// The vertex attribute whose non-zero vertices are kept.
+    by_attribute: Option<&'a str>,
 }
 
 /// The mode `starplex simplify` picks, from the blocks of the file.
@@ -129,18 +161,39 @@ fn round(
     mode: Mode,
     a: &SimplifyArgs,
     faces: Option<u64>,
-    kept: &[u32],
+    user: &Keep,
+    cols: &[SpbAttr],
 ) -> Result<RoundOut, Failure> {
     let (rank, p) = (w.rank() as usize, w.size() as usize);
+    let kept = user.listed;
     let n = l.vertex_gid.len();
     let mut keep = locked(l);
     let n_locked = keep.len() as u64;
-    // the vertices the user keeps (global ids of this round's input, sorted), where held here
-    keep.extend(
-        kept.iter()
-            .filter_map(|g| l.vertex_gid.binary_search(g).ok())
-            .map(|i| i as u32),
-    );
+    // the vertices the user keeps (global ids of this round's input, sorted), where held
+    // here, and those of a non-zero value of the vertex attribute
+    let mut users: Vec<u32> = kept
+        .iter()
+        .filter_map(|g| l.vertex_gid.binary_search(g).ok())
+        .map(|i| i as u32)
+        .collect();
+    if let Some(col) = user
+        .by_attribute
+        .and_then(|name| l.k.attributes().get(AttrTarget::Vertex, name))
+    {
+        let c = col.components;
+        users.extend(
+            (0..n)
+                .filter(|&v| (v * c..(v + 1) * c).any(|i| col.values.get_f64(i) != 0.0))
+                .map(|v| v as u32),
+        );
+    }
+    users.sort_unstable();
+    users.dedup();
+    let user_kept = users
+        .iter()
+        .filter(|&&v| l.owned.contains(v as usize))
+        .count() as u64;
+    keep.extend(users);
     keep.sort_unstable();
     keep.dedup();
     let mine = owned_tops(l);
@@ -155,15 +208,12 @@ fn round(
         };
         (local_tops - mine + share.min(mine)) as usize
     });
-    let ids = Attribute::int(LOCAL_ID, 1, (0..n as i64).collect());
-    agree(
-        w,
-        l.k.set_attributes(Attributes {
-            vertex: vec![ids],
-            cell: vec![],
-        })
-        .map_err(|e| e.to_string()),
-    )?;
+    // the file's columns (read with the local complex) and each vertex's local id
+    let mut attrs = l.k.attributes().clone();
+    attrs
+        .vertex
+        .push(Attribute::int(LOCAL_ID, 1, (0..n as i64).collect()));
+    agree(w, l.k.set_attributes(attrs).map_err(|e| e.to_string()))?;
     let opts = SimplifyOptions {
         mode: Some(mode),
         target: Target {
@@ -174,6 +224,7 @@ fn round(
         lock_boundary: a.lock_boundary,
         keep_manifold: a.keep_manifold,
         keep_vertices: keep,
+        keep_labels: user.labels.map(str::to_string),
         ..Default::default()
     };
     let done = if l.k.n_cells() == 0 {
@@ -257,8 +308,10 @@ fn round(
         ghost.extend(q.iter().copied().zip(r.iter().copied()));
     }
     let mut blocks: Vec<(CellKind, Vec<u32>)> = Vec::new();
+    // the output cells of each block, for their attribute values
+    let mut block_cells: Vec<Vec<usize>> = Vec::new();
     let mut owned_cells = 0u64;
-    for c in out.cells() {
+    for (j, c) in out.cells().enumerate() {
         if !owns(c.vertices) {
             continue;
         }
@@ -267,9 +320,11 @@ fn round(
             Some(i) => i,
             None => {
                 blocks.push((c.kind, Vec::new()));
+                block_cells.push(Vec::new());
                 blocks.len() - 1
             }
         };
+        block_cells[at].push(j);
         let dst = &mut blocks[at].1;
         for &i in c.vertices {
             dst.push(if owner(i) == rank {
@@ -284,6 +339,30 @@ fn round(
     for &i in &owned_out {
         coords.extend_from_slice(out.point(starplex::ids::VertexId(i)));
     }
+    // the file's columns, carried by the library to the surviving vertices and to the images
+    // of the cells: this rank's vertices, then its cells block after block
+    let owned_cells_in_order: Vec<usize> = block_cells.concat();
+    let values = agree(
+        w,
+        cols.iter()
+            .map(|e| {
+                let (col, items): (_, Box<dyn Iterator<Item = usize>>) = match e.target {
+                    AttrTarget::Vertex => (
+                        out.attributes().get(AttrTarget::Vertex, &e.name),
+                        Box::new(owned_out.iter().map(|&i| i as usize)),
+                    ),
+                    AttrTarget::Cell => (
+                        out.attributes().get(AttrTarget::Cell, &e.name),
+                        Box::new(owned_cells_in_order.iter().copied()),
+                    ),
+                };
+                let col = col.ok_or_else(|| {
+                    format!("internal error: the attribute {} was not carried", e.name)
+                })?;
+                Ok(write::words(col, items))
+            })
+            .collect::<Result<Vec<Vec<u64>>, String>>(),
+    )?;
     // where the kept vertices this rank owns go in the output (they all survive)
     let mut kept_new = Vec::new();
     for (x, g) in kept.iter().enumerate() {
@@ -306,11 +385,16 @@ fn round(
         .filter(|&&i| !used.contains(i as usize))
         .count() as u64;
     Ok(RoundOut {
-        part: Part { coords, blocks },
+        part: Part {
+            coords,
+            blocks,
+            values,
+        },
         contractions,
         owned_tops_after: owned_cells + isolated,
         locked: n_locked,
         kept_new,
+        user_kept,
     })
 }
 
@@ -350,6 +434,14 @@ pub fn run(w: &World, a: &SimplifyArgs, file: &Path) -> Result<(), Failure> {
             o.contractions,
             o.rows.len()
         );
+        match (&o.labels_kept, o.labels_available.is_empty()) {
+            (Some(l), _) => println!("  labels              {l} kept"),
+            (None, false) => println!(
+                "  labels              not kept (cell attributes: {})",
+                o.labels_available.join(", ")
+            ),
+            (None, true) => {}
+        }
         println!("  time                {:.3} s", o.time_s);
     }
     Ok(())
@@ -369,6 +461,10 @@ pub struct Outcome {
     pub goal: Option<u64>,
     /// One JSON object per round.
     pub rows: Vec<serde_json::Value>,
+    /// The cell attribute whose regions were kept.
+    pub labels_kept: Option<String>,
+    /// The input's cell attributes.
+    pub labels_available: Vec<String>,
     /// Seconds (the slowest rank's view: every round ends collectively).
     pub time_s: f64,
 }
@@ -385,6 +481,8 @@ impl Outcome {
             "n_contractions": self.contractions,
             "rounds": self.rows.len(),
             "per_round": self.rows,
+            "labels_kept": self.labels_kept,
+            "labels_available": self.labels_available,
             "vertices": [self.before.0, self.written.n_vertices],
             "cells": [self.before.1, self.written.n_cells],
             "bytes": self.written.bytes,
@@ -408,12 +506,19 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
     let mut kind = SplitKind::Plain;
     // the kept vertices, in the numbering of each round's input (sorted)
     let mut kept: Vec<u32> = Vec::new();
+    // the input's attribute columns (every round's file has them), the label kept
+    let mut cols: Vec<SpbAttr> = Vec::new();
+    let mut labels: Option<String> = None;
     let written = loop {
         // reading a round's file back: on any error, the file goes too
         let read = (|| {
             let f = agree(w, Spb::open(&input))?;
             let split = dist::split(w, &f, kind)?;
-            let l = dist::distribute(w, &f, &split)?;
+            let mut l = dist::distribute(w, &f, &split)?;
+            if a.attributes && !f.h.attrs.is_empty() {
+                let a = f.attributes_of(&l.vertex_gid, &l.cell_gid);
+                agree(w, l.k.set_attributes(a).map_err(|e| e.to_string()))?;
+            }
             agree(w, f.check_unchanged())?;
             f.release_pages();
             Ok((f, l))
@@ -473,6 +578,10 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
                 kept.sort_unstable();
                 kept.dedup();
             }
+            if a.attributes {
+                cols = f.h.attrs.clone();
+            }
+            labels = agree(w, resolve_labels(a, &cols))?;
         }
         let d = f.h.ambient_dim;
         drop(f);
@@ -486,7 +595,12 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
             }
             g => g,
         };
-        let out = round(w, &mut l, mode, a, round_goal, &kept)?;
+        let user = Keep {
+            listed: &kept,
+            labels: labels.as_deref(),
+            by_attribute: a.keep_vertex_attribute,
+        };
+        let out = round(w, &mut l, mode, a, round_goal, &user, &cols)?;
         drop(l);
         // the kept vertices' ids in the round's output, from their owners
         if !kept.is_empty() {
@@ -506,9 +620,10 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         let contractions = comm::sum(w, out.contractions);
         let tops_after = comm::sum(w, out.owned_tops_after);
         let locked = comm::sum(w, out.locked);
+        let user_kept = comm::sum(w, out.user_kept);
         total += contractions;
         tops_now = tops_after;
-        rows.push(json!({"round": r + 1, "split": format!("{kind:?}").to_lowercase(), "contractions": contractions, "top_cells": tops_after, "locked_vertices": locked, "kept_vertices": kept.len()}));
+        rows.push(json!({"round": r + 1, "split": format!("{kind:?}").to_lowercase(), "contractions": contractions, "top_cells": tops_after, "locked_vertices": locked, "kept_vertices": user_kept}));
         let next = if tops_after <= a.gather_below {
             SplitKind::Rank0
         } else if kind == SplitKind::Plain {
@@ -527,7 +642,7 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         } else {
             write::beside(&target, &format!(".round{r}.starplex-mpi.spb"))
         };
-        let written = write::write(w, &path, d, &out.part)?;
+        let written = write::write(w, &path, d, &cols, &out.part)?;
         if last {
             break written;
         }
@@ -542,6 +657,61 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         contractions: total,
         goal,
         rows,
+        labels_kept: labels,
+        labels_available: cols
+            .iter()
+            .filter(|c| c.target == AttrTarget::Cell)
+            .map(|c| c.name.clone())
+            .collect(),
         time_s: t0.elapsed().as_secs_f64(),
     })
+}
+
+/// The label attribute whose regions are kept: `--keep-labels NAME` (a cell attribute of the
+/// input), else the default label attribute (`gmsh:physical`, `medit:ref`) unless
+/// `--ignore-labels`, as `starplex simplify` decides; `--keep-vertex-attribute` names a vertex
+/// attribute.
+fn resolve_labels(a: &SimplifyArgs, cols: &[SpbAttr]) -> Result<Option<String>, String> {
+    let names = |t: AttrTarget| -> Vec<&str> {
+        cols.iter()
+            .filter(|c| c.target == t)
+            .map(|c| c.name.as_str())
+            .collect()
+    };
+    let listed = |t: AttrTarget, what: &str| {
+        let n = names(t);
+        if n.is_empty() {
+            format!("the input has no {what} attribute")
+        } else {
+            format!("its {what} attributes: {}", n.join(", "))
+        }
+    };
+    if let Some(n) = a
+        .keep_vertex_attribute
+        .filter(|n| !names(AttrTarget::Vertex).contains(n))
+    {
+        return Err(format!(
+            "--keep-vertex-attribute {n}: no vertex attribute of that name ({})",
+            listed(AttrTarget::Vertex, "vertex")
+        ));
+    }
+    match (a.keep_labels, a.ignore_labels) {
+        (Some(n), _) if names(AttrTarget::Cell).contains(&n) => Ok(Some(n.to_string())),
+        (Some(n), _) => Err(format!(
+            "--keep-labels {n}: no cell attribute of that name ({})",
+            listed(AttrTarget::Cell, "cell")
+        )),
+        (None, true) => Ok(None),
+        (None, false) => {
+            let schema = starplex::attr::Attributes {
+                vertex: Vec::new(),
+                cell: cols
+                    .iter()
+                    .filter(|c| c.target == AttrTarget::Cell)
+                    .map(|c| Attribute::int(c.name.clone(), 1, Vec::new()))
+                    .collect(),
+            };
+            Ok(default_label_attribute(&schema).map(str::to_string))
+        }
+    }
 }

@@ -12,8 +12,9 @@
 use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
 
+use starplex::attr::{AttrTarget, AttrValues, Attribute};
 use starplex::cell::CellKind;
-use starplex::io::binary::SpbPlan;
+use starplex::io::binary::{SpbAttr, SpbPlan};
 use starplex::io::output::{self, OutputTarget};
 
 use mpi::traits::Communicator;
@@ -27,6 +28,24 @@ pub struct Part {
     pub coords: Vec<f64>,
     /// Cells of each kind (flat vertex lists), kinds in any order, each at most once.
     pub blocks: Vec<(CellKind, Vec<u32>)>,
+    /// The values of each attribute column of the output ([`write`]'s `columns`, in that
+    /// order) as the bits of their 8-byte numbers ([`words`]): a vertex column's for this
+    /// rank's vertices, a cell column's for its cells of `blocks[0]`, then of `blocks[1]`, ...
+    pub values: Vec<Vec<u64>>,
+}
+
+/// The values of `col` for `items`, in that order, as the bits of their `i64` or `f64` numbers
+/// (what the `.spb` stores, little-endian).
+pub fn words(col: &Attribute, items: impl Iterator<Item = usize>) -> Vec<u64> {
+    let c = col.components;
+    let mut out = Vec::with_capacity(items.size_hint().0 * c);
+    for i in items {
+        match &col.values {
+            AttrValues::Int(v) => out.extend(v[i * c..(i + 1) * c].iter().map(|&x| x as u64)),
+            AttrValues::Float(v) => out.extend(v[i * c..(i + 1) * c].iter().map(|x| x.to_bits())),
+        }
+    }
+    out
 }
 
 /// Every cell kind a `.spb` can hold, as a dense index (the order of the blocks).
@@ -84,11 +103,14 @@ pub struct Written {
     pub bytes: u64,
 }
 
-/// Writes the parts of every rank as one `.spb` at `target` (collective; see the module docs).
+/// Writes the parts of every rank as one `.spb` at `target` (collective; see the module docs),
+/// with the attribute `columns` (in file order: vertex columns first; their offsets are
+/// ignored), whose values each part holds.
 pub fn write(
     w: &World,
     target: &Path,
     ambient_dim: usize,
+    columns: &[SpbAttr],
     part: &Part,
 ) -> Result<Written, Failure> {
     let (rank, p) = (w.rank() as usize, w.size() as usize);
@@ -111,7 +133,7 @@ pub fn write(
     let blocks: Vec<(CellKind, u64)> = kinds.iter().map(|&i| (kind_of(i), total[1 + i])).collect();
     let plan = agree(
         w,
-        SpbPlan::new(ambient_dim, total[0], &blocks).ok_or_else(|| {
+        SpbPlan::with_attributes(ambient_dim, total[0], &blocks, columns).ok_or_else(|| {
             format!(
                 "{}: the output is too large for the .spb layout",
                 target.display()
@@ -141,6 +163,34 @@ pub fn write(
             };
             let at = plan.block_offsets[b] + before[1 + i] * 4 * k.n_vertices() as u64;
             f.write_all_at(bytemuck::cast_slice(v), at)?;
+        }
+        // attribute values: a vertex column at this rank's first vertex; a cell column per
+        // block, at the block's first cell in the file plus the cells of the ranks before
+        for (e, vals) in plan.attrs.iter().zip(&part.values) {
+            let c = e.components;
+            match e.target {
+                AttrTarget::Vertex => {
+                    f.write_all_at(bytemuck::cast_slice(vals), e.offset + before[0] * c * 8)?;
+                }
+                AttrTarget::Cell => {
+                    let mut from = 0usize;
+                    for (k, v) in &part.blocks {
+                        let n = (v.len() / k.n_vertices()) as u64;
+                        let b = kinds
+                            .iter()
+                            .position(|&i| i == kind_index(*k))
+                            .expect("every block of a part is planned");
+                        let first: u64 = blocks[..b].iter().map(|&(_, n)| n).sum::<u64>()
+                            + before[1 + kind_index(*k)];
+                        let to = from + (n * c) as usize;
+                        f.write_all_at(
+                            bytemuck::cast_slice(&vals[from..to]),
+                            e.offset + first * c * 8,
+                        )?;
+                        from = to;
+                    }
+                }
+            }
         }
         Ok(())
     })()

@@ -964,9 +964,308 @@ fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// The values of an integer column, or of a float column as bit patterns.
+fn column(
+    k: &starplex::complex::IndexedComplex,
+    t: starplex::attr::AttrTarget,
+    name: &str,
+) -> Vec<i64> {
+    use starplex::attr::AttrValues;
+    match k.attributes().get(t, name).map(|c| &c.values) {
+        Some(AttrValues::Int(v)) => v.clone(),
+        Some(AttrValues::Float(v)) => v.iter().map(|x| x.to_bits() as i64).collect(),
+        None => panic!("no {t:?} attribute {name}"),
+    }
+}
+
+/// Betti numbers over Z/2 (trailing zeros dropped) of the cells of `k` whose label is `l`, as
+/// a complex of its own (its vertices only).
+fn region_betti(k: &starplex::complex::IndexedComplex, labels: &[i64], l: i64) -> Vec<u64> {
+    use starplex::buf::Buf;
+    let mut at = std::collections::BTreeMap::new();
+    let mut blocks: Vec<(starplex::cell::CellKind, Vec<u32>)> = Vec::new();
+    for (c, _) in k.cells().zip(labels).filter(|(_, m)| **m == l) {
+        let i = match blocks.iter().position(|(x, _)| *x == c.kind) {
+            Some(i) => i,
+            None => {
+                blocks.push((c.kind, Vec::new()));
+                blocks.len() - 1
+            }
+        };
+        for &v in c.vertices {
+            let n = at.len() as u32;
+            blocks[i].1.push(*at.entry(v).or_insert(n));
+        }
+    }
+    let mut coords = vec![0.0; at.len() * k.ambient_dim()];
+    for (&v, &i) in &at {
+        let d = k.ambient_dim();
+        coords[i as usize * d..(i as usize + 1) * d]
+            .copy_from_slice(k.point(starplex::ids::VertexId(v)));
+    }
+    let blocks = blocks
+        .into_iter()
+        .map(|(x, v)| (x, Buf::Owned(v)))
+        .collect();
+    let r =
+        starplex::complex::IndexedComplex::from_parts(k.ambient_dim(), Buf::Owned(coords), blocks)
+            .expect("a region is a complex");
+    let mut b = starplex::algo::homology::betti_z2(&r).expect("homology of a region");
+    while b.last() == Some(&0) {
+        b.pop();
+    }
+    b
+}
+
+/// `simplify` carries the input's attribute columns: on the triangle and tetrahedral elephants
+/// with a vertex column of input ids (`orig`) and one of input coordinates (`pos`, 3 floats),
+/// a cell column of input cell ids (`cid`) and a label (`medit:ref`, by the side of the median
+/// x of the cell's centroid; kept by default, as `starplex simplify` does), the output of 1-4
+/// ranks, in homology mode and QEM, with and without the last round on rank 0, every ninth
+/// vertex kept by a vertex column (`--keep-vertex-attribute pin`): every vertex
+/// has its own input id and input position (and, in homology mode, that position), pinned
+/// vertices survive where they were; every cell
+/// is the image of the input cell it names (the surviving vertices of that cell are among its
+/// vertices) and has that cell's label; each label region keeps its Betti numbers; one rank
+/// gives the single process's cells with their values.
+#[test]
+fn simplify_carries_attributes_and_keeps_label_regions() {
+    use starplex::attr::{AttrTarget as T, Attribute, Attributes};
+    use std::collections::{BTreeMap, BTreeSet};
+    let Some((cli, data, tmp)) = setup("starplex-mpi-simplify-attrs") else {
+        return;
+    };
+    let limit = Duration::from_secs(600);
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for src in data.iter().filter(|p| {
+        let n = p.file_stem().unwrap().to_string_lossy();
+        n == "tri_elephant" || n == "tet_elephant"
+    }) {
+        let name = src.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut k = starplex::io::read(src, &Default::default())
+            .unwrap()
+            .complex;
+        let d = k.ambient_dim();
+        let cx: Vec<f64> = k
+            .cells()
+            .map(|c| {
+                c.vertices
+                    .iter()
+                    .map(|&v| k.point(starplex::ids::VertexId(v))[0])
+                    .sum::<f64>()
+                    / c.vertices.len() as f64
+            })
+            .collect();
+        let mut sorted = cx.clone();
+        sorted.sort_by(f64::total_cmp);
+        let median = sorted[sorted.len() / 2];
+        let labels_in: Vec<i64> = cx.iter().map(|&x| 1 + i64::from(x > median)).collect();
+        let n = k.n_vertices();
+        k.set_attributes(Attributes {
+            vertex: vec![
+                Attribute::int("orig", 1, (0..n as i64).collect()),
+                Attribute::float("pos", d, k.coords().to_vec()),
+                Attribute::int("pin", 1, (0..n).map(|v| i64::from(v % 9 == 0)).collect()),
+            ],
+            cell: vec![
+                Attribute::int("medit:ref", 1, labels_in.clone()),
+                Attribute::int("cid", 1, (0..k.n_cells() as i64).collect()),
+            ],
+        })
+        .unwrap();
+        let pinned: Vec<u32> = (0..n as u32).filter(|v| v % 9 == 0).collect();
+        let spb = tmp.join(format!("{name}.spb"));
+        starplex::io::write(&spb, &k, None).unwrap();
+        let spb = spb.to_string_lossy().into_owned();
+        let cells_in: Vec<Vec<u32>> = k.cells().map(|c| c.vertices.to_vec()).collect();
+        let regions_in: BTreeMap<i64, Vec<u64>> = [1, 2]
+            .iter()
+            .map(|&l| (l, region_betti(&k, &labels_in, l)))
+            .collect();
+        // each output cell with its values, sorted: equality up to the order of the cells
+        let listed = |o: &starplex::complex::IndexedComplex| {
+            let (lab, cid) = (column(o, T::Cell, "medit:ref"), column(o, T::Cell, "cid"));
+            let orig = column(o, T::Vertex, "orig");
+            let mut v: Vec<(Vec<i64>, i64, i64)> = o
+                .cells()
+                .zip(lab.iter().zip(&cid))
+                .map(|(c, (&l, &i))| {
+                    let mut vs: Vec<i64> = c.vertices.iter().map(|&u| orig[u as usize]).collect();
+                    vs.sort_unstable();
+                    (vs, l, i)
+                })
+                .collect();
+            v.sort();
+            v
+        };
+        for mode in ["homology", "qem"] {
+            let one = tmp
+                .join(format!("{name}.{mode}.one.spb"))
+                .to_string_lossy()
+                .into_owned();
+            let args = [
+                "--quiet",
+                "simplify",
+                &spb,
+                &one,
+                "--no-report",
+                "--mode",
+                mode,
+                "--ratio",
+                "0.3",
+                "--keep-vertex-attribute",
+                "pin",
+            ];
+            let (code, _, err) = run(Command::new(&cli).args(args), limit);
+            assert_eq!(code, Some(0), "starplex simplify {name} {mode}: {err}");
+            let single = starplex::io::read(Path::new(&one), &Default::default())
+                .unwrap()
+                .complex;
+            for np in ranks() {
+                for gather in ["2000000", "0"] {
+                    if np == 1 && gather == "0" {
+                        continue;
+                    }
+                    let what =
+                        format!("-np {np} simplify {name} --mode {mode} --gather-below {gather}");
+                    let out = tmp
+                        .join(format!("{name}.p{np}.spb"))
+                        .to_string_lossy()
+                        .into_owned();
+                    let args = [
+                        "simplify",
+                        &spb,
+                        "-o",
+                        &out,
+                        "--json",
+                        "--mode",
+                        mode,
+                        "--ratio",
+                        "0.3",
+                        "--gather-below",
+                        gather,
+                        "--keep-vertex-attribute",
+                        "pin",
+                    ];
+                    let (code, stdout, err) = run(&mut mpi(np, &args), limit);
+                    if code != Some(0) {
+                        failures.push(format!("{what}: status {code:?}: {err}"));
+                        continue;
+                    }
+                    checked += 1;
+                    let v = without_timings(&stdout, &what);
+                    if v["labels_kept"] != "medit:ref"
+                        || v["labels_available"] != serde_json::json!(["medit:ref", "cid"])
+                        || v["per_round"][0]["kept_vertices"].as_u64() != Some(pinned.len() as u64)
+                    {
+                        failures.push(format!("{what}: the labels reported: {v}"));
+                    }
+                    let o = starplex::io::read(Path::new(&out), &Default::default())
+                        .unwrap()
+                        .complex;
+                    let names = |t| -> Vec<&str> {
+                        o.attributes()
+                            .of(t)
+                            .iter()
+                            .map(|c| c.name.as_str())
+                            .collect()
+                    };
+                    if names(T::Vertex) != ["orig", "pos", "pin"]
+                        || names(T::Cell) != ["medit:ref", "cid"]
+                    {
+                        failures.push(format!(
+                            "{what}: columns {:?} {:?}",
+                            names(T::Vertex),
+                            names(T::Cell)
+                        ));
+                        continue;
+                    }
+                    if np == 1 && listed(&o) != listed(&single) {
+                        failures.push(format!("{what}: differs from the single process"));
+                    }
+                    // vertices: their own input id and position
+                    let (orig, pos) = (column(&o, T::Vertex, "orig"), column(&o, T::Vertex, "pos"));
+                    let survivors: BTreeSet<i64> = orig.iter().copied().collect();
+                    if survivors.len() != orig.len() || orig.iter().any(|&x| x < 0 || x >= n as i64)
+                    {
+                        failures.push(format!("{what}: vertex ids repeated or out of range"));
+                        continue;
+                    }
+                    let bad_vertex = (0..o.n_vertices()).find(|&i| {
+                        let p_in = k.point(starplex::ids::VertexId(orig[i] as u32));
+                        let own: Vec<i64> = p_in.iter().map(|x| x.to_bits() as i64).collect();
+                        pos[i * d..(i + 1) * d] != own[..]
+                            || (mode == "homology"
+                                && o.point(starplex::ids::VertexId(i as u32)) != p_in)
+                    });
+                    // pinned vertices survive, unmoved
+                    let at: BTreeMap<i64, usize> =
+                        orig.iter().enumerate().map(|(i, &x)| (x, i)).collect();
+                    if let Some(v) = pinned.iter().find(|&&v| {
+                        at.get(&(v as i64)).is_none_or(|&i| {
+                            o.point(starplex::ids::VertexId(i as u32))
+                                != k.point(starplex::ids::VertexId(v))
+                        })
+                    }) {
+                        failures.push(format!("{what}: pinned vertex {v} removed or moved"));
+                    }
+                    if let Some(i) = bad_vertex {
+                        failures.push(format!(
+                            "{what}: vertex {i} (input {}) has another position",
+                            orig[i]
+                        ));
+                    }
+                    // cells: images of the input cells they name, with their labels
+                    let (lab, cid) = (column(&o, T::Cell, "medit:ref"), column(&o, T::Cell, "cid"));
+                    let distinct: BTreeSet<i64> = cid.iter().copied().collect();
+                    if distinct.len() != cid.len() {
+                        failures.push(format!("{what}: two cells name one input cell"));
+                    }
+                    let bad_cell = o.cells().enumerate().find(|(j, c)| {
+                        let Some(g) = usize::try_from(cid[*j])
+                            .ok()
+                            .filter(|&g| g < cells_in.len())
+                        else {
+                            return true;
+                        };
+                        let here: BTreeSet<i64> =
+                            c.vertices.iter().map(|&u| orig[u as usize]).collect();
+                        lab[*j] != labels_in[g]
+                            || cells_in[g].iter().any(|&v| {
+                                survivors.contains(&(v as i64)) && !here.contains(&(v as i64))
+                            })
+                    });
+                    if let Some((j, c)) = bad_cell {
+                        failures.push(format!(
+                            "{what}: cell {j} {:?} is not the image of input cell {} (label {})",
+                            c.vertices, cid[j], lab[j]
+                        ));
+                    }
+                    for (&l, b) in &regions_in {
+                        let after = region_betti(&o, &lab, l);
+                        if &after != b {
+                            failures.push(format!(
+                                "{what}: region {l} has Betti numbers {after:?}, was {b:?}"
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    std::fs::remove_dir_all(&tmp).ok();
+    assert_eq!(
+        checked,
+        2 * 2 * (2 * ranks().len() - usize::from(ranks().contains(&1))),
+        "datasets missing"
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// `simplify`'s refusals: CP cells (with the command that triangulates), no output named, an
-/// output that is a stream, a ratio out of range; each ends every rank with status 2 and leaves
-/// no file behind.
+/// output that is a stream, a ratio out of range, attributes the input does not have; each
+/// ends every rank with status 2 and leaves no file behind.
 #[test]
 fn simplify_refuses_what_it_cannot_do() {
     use starplex::cell::CellKind;
@@ -1015,6 +1314,26 @@ fn simplify_refuses_what_it_cannot_do() {
                 "1",
             ],
             "qem",
+        ),
+        (
+            vec!["simplify", &tri, "-o", &out, "--keep-labels", "nope"],
+            "--keep-labels nope: no cell attribute of that name (the input has no cell attribute)",
+        ),
+        (
+            vec!["simplify", &tri, "-o", &out, "--keep-vertex-attribute", "w"],
+            "--keep-vertex-attribute w: no vertex attribute",
+        ),
+        (
+            vec![
+                "simplify",
+                &tri,
+                "-o",
+                &out,
+                "--keep-labels",
+                "x",
+                "--ignore-labels",
+            ],
+            "exclude each other",
         ),
     ];
     for np in [1, 2] {

@@ -278,11 +278,12 @@ fn layout(
     })
 }
 
-/// Where the arrays of a version-1 `.spb` (no attributes) go, and its first bytes: what a writer
-/// that writes the arrays in pieces needs (`starplex-mpi`: every rank writes its own byte ranges
-/// of one file). The header bytes (header, checksum, block table) start the file; the
-/// coordinates start at `coords_offset`, block `b`'s vertex ids at `block_offsets[b]`; the file
-/// is `file_len` bytes long, zero between the arrays.
+/// Where the arrays of a `.spb` go, and its first bytes: what a writer that writes the arrays
+/// in pieces needs (`starplex-mpi`: every rank writes its own byte ranges of one file). The
+/// header bytes (header, checksum, block table, and in version 2 the attribute table) start
+/// the file; the coordinates start at `coords_offset`, block `b`'s vertex ids at
+/// `block_offsets[b]`, attribute column `i`'s values at `attrs[i].offset`; the file is
+/// `file_len` bytes long, zero between the arrays.
 ///
 /// ```
 /// use starplex::io::binary::{self, SpbPlan};
@@ -320,6 +321,9 @@ pub struct SpbPlan {
     pub block_offsets: Vec<u64>,
     /// Length of the file.
     pub file_len: u64,
+    /// The attribute columns in file order (vertex columns first), each with the byte offset
+    /// of its values (items × components, 8 bytes each); empty in version 1.
+    pub attrs: Vec<SpbAttr>,
 }
 
 impl SpbPlan {
@@ -354,6 +358,123 @@ impl SpbPlan {
             coords_offset: lay.coords,
             block_offsets: lay.blocks,
             file_len: lay.file_len,
+            attrs: Vec::new(),
+        })
+    }
+
+    /// The plan of a file with attribute columns (version 2; version 1 when `columns` is
+    /// empty): `columns` gives each column's name, target, type and components (their
+    /// `offset` is ignored; vertex columns are put before cell columns, as the format orders
+    /// them), and [`SpbPlan::attrs`] says where each column's values go. `None` when the sizes
+    /// overflow the layout or two columns of one target share a name.
+    ///
+    /// ```
+    /// use starplex::attr::{AttrTarget, Attribute, Attributes};
+    /// use starplex::cell::CellKind;
+    /// use starplex::complex::IndexedComplex;
+    /// use starplex::io::binary::{self, SpbAttr, SpbPlan};
+    /// let mut k = IndexedComplex::from_parts(1, vec![0.0, 1.0, 2.0].into(),
+    ///     vec![(CellKind::Simplex(1), vec![0, 1, 1, 2].into())]).unwrap();
+    /// k.set_attributes(Attributes {
+    ///     vertex: vec![Attribute::float("t", 1, vec![0.5, 1.5, 2.5])],
+    ///     cell: vec![Attribute::int("tag", 1, vec![7, 8])],
+    /// }).unwrap();
+    /// let mut whole = Vec::new();
+    /// binary::write(&mut whole, &k).unwrap();
+    /// let cols = binary::read_header(&whole, "a.spb".as_ref()).unwrap().attrs;
+    /// let plan = SpbPlan::with_attributes(1, 3, &[(CellKind::Simplex(1), 2)], &cols).unwrap();
+    /// // the pieces, put where the plan says, are the bytes `write` writes
+    /// let mut bytes = vec![0u8; plan.file_len as usize];
+    /// bytes[..plan.header.len()].copy_from_slice(&plan.header);
+    /// let mut put = |at: u64, words: Vec<[u8; 8]>| {
+    ///     for (i, w) in words.iter().enumerate() {
+    ///         bytes[at as usize + 8 * i..at as usize + 8 * i + 8].copy_from_slice(w);
+    ///     }
+    /// };
+    /// put(plan.coords_offset, k.coords().iter().map(|x| x.to_le_bytes()).collect());
+    /// put(plan.attrs[0].offset, vec![0.5f64.to_le_bytes(), 1.5f64.to_le_bytes(), 2.5f64.to_le_bytes()]);
+    /// put(plan.attrs[1].offset, vec![7i64.to_le_bytes(), 8i64.to_le_bytes()]);
+    /// let at = plan.block_offsets[0] as usize;
+    /// for (i, v) in [0u32, 1, 1, 2].iter().enumerate() {
+    ///     bytes[at + 4 * i..at + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
+    /// }
+    /// assert_eq!(bytes, whole);
+    /// ```
+    pub fn with_attributes(
+        ambient_dim: usize,
+        n_vertices: u64,
+        blocks: &[(CellKind, u64)],
+        columns: &[SpbAttr],
+    ) -> Option<SpbPlan> {
+        if columns.is_empty() {
+            return SpbPlan::new(ambient_dim, n_vertices, blocks);
+        }
+        let n_cells = blocks
+            .iter()
+            .try_fold(0u64, |a, &(_, n)| a.checked_add(n))?;
+        // the format's column order: vertex columns, then cell columns (each in given order)
+        let mut schema = crate::attr::Attributes::default();
+        for c in columns {
+            let values = if c.int {
+                crate::attr::AttrValues::Int(Vec::new())
+            } else {
+                crate::attr::AttrValues::Float(Vec::new())
+            };
+            let col = crate::attr::Attribute {
+                name: c.name.clone(),
+                components: usize::try_from(c.components).ok()?,
+                values,
+            };
+            let same = |a: &crate::attr::Attribute| a.name == c.name;
+            match c.target {
+                AttrTarget::Vertex if !schema.vertex.iter().any(same) => schema.vertex.push(col),
+                AttrTarget::Cell if !schema.cell.iter().any(same) => schema.cell.push(col),
+                _ => return None,
+            }
+        }
+        let cols = spb_attrs::columns(&schema);
+        let entries = spb_attrs::entries_len(&cols)?;
+        let n_values = cols
+            .iter()
+            .map(|(t, c)| {
+                let items = match t {
+                    AttrTarget::Vertex => n_vertices,
+                    AttrTarget::Cell => n_cells,
+                };
+                items.checked_mul(c.components as u64)
+            })
+            .collect::<Option<Vec<u64>>>()?;
+        let lay = layout(
+            ambient_dim as u64,
+            n_vertices,
+            blocks,
+            Some(ATTR_HEAD_LEN as u64 + entries),
+            &n_values,
+        )?;
+        let (mut header, table) =
+            header_parts(VERSION, ambient_dim, n_vertices, n_cells, blocks, &lay);
+        let atable = spb_attrs::encode(&cols, &lay.attrs, entries);
+        let sum = fnv1a(&[&header, &table, &atable]);
+        header.extend_from_slice(&sum.to_le_bytes());
+        header.extend_from_slice(&table);
+        header.extend_from_slice(&atable);
+        let attrs = cols
+            .iter()
+            .zip(&lay.attrs)
+            .map(|((t, c), &offset)| SpbAttr {
+                name: c.name.clone(),
+                target: *t,
+                int: matches!(c.values, crate::attr::AttrValues::Int(_)),
+                components: c.components as u64,
+                offset,
+            })
+            .collect();
+        Some(SpbPlan {
+            header,
+            coords_offset: lay.coords,
+            block_offsets: lay.blocks,
+            file_len: lay.file_len,
+            attrs,
         })
     }
 }
