@@ -61,7 +61,8 @@ pub struct LinkScratch {
     sa: Vec<Top>,
     sb: Vec<Top>,
     tau: Vec<u32>,
-    filtered: Vec<u32>,
+    star: StarScratch,
+    parts: Parts,
     tri: TriScratch,
     tet: TetScratch,
     /// The vertex part of the test, shared by the tetrahedral and the general paths.
@@ -312,7 +313,34 @@ struct TriScratch {
 /// assert!(st[1..].iter().all(|t| t.contains(&OMEGA)));
 /// ```
 pub fn extended_star(w: &TopSimplices, v: u32, mode: LinkMode, out: &mut Vec<Top>) {
-    extended_star_in(w, v, mode, None, out, &mut Vec::new());
+    extended_star_in(w, v, mode, None, out, &mut StarScratch::default());
+}
+
+/// The general test's split of the two stars (positions in them): the tops of `St(a)` through
+/// `ab`, the other tops of `St(a)`, the tops of `St(b)` not through `a`.
+#[derive(Default, Debug)]
+struct Parts {
+    through: Vec<u32>,
+    rest_a: Vec<u32>,
+    rest_b: Vec<u32>,
+}
+
+/// Buffers of [`extended_star_in`].
+#[derive(Default, Debug)]
+struct StarScratch {
+    /// The star filtered to a region.
+    filtered: Vec<u32>,
+    /// (hash of a facet through the vertex, its number in star order).
+    facets: Vec<(u64, u32)>,
+    /// Per facet (in star order): it is a facet of another top of the star.
+    shared: Vec<bool>,
+}
+
+/// A vertex's term of a facet's order-free hash (the facet's is the wrapping sum of its
+/// vertices').
+#[inline]
+fn vertex_hash(x: u32) -> u64 {
+    (u64::from(x) ^ 0x9e37_79b9_7f4a_7c15).wrapping_mul(0xbf58_476d_1ce4_e5b9)
 }
 
 /// [`extended_star`] in the region of the tops labelled `region` ([`TopSimplices::label`]),
@@ -323,9 +351,14 @@ fn extended_star_in(
     mode: LinkMode,
     region: Option<u32>,
     out: &mut Vec<Top>,
-    filtered: &mut Vec<u32>,
+    scratch: &mut StarScratch,
 ) {
     out.clear();
+    let StarScratch {
+        filtered,
+        facets,
+        shared,
+    } = scratch;
     let star = match region {
         None => w.star(v),
         Some(r) => {
@@ -337,7 +370,58 @@ fn extended_star_in(
     for &t in star {
         out.push(w.top(t).into());
     }
-    if mode == LinkMode::Manifold {
+    let size = star.first().map_or(0, |&t| w.top(t).len());
+    if mode == LinkMode::Manifold && size >= 2 && star.iter().all(|&t| w.top(t).len() == size) {
+        // a pure star: a facet through v is in another top of the star iff it is a facet of
+        // one, so the boundary facets are those found once (by an order-free hash, equal
+        // hashes compared as sets), in O(n log n) instead of every facet against every top
+        facets.clear();
+        for &s in star {
+            let top = w.top(s);
+            let h = top
+                .iter()
+                .fold(0u64, |h, &y| h.wrapping_add(vertex_hash(y)));
+            for &x in top.iter().filter(|&&x| x != v) {
+                let k = facets.len() as u32;
+                facets.push((h.wrapping_sub(vertex_hash(x)), k));
+            }
+        }
+        shared.clear();
+        shared.resize(facets.len(), false);
+        // the facet numbered k: (top of the star, the vertex it leaves out)
+        let facet = |k: u32| {
+            let (i, j) = (k as usize / (size - 1), k as usize % (size - 1));
+            let top = w.top(star[i]);
+            let x = top.iter().copied().filter(|&x| x != v).nth(j);
+            (top, x)
+        };
+        facets.sort_unstable();
+        let mut lo = 0;
+        while lo < facets.len() {
+            let mut hi = lo + 1;
+            while hi < facets.len() && facets[hi].0 == facets[lo].0 {
+                hi += 1;
+            }
+            for p in lo..hi {
+                for q in p + 1..hi {
+                    let ((s, x), (t, y)) = (facet(facets[p].1), facet(facets[q].1));
+                    if s.iter().all(|z| Some(*z) == x || t.contains(z))
+                        && t.iter().all(|z| Some(*z) == y || s.contains(z))
+                    {
+                        shared[facets[p].1 as usize] = true;
+                        shared[facets[q].1 as usize] = true;
+                    }
+                }
+            }
+            lo = hi;
+        }
+        for (k, _) in shared.iter().enumerate().filter(|(_, sh)| !**sh) {
+            let (top, x) = facet(k as u32);
+            let mut f: Top = top.iter().copied().filter(|&y| Some(y) != x).collect();
+            f.push(OMEGA);
+            out.push(f);
+        }
+    } else if mode == LinkMode::Manifold {
         for &s in star {
             let s_v = w.top(s);
             if s_v.len() < 2 {
@@ -447,30 +531,42 @@ pub fn link_condition_in(
         sa,
         sb,
         tau,
-        filtered,
+        star,
+        parts,
         ..
     } = scratch;
-    extended_star_in(w, a, mode, region, sa, filtered);
-    extended_star_in(w, b, mode, region, sb, filtered);
-    // the tops through ab come first in the check below
+    extended_star_in(w, a, mode, region, sa, star);
+    extended_star_in(w, b, mode, region, sb, star);
+    // the tops through ab, and the others of each star, listed once
+    let Parts {
+        through,
+        rest_a,
+        rest_b,
+    } = parts;
+    through.clear();
+    rest_a.clear();
+    rest_b.clear();
     let mut any_edge = false;
-    for s in sa.iter() {
+    for (i, s) in sa.iter().enumerate() {
         if s.contains(&b) {
             any_edge |= !s.contains(&OMEGA);
+            through.push(i as u32);
+        } else {
+            rest_a.push(i as u32);
         }
     }
     if !any_edge {
         return false;
     }
-    for s in sa.iter().filter(|s| !s.contains(&b)) {
-        for t in sb.iter().filter(|t| !t.contains(&a)) {
+    rest_b.extend((0..sb.len() as u32).filter(|&i| !sb[i as usize].contains(&a)));
+    for s in rest_a.iter().map(|&i| &sa[i as usize]) {
+        for t in rest_b.iter().map(|&i| &sb[i as usize]) {
             tau.clear();
             tau.extend(s.iter().copied().filter(|v| t.contains(v)));
             if tau.is_empty() {
                 continue;
             }
-            let in_lk_ab = sa.iter().any(|u| u.contains(&b) && is_subset(tau, u));
-            if !in_lk_ab {
+            if !through.iter().any(|&u| is_subset(tau, &sa[u as usize])) {
                 return false;
             }
         }
