@@ -19,6 +19,8 @@ use starplex::attr::AttrTarget;
 use starplex::complex::IndexedComplex;
 use starplex::io;
 
+use starplex_cli::report::{print_topology_change, topology_json, topology_kept};
+
 use crate::common::{self, CliError, Ctx, InputArgs};
 
 #[derive(clap::Args, Debug)]
@@ -80,19 +82,6 @@ pub struct SimplifyArgs {
     /// answer is the same for any number.
     #[arg(long)]
     pub threads: Option<usize>,
-}
-
-fn summary_json(s: &TopologySummary) -> Value {
-    json!({
-        "n_vertices": s.n_vertices,
-        "n_cells": s.n_cells,
-        "f_vector": s.f_vector,
-        "euler_characteristic": s.euler_characteristic,
-        "betti_z2": s.betti,
-        "non_manifold_vertices": s.non_manifold_vertices,
-        "non_manifold_edges": s.non_manifold_edges,
-        "boundary_faces": s.boundary_faces,
-    })
 }
 
 pub fn run(ctx: &Ctx, a: &SimplifyArgs) -> Result<(), CliError> {
@@ -278,8 +267,8 @@ fn print_json(a: &SimplifyArgs, o: &Outcome<'_>) -> Result<(), CliError> {
         "rounds": report.rounds,
         "time_s": report.time_s,
         "report_time_s": report_s,
-        "before": before.as_ref().map(summary_json),
-        "after": after.as_ref().map(summary_json),
+        "before": before.as_ref().map(topology_json),
+        "after": after.as_ref().map(topology_json),
         "vertices": [k.n_vertices(), out.n_vertices()],
         "cells": [k.n_cells(), out.n_cells()],
     });
@@ -308,12 +297,7 @@ fn print_json(a: &SimplifyArgs, o: &Outcome<'_>) -> Result<(), CliError> {
         }),
     };
     if let (Some(b), Some(f)) = (&before, &after) {
-        v["topology_kept"] = json!(
-            b.betti == f.betti
-                && b.euler_characteristic == f.euler_characteristic
-                && f.non_manifold_vertices <= b.non_manifold_vertices
-                && f.non_manifold_edges <= b.non_manifold_edges
-        );
+        v["topology_kept"] = json!(topology_kept(b, f));
     }
     println!(
         "{}",
@@ -374,22 +358,6 @@ fn print_human(a: &SimplifyArgs, o: &Outcome<'_>) {
         println!("  kept vertices       {}", report.locked_vertices);
     }
     if let (Some(b), Some(f)) = (&before, &after) {
-        println!("  f-vector            {:?} -> {:?}", b.f_vector, f.f_vector);
-        println!(
-            "  Euler char.         {:?} -> {:?}",
-            b.euler_characteristic, f.euler_characteristic
-        );
-        println!("  Betti (Z/2)         {:?} -> {:?}", b.betti, f.betti);
-        println!(
-            "  non-manifold        {} vertices, {} edges -> {} vertices, {} edges",
-            b.non_manifold_vertices,
-            b.non_manifold_edges,
-            f.non_manifold_vertices,
-            f.non_manifold_edges
-        );
-        println!(
-            "  boundary faces      {} -> {}",
-            b.boundary_faces, f.boundary_faces
-        );
+        print_topology_change(b, f);
     }
 }

@@ -540,3 +540,73 @@ pub fn homology_json(h: &starplex::algo::homology::Homology) -> Value {
     }
     v
 }
+
+/// The `before` / `after` objects of `simplify --json` (shared by `starplex simplify` and
+/// `starplex-mpi simplify`).
+///
+/// ```
+/// let s = starplex::algo::simplify::summary(&starplex::generate::kuhn_grid(&[1, 1]).unwrap());
+/// let v = starplex_cli::report::topology_json(&s);
+/// assert_eq!((v["f_vector"].clone(), v["boundary_faces"].clone()), (serde_json::json!([4, 5, 2]), serde_json::json!(4)));
+/// ```
+pub fn topology_json(s: &starplex::algo::simplify::TopologySummary) -> Value {
+    json!({
+        "n_vertices": s.n_vertices,
+        "n_cells": s.n_cells,
+        "f_vector": s.f_vector,
+        "euler_characteristic": s.euler_characteristic,
+        "betti_z2": s.betti,
+        "non_manifold_vertices": s.non_manifold_vertices,
+        "non_manifold_edges": s.non_manifold_edges,
+        "boundary_faces": s.boundary_faces,
+    })
+}
+
+/// `simplify`'s `topology_kept`: the same Betti numbers and Euler characteristic, and no more
+/// non-manifold vertices or edges than before.
+///
+/// ```
+/// let s = starplex::algo::simplify::summary(&starplex::generate::kuhn_grid(&[1, 1]).unwrap());
+/// assert!(starplex_cli::report::topology_kept(&s, &s));
+/// let mut t = s.clone();
+/// t.non_manifold_edges += 1;
+/// assert!(!starplex_cli::report::topology_kept(&s, &t));
+/// ```
+pub fn topology_kept(
+    before: &starplex::algo::simplify::TopologySummary,
+    after: &starplex::algo::simplify::TopologySummary,
+) -> bool {
+    before.betti == after.betti
+        && before.euler_characteristic == after.euler_characteristic
+        && after.non_manifold_vertices <= before.non_manifold_vertices
+        && after.non_manifold_edges <= before.non_manifold_edges
+}
+
+/// The human lines of `simplify` for the topology before and after.
+///
+/// ```
+/// let s = starplex::algo::simplify::summary(&starplex::generate::kuhn_grid(&[1, 1]).unwrap());
+/// starplex_cli::report::print_topology_change(&s, &s);
+/// ```
+pub fn print_topology_change(
+    b: &starplex::algo::simplify::TopologySummary,
+    f: &starplex::algo::simplify::TopologySummary,
+) {
+    println!("  f-vector            {:?} -> {:?}", b.f_vector, f.f_vector);
+    println!(
+        "  Euler char.         {:?} -> {:?}",
+        b.euler_characteristic, f.euler_characteristic
+    );
+    println!("  Betti (Z/2)         {:?} -> {:?}", b.betti, f.betti);
+    println!(
+        "  non-manifold        {} vertices, {} edges -> {} vertices, {} edges",
+        b.non_manifold_vertices,
+        b.non_manifold_edges,
+        f.non_manifold_vertices,
+        f.non_manifold_edges
+    );
+    println!(
+        "  boundary faces      {} -> {}",
+        b.boundary_faces, f.boundary_faces
+    );
+}

@@ -201,6 +201,13 @@ pub fn max(w: &World, x: u64) -> u64 {
     y
 }
 
+/// Sum over ranks of a float.
+pub fn sum_f64(w: &World, x: f64) -> f64 {
+    let mut y = 0.0f64;
+    w.all_reduce_into(&x, &mut y, SystemOperation::sum());
+    y
+}
+
 /// Element-wise sums over ranks (every rank passes the same length).
 pub fn sums(w: &World, x: &[u64]) -> Vec<u64> {
     let mut y = vec![0u64; x.len()];

@@ -603,6 +603,7 @@ pub fn run_by_contraction(
         ignore_labels: true,
         keep_vertex_attribute: None,
         attributes: false,
+        report: false,
         max_rounds: 1,
         gather_below: 0,
         json: false,

@@ -11,7 +11,7 @@
 //!     [--structure S] [--per-rank]
 //! mpirun -np P starplex-mpi simplify FILE.spb -o OUT.spb [--mode homology|qem] [--ratio R]
 //!     [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE]
-//!     [--keep-labels NAME | --ignore-labels] [--keep-vertex-attribute NAME]
+//!     [--keep-labels NAME | --ignore-labels] [--keep-vertex-attribute NAME] [--no-report]
 //!     [--rounds N] [--gather-below N] [--json]
 //! ```
 //!
@@ -47,12 +47,13 @@ mod morse;
 mod query;
 mod simplify;
 mod stellar;
+mod summary;
 mod write;
 
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method morse|contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE] [--keep-labels NAME | --ignore-labels] [--keep-vertex-attribute NAME] [--rounds N] [--gather-below N]";
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method morse|contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE] [--keep-labels NAME | --ignore-labels] [--keep-vertex-attribute NAME] [--no-report] [--rounds N] [--gather-below N]";
 const VERBS: [&str; 6] = [
     "info", "validate", "stellar", "homology", "query", "simplify",
 ];
@@ -78,6 +79,7 @@ struct Args {
     keep_labels: Option<String>,
     ignore_labels: bool,
     keep_vertex_attribute: Option<String>,
+    no_report: bool,
     rounds: u32,
     gather_below: u64,
     relation: Option<starplex_cli::export::RelationKind>,
@@ -124,6 +126,7 @@ fn parse_args() -> Result<Args, String> {
         keep_labels: None,
         ignore_labels: false,
         keep_vertex_attribute: None,
+        no_report: false,
         rounds: 8,
         gather_below: 2_000_000,
         relation: None,
@@ -283,6 +286,7 @@ fn parse_args() -> Result<Args, String> {
                 }
             }
             "--ignore-labels" => a.ignore_labels = true,
+            "--no-report" => a.no_report = true,
             "-h" | "--help" => return Err(USAGE.to_string()),
             s if s.starts_with('-') => return Err(format!("unknown option {s}\n{USAGE}")),
             _ => pos.push(x),
@@ -362,6 +366,7 @@ fn run(w: &World) -> Result<u8, Failure> {
             ignore_labels: a.ignore_labels,
             keep_vertex_attribute: a.keep_vertex_attribute.as_deref(),
             attributes: true,
+            report: !a.no_report,
             max_rounds: a.rounds,
             gather_below: a.gather_below,
             json: a.json,
@@ -526,7 +531,7 @@ fn classes(uf: &mut UnionFind, n: usize) -> (Vec<u32>, usize) {
     (class, next as usize)
 }
 
-fn global_dims(f: &Spb) -> std::collections::BTreeSet<usize> {
+pub(crate) fn global_dims(f: &Spb) -> std::collections::BTreeSet<usize> {
     f.h.blocks.iter().map(|&(k, _, _)| k.dim()).collect()
 }
 
@@ -573,41 +578,7 @@ fn run_info(w: &World, a: &Args, ld: &mut Loaded) -> Result<(), Failure> {
     } else if estimate > a.max_faces {
         s.f_vector_estimate = Some(estimate);
     } else {
-        let d = dim as usize;
-        let part = info(
-            &l.k,
-            &InfoOptions {
-                limits: starplex::limits::Limits {
-                    info_faces: u128::MAX,
-                    ..Default::default()
-                },
-                owned_vertices: Some(Arc::new(l.owned.clone())),
-                ..Default::default()
-            },
-        );
-        // [f_1 .. f_d, boundary, shared by > 2, tri faces, quad faces]
-        let mut mine = vec![0u64; d + 4];
-        if let Some(fv) = &part.f_vector {
-            for (i, &x) in fv.iter().enumerate().skip(1).take(d) {
-                mine[i - 1] = x;
-            }
-        }
-        mine[d] = part.n_boundary_faces.unwrap_or(0);
-        mine[d + 1] = part.n_faces_shared_by_more_than_2_top_cells.unwrap_or(0);
-        if let Some(m) = &part.faces_by_type {
-            mine[d + 2] = m.get("tri").copied().unwrap_or(0);
-            mine[d + 3] = m.get("quad").copied().unwrap_or(0);
-        }
-        let all = comm::sums(w, &mine);
-        let mut per_dim = vec![0u64];
-        per_dim.extend_from_slice(&all[..d]);
-        let counts = FaceCounts {
-            per_dim,
-            boundary: all[d],
-            shared_more_than_2: all[d + 1],
-            tri_faces: all[d + 2],
-            quad_faces: all[d + 3],
-        };
+        let counts = owned_face_counts(w, l, dim as usize);
         let simplicial =
             f.h.blocks
                 .iter()
@@ -635,6 +606,45 @@ fn run_info(w: &World, a: &Args, ld: &mut Loaded) -> Result<(), Failure> {
     Ok(())
 }
 
+/// The faces of dimension 1 to `d` of the whole complex, each counted by the rank owning its
+/// smallest vertex (collective); `per_dim[0]` is left 0.
+pub(crate) fn owned_face_counts(w: &World, l: &Local, d: usize) -> FaceCounts {
+    let part = info(
+        &l.k,
+        &InfoOptions {
+            limits: starplex::limits::Limits {
+                info_faces: u128::MAX,
+                ..Default::default()
+            },
+            owned_vertices: Some(Arc::new(l.owned.clone())),
+            ..Default::default()
+        },
+    );
+    // [f_1 .. f_d, boundary, shared by > 2, tri faces, quad faces]
+    let mut mine = vec![0u64; d + 4];
+    if let Some(fv) = &part.f_vector {
+        for (i, &x) in fv.iter().enumerate().skip(1).take(d) {
+            mine[i - 1] = x;
+        }
+    }
+    mine[d] = part.n_boundary_faces.unwrap_or(0);
+    mine[d + 1] = part.n_faces_shared_by_more_than_2_top_cells.unwrap_or(0);
+    if let Some(m) = &part.faces_by_type {
+        mine[d + 2] = m.get("tri").copied().unwrap_or(0);
+        mine[d + 3] = m.get("quad").copied().unwrap_or(0);
+    }
+    let all = comm::sums(w, &mine);
+    let mut per_dim = vec![0u64];
+    per_dim.extend_from_slice(&all[..d]);
+    FaceCounts {
+        per_dim,
+        boundary: all[d],
+        shared_more_than_2: all[d + 1],
+        tri_faces: all[d + 2],
+        quad_faces: all[d + 3],
+    }
+}
+
 pub(crate) fn print_json(v: &serde_json::Value) {
     println!(
         "{}",
@@ -646,9 +656,9 @@ pub(crate) fn print_json(v: &serde_json::Value) {
 /// algorithm that visits every vertex's star then sees each owned vertex's full star once and
 /// nothing else, which is the ownership rule (a face is handled by the owner of its smallest
 /// vertex).
-struct OwnedStars<'a> {
-    idx: VtIndex<'a>,
-    owned: &'a fixedbitset::FixedBitSet,
+pub(crate) struct OwnedStars<'a> {
+    pub idx: VtIndex<'a>,
+    pub owned: &'a fixedbitset::FixedBitSet,
 }
 
 impl TopCells for OwnedStars<'_> {
@@ -801,40 +811,16 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<u8, Failure> {
     let t2 = Instant::now();
     let d = global_dims(f).into_iter().max();
     let (r, pairs) = validate_parts(&view, d);
-    let gv = |v: &VertexId| l.vertex_gid[v.index()];
-    let owned_v = |v: &VertexId| l.owned.contains(v.index());
-    // this rank's share of every list, in global ids
+    let OwnedLists {
+        lower,
+        nm_v,
+        un_v,
+        nm_e,
+        un_e,
+        bnd,
+        more,
+    } = owned_lists(l, &r);
     let isolated = isolated_owned(l);
-    let lower: Vec<u32> = r
-        .lower_dimensional_cells
-        .iter()
-        .filter(|c| l.owns_cell(c.index()))
-        .map(|c| l.cell_gid[c.index()])
-        .collect();
-    let nm_v: Vec<u32> = r
-        .non_manifold_vertices
-        .iter()
-        .filter(|v| owned_v(v))
-        .map(gv)
-        .collect();
-    let un_v: Vec<u32> = r
-        .unknown_vertices
-        .iter()
-        .filter(|v| owned_v(v))
-        .map(gv)
-        .collect();
-    let edge_list = |es: &[[VertexId; 2]]| -> Vec<u32> {
-        es.iter()
-            .filter(|e| owned_v(&e[0]))
-            .flat_map(|e| [gv(&e[0]), gv(&e[1])])
-            .collect()
-    };
-    let (nm_e, un_e) = (
-        edge_list(&r.non_manifold_edges),
-        edge_list(&r.unknown_edges),
-    );
-    let bnd = flat_faces(l, &r.boundary_faces);
-    let more = flat_faces(l, &r.faces_in_more_than_two_cells);
     let n_components = components(w, l)?;
     // facet classes and orientation: local walk, then the merge across ranks
     let mut rep = ValidationReport {
@@ -934,6 +920,46 @@ fn run_validate(w: &World, a: &Args, ld: &Loaded) -> Result<u8, Failure> {
     Ok(u8::from(failed))
 }
 
+/// This rank's share of the lists of a validation of its local complex (the owner's items),
+/// in global ids: edges as pairs, faces as [`flat_faces`].
+pub(crate) struct OwnedLists {
+    pub lower: Vec<u32>,
+    pub nm_v: Vec<u32>,
+    pub un_v: Vec<u32>,
+    pub nm_e: Vec<u32>,
+    pub un_e: Vec<u32>,
+    pub bnd: Vec<u32>,
+    pub more: Vec<u32>,
+}
+
+/// The owned items of `r` (a validation of the owned stars of `l`).
+pub(crate) fn owned_lists(l: &Local, r: &ValidationReport) -> OwnedLists {
+    let gv = |v: &VertexId| l.vertex_gid[v.index()];
+    let owned_v = |v: &VertexId| l.owned.contains(v.index());
+    let vertices =
+        |vs: &[VertexId]| -> Vec<u32> { vs.iter().filter(|v| owned_v(v)).map(gv).collect() };
+    let edge_list = |es: &[[VertexId; 2]]| -> Vec<u32> {
+        es.iter()
+            .filter(|e| owned_v(&e[0]))
+            .flat_map(|e| [gv(&e[0]), gv(&e[1])])
+            .collect()
+    };
+    OwnedLists {
+        lower: r
+            .lower_dimensional_cells
+            .iter()
+            .filter(|c| l.owns_cell(c.index()))
+            .map(|c| l.cell_gid[c.index()])
+            .collect(),
+        nm_v: vertices(&r.non_manifold_vertices),
+        un_v: vertices(&r.unknown_vertices),
+        nm_e: edge_list(&r.non_manifold_edges),
+        un_e: edge_list(&r.unknown_edges),
+        bnd: flat_faces(l, &r.boundary_faces),
+        more: flat_faces(l, &r.faces_in_more_than_two_cells),
+    }
+}
+
 /// Rank 0's report from the gathered first entries of the lists (global ids, sorted as the
 /// single process sorts them, cut to `max`) and the complete counts `c`.
 fn validation_report(
@@ -1009,7 +1035,7 @@ fn first_edges(v: Vec<u32>, max: usize) -> Vec<u32> {
 }
 
 /// Number of faces of a flat face list (`n, v.., n, v..`).
-fn bnd_len(x: &[u32]) -> usize {
+pub(crate) fn bnd_len(x: &[u32]) -> usize {
     let (mut i, mut n) = (0, 0);
     while i < x.len() {
         i += 1 + x[i] as usize;

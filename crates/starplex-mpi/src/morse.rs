@@ -328,7 +328,7 @@ fn local_part(
 type Column = Vec<(u32, i64)>;
 
 /// Betti numbers, torsion per dimension, and the combined complex's cells per dimension.
-type Combined = (Vec<u64>, Vec<Vec<u128>>, Vec<u64>);
+pub type Combined = (Vec<u64>, Vec<Vec<u128>>, Vec<u64>);
 
 /// Reads the next value of a message.
 fn next(msg: &[i64], at: &mut usize) -> Result<i64, String> {
@@ -461,18 +461,26 @@ fn combine(msgs: &[i64], ranks: usize, dims: usize, field: Field) -> Result<Comb
     Ok((betti, torsion, n.iter().map(|&x| x as u64).collect()))
 }
 
-/// The verb (collective).
-#[allow(clippy::too_many_arguments)]
-pub fn run(
+/// What the reduction found, on rank 0.
+pub struct Reduced {
+    /// Betti numbers, torsion per dimension, the combined complex's cells per dimension.
+    pub combined: Combined,
+    /// Per rank: inner cells, critical cells, interface faces owned, projections, bytes sent.
+    pub stats: Vec<u64>,
+    /// Seconds of the rank-local part.
+    pub local_s: f64,
+}
+
+/// The homology of the complex held by the ranks (collective; the local complex is freed on
+/// the way): `Some` on rank 0.
+pub fn reduce(
     w: &World,
-    json_out: bool,
     file: &Path,
     dims: usize,
     l: &mut Local,
-    read_s: f64,
     field: Field,
     max_faces: u128,
-) -> Result<(), Failure> {
+) -> Result<Option<Reduced>, Failure> {
     let t1 = Instant::now();
     let part = agree(
         w,
@@ -500,8 +508,34 @@ pub fn run(
         None => Ok(None),
     };
     let r = agree(w, r)?;
+    Ok(r.map(|combined| Reduced {
+        combined,
+        stats: stats.unwrap_or_default(),
+        local_s,
+    }))
+}
+
+/// The verb (collective).
+#[allow(clippy::too_many_arguments)]
+pub fn run(
+    w: &World,
+    json_out: bool,
+    file: &Path,
+    dims: usize,
+    l: &mut Local,
+    read_s: f64,
+    field: Field,
+    max_faces: u128,
+) -> Result<(), Failure> {
+    let t1 = Instant::now();
+    let r = reduce(w, file, dims, l, field, max_faces)?;
     let total_s = t1.elapsed().as_secs_f64();
-    let Some((betti, torsion, n)) = r else {
+    let Some(Reduced {
+        combined: (betti, torsion, n),
+        stats,
+        local_s,
+    }) = r
+    else {
         return Ok(());
     };
     let h = Homology {
@@ -517,7 +551,6 @@ pub fn run(
         generators: Vec::new(),
     };
     let rows: Vec<serde_json::Value> = stats
-        .unwrap_or_default()
         .chunks_exact(5)
         .enumerate()
         .map(|(r, x)| {

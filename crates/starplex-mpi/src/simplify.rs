@@ -44,7 +44,7 @@ use std::time::Instant;
 use fixedbitset::FixedBitSet;
 use rustc_hash::FxHashMap;
 use serde_json::json;
-use starplex::algo::simplify::default_label_attribute;
+use starplex::algo::simplify::{default_label_attribute, TopologySummary};
 use starplex::algo::simplify::{simplify, Mode, SimplifyOptions, Target};
 use starplex::attr::{AttrTarget, AttrValues, Attribute};
 use starplex::cell::CellKind;
@@ -85,6 +85,8 @@ pub struct SimplifyArgs<'a> {
     /// Carry the input's attribute columns to the output (off when only the topology of the
     /// output is wanted).
     pub attributes: bool,
+    /// The topology before and after (as `starplex simplify` without `--no-report`).
+    pub report: bool,
     /// At most this many rounds.
     pub max_rounds: u32,
     /// When a round leaves at most this many top cells, the last round runs on rank 0 alone
@@ -102,6 +104,8 @@ const LOCAL_ID: &str = "starplex-mpi:local-id";
 struct RoundOut {
     part: Part,
     contractions: u64,
+    /// QEM: the largest quadric error of this rank's contractions, and their sum.
+    errors: (f64, f64),
     owned_tops_after: u64,
     locked: u64,
     /// The output ids of the kept vertices this rank owns: (index in the kept list, new id).
@@ -234,9 +238,13 @@ fn round(
         simplify(&l.k, &opts).map(Some).map_err(|e| e.to_string())
     };
     let done = agree(w, done)?;
-    let (out, contractions) = match done {
-        Some((out, r)) => (out, r.n_contractions),
-        None => (l.k.clone(), 0),
+    let (out, contractions, errors) = match done {
+        Some((out, r)) => {
+            let n = r.n_contractions as f64;
+            let errors = (r.max_error.unwrap_or(0.0), r.mean_error.unwrap_or(0.0) * n);
+            (out, r.n_contractions, errors)
+        }
+        None => (l.k.clone(), 0, (0.0, 0.0)),
     };
     let local_of: Vec<u32> = match out.attributes().vertex.iter().find(|c| c.name == LOCAL_ID) {
         Some(Attribute {
@@ -391,6 +399,7 @@ fn round(
             values,
         },
         contractions,
+        errors,
         owned_tops_after: owned_cells + isolated,
         locked: n_locked,
         kept_new,
@@ -442,6 +451,12 @@ pub fn run(w: &World, a: &SimplifyArgs, file: &Path) -> Result<(), Failure> {
             ),
             (None, true) => {}
         }
+        if let Some((m, e)) = o.errors {
+            println!("  quadric error       max {m:.3e}, mean {e:.3e}");
+        }
+        if let (Some(b), Some(f)) = (&o.topology_before, &o.topology_after) {
+            starplex_cli::report::print_topology_change(b, f);
+        }
         println!("  time                {:.3} s", o.time_s);
     }
     Ok(())
@@ -465,14 +480,23 @@ pub struct Outcome {
     pub labels_kept: Option<String>,
     /// The input's cell attributes.
     pub labels_available: Vec<String>,
-    /// Seconds (the slowest rank's view: every round ends collectively).
+    /// QEM: the largest and the mean quadric error of the contractions.
+    pub errors: Option<(f64, f64)>,
+    /// The topology of the input and of the output (rank 0, with the report).
+    pub topology_before: Option<TopologySummary>,
+    /// See `topology_before`.
+    pub topology_after: Option<TopologySummary>,
+    /// Seconds of the topology report.
+    pub report_s: f64,
+    /// Seconds (the slowest rank's view: every round ends collectively), the report aside.
     pub time_s: f64,
 }
 
 impl Outcome {
     /// The report of `simplify --json`.
     pub fn json(&self, file: &Path, out: &Path, ranks: u32) -> serde_json::Value {
-        json!({
+        use starplex_cli::report::{topology_json, topology_kept};
+        let mut v = json!({
             "input": file.display().to_string(),
             "output": out.display().to_string(),
             "mode": self.mode.name(),
@@ -487,7 +511,20 @@ impl Outcome {
             "cells": [self.before.1, self.written.n_cells],
             "bytes": self.written.bytes,
             "time_s": self.time_s,
-        })
+            "report_time_s": self.report_s,
+            "before": self.topology_before.as_ref().map(topology_json),
+            "after": self.topology_after.as_ref().map(topology_json),
+            // the sampled Hausdorff estimate compares the whole meshes: not distributed
+            "hausdorff": null,
+        });
+        if let Some((m, e)) = self.errors {
+            v["max_error"] = json!(m);
+            v["mean_error"] = json!(e);
+        }
+        if let (Some(b), Some(f)) = (&self.topology_before, &self.topology_after) {
+            v["topology_kept"] = json!(topology_kept(b, f));
+        }
+        v
     }
 }
 
@@ -499,7 +536,7 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
     let mut input = file.to_path_buf();
     let mut temp: Option<PathBuf> = None;
     let mut rows = Vec::new();
-    let (mut before, mut mode, mut goal) = ((0u64, 0u64), Mode::Homology, None);
+    let (mut before, mut goal) = ((0u64, 0u64), None);
     let mut total = 0u64;
     let mut tops_now = 0u64;
     let mut r = 0u32;
@@ -508,7 +545,58 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
     let mut kept: Vec<u32> = Vec::new();
     // the input's attribute columns (every round's file has them), the label kept
     let mut cols: Vec<SpbAttr> = Vec::new();
-    let mut labels: Option<String> = None;
+    let (mode, labels): (Mode, Option<String>);
+    let (mut topology_before, mut report_s) = (None, 0.0);
+    let (mut max_error, mut error_sum) = (0.0f64, 0.0f64);
+    // what the header and the options decide, before any cell is read; then the topology
+    // before (its own read, so that no two local complexes are held at once)
+    {
+        let f0 = agree(w, Spb::open(file))?;
+        if let Some(&(k, _, _)) = f0.h.blocks.iter().find(|&&(k, _, _)| !k.is_simplex()) {
+            return Err(Failure(format!(
+                "{}: the complex has {} cells; simplify contracts edges of simplicial complexes only: triangulate first (starplex convert --triangulate {} triangulated.spb)",
+                file.display(),
+                k.type_name(),
+                file.display()
+            )));
+        }
+        mode = a.mode.unwrap_or_else(|| default_mode(&f0));
+        if mode == Mode::Homology && a.max_error.is_some() {
+            return Err(Failure(
+                "--max-error is a quadric error: it needs --mode qem".into(),
+            ));
+        }
+        if let Some(x) = a.ratio.filter(|x| !(0.0..=1.0).contains(x)) {
+            return Err(Failure(format!("--ratio {x}: it must be between 0 and 1")));
+        }
+        if let Some(path) = a.keep_vertices {
+            let nv = f0.h.n_vertices;
+            kept = agree(
+                w,
+                starplex_cli::export::read_ids(path)
+                    .map_err(|e| format!("--keep-vertices: {e}"))
+                    .and_then(|ids| match ids.iter().find(|&&v| v as u64 >= nv) {
+                        Some(v) => Err(format!(
+                            "--keep-vertices {}: vertex {v} is out of range (the input has {nv} vertices, ids from 0)",
+                            path.display()
+                        )),
+                        None => Ok(ids),
+                    }),
+            )?;
+            kept.sort_unstable();
+            kept.dedup();
+        }
+        if a.attributes {
+            cols = f0.h.attrs.clone();
+        }
+        labels = agree(w, resolve_labels(a, &cols))?;
+        drop(f0);
+        if a.report {
+            let t = Instant::now();
+            topology_before = crate::summary::summary(w, file)?;
+            report_s += t.elapsed().as_secs_f64();
+        }
+    }
     let written = loop {
         // reading a round's file back: on any error, the file goes too
         let read = (|| {
@@ -531,26 +619,9 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
             }
         };
         if r == 0 {
-            if let Some(&(k, _, _)) = f.h.blocks.iter().find(|&&(k, _, _)| !k.is_simplex()) {
-                return Err(Failure(format!(
-                    "{}: the complex has {} cells; simplify contracts edges of simplicial complexes only: triangulate first (starplex convert --triangulate {} triangulated.spb)",
-                    file.display(),
-                    k.type_name(),
-                    file.display()
-                )));
-            }
-            mode = a.mode.unwrap_or_else(|| default_mode(&f));
-            if mode == Mode::Homology && a.max_error.is_some() {
-                return Err(Failure(
-                    "--max-error is a quadric error: it needs --mode qem".into(),
-                ));
-            }
             let tops = comm::sum(w, owned_tops(&l));
             tops_now = tops;
             before = (f.h.n_vertices, f.h.n_cells);
-            if let Some(x) = a.ratio.filter(|x| !(0.0..=1.0).contains(x)) {
-                return Err(Failure(format!("--ratio {x}: it must be between 0 and 1")));
-            }
             let by_ratio = a.ratio.map(|x| (x * tops as f64).round() as u64);
             goal = match (a.faces, by_ratio) {
                 (Some(f), Some(g)) => Some(f.max(g)),
@@ -561,27 +632,6 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
                     "{g} faces asked, the complex has {tops} top cells"
                 )));
             }
-            if let Some(path) = a.keep_vertices {
-                let nv = f.h.n_vertices;
-                kept = agree(
-                    w,
-                    starplex_cli::export::read_ids(path)
-                        .map_err(|e| format!("--keep-vertices: {e}"))
-                        .and_then(|ids| match ids.iter().find(|&&v| v as u64 >= nv) {
-                            Some(v) => Err(format!(
-                                "--keep-vertices {}: vertex {v} is out of range (the input has {nv} vertices, ids from 0)",
-                                path.display()
-                            )),
-                            None => Ok(ids),
-                        }),
-                )?;
-                kept.sort_unstable();
-                kept.dedup();
-            }
-            if a.attributes {
-                cols = f.h.attrs.clone();
-            }
-            labels = agree(w, resolve_labels(a, &cols))?;
         }
         let d = f.h.ambient_dim;
         drop(f);
@@ -618,6 +668,8 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
             kept.sort_unstable();
         }
         let contractions = comm::sum(w, out.contractions);
+        max_error = max_error.max(comm::min_max(w, &[], &[out.errors.0]).1[0]);
+        error_sum += comm::sum_f64(w, out.errors.1);
         let tops_after = comm::sum(w, out.owned_tops_after);
         let locked = comm::sum(w, out.locked);
         let user_kept = comm::sum(w, out.user_kept);
@@ -650,6 +702,15 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         input = path;
         r += 1;
     };
+    let time_s = t0.elapsed().as_secs_f64() - report_s;
+    let topology_after = if a.report {
+        let t = Instant::now();
+        let s = crate::summary::summary(w, &target)?;
+        report_s += t.elapsed().as_secs_f64();
+        s
+    } else {
+        None
+    };
     Ok(Outcome {
         mode,
         before,
@@ -663,7 +724,18 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
             .filter(|c| c.target == AttrTarget::Cell)
             .map(|c| c.name.clone())
             .collect(),
-        time_s: t0.elapsed().as_secs_f64(),
+        errors: (mode == Mode::Qem).then(|| {
+            let mean = if total > 0 {
+                error_sum / total as f64
+            } else {
+                0.0
+            };
+            (max_error, mean)
+        }),
+        topology_before,
+        topology_after,
+        report_s,
+        time_s,
     })
 }
 

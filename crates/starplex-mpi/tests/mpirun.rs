@@ -834,9 +834,13 @@ fn trimmed(b: &serde_json::Value) -> Vec<u64> {
 /// distributed, every rank locking what is not interior to it), the Betti numbers are kept and
 /// the complex shrinks. Homology mode everywhere; on the triangle and tetrahedral meshes also
 /// QEM at ratio 0.3 and homology mode with `--keep-manifold`, where no non-manifold vertex or
-/// edge may appear either.
+/// edge may appear either. The report's topology before and after (f-vector, Euler
+/// characteristic, Betti numbers, non-manifold vertices and edges, boundary faces) is the
+/// single process's `summary` of the input and of the output file.
 #[test]
 fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
+    use starplex::algo::simplify::summary;
+    use starplex_cli::report::{topology_json, topology_kept};
     let Some((cli, data, tmp)) = setup("starplex-mpi-simplify") else {
         return;
     };
@@ -919,6 +923,27 @@ fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
                     }
                     checked += 1;
                     let v = without_timings(&stdout, &what);
+                    // the report: the single process's topology summaries of input and output
+                    let k_out = starplex::io::read(Path::new(&out), &Default::default())
+                        .unwrap()
+                        .complex;
+                    let (b, a) = (summary(&k), summary(&k_out));
+                    if v["before"] != topology_json(&b)
+                        || v["after"] != topology_json(&a)
+                        || v["topology_kept"] != topology_kept(&b, &a)
+                    {
+                        failures.push(format!(
+                            "{what}: the report {} {} {}, the single process's {} {}",
+                            v["before"],
+                            v["after"],
+                            v["topology_kept"],
+                            topology_json(&b),
+                            topology_json(&a)
+                        ));
+                    }
+                    if (v["mode"] == "qem") != v["max_error"].is_f64() {
+                        failures.push(format!("{what}: quadric errors reported: {v}"));
+                    }
                     if np == 1 && cells_of(&out) != cells_of(&one) {
                         failures.push(format!("{what}: differs from the single process"));
                     }
@@ -1147,6 +1172,7 @@ fn simplify_carries_attributes_and_keeps_label_regions() {
                         gather,
                         "--keep-vertex-attribute",
                         "pin",
+                        "--no-report",
                     ];
                     let (code, stdout, err) = run(&mut mpi(np, &args), limit);
                     if code != Some(0) {
