@@ -44,7 +44,9 @@ use std::time::Instant;
 use fixedbitset::FixedBitSet;
 use rustc_hash::FxHashMap;
 use serde_json::json;
-use starplex::algo::simplify::{default_label_attribute, TopologySummary};
+use starplex::algo::simplify::{
+    default_label_attribute, label_interface_vertices, TopologySummary,
+};
 use starplex::algo::simplify::{simplify, Mode, SimplifyOptions, Target};
 use starplex::attr::{AttrTarget, AttrValues, Attribute};
 use starplex::cell::CellKind;
@@ -112,6 +114,9 @@ struct RoundOut {
     kept_new: Vec<(usize, u32)>,
     /// Owned vertices the user keeps (listed or by attribute).
     user_kept: u64,
+    /// Owned vertices kept by the user or on a label interface (what `starplex simplify`
+    /// reports as locked).
+    fixed: u64,
 }
 
 /// What the user asked to keep, resolved against the input's attribute columns.
@@ -193,10 +198,22 @@ fn round(
     }
     users.sort_unstable();
     users.dedup();
-    let user_kept = users
-        .iter()
-        .filter(|&&v| l.owned.contains(v as usize))
-        .count() as u64;
+    let owned_count = |vs: &[u32]| vs.iter().filter(|&&v| l.owned.contains(v as usize)).count();
+    let user_kept = owned_count(&users) as u64;
+    // with the label interfaces (decided on whole stars for the owned vertices)
+    let fixed = match user.labels {
+        Some(name) => {
+            let mut f = agree(
+                w,
+                label_interface_vertices(&l.k, name).map_err(|e| e.to_string()),
+            )?;
+            f.extend_from_slice(&users);
+            f.sort_unstable();
+            f.dedup();
+            owned_count(&f) as u64
+        }
+        None => user_kept,
+    };
     keep.extend(users);
     keep.sort_unstable();
     keep.dedup();
@@ -404,6 +421,7 @@ fn round(
         locked: n_locked,
         kept_new,
         user_kept,
+        fixed,
     })
 }
 
@@ -444,12 +462,18 @@ pub fn run(w: &World, a: &SimplifyArgs, file: &Path) -> Result<(), Failure> {
             o.rows.len()
         );
         match (&o.labels_kept, o.labels_available.is_empty()) {
-            (Some(l), _) => println!("  labels              {l} kept"),
+            (Some(l), _) => println!(
+                "  labels              {l} kept ({} interface/kept vertices locked)",
+                o.locked_vertices
+            ),
             (None, false) => println!(
                 "  labels              not kept (cell attributes: {})",
                 o.labels_available.join(", ")
             ),
             (None, true) => {}
+        }
+        if o.labels_kept.is_none() && o.locked_vertices > 0 {
+            println!("  kept vertices       {}", o.locked_vertices);
         }
         if let Some((m, e)) = o.errors {
             println!("  quadric error       max {m:.3e}, mean {e:.3e}");
@@ -488,11 +512,23 @@ pub struct Outcome {
     pub topology_after: Option<TopologySummary>,
     /// Seconds of the topology report.
     pub report_s: f64,
+    /// Input vertices kept by the user or on a label interface.
+    pub locked_vertices: u64,
+    /// The attribute columns carried.
+    pub attributes: Vec<(AttrTarget, String)>,
     /// Seconds (the slowest rank's view: every round ends collectively), the report aside.
     pub time_s: f64,
 }
 
 impl Outcome {
+    fn names(&self, t: AttrTarget) -> Vec<&str> {
+        self.attributes
+            .iter()
+            .filter(|(x, _)| *x == t)
+            .map(|(_, n)| n.as_str())
+            .collect()
+    }
+
     /// The report of `simplify --json`.
     pub fn json(&self, file: &Path, out: &Path, ranks: u32) -> serde_json::Value {
         use starplex_cli::report::{topology_json, topology_kept};
@@ -507,6 +543,11 @@ impl Outcome {
             "per_round": self.rows,
             "labels_kept": self.labels_kept,
             "labels_available": self.labels_available,
+            "locked_vertices": self.locked_vertices,
+            "attributes": {
+                "vertex": self.names(AttrTarget::Vertex),
+                "cell": self.names(AttrTarget::Cell),
+            },
             "vertices": [self.before.0, self.written.n_vertices],
             "cells": [self.before.1, self.written.n_cells],
             "bytes": self.written.bytes,
@@ -548,6 +589,7 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
     let (mode, labels): (Mode, Option<String>);
     let (mut topology_before, mut report_s) = (None, 0.0);
     let (mut max_error, mut error_sum) = (0.0f64, 0.0f64);
+    let mut locked_vertices = 0u64;
     // what the header and the options decide, before any cell is read; then the topology
     // before (its own read, so that no two local complexes are held at once)
     {
@@ -673,6 +715,10 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         let tops_after = comm::sum(w, out.owned_tops_after);
         let locked = comm::sum(w, out.locked);
         let user_kept = comm::sum(w, out.user_kept);
+        let fixed = comm::sum(w, out.fixed);
+        if r == 0 {
+            locked_vertices = fixed;
+        }
         total += contractions;
         tops_now = tops_after;
         rows.push(json!({"round": r + 1, "split": format!("{kind:?}").to_lowercase(), "contractions": contractions, "top_cells": tops_after, "locked_vertices": locked, "kept_vertices": user_kept}));
@@ -735,6 +781,8 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         topology_before,
         topology_after,
         report_s,
+        locked_vertices,
+        attributes: cols.iter().map(|c| (c.target, c.name.clone())).collect(),
         time_s,
     })
 }

@@ -1141,9 +1141,11 @@ fn simplify_carries_attributes_and_keeps_label_regions() {
                 "0.3",
                 "--keep-vertex-attribute",
                 "pin",
+                "--json",
             ];
-            let (code, _, err) = run(Command::new(&cli).args(args), limit);
+            let (code, stdout, err) = run(Command::new(&cli).args(args), limit);
             assert_eq!(code, Some(0), "starplex simplify {name} {mode}: {err}");
+            let cli_report = without_timings(&stdout, "starplex simplify");
             let single = starplex::io::read(Path::new(&one), &Default::default())
                 .unwrap()
                 .complex;
@@ -1184,6 +1186,8 @@ fn simplify_carries_attributes_and_keeps_label_regions() {
                     if v["labels_kept"] != "medit:ref"
                         || v["labels_available"] != serde_json::json!(["medit:ref", "cid"])
                         || v["per_round"][0]["kept_vertices"].as_u64() != Some(pinned.len() as u64)
+                        || v["locked_vertices"] != cli_report["locked_vertices"]
+                        || v["attributes"] != cli_report["attributes"]
                     {
                         failures.push(format!("{what}: the labels reported: {v}"));
                     }
