@@ -92,6 +92,14 @@ fn run(cmd: &mut Command, limit: Duration) -> (Option<i32>, String, String) {
             break st;
         }
         if t0.elapsed() > limit {
+            // SIGTERM first: mpirun forwards it and ends its ranks, which a SIGKILL of
+            // mpirun alone would leave running (and slowing every test after)
+            // SAFETY: kill(2) on the child's own pid, which has not been reaped yet.
+            unsafe { libc::kill(child.id() as i32, libc::SIGTERM) };
+            let t1 = Instant::now();
+            while t1.elapsed() < Duration::from_secs(10) && matches!(child.try_wait(), Ok(None)) {
+                std::thread::sleep(Duration::from_millis(50));
+            }
             child.kill().ok();
             child.wait().ok();
             panic!(
