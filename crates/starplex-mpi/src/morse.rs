@@ -25,6 +25,7 @@
 use std::path::Path;
 use std::time::Instant;
 
+use fixedbitset::FixedBitSet;
 use mpi::traits::Communicator;
 use serde_json::json;
 use starplex::algo::homology::{
@@ -97,6 +98,64 @@ struct LocalPart {
     n_critical: u64,
     n_interface: u64,
     n_images: u64,
+}
+
+/// When every part of `by_arity` (flat sorted vertex lists, `by_arity[a]` of arity `a`, over
+/// `nv` vertices) of a smaller arity than the largest is a face of a part of the largest
+/// arity, removes them all (the closure, which is the complex, does not change) and returns
+/// true: the owned part of a mesh is then one block, which the gradient takes over in place
+/// instead of copying it. Otherwise nothing changes (the parts and their order, which sets the
+/// gradient's vertex order, stay as they are).
+fn drop_covered_parts(by_arity: &mut [Vec<u32>], nv: usize) -> bool {
+    let Some(amax) = (1..by_arity.len()).rev().find(|&a| !by_arity[a].is_empty()) else {
+        return false;
+    };
+    if amax > 16 {
+        return false; // the subsets of a long cell are too many to look up
+    }
+    // the smaller parts, sorted and deduplicated, and their vertices marked
+    let mut near = FixedBitSet::with_capacity(nv);
+    let low: Vec<Vec<u32>> = (0..amax)
+        .map(|a| {
+            if a == 0 || by_arity[a].is_empty() {
+                return Vec::new();
+            }
+            let parts = sort_runs(by_arity[a].clone(), a);
+            parts.iter().for_each(|&v| near.insert(v as usize));
+            parts
+        })
+        .collect();
+    if low.iter().all(Vec::is_empty) {
+        return false;
+    }
+    let mut covered: Vec<FixedBitSet> = low
+        .iter()
+        .enumerate()
+        .map(|(a, p)| FixedBitSet::with_capacity(p.len().checked_div(a).unwrap_or(0)))
+        .collect();
+    let mut face: Vec<u32> = Vec::with_capacity(amax);
+    for c in by_arity[amax].chunks_exact(amax) {
+        if !c.iter().any(|&v| near.contains(v as usize)) {
+            continue;
+        }
+        // every proper subset of c (c is sorted: so is each subset) of an arity with parts
+        for mask in 1u32..(1u32 << amax) - 1 {
+            let a = mask.count_ones() as usize;
+            if low[a].is_empty() {
+                continue;
+            }
+            face.clear();
+            face.extend((0..amax).filter(|i| mask >> i & 1 == 1).map(|i| c[i]));
+            if let Some(i) = find_run(&low[a], a, &face) {
+                covered[a].insert(i);
+            }
+        }
+    }
+    let all = (1..amax).all(|a| covered[a].count_ones(..) == covered[a].len());
+    if all {
+        by_arity[1..amax].iter_mut().for_each(Vec::clear);
+    }
+    all
 }
 
 /// Rank `r`'s reduction (steps 1 and 2). `dims`: the number of dimensions of the input
@@ -222,6 +281,9 @@ fn local_part(
     }
     // the local complex is not needed any more (its cell count stays in `cell_gid`)
     drop(std::mem::replace(&mut l.k, Local::empty().k));
+    // the smaller parts, when all are faces of the largest, add no face: dropped, the owned
+    // part of a mesh is one block, which the gradient takes over in place
+    let one_block = drop_covered_parts(&mut by_arity, n_owned as usize);
     let blocks: Vec<(CellKind, Buf<u32>)> = by_arity
         .into_iter()
         .enumerate()
@@ -232,7 +294,11 @@ fn local_part(
     let inner = IndexedComplex::from_parts(1, coords, blocks)
         .map_err(|e| format!("the owned part of the complex: {e}"))?;
     let n_inner_cells = inner.n_cells() as u64;
-    tm("owned complex");
+    tm(if one_block {
+        "owned complex (one block)"
+    } else {
+        "owned complex"
+    });
     let hopts = HomologyOptions {
         field,
         ..Default::default()
@@ -583,4 +649,43 @@ pub fn run(
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::drop_covered_parts;
+
+    /// The smaller parts go when every one is a face of a tetrahedron; else nothing changes.
+    #[test]
+    fn covered_parts_are_dropped() {
+        // all covered (repeats included): only the tetrahedra stay
+        let mut by_arity = vec![
+            vec![],
+            vec![4, 0, 4],                   // vertices (one twice)
+            vec![3, 4, 0, 3, 3, 4],          // edges (one twice)
+            vec![1, 2, 4, 0, 1, 2, 0, 1, 2], // triangles (one twice)
+            vec![0, 1, 2, 3, 1, 2, 3, 4],
+        ];
+        assert!(drop_covered_parts(&mut by_arity, 5));
+        assert_eq!(
+            by_arity,
+            vec![vec![], vec![], vec![], vec![], vec![0, 1, 2, 3, 1, 2, 3, 4]]
+        );
+        // one part not covered (the triangle 1 2 5): nothing changes
+        let mut some = vec![
+            vec![],
+            vec![0],
+            vec![3, 4, 0, 3],
+            vec![1, 2, 5, 0, 1, 2],
+            vec![0, 1, 2, 3, 1, 2, 3, 4],
+        ];
+        let before = some.clone();
+        assert!(!drop_covered_parts(&mut some, 6));
+        assert_eq!(some, before);
+        // nothing smaller: unchanged
+        let mut only = vec![vec![], vec![], vec![], vec![], vec![0, 1, 2, 3, 0, 1, 2, 4]];
+        let before = only.clone();
+        assert!(!drop_covered_parts(&mut only, 5));
+        assert_eq!(only, before);
+    }
 }
