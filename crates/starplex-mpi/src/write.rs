@@ -140,6 +140,18 @@ pub fn write(
             )
         }),
     )?;
+    // the values of each part follow `columns`: the plan must keep their order
+    let same = plan.attrs.len() == columns.len()
+        && plan
+            .attrs
+            .iter()
+            .zip(columns)
+            .all(|(a, c)| a.name == c.name && a.target == c.target);
+    comm::agree_that(
+        w,
+        same && part.values.len() == columns.len(),
+        "internal error: attribute columns not in file order",
+    )?;
     let tmp = beside(target, ".starplex-mpi-part");
     let created = if rank == 0 {
         (|| -> std::io::Result<()> {
@@ -176,10 +188,10 @@ pub fn write(
                     let mut from = 0usize;
                     for (k, v) in &part.blocks {
                         let n = (v.len() / k.n_vertices()) as u64;
-                        let b = kinds
-                            .iter()
-                            .position(|&i| i == kind_index(*k))
-                            .expect("every block of a part is planned");
+                        // a kind with cells here has cells in the file: it is planned
+                        let Some(b) = kinds.iter().position(|&i| i == kind_index(*k)) else {
+                            continue;
+                        };
                         let first: u64 = blocks[..b].iter().map(|&(_, n)| n).sum::<u64>()
                             + before[1 + kind_index(*k)];
                         let to = from + (n * c) as usize;
