@@ -595,6 +595,7 @@ pub fn run_by_contraction(
         mode: Some(starplex::algo::simplify::Mode::Homology),
         ratio: None,
         faces: None,
+        vertices: None,
         max_error: None,
         keep_manifold: false,
         lock_boundary: false,

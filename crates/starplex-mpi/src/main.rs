@@ -10,7 +10,7 @@
 //! mpirun -np P starplex-mpi query FILE.spb --relation R --all --out OUT.jsonl|csv|npz
 //!     [--structure S] [--per-rank]
 //! mpirun -np P starplex-mpi simplify FILE.spb -o OUT.spb [--mode homology|qem] [--ratio R]
-//!     [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE]
+//!     [--faces N] [--vertices N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE]
 //!     [--keep-labels NAME | --ignore-labels] [--keep-vertex-attribute NAME] [--no-report]
 //!     [--rounds N] [--gather-below N] [--json]
 //! ```
@@ -53,7 +53,7 @@ mod write;
 use comm::{agree, Failure, World};
 use dist::{Local, Spb, Split};
 
-const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method morse|contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE] [--keep-labels NAME | --ignore-labels] [--keep-vertex-attribute NAME] [--no-report] [--rounds N] [--gather-below N]";
+const USAGE: &str = "usage: mpirun -np P starplex-mpi (info | validate | stellar | homology | query | simplify) FILE.spb [--json] [--max-faces N] [--max-list N] [--kv N] [--vt-vv-out PREFIX] [--stats]\n       homology: [--field 2|p|q|z] [--method morse|contract|algebraic] [--tmp-dir DIR]\n       validate: [--check | --fail-on non-manifold,non-pure,non-orientable,isolated,boundary,disconnected,undecided]\n       query: --relation vt|vv|link|star|adj|ia-star|pfaces --all --out OUT.jsonl|csv|npz [--structure stellar|vt|ia-star|ig|is|simplex-tree|hasse] [--per-rank]\n       simplify: -o OUT.spb [--mode homology|qem] [--ratio R] [--faces N] [--vertices N] [--max-error E] [--keep-manifold] [--lock-boundary] [--keep-vertices FILE] [--keep-labels NAME | --ignore-labels] [--keep-vertex-attribute NAME] [--no-report] [--rounds N] [--gather-below N]";
 const VERBS: [&str; 6] = [
     "info", "validate", "stellar", "homology", "query", "simplify",
 ];
@@ -72,6 +72,7 @@ struct Args {
     mode: Option<starplex::algo::simplify::Mode>,
     ratio: Option<f64>,
     faces: Option<u64>,
+    vertices: Option<u64>,
     max_error: Option<f64>,
     keep_manifold: bool,
     lock_boundary: bool,
@@ -119,6 +120,7 @@ fn parse_args() -> Result<Args, String> {
         mode: None,
         ratio: None,
         faces: None,
+        vertices: None,
         max_error: None,
         keep_manifold: false,
         lock_boundary: false,
@@ -186,6 +188,7 @@ fn parse_args() -> Result<Args, String> {
                 }
             }
             "--faces" => a.faces = Some(num("--faces")? as u64),
+            "--vertices" => a.vertices = Some(num("--vertices")? as u64),
             "--gather-below" => a.gather_below = num("--gather-below")? as u64,
             "--rounds" => {
                 a.rounds = u32::try_from(num("--rounds")?)
@@ -358,6 +361,7 @@ fn run(w: &World) -> Result<u8, Failure> {
             mode: a.mode,
             ratio: a.ratio,
             faces: a.faces,
+            vertices: a.vertices,
             max_error: a.max_error,
             keep_manifold: a.keep_manifold,
             lock_boundary: a.lock_boundary,

@@ -22,8 +22,9 @@
 //! one round: the result is then the single-process `starplex simplify` result (up to the
 //! order of the cells).
 //!
-//! **Targets.** `--ratio` and `--faces` give a global number of top cells; each round every rank
-//! aims at its share, proportional to the top cells it owns. `--max-error` bounds each QEM
+//! **Targets.** `--ratio` and `--faces` give a global number of top cells, `--vertices` one of
+//! vertices; each round every rank aims at its share, proportional to the top cells (vertices)
+//! it owns. `--max-error` bounds each QEM
 //! contraction, which is a local decision.
 //!
 //! **Output.** Each rank writes the cells it owns (those whose smallest vertex, by global id, it
@@ -69,6 +70,8 @@ pub struct SimplifyArgs<'a> {
     pub ratio: Option<f64>,
     /// Target number of top cells.
     pub faces: Option<u64>,
+    /// Target number of vertices.
+    pub vertices: Option<u64>,
     /// QEM: largest quadric error of a contraction.
     pub max_error: Option<f64>,
     /// Homology mode: the extended link condition (a manifold stays one).
@@ -109,6 +112,7 @@ struct RoundOut {
     /// QEM: the largest quadric error of this rank's contractions, and their sum.
     errors: (f64, f64),
     owned_tops_after: u64,
+    owned_vertices_after: u64,
     locked: u64,
     /// The output ids of the kept vertices this rank owns: (index in the kept list, new id).
     kept_new: Vec<(usize, u32)>,
@@ -163,13 +167,27 @@ fn locked(l: &Local) -> Vec<u32> {
         .collect()
 }
 
+/// This rank's share of a global target `t` (collective), proportional to the `mine` items it
+/// owns, at most `mine`: the shares of the ranks add up to `t` exactly (when `t` is at most
+/// the total), each the difference of two rounded-down prefix proportions.
+fn share(w: &World, mine: u64, t: u64) -> u64 {
+    let all = comm::all_gather(w, &[mine]);
+    let total: u64 = all.iter().sum();
+    if total == 0 {
+        return 0;
+    }
+    let before: u64 = all[..w.rank() as usize].iter().sum();
+    let at = |x: u64| (u128::from(t) * u128::from(x) / u128::from(total)) as u64;
+    (at(before + mine) - at(before)).min(mine)
+}
+
 /// Simplifies this rank's local complex and keeps what it owns, numbered for the output.
 fn round(
     w: &World,
     l: &mut Local,
     mode: Mode,
     a: &SimplifyArgs,
-    faces: Option<u64>,
+    (faces, vertices): (Option<u64>, Option<u64>),
     user: &Keep,
     cols: &[SpbAttr],
 ) -> Result<RoundOut, Failure> {
@@ -218,17 +236,12 @@ fn round(
     keep.sort_unstable();
     keep.dedup();
     let mine = owned_tops(l);
-    let all_owned = comm::sum(w, mine);
     let local_tops = (l.k.n_cells() + l.k.n_isolated_vertices()) as u64;
     // this rank's share of the global target, in local top cells (ghosts stay as they are)
-    let local_target = faces.map(|t| {
-        let share = if all_owned > 0 {
-            ((mine as f64) * (t as f64) / (all_owned as f64)).round() as u64
-        } else {
-            0
-        };
-        (local_tops - mine + share.min(mine)) as usize
-    });
+    let local_target = faces.map(|t| (local_tops - mine + share(w, mine, t)) as usize);
+    // and of the global vertex target, in local vertices
+    let mine_v = l.owned.count_ones(..) as u64;
+    let local_vertices = vertices.map(|t| (n as u64 - mine_v + share(w, mine_v, t)) as usize);
     // the file's columns (read with the local complex) and each vertex's local id
     let mut attrs = l.k.attributes().clone();
     attrs
@@ -239,6 +252,7 @@ fn round(
         mode: Some(mode),
         target: Target {
             faces: local_target,
+            vertices: local_vertices,
             max_error: a.max_error,
             ..Default::default()
         },
@@ -418,6 +432,7 @@ fn round(
         contractions,
         errors,
         owned_tops_after: owned_cells + isolated,
+        owned_vertices_after: owned_out.len() as u64,
         locked: n_locked,
         kept_new,
         user_kept,
@@ -498,6 +513,8 @@ pub struct Outcome {
     pub contractions: u64,
     /// The global target of top cells, if any.
     pub goal: Option<u64>,
+    /// The global target of vertices, if any.
+    pub goal_vertices: Option<u64>,
     /// One JSON object per round.
     pub rows: Vec<serde_json::Value>,
     /// The cell attribute whose regions were kept.
@@ -538,6 +555,7 @@ impl Outcome {
             "mode": self.mode.name(),
             "ranks": ranks,
             "target_faces": self.goal,
+            "target_vertices": self.goal_vertices,
             "n_contractions": self.contractions,
             "rounds": self.rows.len(),
             "per_round": self.rows,
@@ -579,7 +597,7 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
     let mut rows = Vec::new();
     let (mut before, mut goal) = ((0u64, 0u64), None);
     let mut total = 0u64;
-    let mut tops_now = 0u64;
+    let (mut tops_now, mut vertices_now) = (0u64, 0u64);
     let mut r = 0u32;
     let mut kind = SplitKind::Plain;
     // the kept vertices, in the numbering of each round's input (sorted)
@@ -610,6 +628,12 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         }
         if let Some(x) = a.ratio.filter(|x| !(0.0..=1.0).contains(x)) {
             return Err(Failure(format!("--ratio {x}: it must be between 0 and 1")));
+        }
+        if let Some(v) = a.vertices.filter(|&v| v > f0.h.n_vertices) {
+            return Err(Failure(format!(
+                "{v} vertices asked, the complex has {}",
+                f0.h.n_vertices
+            )));
         }
         if let Some(path) = a.keep_vertices {
             let nv = f0.h.n_vertices;
@@ -674,6 +698,7 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
                     "{g} faces asked, the complex has {tops} top cells"
                 )));
             }
+            vertices_now = f.h.n_vertices;
         }
         let d = f.h.ambient_dim;
         drop(f);
@@ -681,12 +706,13 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         // with several ranks, the first round stops short of the target (90 % of the way), so
         // that the next round (another split, or rank 0 alone) does the rest over the first
         // round's locked bands instead of leaving them denser than the rest
-        let round_goal = match goal {
+        let short = |g: Option<u64>, now: u64| match g {
             Some(g) if p > 1 && r == 0 && kind != SplitKind::Rank0 => {
-                Some(g + (tops_now.saturating_sub(g)) / 10)
+                Some(g + (now.saturating_sub(g)) / 10)
             }
             g => g,
         };
+        let round_goal = (short(goal, tops_now), short(a.vertices, vertices_now));
         let user = Keep {
             listed: &kept,
             labels: labels.as_deref(),
@@ -713,6 +739,7 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         max_error = max_error.max(comm::min_max(w, &[], &[out.errors.0]).1[0]);
         error_sum += comm::sum_f64(w, out.errors.1);
         let tops_after = comm::sum(w, out.owned_tops_after);
+        vertices_now = comm::sum(w, out.owned_vertices_after);
         let locked = comm::sum(w, out.locked);
         let user_kept = comm::sum(w, out.user_kept);
         let fixed = comm::sum(w, out.fixed);
@@ -733,7 +760,8 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
             || kind == SplitKind::Rank0
             || r + 1 >= a.max_rounds
             || (contractions == 0 && r >= 1 && next != SplitKind::Rank0)
-            || goal.is_some_and(|g| tops_after <= g);
+            || goal.is_some_and(|g| tops_after <= g)
+            || a.vertices.is_some_and(|g| vertices_now <= g);
         kind = next;
         let path = if last {
             target.clone()
@@ -763,6 +791,7 @@ pub fn rounds(w: &World, a: &SimplifyArgs, file: &Path) -> Result<Outcome, Failu
         written,
         contractions: total,
         goal,
+        goal_vertices: a.vertices,
         rows,
         labels_kept: labels,
         labels_available: cols

@@ -884,12 +884,15 @@ fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
                     .collect()
             })
             .collect();
+        // a vertex target: 60 % of the vertices
+        let half = (k.n_vertices() * 3 / 5).to_string();
         let mut modes = vec![
             (vec!["--mode", "homology"], false),
             (
                 vec!["--mode", "homology", "--keep-vertices", &keep_file],
                 false,
             ),
+            (vec!["--mode", "homology", "--vertices", &half], false),
         ];
         if qem {
             modes.push((vec!["--mode", "qem", "--ratio", "0.3"], true));
@@ -904,6 +907,12 @@ fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
             args.extend(m.iter().copied());
             let (code, _, err) = run(Command::new(&cli).args(&args), limit);
             assert_eq!(code, Some(0), "starplex simplify {name} {m:?}: {err}");
+            // a vertex target the single process reaches, the ranks reach too
+            let goal_v: Option<usize> = m
+                .iter()
+                .position(|&x| x == "--vertices")
+                .map(|i| m[i + 1].parse().unwrap());
+            let single_v = cells_of(&one).0.len() / k.ambient_dim();
             for np in ranks() {
                 for gather in ["2000000", "0"] {
                     if np == 1 && gather == "0" {
@@ -982,6 +991,14 @@ fn simplify_keeps_the_topology_and_one_rank_equals_the_single_process() {
                         || v["n_contractions"].as_u64() == Some(0)
                     {
                         failures.push(format!("{what}: nothing contracted: {v}"));
+                    }
+                    if let Some(g) = goal_v.filter(|&g| single_v <= g) {
+                        let got = cells_of(&out).0.len() / k.ambient_dim();
+                        if got > g || v["target_vertices"].as_u64() != Some(g as u64) {
+                            failures.push(format!(
+                                "{what}: {got} vertices for a target of {g} (single process {single_v}): {v}"
+                            ));
+                        }
                     }
                     if cells[1].as_u64() != Some(cells_of(&out).1.len() as u64) {
                         failures.push(format!(
