@@ -22,7 +22,7 @@ use std::sync::Arc;
 
 use fixedbitset::FixedBitSet;
 use rustc_hash::FxHashMap;
-use starplex::attr::{AttrTarget, AttrValues, Attribute, Attributes};
+use starplex::attr::{AttrTarget, Attributes};
 use starplex::buf::Buf;
 use starplex::cell::CellKind;
 use starplex::complex::IndexedComplex;
@@ -127,31 +127,18 @@ impl Spb {
         let mut a = Attributes::default();
         for e in &self.h.attrs {
             let c = e.components as usize;
-            let items: Vec<u64> = match e.target {
-                AttrTarget::Vertex => vertices.iter().map(|&v| u64::from(v)).collect(),
-                AttrTarget::Cell => cells.iter().map(|&v| u64::from(v)).collect(),
+            let items = match e.target {
+                AttrTarget::Vertex => vertices,
+                AttrTarget::Cell => cells,
             };
-            let word = |i: u64, j: usize| {
+            let word = |i: u32, j: usize| {
                 let at = e.offset as usize + (i as usize * c + j) * 8;
-                let mut b = [0u8; 8];
-                b.copy_from_slice(&self.map[at..at + 8]);
-                b
+                &self.map[at..at + 8]
             };
-            let words = items.iter().flat_map(|&i| (0..c).map(move |j| word(i, j)));
-            let values = if e.int {
-                AttrValues::Int(words.map(i64::from_le_bytes).collect())
-            } else {
-                AttrValues::Float(words.map(f64::from_le_bytes).collect())
-            };
-            let col = Attribute {
-                name: e.name.clone(),
-                components: c,
-                values,
-            };
-            match e.target {
-                AttrTarget::Vertex => a.vertex.push(col),
-                AttrTarget::Cell => a.cell.push(col),
-            }
+            e.push_column(
+                &mut a,
+                items.iter().flat_map(|&i| (0..c).map(move |j| word(i, j))),
+            );
         }
         a
     }

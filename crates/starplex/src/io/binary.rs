@@ -154,6 +154,47 @@ pub struct SpbAttr {
     pub offset: u64,
 }
 
+impl SpbAttr {
+    /// Adds this column to `a` (to its vertex or cell columns) with the given values: 8-byte
+    /// little-endian numbers, items × components of them.
+    ///
+    /// ```
+    /// use starplex::attr::{AttrTarget, Attributes};
+    /// use starplex::io::binary::SpbAttr;
+    /// let e = SpbAttr { name: "t".into(), target: AttrTarget::Cell, int: true, components: 1, offset: 0 };
+    /// let mut a = Attributes::default();
+    /// let bytes: Vec<u8> = [7i64, -1].iter().flat_map(|x| x.to_le_bytes()).collect();
+    /// e.push_column(&mut a, bytes.chunks_exact(8));
+    /// assert_eq!(a.cell[0].values.get_f64(1), -1.0);
+    /// ```
+    pub fn push_column<'a>(
+        &self,
+        a: &mut crate::attr::Attributes,
+        words: impl Iterator<Item = &'a [u8]>,
+    ) {
+        use crate::attr::{AttrValues, Attribute};
+        let words = words.map(|c| {
+            let mut b = [0u8; 8];
+            b.copy_from_slice(&c[..8]);
+            b
+        });
+        let values = if self.int {
+            AttrValues::Int(words.map(i64::from_le_bytes).collect())
+        } else {
+            AttrValues::Float(words.map(f64::from_le_bytes).collect())
+        };
+        let col = Attribute {
+            name: self.name.clone(),
+            components: self.components as usize,
+            values,
+        };
+        match self.target {
+            AttrTarget::Vertex => a.vertex.push(col),
+            AttrTarget::Cell => a.cell.push(col),
+        }
+    }
+}
+
 /// The parsed header of a `.spb` file (what [`read_header`] returns).
 ///
 /// ```

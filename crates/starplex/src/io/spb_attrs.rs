@@ -265,25 +265,7 @@ pub(super) fn load(
         } as usize
             * e.components as usize;
         let raw = &bytes[e.offset as usize..e.offset as usize + n * 8];
-        let words = raw.chunks_exact(8).map(|c| {
-            let mut b = [0u8; 8];
-            b.copy_from_slice(c);
-            b
-        });
-        let values = if e.int {
-            AttrValues::Int(words.map(i64::from_le_bytes).collect())
-        } else {
-            AttrValues::Float(words.map(f64::from_le_bytes).collect())
-        };
-        let col = Attribute {
-            name: e.name.clone(),
-            components: e.components as usize,
-            values,
-        };
-        match e.target {
-            AttrTarget::Vertex => a.vertex.push(col),
-            AttrTarget::Cell => a.cell.push(col),
-        }
+        e.push_column(&mut a, raw.chunks_exact(8));
     }
     a.check(nv as usize, nc as usize).map_err(|x| {
         IoError::new(path, crate::complex::ComplexError::from(x)).at(Location::Byte(table_at))
