@@ -865,10 +865,15 @@ fn run_simplify(
 
 /// Betti numbers without their trailing zeros (a simplified complex can lose dimensions).
 fn trimmed(b: &serde_json::Value) -> Vec<u64> {
-    let mut v: Vec<u64> = b
-        .as_array()
-        .map(|a| a.iter().filter_map(|x| x.as_u64()).collect())
-        .unwrap_or_default();
+    trim_zeros(
+        b.as_array()
+            .map(|a| a.iter().filter_map(|x| x.as_u64()).collect())
+            .unwrap_or_default(),
+    )
+}
+
+/// `v` without its trailing zeros.
+fn trim_zeros(mut v: Vec<u64>) -> Vec<u64> {
     while v.last() == Some(&0) {
         v.pop();
     }
@@ -1080,11 +1085,7 @@ fn region_betti(k: &starplex::complex::IndexedComplex, labels: &[i64], l: i64) -
     let r =
         starplex::complex::IndexedComplex::from_parts(k.ambient_dim(), Buf::Owned(coords), blocks)
             .expect("a region is a complex");
-    let mut b = starplex::algo::homology::betti_z2(&r).expect("homology of a region");
-    while b.last() == Some(&0) {
-        b.pop();
-    }
-    b
+    trim_zeros(starplex::algo::homology::betti_z2(&r).expect("homology of a region"))
 }
 
 /// `simplify` carries the input's attribute columns: on the triangle and tetrahedral elephants
