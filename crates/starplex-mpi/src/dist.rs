@@ -389,6 +389,64 @@ impl Local {
     }
 }
 
+/// The owners of the vertices of a slice of cells, each computed once ([`Split::owner`]).
+struct OwnerCache {
+    /// First vertex id of the table.
+    first: u32,
+    /// Owner + 1 of each vertex of the range (0: not computed yet); empty without a table.
+    table: Vec<u16>,
+}
+
+impl OwnerCache {
+    /// Entries at most (64 MB).
+    const MAX: u64 = 1 << 25;
+
+    /// A table over the vertex ids of the cells `[c0, c1)` when their range has at most
+    /// [`OwnerCache::MAX`] ids and the ranks fit; none otherwise (owners are then computed at
+    /// each use). Vertex ids out of range are left to the walk, which reports them.
+    fn new(f: &Spb, c0: u64, c1: u64, p: usize) -> OwnerCache {
+        let none = OwnerCache {
+            first: 0,
+            table: Vec::new(),
+        };
+        if c0 >= c1 || p >= u16::MAX as usize {
+            return none;
+        }
+        let (mut lo, mut hi) = (u32::MAX, 0u32);
+        let (b0, b1) = (f.block_of(c0), f.block_of(c1 - 1));
+        for b in b0..=b1 {
+            let lo_b = c0.max(f.starts[b]) - f.starts[b];
+            let hi_b = c1.min(f.starts[b + 1]) - f.starts[b];
+            for &v in f.block_cells(b, lo_b, hi_b) {
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+        let hi = hi.min(f.h.n_vertices.saturating_sub(1) as u32);
+        if lo > hi || u64::from(hi - lo) + 1 > Self::MAX {
+            return none;
+        }
+        OwnerCache {
+            first: lo,
+            table: vec![0; (hi - lo) as usize + 1],
+        }
+    }
+
+    /// The owner of vertex `v` (in range of the file).
+    fn get(&mut self, s: &Split, f: &Spb, v: u32) -> usize {
+        let i = v.wrapping_sub(self.first) as usize;
+        match self.table.get_mut(i) {
+            Some(slot) if v >= self.first => {
+                if *slot == 0 {
+                    *slot = s.owner(v, f.point(v)) as u16 + 1;
+                }
+                usize::from(*slot - 1)
+            }
+            _ => s.owner(v, f.point(v)),
+        }
+    }
+}
+
 /// Called with (destination rank, global cell id, block, vertices) for each cell sent.
 type CellVisit<'a> = dyn FnMut(usize, u64, usize, &[u32]) + 'a;
 
@@ -420,6 +478,10 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
     // cells: [id, block, vertices...] to the owner of each vertex
     let (c0, c1) = slice(f.h.n_cells, rank, p);
     let mut ranks: Vec<usize> = Vec::with_capacity(8);
+    // the owner of every vertex the slice's cells use, computed once (the cells are walked once
+    // to count and once per round, and each vertex is in several cells): a table over the range
+    // of their ids, which is narrow for a file in space order; none when it is too wide
+    let mut owners = OwnerCache::new(f, c0, c1, p);
     let mut walk = |lo_c: u64, hi_c: u64, visit: &mut CellVisit| -> Result<(), String> {
         if lo_c >= hi_c {
             return Ok(());
@@ -443,7 +505,7 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
                     return Err(format!("{}: cell {cid} repeats a vertex: {cv:?}", f.path));
                 }
                 ranks.clear();
-                ranks.extend(cv.iter().map(|&x| s.owner(x, f.point(x))));
+                ranks.extend(cv.iter().map(|&x| owners.get(s, f, x)));
                 ranks.sort_unstable();
                 ranks.dedup();
                 for &r in &ranks {
