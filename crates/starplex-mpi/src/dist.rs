@@ -152,6 +152,23 @@ impl Spb {
         bytemuck::cast_slice(&self.map[s..e])
     }
 
+    /// The cells `[lo, hi)` (global ids), block by block: (block, global id of its first cell
+    /// here, flat vertex array).
+    fn cells_in(&self, lo: u64, hi: u64) -> impl Iterator<Item = (usize, u64, &[u32])> + '_ {
+        let blocks = if lo < hi {
+            self.block_of(lo)..self.block_of(hi - 1) + 1
+        } else {
+            0..0
+        };
+        blocks.map(move |b| {
+            let (l, h) = (
+                lo.max(self.starts[b]) - self.starts[b],
+                hi.min(self.starts[b + 1]) - self.starts[b],
+            );
+            (b, self.starts[b] + l, self.block_cells(b, l, h))
+        })
+    }
+
     /// The block holding global cell `c`.
     fn block_of(&self, c: u64) -> usize {
         self.starts.partition_point(|&s| s <= c) - 1
@@ -413,11 +430,8 @@ impl OwnerCache {
             return none;
         }
         let (mut lo, mut hi) = (u32::MAX, 0u32);
-        let (b0, b1) = (f.block_of(c0), f.block_of(c1 - 1));
-        for b in b0..=b1 {
-            let lo_b = c0.max(f.starts[b]) - f.starts[b];
-            let hi_b = c1.min(f.starts[b + 1]) - f.starts[b];
-            for &v in f.block_cells(b, lo_b, hi_b) {
+        for (_, _, verts) in f.cells_in(c0, c1) {
+            for &v in verts {
                 lo = lo.min(v);
                 hi = hi.max(v);
             }
@@ -483,18 +497,10 @@ pub fn distribute(w: &World, f: &Spb, s: &Split) -> Result<Local, Failure> {
     // of their ids, which is narrow for a file in space order; none when it is too wide
     let mut owners = OwnerCache::new(f, c0, c1, p);
     let mut walk = |lo_c: u64, hi_c: u64, visit: &mut CellVisit| -> Result<(), String> {
-        if lo_c >= hi_c {
-            return Ok(());
-        }
-        let (b0, b1) = (f.block_of(lo_c), f.block_of(hi_c - 1));
-        for b in b0..=b1 {
-            let (kind, _, _) = f.h.blocks[b];
-            let a = kind.n_vertices();
-            let lo = lo_c.max(f.starts[b]) - f.starts[b];
-            let hi = hi_c.min(f.starts[b + 1]) - f.starts[b];
-            let verts = f.block_cells(b, lo, hi);
+        for (b, first, verts) in f.cells_in(lo_c, hi_c) {
+            let a = f.h.blocks[b].0.n_vertices();
             for (i, cv) in verts.chunks_exact(a).enumerate() {
-                let cid = f.starts[b] + lo + i as u64;
+                let cid = first + i as u64;
                 if let Some(&x) = cv.iter().find(|&&x| x as u64 >= nv) {
                     return Err(format!(
                         "{}: cell {cid} has vertex {x}, but the file has {nv} vertices",

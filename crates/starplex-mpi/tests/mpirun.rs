@@ -1602,27 +1602,12 @@ fn validate_check_and_fail_on_exit_as_the_single_process() {
 /// and so does a budget that fits.
 #[test]
 fn homology_refuses_an_interface_over_the_face_budget() {
-    use starplex::cell::CellKind;
-    use starplex::complex::{BuildOptions, ComplexBuilder};
     if ready().is_none() {
         return;
     }
     let tmp = std::env::temp_dir().join(format!("starplex-mpi-budget-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    let mut b = ComplexBuilder::new(3).unwrap();
-    for i in 0..22 {
-        b.push_vertex(&[i as f64, (i * i % 7) as f64, 0.0]).unwrap();
-    }
-    for i in 0..11 {
-        b.push_cell(CellKind::Simplex(11), &(i..i + 12).collect::<Vec<u32>>())
-            .unwrap();
-    }
-    let k = b.build(&BuildOptions::default()).unwrap().0;
-    let spb = tmp.join("line.spb");
-    let mut bytes = Vec::new();
-    starplex::io::binary::write(&mut bytes, &k).unwrap();
-    std::fs::write(&spb, &bytes).unwrap();
-    let spb = spb.to_string_lossy().into_owned();
+    let spb = line_of_simplices(&tmp.join("line.spb"), 11, 12);
     let limit = Duration::from_secs(60);
     let (code, _, err) = run(
         &mut mpi(2, &["homology", &spb, "--json", "--max-faces", "1000"]),
@@ -1687,30 +1672,38 @@ fn the_cell_shuffle_in_small_rounds_changes_nothing() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `n` simplices of `arity` vertices along a line (cell `i` has the vertices `i..i + arity`, on
+/// `n + arity - 1` vertices in 3D), written as `.spb` at `path` (returned).
+fn line_of_simplices(path: &Path, n: u32, arity: u32) -> String {
+    use starplex::cell::CellKind;
+    use starplex::complex::{BuildOptions, ComplexBuilder};
+    let mut b = ComplexBuilder::new(3).unwrap();
+    for i in 0..n + arity - 1 {
+        b.push_vertex(&[i as f64, (i * i % 7) as f64, 0.0]).unwrap();
+    }
+    for i in 0..n {
+        b.push_cell(
+            CellKind::Simplex((arity - 1) as u8),
+            &(i..i + arity).collect::<Vec<u32>>(),
+        )
+        .unwrap();
+    }
+    let k = b.build(&BuildOptions::default()).unwrap().0;
+    let mut bytes = Vec::new();
+    starplex::io::binary::write(&mut bytes, &k).unwrap();
+    std::fs::write(path, &bytes).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
 /// Fifteen 29-simplices along a line, split over 2-3 ranks: the cells that span ranks have
 /// ~2^30 interface faces, so `homology` without `--method` contracts instead of listing them
 /// (and says so); the Betti numbers are those of the single process.
 #[test]
 fn homology_of_high_dimensional_cells_falls_back_to_contraction() {
-    use starplex::cell::CellKind;
-    use starplex::complex::{BuildOptions, ComplexBuilder};
     let Some(cli) = ready() else { return };
     let tmp = std::env::temp_dir().join(format!("starplex-mpi-auto-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    let mut b = ComplexBuilder::new(3).unwrap();
-    for i in 0..44 {
-        b.push_vertex(&[i as f64, (i * i % 7) as f64, 0.0]).unwrap();
-    }
-    for i in 0..15 {
-        b.push_cell(CellKind::Simplex(29), &(i..i + 30).collect::<Vec<u32>>())
-            .unwrap();
-    }
-    let k = b.build(&BuildOptions::default()).unwrap().0;
-    let spb = tmp.join("line30.spb");
-    let mut bytes = Vec::new();
-    starplex::io::binary::write(&mut bytes, &k).unwrap();
-    std::fs::write(&spb, &bytes).unwrap();
-    let spb = spb.to_string_lossy().into_owned();
+    let spb = line_of_simplices(&tmp.join("line30.spb"), 15, 30);
     let limit = Duration::from_secs(120);
     let (code, out, err) = run(
         Command::new(&cli).args(["--quiet", "homology", &spb, "--json"]),

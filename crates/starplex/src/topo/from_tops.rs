@@ -216,21 +216,29 @@ pub fn star<S: TopCells + VertexStar + ?Sized>(
     let (s, tops) = star_tops_within(st, s, budget)?;
     let mut set = SimplexSet::default();
     set.insert(&s);
-    let mut buf = Vec::new();
     let mut face = Vec::new();
-    for t in &tops {
-        let rest: Vec<VertexId> = t.iter().copied().filter(|v| !s.contains(v)).collect();
-        for k in 1..=rest.len() {
-            for_each_subset(&rest, k, &mut buf, &mut |sub| {
-                face.clear();
-                face.extend_from_slice(&s);
-                face.extend_from_slice(sub);
-                set.insert(&face);
-            });
-        }
-    }
+    for_each_rest_subset(&s, &tops, |sub| {
+        face.clear();
+        face.extend_from_slice(&s);
+        face.extend_from_slice(sub);
+        set.insert(&face);
+    });
     set.normalize();
     Ok(set)
+}
+
+/// Calls `f` with every nonempty subset of `t \ s` for each top cell `t` of `tops` (`s`
+/// sorted): the faces of the star that miss `s`, which the link is and the star adds `s` to.
+fn for_each_rest_subset(s: &[VertexId], tops: &[Vec<VertexId>], mut f: impl FnMut(&[VertexId])) {
+    let mut buf = Vec::new();
+    let mut rest: Vec<VertexId> = Vec::new();
+    for t in tops {
+        rest.clear();
+        rest.extend(t.iter().copied().filter(|v| s.binary_search(v).is_err()));
+        for k in 1..=rest.len() {
+            for_each_subset(&rest, k, &mut buf, &mut f);
+        }
+    }
 }
 
 /// The link of `s` from the top cells around it: every nonempty subset of `t \ s` for each top
@@ -263,15 +271,7 @@ pub fn link<S: TopCells + VertexStar + ?Sized>(
 ) -> Result<SimplexSet, QueryError> {
     let (s, tops) = star_tops_within(st, s, budget)?;
     let mut set = SimplexSet::default();
-    let mut buf = Vec::new();
-    let mut rest: Vec<VertexId> = Vec::new();
-    for t in &tops {
-        rest.clear();
-        rest.extend(t.iter().copied().filter(|v| s.binary_search(v).is_err()));
-        for k in 1..=rest.len() {
-            for_each_subset(&rest, k, &mut buf, &mut |sub| set.insert(sub));
-        }
-    }
+    for_each_rest_subset(&s, &tops, |sub| set.insert(sub));
     set.normalize();
     Ok(set)
 }

@@ -630,12 +630,7 @@ impl SimplexSet {
                     t.swap(0, 1);
                 }
             }
-            3 => {
-                let (a, b, c) = (t[0].min(t[1]), t[0].max(t[1]), t[2]);
-                let (b, c) = (b.min(c), b.max(c));
-                let (a, b) = (a.min(b), a.max(b));
-                t.copy_from_slice(&[a, b, c]);
-            }
+            3 => t.copy_from_slice(&sort3([t[0], t[1], t[2]])),
             4 => t.copy_from_slice(&sort4([t[0], t[1], t[2], t[3]])),
             _ => {
                 if !t.is_sorted() {
@@ -847,7 +842,7 @@ fn sort_fixed<T: Ord + Copy, const K: usize>(v: &mut Vec<T>) {
 /// assert_eq!(starplex::topo::sort3([7, 2, 5]), [2, 5, 7]);
 /// ```
 #[inline]
-pub fn sort3([a, b, c]: [u32; 3]) -> [u32; 3] {
+pub fn sort3<T: Ord + Copy>([a, b, c]: [T; 3]) -> [T; 3] {
     let (a, b) = (a.min(b), a.max(b));
     let (b, c) = (b.min(c), b.max(c));
     let (a, b) = (a.min(b), a.max(b));
