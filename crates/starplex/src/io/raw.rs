@@ -1,6 +1,8 @@
 //! Bulk reading of the binary arrays in binary gmsh and legacy VTK files: fixed-size records
-//! read in chunks of a few MB (never one allocation sized by a declared count), decoded with
-//! per-element byte swaps the compiler vectorises.
+//! read in chunks of a few MB, decoded with per-element byte swaps the compiler vectorises.
+//! A declared count never sizes a buffer that is written before the values arrive: an output
+//! array may be reserved for it with `try_reserve` (virtual memory, touched only as values are
+//! read; a refused reservation just grows the array as they come).
 use std::io::BufRead;
 
 use super::words::Words;
@@ -14,7 +16,7 @@ pub(crate) enum Endian {
 }
 
 /// Bytes per chunk (rounded down to whole records).
-const CHUNK: usize = 8 << 20;
+pub(crate) const CHUNK: usize = 8 << 20;
 
 /// Reads `n` records of `rec` bytes, calling `f(chunk, index_of_first_record)` on whole records.
 pub(crate) fn read_records<R: BufRead>(
@@ -22,12 +24,25 @@ pub(crate) fn read_records<R: BufRead>(
     n: u64,
     rec: usize,
     what: &str,
+    f: impl FnMut(&mut Words<'_, R>, &[u8], u64) -> Result<(), IoError>,
+) -> Result<(), IoError> {
+    read_records_in(w, n, rec, CHUNK, what, f)
+}
+
+/// [`read_records`] in chunks of about `chunk` bytes (unit tests use tiny ones to cross chunk
+/// boundaries on small inputs).
+pub(crate) fn read_records_in<R: BufRead>(
+    w: &mut Words<'_, R>,
+    n: u64,
+    rec: usize,
+    chunk: usize,
+    what: &str,
     mut f: impl FnMut(&mut Words<'_, R>, &[u8], u64) -> Result<(), IoError>,
 ) -> Result<(), IoError> {
     if n == 0 || rec == 0 {
         return Ok(());
     }
-    let per = (CHUNK / rec).max(1) as u64;
+    let per = (chunk / rec).max(1) as u64;
     let first_len = n.min(per) as usize * rec;
     let mut buf = vec![0u8; first_len];
     let mut done = 0u64;

@@ -42,7 +42,9 @@ use std::io::{BufRead, Write};
 use std::path::Path;
 
 use super::faces::push_build_notes;
-use super::raw::{get_i32, get_i64, get_u32, push_f32s, push_f64s, read_records, Endian};
+use super::raw::{
+    get_i32, get_i64, get_u32, push_f32s, push_f64s, read_records, read_records_in, Endian, CHUNK,
+};
 use super::text::write_f64;
 use super::words::Words;
 use super::{Format, IoError, IoErrorKind, Location, ReadOptions, ReadResult};
@@ -827,7 +829,7 @@ pub fn read_from(r: impl BufRead, path: &Path, opts: &ReadOptions) -> Result<Rea
                 s.poly_cells(&mut w, &h, &kw)?;
             }
             b"CELLS" if !h.poly => s.cells(&mut w, &h)?,
-            b"CELL_TYPES" if !h.poly => s.cell_types(&mut w, path, h.binary)?,
+            b"CELL_TYPES" if !h.poly => s.cell_types(&mut w, h.binary)?,
             b"POINT_DATA" | b"CELL_DATA" => s.data(&mut w, &h, &word, kw == b"POINT_DATA")?,
             // dataset-level field data (time values, ...): not per vertex or cell
             b"FIELD" => read_field(&mut w, None, h.binary, &mut Vec::new(), &mut Vec::new())?,
@@ -929,6 +931,9 @@ struct Sections {
     /// UNSTRUCTURED_GRID cells: vertex lists flat, with the end of each cell.
     conn: Vec<u32>,
     ends: Vec<u64>,
+    /// Every cell of CELLS has this many points (read by the uniform fast path): `ends` is
+    /// left empty until a check needs it ([`Sections::cell_ends`]).
+    uniform: Option<u64>,
     /// The line of the CELLS section (for the error of a missing CELL_TYPES).
     cells_line: u64,
     have_cells: bool,
@@ -992,7 +997,9 @@ impl Sections {
             return Err(w.err(format!("a second {name} section")));
         }
         let (mut c, mut e) = (Vec::new(), Vec::new());
-        cell_lists(w, h, name, self.nv, &self.build, &mut c, &mut e)?;
+        if let Some(k) = cell_lists(w, h, name, self.nv, &self.build, &mut c, &mut e)? {
+            e = uniform_ends(k, c.len());
+        }
         self.sections[i] = Some((c, e));
         Ok(())
     }
@@ -1010,7 +1017,7 @@ impl Sections {
             self.cells_line = w.line();
         }
         let build = &self.build;
-        cell_lists(
+        self.uniform = cell_lists(
             w,
             h,
             "CELLS",
@@ -1018,16 +1025,28 @@ impl Sections {
             build,
             &mut self.conn,
             &mut self.ends,
-        )
+        )?;
+        Ok(())
+    }
+
+    /// The number of UNSTRUCTURED_GRID cells read.
+    fn n_cells(&self) -> usize {
+        match self.uniform {
+            Some(k) => self.conn.len() / k as usize,
+            None => self.ends.len(),
+        }
+    }
+
+    /// The cells' ends, made from the uniform size if the fast path left them out.
+    fn cell_ends(&mut self) -> &[u64] {
+        if let Some(k) = self.uniform.take() {
+            self.ends = uniform_ends(k, self.conn.len());
+        }
+        &self.ends
     }
 
     /// The CELL_TYPES section of an UNSTRUCTURED_GRID, in either encoding.
-    fn cell_types(
-        &mut self,
-        w: &mut Words<'_, impl BufRead>,
-        path: &Path,
-        binary: bool,
-    ) -> Result<(), IoError> {
+    fn cell_types(&mut self, w: &mut Words<'_, impl BufRead>, binary: bool) -> Result<(), IoError> {
         if self.types.is_some() {
             return Err(w.err("a second CELL_TYPES section"));
         }
@@ -1035,49 +1054,26 @@ impl Sections {
         if !self.have_cells {
             return Err(w.err("CELL_TYPES before CELLS"));
         }
-        if n != self.ends.len() as u64 {
+        if n != self.n_cells() as u64 {
             return Err(w.err(format!(
                 "CELL_TYPES counts {n} cells but CELLS has {}",
-                self.ends.len()
+                self.n_cells()
             )));
         }
-        let mut kinds = Vec::with_capacity(self.ends.len());
-        let mut start = 0u64;
-        if binary {
+        let kinds = if binary {
             w.rest_of_line()?;
-            let at = w.offset();
-            let mut i = 0usize;
-            let ends = &self.ends;
-            // the type and point count of the last cell checked (most cells repeat them)
-            let mut last: Option<(u64, u64, u8)> = None;
-            read_records(w, n, 4, "the cell types", |_, c, _| {
-                for x in c.chunks_exact(4) {
-                    let ty = get_u32(x, Endian::Big) as u64;
-                    let end = ends[i];
-                    let kind = match last {
-                        Some((t, k, kind)) if t == ty && k == end - start => kind,
-                        _ => {
-                            let kind = cell_type(i, ty, end - start).map_err(|m| {
-                                IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), m)
-                            })?;
-                            last = Some((ty, end - start, kind));
-                            kind
-                        }
-                    };
-                    start = end;
-                    kinds.push(kind);
-                    i += 1;
-                }
-                Ok(())
-            })?;
+            read_types_bin(w, n, self.uniform, &self.ends, CHUNK)?
         } else {
+            self.cell_ends();
+            let (mut kinds, mut start) = (Vec::with_capacity(self.ends.len()), 0u64);
             for (i, &end) in self.ends.iter().enumerate() {
                 let ty = w.u64("a cell type")?;
                 let kind = cell_type(i, ty, end - start).map_err(|m| w.err(m))?;
                 start = end;
                 kinds.push(kind);
             }
-        }
+            kinds
+        };
         self.types = Some(kinds);
         Ok(())
     }
@@ -1098,7 +1094,7 @@ impl Sections {
                 .map(|(_, e)| e.len() as u64)
                 .sum()
         } else {
-            self.ends.len() as u64
+            self.n_cells() as u64
         };
         let (cols, n_want) = if points {
             (&mut self.point_data, self.nv as u64)
@@ -1137,7 +1133,22 @@ impl Sections {
         let mut stats = CellStats::default();
         let mut origin: Vec<u32> = Vec::new();
         let mut one_to_one = true;
-        if let Some(kinds) = &self.types {
+        // cells of one size (the uniform fast path) and one linear type: one block
+        let one_kind = match (self.uniform, &self.types) {
+            (Some(k), Some(kinds)) => kinds
+                .first()
+                .filter(|&&t| kinds.iter().all(|&u| u == t))
+                .and_then(|&t| kind_of_vtk_type(t as u64))
+                .filter(|kd| kd.n_vertices() as u64 == k && *kd != CellKind::Simplex(0)),
+            _ => None,
+        };
+        if let Some(kind) = one_kind {
+            b.push_cells(kind, std::mem::take(&mut self.conn))
+                .map_err(|e| IoError::new(path, e))?;
+        } else if self.types.is_some() {
+            self.cell_ends();
+        }
+        if let (None, Some(kinds)) = (one_kind, &self.types) {
             let mut start = 0usize;
             let mut i = 0usize;
             while i < kinds.len() {
@@ -1219,7 +1230,9 @@ impl Sections {
 }
 
 /// The counts line and cell lists of a CELLS or POLYDATA cell section (`name`), in the layout
-/// of the file's version and encoding, appended to `conn` and `ends`.
+/// of the file's version and encoding, appended to `conn` and `ends`; or, when both were empty
+/// and every cell has the same number k of points, `Some(k)` with the vertices in `conn` and
+/// `ends` left empty (see [`uniform_ends`]).
 fn cell_lists(
     w: &mut Words<'_, impl BufRead>,
     h: &Header,
@@ -1228,14 +1241,14 @@ fn cell_lists(
     build: &BuildOptions,
     conn: &mut Vec<u32>,
     ends: &mut Vec<u64>,
-) -> Result<(), IoError> {
+) -> Result<Option<u64>, IoError> {
     let a = w.u64("the cell count")?;
     let size = w.u64("the cell list size")?;
     if h.binary {
         // the binary data may start with any byte: the layout follows the version
         if h.major >= 5 {
             w.keyword("OFFSETS")?;
-            read_offsets_bin(w, a, size, nv, build, conn, ends)
+            read_offsets_bin(w, a, size, nv, build, conn, ends).map(|()| None)
         } else {
             w.rest_of_line()?;
             read_classic_bin(w, a, size, nv, build, conn, ends)
@@ -1243,7 +1256,7 @@ fn cell_lists(
     } else {
         let next = w.expect("the cells")?;
         if next.eq_ignore_ascii_case(b"OFFSETS") {
-            read_offsets_layout(w, a, size, nv, build, conn, ends)
+            read_offsets_layout(w, a, size, nv, build, conn, ends).map(|()| None)
         } else {
             w.unread();
             if h.major >= 5 {
@@ -1252,7 +1265,7 @@ fn cell_lists(
                     h.major
                 )));
             }
-            read_classic_layout(w, a, size, nv, build, conn, ends)
+            read_classic_layout(w, a, size, nv, build, conn, ends).map(|()| None)
         }
     }
 }
@@ -1306,26 +1319,39 @@ fn read_points_bin(
         )));
     }
     w.rest_of_line()?;
-    let path = w.path();
-    let mut p: Vec<f64> = Vec::with_capacity(3 * 4096);
-    read_records(w, n as u64, 3 * width, "the points", |w, c, _| {
-        p.clear();
+    if n >= u32::MAX as usize {
+        return Err(w.err(format!(
+            "point count {n} exceeds the 32-bit id limit of starplex"
+        )));
+    }
+    let (path, at, first) = (w.path(), w.offset(), b.n_vertices());
+    // decoded into one array (room for all of them when the allocator grants it) and moved
+    // into the builder at once: no per-buffer array and no second copy
+    let mut p: Vec<f64> = Vec::new();
+    let _ = p.try_reserve_exact(3 * n);
+    read_records(w, n as u64, 3 * width, "the points", |_, c, _| {
+        use rayon::prelude::*;
         if width == 8 {
-            push_f64s(c, Endian::Big, &mut p);
+            p.par_extend(
+                c.par_chunks_exact(8)
+                    .map(|x| f64::from_be_bytes(x.try_into().expect("8 bytes"))),
+            );
         } else {
-            push_f32s(c, Endian::Big, &mut p);
+            p.par_extend(
+                c.par_chunks_exact(4)
+                    .map(|x| f32::from_be_bytes(x.try_into().expect("4 bytes")) as f64),
+            );
         }
-        let start = w.offset() - c.len() as u64;
-        let first = b.n_vertices();
-        b.push_vertices(std::mem::take(&mut p)).map_err(|e| {
-            let at = match e {
-                ComplexError::NonFiniteCoordinate { vertex, .. } => vertex as usize - first,
-                _ => 0,
-            };
-            IoError::new(path, e).at(Location::Byte(start + (3 * width * at) as u64))
-        })?;
         Ok(())
-    })
+    })?;
+    b.push_vertices(p).map_err(|e| {
+        let v = match e {
+            ComplexError::NonFiniteCoordinate { vertex, .. } => vertex as usize - first,
+            _ => 0,
+        };
+        IoError::new(path, e).at(Location::Byte(at + (3 * width * v) as u64))
+    })?;
+    Ok(())
 }
 
 /// `n` big-endian integers of `width` bytes.
@@ -1359,7 +1385,7 @@ fn read_classic_bin(
     build: &BuildOptions,
     conn: &mut Vec<u32>,
     ends: &mut Vec<u64>,
-) -> Result<(), IoError> {
+) -> Result<Option<u64>, IoError> {
     if n >= u32::MAX as u64 {
         return Err(w.err(format!(
             "cell count {n} exceeds the 32-bit id limit of starplex"
@@ -1367,17 +1393,45 @@ fn read_classic_bin(
     }
     let at = w.offset();
     let mut flat: Vec<u32> = Vec::new();
-    read_records(w, size, 4, "the cell list", |_, c, _| {
-        flat.extend(c.chunks_exact(4).map(|x| get_u32(x, Endian::Big)));
-        Ok(())
-    })?;
+    if n > 0 && size > 0 && conn.is_empty() && ends.is_empty() {
+        let mut head = [0u8; 4];
+        w.read_raw(&mut head, "the cell list")?;
+        let k = u32::from_be_bytes(head);
+        let uniform = match k {
+            2 => read_uniform_cells::<2>(w, n, size, nv, build, CHUNK)?,
+            3 => read_uniform_cells::<3>(w, n, size, nv, build, CHUNK)?,
+            4 => read_uniform_cells::<4>(w, n, size, nv, build, CHUNK)?,
+            5 => read_uniform_cells::<5>(w, n, size, nv, build, CHUNK)?,
+            6 => read_uniform_cells::<6>(w, n, size, nv, build, CHUNK)?,
+            8 => read_uniform_cells::<8>(w, n, size, nv, build, CHUNK)?,
+            _ => Uniform::Not,
+        };
+        match uniform {
+            Uniform::Cells(cells) => {
+                *conn = cells;
+                return Ok(Some(k as u64));
+            }
+            Uniform::Read(read) => flat = read,
+            Uniform::Not => flat.push(k),
+        }
+    }
+    read_records(
+        w,
+        size - flat.len() as u64,
+        4,
+        "the cell list",
+        |_, c, _| {
+            flat.extend(c.chunks_exact(4).map(|x| get_u32(x, Endian::Big)));
+            Ok(())
+        },
+    )?;
     if classic_cells_fast(&mut flat, n, nv, build, ends) {
         if conn.is_empty() {
             *conn = flat;
         } else {
             conn.extend_from_slice(&flat);
         }
-        return Ok(());
+        return Ok(None);
     }
     let flat: Vec<u64> = flat.iter().map(|&x| x as i32 as i64 as u64).collect();
     let path = w.path();
@@ -1425,7 +1479,157 @@ fn read_classic_bin(
             format!("CELLS says the cell list has {size} numbers, the {n} cells hold {i}"),
         ));
     }
-    Ok(())
+    Ok(None)
+}
+
+/// The binary CELL_TYPES body: `n` big-endian types, each checked against its cell's point
+/// count (`k` each when `uniform` is `Some(k)`, else from `ends`), read in chunks of `chunk`
+/// bytes. Runs of one type are checked once: after each new type the rest of the buffer is
+/// compared with it 64 bytes at a time, and a buffer that repeats it throughout costs that
+/// comparison only.
+fn read_types_bin(
+    w: &mut Words<'_, impl BufRead>,
+    n: u64,
+    uniform: Option<u64>,
+    ends: &[u64],
+    chunk: usize,
+) -> Result<Vec<u8>, IoError> {
+    let (path, at) = (w.path(), w.offset());
+    let mut kinds = Vec::new();
+    let _ = kinds.try_reserve_exact(n as usize);
+    let (mut i, mut start) = (0usize, 0u64);
+    // the type and point count of the last cell checked (most cells repeat them)
+    let mut last: Option<(u64, u64, u8)> = None;
+    let mut fresh = true;
+    read_records_in(w, n, 4, chunk, "the cell types", |_, c, _| {
+        let mut c = c;
+        while !c.is_empty() {
+            if let (Some(k), Some((t, lk, kind)), true) = (uniform, last, fresh) {
+                fresh = false;
+                let t: [u8; 64] = std::array::from_fn(|j| (t as u32).to_be_bytes()[j % 4]);
+                let whole = c.chunks_exact(64);
+                let rest = whole.remainder();
+                if lk == k && whole.into_iter().all(|x| x == t) && rest == &t[..rest.len()] {
+                    kinds.resize(kinds.len() + c.len() / 4, kind);
+                    i += c.len() / 4;
+                    start = i as u64 * k;
+                    return Ok(());
+                }
+            }
+            let ty = get_u32(c, Endian::Big) as u64;
+            let end = match uniform {
+                Some(k) => (i as u64 + 1) * k,
+                None => ends[i],
+            };
+            let kind = match last {
+                Some((t, k, kind)) if t == ty && k == end - start => kind,
+                _ => {
+                    let kind = cell_type(i, ty, end - start).map_err(|m| {
+                        IoError::parse(path, Some(Location::Byte(at + 4 * i as u64)), m)
+                    })?;
+                    last = Some((ty, end - start, kind));
+                    fresh = true;
+                    kind
+                }
+            };
+            start = end;
+            kinds.push(kind);
+            i += 1;
+            c = &c[4..];
+        }
+        Ok(())
+    })?;
+    Ok(kinds)
+}
+
+/// The ends of the cells of `len` vertex references, `k` each: `k, 2k, ..`.
+fn uniform_ends(k: u64, len: usize) -> Vec<u64> {
+    (1..=len as u64 / k).map(|c| c * k).collect()
+}
+
+/// What [`read_uniform_cells`] found.
+enum Uniform {
+    /// The list is not `n` cells of one size (nothing more was read).
+    Not,
+    /// The cells' vertices, every cell checked (sizes, range and, unless degenerate cells are
+    /// dropped, distinct vertices).
+    Cells(Vec<u32>),
+    /// A cell failed a check: the values read so far, the first count included, in file
+    /// order (the general path reads the rest and names the problem).
+    Read(Vec<u32>),
+}
+
+/// A binary classic cell list of `n` cells of `K` points (`size` = n (K + 1) values), its first
+/// count already read: the values are decoded, checked and compacted as each buffer (of about
+/// `chunk` bytes) arrives, in parallel, straight into the cells' vertex array (one pass over
+/// the list instead of a decode, a check and a compaction).
+fn read_uniform_cells<const K: usize>(
+    w: &mut Words<'_, impl BufRead>,
+    n: u64,
+    size: u64,
+    nv: usize,
+    build: &BuildOptions,
+    chunk: usize,
+) -> Result<Uniform, IoError>
+where
+    [u32; K]: bytemuck::Pod,
+{
+    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    if n.checked_mul(K as u64 + 1) != Some(size) {
+        return Ok(Uniform::Not);
+    }
+    let (drop, nvu) = (build.drop_degenerate, nv.min(u32::MAX as usize) as u32);
+    // records `v_0 .. v_{K-1} k'`: a cell's vertices and the next cell's count (none after
+    // the last cell)
+    let rec = 4 * (K + 1);
+    let per = (chunk / rec).max(1) as u64;
+    let mut cells: Vec<[u32; K]> = Vec::new();
+    let _ = cells.try_reserve_exact(n as usize);
+    let mut buf = vec![0u8; (n.min(per) as usize) * rec];
+    let mut done = 0u64;
+    while done < n {
+        let m = (n - done).min(per) as usize;
+        // the last cell has no count after it
+        let len = m * rec - if done + m as u64 == n { 4 } else { 0 };
+        let b = &mut buf[..len];
+        w.read_raw(b, "the cell list")?;
+        let bad = AtomicBool::new(false);
+        cells.par_extend(b.par_chunks(rec).map(|r| {
+            let mut v = [0u32; K];
+            let mut wrong = false;
+            for (x, c) in v.iter_mut().zip(r.chunks_exact(4)) {
+                *x = u32::from_be_bytes([c[0], c[1], c[2], c[3]]);
+                wrong |= *x >= nvu;
+            }
+            if r.len() == rec {
+                wrong |= r[rec - 4..] != (K as u32).to_be_bytes();
+            }
+            for a in 1..K {
+                for c in 0..a {
+                    wrong |= v[a] == v[c] && !drop;
+                }
+            }
+            if wrong {
+                bad.store(true, Ordering::Relaxed);
+            }
+            v
+        }));
+        if bad.into_inner() {
+            // hand everything read to the general path, in file order
+            let last = cells.len() - m;
+            let mut flat = Vec::with_capacity(1 + last * (K + 1) + len / 4);
+            flat.push(K as u32);
+            for c in &cells[..last] {
+                flat.extend_from_slice(c);
+                flat.push(K as u32);
+            }
+            flat.extend(b.chunks_exact(4).map(|x| get_u32(x, Endian::Big)));
+            return Ok(Uniform::Read(flat));
+        }
+        done += m as u64;
+    }
+    Ok(Uniform::Cells(bytemuck::allocation::cast_vec(cells)))
 }
 
 /// The fast path of a classic cell list `k v_0 .. v_{k-1}` (`flat`, `n` cells): when every
@@ -1980,4 +2184,126 @@ fn legacy_name(name: &str) -> String {
     name.chars()
         .map(|c| if c.is_whitespace() { '_' } else { c })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn be(b: &[u8]) -> Vec<u32> {
+        b.chunks_exact(4)
+            .map(|x| u32::from_be_bytes(x.try_into().unwrap()))
+            .collect()
+    }
+
+    /// A classic cell list of tetrahedra `4 a b c d ..`, big-endian.
+    fn classic(cells: &[[u32; 4]]) -> Vec<u8> {
+        let mut b = Vec::new();
+        for c in cells {
+            b.extend_from_slice(&4u32.to_be_bytes());
+            for v in c {
+                b.extend_from_slice(&v.to_be_bytes());
+            }
+        }
+        b
+    }
+
+    fn uniform(body: &[u8], n: u64, nv: usize, o: &BuildOptions, chunk: usize) -> (Uniform, u64) {
+        // the first count is read by the caller
+        let mut w = Words::new(&body[4..], Path::new("m.vtk"), None);
+        let u = read_uniform_cells::<4>(&mut w, n, 5 * n, nv, o, chunk).unwrap();
+        (u, w.offset())
+    }
+
+    #[test]
+    fn uniform_cells_are_read_across_buffers_and_hand_over_a_prefix_on_a_fault() {
+        let cells: Vec<[u32; 4]> = (0..50).map(|i| [i, i + 3, i + 1, i + 2]).collect();
+        let clean = classic(&cells);
+        let o = BuildOptions::default();
+        // 20 bytes: one record a buffer; 1 MiB: all at once
+        let chunks = [20, 40, 60, 100, 220, 1 << 20];
+        for chunk in chunks {
+            let (u, _) = uniform(&clean, 50, 53, &o, chunk);
+            let Uniform::Cells(c) = u else {
+                panic!("chunk {chunk}: the clean list is uniform")
+            };
+            assert_eq!(c, cells.concat(), "chunk {chunk}");
+            // a vertex past the last: not uniform-clean
+            let (u, _) = uniform(&clean, 50, 52, &o, chunk);
+            assert!(matches!(u, Uniform::Read(_)), "chunk {chunk}");
+        }
+        // (cell, value index within the record `k a b c d`, value): out of range, repeated,
+        // a count that is not 4
+        let faults = [
+            (0, 2, 99),
+            (17, 3, 17),
+            (33, 0, 3),
+            (49, 4, 49),
+            (20, 1, 500),
+        ];
+        for (cell, at, value) in faults {
+            let mut b = clean.clone();
+            let i = 4 * (5 * cell + at);
+            b[i..i + 4].copy_from_slice(&(value as u32).to_be_bytes());
+            let all = be(&b);
+            for chunk in chunks {
+                let (u, read) = uniform(&b, 50, 60, &o, chunk);
+                let Uniform::Read(flat) = u else {
+                    panic!("cell {cell}, chunk {chunk}: the fault is found")
+                };
+                // what was read, in file order: the caller reads the rest after it
+                assert_eq!(flat[..], all[..flat.len()], "cell {cell}, chunk {chunk}");
+                assert_eq!(
+                    4 * flat.len() as u64,
+                    4 + read,
+                    "cell {cell}, chunk {chunk}"
+                );
+                assert!(flat.len() > 5 * cell + at, "cell {cell}, chunk {chunk}");
+            }
+        }
+        // a repeated vertex is the build's to drop when degenerate cells are dropped
+        let mut b = clean.clone();
+        b[4 * (5 * 9 + 2)..4 * (5 * 9 + 3)].copy_from_slice(&9u32.to_be_bytes());
+        let drop = BuildOptions {
+            drop_degenerate: true,
+            ..BuildOptions::default()
+        };
+        let (u, _) = uniform(&b, 50, 53, &drop, 40);
+        let Uniform::Cells(c) = u else {
+            panic!("repeated vertices pass when they are dropped later")
+        };
+        assert_eq!(c[36..40], [9, 9, 10, 11]);
+    }
+
+    #[test]
+    fn cell_types_in_runs_are_checked_across_buffers() {
+        // 4-point cells: tetrahedra (10) and quads (9) in runs, read with uniform and listed ends
+        let types: Vec<u32> = (0..40)
+            .map(|i| if (i / 7) % 3 == 2 { 9 } else { 10 })
+            .collect();
+        let body: Vec<u8> = types.iter().flat_map(|t| t.to_be_bytes()).collect();
+        let ends = uniform_ends(4, 160);
+        for chunk in [4, 8, 12, 64, 68, 256, 1 << 20] {
+            for (uni, e) in [(Some(4), &[][..]), (None, &ends[..])] {
+                let mut w = Words::new(&body[..], Path::new("m.vtk"), None);
+                let k = read_types_bin(&mut w, 40, uni, e, chunk).unwrap();
+                let want: Vec<u8> = types.iter().map(|&t| t as u8).collect();
+                assert_eq!(k, want, "chunk {chunk}, uniform {uni:?}");
+            }
+            // one triangle type among 4-point cells: named by its byte
+            let mut b = body.clone();
+            b[4 * 23..4 * 24].copy_from_slice(&5u32.to_be_bytes());
+            let mut w = Words::new(&b[..], Path::new("m.vtk"), None);
+            let e = read_types_bin(&mut w, 40, Some(4), &[], chunk).unwrap_err();
+            assert_eq!(
+                e.location,
+                Some(Location::Byte(4 * 23)),
+                "chunk {chunk}: {e}"
+            );
+            // the same type throughout, but the wrong one for 3-point cells
+            let mut w = Words::new(&body[..], Path::new("m.vtk"), None);
+            let e = read_types_bin(&mut w, 40, Some(3), &[], chunk).unwrap_err();
+            assert_eq!(e.location, Some(Location::Byte(0)), "chunk {chunk}: {e}");
+        }
+    }
 }
