@@ -1,8 +1,8 @@
 //! Bulk reading of the binary arrays in binary gmsh and legacy VTK files: fixed-size records
 //! read in chunks of a few MB, decoded with per-element byte swaps the compiler vectorises.
 //! A declared count never sizes a buffer that is written before the values arrive: an output
-//! array may be reserved for it with `try_reserve` (virtual memory, touched only as values are
-//! read; a refused reservation just grows the array as they come).
+//! array may be reserved for it ([`reserve_declared`]: at most 256 MiB, virtual memory touched
+//! only as values are read; beyond that, or refused, the array grows as they come).
 use std::io::BufRead;
 
 use super::words::Words;
@@ -13,6 +13,15 @@ use super::IoError;
 pub(crate) enum Endian {
     Little,
     Big,
+}
+
+/// Reserves room in `v` for `n` more values declared by a file (whose data may be missing):
+/// at most 256 MiB, and nothing if the allocator refuses. Larger arrays grow as their values
+/// arrive (a reallocation of a large block remaps its pages rather than copying them).
+pub(crate) fn reserve_declared<T>(v: &mut Vec<T>, n: u64) {
+    const MAX_BYTES: u64 = 256 << 20;
+    let cap = MAX_BYTES / std::mem::size_of::<T>().max(1) as u64;
+    let _ = v.try_reserve_exact(n.min(cap) as usize);
 }
 
 /// Bytes per chunk (rounded down to whole records).

@@ -43,7 +43,8 @@ use std::path::Path;
 
 use super::faces::push_build_notes;
 use super::raw::{
-    get_i32, get_i64, get_u32, push_f32s, push_f64s, read_records, read_records_in, Endian, CHUNK,
+    get_i32, get_i64, get_u32, push_f32s, push_f64s, read_records, read_records_in,
+    reserve_declared, Endian, CHUNK,
 };
 use super::text::write_f64;
 use super::words::Words;
@@ -1325,10 +1326,10 @@ fn read_points_bin(
         )));
     }
     let (path, at, first) = (w.path(), w.offset(), b.n_vertices());
-    // decoded into one array (room for all of them when the allocator grants it) and moved
+    // decoded into one array (reserved for them, up to 256 MiB) and moved
     // into the builder at once: no per-buffer array and no second copy
     let mut p: Vec<f64> = Vec::new();
-    let _ = p.try_reserve_exact(3 * n);
+    reserve_declared(&mut p, 3 * n as u64);
     read_records(w, n as u64, 3 * width, "the points", |_, c, _| {
         use rayon::prelude::*;
         if width == 8 {
@@ -1496,7 +1497,7 @@ fn read_types_bin(
 ) -> Result<Vec<u8>, IoError> {
     let (path, at) = (w.path(), w.offset());
     let mut kinds = Vec::new();
-    let _ = kinds.try_reserve_exact(n as usize);
+    reserve_declared(&mut kinds, n);
     let (mut i, mut start) = (0usize, 0u64);
     // the type and point count of the last cell checked (most cells repeat them)
     let mut last: Option<(u64, u64, u8)> = None;
@@ -1585,7 +1586,7 @@ where
     let rec = 4 * (K + 1);
     let per = (chunk / rec).max(1) as u64;
     let mut cells: Vec<[u32; K]> = Vec::new();
-    let _ = cells.try_reserve_exact(n as usize);
+    reserve_declared(&mut cells, n);
     let mut buf = vec![0u8; (n.min(per) as usize) * rec];
     let mut done = 0u64;
     while done < n {
