@@ -23,8 +23,10 @@ fn best(mut f: impl FnMut() -> u64) -> (f64, u64) {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (Some(path), Some(out)) = (args.first(), args.get(1).and_then(|s| s.parse::<usize>().ok()))
-    else {
+    let (Some(path), Some(out)) = (
+        args.first(),
+        args.get(1).and_then(|s| s.parse::<usize>().ok()),
+    ) else {
         eprintln!("usage: io_floor FILE OUT_BYTES");
         std::process::exit(2);
     };

@@ -1,7 +1,8 @@
 //! Maximal cliques of a graph, the maximal simplices of its flag (clique) complex: Bron–Kerbosch
-//! with pivoting, started once per vertex of a degeneracy ordering (Eppstein, Löffler and Strash,
-//! "Listing all maximal cliques in sparse graphs in near-optimal time", 2010), in parallel over
-//! the ordering. Each start works on its vertex's neighbourhood as a small bit matrix, so the
+//! with pivoting, started once per vertex of an ordering (Eppstein, Löffler and Strash,
+//! "Listing all maximal cliques in sparse graphs in near-optimal time", 2010, with their
+//! degeneracy ordering, or the cheaper order by degree when it keeps every start's candidates
+//! within one 64-bit word: see `start_rank`), in parallel over the vertices. Each start works on its vertex's neighbourhood as a small bit matrix, so the
 //! inner loop is word-wise AND and popcount.
 //!
 //! The output is canonical: every clique's vertices ascending, cliques grouped by size
@@ -524,12 +525,13 @@ pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, Graph
         if budget.stop.load(Ordering::Relaxed) {
             return Err(over(done));
         }
-        for (s, flat) in by_size.into_iter().enumerate() {
-            if s < 2 || flat.is_empty() {
-                continue;
-            }
-            blocks.push((s, sort_rows(flat, s, n)));
-        }
+        // each size sorted on its own, in parallel (the collect keeps the size order)
+        blocks = by_size
+            .into_par_iter()
+            .enumerate()
+            .filter(|(s, flat)| *s >= 2 && !flat.is_empty())
+            .map(|(s, flat)| (s, sort_rows(flat, s, n)))
+            .collect();
     }
     // The skeleton's other maximal simplices: every clique of k + 1 vertices, listed in order.
     if let Some(k) = k {
@@ -550,7 +552,7 @@ pub fn maximal_cliques(g: &Graph, opts: &CliqueOptions) -> Result<Cliques, Graph
     Ok(Cliques { blocks })
 }
 
-/// Bron–Kerbosch from every start vertex of the degeneracy order, in parallel: the maximal
+/// Bron–Kerbosch from every start vertex of the order of `start_rank`, in parallel: the maximal
 /// cliques of at most `limit` vertices, unsorted, and the number of start vertices finished.
 fn maximal_from_starts(
     g: &Graph,
@@ -559,22 +561,17 @@ fn maximal_from_starts(
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> (Vec<Vec<u32>>, usize) {
     let n = g.n_vertices();
-    let (order, _) = degeneracy_order(g);
-    let mut rank = vec![0u32; n];
-    for (i, &v) in order.iter().enumerate() {
-        rank[v as usize] = i as u32;
-    }
-    drop(order);
+    let rank = start_rank(g);
     let ids: Vec<u32> = (0..n as u32).collect();
     let done = AtomicUsize::new(0);
     // Work per vertex is very uneven; small chunks keep both cores busy, and the result does
     // not depend on how the vertices are split. Shared counters are updated once per chunk.
     // The starts go in id order (the ranks only decide each start's P and X): neighbouring ids
     // are usually neighbouring points, whose rows are then read while still in cache.
+    // one sink per rayon job (not per chunk: a sink's arrays grow by reallocation)
     let sinks: Vec<Sink> = ids
         .par_chunks(64)
-        .map(|chunk| {
-            let mut sink = Sink::default();
+        .fold(Sink::default, |mut sink, chunk| {
             for &v in chunk {
                 if budget.stop.load(Ordering::Relaxed) {
                     return sink;
@@ -593,10 +590,79 @@ fn maximal_from_starts(
     (Sink::concat(sinks), done.load(Ordering::Relaxed))
 }
 
+/// The rank of each vertex in the order of the starts. Any total order lists every maximal
+/// clique exactly once (from its earliest vertex); the order decides the size of each start's
+/// candidate set P (its later neighbours). The degeneracy order keeps every P within the
+/// degeneracy d, but peeling the graph is sequential (5 ms of vr_building_m's 30). The order by
+/// degree (ties by id) is a counting sort, and on point clouds and power-law graphs its
+/// largest P is 1-2 times d with less work in all (BENCHMARKS, issue 14). It is used when its
+/// largest P fits one 64-bit word (so d, which is at most that, does too); otherwise the
+/// degeneracy order is.
+fn start_rank(g: &Graph) -> Vec<u32> {
+    const MAX_P: usize = 64;
+    let rank = degree_rank(g);
+    let n = g.n_vertices();
+    let widest = (0..n)
+        .into_par_iter()
+        .with_min_len(4096)
+        .map(|v| {
+            let rv = rank[v];
+            let nb = g.neighbours(v as u32);
+            nb.iter().filter(|&&u| rank[u as usize] > rv).count()
+        })
+        .max()
+        .unwrap_or(0);
+    if widest <= MAX_P {
+        return rank;
+    }
+    let (order, _) = degeneracy_order(g);
+    let mut rank = rank;
+    for (i, &v) in order.iter().enumerate() {
+        rank[v as usize] = i as u32;
+    }
+    rank
+}
+
+/// Each vertex's rank in the order by degree, ties by id (a counting sort).
+fn degree_rank(g: &Graph) -> Vec<u32> {
+    let n = g.n_vertices();
+    let deg = |v: usize| g.adj.degree(v);
+    let md = (0..n).map(deg).max().unwrap_or(0);
+    let mut at = vec![0u32; md + 1];
+    for v in 0..n {
+        at[deg(v)] += 1;
+    }
+    let mut sum = 0u32;
+    for a in at.iter_mut() {
+        (*a, sum) = (sum, sum + *a);
+    }
+    let mut rank = vec![0u32; n];
+    for (v, r) in rank.iter_mut().enumerate() {
+        let d = deg(v);
+        *r = at[d];
+        at[d] += 1;
+    }
+    rank
+}
+
 /// Sorts the `s`-vertex rows of `flat` (each ascending, vertices below `n`)
-/// lexicographically: a counting sort by first vertex, then a sort of each (small) run of
-/// rows sharing it.
+/// lexicographically: fewer rows than n / 16 by a comparison sort; otherwise a counting sort by
+/// first vertex, then a sort of each (small) run of rows sharing it.
 fn sort_rows(flat: Vec<u32>, s: usize, n: usize) -> Vec<u32> {
+    let rows = flat.len() / s;
+    if rows < n / 16 {
+        // few rows against the vertex count: a comparison sort beats counting over n
+        let mut idx: Vec<u32> = (0..rows as u32).collect();
+        idx.sort_unstable_by(|&a, &b| {
+            flat[a as usize * s..(a as usize + 1) * s]
+                .cmp(&flat[b as usize * s..(b as usize + 1) * s])
+        });
+        let mut out = Vec::with_capacity(flat.len());
+        for &i in &idx {
+            out.extend_from_slice(&flat[i as usize * s..(i as usize + 1) * s]);
+        }
+        return out;
+    }
     let by_first = Csr::from_fn(n, |push| {
         for (i, r) in flat.chunks_exact(s).enumerate() {
             push(r[0], i as u32);
@@ -632,7 +698,7 @@ fn sort_rows(flat: Vec<u32>, s: usize, n: usize) -> Vec<u32> {
 }
 
 /// Lists the maximal cliques of at most `limit` vertices whose earliest vertex (in the
-/// degeneracy order) is `v`.
+/// order of the starts) is `v`.
 fn from_vertex(g: &Graph, rank: &[u32], v: u32, limit: usize, budget: &Budget, sink: &mut Sink) {
     let nb = g.neighbours(v);
     if nb.is_empty() {
@@ -672,9 +738,10 @@ const HUB_RATIO: usize = 16;
 
 thread_local! {
     /// Per-thread scratch of [`Start::fixed`]: the local index of each neighbour of the start
-    /// vertex (`u8::MAX` elsewhere, restored after each start) and the bit rows.
-    static SCRATCH: std::cell::RefCell<(Vec<u8>, Vec<u64>)> = const {
-        std::cell::RefCell::new((Vec::new(), Vec::new()))
+    /// vertex (`u8::MAX` elsewhere, restored after each start), the bit rows and the clique
+    /// being grown.
+    static SCRATCH: std::cell::RefCell<(Vec<u8>, Vec<u64>, Vec<u32>)> = const {
+        std::cell::RefCell::new((Vec::new(), Vec::new(), Vec::new()))
     };
 }
 
@@ -688,7 +755,7 @@ impl Start<'_> {
         let m = nb.len();
         let rv = self.rank[self.v as usize];
         SCRATCH.with(|s| {
-            let (pos, rows) = &mut *s.borrow_mut();
+            let (pos, rows, r) = &mut *s.borrow_mut();
             if pos.len() < self.g.n_vertices() {
                 pos.resize(self.g.n_vertices(), u8::MAX);
             }
@@ -733,9 +800,9 @@ impl Start<'_> {
                     rows[j * W + (i >> 6)] |= 1 << (i & 63);
                 }
             }
-            let mut r = Vec::with_capacity(self.limit.min(m + 1));
+            r.clear();
             r.push(self.v);
-            self.bk_fixed::<W>(rows, nb, &mut r, p, x, sink);
+            self.bk_fixed::<W>(rows, nb, r, p, x, sink);
         });
     }
 
@@ -797,7 +864,7 @@ impl Start<'_> {
     }
 
     /// The search for a large neighbourhood (a hub: many earlier neighbours X, few later ones
-    /// P, at most the degeneracy). Local indices put P first; only P's rows are read from the
+    /// P: at most 64 in the order by degree, at most the degeneracy otherwise). Local indices put P first; only P's rows are read from the
     /// graph (over all of the neighbourhood), and X's rows are kept over P only (their
     /// transpose), so the matrix is |P| × m bits, not m × m. The candidate and pivot sets live
     /// in P's words, the excluded set in the whole neighbourhood's.
@@ -1617,6 +1684,40 @@ mod tests {
             .collect();
         assert!(want.len() > 250 && want.iter().any(|c| c.len() == 14));
         assert_eq!(got, want);
+    }
+
+    #[test]
+    fn starts_follow_the_degree_order_unless_a_candidate_set_would_pass_64() {
+        // sparse: a random graph of low degree
+        let e = random_graph(400, 0.02, 11);
+        let g = Graph::from_edges(400, &e).unwrap();
+        assert_eq!(start_rank(&g), degree_rank(&g));
+        // a K70 (its first vertex in degree order has 69 later neighbours) with pendant paths
+        // of growing length: the degeneracy order, and the same cliques as the reference
+        let mut e: Vec<(u32, u32)> = Vec::new();
+        for a in 0..70 {
+            for b in a + 1..70 {
+                e.push((a, b));
+            }
+        }
+        let mut next = 70;
+        for len in 1..6u32 {
+            let mut prev = len * 7;
+            for _ in 0..len {
+                e.push((prev, next));
+                (prev, next) = (next, next + 1);
+            }
+        }
+        let g = Graph::from_edges(next as usize, &e).unwrap();
+        let (order, d) = degeneracy_order(&g);
+        assert_eq!(d, 69);
+        let mut want = vec![0u32; order.len()];
+        for (i, &v) in order.iter().enumerate() {
+            want[v as usize] = i as u32;
+        }
+        assert_eq!(start_rank(&g), want);
+        let got = maximal_cliques(&g, &CliqueOptions::default()).unwrap();
+        assert_eq!(got.to_vecs(), reference_maximal(next as usize, &e));
     }
 
     #[test]
