@@ -431,7 +431,7 @@ impl<'a> Sweeper<'a> {
                     _ => (a, b),
                 };
                 if link_condition(w, s, t, self.mode, &mut self.scratch)
-                    && region_condition(w, s, t, &mut self.scratch)
+                    && region_condition(w, s, t, self.mode, &mut self.scratch)
                 {
                     if !allow(w, s, t) {
                         return false;

@@ -889,23 +889,42 @@ fn link_triangles(
 /// When the tops are labelled ([`TopSimplices::set_cell_labels`]): the extended link condition
 /// of `s t` ([`link_condition_in`], [`LinkMode::Manifold`]) in the region of the label of the
 /// removed vertex `t`'s first top; true without labels. The simplifiers call it after
-/// [`link_condition`].
+/// [`link_condition`] in mode `passed` has held: when that was [`LinkMode::Manifold`] and
+/// both stars lie in the region, the region's extended stars are the whole ones (a facet
+/// through a vertex is only in tops of its star), so the answer is that test's and it is not
+/// run again.
 ///
 /// ```
-/// use starplex::algo::simplify::{TopSimplices, link_condition::{region_condition, LinkScratch}};
+/// use starplex::algo::simplify::{TopSimplices, link_condition::{region_condition, LinkMode, LinkScratch}};
 /// let fan: Vec<Vec<u32>> = (0..6).map(|i| vec![6, i, (i + 1) % 6]).collect();
 /// let mut w = TopSimplices::from_tops(7, &fan).unwrap();
 /// let mut s = LinkScratch::default();
-/// assert!(region_condition(&w, 6, 1, &mut s)); // no labels
+/// assert!(region_condition(&w, 6, 1, LinkMode::Manifold, &mut s)); // no labels
 /// w.set_cell_labels(vec![7, 7, 7, 8, 8, 8]);
-/// assert!(!region_condition(&w, 6, 1, &mut s));
+/// assert!(!region_condition(&w, 6, 1, LinkMode::Manifold, &mut s));
 /// ```
-pub fn region_condition(w: &TopSimplices, s: u32, t: u32, scratch: &mut LinkScratch) -> bool {
+pub fn region_condition(
+    w: &TopSimplices,
+    s: u32,
+    t: u32,
+    passed: LinkMode,
+    scratch: &mut LinkScratch,
+) -> bool {
     if !w.has_labels() {
         return true;
     }
-    let region = w.star(t).first().and_then(|&x| w.label(x));
-    region.is_none() || link_condition_in(w, s, t, LinkMode::Manifold, region, scratch)
+    let Some(region) = w.star(t).first().and_then(|&x| w.label(x)) else {
+        return true;
+    };
+    let inside = |v: u32| w.star(v).iter().all(|&x| w.label(x) == Some(region));
+    if passed == LinkMode::Manifold && inside(s) && inside(t) {
+        debug_assert!(
+            link_condition_in(w, s, t, LinkMode::Manifold, Some(region), scratch),
+            "{s}-{t}"
+        );
+        return true;
+    }
+    link_condition_in(w, s, t, LinkMode::Manifold, Some(region), scratch)
 }
 
 /// The link condition by its definition: every simplex of `Lk(a) ∩ Lk(b)` enumerated and looked

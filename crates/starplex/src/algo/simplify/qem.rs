@@ -432,7 +432,7 @@ pub fn simplify_qem(
             // the survivor: the locked vertex if there is one, else the smaller id
             let (s, t) = if locked[b as usize] { (b, a) } else { (a, b) };
             if !link_condition(w, s, t, LinkMode::Manifold, &mut scratch)
-                || !region_condition(w, s, t, &mut scratch)
+                || !region_condition(w, s, t, LinkMode::Manifold, &mut scratch)
             {
                 stats.refused_link += 1;
                 continue;
