@@ -2,8 +2,9 @@
 //! with pivoting, started once per vertex of an ordering (Eppstein, Löffler and Strash,
 //! "Listing all maximal cliques in sparse graphs in near-optimal time", 2010, with their
 //! degeneracy ordering, or the cheaper order by degree when it keeps every start's candidates
-//! within one 64-bit word: see `start_rank`), in parallel over the vertices. Each start works on its vertex's neighbourhood as a small bit matrix, so the
-//! inner loop is word-wise AND and popcount.
+//! within one 64-bit word: see `start_rank`), in parallel over the vertices. Each start works
+//! on its vertex's neighbourhood as a small bit matrix, so the inner loop is word-wise AND and
+//! popcount.
 //!
 //! The output is canonical: every clique's vertices ascending, cliques grouped by size
 //! (ascending) and sorted lexicographically within a size. It is therefore the same for any

@@ -1504,6 +1504,7 @@ fn read_types_bin(
     let mut fresh = true;
     read_records_in(w, n, 4, chunk, "the cell types", |_, c, _| {
         let mut c = c;
+        fresh = true;
         while !c.is_empty() {
             if let (Some(k), Some((t, lk, kind)), true) = (uniform, last, fresh) {
                 fresh = false;
