@@ -889,19 +889,27 @@ fn link_triangles(
 /// When the tops are labelled ([`TopSimplices::set_cell_labels`]): the extended link condition
 /// of `s t` ([`link_condition_in`], [`LinkMode::Manifold`]) in the region of the label of the
 /// removed vertex `t`'s first top; true without labels. The simplifiers call it after
-/// [`link_condition`] in mode `passed` has held: when that was [`LinkMode::Manifold`] and
-/// both stars lie in the region, the region's extended stars are the whole ones (a facet
-/// through a vertex is only in tops of its star), so the answer is that test's and it is not
-/// run again.
+/// [`link_condition`] in mode `passed` has held. When both stars lie in the region, the
+/// region's extended stars are the whole ones (a facet through a vertex is only in tops of its
+/// star): the answer is then the whole complex's extended link condition, the test just passed
+/// if `passed` is [`LinkMode::Manifold`] (not run again), else that test by its fast paths.
 ///
 /// ```
-/// use starplex::algo::simplify::{TopSimplices, link_condition::{region_condition, LinkMode, LinkScratch}};
+/// use starplex::algo::simplify::TopSimplices;
+/// use starplex::algo::simplify::link_condition::{link_condition, region_condition, LinkMode, LinkScratch};
 /// let fan: Vec<Vec<u32>> = (0..6).map(|i| vec![6, i, (i + 1) % 6]).collect();
 /// let mut w = TopSimplices::from_tops(7, &fan).unwrap();
 /// let mut s = LinkScratch::default();
 /// assert!(region_condition(&w, 6, 1, LinkMode::Manifold, &mut s)); // no labels
 /// w.set_cell_labels(vec![7, 7, 7, 8, 8, 8]);
 /// assert!(!region_condition(&w, 6, 1, LinkMode::Manifold, &mut s));
+/// // a disk of two triangles in one region: the interior edge 1-2 joins two boundary
+/// // vertices; the homology test passes it, the region (which keeps its boundary) does not
+/// let mut d = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![1, 3, 2]]).unwrap();
+/// d.set_cell_labels(vec![5, 5]);
+/// assert!(link_condition(&d, 1, 2, LinkMode::Homology, &mut s));
+/// assert!(!region_condition(&d, 1, 2, LinkMode::Homology, &mut s));
+/// assert!(region_condition(&d, 0, 1, LinkMode::Homology, &mut s)); // a boundary edge
 /// ```
 pub fn region_condition(
     w: &TopSimplices,
@@ -917,12 +925,16 @@ pub fn region_condition(
         return true;
     };
     let inside = |v: u32| w.star(v).iter().all(|&x| w.label(x) == Some(region));
-    if passed == LinkMode::Manifold && inside(s) && inside(t) {
-        debug_assert!(
+    if inside(s) && inside(t) {
+        // the test in the whole complex: the one just passed, or its fast paths
+        let answer = passed == LinkMode::Manifold
+            || link_condition_in(w, s, t, LinkMode::Manifold, None, scratch);
+        debug_assert_eq!(
+            answer,
             link_condition_in(w, s, t, LinkMode::Manifold, Some(region), scratch),
             "{s}-{t}"
         );
-        return true;
+        return answer;
     }
     link_condition_in(w, s, t, LinkMode::Manifold, Some(region), scratch)
 }
