@@ -1175,11 +1175,8 @@ fn simplify_carries_attributes_and_keeps_label_regions() {
                 .join(format!("{name}.{mode}.one.spb"))
                 .to_string_lossy()
                 .into_owned();
-            let args = [
-                "--quiet",
-                "simplify",
-                &spb,
-                &one,
+            // the options both binaries get
+            let opts = [
                 "--no-report",
                 "--mode",
                 mode,
@@ -1187,8 +1184,8 @@ fn simplify_carries_attributes_and_keeps_label_regions() {
                 "0.3",
                 "--keep-vertex-attribute",
                 "pin",
-                "--json",
             ];
+            let args = [&["--quiet", "simplify", &spb, &one][..], &opts, &["--json"]].concat();
             let (code, stdout, err) = run(Command::new(&cli).args(args), limit);
             assert_eq!(code, Some(0), "starplex simplify {name} {mode}: {err}");
             let cli_report = without_timings(&stdout, "starplex simplify");
@@ -1202,16 +1199,7 @@ fn simplify_carries_attributes_and_keeps_label_regions() {
                     .join(format!("{name}.p{np}.spb"))
                     .to_string_lossy()
                     .into_owned();
-                let args = [
-                    "--mode",
-                    mode,
-                    "--ratio",
-                    "0.3",
-                    "--keep-vertex-attribute",
-                    "pin",
-                    "--no-report",
-                ];
-                let Some(v) = run_simplify(np, gather, &spb, &out, &args, &what, &mut failures)
+                let Some(v) = run_simplify(np, gather, &spb, &out, &opts, &what, &mut failures)
                 else {
                     continue;
                 };
