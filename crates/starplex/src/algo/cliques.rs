@@ -1047,12 +1047,36 @@ impl KOut for Writer<'_> {
     fn last(&mut self, prefix: &[u32], n: usize, tail: impl Iterator<Item = u32>) -> bool {
         let s = prefix.len() + 1;
         let dst = &mut self.out[self.at..self.at + n * s];
-        for (row, t) in dst.chunks_exact_mut(s).zip(tail) {
-            row[..s - 1].copy_from_slice(prefix);
-            row[s - 1] = t;
+        match s {
+            2 => fill_rows::<2>(dst, prefix, tail),
+            3 => fill_rows::<3>(dst, prefix, tail),
+            4 => fill_rows::<4>(dst, prefix, tail),
+            5 => fill_rows::<5>(dst, prefix, tail),
+            6 => fill_rows::<6>(dst, prefix, tail),
+            7 => fill_rows::<7>(dst, prefix, tail),
+            8 => fill_rows::<8>(dst, prefix, tail),
+            _ => {
+                for (row, t) in dst.chunks_exact_mut(s).zip(tail) {
+                    row[..s - 1].copy_from_slice(prefix);
+                    row[s - 1] = t;
+                }
+            }
         }
         self.at += n * s;
         true
+    }
+}
+
+/// The rows `prefix + [t]` of `S` vertices for the `t` of `tail`, with fixed-size copies
+/// (a `memmove` call per row of a few words cost more than the row).
+#[inline]
+fn fill_rows<const S: usize>(dst: &mut [u32], prefix: &[u32], tail: impl Iterator<Item = u32>) {
+    let mut row = [0u32; S];
+    row[..S - 1].copy_from_slice(prefix);
+    let (rows, _) = dst.as_chunks_mut::<S>();
+    for (d, t) in rows.iter_mut().zip(tail) {
+        row[S - 1] = t;
+        *d = row;
     }
 }
 
@@ -1435,7 +1459,8 @@ mod tests {
         for (n, e) in &graphs {
             let g = Graph::from_edges(*n, e).unwrap();
             let all = maximal_cliques(&g, &CliqueOptions::default()).unwrap();
-            for k in 1..=6usize {
+            // sizes 2-10: every fixed-size row writer and the general one
+            for k in 1..=9usize {
                 let o = CliqueOptions {
                     max_dim: Some(k),
                     ..Default::default()
