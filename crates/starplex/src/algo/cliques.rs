@@ -1280,9 +1280,11 @@ fn cliques_of_size(
         return Err(Refused::Alloc(total.saturating_mul(4)));
     }
     // zeroed pages from the allocator: no pass over the output before the parallel writes,
-    // which fault the pages in on both cores. (Huge pages were tried: 0.28 s instead of 0.40 s
-    // for radar's 6-skeleton when free huge pages exist, but 1.2 s when the kernel must first
-    // compact memory for them; `MADV_POPULATE_WRITE` faults on one core: 0.47-0.52 s.)
+    // which fault the pages in on both cores. (Huge pages were tried twice: radar's 5-skeleton
+    // 0.103-0.112 -> 0.055-0.060 s, but its 6-skeleton 0.30 -> 0.68-0.87 s when run after
+    // another large process: the VM reports free 2 MiB blocks to its host
+    // (`page_reporting_order` 9), which must fault them in again on first touch, and huge pages
+    // come from exactly those blocks. `MADV_POPULATE_WRITE` on both cores: no faster.)
     let mut out: Vec<u32> = vec![0; total as usize];
     // parts of about `target` references, each a run of start vertices and its slice
     let target = (total / (64 * rayon::current_num_threads() as u64)).max(1 << 14);
