@@ -330,10 +330,12 @@ fn reindex_cells(
     leaf_vstart: &[u32],
 ) -> CellNumbering {
     let n_leaves = leaf_vstart.len() - 1;
-    if let ([b], true) = (k.blocks(), n_leaves < (1 << 31)) {
-        if !b.is_empty() && b.kind.n_vertices() <= 4 {
-            return reindex_small_uniform(b.kind, &b.vertices, v, leaf_vstart);
-        }
+    if let [b] = k.blocks()
+        && n_leaves < (1 << 31)
+        && !b.is_empty()
+        && b.kind.n_vertices() <= 4
+    {
+        return reindex_small_uniform(b.kind, &b.vertices, v, leaf_vstart);
     }
     reindex_cells_general(k, v, n_leaves)
 }
