@@ -472,7 +472,7 @@ fn reindex_small_uniform(
             *d = v_new[x as usize];
         }
     }
-    drop((home, pos));
+    drop(pos);
     // the leaf of each tree vertex (leaves own increasing ranges of them), in leaf_in's memory
     let mut leaf_of_tree = std::mem::take(&mut v.leaf_in);
     for (l, w) in leaf_vstart.windows(2).enumerate() {
@@ -502,11 +502,7 @@ fn reindex_small_uniform(
                 let h = h as u32;
                 for i in w..part.len() {
                     let cell = &cells[i * st..(i + 1) * st];
-                    let (t, _) = distinct_leaves_by::<4>(cell, leaf_t);
-                    let key = ((t[1] as u128) << 96)
-                        | ((t[2] as u128) << 64)
-                        | ((t[3] as u128) << 32)
-                        | part[i] as u128;
+                    let key = rest_of_tuple(cell, leaf_t) | part[i] as u128;
                     keyed.push((key, rec.len() as u32)); // the record's offset in rec
                     rec.extend_from_slice(cell);
                 }
@@ -529,7 +525,8 @@ fn reindex_small_uniform(
         .map(|(g, _, _)| g)
         .collect();
     let c_orig = order;
-    let mut c_new = vec![0u32; nc];
+    // the home array's memory (every entry is overwritten: c_orig is a permutation)
+    let mut c_new = home;
     for (new, &old) in c_orig.iter().enumerate() {
         c_new[old as usize] = new as u32;
     }
@@ -546,6 +543,27 @@ fn reindex_small_uniform(
         },
         groups,
     }
+}
+
+/// The leaves of a cell of 2-4 vertices after its first (smallest) one, distinct and
+/// increasing, packed from bit 96 down, 0 after the last: the key of [`sort_part`]'s
+/// one-kind path without its low 32 bits. A sorting network, no data-dependent loop.
+#[inline]
+fn rest_of_tuple(cell: &[u32], leaf_of: impl Fn(u32) -> u32) -> u128 {
+    let mut l = [u32::MAX; 4];
+    for (d, &x) in l.iter_mut().zip(cell) {
+        *d = leaf_of(x);
+    }
+    let l = crate::topo::sort4(l);
+    let (mut key, mut sh, mut prev) = (0u128, 96u32, l[0]);
+    for &x in &l[1..] {
+        if x != prev && x != u32::MAX {
+            key |= (x as u128) << sh;
+            sh -= 32;
+            prev = x;
+        }
+    }
+    key
 }
 
 /// [`split_by`] for records of `st` values: part `i` holds records `bounds[i]..bounds[i + 1]`.
@@ -845,19 +863,10 @@ fn leaf_lists(groups: &[Groups], n_leaves: usize) -> (Vec<u32>, Vec<u32>) {
 /// allocation.
 #[inline]
 fn distinct_leaves<const N: usize>(vs: &[u32], leaf_of: &[u32]) -> ([u32; N], usize) {
-    distinct_leaves_by(vs, |v| leaf_of[v as usize])
-}
-
-/// [`distinct_leaves`] with the leaf of a vertex given by `leaf_of`.
-#[inline]
-fn distinct_leaves_by<const N: usize>(
-    vs: &[u32],
-    leaf_of: impl Fn(u32) -> u32,
-) -> ([u32; N], usize) {
     let mut t = [0u32; N];
     let mut m = 0;
     for &v in vs {
-        let x = leaf_of(v);
+        let x = leaf_of[v as usize];
         let mut p = m;
         while p > 0 && t[p - 1] > x {
             p -= 1;
