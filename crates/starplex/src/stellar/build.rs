@@ -517,38 +517,40 @@ fn reindex_small_uniform(
         .into_par_iter()
         .enumerate()
         .fold(
-            || {
-                (
-                    Groups::default(),
-                    Vec::<(u128, u32)>::new(),
-                    Vec::<u32>::new(),
-                )
-            },
-            |(mut g, mut keyed, mut rec), (h, (part, cells))| {
-                keyed.clear();
-                rec.clear();
+            || (Groups::default(), Vec::<u128>::new(), Vec::<u32>::new()),
+            |(mut g, mut keys, mut rec), (h, (part, cells))| {
                 let w = singles[h] as usize;
                 let h = h as u32;
-                for i in w..part.len() {
-                    let cell = &cells[i * st..(i + 1) * st];
-                    let key = rest_of_tuple(cell, leaf_t) | part[i] as u128;
-                    keyed.push((key, rec.len() as u32)); // the record's offset in rec
-                    rec.extend_from_slice(cell);
+                // the cells in several leaves, in input order: key = (rest of the tuple, j)
+                // for the j-th of them, the same order as by (rest, input id)
+                keys.clear();
+                rec.clear();
+                rec.extend_from_slice(&cells[w * st..]);
+                for (j, cell) in rec.chunks_exact(st).enumerate() {
+                    keys.push(rest_of_tuple(cell, leaf_t) | j as u128);
                 }
-                keyed.sort_unstable();
+                keys.sort_unstable();
+                let ids = part[w..].to_vec();
                 if w > 0 {
                     g.push(w as u32, &[h]);
                 }
                 let mut ls = [0u32; 4];
-                for (j, &(key, r)) in keyed.iter().enumerate() {
-                    let i = w + j;
-                    part[i] = key as u32;
-                    let r = r as usize;
-                    cells[i * st..(i + 1) * st].copy_from_slice(&rec[r..r + st]);
-                    let m = unpack(h, key & !0xffff_ffff, &mut ls);
-                    g.push(1, &ls[..m]);
+                let mut prev = None;
+                for (i, &key) in (w..).zip(keys.iter()) {
+                    let j = key as u32 as usize;
+                    part[i] = ids[j];
+                    cells[i * st..(i + 1) * st].copy_from_slice(&rec[j * st..(j + 1) * st]);
+                    let rest = key & !0xffff_ffff;
+                    match g.len.last_mut() {
+                        Some(n) if prev == Some(rest) => *n += 1,
+                        _ => {
+                            let m = unpack(h, rest, &mut ls);
+                            g.push(1, &ls[..m]);
+                        }
+                    }
+                    prev = Some(rest);
                 }
-                (g, keyed, rec)
+                (g, keys, rec)
             },
         )
         .map(|(g, _, _)| g)
