@@ -936,17 +936,19 @@ fn all_equal(ctx: &Ctx, idx: &[u32]) -> bool {
 fn partition(ctx: &Ctx, idx: &mut [u32], axis: usize, mid: f64) -> usize {
     let n = ctx.n;
     let c = ctx.coords;
-    let mut i = 0usize;
-    let mut j = idx.len();
-    while i < j {
-        if c[idx[i] as usize * n + axis] < mid {
-            i += 1;
-        } else {
-            j -= 1;
-            idx.swap(i, j);
-        }
+    // Lomuto without branches: [0, s) below mid, [s, i) not. A point's side is a coin flip
+    // for the branch predictor; the swap is unconditional and only `s` moves by the test.
+    // (The order within a side differs from a Hoare partition's; each leaf's vertices are
+    // sorted by input id afterwards, so the tree is the same.)
+    let mut s = 0usize;
+    for i in 0..idx.len() {
+        let v = idx[i];
+        let below = usize::from(c[v as usize * n + axis] < mid);
+        idx[i] = idx[s];
+        idx[s] = v;
+        s += below;
     }
-    i
+    s
 }
 
 fn split_rec(ctx: &Ctx, idx: &mut [u32], offset: u32, lo: Vec<f64>, hi: Vec<f64>, depth: u32) -> T {
