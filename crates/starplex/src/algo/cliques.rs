@@ -651,16 +651,14 @@ fn degree_rank(g: &Graph) -> Vec<u32> {
 /// first vertex, then a sort of each (small) run of rows sharing it.
 fn sort_rows(flat: Vec<u32>, s: usize, n: usize) -> Vec<u32> {
     let rows = flat.len() / s;
+    let row = |i: u32| &flat[i as usize * s..(i as usize + 1) * s];
     if rows < n / 16 {
         // few rows against the vertex count: a comparison sort beats counting over n
         let mut idx: Vec<u32> = (0..rows as u32).collect();
-        idx.sort_unstable_by(|&a, &b| {
-            flat[a as usize * s..(a as usize + 1) * s]
-                .cmp(&flat[b as usize * s..(b as usize + 1) * s])
-        });
+        idx.sort_unstable_by(|&a, &b| row(a).cmp(row(b)));
         let mut out = Vec::with_capacity(flat.len());
         for &i in &idx {
-            out.extend_from_slice(&flat[i as usize * s..(i as usize + 1) * s]);
+            out.extend_from_slice(row(i));
         }
         return out;
     }
@@ -673,7 +671,6 @@ fn sort_rows(flat: Vec<u32>, s: usize, n: usize) -> Vec<u32> {
         offsets: start,
         targets: mut idx,
     } = by_first;
-    let row = |i: u32| &flat[i as usize * s..(i as usize + 1) * s];
     // runs of equal first vertex, sorted in parallel in chunks of whole runs
     let mut runs: Vec<&mut [u32]> = Vec::new();
     let mut rest = &mut idx[..];
@@ -865,10 +862,11 @@ impl Start<'_> {
     }
 
     /// The search for a large neighbourhood (a hub: many earlier neighbours X, few later ones
-    /// P: at most 64 in the order by degree, at most the degeneracy otherwise). Local indices put P first; only P's rows are read from the
-    /// graph (over all of the neighbourhood), and X's rows are kept over P only (their
-    /// transpose), so the matrix is |P| × m bits, not m × m. The candidate and pivot sets live
-    /// in P's words, the excluded set in the whole neighbourhood's.
+    /// P: at most 64 in the order by degree, at most the degeneracy otherwise). Local indices
+    /// put P first; only P's rows are read from the graph (over all of the neighbourhood), and
+    /// X's rows are kept over P only (their transpose), so the matrix is |P| × m bits, not
+    /// m × m. The candidate and pivot sets live in P's words, the excluded set in the whole
+    /// neighbourhood's.
     fn general(&self, sink: &mut Sink) {
         let nb = self.g.neighbours(self.v);
         let rv = self.rank[self.v as usize];

@@ -303,14 +303,8 @@ fn reindex_vertices(mut idx: Vec<u32>, leaf_vstart: &[u32]) -> VertexNumbering {
 }
 
 /// `v` cut into consecutive parts at the offsets `bounds` (`bounds[0] == 0`, last = `v.len()`).
-fn split_by<'a>(mut v: &'a mut [u32], bounds: &[u32]) -> Vec<&'a mut [u32]> {
-    let mut parts = Vec::with_capacity(bounds.len().saturating_sub(1));
-    for w in bounds.windows(2) {
-        let (a, b) = v.split_at_mut((w[1] - w[0]) as usize);
-        parts.push(a);
-        v = b;
-    }
-    parts
+fn split_by<'a>(v: &'a mut [u32], bounds: &[u32]) -> Vec<&'a mut [u32]> {
+    split_by_stride(v, bounds, 1)
 }
 
 /// Phase 3: the tree's cell numbering, the reindexed cell store and the runs of cells with the
@@ -388,7 +382,7 @@ fn reindex_cells_general(
         .into_par_iter()
         .enumerate()
         .map_init(SortScratch::default, |sc, (home, part)| {
-            sort_part(home as u32, part, uniform, &in_cell, leaf_in, sc)
+            sort_part(home as u32, part, &in_cell, leaf_in, sc)
         })
         .collect();
     drop(std::mem::take(&mut v.leaf_in)); // not needed by the cell store: keep the peak low
@@ -577,8 +571,8 @@ fn reindex_small_uniform(
 }
 
 /// The leaves of a cell of 2-4 vertices after its first (smallest) one, distinct and
-/// increasing, packed from bit 96 down, 0 after the last: the key of [`sort_part`]'s
-/// one-kind path without its low 32 bits. A sorting network, no data-dependent loop.
+/// increasing, packed from bit 96 down, 0 after the last ([`unpack`] reads it back). A
+/// sorting network, no data-dependent loop.
 #[inline]
 fn rest_of_tuple(cell: &[u32], leaf_of: impl Fn(u32) -> u32) -> u128 {
     let mut l = [u32::MAX; 4];
@@ -703,7 +697,6 @@ struct SortScratch {
     scratch: Vec<u32>,
     keyed: Vec<(u32, u32, u32, u8)>,
     packed: Vec<(u128, u64)>,
-    packed1: Vec<u128>,
 }
 
 /// The leaves of a packed tuple: `t0` then the non-zero leaves of `rest` (every leaf after the
@@ -727,48 +720,12 @@ fn unpack(t0: u32, rest: u128, out: &mut [u32; 4]) -> usize {
 fn sort_part<'a>(
     home: u32,
     part: &mut [u32],
-    uniform: Option<crate::cell::CellKind>,
     in_cell: &impl Fn(u32) -> (crate::cell::CellKind, &'a [u32]),
     leaf_in: &[u32],
     sc: &mut SortScratch,
 ) -> Groups {
     let mut g = Groups::default();
     let mut ls = [0u32; 4];
-    if uniform.is_some_and(|k| k.n_vertices() <= 4) {
-        // one kind, at most 4 vertices: the cells lying in their home leaf only (tuple
-        // [home], the smallest) keep their input order, which the counting sort kept; the
-        // others are sorted by (the rest of their tuple, input id) packed in one u128 (every
-        // leaf after the home leaf is >= 1, so the packed order is the order of the tuples,
-        // a prefix first)
-        let packed1 = &mut sc.packed1;
-        packed1.clear();
-        let mut w = 0;
-        for i in 0..part.len() {
-            let c = part[i];
-            let (t, m) = distinct_leaves::<4>(in_cell(c).1, leaf_in);
-            if m == 1 {
-                part[w] = c;
-                w += 1;
-            } else {
-                packed1.push(
-                    ((t[1] as u128) << 96)
-                        | ((t[2] as u128) << 64)
-                        | ((t[3] as u128) << 32)
-                        | c as u128,
-                );
-            }
-        }
-        packed1.sort_unstable();
-        if w > 0 {
-            g.push(w as u32, &[home]);
-        }
-        for (dst, &k) in part[w..].iter_mut().zip(packed1.iter()) {
-            *dst = k as u32;
-            let m = unpack(home, k & !0xffff_ffff, &mut ls);
-            g.push(1, &ls[..m]);
-        }
-        return g;
-    }
     if part.iter().all(|&c| in_cell(c).1.len() <= 4) {
         // the sorted distinct leaves of a cell packed in a u128, padded with 0
         let packed = &mut sc.packed;
