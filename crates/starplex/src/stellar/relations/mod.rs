@@ -100,13 +100,33 @@ impl StellarTree {
 
     /// Calls `f(v, cells)` for every tree vertex `v` of leaf `l`, cells = VT(v) in input ids,
     /// sorted. The rows are bucketed straight in input ids (`buf` holds the decoded cells and
-    /// the rows); each is made of a few increasing runs (cells are reindexed by leaf tuple,
-    /// input order inside), sorted then.
+    /// the rows), in one pass into rows of a fixed capacity when they fit, else by the
+    /// counting sort; each is made of a few increasing runs (cells are reindexed by leaf
+    /// tuple, input order inside), sorted then.
     fn leaf_vt_rows(&self, l: LeafId, buf: &mut VtRows, mut f: impl FnMut(u32, &[u32])) {
         let r = self.leaf_vertices(l);
         buf.cells.clear();
         crate::stellar::sre::decode(self.leaf_encoded_cells(l), &mut buf.cells);
         let c_orig = &self.c_orig;
+        let nloc = r.len();
+        if let Some(shift) = self.fixed_row_shift(nloc, buf.cells.len())
+            && self.bucket_refs_fixed(
+                r.clone(),
+                &buf.cells,
+                |c| c_orig[c as usize],
+                shift,
+                &mut buf.off,
+                &mut buf.rows,
+            )
+        {
+            for (i, v) in r.enumerate() {
+                let at = i << shift;
+                let row = &mut buf.rows[at..at + buf.off[i] as usize];
+                row.sort_unstable();
+                f(v, row);
+            }
+            return;
+        }
         self.bucket_refs(
             r.start,
             r.end,
