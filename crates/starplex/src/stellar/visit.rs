@@ -393,18 +393,51 @@ impl StellarTree {
             rows.resize(len, 0);
         }
         let (out, cnt) = (&mut rows[..len], &mut counts[..nloc + 1]);
-        for &c in cells {
-            let x = val(c);
-            let i = c as usize * k;
-            for &v in &st.verts[i..i + k] {
-                // references to other vertices go to the spill row, whose count saturates
-                let s = v.wrapping_sub(vs).min(spill) as usize;
-                let n = cnt[s];
-                out[(s << shift) | n.min(last) as usize] = x;
-                cnt[s] = n + 1;
+        // references to other vertices go to the spill row, whose count saturates
+        let mut put = |v: u32, x: u32| {
+            let s = v.wrapping_sub(vs).min(spill) as usize;
+            let n = cnt[s];
+            out[(s << shift) | n.min(last) as usize] = x;
+            cnt[s] = n + 1;
+        };
+        // the common strides unrolled
+        match k {
+            3 => {
+                for &c in cells {
+                    let i = c as usize * 3;
+                    let [a, b, d] = st.verts[i..i + 3] else {
+                        unreachable!()
+                    };
+                    let x = val(c);
+                    put(a, x);
+                    put(b, x);
+                    put(d, x);
+                }
+            }
+            4 => {
+                for &c in cells {
+                    let i = c as usize * 4;
+                    let [a, b, d, e] = st.verts[i..i + 4] else {
+                        unreachable!()
+                    };
+                    let x = val(c);
+                    put(a, x);
+                    put(b, x);
+                    put(d, x);
+                    put(e, x);
+                }
+            }
+            _ => {
+                for &c in cells {
+                    let x = val(c);
+                    let i = c as usize * k;
+                    for &v in &st.verts[i..i + k] {
+                        put(v, x);
+                    }
+                }
             }
         }
-        cnt[..nloc].iter().all(|&n| n as usize <= cap)
+        counts[..nloc].iter().all(|&n| n as usize <= cap)
     }
 
     /// Expands leaf `l` into a new [`ExpandedLeaf`].
