@@ -494,7 +494,8 @@ impl StellarTree {
                     self.expand_leaf_into(LeafId(l), e);
                     let view = LeafView { tree: self, e };
                     let mut lens = Vec::with_capacity(view.tree_vertices().len());
-                    let mut data = Vec::new();
+                    // about one representative a vertex on a manifold
+                    let mut data = Vec::with_capacity(view.tree_vertices().len() + 8);
                     for v in view.tree_vertices() {
                         let s = data.len();
                         if simplex_dim2 {
@@ -542,7 +543,8 @@ impl StellarTree {
                     let (lo, hi) = (e.v_start, e.v_end);
                     t.reset(e.cells.len() * s);
                     let mut p = Pieces {
-                        slots: Vec::new(),
+                        // two slots a facet the leaf owns: at most one facet a cell slot
+                        slots: Vec::with_capacity(e.cells.len() * s),
                         nm_cells: Vec::new(),
                         nm_verts: Vec::new(),
                     };
@@ -595,6 +597,10 @@ impl StellarTree {
     /// The first slot of every tree cell, then the number of slots.
     fn slot_offsets(&self) -> Vec<u32> {
         let nc = self.n_top_cells();
+        if let Some(kind) = self.cells.uniform {
+            let s = n_slots(kind) as u32;
+            return (0..=nc as u32).map(|c| c * s).collect();
+        }
         let mut off = vec![0u32; nc + 1];
         for c in 0..nc {
             off[c + 1] = off[c] + n_slots(self.cells.get(c as u32).0) as u32;

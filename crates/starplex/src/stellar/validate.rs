@@ -233,7 +233,7 @@ impl StellarTree {
                                 );
                             }
                         }
-                        recs.sort_unstable();
+                        crate::topo::sortnet::sort_short(recs, u64::MAX);
                         let cell = |r: u64| star[(r as u32 >> 3) as usize];
                         let sign = |r: u64| if r & 1 == 1 { -1i8 } else { 1 };
                         let m = triangle_link_test(star.len(), recs, parent, |w, g| {

@@ -90,6 +90,7 @@ pub mod generic;
 pub mod link;
 mod local;
 pub mod naive;
+pub(crate) mod sortnet;
 
 pub use facets::{Adjacent, FacetAdjacency};
 pub(crate) use local::PartStar;

@@ -25,7 +25,7 @@ pub(super) fn star_tests_tris<S: StarCells + ?Sized>(
             }
         }
     }
-    recs.sort_unstable();
+    crate::topo::sortnet::sort_short(recs, u64::MAX);
     link_test(star.len(), recs, parent, |w, group| {
         if w > v {
             let bad = group.len() > 2;

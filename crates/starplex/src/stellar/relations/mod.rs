@@ -34,6 +34,7 @@ use crate::ids::{CellId, LeafId, TreeVertexId, VertexId};
 use crate::limits::Limits;
 use crate::topo::link::{LinkError, VertexLink};
 use crate::topo::naive::edge_neighbours;
+use crate::topo::sortnet::{net16, net8, sort_padded};
 use crate::topo::{TopCells, VertexAdjacency, VertexStar};
 
 mod face_keys;
@@ -123,8 +124,8 @@ impl StellarTree {
                 let (at, n) = (i << shift, buf.off[i] as usize);
                 // the row's capacity (at least 16) holds the padding of the short sorts
                 match n {
-                    0..=8 => sort_padded::<8>(&mut buf.rows[at..at + 8], n, net8),
-                    9..=16 => sort_padded::<16>(&mut buf.rows[at..at + 16], n, net16),
+                    0..=8 => sort_padded::<_, 8>(&mut buf.rows[at..at + 8], n, u32::MAX, net8),
+                    9..=16 => sort_padded::<_, 16>(&mut buf.rows[at..at + 16], n, u32::MAX, net16),
                     _ => buf.rows[at..at + n].sort_unstable(),
                 }
                 f(v, &buf.rows[at..at + n]);
@@ -511,82 +512,5 @@ impl VertexAdjacency for StellarTree {
     /// [`vv_all`](StellarTree::vv_all): every leaf decoded once.
     fn vertex_neighbour_rows(&self) -> Option<Csr> {
         Some(self.vv_all())
-    }
-}
-
-/// Compare-exchanges in straight-line code (each pair: smaller first), without branches.
-macro_rules! network {
-    ($a:ident; $(($i:literal, $j:literal)),* $(,)?) => {
-        $({
-            let (x, y) = ($a[$i], $a[$j]);
-            $a[$i] = x.min(y);
-            $a[$j] = x.max(y);
-        })*
-    };
-}
-
-/// An optimal sorting network on 8 inputs (19 comparators).
-#[inline(always)]
-fn net8(a: &mut [u32; 8]) {
-    network!(a; (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5), (2, 6), (3, 7), (0, 1),
-        (2, 3), (4, 5), (6, 7), (2, 4), (3, 5), (1, 4), (3, 6), (1, 2), (3, 4), (5, 6));
-}
-
-/// Batcher's odd-even merge sorting network on 16 inputs (63 comparators).
-#[inline(always)]
-fn net16(a: &mut [u32; 16]) {
-    network!(a; (0, 1), (2, 3), (4, 5), (6, 7), (8, 9), (10, 11), (12, 13), (14, 15),
-        (0, 2), (1, 3), (4, 6), (5, 7), (8, 10), (9, 11), (12, 14), (13, 15), (1, 2), (5, 6),
-        (9, 10), (13, 14), (0, 4), (1, 5), (2, 6), (3, 7), (8, 12), (9, 13), (10, 14), (11, 15),
-        (2, 4), (3, 5), (10, 12), (11, 13), (1, 2), (3, 4), (5, 6), (9, 10), (11, 12), (13, 14),
-        (0, 8), (1, 9), (2, 10), (3, 11), (4, 12), (5, 13), (6, 14), (7, 15), (4, 8), (5, 9),
-        (6, 10), (7, 11), (2, 4), (3, 5), (6, 8), (7, 9), (10, 12), (11, 13), (1, 2), (3, 4),
-        (5, 6), (7, 8), (9, 10), (11, 12), (13, 14));
-}
-
-/// Sorts the first `n` of `row` (`N` long) without branches: the rest is padded with
-/// `u32::MAX` (and left so), then the sorting network `net` runs.
-#[inline(always)]
-fn sort_padded<const N: usize>(row: &mut [u32], n: usize, net: impl Fn(&mut [u32; N])) {
-    let mut a = [0u32; N];
-    for (k, x) in a.iter_mut().enumerate() {
-        *x = if k < n { row[k] } else { u32::MAX };
-    }
-    net(&mut a);
-    row[..N].copy_from_slice(&a);
-}
-
-#[cfg(test)]
-mod tests {
-    /// The networks sort every 0-1 input (so every input, by the 0-1 principle), and
-    /// `sort_padded` sorts every prefix length.
-    #[test]
-    fn sorting_networks_sort() {
-        for m in 0u32..1 << 16 {
-            let mut a: [u32; 16] = std::array::from_fn(|t| (m >> t) & 1);
-            let mut want = a;
-            want.sort_unstable();
-            super::net16(&mut a);
-            assert_eq!(a, want, "16: {m:b}");
-            if m < 1 << 8 {
-                let mut b: [u32; 8] = std::array::from_fn(|t| (m >> t) & 1);
-                let mut want = b;
-                want.sort_unstable();
-                super::net8(&mut b);
-                assert_eq!(b, want, "8: {m:b}");
-            }
-        }
-        let mut rng = crate::testkit::XorShift::new(7);
-        for n in 0..=16 {
-            let mut row: Vec<u32> = (0..16).map(|_| rng.below(50) as u32).collect();
-            let mut want = row[..n].to_vec();
-            want.sort_unstable();
-            if n <= 8 {
-                super::sort_padded::<8>(&mut row, n, super::net8);
-            } else {
-                super::sort_padded::<16>(&mut row, n, super::net16);
-            }
-            assert_eq!(&row[..n], want.as_slice(), "n = {n}");
-        }
     }
 }
