@@ -332,9 +332,13 @@ pub fn simplify(
             ));
         }
     }
-    // the working structure and homology mode's blocks both read only `k`: built side by side
+    // the working structure and homology mode's blocks both read only `k`: built side by
+    // side; homology mode never reads or moves a vertex, so its structure has no coordinates
     let (w, blocks) = rayon::join(
-        || TopSimplices::from_complex(k),
+        || match mode {
+            Mode::Homology => TopSimplices::from_complex_without_points(k),
+            Mode::Qem => TopSimplices::from_complex(k),
+        },
         || (mode == Mode::Homology).then(|| homology_blocks(k)),
     );
     let mut w = w?;
@@ -386,7 +390,11 @@ pub fn simplify(
             report.mean_error = Some(s.mean_error);
         }
     }
-    let (mut out, map) = w.to_complex()?;
+    let (mut out, map) = match mode {
+        // the survivors are where they were in the input
+        Mode::Homology => w.to_complex_with_points(k.coords(), k.ambient_dim())?,
+        Mode::Qem => w.to_complex()?,
+    };
     let attrs = k.attributes();
     if !attrs.is_empty() {
         // vertex columns: the surviving vertices' own values; cell columns: each output cell

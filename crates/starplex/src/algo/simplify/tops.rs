@@ -272,6 +272,37 @@ impl TopSimplices {
     /// # Errors
     /// As [`from_structure`](Self::from_structure).
     pub fn from_complex(k: &IndexedComplex) -> Result<TopSimplices, SimplifyError> {
+        Self::from_complex_points(k, true)
+    }
+
+    /// [`from_complex`](Self::from_complex) without a copy of the coordinates, for work that
+    /// never reads or moves a vertex (homology mode); write it back with
+    /// [`to_complex_with_points`](Self::to_complex_with_points).
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// # use starplex::complex::{ComplexBuilder, BuildOptions};
+    /// # use starplex::cell::CellKind;
+    /// # let mut b = ComplexBuilder::new(2).unwrap();
+    /// # for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] { b.push_vertex(&p).unwrap(); }
+    /// # b.push_cell(CellKind::Simplex(2), &[0, 1, 2]).unwrap();
+    /// # let k = b.build(&BuildOptions::default()).unwrap().0;
+    /// let w = TopSimplices::from_complex_without_points(&k).unwrap();
+    /// assert!(w.point(1).is_empty());
+    /// let (k2, _) = w.to_complex_with_points(k.coords(), k.ambient_dim()).unwrap();
+    /// assert_eq!(k2, k);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`from_complex`](Self::from_complex).
+    pub fn from_complex_without_points(k: &IndexedComplex) -> Result<TopSimplices, SimplifyError> {
+        Self::from_complex_points(k, false)
+    }
+
+    fn from_complex_points(
+        k: &IndexedComplex,
+        points: bool,
+    ) -> Result<TopSimplices, SimplifyError> {
         use rayon::prelude::*;
         let n = k.n_vertices();
         if n == 0 {
@@ -309,13 +340,17 @@ impl TopSimplices {
                 origin.push(NO_ORIGIN);
             }
         }
-        let coords = k.coords().to_vec();
+        let (coords, stride) = if points {
+            (k.coords().to_vec(), k.ambient_dim())
+        } else {
+            (Vec::new(), 0)
+        };
         Ok(Self::assemble_rows(
             n,
             FlatTops::new(verts, lens),
             origin,
             coords,
-            k.ambient_dim(),
+            stride,
             vt,
         ))
     }
@@ -982,16 +1017,41 @@ impl TopSimplices {
     /// # Errors
     /// [`SimplifyError::Complex`] if the builder refuses (not expected).
     pub fn to_complex(&self) -> Result<(IndexedComplex, Vec<Option<u32>>), SimplifyError> {
-        let stride = self.stride.max(1);
-        let mut b = ComplexBuilder::new(stride).map_err(SimplifyError::Complex)?;
+        self.to_complex_with_points(&self.coords, self.stride)
+    }
+
+    /// [`to_complex`](Self::to_complex) with each surviving vertex at its position in
+    /// `coords` (`stride` numbers a vertex, by vertex id): for a structure made by
+    /// [`from_complex_without_points`](Self::from_complex_without_points). A vertex beyond
+    /// `coords` is put at the origin.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let mut w = TopSimplices::from_tops(3, &[vec![0, 1], vec![1, 2]]).unwrap();
+    /// w.contract(1, 2);
+    /// let (k, _) = w.to_complex_with_points(&[0.0, 1.0, 2.0], 1).unwrap();
+    /// assert_eq!(k.coords(), &[0.0, 1.0]); // vertices 0 and 1 survive
+    /// ```
+    ///
+    /// # Errors
+    /// [`SimplifyError::Complex`] if the builder refuses (not expected).
+    pub fn to_complex_with_points(
+        &self,
+        coords: &[f64],
+        stride: usize,
+    ) -> Result<(IndexedComplex, Vec<Option<u32>>), SimplifyError> {
+        let dim = stride.max(1);
+        let mut b = ComplexBuilder::new(dim).map_err(SimplifyError::Complex)?;
         let mut map = vec![None; self.n_vertices()];
-        let zero = vec![0.0; stride];
+        let zero = vec![0.0; dim];
         for (v, slot) in map.iter_mut().enumerate() {
             if self.alive_v[v] {
-                let p = if self.stride == 0 {
+                let p = if stride == 0 {
                     &zero[..]
                 } else {
-                    self.point(v as u32)
+                    coords
+                        .get(v * stride..(v + 1) * stride)
+                        .unwrap_or(&zero[..])
                 };
                 *slot = Some(b.push_vertex(p).map_err(SimplifyError::Complex)?.0);
             }
