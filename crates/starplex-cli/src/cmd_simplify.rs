@@ -138,7 +138,21 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
         keep_labels,
         keep_vertices,
     };
+    // the memory of the simplification alone, over what is resident once the input (and the
+    // before report) are in memory
+    let rss_loaded = starplex::measure::memory().map(|m| m.resident);
+    let peak_reset = starplex::measure::reset_peak();
     let res = simplify(k, &opts);
+    let memory = match (peak_reset, rss_loaded, starplex::measure::memory()) {
+        (true, Some(base), Some(m)) => Some(json!({
+            "complex_bytes": k.bytes(),
+            "rss_before": base,
+            "peak_rss": m.peak,
+            "extra_over_loaded": m.peak.saturating_sub(base),
+            "extra_ratio_to_complex": m.peak.saturating_sub(base) as f64 / k.bytes().max(1) as f64,
+        })),
+        _ => None,
+    };
     pb.finish_and_clear();
     let (out, report) = res.map_err(|e| simplify_error(e, k, &name))?;
     let t_after = Instant::now();
@@ -160,6 +174,7 @@ fn run_in_pool(ctx: &Ctx, a: &SimplifyArgs, mode: Option<Mode>) -> Result<(), Cl
         after,
         hausdorff,
         report_s: before_s + after_s,
+        memory,
         labels_available: k
             .attributes()
             .cell
@@ -242,6 +257,8 @@ struct Outcome<'a> {
     report_s: f64,
     /// The input's cell attributes.
     labels_available: Vec<&'a str>,
+    /// Peak memory of the simplification over the loaded state (Linux).
+    memory: Option<Value>,
 }
 
 /// `--json`: one object with the counts, errors, labels, attributes, Hausdorff estimate and
@@ -257,6 +274,7 @@ fn print_json(a: &SimplifyArgs, o: &Outcome<'_>) -> Result<(), CliError> {
         hausdorff,
         report_s,
         labels_available,
+        memory,
     } = o;
     let mut v = json!({
         "input": name,
@@ -275,6 +293,9 @@ fn print_json(a: &SimplifyArgs, o: &Outcome<'_>) -> Result<(), CliError> {
     if report.mode == Mode::Qem {
         v["max_error"] = json!(report.max_error);
         v["mean_error"] = json!(report.mean_error);
+    }
+    if let Some(m) = memory {
+        v["memory"] = m.clone();
     }
     v["labels_kept"] = json!(report.kept_labels);
     v["labels_available"] = json!(labels_available);

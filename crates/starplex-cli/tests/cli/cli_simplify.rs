@@ -55,6 +55,19 @@ fn simplify_elephant_report() {
         if mode == "qem" {
             assert!(v["max_error"].as_f64().is_some());
         }
+        if cfg!(target_os = "linux") {
+            // the simplification's own peak over the loaded input
+            let m = &v["memory"];
+            let (peak, before) = (
+                m["peak_rss"].as_u64().unwrap(),
+                m["rss_before"].as_u64().unwrap(),
+            );
+            assert_eq!(
+                m["extra_over_loaded"].as_u64().unwrap(),
+                peak.saturating_sub(before)
+            );
+            assert!(m["complex_bytes"].as_u64().unwrap() > 0);
+        }
         assert!(out.exists());
     }
 }

@@ -149,7 +149,7 @@ pub fn contract_homology(
     progress: Option<&Progress>,
 ) -> ContractStats {
     let blocks = Blocks::single(w.n_vertices());
-    contract_homology_blocks(w, target, mode, progress, &blocks)
+    contract_homology_owned_blocks(w, target, mode, progress, blocks)
 }
 
 /// [`contract_homology`] over blocks of vertices (for instance the leaves of a Stellar tree,
@@ -182,6 +182,17 @@ pub fn contract_homology_blocks(
     progress: Option<&Progress>,
     blocks: &Blocks,
 ) -> ContractStats {
+    contract_homology_owned_blocks(w, target, mode, progress, blocks.clone())
+}
+
+/// [`contract_homology_blocks`] on blocks it may consume (the rounds compact them): no copy.
+pub(crate) fn contract_homology_owned_blocks(
+    w: &mut TopSimplices,
+    target: &Target,
+    mode: LinkMode,
+    progress: Option<&Progress>,
+    mut blocks: Blocks,
+) -> ContractStats {
     let mut stats = ContractStats::default();
     let n = w.n_vertices();
     let mut sweeper = Sweeper::new(mode, progress);
@@ -189,7 +200,6 @@ pub fn contract_homology_blocks(
     // inner vertices whose block sweep ran to its end: their pairs were all tried this round
     let mut tried = FixedBitSet::with_capacity(n);
     let mut in_part = FixedBitSet::with_capacity(w.n_top_slots());
-    let mut blocks = blocks.clone();
     let mut changes = Changes::all(n);
     while !target.reached(w) {
         stats.rounds += 1;

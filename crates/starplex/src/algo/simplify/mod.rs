@@ -378,7 +378,7 @@ pub fn simplify(
                 link_condition::LinkMode::Homology
             };
             let blocks = blocks.unwrap_or_else(|| homology_blocks(k));
-            let s = contract::contract_homology_blocks(&mut w, &target, lm, progress, &blocks);
+            let s = contract::contract_homology_owned_blocks(&mut w, &target, lm, progress, blocks);
             report.n_contractions = s.n_contractions;
             report.rounds = s.rounds;
         }
