@@ -114,9 +114,13 @@ impl StellarTree {
         let mut used = vec![false; nv];
         for c in 0..self.cells.n {
             let vs = self.cells.verts(c);
-            for &v in vs {
+            let Some((&a, rest)) = vs.split_first() else {
+                continue;
+            };
+            used[a as usize] = true;
+            for &v in rest {
                 used[v as usize] = true;
-                uf.union(vs[0], v);
+                uf.union(a, v);
             }
         }
         let n = uf.n_sets() as u64;
