@@ -69,6 +69,9 @@ pub struct ExpandedLeaf {
     scratch: (Vec<u32>, Vec<u32>),
 }
 
+/// The most references the fixed-capacity rows of one leaf may take (4 MiB).
+const FIXED_ROWS_MAX: usize = 1 << 20;
+
 impl PartialEq for ExpandedLeaf {
     fn eq(&self, o: &Self) -> bool {
         (self.leaf, self.v_start, self.v_end) == (o.leaf, o.v_start, o.v_end)
@@ -358,12 +361,20 @@ impl StellarTree {
     /// The row capacity (as a shift) for [`bucket_refs_fixed`](Self::bucket_refs_fixed) on
     /// a leaf of `nloc` vertices and `n_cells` cells of one kind: a power of two of at least
     /// four times the mean references per vertex (spilled ones included), at least 16.
-    /// `None` for several kinds.
+    /// `None` for several kinds, and for a leaf whose rows would take more than
+    /// [`FIXED_ROWS_MAX`] references (a huge leaf, say one leaf for the whole complex: the
+    /// counting sort's packed rows are smaller and the one pass would not stay in cache).
     #[inline]
     pub(crate) fn fixed_row_shift(&self, nloc: usize, n_cells: usize) -> Option<u32> {
         self.cells.uniform?;
-        let mean = (n_cells * self.cells.stride as usize).div_ceil(nloc.max(1));
-        Some((4 * mean).next_power_of_two().max(16).trailing_zeros())
+        let mean = (n_cells.checked_mul(self.cells.stride as usize)?).div_ceil(nloc.max(1));
+        let shift = mean
+            .checked_mul(4)?
+            .checked_next_power_of_two()?
+            .max(16)
+            .trailing_zeros();
+        let len = (nloc + 1).checked_mul(1usize.checked_shl(shift)?)?;
+        (len <= FIXED_ROWS_MAX).then_some(shift)
     }
 
     /// [`bucket_refs`](Self::bucket_refs) for one cell kind in one pass: row `i` is
@@ -907,17 +918,22 @@ mod tests {
     /// vertex of many more cells than the mean overflows them and the counting sort is used.
     #[test]
     fn fixed_capacity_rows_equal_counted_rows() {
-        let mut seen = [false; 2];
-        for (n, m, kv) in [(6, 40, 4), (64, 4, 0), (64, 40, 8), (5, 200, 0)] {
+        // seen: a row overflowed, the rows fitted, the leaf was too big for them
+        let mut seen = [false; 3];
+        let cases = [
+            (6, 40, 4),
+            (64, 4, 0),
+            (64, 40, 8),
+            (5, 200, 0),
+            (5, 200_000, 0),
+        ];
+        for (n, m, kv) in cases {
             let k = fan_and_strip(n, m);
-            let t = StellarTree::build(
-                &k,
-                &StellarOptions {
-                    kv: Some(kv),
-                    ..Default::default()
-                },
-            )
-            .unwrap();
+            let opts = StellarOptions {
+                kv: Some(kv),
+                ..Default::default()
+            };
+            let t = StellarTree::build(&k, &opts).unwrap();
             let mut e = ExpandedLeaf::default();
             for l in (0..t.n_leaves() as u32).map(LeafId) {
                 let (off, rows) = counted(&t, l);
@@ -925,7 +941,10 @@ mod tests {
                 assert_eq!((&e.vt_off, &e.vt), (&off, &rows), "leaf {l:?}");
                 // which path expand_leaf_into took
                 let r = t.leaf_vertices(l);
-                let shift = t.fixed_row_shift(r.len(), e.cells.len()).unwrap();
+                let Some(shift) = t.fixed_row_shift(r.len(), e.cells.len()) else {
+                    seen[2] = true; // too big for rows of a fixed capacity
+                    continue;
+                };
                 let (mut cnt, mut fixed) = (Vec::new(), Vec::new());
                 let fits =
                     t.bucket_refs_fixed(r.clone(), &e.cells, |c| c, shift, &mut cnt, &mut fixed);
@@ -938,16 +957,17 @@ mod tests {
                 }
             }
             // VT in input ids agrees with the brute force
+            let mut want = vec![Vec::new(); k.n_vertices()];
+            for c in k.cells() {
+                for &v in c.vertices {
+                    want[v as usize].push(c.id.0);
+                }
+            }
             let vt = t.vt_all();
-            for v in 0..k.n_vertices() as u32 {
-                let want: Vec<u32> = k
-                    .cells()
-                    .filter(|c| c.vertices.contains(&v))
-                    .map(|c| c.id.0)
-                    .collect();
-                assert_eq!(vt.row(v as usize), want.as_slice(), "vertex {v}");
+            for (v, w) in want.iter().enumerate() {
+                assert_eq!(vt.row(v), w.as_slice(), "vertex {v}");
             }
         }
-        assert_eq!(seen, [true, true], "both paths taken");
+        assert_eq!(seen, [true; 3], "every path taken");
     }
 }
