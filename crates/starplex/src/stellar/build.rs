@@ -511,8 +511,11 @@ fn reindex_small_uniform(
         .into_par_iter()
         .enumerate()
         .fold(
-            || (Groups::default(), Vec::<u128>::new(), Vec::<u32>::new()),
-            |(mut g, mut keys, mut rec), (h, (part, cells))| {
+            || {
+                let g = Groups::default();
+                (g, Vec::<u128>::new(), Vec::<u32>::new(), Vec::<u32>::new())
+            },
+            |(mut g, mut keys, mut rec, mut ids), (h, (part, cells))| {
                 let w = singles[h] as usize;
                 let h = h as u32;
                 // the cells in several leaves, in input order: key = (rest of the tuple, j)
@@ -524,7 +527,8 @@ fn reindex_small_uniform(
                     keys.push(rest_of_tuple(cell, leaf_t) | j as u128);
                 }
                 keys.sort_unstable();
-                let ids = part[w..].to_vec();
+                ids.clear();
+                ids.extend_from_slice(&part[w..]);
                 if w > 0 {
                     g.push(w as u32, &[h]);
                 }
@@ -544,10 +548,10 @@ fn reindex_small_uniform(
                     }
                     prev = Some(rest);
                 }
-                (g, keys, rec)
+                (g, keys, rec, ids)
             },
         )
-        .map(|(g, _, _)| g)
+        .map(|(g, ..)| g)
         .collect();
     let c_orig = order;
     // the home array's memory (every entry is overwritten: c_orig is a permutation)

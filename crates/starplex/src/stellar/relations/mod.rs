@@ -34,7 +34,7 @@ use crate::ids::{CellId, LeafId, TreeVertexId, VertexId};
 use crate::limits::Limits;
 use crate::topo::link::{LinkError, VertexLink};
 use crate::topo::naive::edge_neighbours;
-use crate::topo::sortnet::{net16, net8, sort_padded};
+use crate::topo::sortnet::sort_in_capacity;
 use crate::topo::{TopCells, VertexAdjacency, VertexStar};
 
 mod face_keys;
@@ -123,11 +123,7 @@ impl StellarTree {
             for (i, v) in r.enumerate() {
                 let (at, n) = (i << shift, buf.off[i] as usize);
                 // the row's capacity (at least 16) holds the padding of the short sorts
-                match n {
-                    0..=8 => sort_padded::<_, 8>(&mut buf.rows[at..at + 8], n, u32::MAX, net8),
-                    9..=16 => sort_padded::<_, 16>(&mut buf.rows[at..at + 16], n, u32::MAX, net16),
-                    _ => buf.rows[at..at + n].sort_unstable(),
-                }
+                sort_in_capacity(&mut buf.rows[at..(i + 1) << shift], n, u32::MAX);
                 f(v, &buf.rows[at..at + n]);
             }
             return;
