@@ -16,6 +16,8 @@
 //! assert_eq!(Blocks::single(4).len(), 1);
 //! ```
 use fixedbitset::FixedBitSet;
+use std::sync::RwLock;
+
 use rayon::prelude::*;
 
 use super::contract::{Changes, ContractStats, Sweeper};
@@ -26,10 +28,6 @@ use crate::stellar::StellarTree;
 /// Vertices per block that [`simplify`](super::simplify) aims at: the border of a block (its
 /// vertices with a top reaching another block) is then a few percent of it on a mesh.
 pub const BLOCK_VERTICES: usize = 16_384;
-
-/// Blocks contracted in parallel before they are pasted back (bounds the memory of the parts;
-/// the result does not depend on it).
-const WAVE: usize = 8;
 
 /// A part runs another round of its own while its last one refused at most this many edges
 /// per contraction; past that (the dense end of a volume mesh), the rounds over the whole
@@ -269,79 +267,94 @@ impl Blocks {
         let left_vertices = target
             .vertices
             .map(|v| w.n_alive_vertices().saturating_sub(v) as u128);
-        let ids: Vec<usize> = (0..self.len()).collect();
-        for wave in ids.chunks(WAVE) {
-            let shared: &TopSimplices = w;
-            let changes_now: &Changes = changes;
-            let done: Vec<_> = wave
-                .par_iter()
-                .map(|&x| {
-                    let verts = self.block(x);
-                    let mut part = shared.cut(verts, &self.block_of, &self.local_of, x as u32);
-                    let size = self.sizes[x] as u128;
-                    let share = |left: u128| (left * size / n.max(1)) as usize;
-                    let max_tops = left_tops.map(share);
-                    let max_vertices = left_vertices.map(share);
-                    let (tops0, verts0) = (part.w.n_alive_tops(), part.w.n_alive_vertices());
-                    let mut frozen = FixedBitSet::with_capacity(verts.len());
-                    frozen.insert_range(..);
-                    frozen.difference_with(&part.inner);
-                    let mut local = frozen.clone();
-                    let mut s = sweeper.fork();
-                    let mut st = ContractStats::default();
-                    let allow = |p: &TopSimplices, a: u32, b: u32| {
-                        let bound = tops0 - p.n_alive_tops() + p.star(a).len() + p.star(b).len();
-                        max_tops.is_none_or(|m| bound <= m)
-                            && max_vertices.is_none_or(|m| verts0 - p.n_alive_vertices() < m)
-                    };
-                    let mut ch = changes_now.restrict(verts);
-                    // rounds on the part while they pay: one cut and one paste for all
-                    let mut contracted = FixedBitSet::with_capacity(verts.len());
-                    let mut changed = [
-                        FixedBitSet::with_capacity(verts.len()),
-                        FixedBitSet::with_capacity(verts.len()),
-                    ];
-                    let complete = loop {
-                        let (before, refused) = (st.n_contractions, st.n_refused);
-                        let complete = s.sweep(
-                            &mut part.w,
-                            0..verts.len() as u32,
-                            &mut local,
-                            None,
-                            &mut ch,
-                            &mut st,
-                            &allow,
-                            |_| false,
-                        );
-                        local.difference_with(&frozen);
-                        contracted.union_with(&local);
-                        let made = st.n_contractions - before;
-                        // another round while it pays: most of the tests still contract
-                        if !complete || made == 0 || st.n_refused - refused > RETRY * made {
-                            break complete;
-                        }
-                        ch.next_round_into(&mut changed);
-                        local.clone_from(&frozen);
-                    };
-                    ch.add_changed(&changed);
-                    (part, contracted, st, complete, ch)
-                })
-                .collect();
-            for (&x, (part, contracted, st, complete, ch)) in wave.iter().zip(done) {
-                let verts = self.block(x);
-                w.paste(verts, &part, in_part);
-                changes.absorb(&ch, verts);
-                for i in contracted.ones() {
-                    touched.insert(verts[i] as usize);
+        // Each block is cut, contracted and pasted back on its own, as soon as a thread is
+        // free: only the parts being worked on are in memory. A cut reads only its block's
+        // vertices and the tops through them, which no other block's paste writes (a part's
+        // tops lie inside its block), so the order of the pastes changes nothing.
+        let state = RwLock::new(Pasted {
+            w,
+            changes,
+            touched,
+            tried,
+            in_part,
+            stats,
+        });
+        (0..self.len()).into_par_iter().for_each(|x| {
+            let verts = self.block(x);
+            let (mut part, mut ch) = {
+                let g = state.read().unwrap_or_else(|e| e.into_inner());
+                let part = g.w.cut(verts, &self.block_of, &self.local_of, x as u32);
+                (part, g.changes.restrict(verts))
+            };
+            let size = self.sizes[x] as u128;
+            let share = |left: u128| (left * size / n.max(1)) as usize;
+            let max_tops = left_tops.map(share);
+            let max_vertices = left_vertices.map(share);
+            let (tops0, verts0) = (part.w.n_alive_tops(), part.w.n_alive_vertices());
+            let mut frozen = FixedBitSet::with_capacity(verts.len());
+            frozen.insert_range(..);
+            frozen.difference_with(&part.inner);
+            let mut local = frozen.clone();
+            let mut s = sweeper.fork();
+            let mut st = ContractStats::default();
+            let allow = |p: &TopSimplices, a: u32, b: u32| {
+                let bound = tops0 - p.n_alive_tops() + p.star(a).len() + p.star(b).len();
+                max_tops.is_none_or(|m| bound <= m)
+                    && max_vertices.is_none_or(|m| verts0 - p.n_alive_vertices() < m)
+            };
+            // rounds on the part while they pay: one cut and one paste for all
+            let mut contracted = FixedBitSet::with_capacity(verts.len());
+            let mut changed = [
+                FixedBitSet::with_capacity(verts.len()),
+                FixedBitSet::with_capacity(verts.len()),
+            ];
+            let complete = loop {
+                let (before, refused) = (st.n_contractions, st.n_refused);
+                let complete = s.sweep(
+                    &mut part.w,
+                    0..verts.len() as u32,
+                    &mut local,
+                    None,
+                    &mut ch,
+                    &mut st,
+                    &allow,
+                    |_| false,
+                );
+                local.difference_with(&frozen);
+                contracted.union_with(&local);
+                let made = st.n_contractions - before;
+                // another round while it pays: most of the tests still contract
+                if !complete || made == 0 || st.n_refused - refused > RETRY * made {
+                    break complete;
                 }
-                if complete {
-                    for i in part.inner.ones() {
-                        tried.insert(verts[i] as usize);
-                    }
-                }
-                stats.n_contractions += st.n_contractions;
-                stats.n_refused += st.n_refused;
+                ch.next_round_into(&mut changed);
+                local.clone_from(&frozen);
+            };
+            ch.add_changed(&changed);
+            let mut g = state.write().unwrap_or_else(|e| e.into_inner());
+            let g = &mut *g;
+            g.w.paste(verts, &part, g.in_part);
+            g.changes.absorb(&ch, verts);
+            for i in contracted.ones() {
+                g.touched.insert(verts[i] as usize);
             }
-        }
+            if complete {
+                for i in part.inner.ones() {
+                    g.tried.insert(verts[i] as usize);
+                }
+            }
+            g.stats.n_contractions += st.n_contractions;
+            g.stats.n_refused += st.n_refused;
+        });
     }
+}
+
+/// What the block sweeps of [`Blocks::sweep_parts`] write back, behind one lock.
+struct Pasted<'s> {
+    w: &'s mut TopSimplices,
+    changes: &'s mut Changes,
+    touched: &'s mut FixedBitSet,
+    tried: &'s mut FixedBitSet,
+    in_part: &'s mut FixedBitSet,
+    stats: &'s mut ContractStats,
 }

@@ -34,9 +34,6 @@ use crate::topo::TopCells;
 /// One top simplex: its vertices in the given order (inline up to a tetrahedron).
 pub type Top = SmallVec<[u32; 4]>;
 
-/// The origin of a top that is no input cell (an isolated vertex).
-const NO_ORIGIN: u32 = u32::MAX;
-
 /// A simplicial complex stored by its top simplices, editable by edge contraction.
 ///
 /// Vertex ids are those of the input for the whole life of the structure (a contracted vertex
@@ -54,8 +51,13 @@ const NO_ORIGIN: u32 = u32::MAX;
 pub struct TopSimplices {
     /// The tops, flat ([`FlatTops`]: no allocation or inline header per top).
     tops: FlatTops,
-    /// Per top: the input top it is the image of (`NO_ORIGIN` for an added vertex top).
-    origin: Vec<u32>,
+    /// Per top of a part cut out of a structure ([`cut`](Self::cut)): its id there; empty
+    /// for a whole structure, whose tops keep their ids.
+    whole_id: Vec<u32>,
+    /// The tops of the whole structure below this id are the input's, in order: a top is the
+    /// image of the input top of its (whole) id; the others are vertex tops added for
+    /// isolated vertices.
+    n_input_tops: usize,
     vt: Vec<SmallVec<[u32; 8]>>,
     alive_v: Vec<bool>,
     locked: Vec<bool>,
@@ -122,6 +124,44 @@ impl FlatTops {
     }
     fn len(&self) -> usize {
         self.lens.len()
+    }
+    /// The vertex rows: per vertex `0..n`, the tops through it in increasing id order. The
+    /// vertices are split in ranges, one per thread, each filled in a scan of the tops (no
+    /// index in between: each row is allocated once, at its size).
+    fn rows(&self, n: usize) -> Vec<SmallVec<[u32; 8]>> {
+        use rayon::prelude::*;
+        let mut vt: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];
+        let threads = rayon::current_num_threads().max(1);
+        // small structures (a block's part) in one piece
+        let chunk = if self.verts.len() < 1 << 16 {
+            n.max(1)
+        } else {
+            n.div_ceil(threads).max(1)
+        };
+        vt.par_chunks_mut(chunk).enumerate().for_each(|(c, rows)| {
+            let lo = (c * chunk) as u32;
+            let hi = lo + rows.len() as u32;
+            let mut count = vec![0u32; rows.len()];
+            for t in 0..self.len() {
+                for &v in self.get(t) {
+                    if (lo..hi).contains(&v) {
+                        count[(v - lo) as usize] += 1;
+                    }
+                }
+            }
+            for (row, &c) in rows.iter_mut().zip(&count) {
+                row.reserve_exact(c as usize);
+            }
+            drop(count);
+            for t in 0..self.len() {
+                for &v in self.get(t) {
+                    if (lo..hi).contains(&v) {
+                        rows[(v - lo) as usize].push(t as u32);
+                    }
+                }
+            }
+        });
+        vt
     }
     #[inline]
     fn slot(&self, t: usize) -> usize {
@@ -213,7 +253,6 @@ impl TopSimplices {
         }
         let mut verts = Vec::new();
         let mut lens = Vec::with_capacity(s.n_top_cells() + 1);
-        let mut origin = Vec::with_capacity(s.n_top_cells() + 1);
         let mut buf = Vec::new();
         let mut used = vec![false; n];
         for c in 0..s.n_top_cells() {
@@ -232,13 +271,12 @@ impl TopSimplices {
             }
             verts.extend(buf.iter().map(|v| v.0));
             lens.push(buf.len() as u8); // at most MAX_SIMPLEX_DIM + 1 = 65 vertices
-            origin.push(c.0);
         }
+        let n_input_tops = lens.len();
         for (v, &u) in used.iter().enumerate() {
             if !u {
                 verts.push(v as u32);
                 lens.push(1);
-                origin.push(NO_ORIGIN);
             }
         }
         let coords = if stride == 0 {
@@ -249,7 +287,7 @@ impl TopSimplices {
         Ok(Self::assemble(
             n,
             FlatTops::new(verts, lens),
-            origin,
+            n_input_tops,
             coords,
             stride,
         ))
@@ -303,7 +341,6 @@ impl TopSimplices {
         k: &IndexedComplex,
         points: bool,
     ) -> Result<TopSimplices, SimplifyError> {
-        use rayon::prelude::*;
         let n = k.n_vertices();
         if n == 0 {
             return Err(SimplifyError::Empty);
@@ -311,47 +348,34 @@ impl TopSimplices {
         if let Some(b) = k.blocks().iter().find(|b| !b.kind.is_simplex()) {
             return Err(SimplifyError::not_simplicial(b.first, b.kind));
         }
-        // the tops are the cells, block by block (what `from_structure` makes, in id order),
-        // and the rows are the complex's vertex -> cells index (sorted by cell id, as the
-        // rows `assemble` pushes), both made side by side
-        let (vc, (mut verts, mut lens)) = rayon::join(
-            || k.vertex_cells(),
-            || {
-                let mut verts = Vec::with_capacity(k.n_refs());
-                let mut lens = Vec::with_capacity(k.n_cells() + 1);
-                for b in k.blocks() {
-                    verts.extend_from_slice(&b.vertices);
-                    lens.resize(lens.len() + b.len(), b.kind.n_vertices() as u8);
-                }
-                (verts, lens)
-            },
-        );
-        let mut origin: Vec<u32> = (0..k.n_cells() as u32).collect();
-        let mut vt: Vec<SmallVec<[u32; 8]>> = (0..n)
-            .into_par_iter()
-            .map(|v| SmallVec::from_slice(vc.row(v)))
-            .collect();
-        // a vertex in no cell is a 0-dimensional top
-        for (v, row) in vt.iter_mut().enumerate() {
-            if row.is_empty() {
-                row.push(lens.len() as u32);
-                verts.push(v as u32);
-                lens.push(1);
-                origin.push(NO_ORIGIN);
+        // the tops are the cells, block by block (what `from_structure` makes, in id order);
+        // the rows are made from them by `assemble` (no vertex -> cells index in between)
+        let mut verts = Vec::with_capacity(k.n_refs());
+        let mut lens = Vec::with_capacity(k.n_cells() + 1);
+        let mut used = FixedBitSet::with_capacity(n);
+        for b in k.blocks() {
+            verts.extend_from_slice(&b.vertices);
+            lens.resize(lens.len() + b.len(), b.kind.n_vertices() as u8);
+            for &v in b.vertices.iter() {
+                used.insert(v as usize);
             }
+        }
+        // a vertex in no cell is a 0-dimensional top
+        for v in used.zeroes() {
+            verts.push(v as u32);
+            lens.push(1);
         }
         let (coords, stride) = if points {
             (k.coords().to_vec(), k.ambient_dim())
         } else {
             (Vec::new(), 0)
         };
-        Ok(Self::assemble_rows(
+        Ok(Self::assemble(
             n,
             FlatTops::new(verts, lens),
-            origin,
+            k.n_cells(),
             coords,
             stride,
-            vt,
         ))
     }
 
@@ -397,11 +421,10 @@ impl TopSimplices {
             }
             out.push(t.iter().copied().collect());
         }
-        let mut origin: Vec<u32> = (0..out.len() as u32).collect();
+        let n_input_tops = out.len();
         for (v, &u) in used.iter().enumerate() {
             if !u {
                 out.push(SmallVec::from_slice(&[v as u32]));
-                origin.push(NO_ORIGIN);
             }
         }
         let lens = out.iter().map(|t| t.len() as u8).collect();
@@ -409,7 +432,7 @@ impl TopSimplices {
         Ok(Self::assemble(
             n_vertices,
             FlatTops::new(verts, lens),
-            origin,
+            n_input_tops,
             Vec::new(),
             0,
         ))
@@ -418,37 +441,11 @@ impl TopSimplices {
     fn assemble(
         n: usize,
         tops: FlatTops,
-        origin: Vec<u32>,
+        n_input_tops: usize,
         coords: Vec<f64>,
         stride: usize,
     ) -> TopSimplices {
-        let mut count = vec![0usize; n];
-        for i in 0..tops.len() {
-            for &v in tops.get(i) {
-                count[v as usize] += 1;
-            }
-        }
-        let mut vt: Vec<SmallVec<[u32; 8]>> =
-            count.into_iter().map(SmallVec::with_capacity).collect();
-        for i in 0..tops.len() {
-            for &v in tops.get(i) {
-                vt[v as usize].push(i as u32);
-            }
-        }
-        Self::assemble_rows(n, tops, origin, coords, stride, vt)
-    }
-
-    /// [`assemble`](Self::assemble) with the rows made: `vt[v]` the tops through `v`, in
-    /// increasing id order.
-    fn assemble_rows(
-        n: usize,
-        tops: FlatTops,
-        origin: Vec<u32>,
-        coords: Vec<f64>,
-        stride: usize,
-        vt: Vec<SmallVec<[u32; 8]>>,
-    ) -> TopSimplices {
-        debug_assert_eq!(tops.len(), origin.len());
+        let vt = tops.rows(n);
         debug_assert!(
             (0..tops.len()).all(|i| tops
                 .get(i)
@@ -459,7 +456,8 @@ impl TopSimplices {
         TopSimplices {
             n_alive_tops: tops.len(),
             tops,
-            origin,
+            whole_id: Vec::new(),
+            n_input_tops,
             vt,
             alive_v: vec![true; n],
             locked: vec![false; n],
@@ -1091,10 +1089,11 @@ impl TopSimplices {
     /// assert_eq!(w.origin(t), Some(1));
     /// ```
     pub fn origin(&self, t: u32) -> Option<u32> {
-        self.origin
-            .get(t as usize)
-            .copied()
-            .filter(|&o| o != NO_ORIGIN)
+        if t as usize >= self.tops.len() {
+            return None;
+        }
+        let whole = self.whole_id.get(t as usize).copied().unwrap_or(t);
+        ((whole as usize) < self.n_input_tops).then_some(whole)
     }
 
     /// The origins ([`origin`](Self::origin)) of the cells that
@@ -1108,12 +1107,9 @@ impl TopSimplices {
     /// assert_eq!(w.cell_origins(), vec![Some(0), Some(2)]);
     /// ```
     pub fn cell_origins(&self) -> Vec<Option<u32>> {
-        self.tops
-            .lens
-            .iter()
-            .zip(&self.origin)
-            .filter(|&(&l, _)| l >= 2)
-            .map(|(_, &o)| (o != NO_ORIGIN).then_some(o))
+        (0..self.tops.len() as u32)
+            .filter(|&t| self.tops.lens[t as usize] >= 2)
+            .map(|t| self.origin(t))
             .collect()
     }
 
@@ -1157,10 +1153,9 @@ impl TopSimplices {
 /// the stars of the block's *inner* vertices (those whose every top lies in the block), in a
 /// structure of its own whose vertex `i` is the block's `i`-th vertex.
 pub(super) struct Part {
-    /// The part: tops in global id order, vertices numbered within the block.
+    /// The part: tops in global id order (each top's id in the whole structure is its
+    /// `whole_id`), vertices numbered within the block.
     pub(super) w: TopSimplices,
-    /// Per part top: its id in the whole structure.
-    pub(super) global_top: Vec<u32>,
     /// Per block vertex: inner (alive, and every top through it lies in the block).
     pub(super) inner: FixedBitSet,
 }
@@ -1189,31 +1184,30 @@ impl TopSimplices {
         ids.dedup();
         let mut tverts = Vec::with_capacity(ids.len() * self.tops.width.max(1));
         let mut lens = Vec::with_capacity(ids.len());
-        let mut origin = Vec::with_capacity(ids.len());
         for &t in &ids {
             let top = self.top(t);
             tverts.extend(top.iter().map(|&u| local_of[u as usize]));
             lens.push(top.len() as u8);
-            origin.push(self.origin[t as usize]);
         }
         let mut w = Self::assemble(
             verts.len(),
             FlatTops::new(tverts, lens),
-            origin,
+            self.n_input_tops,
             Vec::new(),
             0,
         );
+        debug_assert!(
+            self.whole_id.is_empty(),
+            "a part is cut from a whole structure"
+        );
+        w.whole_id = ids;
         for (i, &v) in verts.iter().enumerate() {
             w.alive_v[i] = self.is_alive(v);
             w.locked[i] = self.is_locked(v);
         }
         w.n_alive_v = w.alive_v.iter().filter(|&&a| a).count();
         w.labels = Arc::clone(&self.labels);
-        Part {
-            w,
-            global_top: ids,
-            inner,
-        }
+        Part { w, inner }
     }
 
     /// Writes a contracted part back (the inverse of [`cut`](Self::cut) for block `verts`):
@@ -1222,7 +1216,7 @@ impl TopSimplices {
     /// `in_part` is a cleared bitset over the tops (left cleared).
     pub(super) fn paste(&mut self, verts: &[u32], part: &Part, in_part: &mut FixedBitSet) {
         let p = &part.w;
-        for (lt, &g) in part.global_top.iter().enumerate() {
+        for (lt, &g) in p.whole_id.iter().enumerate() {
             in_part.insert(g as usize);
             let g = g as usize;
             let l = p.tops.lens[lt];
@@ -1244,13 +1238,13 @@ impl TopSimplices {
             } else {
                 row.retain(|t| !in_part.contains(*t as usize));
             }
-            row.extend(p.vt[i].iter().map(|&lt| part.global_top[lt as usize]));
+            row.extend(p.vt[i].iter().map(|&lt| p.whole_id[lt as usize]));
             if self.alive_v[v as usize] && !p.alive_v[i] {
                 self.alive_v[v as usize] = false;
                 self.n_alive_v -= 1;
             }
         }
-        for &g in &part.global_top {
+        for &g in &p.whole_id {
             in_part.set(g as usize, false);
         }
     }
