@@ -28,6 +28,7 @@ pub mod contract;
 pub mod hausdorff;
 pub mod link_condition;
 pub mod qem;
+mod rows;
 pub mod tops;
 
 use std::sync::Arc;

@@ -25,6 +25,7 @@ use std::sync::Arc;
 use fixedbitset::FixedBitSet;
 use smallvec::SmallVec;
 
+use super::rows::Rows;
 use super::SimplifyError;
 use crate::cell::CellKind;
 use crate::complex::{BuildOptions, ComplexBuilder, IndexedComplex};
@@ -58,7 +59,8 @@ pub struct TopSimplices {
     /// image of the input top of its (whole) id; the others are vertex tops added for
     /// isolated vertices.
     n_input_tops: usize,
-    vt: Vec<SmallVec<[u32; 8]>>,
+    /// Per vertex: the tops through it.
+    vt: Rows,
     alive_v: Vec<bool>,
     locked: Vec<bool>,
     /// Per input top (by origin): its label, when labels are kept (empty otherwise); shared
@@ -125,43 +127,10 @@ impl FlatTops {
     fn len(&self) -> usize {
         self.lens.len()
     }
-    /// The vertex rows: per vertex `0..n`, the tops through it in increasing id order. The
-    /// vertices are split in ranges, one per thread, each filled in a scan of the tops (no
-    /// index in between: each row is allocated once, at its size).
-    fn rows(&self, n: usize) -> Vec<SmallVec<[u32; 8]>> {
-        use rayon::prelude::*;
-        let mut vt: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];
-        let threads = rayon::current_num_threads().max(1);
-        // small structures (a block's part) in one piece
-        let chunk = if self.verts.len() < 1 << 16 {
-            n.max(1)
-        } else {
-            n.div_ceil(threads).max(1)
-        };
-        vt.par_chunks_mut(chunk).enumerate().for_each(|(c, rows)| {
-            let lo = (c * chunk) as u32;
-            let hi = lo + rows.len() as u32;
-            let mut count = vec![0u32; rows.len()];
-            for t in 0..self.len() {
-                for &v in self.get(t) {
-                    if (lo..hi).contains(&v) {
-                        count[(v - lo) as usize] += 1;
-                    }
-                }
-            }
-            for (row, &c) in rows.iter_mut().zip(&count) {
-                row.reserve_exact(c as usize);
-            }
-            drop(count);
-            for t in 0..self.len() {
-                for &v in self.get(t) {
-                    if (lo..hi).contains(&v) {
-                        rows[(v - lo) as usize].push(t as u32);
-                    }
-                }
-            }
-        });
-        vt
+    /// The vertex rows: per vertex `0..n`, the tops through it in increasing id order
+    /// (small structures, a block's part, on one thread).
+    fn rows(&self, n: usize) -> Rows {
+        Rows::from_tops(n, self.len(), |t| self.get(t), self.verts.len() >= 1 << 16)
     }
     #[inline]
     fn slot(&self, t: usize) -> usize {
@@ -450,7 +419,7 @@ impl TopSimplices {
             (0..tops.len()).all(|i| tops
                 .get(i)
                 .iter()
-                .all(|&v| vt[v as usize].contains(&(i as u32)))),
+                .all(|&v| vt.row(v as usize).contains(&(i as u32)))),
             "every top is in the rows of its vertices"
         );
         TopSimplices {
@@ -624,7 +593,7 @@ impl TopSimplices {
     /// assert_eq!(w.star(1).len(), 2);
     /// ```
     pub fn star(&self, v: u32) -> &[u32] {
-        self.vt.get(v as usize).map_or(&[], |s| &s[..])
+        self.vt.row(v as usize)
     }
 
     /// The vertices joined to `v` by an edge, sorted.
@@ -754,17 +723,18 @@ impl TopSimplices {
         sc.had_a.clear();
         sc.keep.clear();
         sc.swallowed.clear();
-        let st_b = std::mem::take(&mut self.vt[b as usize]);
+        sc.ids.extend_from_slice(self.vt.row(b as usize));
+        self.vt.free(b as usize);
         // the usual cases: every top through a or b is a triangle (a surface) or has the same
         // size (a tetrahedral mesh)
-        let len = st_b.first().map_or(0, |&t| self.tops.lens[t as usize]);
-        let uniform = st_b
+        let len = sc.ids.first().map_or(0, |&t| self.tops.lens[t as usize]);
+        let uniform = sc
+            .ids
             .iter()
-            .chain(self.vt[a as usize].iter())
+            .chain(self.vt.row(a as usize))
             .all(|&t| self.tops.lens[t as usize] == len);
-        for &t in &st_b {
+        for &t in &sc.ids {
             let had_a = self.tops.contract_in(t as usize, a, b);
-            sc.ids.push(t);
             sc.had_a.push(had_a);
         }
         self.alive_v[b as usize] = false;
@@ -794,7 +764,7 @@ impl TopSimplices {
             if !keep {
                 self.drop_top(t);
             } else if !had_a {
-                self.vt[a as usize].push(t);
+                self.vt.push(a as usize, t);
             }
         }
         self.scratch = sc;
@@ -815,7 +785,8 @@ impl TopSimplices {
         // the tops through a that were not through b, listed once
         others.clear();
         others.extend(
-            self.vt[a as usize]
+            self.vt
+                .row(a as usize)
                 .iter()
                 .copied()
                 .filter(|u| !ids.contains(u)),
@@ -882,9 +853,9 @@ impl TopSimplices {
                 .iter()
                 .copied()
                 .filter(|&x| x != a)
-                .min_by_key(|&x| self.vt[x as usize].len())
+                .min_by_key(|&x| self.vt.len(x as usize))
                 .expect("an image of a top of 3 or more vertices has a vertex besides a");
-            let dominated = self.vt[x as usize].iter().any(|&u| {
+            let dominated = self.vt.row(x as usize).iter().any(|&u| {
                 u != ti
                     && (!marked || through_a[u as usize] == *epoch)
                     && is_subset(t, self.tops.get(u as usize))
@@ -905,7 +876,7 @@ impl TopSimplices {
             *epoch = 0;
         }
         *epoch += 1;
-        for &u in self.vt[a as usize].iter().chain(ids.iter()) {
+        for &u in self.vt.row(a as usize).iter().chain(ids.iter()) {
             through_a[u as usize] = *epoch;
         }
     }
@@ -923,7 +894,7 @@ impl TopSimplices {
             k
         };
         sc.other_keys.clear();
-        for &u in &self.vt[a as usize] {
+        for &u in self.vt.row(a as usize) {
             if !sc.ids.contains(&u) {
                 sc.other_keys.push(sorted(self.tops.get(u as usize)));
             }
@@ -967,7 +938,7 @@ impl TopSimplices {
         let l = std::mem::take(&mut self.tops.lens[t as usize]) as usize;
         self.n_alive_tops -= 1;
         for &v in &self.tops.verts[s..s + l] {
-            remove_from(&mut self.vt[v as usize], t);
+            self.vt.remove(v as usize, t);
         }
     }
 
@@ -1168,7 +1139,8 @@ impl TopSimplices {
     /// contracted at the same time and pasted back ([`paste`](Self::paste)).
     pub(super) fn cut(&self, verts: &[u32], block_of: &[u32], local_of: &[u32], x: u32) -> Part {
         let mut inner = FixedBitSet::with_capacity(verts.len());
-        let mut ids: Vec<u32> = Vec::new();
+        // the tops of the inner stars, marked (a bit a top: no list of every star entry)
+        let mut marked = FixedBitSet::with_capacity(self.tops.len());
         for (i, &v) in verts.iter().enumerate() {
             let star = self.star(v);
             let is_inner = self.is_alive(v)
@@ -1177,11 +1149,14 @@ impl TopSimplices {
                     .all(|&t| self.top(t).iter().all(|&u| block_of[u as usize] == x));
             if is_inner {
                 inner.insert(i);
-                ids.extend_from_slice(star);
+                for &t in star {
+                    marked.insert(t as usize);
+                }
             }
         }
-        ids.sort_unstable();
-        ids.dedup();
+        let mut ids: Vec<u32> = Vec::with_capacity(marked.count_ones(..));
+        ids.extend(marked.ones().map(|t| t as u32));
+        drop(marked);
         let mut tverts = Vec::with_capacity(ids.len() * self.tops.width.max(1));
         let mut lens = Vec::with_capacity(ids.len());
         for &t in &ids {
@@ -1216,6 +1191,7 @@ impl TopSimplices {
     /// `in_part` is a cleared bitset over the tops (left cleared).
     pub(super) fn paste(&mut self, verts: &[u32], part: &Part, in_part: &mut FixedBitSet) {
         let p = &part.w;
+        let mut buf = Vec::new();
         for (lt, &g) in p.whole_id.iter().enumerate() {
             in_part.insert(g as usize);
             let g = g as usize;
@@ -1232,16 +1208,19 @@ impl TopSimplices {
             self.tops.lens[g] = l;
         }
         for (i, &v) in verts.iter().enumerate() {
-            let row = &mut self.vt[v as usize];
             if part.inner.contains(i) {
-                row.clear();
+                self.vt.clear(v as usize);
             } else {
-                row.retain(|t| !in_part.contains(*t as usize));
+                self.vt
+                    .retain(v as usize, |t| !in_part.contains(t as usize));
             }
-            row.extend(p.vt[i].iter().map(|&lt| p.whole_id[lt as usize]));
+            buf.clear();
+            buf.extend(p.vt.row(i).iter().map(|&lt| p.whole_id[lt as usize]));
+            self.vt.extend(v as usize, &buf);
             if self.alive_v[v as usize] && !p.alive_v[i] {
                 self.alive_v[v as usize] = false;
                 self.n_alive_v -= 1;
+                self.vt.free(v as usize);
             }
         }
         for &g in &p.whole_id {
@@ -1252,12 +1231,6 @@ impl TopSimplices {
     /// Number of top slots (alive or removed): the range of top ids.
     pub(super) fn n_top_slots(&self) -> usize {
         self.tops.len()
-    }
-}
-
-fn remove_from(row: &mut SmallVec<[u32; 8]>, t: u32) {
-    if let Some(i) = row.iter().position(|&x| x == t) {
-        row.swap_remove(i);
     }
 }
 
@@ -1382,7 +1355,8 @@ mod tests {
                     // the images, edited as contract does, judged both ways
                     let mut c = w.clone();
                     let mut sc = ContractScratch::default();
-                    let st_b = std::mem::take(&mut c.vt[b as usize]);
+                    let st_b = c.vt.row(b as usize).to_vec();
+                    c.vt.free(b as usize);
                     for &t in &st_b {
                         let had_a = c.tops.contract_in(t as usize, a, b);
                         sc.ids.push(t);

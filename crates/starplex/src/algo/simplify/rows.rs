@@ -1,0 +1,330 @@
+//! The vertex → top rows of [`TopSimplices`](super::TopSimplices), all in one array.
+//!
+//! Each vertex owns a *chunk* `[owner, capacity, length, entries…]` of the array. A row that
+//! outgrows its chunk moves to a new chunk at the end, half as large again; the chunk left
+//! behind is a hole, and so is the chunk of a vertex contracted away. When the holes are a
+//! quarter of the array and it must grow, the live chunks slide down over them in one pass
+//! (the owner in each chunk says whose it is). A row costs its entries, three numbers and the
+//! slack of its last move, and no allocation of its own: a tetrahedral mesh's rows (~20
+//! tetrahedra a vertex) take 16 bytes a vertex beyond their entries, where a `SmallVec` of 8
+//! spilled to the heap takes ~60.
+//!
+//! Contraction only shrinks the sum of the rows (a removed top leaves every row, an image
+//! takes the place of its top), so the array never needs much more than its first size.
+
+use rayon::prelude::*;
+
+/// Numbers before a chunk's entries: owner, capacity, length.
+const HEAD: usize = 3;
+/// The owner of a hole.
+const DEAD: u32 = u32::MAX;
+/// A vertex without a chunk (an empty row of no capacity).
+const NONE: usize = usize::MAX;
+
+/// Vertex rows in one array (see the [module](self)).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub(super) struct Rows {
+    /// Per vertex: the position of its chunk's header (`NONE` for none).
+    at: Vec<usize>,
+    /// The chunks, one after the other.
+    arena: Vec<u32>,
+    /// Numbers of the array in holes.
+    holes: usize,
+}
+
+impl Rows {
+    /// The rows of `n` vertices made from tops `0..n_tops` (`top(t)` its vertices, all below
+    /// `n`): per vertex, the tops through it in increasing id order, in chunks of exactly
+    /// their size. The vertices are split in ranges, one per thread, each counted and filled
+    /// in scans of the tops; `parallel` false keeps one range.
+    pub(super) fn from_tops<'a, F>(n: usize, n_tops: usize, top: F, parallel: bool) -> Rows
+    where
+        F: Fn(usize) -> &'a [u32] + Sync,
+    {
+        let threads = if parallel {
+            rayon::current_num_threads().max(1)
+        } else {
+            1
+        };
+        let span = n.div_ceil(threads).max(1);
+        // the counts of each range's vertices, then the chunks' positions
+        let mut at = vec![0usize; n];
+        at.par_chunks_mut(span).enumerate().for_each(|(c, count)| {
+            let lo = c * span;
+            for t in 0..n_tops {
+                for &v in top(t) {
+                    if let Some(k) = (v as usize).checked_sub(lo).and_then(|i| count.get_mut(i)) {
+                        *k += 1;
+                    }
+                }
+            }
+        });
+        let mut pos = 0usize;
+        for a in at.iter_mut() {
+            let len = *a;
+            *a = pos;
+            pos += HEAD + len;
+        }
+        let mut arena = vec![0u32; pos];
+        // each range fills its own stretch of the array
+        let mut pieces: Vec<(usize, &mut [u32])> = Vec::with_capacity(threads);
+        let mut rest: &mut [u32] = &mut arena;
+        let mut base = 0;
+        for c in 0..n.div_ceil(span) {
+            let end = at.get((c + 1) * span).copied().unwrap_or(pos);
+            let (piece, tail) = rest.split_at_mut(end - base);
+            pieces.push((c * span, piece));
+            rest = tail;
+            base = end;
+        }
+        pieces.into_par_iter().for_each(|(lo, piece)| {
+            let hi = (lo + span).min(n);
+            let base = at[lo];
+            for (v, &a) in at[lo..hi].iter().enumerate() {
+                let next = at.get(lo + v + 1).copied().unwrap_or(pos);
+                let h = a - base;
+                piece[h] = (lo + v) as u32;
+                piece[h + 1] = (next - a - HEAD) as u32;
+            }
+            for t in 0..n_tops {
+                for &v in top(t) {
+                    let v = v as usize;
+                    if (lo..hi).contains(&v) {
+                        let h = at[v] - base;
+                        let len = piece[h + 2] as usize;
+                        piece[h + HEAD + len] = t as u32;
+                        piece[h + 2] += 1;
+                    }
+                }
+            }
+        });
+        Rows {
+            at,
+            arena,
+            holes: 0,
+        }
+    }
+
+    /// The row of `v` (empty beyond the vertices).
+    #[inline]
+    pub(super) fn row(&self, v: usize) -> &[u32] {
+        match self.at.get(v) {
+            Some(&a) if a != NONE => {
+                let len = self.arena[a + 2] as usize;
+                &self.arena[a + HEAD..a + HEAD + len]
+            }
+            _ => &[],
+        }
+    }
+
+    /// The length of the row of `v`.
+    #[inline]
+    pub(super) fn len(&self, v: usize) -> usize {
+        match self.at[v] {
+            NONE => 0,
+            a => self.arena[a + 2] as usize,
+        }
+    }
+
+    /// Appends `t` to the row of `v`.
+    pub(super) fn push(&mut self, v: usize, t: u32) {
+        self.extend(v, &[t]);
+    }
+
+    /// Appends `ts` to the row of `v`, moving it to a larger chunk when it does not fit.
+    pub(super) fn extend(&mut self, v: usize, ts: &[u32]) {
+        let (len, cap) = match self.at[v] {
+            NONE => (0, 0),
+            a => (self.arena[a + 2] as usize, self.arena[a + 1] as usize),
+        };
+        if len + ts.len() > cap {
+            self.grow(v, len + ts.len());
+        }
+        let a = self.at[v];
+        self.arena[a + HEAD + len..a + HEAD + len + ts.len()].copy_from_slice(ts);
+        self.arena[a + 2] = (len + ts.len()) as u32;
+    }
+
+    /// Removes one `t` from the row of `v` (the last entry takes its place); nothing when
+    /// it is not there.
+    pub(super) fn remove(&mut self, v: usize, t: u32) {
+        let a = self.at[v];
+        if a == NONE {
+            return;
+        }
+        let len = self.arena[a + 2] as usize;
+        let row = &mut self.arena[a + HEAD..a + HEAD + len];
+        if let Some(i) = row.iter().position(|&x| x == t) {
+            row[i] = row[len - 1];
+            self.arena[a + 2] -= 1;
+        }
+    }
+
+    /// Keeps the entries of the row of `v` that `keep` accepts, in order.
+    pub(super) fn retain(&mut self, v: usize, mut keep: impl FnMut(u32) -> bool) {
+        let a = self.at[v];
+        if a == NONE {
+            return;
+        }
+        let len = self.arena[a + 2] as usize;
+        let mut out = 0;
+        for i in 0..len {
+            let t = self.arena[a + HEAD + i];
+            if keep(t) {
+                self.arena[a + HEAD + out] = t;
+                out += 1;
+            }
+        }
+        self.arena[a + 2] = out as u32;
+    }
+
+    /// Empties the row of `v`, keeping its chunk.
+    pub(super) fn clear(&mut self, v: usize) {
+        if self.at[v] != NONE {
+            let a = self.at[v];
+            self.arena[a + 2] = 0;
+        }
+    }
+
+    /// Empties the row of `v` and gives its chunk up (a vertex contracted away).
+    pub(super) fn free(&mut self, v: usize) {
+        let a = std::mem::replace(&mut self.at[v], NONE);
+        if a != NONE {
+            self.arena[a] = DEAD;
+            self.holes += HEAD + self.arena[a + 1] as usize;
+        }
+    }
+
+    /// Moves the row of `v` to a new chunk at the end for at least `need` entries (half as
+    /// large again as its length); first slides the chunks over the holes when they are a
+    /// quarter of the array and it would have to grow.
+    fn grow(&mut self, v: usize, need: usize) {
+        let len = self.len(v);
+        let cap = need.max(len + len / 2).max(4);
+        if self.arena.len() + HEAD + cap > self.arena.capacity() {
+            if self.holes * 4 >= self.arena.len() {
+                self.compact();
+            }
+            let more = HEAD + cap;
+            if self.arena.len() + more > self.arena.capacity() {
+                // grow by an eighth, not double: the array is most of the structure
+                let extra = more.max(self.arena.len() / 8);
+                self.arena.reserve_exact(extra);
+            }
+        }
+        let start = self.arena.len();
+        self.arena
+            .extend_from_slice(&[v as u32, cap as u32, len as u32]);
+        match self.at[v] {
+            NONE => {}
+            a => {
+                self.arena.extend_from_within(a + HEAD..a + HEAD + len);
+                self.arena[a] = DEAD;
+                self.holes += HEAD + self.arena[a + 1] as usize;
+            }
+        }
+        self.arena.resize(start + HEAD + cap, 0);
+        self.at[v] = start;
+    }
+
+    /// Slides every live chunk down over the holes, in one pass.
+    fn compact(&mut self) {
+        let mut out = 0;
+        let mut pos = 0;
+        while pos < self.arena.len() {
+            let owner = self.arena[pos];
+            let size = HEAD + self.arena[pos + 1] as usize;
+            if owner != DEAD {
+                self.arena.copy_within(pos..pos + size, out);
+                self.at[owner as usize] = out;
+                out += size;
+            }
+            pos += size;
+        }
+        self.arena.truncate(out);
+        self.holes = 0;
+    }
+
+    /// Bytes held (the array's capacity and the positions).
+    #[cfg(test)]
+    pub(super) fn bytes(&self) -> usize {
+        self.arena.capacity() * 4 + self.at.capacity() * std::mem::size_of::<usize>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testkit::XorShift;
+
+    /// Random pushes, removals, retains, clears and frees against a vector per vertex; the
+    /// array compacts along the way and stays within a bound of what the rows hold.
+    #[test]
+    fn rows_are_vectors() {
+        let mut r = XorShift::new(0x0505);
+        let n = 300;
+        let tops: Vec<Vec<u32>> = (0..900)
+            .map(|_| (0..3).map(|_| r.below(n as u64) as u32).collect())
+            .collect();
+        for parallel in [false, true] {
+            let mut rows = Rows::from_tops(n, tops.len(), |t| &tops[t], parallel);
+            let mut model: Vec<Vec<u32>> = vec![Vec::new(); n];
+            for (t, top) in tops.iter().enumerate() {
+                for &v in top {
+                    model[v as usize].push(t as u32);
+                }
+            }
+            let mut compactions = 0;
+            for step in 0..20_000u32 {
+                let v = r.below(n as u64) as usize;
+                match r.below(10) {
+                    0..=4 => {
+                        let k = 1 + r.below(6) as usize;
+                        let ts: Vec<u32> = (0..k).map(|i| step * 8 + i as u32).collect();
+                        let before = rows.holes;
+                        rows.extend(v, &ts);
+                        compactions += usize::from(rows.holes < before);
+                        model[v].extend(&ts);
+                    }
+                    5..=6 => {
+                        if let Some(&t) = model[v].get(r.below(4) as usize) {
+                            rows.remove(v, t);
+                            let i = model[v].iter().position(|&x| x == t).unwrap();
+                            model[v].swap_remove(i);
+                        }
+                    }
+                    7 => {
+                        rows.retain(v, |t| t % 3 != 0);
+                        model[v].retain(|t| t % 3 != 0);
+                    }
+                    8 => {
+                        rows.clear(v);
+                        model[v].clear();
+                    }
+                    _ => {
+                        rows.free(v);
+                        model[v].clear();
+                    }
+                }
+                if step % 97 == 0 {
+                    for (u, m) in model.iter().enumerate() {
+                        assert_eq!(rows.row(u), &m[..], "vertex {u} at step {step}");
+                        assert_eq!(rows.len(u), m.len());
+                    }
+                }
+            }
+            for (u, m) in model.iter().enumerate() {
+                assert_eq!(rows.row(u), &m[..]);
+            }
+            assert!(compactions > 3, "{compactions}");
+            let live: usize = model.iter().map(|m| m.len()).sum();
+            // entries, headers, a half of slack and a quarter of holes, and the growth step
+            assert!(
+                rows.arena.len() <= 2 * (live + HEAD * n) + 64,
+                "{}",
+                rows.arena.len()
+            );
+            assert!(rows.bytes() >= rows.arena.len() * 4);
+        }
+    }
+}
