@@ -47,10 +47,9 @@ pub struct Blocks {
     verts: Vec<u32>,
     /// Block `x` is `verts[starts[x]..starts[x + 1]]`.
     starts: Vec<usize>,
-    /// Per vertex: its block (empty for a single block).
-    block_of: Vec<u32>,
-    /// Per vertex: its position in its block (empty for a single block).
-    local_of: Vec<u32>,
+    /// Per vertex: its position in `verts` (so its block is the one whose range holds it;
+    /// `u32::MAX` once contracted away; empty for a single block).
+    slot_of: Vec<u32>,
     /// Per block: its number of vertices as made, before [`retain_alive`](Self::retain_alive)
     /// (what a block's share of a count target is proportional to).
     sizes: Vec<usize>,
@@ -66,8 +65,7 @@ impl Blocks {
         Blocks {
             verts: Vec::new(),
             starts: vec![0, n],
-            block_of: Vec::new(),
-            local_of: Vec::new(),
+            slot_of: Vec::new(),
             sizes: vec![n],
         }
     }
@@ -84,7 +82,12 @@ impl Blocks {
     /// # Errors
     /// [`SimplifyError::BadTarget`] naming what is wrong.
     pub fn from_order(order: &[u32], cuts: &[usize]) -> Result<Blocks, SimplifyError> {
-        let n = order.len();
+        Self::from_order_owned(order.to_vec(), cuts)
+    }
+
+    /// [`from_order`](Self::from_order) on an order it may keep (no copy).
+    fn from_order_owned(mut verts: Vec<u32>, cuts: &[usize]) -> Result<Blocks, SimplifyError> {
+        let n = verts.len();
         let bad = |what: &str| Err(SimplifyError::BadTarget(format!("blocks: {what}")));
         if cuts.first() != Some(&0) || cuts.last() != Some(&n) {
             return bad("the cuts must run from 0 to the number of vertices");
@@ -92,29 +95,23 @@ impl Blocks {
         if cuts.windows(2).any(|c| c[0] >= c[1]) {
             return bad("the cuts must be increasing");
         }
-        let mut block_of = vec![u32::MAX; n];
-        for (x, c) in cuts.windows(2).enumerate() {
-            for &v in &order[c[0]..c[1]] {
-                match block_of.get_mut(v as usize) {
-                    Some(b) if *b == u32::MAX => *b = x as u32,
-                    _ => return bad("the order must hold every vertex once"),
-                }
+        let mut slot_of = vec![u32::MAX; n];
+        for &v in &verts {
+            match slot_of.get_mut(v as usize) {
+                Some(b) if *b == u32::MAX => *b = 0,
+                _ => return bad("the order must hold every vertex once"),
             }
         }
-        let mut verts = order.to_vec();
-        let mut local_of = vec![0u32; n];
         for c in cuts.windows(2) {
-            let block = &mut verts[c[0]..c[1]];
-            block.sort_unstable();
-            for (i, &v) in block.iter().enumerate() {
-                local_of[v as usize] = i as u32;
-            }
+            verts[c[0]..c[1]].sort_unstable();
+        }
+        for (p, &v) in verts.iter().enumerate() {
+            slot_of[v as usize] = p as u32;
         }
         Ok(Blocks {
             verts,
             starts: cuts.to_vec(),
-            block_of,
-            local_of,
+            slot_of,
             sizes: cuts.windows(2).map(|c| c[1] - c[0]).collect(),
         })
     }
@@ -174,7 +171,7 @@ impl Blocks {
         if cuts.last() != Some(&n) {
             cuts.push(n);
         }
-        Blocks::from_order(&order, &cuts).unwrap_or_else(|_| Blocks::single(n))
+        Blocks::from_order_owned(order, &cuts).unwrap_or_else(|_| Blocks::single(n))
     }
 
     /// Number of blocks.
@@ -220,7 +217,7 @@ impl Blocks {
     /// assert_eq!((b.block(0), b.block(1)), (&[0, 1][..], &[2][..]));
     /// ```
     pub fn retain_alive(&mut self, w: &TopSimplices) {
-        if self.block_of.is_empty() {
+        if self.slot_of.is_empty() {
             return;
         }
         let mut out = 0;
@@ -230,9 +227,11 @@ impl Blocks {
             for i in from..to {
                 let v = self.verts[i];
                 if w.is_alive(v) {
-                    self.local_of[v as usize] = (out - self.starts[x]) as u32;
+                    self.slot_of[v as usize] = out as u32;
                     self.verts[out] = v;
                     out += 1;
+                } else {
+                    self.slot_of[v as usize] = u32::MAX;
                 }
             }
         }
@@ -283,7 +282,7 @@ impl Blocks {
             let verts = self.block(x);
             let (mut part, mut ch) = {
                 let g = state.read().unwrap_or_else(|e| e.into_inner());
-                let part = g.w.cut(verts, &self.block_of, &self.local_of, x as u32);
+                let part = g.w.cut(verts, &self.slot_of, self.starts[x] as u32);
                 (part, g.changes.restrict(verts))
             };
             let size = self.sizes[x] as u128;

@@ -1132,12 +1132,16 @@ pub(super) struct Part {
 }
 
 impl TopSimplices {
-    /// Cuts out the stars of the inner vertices of block `x`: `verts` are its vertices in
-    /// increasing id order, `block_of` / `local_of` give every vertex's block and position in
-    /// it. A contraction of two inner vertices reads and writes only the part (the tops through
+    /// Cuts out the stars of the inner vertices of a block: `verts` are its vertices in
+    /// increasing id order, at positions `first..` of the blocks' order (`slot_of` gives every
+    /// alive vertex's position there, so a vertex is in the block when its position less
+    /// `first` is below `verts.len()`, and that difference is its number in the part).
+    /// A contraction of two inner vertices reads and writes only the part (the tops through
     /// them and the rows of those tops' vertices, all in the block), so disjoint blocks can be
     /// contracted at the same time and pasted back ([`paste`](Self::paste)).
-    pub(super) fn cut(&self, verts: &[u32], block_of: &[u32], local_of: &[u32], x: u32) -> Part {
+    pub(super) fn cut(&self, verts: &[u32], slot_of: &[u32], first: u32) -> Part {
+        let local = |u: u32| slot_of[u as usize].wrapping_sub(first);
+        let size = verts.len() as u32;
         let mut inner = FixedBitSet::with_capacity(verts.len());
         // the tops of the inner stars, marked (a bit a top: no list of every star entry)
         let mut marked = FixedBitSet::with_capacity(self.tops.len());
@@ -1146,7 +1150,7 @@ impl TopSimplices {
             let is_inner = self.is_alive(v)
                 && star
                     .iter()
-                    .all(|&t| self.top(t).iter().all(|&u| block_of[u as usize] == x));
+                    .all(|&t| self.top(t).iter().all(|&u| local(u) < size));
             if is_inner {
                 inner.insert(i);
                 for &t in star {
@@ -1161,7 +1165,7 @@ impl TopSimplices {
         let mut lens = Vec::with_capacity(ids.len());
         for &t in &ids {
             let top = self.top(t);
-            tverts.extend(top.iter().map(|&u| local_of[u as usize]));
+            tverts.extend(top.iter().map(|&u| local(u)));
             lens.push(top.len() as u8);
         }
         let mut w = Self::assemble(
