@@ -356,6 +356,12 @@ impl Changes {
         }
     }
 
+    /// False when no edge `a?` refused before can have changed since (see
+    /// [`may_differ`](Self::may_differ)).
+    fn may_differ_at(&self, a: u32) -> bool {
+        self.near.has(a)
+    }
+
     /// False when the edge `ab`, refused before, cannot have changed since.
     fn may_differ(&self, a: u32, b: u32) -> bool {
         (self.changed.has(a) || self.changed.has(b)) && self.near.has(a) && self.near.has(b)
@@ -420,7 +426,8 @@ impl<'a> Sweeper<'a> {
     ) -> bool {
         let was_tried = |v: u32| tried.is_some_and(|t| t.contains(v as usize));
         for a in order {
-            if !w.is_alive(a) || touched.contains(a as usize) {
+            // an edge of a vertex not near any change since it was refused is refused again
+            if !w.is_alive(a) || touched.contains(a as usize) || !changes.may_differ_at(a) {
                 continue;
             }
             w.neighbours_into(a, &mut self.nb);
