@@ -202,7 +202,7 @@ impl Rows {
         let len = self.len(v);
         let cap = need.max(len + len / 2).max(4);
         if self.arena.len() + HEAD + cap > self.arena.capacity() {
-            if self.holes * 4 >= self.arena.len() {
+            if self.holes * 8 >= self.arena.len() {
                 self.compact();
             }
             let more = HEAD + cap;

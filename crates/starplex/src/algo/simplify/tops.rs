@@ -1211,20 +1211,25 @@ impl TopSimplices {
             }
             self.tops.lens[g] = l;
         }
+        // the rows of the vertices contracted away are given up before the survivors' rows
+        // grow, so that a row moving to the end finds their room
         for (i, &v) in verts.iter().enumerate() {
-            if part.inner.contains(i) {
+            if self.alive_v[v as usize] && !p.alive_v[i] {
+                self.alive_v[v as usize] = false;
+                self.n_alive_v -= 1;
+                self.vt.free(v as usize);
+            } else if part.inner.contains(i) {
                 self.vt.clear(v as usize);
             } else {
                 self.vt
                     .retain(v as usize, |t| !in_part.contains(t as usize));
             }
-            buf.clear();
-            buf.extend(p.vt.row(i).iter().map(|&lt| p.whole_id[lt as usize]));
-            self.vt.extend(v as usize, &buf);
-            if self.alive_v[v as usize] && !p.alive_v[i] {
-                self.alive_v[v as usize] = false;
-                self.n_alive_v -= 1;
-                self.vt.free(v as usize);
+        }
+        for (i, &v) in verts.iter().enumerate() {
+            if p.alive_v[i] {
+                buf.clear();
+                buf.extend(p.vt.row(i).iter().map(|&lt| p.whole_id[lt as usize]));
+                self.vt.extend(v as usize, &buf);
             }
         }
         for &g in &p.whole_id {
