@@ -369,12 +369,23 @@ pub fn simplify_qem(
     let d = qem_dimension(w).ok_or(SimplifyError::NotAMesh)?;
     let n = w.n_vertices();
     let stride = w.stride;
-    // the positions move to 3D points for the run (the coordinates are written back at the end)
-    let mut pos: Vec<[f64; 3]> = std::mem::take(&mut w.coords)
-        .chunks_exact(stride)
-        .map(|p| [p[0], p[1], p.get(2).copied().unwrap_or(0.0)])
-        .collect();
-    let (mut quad, boundary, total_area, n_surface) = surface_quadrics(w, d, &pos);
+    // the positions as 3D points for the run: the coordinates themselves in 3D (no copy), a
+    // padded copy in 2D (written back at the end)
+    let mut coords = std::mem::take(&mut w.coords);
+    let mut padded: Vec<[f64; 3]> = Vec::new();
+    if stride != 3 {
+        padded = coords
+            .chunks_exact(stride)
+            .map(|p| [p[0], p[1], p.get(2).copied().unwrap_or(0.0)])
+            .collect();
+        coords = Vec::new();
+    }
+    let pos: &mut [[f64; 3]] = if stride == 3 {
+        coords.as_chunks_mut::<3>().0
+    } else {
+        &mut padded
+    };
+    let (mut quad, boundary, total_area, n_surface) = surface_quadrics(w, d, pos);
     // vertices that neither move nor disappear: the locked ones, and the boundary if asked
     let mut locked: Vec<bool> = (0..n as u32)
         .map(|v| w.is_locked(v) || (lock_boundary && boundary[v as usize]))
@@ -385,7 +396,7 @@ pub fn simplify_qem(
     } else {
         1e-12
     };
-    for (q, p) in quad.iter_mut().zip(&pos) {
+    for (q, p) in quad.iter_mut().zip(pos.iter()) {
         q.add(&Quadric::point(*p, eps));
     }
 
@@ -401,7 +412,7 @@ pub fn simplify_qem(
     'rounds: while last_round_contracted && !target.reached(w) {
         stats.rounds += 1;
         last_round_contracted = false;
-        push_all(&mut heap, w, &mut nb, &quad, &pos, &locked, &stamp);
+        push_all(&mut heap, w, &mut nb, &quad, pos, &locked, &stamp);
         // the queue holds about one entry per live edge at the start of a round; when older
         // entries make it twice that (the live edges shrink with the vertices), they are
         // dropped, which bounds the queue's memory
@@ -420,7 +431,7 @@ pub fn simplify_qem(
             if !w.is_alive(a) || !w.is_alive(b) || !e.fresh(&stamp) {
                 continue;
             }
-            let Some((cost, p)) = candidate(a, b, &quad, &pos, &locked) else {
+            let Some((cost, p)) = candidate(a, b, &quad, pos, &locked) else {
                 continue;
             };
             if !e.current(cost) {
@@ -437,7 +448,7 @@ pub fn simplify_qem(
                 stats.refused_link += 1;
                 continue;
             }
-            if !geometry_ok(w, d, &pos, s, t, p) {
+            if !geometry_ok(w, d, pos, s, t, p) {
                 stats.refused_geometry += 1;
                 continue;
             }
@@ -461,7 +472,7 @@ pub fn simplify_qem(
             }
             w.neighbours_into(s, &mut nb);
             for &x in &nb {
-                if let Some((c, _)) = candidate(s, x, &quad, &pos, &locked) {
+                if let Some((c, _)) = candidate(s, x, &quad, pos, &locked) {
                     heap.push(Entry::new(c, s.min(x), s.max(x), &stamp));
                 }
             }
@@ -476,10 +487,14 @@ pub fn simplify_qem(
         stats.mean_error = sum_err / stats.n_contractions as f64;
     }
     drop((heap, quad));
-    w.coords = pos
-        .iter()
-        .flat_map(|p| p.iter().copied().take(stride))
-        .collect();
+    w.coords = if stride == 3 {
+        coords
+    } else {
+        padded
+            .iter()
+            .flat_map(|p| p.iter().copied().take(stride))
+            .collect()
+    };
     Ok(stats)
 }
 
