@@ -4,10 +4,10 @@
 //! outgrows its chunk moves to a new chunk at the end, half as large again; the chunk left
 //! behind is a hole, and so is the chunk of a vertex contracted away. When the holes are a
 //! quarter of the array and it must grow, the live chunks slide down over them in one pass
-//! (the owner in each chunk says whose it is). A row costs its entries, three numbers and the
-//! slack of its last move, and no allocation of its own: a tetrahedral mesh's rows (~20
-//! tetrahedra a vertex) take 16 bytes a vertex beyond their entries, where a `SmallVec` of 8
-//! spilled to the heap takes ~60.
+//! (the owner in each chunk says whose it is). A row costs its entries, its position and three
+//! numbers (20 bytes), and the slack of its last move, and no allocation of its own; a
+//! `SmallVec<[u32; 8]>` holding a tetrahedral vertex's ~20 tops spilled them to the heap, at
+//! ~60 bytes beyond the entries.
 //!
 //! Contraction only shrinks the sum of the rows (a removed top leaves every row, an image
 //! takes the place of its top), so the array never needs much more than its first size.
@@ -133,6 +133,9 @@ impl Rows {
 
     /// Appends `ts` to the row of `v`, moving it to a larger chunk when it does not fit.
     pub(super) fn extend(&mut self, v: usize, ts: &[u32]) {
+        if ts.is_empty() {
+            return;
+        }
         let (len, cap) = match self.at[v] {
             NONE => (0, 0),
             a => (self.arena[a + 2] as usize, self.arena[a + 1] as usize),
@@ -303,6 +306,7 @@ mod tests {
                     }
                     _ => {
                         rows.free(v);
+                        rows.extend(v, &[]); // nothing to add to a row without a chunk
                         model[v].clear();
                     }
                 }

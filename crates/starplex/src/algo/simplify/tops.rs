@@ -1143,24 +1143,30 @@ impl TopSimplices {
         let local = |u: u32| slot_of[u as usize].wrapping_sub(first);
         let size = verts.len() as u32;
         let mut inner = FixedBitSet::with_capacity(verts.len());
-        // the tops of the inner stars, marked (a bit a top: no list of every star entry)
-        let mut marked = FixedBitSet::with_capacity(self.tops.len());
         for (i, &v) in verts.iter().enumerate() {
-            let star = self.star(v);
             let is_inner = self.is_alive(v)
-                && star
+                && self
+                    .star(v)
                     .iter()
                     .all(|&t| self.top(t).iter().all(|&u| local(u) < size));
-            if is_inner {
-                inner.insert(i);
-                for &t in star {
-                    marked.insert(t as usize);
+            inner.set(i, is_inner);
+        }
+        // the tops of the inner stars, each listed once: by its first inner vertex
+        let mut ids: Vec<u32> = Vec::new();
+        for i in inner.ones() {
+            for &t in self.star(verts[i]) {
+                let first = self
+                    .top(t)
+                    .iter()
+                    .map(|&u| local(u) as usize)
+                    .filter(|&j| inner.contains(j))
+                    .min();
+                if first == Some(i) {
+                    ids.push(t);
                 }
             }
         }
-        let mut ids: Vec<u32> = Vec::with_capacity(marked.count_ones(..));
-        ids.extend(marked.ones().map(|t| t as u32));
-        drop(marked);
+        ids.sort_unstable();
         let mut tverts = Vec::with_capacity(ids.len() * self.tops.width.max(1));
         let mut lens = Vec::with_capacity(ids.len());
         for &t in &ids {
