@@ -25,7 +25,7 @@ const NONE: usize = usize::MAX;
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub(super) struct Rows {
     /// Per vertex: the position of its chunk's header (`NONE` for none).
-    at: Vec<usize>,
+    at: At,
     /// The chunks, one after the other.
     arena: Vec<u32>,
     /// Numbers of the array in holes.
@@ -48,30 +48,34 @@ impl Rows {
         };
         let span = n.div_ceil(threads).max(1);
         // the counts of each range's vertices, then the chunks' positions
-        let mut at = vec![0usize; n];
-        at.par_chunks_mut(span).enumerate().for_each(|(c, count)| {
-            let lo = c * span;
-            for t in 0..n_tops {
-                for &v in top(t) {
-                    if let Some(k) = (v as usize).checked_sub(lo).and_then(|i| count.get_mut(i)) {
-                        *k += 1;
+        let mut count = vec![0u32; n];
+        count
+            .par_chunks_mut(span)
+            .enumerate()
+            .for_each(|(c, count)| {
+                let lo = c * span;
+                for t in 0..n_tops {
+                    for &v in top(t) {
+                        if let Some(k) = (v as usize).checked_sub(lo).and_then(|i| count.get_mut(i))
+                        {
+                            *k += 1;
+                        }
                     }
                 }
-            }
-        });
-        let mut pos = 0usize;
-        for a in at.iter_mut() {
-            let len = *a;
-            *a = pos;
-            pos += HEAD + len;
-        }
+            });
+        let pos = count.iter().map(|&c| HEAD + c as usize).sum::<usize>();
+        let at = At::positions(count, pos);
         let mut arena = vec![0u32; pos];
         // each range fills its own stretch of the array
         let mut pieces: Vec<(usize, &mut [u32])> = Vec::with_capacity(threads);
         let mut rest: &mut [u32] = &mut arena;
         let mut base = 0;
         for c in 0..n.div_ceil(span) {
-            let end = at.get((c + 1) * span).copied().unwrap_or(pos);
+            let end = if (c + 1) * span < n {
+                at.get((c + 1) * span)
+            } else {
+                pos
+            };
             let (piece, tail) = rest.split_at_mut(end - base);
             pieces.push((c * span, piece));
             rest = tail;
@@ -79,18 +83,18 @@ impl Rows {
         }
         pieces.into_par_iter().for_each(|(lo, piece)| {
             let hi = (lo + span).min(n);
-            let base = at[lo];
-            for (v, &a) in at[lo..hi].iter().enumerate() {
-                let next = at.get(lo + v + 1).copied().unwrap_or(pos);
+            let base = at.get(lo);
+            for v in lo..hi {
+                let (a, next) = (at.get(v), if v + 1 < n { at.get(v + 1) } else { pos });
                 let h = a - base;
-                piece[h] = (lo + v) as u32;
+                piece[h] = v as u32;
                 piece[h + 1] = (next - a - HEAD) as u32;
             }
             for t in 0..n_tops {
                 for &v in top(t) {
                     let v = v as usize;
                     if (lo..hi).contains(&v) {
-                        let h = at[v] - base;
+                        let h = at.get(v) - base;
                         let len = piece[h + 2] as usize;
                         piece[h + HEAD + len] = t as u32;
                         piece[h + 2] += 1;
@@ -108,19 +112,22 @@ impl Rows {
     /// The row of `v` (empty beyond the vertices).
     #[inline]
     pub(super) fn row(&self, v: usize) -> &[u32] {
+        if v >= self.at.len() {
+            return &[];
+        }
         match self.at.get(v) {
-            Some(&a) if a != NONE => {
+            NONE => &[],
+            a => {
                 let len = self.arena[a + 2] as usize;
                 &self.arena[a + HEAD..a + HEAD + len]
             }
-            _ => &[],
         }
     }
 
     /// The length of the row of `v`.
     #[inline]
     pub(super) fn len(&self, v: usize) -> usize {
-        match self.at[v] {
+        match self.at.get(v) {
             NONE => 0,
             a => self.arena[a + 2] as usize,
         }
@@ -136,14 +143,14 @@ impl Rows {
         if ts.is_empty() {
             return;
         }
-        let (len, cap) = match self.at[v] {
+        let (len, cap) = match self.at.get(v) {
             NONE => (0, 0),
             a => (self.arena[a + 2] as usize, self.arena[a + 1] as usize),
         };
         if len + ts.len() > cap {
             self.grow(v, len + ts.len());
         }
-        let a = self.at[v];
+        let a = self.at.get(v);
         self.arena[a + HEAD + len..a + HEAD + len + ts.len()].copy_from_slice(ts);
         self.arena[a + 2] = (len + ts.len()) as u32;
     }
@@ -151,7 +158,7 @@ impl Rows {
     /// Removes one `t` from the row of `v` (the last entry takes its place); nothing when
     /// it is not there.
     pub(super) fn remove(&mut self, v: usize, t: u32) {
-        let a = self.at[v];
+        let a = self.at.get(v);
         if a == NONE {
             return;
         }
@@ -165,7 +172,7 @@ impl Rows {
 
     /// Keeps the entries of the row of `v` that `keep` accepts, in order.
     pub(super) fn retain(&mut self, v: usize, mut keep: impl FnMut(u32) -> bool) {
-        let a = self.at[v];
+        let a = self.at.get(v);
         if a == NONE {
             return;
         }
@@ -183,15 +190,16 @@ impl Rows {
 
     /// Empties the row of `v`, keeping its chunk.
     pub(super) fn clear(&mut self, v: usize) {
-        if self.at[v] != NONE {
-            let a = self.at[v];
+        let a = self.at.get(v);
+        if a != NONE {
             self.arena[a + 2] = 0;
         }
     }
 
     /// Empties the row of `v` and gives its chunk up (a vertex contracted away).
     pub(super) fn free(&mut self, v: usize) {
-        let a = std::mem::replace(&mut self.at[v], NONE);
+        let a = self.at.get(v);
+        self.at.set(v, NONE);
         if a != NONE {
             self.arena[a] = DEAD;
             self.holes += HEAD + self.arena[a + 1] as usize;
@@ -218,7 +226,7 @@ impl Rows {
         let start = self.arena.len();
         self.arena
             .extend_from_slice(&[v as u32, cap as u32, len as u32]);
-        match self.at[v] {
+        match self.at.get(v) {
             NONE => {}
             a => {
                 self.arena.extend_from_within(a + HEAD..a + HEAD + len);
@@ -227,7 +235,7 @@ impl Rows {
             }
         }
         self.arena.resize(start + HEAD + cap, 0);
-        self.at[v] = start;
+        self.at.set(v, start);
     }
 
     /// Slides every live chunk down over the holes, in one pass.
@@ -239,7 +247,7 @@ impl Rows {
             let size = HEAD + self.arena[pos + 1] as usize;
             if owner != DEAD {
                 self.arena.copy_within(pos..pos + size, out);
-                self.at[owner as usize] = out;
+                self.at.set(owner as usize, out);
                 out += size;
             }
             pos += size;
@@ -251,7 +259,94 @@ impl Rows {
     /// Bytes held (the array's capacity and the positions).
     #[cfg(test)]
     pub(super) fn bytes(&self) -> usize {
-        self.arena.capacity() * 4 + self.at.capacity() * std::mem::size_of::<usize>()
+        self.arena.capacity() * 4 + self.at.bytes()
+    }
+}
+
+/// The chunks' positions: 4 bytes a vertex while the array holds fewer than 2^32 - 1 numbers,
+/// 8 beyond (widened the first time a chunk lands past that).
+#[derive(Clone, Debug, PartialEq, Eq)]
+enum At {
+    /// Positions below `u32::MAX`; `u32::MAX` for none.
+    Narrow(Vec<u32>),
+    /// Any position; `NONE` for none.
+    Wide(Vec<usize>),
+}
+
+impl Default for At {
+    fn default() -> Self {
+        At::Narrow(Vec::new())
+    }
+}
+
+impl At {
+    /// The positions of chunks laid one after the other, of `HEAD` plus each count (their sum
+    /// `total`), made in place of the counts when they fit in 32 bits.
+    fn positions(mut count: Vec<u32>, total: usize) -> At {
+        if total < u32::MAX as usize {
+            let mut pos = 0u32;
+            for c in count.iter_mut() {
+                let len = *c;
+                *c = pos;
+                pos += HEAD as u32 + len;
+            }
+            At::Narrow(count)
+        } else {
+            let mut pos = 0usize;
+            At::Wide(
+                count
+                    .iter()
+                    .map(|&c| {
+                        let p = pos;
+                        pos += HEAD + c as usize;
+                        p
+                    })
+                    .collect(),
+            )
+        }
+    }
+
+    fn len(&self) -> usize {
+        match self {
+            At::Narrow(a) => a.len(),
+            At::Wide(a) => a.len(),
+        }
+    }
+
+    #[inline]
+    fn get(&self, v: usize) -> usize {
+        match self {
+            At::Narrow(a) => match a[v] {
+                u32::MAX => NONE,
+                p => p as usize,
+            },
+            At::Wide(a) => a[v],
+        }
+    }
+
+    #[inline]
+    fn set(&mut self, v: usize, p: usize) {
+        match self {
+            At::Narrow(a) if p == NONE => a[v] = u32::MAX,
+            At::Narrow(a) if p < u32::MAX as usize => a[v] = p as u32,
+            At::Narrow(a) => {
+                let wide = a
+                    .iter()
+                    .map(|&x| if x == u32::MAX { NONE } else { x as usize })
+                    .collect();
+                *self = At::Wide(wide);
+                self.set(v, p);
+            }
+            At::Wide(a) => a[v] = p,
+        }
+    }
+
+    #[cfg(test)]
+    fn bytes(&self) -> usize {
+        match self {
+            At::Narrow(a) => a.capacity() * 4,
+            At::Wide(a) => a.capacity() * 8,
+        }
     }
 }
 
@@ -259,6 +354,26 @@ impl Rows {
 mod tests {
     use super::*;
     use crate::testkit::XorShift;
+
+    /// Positions stay 4 bytes a vertex until one does not fit, then all widen, keeping the
+    /// others and the empty ones; counts whose chunks would pass 2^32 numbers start wide.
+    #[test]
+    fn positions_widen() {
+        let mut at = At::positions(vec![2, 0, 5], 3 * HEAD + 7);
+        assert_eq!((0..3).map(|v| at.get(v)).collect::<Vec<_>>(), [0, 5, 8]);
+        assert_eq!(at.bytes(), 12);
+        at.set(1, NONE);
+        at.set(2, u32::MAX as usize - 1);
+        assert!(matches!(at, At::Narrow(_)));
+        at.set(0, u32::MAX as usize + 7);
+        assert!(matches!(at, At::Wide(_)));
+        let got: Vec<usize> = (0..3).map(|v| at.get(v)).collect();
+        assert_eq!(got, [u32::MAX as usize + 7, NONE, u32::MAX as usize - 1]);
+        assert_eq!(at.len(), 3);
+        let big = At::positions(vec![1, 2], u32::MAX as usize);
+        assert!(matches!(big, At::Wide(_)));
+        assert_eq!((big.get(0), big.get(1)), (0, HEAD + 1));
+    }
 
     /// Random pushes, removals, retains, clears and frees against a vector per vertex; the
     /// array compacts along the way and stays within a bound of what the rows hold.
