@@ -2,10 +2,10 @@
 //!
 //! Each vertex owns a *chunk* `[owner, capacity, length, entries…]` of the array. A row that
 //! outgrows its chunk moves to a new chunk at the end, half as large again; the chunk left
-//! behind is a hole, and so is the chunk of a vertex contracted away. When the holes are a
-//! quarter of the array and it must grow, the live chunks slide down over them in one pass
+//! behind is a hole, and so is the chunk of a vertex contracted away. When the holes are an
+//! eighth of the array and it must grow, the live chunks slide down over them in one pass
 //! (the owner in each chunk says whose it is). A row costs its entries, its position and three
-//! numbers (20 bytes), and the slack of its last move, and no allocation of its own; a
+//! numbers (16 bytes; 20 past 2^32 numbers), and the slack of its last move, and no allocation of its own; a
 //! `SmallVec<[u32; 8]>` holding a tetrahedral vertex's ~20 tops spilled them to the heap, at
 //! ~60 bytes beyond the entries.
 //!
@@ -207,8 +207,8 @@ impl Rows {
     }
 
     /// Moves the row of `v` to a new chunk at the end for at least `need` entries (half as
-    /// large again as its length); first slides the chunks over the holes when they are a
-    /// quarter of the array and it would have to grow.
+    /// large again as its length); first slides the chunks over the holes when they are an
+    /// eighth of the array and it would have to grow.
     fn grow(&mut self, v: usize, need: usize) {
         let len = self.len(v);
         let cap = need.max(len + len / 2).max(4);
