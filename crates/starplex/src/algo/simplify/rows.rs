@@ -5,9 +5,9 @@
 //! behind is a hole, and so is the chunk of a vertex contracted away. When the holes are an
 //! eighth of the array and it must grow, the live chunks slide down over them in one pass
 //! (the owner in each chunk says whose it is). A row costs its entries, its position and three
-//! numbers (16 bytes; 20 past 2^32 numbers), and the slack of its last move, and no allocation of its own; a
-//! `SmallVec<[u32; 8]>` holding a tetrahedral vertex's ~20 tops spilled them to the heap, at
-//! ~60 bytes beyond the entries.
+//! numbers (16 bytes; 20 past 2^32 numbers), and the slack of its last move, and no allocation
+//! of its own; a `SmallVec<[u32; 8]>` holding a tetrahedral vertex's ~20 tops spilled them to
+//! the heap, at ~60 bytes beyond the entries.
 //!
 //! Contraction only shrinks the sum of the rows (a removed top leaves every row, an image
 //! takes the place of its top), so the array never needs much more than its first size.
