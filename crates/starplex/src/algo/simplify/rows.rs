@@ -22,7 +22,7 @@ const DEAD: u32 = u32::MAX;
 const NONE: usize = usize::MAX;
 
 /// Vertex rows in one array (see the [module](self)).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default)]
 pub(super) struct Rows {
     /// Per vertex: the position of its chunk's header (`NONE` for none).
     at: At,
@@ -265,7 +265,7 @@ impl Rows {
 
 /// The chunks' positions: 4 bytes a vertex while the array holds fewer than 2^32 - 1 numbers,
 /// 8 beyond (widened the first time a chunk lands past that).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug)]
 enum At {
     /// Positions below `u32::MAX`; `u32::MAX` for none.
     Narrow(Vec<u32>),
