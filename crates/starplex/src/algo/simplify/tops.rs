@@ -1118,6 +1118,55 @@ impl TopSimplices {
             .map(VertexId)
             .collect()
     }
+
+    /// Renumbers the vertices and moves the tops to other slots, keeping every top's origin:
+    /// vertex `v` becomes `to_new[v]`, and slot `i` receives the top of slot `order[i]` (both
+    /// permutations). The rows are made again from the tops. [`simplify_qem`] numbers the
+    /// vertices and the tops of a mesh along a space-filling curve with it before it starts,
+    /// so that a contraction's neighbourhood is a few cache lines instead of scattered over
+    /// the arrays, and numbers them back when it is done.
+    ///
+    /// [`simplify_qem`]: super::qem::simplify_qem
+    pub(super) fn permute(&mut self, to_new: &[u32], order: &[u32]) {
+        let n = self.n_vertices();
+        debug_assert_eq!((to_new.len(), order.len()), (n, self.tops.len()));
+        let mut verts = Vec::with_capacity(self.tops.verts.len());
+        let mut lens = Vec::with_capacity(order.len());
+        let mut whole = Vec::with_capacity(order.len());
+        for &o in order {
+            let t = self.tops.get(o as usize);
+            verts.extend(t.iter().map(|&v| to_new[v as usize]));
+            lens.push(t.len() as u8);
+            whole.push(self.whole_id.get(o as usize).copied().unwrap_or(o));
+        }
+        // a whole structure numbered back has its own slots again
+        if whole.iter().enumerate().all(|(i, &w)| w as usize == i) {
+            whole = Vec::new();
+        }
+        self.whole_id = whole;
+        self.vt = Rows::default();
+        self.tops = FlatTops::new(verts, lens);
+        self.vt = self.tops.rows(n);
+        let moved = |old: &[bool]| {
+            let mut new = vec![false; n];
+            for (v, &x) in old.iter().enumerate() {
+                new[to_new[v] as usize] = x;
+            }
+            new
+        };
+        self.alive_v = moved(&self.alive_v);
+        self.locked = moved(&self.locked);
+        if !self.coords.is_empty() {
+            let s = self.stride;
+            let mut c = vec![0.0; self.coords.len()];
+            for (v, p) in self.coords.chunks_exact(s).enumerate() {
+                let at = to_new[v] as usize * s;
+                c[at..at + s].copy_from_slice(p);
+            }
+            self.coords = c;
+        }
+        self.scratch = ContractScratch::default();
+    }
 }
 
 /// The part of a [`TopSimplices`] cut out for one block of vertices ([`TopSimplices::cut`]):
