@@ -1163,6 +1163,54 @@ mod tests {
         assert!(p.mean_error <= 1.1 * g.mean_error, "{p:?} {g:?}");
     }
 
+    /// A planar annulus (2 coordinates a vertex): the run's numbering, passes and numbering back
+    /// keep it an annulus with its two boundary loops' vertices where they were.
+    #[test]
+    fn planar_annulus_stays_an_annulus() {
+        let (rings, sectors) = (12u32, 90u32);
+        let mut b = ComplexBuilder::new(2).unwrap();
+        for i in 0..rings {
+            for j in 0..sectors {
+                let (r, a) = (
+                    1.0 + i as f64 / 4.0,
+                    j as f64 / sectors as f64 * std::f64::consts::TAU,
+                );
+                b.push_vertex(&[r * a.cos(), r * a.sin()]).unwrap();
+            }
+        }
+        let id = |i: u32, j: u32| i * sectors + j % sectors;
+        for i in 0..rings - 1 {
+            for j in 0..sectors {
+                let t = CellKind::Simplex(2);
+                b.push_cell(t, &[id(i, j), id(i + 1, j), id(i + 1, j + 1)])
+                    .unwrap();
+                b.push_cell(t, &[id(i, j), id(i + 1, j + 1), id(i, j + 1)])
+                    .unwrap();
+            }
+        }
+        let k = b.build(&BuildOptions::default()).unwrap().0;
+        let mut w = TopSimplices::from_complex(&k).unwrap();
+        let target = Target {
+            faces: Some(400),
+            ..Default::default()
+        };
+        let s = simplify_qem(&mut w, &target, true, None).unwrap();
+        assert!(s.rounds >= 2 && w.n_alive_tops() <= 400, "{s:?}");
+        assert_eq!(w.stride, 2);
+        // the boundary circles are locked: alive, unmoved
+        for j in 0..sectors {
+            for v in [id(0, j), id(rings - 1, j)] {
+                assert!(w.is_alive(v));
+                assert_eq!(w.point(v), k.point(crate::ids::VertexId(v)));
+            }
+        }
+        let (out, _) = w.to_complex().unwrap();
+        // E = (3F + B) / 2 with the B = 2 * sectors boundary edges kept
+        let f = out.n_cells() as i64;
+        let euler = out.n_vertices() as i64 - (3 * f + 2 * sectors as i64) / 2 + f;
+        assert_eq!(euler, 0, "still an annulus");
+    }
+
     #[test]
     fn sort_by_key_sorts_stably() {
         let mut r = 0x2545_f491_4f6c_dd1du64;
