@@ -539,12 +539,8 @@ fn run_qem(
     if !with_passes || passes(w, target, &mut run, &mut nb) {
         greedy(w, target, &mut run, &mut nb);
     }
-    let Run {
-        mut stats,
-        sum_err,
-        unreported,
-        ..
-    } = run;
+    let (mut stats, sum_err, unreported) = (run.stats, run.sum_err, run.unreported);
+    drop(run); // the quadrics go before the numbering back
     if unreported > 0
         && let Some(pr) = progress
     {
