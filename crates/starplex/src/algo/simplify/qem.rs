@@ -65,7 +65,7 @@ pub const MIN_NORMAL_COS: f64 = 0.2;
 pub struct QemStats {
     /// Edges contracted.
     pub n_contractions: u64,
-    /// Passes over the edge queue.
+    /// Passes over every edge, then rounds of the greedy queue.
     pub rounds: u64,
     /// Largest quadric error of an accepted contraction.
     pub max_error: f64,
