@@ -778,7 +778,8 @@ fn passes(w: &mut TopSimplices, target: &Target, run: &mut Run, nb: &mut Vec<u32
         {
             break;
         }
-        tops_per_contraction = ((tops0 - w.n_alive_tops()) as f64 / made as f64).clamp(0.5, 64.0);
+        tops_per_contraction =
+            (tops0.saturating_sub(w.n_alive_tops()) as f64 / made as f64).clamp(0.5, 64.0);
     }
     !target.reached(w)
 }
