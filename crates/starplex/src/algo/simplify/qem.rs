@@ -236,6 +236,27 @@ fn sort_by_key(edges: &mut Vec<Edge>, spare: &mut Vec<Edge>) {
     }
 }
 
+/// Calls `f(a, b, cost)` for every contractible edge `a < b` of the live vertices, in vertex
+/// order, with its current cost: the sweep of a pass and of a greedy round.
+fn each_edge_cost(
+    w: &TopSimplices,
+    nb: &mut Vec<u32>,
+    run: &Run,
+    mut f: impl FnMut(u32, u32, f64),
+) {
+    for a in 0..w.n_vertices() as u32 {
+        if !w.is_alive(a) {
+            continue;
+        }
+        w.neighbours_into(a, nb);
+        for &b in nb.iter().filter(|&&b| b > a) {
+            if let Some((cost, _)) = run.candidate(a, b) {
+                f(a, b, cost);
+            }
+        }
+    }
+}
+
 /// Every contractible edge of the live vertices with its current cost, by increasing cost:
 /// a pass's order.
 fn edges_by_cost(
@@ -246,21 +267,13 @@ fn edges_by_cost(
     spare: &mut Vec<Edge>,
 ) {
     edges.clear();
-    for a in 0..w.n_vertices() as u32 {
-        if !w.is_alive(a) {
-            continue;
-        }
-        w.neighbours_into(a, nb);
-        for &b in nb.iter().filter(|&&b| b > a) {
-            if let Some((cost, _)) = run.candidate(a, b) {
-                edges.push(Edge {
-                    key: cost_bits(cost),
-                    a,
-                    b,
-                });
-            }
-        }
-    }
+    each_edge_cost(w, nb, run, |a, b, cost| {
+        edges.push(Edge {
+            key: cost_bits(cost),
+            a,
+            b,
+        })
+    });
     sort_by_key(edges, spare);
 }
 
@@ -608,23 +621,25 @@ fn locality_order(w: &TopSimplices) -> (Vec<u32>, Vec<u32>) {
     drop(keys);
     // tops by their smallest new vertex (removed tops, with none, after all)
     let n_tops = w.n_top_slots();
-    let first = |t: usize| {
-        w.top(t as u32)
-            .iter()
-            .map(|&v| to_new[v as usize] as usize)
-            .min()
-            .unwrap_or(n)
-    };
+    let first: Vec<u32> = (0..n_tops as u32)
+        .map(|t| {
+            w.top(t)
+                .iter()
+                .map(|&v| to_new[v as usize])
+                .min()
+                .unwrap_or(n as u32)
+        })
+        .collect();
     let mut start = vec![0u32; n + 2];
-    for t in 0..n_tops {
-        start[first(t) + 1] += 1;
+    for &f in &first {
+        start[f as usize + 1] += 1;
     }
     for i in 1..start.len() {
         start[i] += start[i - 1];
     }
     let mut order = vec![0u32; n_tops];
-    for t in 0..n_tops {
-        let at = &mut start[first(t)];
+    for (t, &f) in first.iter().enumerate() {
+        let at = &mut start[f as usize];
         order[*at as usize] = t as u32;
         *at += 1;
     }
@@ -796,7 +811,7 @@ fn greedy(w: &mut TopSimplices, target: &Target, run: &mut Run, nb: &mut Vec<u32
     'rounds: while last_round_contracted && !target.reached(w) {
         run.stats.rounds += 1;
         last_round_contracted = false;
-        push_all(&mut heap, w, nb, &run.quad, run.pos, &run.locked, &stamp);
+        push_all(&mut heap, w, nb, run, &stamp);
         // the queue holds about one entry per live edge at the start of a round; when older
         // entries make it twice that (the live edges shrink with the vertices), they are
         // dropped, which bounds the queue's memory
@@ -977,30 +992,13 @@ fn candidate(
 }
 
 /// Fills the queue with one entry per contractible edge of the live vertices.
-fn push_all(
-    heap: &mut RadixHeap,
-    w: &TopSimplices,
-    nb: &mut Vec<u32>,
-    quad: &[Quadric],
-    pos: &[[f64; 3]],
-    locked: &[bool],
-    stamp: &[u8],
-) {
-    let n = w.n_vertices();
+fn push_all(heap: &mut RadixHeap, w: &TopSimplices, nb: &mut Vec<u32>, run: &Run, stamp: &[u8]) {
     heap.clear();
     // one entry per edge (the capacity beyond is never touched, and is given back)
     let mut entries = Vec::new();
-    for a in 0..n as u32 {
-        if !w.is_alive(a) {
-            continue;
-        }
-        w.neighbours_into(a, nb);
-        for &b in nb.iter().filter(|&&b| b > a) {
-            if let Some((cost, _)) = candidate(a, b, quad, pos, locked) {
-                entries.push(Entry::new(cost, a, b, stamp));
-            }
-        }
-    }
+    each_edge_cost(w, nb, run, |a, b, cost| {
+        entries.push(Entry::new(cost, a, b, stamp))
+    });
     entries.shrink_to_fit();
     heap.fill(entries);
 }
