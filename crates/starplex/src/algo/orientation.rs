@@ -193,6 +193,22 @@ pub fn orient_tops_renumbered(
     pairs: &[(u32, u32, i8)],
     to_out: &[u32],
 ) -> (Orientation, usize) {
+    let (o, n, _) = orient_renumbered_joined(n_cells, is_top, pairs, to_out, &[]);
+    (o, n)
+}
+
+/// [`orient_tops_renumbered`], and also the number of components of the top cells once the
+/// cells of each of `joins` (working ids, both tops) are joined too: with the cells at every
+/// vertex whose star is not connected through facets joined, these are the components of the
+/// vertices through the cells (the validation's), found without a union-find over the
+/// vertices.
+pub(crate) fn orient_renumbered_joined(
+    n_cells: usize,
+    is_top: impl Fn(u32) -> bool,
+    pairs: &[(u32, u32, i8)],
+    to_out: &[u32],
+    joins: &[(u32, u32)],
+) -> (Orientation, usize, usize) {
     assert_eq!(to_out.len(), n_cells, "to_out maps every cell");
     let canonical = || {
         let out: Vec<(u32, u32, i8)> = pairs
@@ -204,7 +220,23 @@ pub fn orient_tops_renumbered(
             top[to_out[c as usize] as usize] = is_top(c);
         }
         let w = orient_walk(n_cells, |c| top[c as usize], &out, |_| 1);
-        (w.orientation(), w.n_components)
+        let joined = if joins.is_empty() {
+            w.n_components
+        } else {
+            // the count does not depend on the numbering: out's cells, in answer ids
+            let mut uf = crate::algo::unionfind::UnionFind::new(n_cells);
+            let mut n = w.n_components;
+            for &(a, b, _) in &out {
+                if top[a as usize] && top[b as usize] {
+                    uf.union(a, b);
+                }
+            }
+            for &(a, b) in joins {
+                n -= usize::from(uf.union(to_out[a as usize], to_out[b as usize]));
+            }
+            n
+        };
+        (w.orientation(), w.n_components, joined)
     };
     if n_cells >= 1 << 31 {
         return canonical();
@@ -261,7 +293,16 @@ pub fn orient_tops_renumbered(
         .map(|c| CellId(to_out[c]))
         .collect();
     flips.sort_unstable();
-    (Orientation::Orientable { flips }, n_comp)
+    // the signs are read: the links now serve a plain union-find (their parities unused)
+    let mut joined = n_comp;
+    for &(a, b) in joins {
+        let (ra, rb) = (parity_find(&mut link, a).0, parity_find(&mut link, b).0);
+        if ra != rb {
+            link[ra as usize] = rb << 1;
+            joined -= 1;
+        }
+    }
+    (Orientation::Orientable { flips }, n_comp, joined)
 }
 
 /// The root of `x` in a parity union-find (`link[c] = parent << 1 | parity`) and the parity

@@ -32,7 +32,7 @@
 //! ```
 use crate::algo::components::components;
 use crate::algo::manifold::{complex_dim, singularities_in_dim, Convention};
-use crate::algo::orientation::{orient_tops_renumbered, orient_walk, Orientation};
+use crate::algo::orientation::{orient_renumbered_joined, orient_walk, Orientation};
 use crate::cell::{listed_sign, oriented_facets_of, CellKind};
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
@@ -304,24 +304,28 @@ fn facet_groups<S: TopCells + VertexStar + ?Sized>(
 /// Fills the parts of a report that follow from the facet pairs: (d-1)-connectedness,
 /// pseudo-manifoldness and the orientation. `pairs` are `(a, b, rel)` in input cell ids, or, with
 /// `to_input`, in a working numbering that `to_input` maps to input ids (`is_top` then takes
-/// working ids too; see [`orient_tops_renumbered`]).
+/// working ids too; see [`orient_tops_renumbered`](crate::algo::orientation::orient_tops_renumbered)).
+/// Returns the number of components of the top cells through the pairs and `joins` (pairs of
+/// top cells, in the pairs' numbering, also to be joined).
 pub(crate) fn finish_report(
     r: &mut ValidationReport,
     n_cells: usize,
     is_top: impl Fn(u32) -> bool,
     pairs: &[(u32, u32, i8)],
     to_input: Option<&[u32]>,
-) {
+    joins: &[(u32, u32)],
+) -> u64 {
     // the top mask once: `is_top` may map ids and look up kinds
     let top: Vec<bool> = (0..n_cells as u32).map(is_top).collect();
     let is_top = |c: u32| top[c as usize];
-    if r.faces_in_more_than_two_cells.is_empty() {
+    let joined = if r.faces_in_more_than_two_cells.is_empty() {
         // the orientation walk counts the components it walks: no separate union-find
-        let (o, n_components) = match to_input {
-            Some(to_input) => orient_tops_renumbered(n_cells, is_top, pairs, to_input),
+        let (o, n_components, joined) = match to_input {
+            Some(to_input) => orient_renumbered_joined(n_cells, is_top, pairs, to_input, joins),
             None => {
                 let w = orient_walk(n_cells, is_top, pairs, |_| 1);
-                (w.orientation(), w.n_components)
+                let joined = joined_components(n_cells, is_top, pairs, joins, w.n_components);
+                (w.orientation(), w.n_components, joined)
             }
         };
         r.n_facet_components = n_components as u64;
@@ -335,6 +339,7 @@ pub(crate) fn finish_report(
                 r.orientation_conflict = Some(conflict);
             }
         }
+        joined
     } else {
         // the count does not depend on the numbering
         let mut cuf = crate::algo::unionfind::UnionFind::new(n_cells);
@@ -343,12 +348,39 @@ pub(crate) fn finish_report(
                 cuf.union(a, b);
             }
         }
-        r.n_facet_components = (0..n_cells as u32)
+        let n = (0..n_cells as u32)
             .filter(|&c| is_top(c) && cuf.find(c) == c)
-            .count() as u64;
-    }
+            .count();
+        r.n_facet_components = n as u64;
+        drop(cuf);
+        joined_components(n_cells, is_top, pairs, joins, n)
+    };
     r.facet_connected = r.n_facet_components == 1;
     r.pseudo_manifold = r.pure && r.faces_in_more_than_two_cells.is_empty() && r.facet_connected;
+    joined as u64
+}
+
+/// `n_components` (the components of the top cells through `pairs`) less the merges `joins`
+/// make: a union-find over the pairs and joins, only when there are joins.
+fn joined_components(
+    n_cells: usize,
+    is_top: impl Fn(u32) -> bool,
+    pairs: &[(u32, u32, i8)],
+    joins: &[(u32, u32)],
+    n_components: usize,
+) -> usize {
+    if joins.is_empty() {
+        return n_components;
+    }
+    let mut uf = crate::algo::unionfind::UnionFind::new(n_cells);
+    for &(a, b, _) in pairs {
+        if is_top(a) && is_top(b) {
+            uf.union(a, b);
+        }
+    }
+    joins
+        .iter()
+        .fold(n_components, |n, &(a, b)| n - usize::from(uf.union(a, b)))
 }
 
 /// Validates any structure (see the [module docs](self)); the answer equals
@@ -377,7 +409,14 @@ pub fn validate<S: TopCells + VertexStar + ?Sized>(s: &S) -> ValidationReport {
     if let Some(d) = d {
         let nc = s.n_top_cells();
         let kinds: Vec<CellKind> = (0..nc).map(|c| s.top_cell_kind(CellId(c as u32))).collect();
-        finish_report(&mut r, nc, |c| kinds[c as usize].dim() == d, &pairs, None);
+        finish_report(
+            &mut r,
+            nc,
+            |c| kinds[c as usize].dim() == d,
+            &pairs,
+            None,
+            &[],
+        );
     }
     r
 }

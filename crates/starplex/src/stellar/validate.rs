@@ -39,11 +39,19 @@ use crate::cell::{simplex_facet_sign, CellKind};
 use crate::ids::{CellId, LeafId, TreeVertexId, VertexId};
 use rayon::prelude::*;
 
+/// Pairs of top cells sharing a facet, with the product of the orientations they induce on it.
+type FacetPairs = Vec<(u32, u32, i8)>;
+
 struct LeafOut {
     boundary: Vec<Vec<u32>>,
     over2: Vec<Vec<u32>>,
     pairs: Vec<(u32, u32, i8)>,
     sing: Singularities<TreeVertexId>,
+    /// Pairs of cells to join for the vertex components: at every vertex whose star is not
+    /// one cluster through facets, its first cell with each other (passes for one cell kind).
+    joins: Vec<(u32, u32)>,
+    /// Vertices in no cell (tree ids; passes for one cell kind).
+    isolated: Vec<u32>,
 }
 
 impl StellarTree {
@@ -72,14 +80,36 @@ impl StellarTree {
             dim,
             ..Default::default()
         };
-        // the components (a sequential union-find) run beside the parallel leaf pass: with two
+        // triangles and tetrahedra: the leaf pass finds the vertices whose star is not one
+        // cluster, and the vertex components follow from the facet components; otherwise the
+        // components (a sequential union-find) run beside the parallel leaf pass: with two
         // threads one of them takes the union-find while the other works through the leaves
-        let ((n_components, isolated), outs) = rayon::join(
-            || self.vertex_components(),
-            || d.map_or_else(Vec::new, |d| self.leaf_outputs(d)),
-        );
-        r.n_connected_components = n_components;
-        r.isolated_vertices = isolated;
+        let one_kind = matches!(
+            self.cells.uniform,
+            Some(CellKind::Simplex(2) | CellKind::Simplex(3))
+        ) && d.is_some_and(|d| d >= 2);
+        let (components, (outs, joined)) = if one_kind {
+            (
+                None,
+                d.map_or_else(|| (Vec::new(), false), |d| self.leaf_outputs(d)),
+            )
+        } else {
+            let (c, o) = rayon::join(
+                || self.vertex_components(),
+                || d.map_or_else(|| (Vec::new(), false), |d| self.leaf_outputs(d)),
+            );
+            (Some(c), o)
+        };
+        // a damaged tree file sends tetrahedra to the general pass, without the joins
+        let components = match components {
+            None if !joined => Some(self.vertex_components()),
+            c => c,
+        };
+        let from_cells = components.is_none();
+        if let Some((n_components, isolated)) = components {
+            r.n_connected_components = n_components;
+            r.isolated_vertices = isolated;
+        }
         let Some(d) = d else {
             if self.n_vertices() > 0 {
                 r.dim = 0;
@@ -92,17 +122,23 @@ impl StellarTree {
             .map(|c| CellId(self.c_orig[c as usize]))
             .collect();
         r.lower_dimensional_cells.sort_unstable();
+        let (pairs, joins) = self.merge_leaf_outputs(&mut r, outs, from_cells);
         r.pure = r.lower_dimensional_cells.is_empty() && r.isolated_vertices.is_empty();
-        let pairs = self.merge_leaf_outputs(&mut r, outs);
         // the walk in tree ids, where the neighbours of a cell are near it; answers in input ids
         let is_top = |c: u32| self.cells.get(c).0.dim() == d;
-        finish_report(
+        let n_joined = finish_report(
             &mut r,
             self.n_top_cells(),
             is_top,
             &pairs,
             Some(&self.c_orig),
+            &joins,
         );
+        if from_cells {
+            // every cell is a top: the vertices' components are the cells' joined ones, and
+            // each vertex in no cell is one more
+            r.n_connected_components = n_joined + r.isolated_vertices.len() as u64;
+        }
         r
     }
 
@@ -133,18 +169,20 @@ impl StellarTree {
         (n, isolated)
     }
 
-    /// Facets, pairs, vertex and edge tests: one parallel pass over the leaves.
-    fn leaf_outputs(&self, d: usize) -> Vec<LeafOut> {
+    /// Facets, pairs, vertex and edge tests: one parallel pass over the leaves; true when
+    /// the outputs hold the joins and the isolated vertices (the passes for triangles and
+    /// tetrahedra).
+    fn leaf_outputs(&self, d: usize) -> (Vec<LeafOut>, bool) {
         if d == 0 {
-            return Vec::new();
+            return (Vec::new(), false);
         }
         if self.cells.uniform == Some(CellKind::Simplex(2)) {
-            return self.leaf_outputs_tris();
+            return (self.leaf_outputs_tris(), true);
         }
         if self.cells.uniform == Some(CellKind::Simplex(3))
             && let Some(outs) = self.leaf_outputs_tets()
         {
-            return outs;
+            return (outs, true);
         }
         let facet_part = self.par_facet_groups(|_, keys| {
             let mut o = (Vec::new(), Vec::new(), Vec::new());
@@ -168,7 +206,7 @@ impl StellarTree {
             o
         });
         let vertex_part = self.par_map_leaves(|view| self.leaf_manifold(view, d, true));
-        facet_part
+        let outs = facet_part
             .into_iter()
             .zip(vertex_part)
             .map(|((boundary, over2, pairs), sing)| LeafOut {
@@ -176,8 +214,11 @@ impl StellarTree {
                 over2,
                 pairs,
                 sing,
+                joins: Vec::new(),
+                isolated: Vec::new(),
             })
-            .collect()
+            .collect();
+        (outs, false)
     }
 
     /// [`leaf_outputs`](Self::leaf_outputs) for a complex of triangles, in one pass over the
@@ -209,12 +250,15 @@ impl StellarTree {
                         over2: Vec::new(),
                         pairs: Vec::new(),
                         sing: Singularities::default(),
+                        joins: Vec::new(),
+                        isolated: Vec::new(),
                     };
                     for (iv, v) in (e.v_start..e.v_end).enumerate() {
                         let star = &e.vt[e.vt_off[iv] as usize..e.vt_off[iv + 1] as usize];
                         if star.is_empty() {
                             // as the star tests say of a vertex of no cell in a 2-complex
                             o.sing.non_manifold_vertices.push(TreeVertexId(v));
+                            o.isolated.push(v);
                             continue;
                         }
                         // record: w << 32 | star index << 3 | slot << 1 | negative (the edge
@@ -262,6 +306,8 @@ impl StellarTree {
                         });
                         if m == Manifoldness::NonManifold {
                             o.sing.non_manifold_vertices.push(TreeVertexId(v));
+                            // its star may span several facet components
+                            o.joins.extend(star[1..].iter().map(|&c| (star[0], c)));
                         }
                     }
                     o
@@ -306,12 +352,15 @@ impl StellarTree {
                         over2: Vec::new(),
                         pairs: Vec::new(),
                         sing: Singularities::default(),
+                        joins: Vec::new(),
+                        isolated: Vec::new(),
                     };
                     for v in view.tree_vertices() {
                         let star = view.local_star(TreeVertexId(v));
                         if star.is_empty() {
                             // as the star tests say of a vertex of no cell in a 3-complex
                             o.sing.non_manifold_vertices.push(TreeVertexId(v));
+                            o.isolated.push(v);
                             continue;
                         }
                         let ps = PartStar { part: &view, star };
@@ -324,6 +373,10 @@ impl StellarTree {
                             cells.extend_from_slice(cs);
                         })?;
                         o.sing.record(TreeVertexId(v), m, edges);
+                        if m != Manifoldness::Manifold {
+                            // its star may span several facet components
+                            o.joins.extend(star[1..].iter().map(|x| (star[0].0, x.0)));
+                        }
                         tris.sort_unstable();
                         for &([a, b], at, n) in tris.iter() {
                             let group = &cells[at as usize..(at + n) as usize];
@@ -360,7 +413,8 @@ impl StellarTree {
         &self,
         r: &mut ValidationReport,
         outs: Vec<LeafOut>,
-    ) -> Vec<(u32, u32, i8)> {
+        isolated: bool,
+    ) -> (FacetPairs, Vec<(u32, u32)>) {
         let to_in = |v: u32| VertexId(self.v_orig[v as usize]);
         let tv_in = |v: &TreeVertexId| to_in(v.0);
         let face_in = |f: &Vec<u32>| {
@@ -379,6 +433,7 @@ impl StellarTree {
         // (d-1)-connectedness and orientation: the shared walk, on tree cell ids
         let mut pairs: Vec<(u32, u32, i8)> =
             Vec::with_capacity(outs.iter().map(|o| o.pairs.len()).sum());
+        let mut joins = Vec::new();
         // each leaf's findings are freed once copied: the pairs are not held twice
         for o in outs {
             r.boundary_faces.extend(o.boundary.iter().map(face_in));
@@ -393,6 +448,11 @@ impl StellarTree {
             r.unknown_edges
                 .extend(o.sing.unknown_edges.iter().map(edge_in));
             pairs.extend_from_slice(&o.pairs);
+            joins.extend_from_slice(&o.joins);
+            if isolated {
+                r.isolated_vertices
+                    .extend(o.isolated.iter().map(|&v| to_in(v)));
+            }
         }
         r.boundary_faces.sort_unstable();
         r.faces_in_more_than_two_cells.sort_unstable();
@@ -400,7 +460,8 @@ impl StellarTree {
         r.unknown_vertices.sort_unstable();
         r.non_manifold_edges.sort_unstable();
         r.unknown_edges.sort_unstable();
-        pairs
+        r.isolated_vertices.sort_unstable();
+        (pairs, joins)
     }
 
     /// Manifold tests for the vertices of a leaf and the edges they own (the edge's smaller
