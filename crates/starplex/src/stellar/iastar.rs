@@ -36,6 +36,7 @@
 //! ```
 use rayon::prelude::*;
 use rustc_hash::FxHashSet;
+use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 use super::relations::{unpack, unpack_facet, FaceKeys};
 use super::{ExpandedLeaf, LeafView, StellarTree};
@@ -382,7 +383,8 @@ fn n_slots(kind: CellKind) -> usize {
 /// Per-leaf pieces of an IA*, in tree numbering.
 struct Pieces {
     /// (slot index, value) with value = tree cell | local nm index | NM (8 bytes a slot: the
-    /// pieces of a global IA* hold every slot once before the scatter).
+    /// grouped pieces of a global IA* hold every slot once before the scatter; the hashed
+    /// ones only the slots of non-manifold facets).
     slots: Vec<(u32, u32)>,
     nm_cells: Vec<Vec<u32>>,
     nm_verts: Vec<Vec<u32>>,
@@ -451,13 +453,15 @@ impl StellarTree {
     pub fn iastar(&self) -> StellarIaStar<'_> {
         let nc = self.n_top_cells();
         let off = self.slot_offsets();
-        let pieces: Vec<Pieces> = match self.facet_pieces_hashed() {
-            Some(p) => p,
-            None => self.par_facet_groups_where(2, false, |_, keys| {
-                group_pieces(keys, |c, j| off[c as usize] + j)
-            }),
+        let (adj, nm_cells, nm_verts) = match self.facet_slots_hashed() {
+            Some((adj, pieces)) => self.scatter_pieces(pieces, adj),
+            None => {
+                let pieces = self.par_facet_groups_where(2, false, |_, keys| {
+                    group_pieces(keys, |c, j| off[c as usize] + j)
+                });
+                self.scatter_pieces(pieces, vec![NONE; off[nc] as usize])
+            }
         };
-        let (adj, nm_cells, nm_verts) = self.scatter_pieces(pieces, off[nc] as usize);
         let stride = if let Some(kind) = self.cells.uniform {
             n_slots(kind)
         } else {
@@ -517,16 +521,18 @@ impl StellarTree {
         self.global_iastar(off, adj, (nm_cells, nm_verts), per_leaf)
     }
 
-    /// The per-leaf [`Pieces`] of a complex of one simplex kind of dimension 2 or 3 whose
-    /// facet keys fit in 8 bytes (edges always; triangles with at most 2^21 vertices), as
-    /// [`par_facet_groups_where`](Self::par_facet_groups_where) with
-    /// [`group_pieces`] gives them, without the face records: each leaf hashes the
-    /// facets of its cells whose smallest vertex it owns into an open-addressing table sized
-    /// for the leaf. The second cell met on a facet pairs the two at once; a third makes the
-    /// facet non-manifold, and the non-manifold facets of the leaf are numbered in key order
-    /// at the end (their slots, pushed after the pairs, overwrite them in
-    /// [`scatter_pieces`](Self::scatter_pieces)). `None` for other complexes.
-    fn facet_pieces_hashed(&self) -> Option<Vec<Pieces>> {
+    /// The slots of a complex of one simplex kind of dimension 2 or 3 whose facet keys fit
+    /// in 8 bytes (edges always; triangles with at most 2^21 vertices), with the per-leaf
+    /// [`Pieces`] of its non-manifold facets, as
+    /// [`par_facet_groups_where`](Self::par_facet_groups_where) with [`group_pieces`] gives
+    /// them, without the face records: each leaf hashes the facets of its cells whose
+    /// smallest vertex it owns into an open-addressing table sized for the leaf. The second
+    /// cell met on a facet pairs the two at once, writing both slots (each slot is written by
+    /// the one leaf that owns its facet); a third makes the facet non-manifold, and the
+    /// non-manifold facets of the leaf are numbered in key order at the end (their slots,
+    /// in the pieces, overwrite the pairs in [`scatter_pieces`](Self::scatter_pieces)).
+    /// `None` for other complexes.
+    fn facet_slots_hashed(&self) -> Option<(Vec<u32>, Vec<Pieces>)> {
         let kind = self.cells.uniform?;
         let s = self.cells.stride as usize;
         let fits = kind.is_simplex() && (s == 3 || (s == 4 && self.n_vertices() <= 1 << 21));
@@ -534,6 +540,8 @@ impl StellarTree {
             return None;
         }
         let verts = &self.cells.verts;
+        let adj: Vec<AtomicU32> =
+            crate::buf::large_with(self.n_top_cells() * s, || AtomicU32::new(NONE));
         let pieces = (0..self.n_leaves() as u32)
             .into_par_iter()
             .map_init(
@@ -542,9 +550,9 @@ impl StellarTree {
                     self.expand_leaf_cells(LeafId(l), e);
                     let (lo, hi) = (e.v_start, e.v_end);
                     t.reset(e.cells.len() * s);
+                    // the non-manifold facets only: empty (no allocation) on a manifold
                     let mut p = Pieces {
-                        // two slots a facet the leaf owns: at most one facet a cell slot
-                        slots: Vec::with_capacity(e.cells.len() * s),
+                        slots: Vec::new(),
                         nm_cells: Vec::new(),
                         nm_verts: Vec::new(),
                     };
@@ -583,7 +591,7 @@ impl StellarTree {
                                 }
                                 (f[0] << 42) | (f[1] << 21) | f[2]
                             };
-                            t.insert(key, c, j as u32, s as u32, &mut p.slots);
+                            t.insert(key, c, j as u32, s as u32, &adj);
                         }
                     }
                     t.finish(s, &mut p);
@@ -591,7 +599,9 @@ impl StellarTree {
                 },
             )
             .collect();
-        Some(pieces)
+        // same size and alignment: collected in place
+        let adj = adj.into_iter().map(AtomicU32::into_inner).collect();
+        Some((adj, pieces))
     }
 
     /// The first slot of every tree cell, then the number of slots.
@@ -608,10 +618,9 @@ impl StellarTree {
         off
     }
 
-    /// The `n_slots` slots filled from the leaves' pieces (leaves in order: the non-manifold
+    /// The slots `adj` filled from the leaves' pieces (leaves in order: the non-manifold
     /// facets are numbered leaf after leaf), and the non-manifold facets' cells and vertices.
-    fn scatter_pieces(&self, pieces: Vec<Pieces>, n_slots: usize) -> (Vec<u32>, Csr, Csr) {
-        let mut adj = vec![NONE; n_slots];
+    fn scatter_pieces(&self, pieces: Vec<Pieces>, mut adj: Vec<u32>) -> (Vec<u32>, Csr, Csr) {
         let mut nm_cells = Csr {
             offsets: vec![0],
             targets: Vec::new(),
@@ -1058,6 +1067,8 @@ struct FacetTable {
     keys: Vec<u64>,
     vals: Vec<u64>,
     used: Vec<u32>,
+    /// The two slots of every pair (a pair's value indexes it).
+    paired: Vec<(u32, u32)>,
     shift: u32,
     /// (key, tree cell, facet) of every cell on a non-manifold facet.
     extra: Vec<(u64, u32, u32)>,
@@ -1076,6 +1087,7 @@ impl FacetTable {
             self.keys[h as usize] = Self::EMPTY;
         }
         self.used.clear();
+        self.paired.clear();
         self.extra.clear();
         let cap = (2 * n).next_power_of_two().max(64);
         if self.keys.len() < cap {
@@ -1088,9 +1100,10 @@ impl FacetTable {
     }
 
     /// Facet `j` of tree cell `c` (`s` slots a cell) has key `key`: pairs it with the first
-    /// cell met on the same facet (pushing both slots), or records a non-manifold facet.
+    /// cell met on the same facet (writing both slots of `adj`), or records a non-manifold
+    /// facet.
     #[inline]
-    fn insert(&mut self, key: u64, c: u32, j: u32, s: u32, slots: &mut Vec<(u32, u32)>) {
+    fn insert(&mut self, key: u64, c: u32, j: u32, s: u32, adj: &[AtomicU32]) {
         let mask = (1usize << (64 - self.shift)) - 1;
         let mut h = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> self.shift) as usize;
         loop {
@@ -1110,14 +1123,16 @@ impl FacetTable {
         match x & (3 << 62) {
             Self::SINGLE => {
                 let (a, ja) = (x as u32, (x >> 32) as u32 & 0xff);
-                self.vals[h] = Self::PAIRED | slots.len() as u64;
-                slots.push((a * s + ja, c));
-                slots.push((c * s + j, a));
+                self.vals[h] = Self::PAIRED | self.paired.len() as u64;
+                let (sa, sc) = (a * s + ja, c * s + j);
+                self.paired.push((sa, sc));
+                // each slot belongs to the one leaf owning its facet: plain stores
+                adj[sa as usize].store(c, Relaxed);
+                adj[sc as usize].store(a, Relaxed);
             }
             Self::PAIRED => {
-                // slot of a holds b, slot of b holds a
-                let i = (x & 0xffff_ffff) as usize;
-                let ((sa, b), (sb, a)) = (slots[i], slots[i + 1]);
+                let (sa, sb) = self.paired[(x & 0xffff_ffff) as usize];
+                let (a, b) = (sa / s, sb / s);
                 self.extra.push((key, a, sa - a * s));
                 self.extra.push((key, b, sb - b * s));
                 self.extra.push((key, c, j));
@@ -1230,7 +1245,7 @@ mod tests {
                     },
                 )
                 .unwrap();
-                let Some(hashed) = t.facet_pieces_hashed() else {
+                let Some((adj, hashed)) = t.facet_slots_hashed() else {
                     continue; // not one kind (cannot happen here)
                 };
                 let off = t.slot_offsets();
@@ -1238,7 +1253,10 @@ mod tests {
                     group_pieces(keys, |c, j| off[c as usize] + j)
                 });
                 let n = *off.last().unwrap() as usize;
-                let (a, b) = (t.scatter_pieces(hashed, n), t.scatter_pieces(grouped, n));
+                let (a, b) = (
+                    t.scatter_pieces(hashed, adj),
+                    t.scatter_pieces(grouped, vec![NONE; n]),
+                );
                 assert_eq!(a.0, b.0, "case {case} kv {kv}");
                 assert_eq!(a.1, b.1, "case {case} kv {kv}");
                 assert_eq!(a.2, b.2, "case {case} kv {kv}");
