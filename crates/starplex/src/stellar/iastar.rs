@@ -380,6 +380,56 @@ fn n_slots(kind: CellKind) -> usize {
     }
 }
 
+/// Inserts into `t` the facets of the cells of leaf `e` (simplices of `S` = 3 or 4 vertices,
+/// `verts` all cells' vertices) whose smallest vertex the leaf owns, keyed in 8 bytes, pairs
+/// written into `adj`.
+#[inline(always)]
+fn hash_owned_facets<const S: usize>(
+    verts: &[u32],
+    e: &ExpandedLeaf,
+    t: &mut FacetTable,
+    adj: &[AtomicU32],
+) {
+    let (lo, hi) = (e.v_start, e.v_end);
+    for &c in &e.cells {
+        let vs = &verts[c as usize * S..c as usize * S + S];
+        // sorted vertices with their listed positions (a branch-free sorting network on
+        // vertex << 8 | position; for triangles the fourth stays last)
+        let mut r = [u64::MAX; 4];
+        for i in 0..S {
+            r[i] = ((vs[i] as u64) << 8) | i as u64;
+        }
+        let r = crate::topo::sort4(r);
+        let sv = r.map(|x| (x >> 8) as u32);
+        // the facet omitting the k-th smallest vertex (listed position rk as u8)
+        for (k, &rk) in r[..S].iter().enumerate() {
+            let min = if k == 0 { sv[1] } else { sv[0] };
+            if min < lo || min >= hi {
+                continue;
+            }
+            let key = if S == 3 {
+                let (a, b) = match k {
+                    0 => (sv[1], sv[2]),
+                    1 => (sv[0], sv[2]),
+                    _ => (sv[0], sv[1]),
+                };
+                ((a as u64) << 32) | b as u64
+            } else {
+                let mut f = [0u64; 3];
+                let mut m = 0;
+                for (i, &x) in sv.iter().enumerate() {
+                    if i != k {
+                        f[m] = x as u64;
+                        m += 1;
+                    }
+                }
+                (f[0] << 42) | (f[1] << 21) | f[2]
+            };
+            t.insert(key, c, rk as u8 as u32, S as u32, adj);
+        }
+    }
+}
+
 /// Per-leaf pieces of an IA*, in tree numbering.
 struct Pieces {
     /// (slot index, value) with value = tree cell | local nm index | NM (8 bytes a slot: the
@@ -506,9 +556,18 @@ impl StellarTree {
                             let ep = sc.next_epoch();
                             let (star, nm) = (view.vt_tree(v), &nm_cells);
                             let RepScratch { stack, stamps, .. } = sc;
-                            self.flood_simplices(
-                                v, star, &adj, stride, nm, stamps, ep, stack, &mut data,
-                            );
+                            let out = &mut data;
+                            // triangles and tetrahedra: the stride a constant, the slot
+                            // loop unrolled
+                            match stride {
+                                3 => self
+                                    .flood_simplices(v, star, &adj, 3, nm, stamps, ep, stack, out),
+                                4 => self
+                                    .flood_simplices(v, star, &adj, 4, nm, stamps, ep, stack, out),
+                                _ => self.flood_simplices(
+                                    v, star, &adj, stride, nm, stamps, ep, stack, out,
+                                ),
+                            }
                         } else {
                             self.representatives(&view, v, &slots, &nm_cells, sc, &mut data);
                         }
@@ -548,7 +607,6 @@ impl StellarTree {
                 || (ExpandedLeaf::default(), FacetTable::default()),
                 |(e, t), l| {
                     self.expand_leaf_cells(LeafId(l), e);
-                    let (lo, hi) = (e.v_start, e.v_end);
                     t.reset(e.cells.len() * s);
                     // the non-manifold facets only: empty (no allocation) on a manifold
                     let mut p = Pieces {
@@ -556,43 +614,11 @@ impl StellarTree {
                         nm_cells: Vec::new(),
                         nm_verts: Vec::new(),
                     };
-                    for &c in &e.cells {
-                        let vs = &verts[c as usize * s..c as usize * s + s];
-                        // sorted vertices with their listed positions (a branch-free
-                        // sorting network on vertex << 8 | position)
-                        let mut r = [u64::MAX; 4];
-                        for (i, &x) in vs.iter().enumerate() {
-                            r[i] = ((x as u64) << 8) | i as u64;
-                        }
-                        let r = crate::topo::sort4(r);
-                        let sv = r.map(|x| (x >> 8) as u32);
-                        let si = r.map(|x| x as u8);
-                        // the facet omitting the k-th smallest vertex (listed position si[k])
-                        for (k, &j) in si[..s].iter().enumerate() {
-                            let min = if k == 0 { sv[1] } else { sv[0] };
-                            if min < lo || min >= hi {
-                                continue;
-                            }
-                            let key = if s == 3 {
-                                let (a, b) = match k {
-                                    0 => (sv[1], sv[2]),
-                                    1 => (sv[0], sv[2]),
-                                    _ => (sv[0], sv[1]),
-                                };
-                                ((a as u64) << 32) | b as u64
-                            } else {
-                                let mut f = [0u64; 3];
-                                let mut m = 0;
-                                for (i, &x) in sv[..4].iter().enumerate() {
-                                    if i != k {
-                                        f[m] = x as u64;
-                                        m += 1;
-                                    }
-                                }
-                                (f[0] << 42) | (f[1] << 21) | f[2]
-                            };
-                            t.insert(key, c, j as u32, s as u32, &adj);
-                        }
+                    // the stride a constant: the facet loop unrolled
+                    if s == 3 {
+                        hash_owned_facets::<3>(verts, e, t, &adj);
+                    } else {
+                        hash_owned_facets::<4>(verts, e, t, &adj);
                     }
                     t.finish(s, &mut p);
                     p
@@ -775,6 +801,7 @@ impl StellarTree {
     /// of dimension >= 2, whose slots are `adj[c * s..c * s + s]` (slot j: the facet
     /// omitting vertex j).
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn flood_simplices(
         &self,
         v: u32,
