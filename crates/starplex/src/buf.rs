@@ -249,3 +249,17 @@ fn advise_huge<T>(v: &mut Vec<T>) {
 
 #[cfg(not(target_os = "linux"))]
 fn advise_huge<T>(_v: &mut Vec<T>) {}
+
+/// Asks the processor to bring `s[i]` into the cache (no effect elsewhere than x86-64, nor
+/// when `i` is out of range).
+#[inline(always)]
+pub(crate) fn prefetch(s: &[u32], i: usize) {
+    #[cfg(target_arch = "x86_64")]
+    if i < s.len() {
+        // SAFETY: a prefetch never faults, and the address is inside `s`.
+        unsafe {
+            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+            _mm_prefetch::<_MM_HINT_T0>(s.as_ptr().add(i) as *const i8);
+        }
+    }
+}

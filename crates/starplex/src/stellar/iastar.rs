@@ -546,6 +546,17 @@ impl StellarTree {
                 },
                 |(e, sc), l| {
                     self.expand_leaf_into(LeafId(l), e);
+                    if simplex_dim2 {
+                        // the flood reads the leaf's cells in star order, at random: their
+                        // slots, vertices and input ids are asked for in id order first
+                        let pf = crate::buf::prefetch;
+                        for &c in &e.cells {
+                            let c = c as usize;
+                            pf(&adj, c * stride);
+                            pf(&self.cells.verts, c * stride);
+                            pf(&self.c_orig, c);
+                        }
+                    }
                     let view = LeafView { tree: self, e };
                     let mut lens = Vec::with_capacity(view.tree_vertices().len());
                     // about one representative a vertex on a manifold
@@ -1129,7 +1140,7 @@ impl FacetTable {
     /// Facet `j` of tree cell `c` (`s` slots a cell) has key `key`: pairs it with the first
     /// cell met on the same facet (writing both slots of `adj`), or records a non-manifold
     /// facet.
-    #[inline]
+    #[inline(always)]
     fn insert(&mut self, key: u64, c: u32, j: u32, s: u32, adj: &[AtomicU32]) {
         let mask = (1usize << (64 - self.shift)) - 1;
         let mut h = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> self.shift) as usize;

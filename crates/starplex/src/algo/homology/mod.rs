@@ -702,18 +702,7 @@ fn map_back(c: &Cell, to_old: Option<&[u32]>) -> (Vec<u32>, i64) {
     }
 }
 
-/// Asks the processor to bring `s[i]` into the cache (no effect elsewhere than x86-64).
-#[inline(always)]
-pub(crate) fn prefetch(s: &[u32], i: usize) {
-    #[cfg(target_arch = "x86_64")]
-    if i < s.len() {
-        // SAFETY: a prefetch never faults, and the address is inside `s`.
-        unsafe {
-            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-            _mm_prefetch::<_MM_HINT_T0>(s.as_ptr().add(i) as *const i8);
-        }
-    }
-}
+pub(crate) use crate::buf::prefetch;
 
 /// Phase timings on stderr when `STARPLEX_HOMOLOGY_TIMES` is set.
 fn debug_time(what: &str, t: std::time::Instant) {
