@@ -20,6 +20,7 @@
 //! let pairs = [(0, 1, -1), (1, 2, -1), (0, 2, 1)];
 //! assert!(matches!(orient_tops(3, |_| true, &pairs), Orientation::NonOrientable { .. }));
 //! ```
+use crate::algo::unionfind::UnionFind;
 use crate::csr::Csr;
 use crate::ids::CellId;
 
@@ -220,22 +221,8 @@ pub(crate) fn orient_renumbered_joined(
             top[to_out[c as usize] as usize] = is_top(c);
         }
         let w = orient_walk(n_cells, |c| top[c as usize], &out, |_| 1);
-        let joined = if joins.is_empty() {
-            w.n_components
-        } else {
-            // the count does not depend on the numbering: out's cells, in answer ids
-            let mut uf = crate::algo::unionfind::UnionFind::new(n_cells);
-            let mut n = w.n_components;
-            for &(a, b, _) in &out {
-                if top[a as usize] && top[b as usize] {
-                    uf.union(a, b);
-                }
-            }
-            for &(a, b) in joins {
-                n -= usize::from(uf.union(to_out[a as usize], to_out[b as usize]));
-            }
-            n
-        };
+        // the count does not depend on the numbering: in working ids
+        let joined = joined_components(n_cells, &is_top, pairs, joins, w.n_components);
         (w.orientation(), w.n_components, joined)
     };
     if n_cells >= 1 << 31 {
@@ -303,6 +290,45 @@ pub(crate) fn orient_renumbered_joined(
         }
     }
     (Orientation::Orientable { flips }, n_comp, joined)
+}
+
+/// The cells' union-find through the `pairs` whose two cells are tops.
+pub(crate) fn facet_union_find(
+    n_cells: usize,
+    is_top: impl Fn(u32) -> bool,
+    pairs: &[(u32, u32, i8)],
+) -> UnionFind {
+    let mut uf = UnionFind::new(n_cells);
+    for &(a, b, _) in pairs {
+        if is_top(a) && is_top(b) {
+            uf.union(a, b);
+        }
+    }
+    uf
+}
+
+/// `n_components` (the components of the top cells through `pairs`) less the merges `joins`
+/// make in `uf`.
+pub(crate) fn apply_joins(uf: &mut UnionFind, joins: &[(u32, u32)], n_components: usize) -> usize {
+    joins
+        .iter()
+        .fold(n_components, |n, &(a, b)| n - usize::from(uf.union(a, b)))
+}
+
+/// `n_components` (the components of the top cells through `pairs`) less the merges `joins`
+/// make: a union-find over the pairs and joins, only when there are joins.
+pub(crate) fn joined_components(
+    n_cells: usize,
+    is_top: impl Fn(u32) -> bool,
+    pairs: &[(u32, u32, i8)],
+    joins: &[(u32, u32)],
+    n_components: usize,
+) -> usize {
+    if joins.is_empty() {
+        return n_components;
+    }
+    let mut uf = facet_union_find(n_cells, is_top, pairs);
+    apply_joins(&mut uf, joins, n_components)
 }
 
 /// The root of `x` in a parity union-find (`link[c] = parent << 1 | parity`) and the parity

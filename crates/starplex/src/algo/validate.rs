@@ -32,7 +32,10 @@
 //! ```
 use crate::algo::components::components;
 use crate::algo::manifold::{complex_dim, singularities_in_dim, Convention};
-use crate::algo::orientation::{orient_renumbered_joined, orient_walk, Orientation};
+use crate::algo::orientation::{
+    apply_joins, facet_union_find, joined_components, orient_renumbered_joined, orient_walk,
+    Orientation,
+};
 use crate::cell::{listed_sign, oriented_facets_of, CellKind};
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
@@ -342,45 +345,16 @@ pub(crate) fn finish_report(
         joined
     } else {
         // the count does not depend on the numbering
-        let mut cuf = crate::algo::unionfind::UnionFind::new(n_cells);
-        for &(a, b, _) in pairs {
-            if is_top(a) && is_top(b) {
-                cuf.union(a, b);
-            }
-        }
+        let mut cuf = facet_union_find(n_cells, is_top, pairs);
         let n = (0..n_cells as u32)
             .filter(|&c| is_top(c) && cuf.find(c) == c)
             .count();
         r.n_facet_components = n as u64;
-        drop(cuf);
-        joined_components(n_cells, is_top, pairs, joins, n)
+        apply_joins(&mut cuf, joins, n)
     };
     r.facet_connected = r.n_facet_components == 1;
     r.pseudo_manifold = r.pure && r.faces_in_more_than_two_cells.is_empty() && r.facet_connected;
     joined as u64
-}
-
-/// `n_components` (the components of the top cells through `pairs`) less the merges `joins`
-/// make: a union-find over the pairs and joins, only when there are joins.
-fn joined_components(
-    n_cells: usize,
-    is_top: impl Fn(u32) -> bool,
-    pairs: &[(u32, u32, i8)],
-    joins: &[(u32, u32)],
-    n_components: usize,
-) -> usize {
-    if joins.is_empty() {
-        return n_components;
-    }
-    let mut uf = crate::algo::unionfind::UnionFind::new(n_cells);
-    for &(a, b, _) in pairs {
-        if is_top(a) && is_top(b) {
-            uf.union(a, b);
-        }
-    }
-    joins
-        .iter()
-        .fold(n_components, |n, &(a, b)| n - usize::from(uf.union(a, b)))
 }
 
 /// Validates any structure (see the [module docs](self)); the answer equals

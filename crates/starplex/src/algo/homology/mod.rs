@@ -702,8 +702,6 @@ fn map_back(c: &Cell, to_old: Option<&[u32]>) -> (Vec<u32>, i64) {
     }
 }
 
-pub(crate) use crate::buf::prefetch;
-
 /// Phase timings on stderr when `STARPLEX_HOMOLOGY_TIMES` is set.
 fn debug_time(what: &str, t: std::time::Instant) {
     if std::env::var_os("STARPLEX_HOMOLOGY_TIMES").is_some() {

@@ -96,15 +96,15 @@ pub(crate) fn bfs_order_flat(f: &Flat) -> Vec<u32> {
         while head < order.len() {
             // the queue is known a few steps ahead: its rows and cells are fetched early
             if let Some(&u) = order.get(head + 8) {
-                super::prefetch(&vt.offsets, u as usize);
+                crate::buf::prefetch(&vt.offsets, u as usize);
             }
             if let Some(&u) = order.get(head + 4) {
                 let o = &vt.offsets;
-                super::prefetch(&vt.targets, o[u as usize] as usize);
+                crate::buf::prefetch(&vt.targets, o[u as usize] as usize);
             }
             if let Some(&u) = order.get(head + 2) {
                 for &c in vt.row(u as usize) {
-                    super::prefetch(verts, c as usize * a);
+                    crate::buf::prefetch(verts, c as usize * a);
                 }
             }
             let v = order[head];
