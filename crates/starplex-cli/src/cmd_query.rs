@@ -8,7 +8,7 @@ use starplex::complex::IndexedComplex;
 use starplex::ids::{CellId, VertexId};
 use starplex::stellar::Decomposition;
 use starplex::structures::{Structure, StructureError, StructureOptions};
-use starplex::topo::{generic, Queries, QueryError};
+use starplex::topo::{batch, generic, Queries, QueryError};
 
 use crate::common::{self, CliError, Ctx, InputArgs};
 
@@ -135,8 +135,19 @@ pub fn build_with(
     })
 }
 
+/// A query's error: asking a simplex's question of a CP cell, or of vertices that are no
+/// simplex, is the user's input (exit 2, with what to do); an answer over budget is not.
 fn qerr(e: QueryError) -> CliError {
-    CliError::Other(e.to_string())
+    let hint = match &e {
+        QueryError::NotSimplicial(_) => Some(
+            "vt, vv and ia-star answer on CP cells; for the others, triangulate first with \
+             `starplex convert IN OUT --triangulate`"
+                .to_string(),
+        ),
+        QueryError::NotInComplex(_) => None,
+        QueryError::TooLarge(_) => return CliError::Other(e.to_string()),
+    };
+    CliError::Input(e.to_string(), hint)
 }
 
 /// The oracle-format answer for one vertex.
@@ -210,6 +221,12 @@ pub fn answer_size(
             n
         }
         RelationKind::Adj => {
+            let kind = s.top_cell_kind(CellId(i));
+            if !kind.is_simplex() {
+                return Err(QueryError::NotSimplicial(format!(
+                    "adj of top cell {i} (a {kind})"
+                )));
+            }
             let mut tv = Vec::new();
             s.top_cell_vertices(CellId(i), &mut tv);
             s.adjacent(&tv, verts)?;
@@ -256,6 +273,13 @@ pub fn try_run_all(
         .build()
         .map_err(|e| CliError::Other(e.to_string()))?;
     let t = Instant::now();
+    // every top's facet neighbours at once (the batched rows `--out` writes), not one top star
+    // per facet per cell: the answer is the same, in a fraction of the time
+    if matches!(r, RelationKind::Adj | RelationKind::IaStar)
+        && let Some(total) = pool.install(|| facet_neighbour_total(s, r, n as usize))
+    {
+        return Ok(total.map(|total| (n as u64, total, t.elapsed().as_secs_f64())));
+    }
     let total: Result<u64, QueryError> = pool.install(|| {
         (0..n)
             .into_par_iter()
@@ -268,6 +292,50 @@ pub fn try_run_all(
     });
     let secs = t.elapsed().as_secs_f64();
     Ok(total.map(|total| (n as u64, total, secs)))
+}
+
+/// The total size of [`answer_size`] over every top cell for `adj` and `ia-star`, from the
+/// facet neighbours of every top made at once ([`batch::gather`] of TT in bulk); `None` where
+/// those rows are not made in bulk (few cells, or `adj` on a complex with a CP cell). A top of
+/// the complex's dimension `d` is adjacent to the tops across its facets, which are its facet
+/// neighbours; the IA* holds them for tops of dimension 2 and more; a lower top's adjacency is
+/// asked of the structure.
+fn facet_neighbour_total(
+    s: &(dyn Queries + Sync),
+    r: RelationKind,
+    n: usize,
+) -> Option<Result<u64, QueryError>> {
+    if !batch::is_bulk(s, batch::Relation::Tt, n) {
+        return None;
+    }
+    let d = starplex::algo::manifold::complex_dim(s)?;
+    // the IA*'s rows are every cell's, CP cells included; adjacency in bulk is of simplices
+    let tt = match r {
+        RelationKind::IaStar => Some(batch::gather(s, batch::Relation::Tt, &batch::all(n))),
+        _ => batch::facet_neighbours_all(s),
+    };
+    let tt = match tt? {
+        Ok(tt) => tt,
+        Err(e) => return Some(Err(e)),
+    };
+    Some(
+        (0..n as u32)
+            .into_par_iter()
+            .with_min_len(4096)
+            .map_init(
+                || (Vec::new(), Vec::new()),
+                |(c, v), i| {
+                    let k = s.top_cell_kind(CellId(i)).dim();
+                    match r {
+                        RelationKind::IaStar if k < 2 => Ok(0),
+                        RelationKind::IaStar => Ok(tt.row(i as usize).len() as u64),
+                        _ if k == d && d >= 1 => Ok(tt.row(i as usize).len() as u64),
+                        _ => answer_size(s, r, i, c, v),
+                    }
+                },
+            )
+            .try_reduce(|| 0, |a, b| Ok(a + b)),
+    )
 }
 
 pub fn run(ctx: &Ctx, a: &QueryArgs) -> Result<(), CliError> {

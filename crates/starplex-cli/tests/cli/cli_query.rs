@@ -131,3 +131,67 @@ fn sorted(v: &serde_json::Value) -> serde_json::Value {
     lists.sort();
     serde_json::json!(lists)
 }
+
+/// `query --all` of `ia-star` and `adj` counts the tops across every facet of every top cell
+/// (in bulk, from the VT rows): on the Freudenthal grid of 6³ cubes (1296 tetrahedra, 432
+/// boundary triangles) 4 × 1296 − 432 = 4752; on its 5184 hexahedra (4 per tetrahedron, 3
+/// boundary quads per boundary triangle) 6 × 5184 − 1296 = 29808, for every structure holding
+/// them. `adj` of a hexahedron is a simplex's question: an input error with what to do.
+#[test]
+fn all_facet_neighbours_count_the_interior_facets_twice() {
+    let dir = std::env::temp_dir().join(format!("starplex-query-all-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (grid, hexes) = (dir.join("g.spx"), dir.join("h.spx"));
+    let sp = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_starplex"))
+            .arg("--quiet")
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let g = grid.to_str().unwrap();
+    let h = hexes.to_str().unwrap();
+    assert!(sp(&["generate", "grid", "6", "6", "6", "-o", g])
+        .status
+        .success());
+    assert!(sp(&["generate", "hexes", g, "-o", h]).status.success());
+    let cases = [
+        (g, "ia-star", 4752),
+        (g, "adj", 4752),
+        (h, "ia-star", 29808),
+    ];
+    for (file, rel, want) in cases {
+        for st in ["vt", "ia-star", "stellar", "ig"] {
+            let o = sp(&[
+                "query",
+                file,
+                "--structure",
+                st,
+                "--relation",
+                rel,
+                "--all",
+                "--json",
+            ]);
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert!(o.status.success(), "{file} {st} {rel}: {err}");
+            let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+            assert_eq!(j["total_size"], want, "{file} {st} {rel}");
+        }
+    }
+    let o = sp(&[
+        "query",
+        h,
+        "--structure",
+        "stellar",
+        "--relation",
+        "adj",
+        "--all",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("a hex") && err.contains("--triangulate"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
