@@ -289,15 +289,13 @@ impl Marks {
 /// Buffers of the triangle-star test ([`tri_link_condition`]).
 #[derive(Default, Debug)]
 struct TriScratch {
-    /// Link vertices of a star, two per triangle (sorted to count them).
-    verts: Vec<u32>,
-    /// The link elements of `a` (`b`) not through `b` (`a`), as sorted pairs (ω = [`OMEGA`]).
-    ea: Vec<(u32, u32)>,
-    eb: Vec<(u32, u32)>,
-    /// Their vertices, sorted and deduplicated.
+    /// The link vertices of `a` (`b`), two per triangle of its star (sorted to count them).
     va: Vec<u32>,
     vb: Vec<u32>,
-    /// Lk(ab): the third vertices of the triangles through ab (and ω on a boundary edge).
+    /// The same, each once with its count.
+    ca: Vec<(u32, u32)>,
+    cb: Vec<(u32, u32)>,
+    /// Lk(ab)'s vertices: the third vertices of the triangles through ab.
     lab: Vec<u32>,
 }
 
@@ -585,6 +583,16 @@ pub fn link_condition_in(
 /// (`xy` for the triangle `axy`, `xω` for the boundary edge `ax`), the condition is:
 /// (1) every vertex of a link edge of `a` and of a link edge of `b` is in `Lk(ab)`, and
 /// (2) no link edge of `a` is also one of `b`.
+///
+/// Both are read from each star's link vertices counted (`c_a(x)`: the triangles `axy`).
+/// `x ≠ b` is a vertex of a link edge of `a` when it is in a triangle `axy` with `y ≠ b`, or,
+/// in `Manifold` mode, always (`ax` in one triangle is a boundary edge `xω`); ω is one when `a`
+/// has a boundary edge besides `ab`. A common neighbour `x` of `a` and `b` outside `Lk(ab)` is
+/// in no triangle `abx`, so it is a vertex of link edges of both: (1) is that every common
+/// neighbour is in `Lk(ab)`, and ω too when both have a boundary edge besides `ab`. A shared
+/// link edge has its vertices in both links' vertices, so once (1) holds they are in
+/// `Lk(ab)`: (2) looks only at the pairs of `Lk(ab)` (`axy` and `bxy` both triangles) and,
+/// in `Manifold` mode, at its vertices `x` with `ax` and `bx` both boundary edges.
 fn tri_link_condition(
     w: &TopSimplices,
     a: u32,
@@ -596,88 +604,92 @@ fn tri_link_condition(
     if sa.iter().chain(sb).any(|&t| w.top(t).len() != 3) {
         return None;
     }
-    s.lab.clear();
-    let mut any_edge = false;
-    for &t in sa {
-        let top = w.top(t);
-        if top.contains(&b) {
-            any_edge = true;
-            s.lab
-                .extend(top.iter().copied().filter(|&x| x != a && x != b));
-        }
-    }
-    if !any_edge {
-        return Some(false);
-    }
     let manifold = mode == LinkMode::Manifold;
-    let ab_boundary = link_elements(w, a, b, manifold, &mut s.verts, &mut s.ea);
-    if ab_boundary {
-        s.lab.push(OMEGA);
+    // the link vertices of a and b, counted, and Lk(ab)'s vertices
+    s.lab.clear();
+    let others = |v: u32, top: &[u32]| match (top[0] == v, top[1] == v) {
+        (true, _) => (top[1], top[2]),
+        (_, true) => (top[0], top[2]),
+        _ => (top[0], top[1]),
+    };
+    s.va.clear();
+    for &t in sa {
+        let (x, y) = others(a, w.top(t));
+        s.va.extend([x, y]);
+        if x == b || y == b {
+            s.lab.push(x ^ y ^ b);
+        }
     }
-    link_elements(w, b, a, manifold, &mut s.verts, &mut s.eb);
-    for (e, v) in [(&s.ea, &mut s.va), (&s.eb, &mut s.vb)] {
-        v.clear();
-        v.extend(e.iter().flat_map(|&(x, y)| [x, y]));
-        v.sort_unstable();
-        v.dedup();
-    }
-    // (1): the common vertices are in Lk(ab)
-    let lab = &s.lab;
-    if sorted_common(&s.va, &s.vb, |v| !lab.contains(v)) {
+    if s.lab.is_empty() {
         return Some(false);
     }
-    // (2): no shared link edge
-    Some(!s.ea.iter().any(|e| s.eb.contains(e)))
-}
-
-/// The link edges of `v` not through `other` (its star is made of triangles): `xy` for each
-/// triangle `vxy`, and in `Manifold` mode `xω` for each boundary edge `vx` (in one triangle
-/// of the star). Returns true when `v other` is a boundary edge (in `Manifold` mode).
-fn link_elements(
-    w: &TopSimplices,
-    v: u32,
-    other: u32,
-    manifold: bool,
-    verts: &mut Vec<u32>,
-    out: &mut Vec<(u32, u32)>,
-) -> bool {
-    out.clear();
-    verts.clear();
-    for &t in w.star(v) {
-        let top = w.top(t);
-        let (x, y) = match (top[0] == v, top[1] == v) {
-            (true, _) => (top[1], top[2]),
-            (_, true) => (top[0], top[2]),
-            _ => (top[0], top[1]),
-        };
-        verts.push(x);
-        verts.push(y);
-        if x != other && y != other {
-            out.push((x.min(y), x.max(y)));
-        }
+    s.vb.clear();
+    for &t in sb {
+        let (x, y) = others(b, w.top(t));
+        s.vb.extend([x, y]);
     }
-    if !manifold {
-        return false;
+    s.va.sort_unstable();
+    s.vb.sort_unstable();
+    counted(&s.va, &mut s.ca);
+    counted(&s.vb, &mut s.cb);
+    let lab = &s.lab;
+    // ab in one triangle: a boundary edge, ω in Lk(ab)
+    let ab_boundary = manifold && lab.len() == 1;
+    // ω a vertex of a link edge of a (b): a boundary edge besides ab
+    let omega = |c: &[(u32, u32)], other: u32| c.iter().any(|&(x, n)| n == 1 && x != other);
+    if manifold && !ab_boundary && omega(&s.ca, b) && omega(&s.cb, a) {
+        return Some(false);
     }
-    verts.sort_unstable();
-    let mut boundary_other = false;
-    let mut i = 0;
-    while i < verts.len() {
-        let x = verts[i];
-        let mut j = i + 1;
-        while j < verts.len() && verts[j] == x {
-            j += 1;
-        }
-        if j - i == 1 {
-            if x == other {
-                boundary_other = true;
-            } else {
-                out.push((x, OMEGA));
+    // (1): the common link vertices are in Lk(ab)
+    let (ca, cb) = (&s.ca, &s.cb);
+    let (mut i, mut j) = (0, 0);
+    while i < ca.len() && j < cb.len() {
+        let (x, y) = (ca[i].0, cb[j].0);
+        match x.cmp(&y) {
+            std::cmp::Ordering::Less => i += 1,
+            std::cmp::Ordering::Greater => j += 1,
+            std::cmp::Ordering::Equal => {
+                if !lab.contains(&x) {
+                    return Some(false);
+                }
+                i += 1;
+                j += 1;
             }
         }
-        i = j;
     }
-    boundary_other
+    // (2): no shared link edge: xy with axy and bxy, or xω with ax and bx boundary edges
+    let count = |c: &[(u32, u32)], x: u32| {
+        c.binary_search_by_key(&x, |&(v, _)| v)
+            .map_or(0, |k| c[k].1)
+    };
+    for (k, &x) in lab.iter().enumerate() {
+        if manifold && count(ca, x) == 1 && count(cb, x) == 1 {
+            return Some(false);
+        }
+        for &y in &lab[k + 1..] {
+            let holds = |v: u32, st: &[u32]| {
+                st.iter().any(|&t| {
+                    let t = w.top(t);
+                    t.contains(&v) && t.contains(&x) && t.contains(&y)
+                })
+            };
+            if holds(a, sa) && holds(b, sb) {
+                return Some(false);
+            }
+        }
+    }
+    Some(true)
+}
+
+/// The distinct values of a sorted list with how many times each occurs.
+fn counted(sorted: &[u32], out: &mut Vec<(u32, u32)>) {
+    out.clear();
+    for &x in sorted {
+        match out.last_mut() {
+            Some((y, n)) if *y == x => *n += 1,
+            _ => out.push((x, 1)),
+        }
+    }
 }
 
 /// [`Marks::vertex_condition`] by sorting the two stars' vertices (no per-vertex array).

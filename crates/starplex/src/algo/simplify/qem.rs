@@ -248,8 +248,8 @@ fn each_edge_cost(
         if !w.is_alive(a) {
             continue;
         }
-        w.neighbours_into(a, nb);
-        for &b in nb.iter().filter(|&&b| b > a) {
+        w.neighbours_above_into(a, nb);
+        for &b in nb.iter() {
             if let Some((cost, _)) = run.candidate(a, b) {
                 f(a, b, cost);
             }
@@ -613,7 +613,8 @@ fn locality_order(w: &TopSimplices) -> (Vec<u32>, Vec<u32>) {
             (key, v as u32)
         })
         .collect();
-    keys.sort_unstable();
+    // by key, equal keys in vertex order: the order of sorting the pairs
+    radix_sort_by_key(&mut keys);
     let mut to_new = vec![0u32; n];
     for (i, &(_, v)) in keys.iter().enumerate() {
         to_new[v as usize] = i as u32;
@@ -644,6 +645,35 @@ fn locality_order(w: &TopSimplices) -> (Vec<u32>, Vec<u32>) {
         *at += 1;
     }
     (to_new, order)
+}
+
+/// Sorts the pairs by their key, stably (least significant digit first, 16 bits a pass; a
+/// pass whose digit is the same for every pair is skipped).
+fn radix_sort_by_key(keys: &mut Vec<(u64, u32)>) {
+    let mut spare = vec![(0u64, 0u32); keys.len()];
+    let mut count = vec![0usize; 1 << 16];
+    for shift in [0, 16, 32, 48] {
+        let digit = |k: &(u64, u32)| ((k.0 >> shift) & 0xffff) as usize;
+        count.fill(0);
+        for k in keys.iter() {
+            count[digit(k)] += 1;
+        }
+        if keys.first().is_none_or(|k| count[digit(k)] == keys.len()) {
+            continue;
+        }
+        let mut at = 0;
+        for c in count.iter_mut() {
+            let k = *c;
+            *c = at;
+            at += k;
+        }
+        for k in keys.iter() {
+            let d = digit(k);
+            spare[count[d]] = *k;
+            count[d] += 1;
+        }
+        std::mem::swap(keys, &mut spare);
+    }
 }
 
 /// The 21 low bits of `x` spread to every third bit (bit `i` to bit `3i`).
@@ -744,8 +774,9 @@ pub const PASS_MIN_SUCCESS: f64 = 0.75;
 fn passes(w: &mut TopSimplices, target: &Target, run: &mut Run, nb: &mut Vec<u32>) -> bool {
     let n = w.n_vertices();
     let (mut edges, mut spare, mut selected) = (Vec::new(), Vec::new(), Vec::new());
-    // per vertex: ends of a selected edge of this pass
-    let mut claimed = vec![false; n];
+    // per vertex: the other end of its selected edge of this pass (`FREE`: none)
+    const FREE: u32 = u32::MAX;
+    let mut mate = vec![FREE; n];
     // top cells removed per contraction (measured after each pass)
     let mut tops_per_contraction = if run.d == 2 { 2.0 } else { 4.0 };
     let max_key = target.max_error.map_or(u32::MAX, cost_bits);
@@ -754,21 +785,30 @@ fn passes(w: &mut TopSimplices, target: &Target, run: &mut Run, nb: &mut Vec<u32
         edges_by_cost(w, nb, run, &mut edges, &mut spare);
         let (limit, cap) = pass_limit(w, target, &edges, tops_per_contraction);
         // the cheapest edges, no two with a common end, in cost order
-        selected.clear();
+        let mut n_selected = 0;
         for e in &edges {
-            if e.key > limit.min(max_key) || selected.len() >= cap {
+            if e.key > limit.min(max_key) || n_selected >= cap {
                 break;
             }
             let (a, b) = (e.a as usize, e.b as usize);
-            if !claimed[a] && !claimed[b] {
-                claimed[a] = true;
-                claimed[b] = true;
-                selected.push((e.a, e.b));
+            if mate[a] == FREE && mate[b] == FREE {
+                mate[a] = e.b;
+                mate[b] = e.a;
+                n_selected += 1;
             }
         }
         // contracted in the order of their vertices (no end of one is an end of another, so
-        // each one's cost is still the one it was selected with)
-        selected.sort_unstable();
+        // each one's cost is still the one it was selected with): read from the mates in
+        // vertex order, no sort
+        selected.clear();
+        for (a, m) in mate.iter_mut().enumerate() {
+            if *m != FREE {
+                if (a as u32) < *m {
+                    selected.push((a as u32, *m));
+                }
+                *m = FREE;
+            }
+        }
         let (tops0, contractions0) = (w.n_alive_tops(), run.stats.n_contractions);
         for &(a, b) in &selected {
             if target.reached(w) {
@@ -780,10 +820,6 @@ fn passes(w: &mut TopSimplices, target: &Target, run: &mut Run, nb: &mut Vec<u32
             if target.max_error.is_none_or(|m| cost <= m) {
                 run.contract(w, a, b, cost, p);
             }
-        }
-        for &(a, b) in &selected {
-            claimed[a as usize] = false;
-            claimed[b as usize] = false;
         }
         let made = run.stats.n_contractions - contractions0;
         let live = w.n_alive_vertices();
@@ -1061,8 +1097,12 @@ fn geometry_ok(w: &TopSimplices, d: usize, pos: &[[f64; 3]], s: u32, t: u32, p: 
                 continue;
             }
             if d == 2 {
-                let old = [0, 1, 2].map(|i| pos[top[i] as usize]);
-                let new = [0, 1, 2].map(|i| if top[i] == v { p } else { old[i] });
+                let &[x, y, z] = top else {
+                    return false;
+                };
+                let old = [x, y, z].map(|i| pos[i as usize]);
+                let moved = |i: u32, q: [f64; 3]| if i == v { p } else { q };
+                let new = [moved(x, old[0]), moved(y, old[1]), moved(z, old[2])];
                 let (n0, n1) = (normal(old), normal(new));
                 let (l0, l1) = (dot(n0, n0), dot(n1, n1));
                 if l1 <= 1e-24 * l0 || l1 == 0.0 {
@@ -1072,8 +1112,17 @@ fn geometry_ok(w: &TopSimplices, d: usize, pos: &[[f64; 3]], s: u32, t: u32, p: 
                     return false;
                 }
             } else {
-                let old = [0, 1, 2, 3].map(|i| pos[top[i] as usize]);
-                let new = [0, 1, 2, 3].map(|i| if top[i] == v { p } else { old[i] });
+                let &[x, y, z, u] = top else {
+                    return false;
+                };
+                let old = [x, y, z, u].map(|i| pos[i as usize]);
+                let moved = |i: u32, q: [f64; 3]| if i == v { p } else { q };
+                let new = [
+                    moved(x, old[0]),
+                    moved(y, old[1]),
+                    moved(z, old[2]),
+                    moved(u, old[3]),
+                ];
                 let o = |q: [[f64; 3]; 4]| {
                     let c = |x: [f64; 3]| robust::Coord3D {
                         x: x[0],
@@ -1225,6 +1274,29 @@ mod tests {
         expected.sort_by_key(|e| e.key);
         sort_by_key(&mut edges, &mut Vec::new());
         assert_eq!(edges, expected);
+    }
+
+    /// The Z-order keys' radix sort orders as sorting the (key, vertex) pairs: keys over all 63
+    /// bits with many repeats (ties in vertex order), and keys whose high digits are all equal
+    /// (the skipped passes).
+    #[test]
+    fn radix_sort_by_key_sorts_the_pairs() {
+        let mut r = 0x9e37_79b9_7f4a_7c15u64;
+        for spread in [u64::MAX >> 1, 0xffff_ffff, 0xff] {
+            let mut keys: Vec<(u64, u32)> = (0..20_000)
+                .map(|v| {
+                    r ^= r << 13;
+                    r ^= r >> 7;
+                    r ^= r << 17;
+                    // a few hundred distinct keys: many ties
+                    ((r % 300).wrapping_mul(0x0123_4567_89ab_cdef) & spread, v)
+                })
+                .collect();
+            let mut expected = keys.clone();
+            expected.sort_unstable();
+            radix_sort_by_key(&mut keys);
+            assert_eq!(keys, expected, "keys within {spread:#x}");
+        }
     }
 
     #[test]

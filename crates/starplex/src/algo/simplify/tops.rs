@@ -633,6 +633,25 @@ impl TopSimplices {
         out.dedup();
     }
 
+    /// The neighbours of `v` above it, sorted ([`neighbours_into`](Self::neighbours_into) less
+    /// those below `v`, with half the entries to sort): each edge once, from its smaller end.
+    ///
+    /// ```
+    /// # use starplex::algo::simplify::TopSimplices;
+    /// let w = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![2, 3], vec![1, 2, 3]]).unwrap();
+    /// let mut nb = Vec::new();
+    /// w.neighbours_above_into(1, &mut nb);
+    /// assert_eq!(nb, [2, 3]);
+    /// ```
+    pub fn neighbours_above_into(&self, v: u32, out: &mut Vec<u32>) {
+        out.clear();
+        for &t in self.star(v) {
+            out.extend(self.tops.get(t as usize).iter().copied().filter(|&x| x > v));
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+
     /// The coordinates of `v` (empty without coordinates).
     ///
     /// ```
