@@ -601,32 +601,31 @@ fn tri_link_condition(
     s: &mut TriScratch,
 ) -> Option<bool> {
     let (sa, sb) = (w.star(a), w.star(b));
-    if sa.iter().chain(sb).any(|&t| w.top(t).len() != 3) {
-        return None;
-    }
     let manifold = mode == LinkMode::Manifold;
-    // the link vertices of a and b, counted, and Lk(ab)'s vertices
+    // the link vertices of a and b, counted, and Lk(ab)'s vertices (`None` at the first top
+    // that is not a triangle)
     s.lab.clear();
-    let others = |v: u32, top: &[u32]| match (top[0] == v, top[1] == v) {
-        (true, _) => (top[1], top[2]),
-        (_, true) => (top[0], top[2]),
-        _ => (top[0], top[1]),
+    let others = |v: u32, top: &[u32]| match *top {
+        [x, y, z] if x == v => Some((y, z)),
+        [x, y, z] if y == v => Some((x, z)),
+        [x, y, _] => Some((x, y)),
+        _ => None,
     };
     s.va.clear();
     for &t in sa {
-        let (x, y) = others(a, w.top(t));
+        let (x, y) = others(a, w.top(t))?;
         s.va.extend([x, y]);
         if x == b || y == b {
             s.lab.push(x ^ y ^ b);
         }
     }
-    if s.lab.is_empty() {
-        return Some(false);
-    }
     s.vb.clear();
     for &t in sb {
-        let (x, y) = others(b, w.top(t));
+        let (x, y) = others(b, w.top(t))?;
         s.vb.extend([x, y]);
+    }
+    if s.lab.is_empty() {
+        return Some(false);
     }
     s.va.sort_unstable();
     s.vb.sort_unstable();
