@@ -338,25 +338,11 @@ fn facet_neighbours_by_rows<S: Queries + Sync + ?Sized>(
         }
         sc.verts.clear();
         s.top_cell_vertices(CellId(c), &mut sc.verts);
-        // every cell through a vertex of c, once per shared vertex
-        sc.cells.clear();
-        for v in &sc.verts {
-            sc.cells
-                .extend(vt.row(v.index()).iter().map(|&u| CellId(u)));
-        }
-        sc.cells.sort_unstable();
-        let mut i = 0;
-        while i < sc.cells.len() {
-            let u = sc.cells[i];
-            let mut j = i + 1;
-            while j < sc.cells.len() && sc.cells[j] == u {
-                j += 1;
-            }
-            if j - i == d && u.0 != c && kinds[u.index()].dim() == d {
+        each_cell_through(&vt, &sc.verts, &mut sc.cells, |u, shared| {
+            if shared == d && u.0 != c && kinds[u.index()].dim() == d {
                 out.push(u.0);
             }
-            i = j;
-        }
+        });
         Ok(())
     }))
 }
@@ -393,26 +379,20 @@ fn cp_facet_neighbours<S: Queries + ?Sized>(
         .scan(0, |prev, &e| Some(e - std::mem::replace(prev, e)))
         .min()
         .unwrap_or(0);
-    sc.cells.clear();
-    for v in &sc.verts {
-        sc.cells
-            .extend(vt.row(v.index()).iter().map(|&u| CellId(u)));
-    }
-    sc.cells.sort_unstable();
+    let Scratch {
+        verts,
+        cells,
+        facet: cv,
+        ..
+    } = sc;
     let mut uv = Vec::new();
-    let mut i = 0;
-    while i < sc.cells.len() {
-        let u = sc.cells[i];
-        let mut j = i + 1;
-        while j < sc.cells.len() && sc.cells[j] == u {
-            j += 1;
-        }
+    each_cell_through(vt, verts, cells, |u, shared| {
         let ku = kinds[u.index()];
-        if j - i >= least && u.0 != c && ku.dim() == d {
-            sc.facet.clear();
-            s.top_cell_vertices(u, &mut sc.facet);
+        if shared >= least && u.0 != c && ku.dim() == d {
+            cv.clear();
+            s.top_cell_vertices(u, cv);
             uv.clear();
-            uv.extend(sc.facet.iter().map(|v| v.0));
+            uv.extend(cv.iter().map(|v| v.0));
             let mut from = 0;
             for &e in &ends {
                 if ku.has_face(&uv, &facets[from..e]) {
@@ -421,6 +401,31 @@ fn cp_facet_neighbours<S: Queries + ?Sized>(
                 from = e;
             }
         }
+    });
+}
+
+/// Calls `f(u, k)` for every cell `u` through at least one of `verts`, in increasing id
+/// order, with the number `k` of them it goes through (from the VT rows `vt`; `cells` is
+/// scratch).
+fn each_cell_through(
+    vt: &crate::csr::Csr,
+    verts: &[VertexId],
+    cells: &mut Vec<CellId>,
+    mut f: impl FnMut(CellId, usize),
+) {
+    cells.clear();
+    for v in verts {
+        cells.extend(vt.row(v.index()).iter().map(|&u| CellId(u)));
+    }
+    cells.sort_unstable();
+    let mut i = 0;
+    while i < cells.len() {
+        let u = cells[i];
+        let mut j = i + 1;
+        while j < cells.len() && cells[j] == u {
+            j += 1;
+        }
+        f(u, j - i);
         i = j;
     }
 }
