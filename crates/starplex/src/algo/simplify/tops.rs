@@ -638,10 +638,12 @@ impl TopSimplices {
     ///
     /// ```
     /// # use starplex::algo::simplify::TopSimplices;
-    /// let w = TopSimplices::from_tops(4, &[vec![0, 1, 2], vec![2, 3], vec![1, 2, 3]]).unwrap();
+    /// let w = TopSimplices::from_tops(5, &[vec![0, 1, 2], vec![1, 3], vec![2, 3, 4]]).unwrap();
     /// let mut nb = Vec::new();
     /// w.neighbours_above_into(1, &mut nb);
     /// assert_eq!(nb, [2, 3]);
+    /// w.neighbours_above_into(2, &mut nb);
+    /// assert_eq!(nb, [3, 4]);
     /// ```
     pub fn neighbours_above_into(&self, v: u32, out: &mut Vec<u32>) {
         out.clear();
