@@ -134,6 +134,10 @@ struct Scratch {
     verts: Vec<VertexId>,
     facet: Vec<VertexId>,
     tops: Vec<CellId>,
+    /// A cell's facets, sorted, end to end, with where each ends; a candidate's vertices.
+    facets: Vec<u32>,
+    ends: Vec<usize>,
+    ids: Vec<u32>,
 }
 
 /// The items `0..n`.
@@ -244,7 +248,7 @@ pub fn gather<S: Queries + Sync + ?Sized>(
     }
     if r == Relation::Tt
         && is_bulk(s, r, items.len())
-        && let Some(a) = facet_neighbours_by_rows(s, items)
+        && let Some(a) = facet_neighbours_by_rows(s, items, true)
     {
         return a;
     }
@@ -288,11 +292,7 @@ pub fn is_bulk<S: Queries + ?Sized>(s: &S, r: Relation, n: usize) -> bool {
 pub fn facet_neighbours_all<S: Queries + Sync + ?Sized>(
     s: &S,
 ) -> Option<Result<Answers, QueryError>> {
-    let nc = s.n_top_cells() as u32;
-    if (0..nc).any(|c| !s.top_cell_kind(CellId(c)).is_simplex()) {
-        return None;
-    }
-    facet_neighbours_by_rows(s, &all(nc as usize))
+    facet_neighbours_by_rows(s, &all(s.n_top_cells()), false)
 }
 
 /// [`Relation::Tt`] of many top cells from the VT rows of every vertex (the structure's own,
@@ -300,13 +300,13 @@ pub fn facet_neighbours_all<S: Queries + Sync + ?Sized>(
 /// cells), not from one top star per facet. For a simplex `c`, the cells of its dimension
 /// sharing exactly `d` of its `d + 1` vertices are those across its facets (two simplices sharing
 /// two facets share every vertex). A CP cell may hold a facet's vertices without the facet, so
-/// for a complex with one, each facet's candidates (the cells through its first vertex holding
-/// all of its vertices) are kept when the facet is one of their faces, as
-/// [`generic::facet_neighbours`](super::generic::facet_neighbours) does. `None` for a complex
-/// without top cells.
+/// in a complex with one the rows are [`cp_facet_neighbours`], as
+/// [`generic::facet_neighbours`](super::generic::facet_neighbours) answers. `None` for a complex
+/// without top cells, and for one with a CP cell unless `with_cp`.
 fn facet_neighbours_by_rows<S: Queries + Sync + ?Sized>(
     s: &S,
     items: &[u32],
+    with_cp: bool,
 ) -> Option<Result<Answers, QueryError>> {
     let nc = s.n_top_cells();
     if nc == 0 {
@@ -315,6 +315,9 @@ fn facet_neighbours_by_rows<S: Queries + Sync + ?Sized>(
     let kinds: Vec<crate::cell::CellKind> =
         (0..nc as u32).map(|c| s.top_cell_kind(CellId(c))).collect();
     let simplicial = kinds.iter().all(|k| k.is_simplex());
+    if !simplicial && !with_cp {
+        return None;
+    }
     let vt = s.vertex_top_rows().unwrap_or_else(|| {
         let mut tv = Vec::new();
         crate::csr::Csr::from_fn(s.n_vertices(), |push| {
@@ -364,13 +367,23 @@ fn cp_facet_neighbours<S: Queries + ?Sized>(
     if d == 0 {
         return;
     }
-    sc.verts.clear();
-    s.top_cell_vertices(CellId(c), &mut sc.verts);
+    let Scratch {
+        verts,
+        cells,
+        facet: cv,
+        facets,
+        ends,
+        ids: uv,
+        ..
+    } = sc;
+    verts.clear();
+    s.top_cell_vertices(CellId(c), verts);
     // c's facets, sorted, end to end
-    let (mut facets, mut ends) = (Vec::new(), Vec::new());
+    facets.clear();
+    ends.clear();
     kind.for_each_oriented_facet(|l, _| {
         let start = facets.len();
-        facets.extend(l.iter().map(|&x| sc.verts[x as usize].0));
+        facets.extend(l.iter().map(|&x| verts[x as usize].0));
         facets[start..].sort_unstable();
         ends.push(facets.len());
     });
@@ -379,13 +392,6 @@ fn cp_facet_neighbours<S: Queries + ?Sized>(
         .scan(0, |prev, &e| Some(e - std::mem::replace(prev, e)))
         .min()
         .unwrap_or(0);
-    let Scratch {
-        verts,
-        cells,
-        facet: cv,
-        ..
-    } = sc;
-    let mut uv = Vec::new();
     each_cell_through(vt, verts, cells, |u, shared| {
         let ku = kinds[u.index()];
         if shared >= least && u.0 != c && ku.dim() == d {
@@ -394,7 +400,7 @@ fn cp_facet_neighbours<S: Queries + ?Sized>(
             uv.clear();
             uv.extend(cv.iter().map(|v| v.0));
             let mut from = 0;
-            for &e in &ends {
+            for &e in ends.iter() {
                 if ku.has_face(&uv, &facets[from..e]) {
                     out.push(u.0);
                 }
@@ -418,15 +424,8 @@ fn each_cell_through(
         cells.extend(vt.row(v.index()).iter().map(|&u| CellId(u)));
     }
     cells.sort_unstable();
-    let mut i = 0;
-    while i < cells.len() {
-        let u = cells[i];
-        let mut j = i + 1;
-        while j < cells.len() && cells[j] == u {
-            j += 1;
-        }
-        f(u, j - i);
-        i = j;
+    for run in cells.chunk_by(|x, y| x == y) {
+        f(run[0], run.len());
     }
 }
 
@@ -832,7 +831,7 @@ mod tests {
         let structures: [&(dyn Queries + Sync); 3] = [&vt, &ia, &t];
         let mut shared = 0;
         for s in structures {
-            let bulk = facet_neighbours_by_rows(s, &items).unwrap().unwrap();
+            let bulk = facet_neighbours_by_rows(s, &items, true).unwrap().unwrap();
             for (i, &c) in items.iter().enumerate() {
                 let one = gather(s, Relation::Tt, &[c]).unwrap();
                 assert_eq!(bulk.row(i), one.row(0), "cell {c}");

@@ -683,12 +683,11 @@ fn tri_link_condition(
 /// The distinct values of a sorted list with how many times each occurs.
 fn counted(sorted: &[u32], out: &mut Vec<(u32, u32)>) {
     out.clear();
-    for &x in sorted {
-        match out.last_mut() {
-            Some((y, n)) if *y == x => *n += 1,
-            _ => out.push((x, 1)),
-        }
-    }
+    out.extend(
+        sorted
+            .chunk_by(|x, y| x == y)
+            .map(|r| (r[0], r.len() as u32)),
+    );
 }
 
 /// [`Marks::vertex_condition`] by sorting the two stars' vertices (no per-vertex array).

@@ -619,18 +619,7 @@ impl TopSimplices {
     /// assert_eq!(nb, [1, 2]);
     /// ```
     pub fn neighbours_into(&self, v: u32, out: &mut Vec<u32>) {
-        out.clear();
-        for &t in self.star(v) {
-            out.extend(
-                self.tops
-                    .get(t as usize)
-                    .iter()
-                    .copied()
-                    .filter(|&x| x != v),
-            );
-        }
-        out.sort_unstable();
-        out.dedup();
+        self.neighbours_where(v, out, |x| x != v);
     }
 
     /// The neighbours of `v` above it, sorted ([`neighbours_into`](Self::neighbours_into) less
@@ -646,9 +635,21 @@ impl TopSimplices {
     /// assert_eq!(nb, [3, 4]);
     /// ```
     pub fn neighbours_above_into(&self, v: u32, out: &mut Vec<u32>) {
+        self.neighbours_where(v, out, |x| x > v);
+    }
+
+    /// The vertices `x` of the tops through `v` with `keep(x)`, sorted, each once.
+    #[inline]
+    fn neighbours_where(&self, v: u32, out: &mut Vec<u32>, keep: impl Fn(u32) -> bool) {
         out.clear();
         for &t in self.star(v) {
-            out.extend(self.tops.get(t as usize).iter().copied().filter(|&x| x > v));
+            out.extend(
+                self.tops
+                    .get(t as usize)
+                    .iter()
+                    .copied()
+                    .filter(|&x| keep(x)),
+            );
         }
         out.sort_unstable();
         out.dedup();
