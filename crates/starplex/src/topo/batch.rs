@@ -401,7 +401,7 @@ fn cp_facet_neighbours<S: Queries + ?Sized>(
             uv.extend(cv.iter().map(|v| v.0));
             let mut from = 0;
             for &e in ends.iter() {
-                if ku.has_face(&uv, &facets[from..e]) {
+                if ku.has_face(uv, &facets[from..e]) {
                     out.push(u.0);
                 }
                 from = e;
