@@ -208,34 +208,6 @@ fn key_cost(key: u32) -> f64 {
     f32::from_bits(key << 7) as f64
 }
 
-/// Sorts the edges by key, ties in their order (two stable counting passes of 12 bits over
-/// the 24-bit keys, through `spare`).
-fn sort_by_key(edges: &mut Vec<Edge>, spare: &mut Vec<Edge>) {
-    const BITS: u32 = 12;
-    let mut count = vec![0usize; 1 << BITS];
-    for shift in [0, BITS] {
-        let digit = |e: &Edge| ((e.key >> shift) & ((1 << BITS) - 1)) as usize;
-        count.fill(0);
-        for e in edges.iter() {
-            count[digit(e)] += 1;
-        }
-        let mut at = 0;
-        for c in count.iter_mut() {
-            let k = *c;
-            *c = at;
-            at += k;
-        }
-        spare.clear();
-        spare.resize(edges.len(), Edge::default());
-        for e in edges.iter() {
-            let d = digit(e);
-            spare[count[d]] = *e;
-            count[d] += 1;
-        }
-        std::mem::swap(edges, spare);
-    }
-}
-
 /// Calls `f(a, b, cost)` for every contractible edge `a < b` of the live vertices, in vertex
 /// order, with its current cost: the sweep of a pass and of a greedy round.
 fn each_edge_cost(
@@ -257,16 +229,89 @@ fn each_edge_cost(
     }
 }
 
-/// Every contractible edge of the live vertices with its current cost, by increasing cost:
-/// a pass's order.
-fn edges_by_cost(
+/// Sorts the edges by key, ties in vertex order (`a`, then `b`), in place: the edges moved
+/// into buckets of their key's upper 16 bits by swaps (American flag sort), a bucket of more
+/// than 32 the same way on the lower 8, then each run of one key by its vertices. On edges
+/// listed in vertex order (each once), this is a stable sort by key.
+fn sort_in_place(edges: &mut [Edge]) {
+    let by_vertices = |run: &mut [Edge]| run.sort_unstable_by_key(|e| (e.a, e.b));
+    let (mut starts, mut inner, mut next) = (Vec::new(), Vec::new(), Vec::new());
+    flag_pass(edges, 16, |e| (e.key >> 8) as usize, &mut starts, &mut next);
+    for b in starts.windows(2) {
+        let bucket = &mut edges[b[0]..b[1]];
+        if bucket.len() <= 32 {
+            bucket.sort_unstable_by_key(|e| (e.key, e.a, e.b));
+            continue;
+        }
+        flag_pass(
+            bucket,
+            8,
+            |e| (e.key & 0xff) as usize,
+            &mut inner,
+            &mut next,
+        );
+        for r in inner.windows(2).filter(|r| r[1] - r[0] > 1) {
+            by_vertices(&mut bucket[r[0]..r[1]]);
+        }
+    }
+}
+
+/// One in-place bucket pass of [`sort_in_place`] on a digit of `bits` bits: `starts` receives
+/// the `2^bits + 1` bucket boundaries; `next` is scratch.
+fn flag_pass(
+    edges: &mut [Edge],
+    bits: u32,
+    digit: impl Fn(&Edge) -> usize,
+    starts: &mut Vec<usize>,
+    next: &mut Vec<usize>,
+) {
+    let n = 1usize << bits;
+    next.clear();
+    next.resize(n, 0);
+    for e in edges.iter() {
+        next[digit(e)] += 1;
+    }
+    starts.clear();
+    starts.push(0);
+    for &c in next.iter() {
+        starts.push(starts[starts.len() - 1] + c);
+    }
+    // the next unsorted place of every bucket; an edge out of place is carried along its
+    // cycle (each edge written once) until one of bucket `b` comes back
+    next.copy_from_slice(&starts[..n]);
+    for b in 0..n {
+        let end = starts[b + 1];
+        while next[b] < end {
+            let mut e = edges[next[b]];
+            let mut d = digit(&e);
+            while d != b {
+                std::mem::swap(&mut e, &mut edges[next[d]]);
+                next[d] += 1;
+                d = digit(&e);
+            }
+            edges[next[b]] = e;
+            next[b] += 1;
+        }
+    }
+}
+
+/// A pass's edges: every contractible edge of the live vertices with its current cost, then
+/// those a pass may select ([`pass_limit`]: of key at most the limit, which `max_key` caps) by
+/// increasing cost, ties in vertex order, sorted in place (no spare). Returns the largest key
+/// and how many edges the pass selects at most.
+fn pass_edges(
     w: &TopSimplices,
+    target: &Target,
     nb: &mut Vec<u32>,
     run: &Run,
+    tops_per_contraction: f64,
+    max_key: u32,
     edges: &mut Vec<Edge>,
-    spare: &mut Vec<Edge>,
-) {
+) -> (u32, usize) {
     edges.clear();
+    // room for every edge at once (a mesh has about V + T of them; the pages not written are
+    // not resident): growing by doubling would hold the old copy and the new one together
+    edges.reserve(w.n_alive_vertices() + 2 * w.n_alive_tops());
     each_edge_cost(w, nb, run, |a, b, cost| {
         edges.push(Edge {
             key: cost_bits(cost),
@@ -274,14 +319,47 @@ fn edges_by_cost(
             b,
         })
     });
-    sort_by_key(edges, spare);
+    let (limit, cap) = pass_limit(w, target, edges, tops_per_contraction);
+    let limit = limit.min(max_key);
+    edges.retain(|e| e.key <= limit);
+    sort_in_place(edges);
+    (limit, cap)
+}
+
+/// The `k`-th smallest key of the edges (from 0), `None` when there are no more than `k`:
+/// the key's upper 12 bits by a count over all, then its lower 12 over those that share them.
+fn nth_key(edges: &[Edge], k: usize) -> Option<u32> {
+    if k >= edges.len() {
+        return None;
+    }
+    const BITS: u32 = 12;
+    const MASK: u32 = (1 << BITS) - 1;
+    // the bucket of digit values holding rank `k` (counts of `digit` over the edges `keep`)
+    let rank = |keep: &dyn Fn(u32) -> bool, digit: &dyn Fn(u32) -> usize, k: usize| {
+        let mut count = [0usize; 1 << BITS];
+        for e in edges.iter().filter(|e| keep(e.key)) {
+            count[digit(e.key)] += 1;
+        }
+        let mut below = 0;
+        for (d, &c) in count.iter().enumerate() {
+            if k < below + c {
+                return (d as u32, k - below);
+            }
+            below += c;
+        }
+        unreachable!("rank {k} is below the number of edges")
+    };
+    let (hi, k) = rank(&|_| true, &|key| (key >> BITS) as usize, k);
+    let (lo, _) = rank(&|key| key >> BITS == hi, &|key| (key & MASK) as usize, k);
+    Some((hi << BITS) | lo)
 }
 
 /// How far a pass goes: the largest key it contracts, and how many edges it selects. Both
 /// follow the contractions still needed to reach the target (`tops_per_contraction` top
 /// cells go with each): at most that many edges, of cost at most 1.5 times that of the edge
-/// at that position, so that a pass stays near the cheapest edges and ends where the greedy
-/// order would (without a count target, as if a quarter of the vertices were to go).
+/// at that position in cost order, so that a pass stays near the cheapest edges and ends where
+/// the greedy order would (without a count target, as if a quarter of the vertices were to
+/// go). `edges` in any order.
 fn pass_limit(
     w: &TopSimplices,
     target: &Target,
@@ -299,8 +377,8 @@ fn pass_limit(
         // no count target: a quarter of the vertices a pass
         None => (w.n_alive_vertices() / 4).max(1),
     };
-    match edges.get(needed) {
-        Some(e) => (cost_bits(key_cost(e.key) * 1.5).max(e.key), needed),
+    match nth_key(edges, needed) {
+        Some(key) => (cost_bits(key_cost(key) * 1.5).max(key), needed),
         None => (u32::MAX, needed),
     }
 }
@@ -773,7 +851,7 @@ pub const PASS_MIN_SUCCESS: f64 = 0.75;
 /// than a quarter refused.
 fn passes(w: &mut TopSimplices, target: &Target, run: &mut Run, nb: &mut Vec<u32>) -> bool {
     let n = w.n_vertices();
-    let (mut edges, mut spare, mut selected) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut edges, mut selected) = (Vec::new(), Vec::new());
     // per vertex: the other end of its selected edge of this pass (`FREE`: none)
     const FREE: u32 = u32::MAX;
     let mut mate = vec![FREE; n];
@@ -782,12 +860,19 @@ fn passes(w: &mut TopSimplices, target: &Target, run: &mut Run, nb: &mut Vec<u32
     let max_key = target.max_error.map_or(u32::MAX, cost_bits);
     while !target.reached(w) {
         run.stats.rounds += 1;
-        edges_by_cost(w, nb, run, &mut edges, &mut spare);
-        let (limit, cap) = pass_limit(w, target, &edges, tops_per_contraction);
+        let (limit, cap) = pass_edges(
+            w,
+            target,
+            nb,
+            run,
+            tops_per_contraction,
+            max_key,
+            &mut edges,
+        );
         // the cheapest edges, no two with a common end, in cost order
         let mut n_selected = 0;
         for e in &edges {
-            if e.key > limit.min(max_key) || n_selected >= cap {
+            if e.key > limit || n_selected >= cap {
                 break;
             }
             let (a, b) = (e.a as usize, e.b as usize);
@@ -1255,25 +1340,68 @@ mod tests {
         assert_eq!(euler, 0, "still an annulus");
     }
 
+    /// The in-place sort orders edges listed in vertex order as a stable sort by key does:
+    /// random keys, buckets of more than 32 edges, and long runs of one key.
     #[test]
-    fn sort_by_key_sorts_stably() {
+    fn sort_in_place_is_a_stable_sort_by_key() {
         let mut r = 0x2545_f491_4f6c_dd1du64;
-        let mut edges: Vec<Edge> = (0..5000)
+        let mut next = || {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            r
+        };
+        // edges listed in vertex order, each once; keys with many repeats, some buckets over
+        // 32 edges and some runs of one key (small, and one of 600 edges)
+        let mut edges = Vec::new();
+        for a in 0..2000u32 {
+            for b in a + 1..a + 1 + (next() % 6) as u32 {
+                let key = match next() % 4 {
+                    0 => (next() % (1 << 24)) as u32,
+                    1 => (0x7ab << 12) | (next() % 50) as u32,
+                    2 => 0x123456,
+                    _ => (next() % 3000) as u32 * 4099 % (1 << 24),
+                };
+                edges.push(Edge { key, a, b });
+            }
+        }
+        assert!(edges.iter().filter(|e| e.key == 0x123456).count() > 600);
+        let mut expected = edges.clone();
+        expected.sort_by_key(|e| e.key);
+        sort_in_place(&mut edges);
+        assert_eq!(edges, expected);
+    }
+
+    /// The `k`-th smallest key by counts is the sorted keys' `k`-th, for every `k` (keys with
+    /// many repeats, some sharing their upper 12 bits, some their lower 12), and none past
+    /// the end.
+    #[test]
+    fn nth_key_is_the_sorted_keys_kth() {
+        let mut r = 0x9e37_79b9_7f4a_7c15u64;
+        let edges: Vec<Edge> = (0..3000)
             .map(|i| {
                 r ^= r << 13;
                 r ^= r >> 7;
                 r ^= r << 17;
+                let key = match r % 3 {
+                    0 => (r >> 8) as u32 % (1 << 24),
+                    1 => (0x5a5 << 12) | ((r >> 8) as u32 % 64),
+                    _ => (((r >> 8) as u32 % 64) << 12) | 0x3c3,
+                };
                 Edge {
-                    key: (r % 3000) as u32 * 4099 % (1 << 24),
+                    key,
                     a: i,
                     b: i + 1,
                 }
             })
             .collect();
-        let mut expected = edges.clone();
-        expected.sort_by_key(|e| e.key);
-        sort_by_key(&mut edges, &mut Vec::new());
-        assert_eq!(edges, expected);
+        let mut sorted: Vec<u32> = edges.iter().map(|e| e.key).collect();
+        sorted.sort_unstable();
+        for (k, &key) in sorted.iter().enumerate() {
+            assert_eq!(nth_key(&edges, k), Some(key), "rank {k}");
+        }
+        assert_eq!(nth_key(&edges, edges.len()), None);
+        assert_eq!(nth_key(&[], 0), None);
     }
 
     /// The Z-order keys' radix sort orders as sorting the (key, vertex) pairs: keys over all 63
