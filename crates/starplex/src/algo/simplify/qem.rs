@@ -309,9 +309,6 @@ fn pass_edges(
     edges: &mut Vec<Edge>,
 ) -> (u32, usize) {
     edges.clear();
-    // room for every edge at once (a mesh has about V + T of them; the pages not written are
-    // not resident): growing by doubling would hold the old copy and the new one together
-    edges.reserve(w.n_alive_vertices() + 2 * w.n_alive_tops());
     each_edge_cost(w, nb, run, |a, b, cost| {
         edges.push(Edge {
             key: cost_bits(cost),
