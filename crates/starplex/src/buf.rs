@@ -263,3 +263,51 @@ pub(crate) fn prefetch(s: &[u32], i: usize) {
         }
     }
 }
+
+/// `s` seen as atomics, for writes from several threads to places each owned by one writer
+/// (relaxed stores compile to plain stores; `AtomicU32` has the layout of `u32`).
+pub(crate) fn atomic_view(s: &mut [u32]) -> &[std::sync::atomic::AtomicU32] {
+    // SAFETY: `AtomicU32` has the same size, alignment and bit validity as `u32`, and the
+    // exclusive borrow of `s` guarantees no other access for the returned lifetime.
+    unsafe { &*(s as *mut [u32] as *const [std::sync::atomic::AtomicU32]) }
+}
+
+/// The inverse of the permutation `p` (`inv[p[i]] = i`), written by all threads: the random
+/// writes of a large inversion are the serial tail of a parallel phase otherwise.
+///
+/// ```
+/// use starplex::buf::invert;
+/// assert_eq!(invert(&[2, 0, 1]), vec![1, 2, 0]);
+/// ```
+///
+/// # Panics
+/// When an entry of `p` is not below `p.len()` (`p` must be a permutation; when an id repeats,
+/// which position it maps to is unspecified).
+pub fn invert(p: &[u32]) -> Vec<u32> {
+    let mut inv = vec![0u32; p.len()];
+    invert_into(p, &mut inv);
+    inv
+}
+
+/// [`invert`] into `inv` (of `p.len()` entries; every entry is overwritten when `p` is a
+/// permutation).
+///
+/// ```
+/// let mut inv = vec![7u32; 3];
+/// starplex::buf::invert_into(&[1, 2, 0], &mut inv);
+/// assert_eq!(inv, [2, 0, 1]);
+/// ```
+///
+/// # Panics
+/// As [`invert`], and when `inv` is shorter than `p`.
+pub fn invert_into(p: &[u32], inv: &mut [u32]) {
+    use rayon::prelude::*;
+    use std::sync::atomic::Ordering::Relaxed;
+    let out = atomic_view(inv);
+    p.par_chunks(1 << 16).enumerate().for_each(|(k, ch)| {
+        let base = (k << 16) as u32;
+        for (i, &x) in (base..).zip(ch) {
+            out[x as usize].store(i, Relaxed);
+        }
+    });
+}

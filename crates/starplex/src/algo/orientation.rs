@@ -190,7 +190,7 @@ pub fn orient_tops(
 /// ```
 pub fn orient_tops_renumbered(
     n_cells: usize,
-    is_top: impl Fn(u32) -> bool,
+    is_top: impl Fn(u32) -> bool + Sync,
     pairs: &[(u32, u32, i8)],
     to_out: &[u32],
 ) -> (Orientation, usize) {
@@ -205,13 +205,81 @@ pub fn orient_tops_renumbered(
 /// vertices.
 pub(crate) fn orient_renumbered_joined(
     n_cells: usize,
-    is_top: impl Fn(u32) -> bool,
+    is_top: impl Fn(u32) -> bool + Sync,
     pairs: &[(u32, u32, i8)],
     to_out: &[u32],
     joins: &[(u32, u32)],
 ) -> (Orientation, usize, usize) {
+    orient_parts_joined(n_cells, is_top, &PairParts::one(pairs), to_out, joins)
+}
+
+/// Facet pairs `(a, b, rel)` in pieces (a Stellar tree's: one per leaf, as its leaves found
+/// them, not copied into one array), the pieces grouped into consecutive *parts*, each with a
+/// range of cells: part `j` is pieces `parts[j].0..parts[j + 1].0` (the last to the end) and
+/// cells `parts[j].1..parts[j + 1].1` (the last to `n_cells`). The answers never depend on
+/// the grouping; a part's pairs whose two cells lie in its range are united on their own,
+/// on all threads, so a grouping where most pairs do is faster.
+pub(crate) struct PairParts<'a> {
+    pub(crate) pieces: Vec<&'a [(u32, u32, i8)]>,
+    pub(crate) parts: Vec<(usize, u32)>,
+}
+
+impl<'a> PairParts<'a> {
+    /// All pairs in one piece and one part.
+    pub(crate) fn one(pairs: &'a [(u32, u32, i8)]) -> PairParts<'a> {
+        PairParts {
+            pieces: vec![pairs],
+            parts: vec![(0, 0)],
+        }
+    }
+
+    /// Every pair, piece after piece.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = &(u32, u32, i8)> + '_ {
+        self.pieces.iter().flat_map(|p| p.iter())
+    }
+
+    /// The pairs in one slice (borrowed when there is one piece).
+    pub(crate) fn flat(&self) -> std::borrow::Cow<'a, [(u32, u32, i8)]> {
+        match self.pieces[..] {
+            [p] => std::borrow::Cow::Borrowed(p),
+            _ => std::borrow::Cow::Owned(self.iter().copied().collect()),
+        }
+    }
+}
+
+/// Links `a` and `b` with parity `want` between them in a parity union-find by rank; false
+/// on a conflict (they are linked already, with the other parity).
+#[inline(always)]
+fn unite_parity(link: &mut [u32], rank: &mut [u8], a: u32, b: u32, want: u32) -> bool {
+    let ((ra, pa), (rb, pb)) = (parity_find(link, a), parity_find(link, b));
+    let p = pa ^ pb ^ want;
+    if ra == rb {
+        return p == 0;
+    }
+    let (hi, lo) = if rank[ra as usize] < rank[rb as usize] {
+        (rb, ra)
+    } else {
+        (ra, rb)
+    };
+    link[lo as usize] = (hi << 1) | p;
+    if rank[ra as usize] == rank[rb as usize] {
+        rank[hi as usize] += 1;
+    }
+    true
+}
+
+/// [`orient_renumbered_joined`] on pairs in parts ([`PairParts`]).
+pub(crate) fn orient_parts_joined(
+    n_cells: usize,
+    is_top: impl Fn(u32) -> bool + Sync,
+    pairs: &PairParts<'_>,
+    to_out: &[u32],
+    joins: &[(u32, u32)],
+) -> (Orientation, usize, usize) {
+    use rayon::prelude::*;
     assert_eq!(to_out.len(), n_cells, "to_out maps every cell");
     let canonical = || {
+        let pairs = pairs.flat();
         let out: Vec<(u32, u32, i8)> = pairs
             .iter()
             .map(|&(a, b, r)| (to_out[a as usize], to_out[b as usize], r))
@@ -222,41 +290,72 @@ pub(crate) fn orient_renumbered_joined(
         }
         let w = orient_walk(n_cells, |c| top[c as usize], &out, |_| 1);
         // the count does not depend on the numbering: in working ids
-        let joined = joined_components(n_cells, &is_top, pairs, joins, w.n_components);
+        let joined = joined_components(n_cells, &is_top, &pairs, joins, w.n_components);
         (w.orientation(), w.n_components, joined)
     };
     if n_cells >= 1 << 31 {
         return canonical();
     }
     // a union-find whose links carry the parity between a cell and its parent (1: opposite
-    // signs): the pairs are read once, in the working order, with no adjacency built
-    let mut link: Vec<u32> = (0..n_cells as u32).map(|c| c << 1).collect();
+    // signs): the pairs are read once, in the working order, with no adjacency built. Each
+    // part first unites the pairs inside its range of cells, in parallel (its links stay in
+    // its range); the others follow, in order. Which tree the links make depends on the
+    // parts, the components and parities do not.
+    let mut link = vec![0u32; n_cells];
     let mut rank = vec![0u8; n_cells];
-    for &(a, b, rel) in pairs {
-        if !(is_top(a) && is_top(b)) {
-            continue;
-        }
-        // rel >= 0: as they stand the two induce the same orientation, so their signs differ
-        let want = u32::from(rel >= 0);
-        let ((ra, pa), (rb, pb)) = (parity_find(&mut link, a), parity_find(&mut link, b));
-        let p = pa ^ pb ^ want;
-        if ra == rb {
-            if p != 0 {
-                return canonical();
+    let n_parts = pairs.parts.len();
+    let bound = |j: usize| match pairs.parts.get(j) {
+        Some(&(_, c)) => (c as usize).min(n_cells),
+        None => n_cells,
+    };
+    let piece_end = |j: usize| pairs.parts.get(j).map_or(pairs.pieces.len(), |x| x.0);
+    // the ranges, cut out of the link and rank arrays (increasing, clamped)
+    let mut ranges = Vec::with_capacity(n_parts);
+    let (mut lk, mut rk, mut at) = (&mut link[..], &mut rank[..], 0usize);
+    for j in 0..n_parts {
+        let end = bound(j + 1).max(at);
+        let (l1, l2) = lk.split_at_mut(end - at);
+        let (r1, r2) = rk.split_at_mut(end - at);
+        ranges.push((j, at as u32, l1, r1));
+        (lk, rk, at) = (l2, r2, end);
+    }
+    let rest: Option<Vec<Vec<(u32, u32, i8)>>> = ranges
+        .into_par_iter()
+        .map(|(j, base, link, rank)| {
+            // in ids from `base` while in the range, then shifted to the whole's
+            link.iter_mut().zip(0u32..).for_each(|(l, i)| *l = i << 1);
+            let len = link.len() as u32;
+            let mut others = Vec::new();
+            for piece in &pairs.pieces[pairs.parts[j].0.min(piece_end(j + 1))..piece_end(j + 1)] {
+                for &(a, b, rel) in piece.iter() {
+                    if !(is_top(a) && is_top(b)) {
+                        continue;
+                    }
+                    let (x, y) = (a.wrapping_sub(base), b.wrapping_sub(base));
+                    if x < len && y < len {
+                        // rel >= 0: as they stand the two induce the same orientation, so
+                        // their signs differ
+                        if !unite_parity(link, rank, x, y, u32::from(rel >= 0)) {
+                            return None;
+                        }
+                    } else {
+                        others.push((a, b, rel));
+                    }
+                }
             }
-            continue;
-        }
-        let (hi, lo) = if rank[ra as usize] < rank[rb as usize] {
-            (rb, ra)
-        } else {
-            (ra, rb)
-        };
-        link[lo as usize] = (hi << 1) | p;
-        if rank[ra as usize] == rank[rb as usize] {
-            rank[hi as usize] += 1;
+            link.iter_mut().for_each(|l| *l += base << 1);
+            Some(others)
+        })
+        .collect();
+    let Some(rest) = rest else {
+        return canonical();
+    };
+    for &(a, b, rel) in rest.iter().flatten() {
+        if !unite_parity(&mut link, &mut rank, a, b, u32::from(rel >= 0)) {
+            return canonical();
         }
     }
-    drop(rank);
+    drop((rest, rank));
     // each component keeps the sign of its smallest answer id: per root, that id << 1 | its
     // parity to the root
     const NONE: u32 = u32::MAX;
@@ -275,11 +374,12 @@ pub(crate) fn orient_renumbered_joined(
         *l = (*l).min(x);
     }
     let mut flips: Vec<CellId> = (0..n_cells)
+        .into_par_iter()
         .filter(|&c| is_top(c as u32))
         .filter(|&c| link[c] & 1 != least[(link[c] >> 1) as usize] & 1)
         .map(|c| CellId(to_out[c]))
         .collect();
-    flips.sort_unstable();
+    flips.par_sort_unstable();
     // the signs are read: the links now serve a plain union-find (their parities unused)
     let mut joined = n_comp;
     for &(a, b) in joins {
@@ -293,10 +393,10 @@ pub(crate) fn orient_renumbered_joined(
 }
 
 /// The cells' union-find through the `pairs` whose two cells are tops.
-pub(crate) fn facet_union_find(
+pub(crate) fn facet_union_find<'a>(
     n_cells: usize,
     is_top: impl Fn(u32) -> bool,
-    pairs: &[(u32, u32, i8)],
+    pairs: impl IntoIterator<Item = &'a (u32, u32, i8)>,
 ) -> UnionFind {
     let mut uf = UnionFind::new(n_cells);
     for &(a, b, _) in pairs {
@@ -433,6 +533,112 @@ mod tests {
             conflicts > 50 && conflicts < 550,
             "{conflicts} non-orientable cases"
         );
+    }
+
+    /// Pairs in pieces and parts (united part by part on two threads, then the rest) answer
+    /// like the walk in answer ids, and the joined count like a union-find over the pairs and
+    /// joins: random graphs whose pairs mostly join near ids (inside a part), some far ones,
+    /// orientable or not, cells that are not tops, random cuts into pieces and parts.
+    #[test]
+    fn parts_answer_like_the_walk() {
+        let mut rng = crate::testkit::XorShift::new(0x7A27_5EED);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let (mut conflicts, mut deferred) = (0, 0);
+        for case in 0..400 {
+            let n = 2 + rng.below(if case % 4 == 3 { 2000 } else { 60 }) as usize;
+            let top: Vec<bool> = (0..n).map(|_| rng.below(8) != 0).collect();
+            let sign: Vec<bool> = (0..n).map(|_| rng.below(2) == 0).collect();
+            let rel = |a: usize, b: usize| if sign[a] != sign[b] { 1 } else { -1 };
+            let mut pairs: Vec<(u32, u32, i8)> = Vec::new();
+            for b in 1..n {
+                let a = if rng.below(8) == 0 {
+                    rng.below(b as u64) as usize
+                } else {
+                    b - 1 - rng.below(b.min(4) as u64) as usize
+                };
+                if rng.below(5) != 0 {
+                    pairs.push((a as u32, b as u32, rel(a, b)));
+                }
+            }
+            for _ in 0..rng.below(if case % 2 == 0 { 6 } else { 1 }) {
+                let (a, b) = (rng.below(n as u64) as u32, rng.below(n as u64) as u32);
+                if a != b {
+                    pairs.push((a, b, if rng.below(2) == 0 { 1 } else { -1 }));
+                }
+            }
+            for i in (1..pairs.len()).rev() {
+                if rng.below(3) == 0 {
+                    pairs.swap(i, rng.below(i as u64 + 1) as usize);
+                }
+            }
+            let joins: Vec<(u32, u32)> = (0..rng.below(4))
+                .map(|_| (rng.below(n as u64) as u32, rng.below(n as u64) as u32))
+                .filter(|&(a, b)| top[a as usize] && top[b as usize])
+                .collect();
+            let mut to_out: Vec<u32> = (0..n as u32).collect();
+            for i in (1..n).rev() {
+                to_out.swap(i, rng.below(i as u64 + 1) as usize);
+            }
+            // pieces: random cuts of the pairs; parts: random groups of pieces and cells
+            let mut cuts = vec![0usize];
+            for i in 1..pairs.len() {
+                if rng.below(4) == 0 {
+                    cuts.push(i);
+                }
+            }
+            cuts.push(pairs.len());
+            let pieces: Vec<&[(u32, u32, i8)]> =
+                cuts.windows(2).map(|w| &pairs[w[0]..w[1]]).collect();
+            let mut parts = vec![(0usize, 0u32)];
+            for (i, _) in pieces.iter().enumerate().skip(1) {
+                let last = parts[parts.len() - 1].1 as usize;
+                if rng.below(3) == 0 && last < n {
+                    parts.push((i, (last + 1 + rng.below((n - last) as u64) as usize) as u32));
+                }
+            }
+            let is_top = |c: u32| top[c as usize];
+            let out: Vec<(u32, u32, i8)> = pairs
+                .iter()
+                .map(|&(a, b, r)| (to_out[a as usize], to_out[b as usize], r))
+                .collect();
+            let mut top_out = vec![false; n];
+            for c in 0..n {
+                top_out[to_out[c] as usize] = top[c];
+            }
+            let w = orient_walk(n, |c| top_out[c as usize], &out, |_| 1);
+            let mut uf = UnionFind::new(n);
+            for &(a, b, _) in &pairs {
+                if is_top(a) && is_top(b) {
+                    uf.union(a, b);
+                }
+            }
+            for &(a, b) in &joins {
+                uf.union(a, b);
+            }
+            let n_joined = (0..n as u32)
+                .filter(|&c| is_top(c) && uf.find(c) == c)
+                .count();
+            let pp = super::PairParts {
+                pieces,
+                parts: parts.clone(),
+            };
+            let got = pool.install(|| super::orient_parts_joined(n, is_top, &pp, &to_out, &joins));
+            assert_eq!(
+                got,
+                (w.orientation(), w.n_components, n_joined),
+                "case {case}"
+            );
+            conflicts += usize::from(matches!(got.0, super::Orientation::NonOrientable { .. }));
+            deferred += usize::from(parts.len() > 1);
+        }
+        assert!(
+            (20..380).contains(&conflicts),
+            "{conflicts} non-orientable cases"
+        );
+        assert!(deferred > 100, "{deferred} cases of several parts");
     }
 
     /// Pairs met in the order that builds a binomial union-find tree of depth 6, its deepest

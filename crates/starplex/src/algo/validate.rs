@@ -33,12 +33,13 @@
 use crate::algo::components::components;
 use crate::algo::manifold::{complex_dim, singularities_in_dim, Convention};
 use crate::algo::orientation::{
-    apply_joins, facet_union_find, joined_components, orient_renumbered_joined, orient_walk,
-    Orientation,
+    apply_joins, facet_union_find, joined_components, orient_parts_joined, orient_walk,
+    Orientation, PairParts,
 };
 use crate::cell::{listed_sign, oriented_facets_of, CellKind};
 use crate::ids::{CellId, VertexId};
 use crate::topo::{TopCells, VertexStar};
+use rayon::prelude::*;
 
 /// The result of a validation: [`validate`] on any structure, or
 /// [`StellarTree::validate`](crate::stellar::StellarTree::validate) leaf by leaf (equal answers).
@@ -313,21 +314,26 @@ fn facet_groups<S: TopCells + VertexStar + ?Sized>(
 pub(crate) fn finish_report(
     r: &mut ValidationReport,
     n_cells: usize,
-    is_top: impl Fn(u32) -> bool,
-    pairs: &[(u32, u32, i8)],
+    is_top: impl Fn(u32) -> bool + Sync,
+    pairs: &PairParts<'_>,
     to_input: Option<&[u32]>,
     joins: &[(u32, u32)],
 ) -> u64 {
     // the top mask once: `is_top` may map ids and look up kinds
-    let top: Vec<bool> = (0..n_cells as u32).map(is_top).collect();
+    let top: Vec<bool> = (0..n_cells as u32)
+        .into_par_iter()
+        .with_min_len(1 << 14)
+        .map(&is_top)
+        .collect();
     let is_top = |c: u32| top[c as usize];
     let joined = if r.faces_in_more_than_two_cells.is_empty() {
         // the orientation walk counts the components it walks: no separate union-find
         let (o, n_components, joined) = match to_input {
-            Some(to_input) => orient_renumbered_joined(n_cells, is_top, pairs, to_input, joins),
+            Some(to_input) => orient_parts_joined(n_cells, is_top, pairs, to_input, joins),
             None => {
-                let w = orient_walk(n_cells, is_top, pairs, |_| 1);
-                let joined = joined_components(n_cells, is_top, pairs, joins, w.n_components);
+                let pairs = pairs.flat();
+                let w = orient_walk(n_cells, is_top, &pairs, |_| 1);
+                let joined = joined_components(n_cells, is_top, &pairs, joins, w.n_components);
                 (w.orientation(), w.n_components, joined)
             }
         };
@@ -345,7 +351,7 @@ pub(crate) fn finish_report(
         joined
     } else {
         // the count does not depend on the numbering
-        let mut cuf = facet_union_find(n_cells, is_top, pairs);
+        let mut cuf = facet_union_find(n_cells, is_top, pairs.iter());
         let n = (0..n_cells as u32)
             .filter(|&c| is_top(c) && cuf.find(c) == c)
             .count();
@@ -387,7 +393,7 @@ pub fn validate<S: TopCells + VertexStar + ?Sized>(s: &S) -> ValidationReport {
             &mut r,
             nc,
             |c| kinds[c as usize].dim() == d,
-            &pairs,
+            &PairParts::one(&pairs),
             None,
             &[],
         );

@@ -1,6 +1,7 @@
 //! Building a Stellar tree: decomposition, vertex reindexing, top-cell reindexing by region
 //! tuples, SRE-compressed leaf lists. The result does not depend on the number of threads.
 use crate::limits::TooLarge;
+use std::sync::atomic::Ordering::Relaxed;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -203,13 +204,27 @@ struct Decomposed {
 /// [`graph_split`]: super::graph_split
 fn decompose(ctx: &Ctx, nv: usize, graph: Option<&InputCells<'_>>) -> Decomposed {
     let n = ctx.n;
-    let (mut lo, mut hi) = (vec![f64::INFINITY; n], vec![f64::NEG_INFINITY; n]);
-    for p in ctx.coords.chunks_exact(n) {
-        for i in 0..n {
-            lo[i] = lo[i].min(p[i]);
-            hi[i] = hi[i].max(p[i]);
-        }
-    }
+    let empty = || (vec![f64::INFINITY; n], vec![f64::NEG_INFINITY; n]);
+    let (mut lo, mut hi) = ctx
+        .coords
+        .par_chunks(n.max(1) << 14)
+        .map(|ch| {
+            let (mut lo, mut hi) = empty();
+            for p in ch.chunks_exact(n) {
+                for i in 0..n {
+                    lo[i] = lo[i].min(p[i]);
+                    hi[i] = hi[i].max(p[i]);
+                }
+            }
+            (lo, hi)
+        })
+        .reduce(empty, |(mut lo, mut hi), (l, h)| {
+            for i in 0..n {
+                lo[i] = lo[i].min(l[i]);
+                hi[i] = hi[i].max(h[i]);
+            }
+            (lo, hi)
+        });
     if nv == 0 {
         lo.iter_mut().for_each(|x| *x = 0.0);
         hi.iter_mut().for_each(|x| *x = 0.0);
@@ -285,16 +300,17 @@ fn reindex_vertices(mut idx: Vec<u32>, leaf_vstart: &[u32]) -> VertexNumbering {
         .for_each(|p| p.sort_unstable());
     let v_orig = idx;
     let nv = v_orig.len();
-    let mut v_new = vec![0u32; nv];
-    for (new, &old) in v_orig.iter().enumerate() {
-        v_new[old as usize] = new as u32;
-    }
+    let v_new = crate::buf::invert(&v_orig);
     let mut leaf_in = vec![0u32; nv];
-    for l in 0..n_leaves {
-        for t in leaf_vstart[l]..leaf_vstart[l + 1] {
-            leaf_in[v_orig[t as usize] as usize] = l as u32;
-        }
-    }
+    let out = crate::buf::atomic_view(&mut leaf_in);
+    (0..n_leaves)
+        .into_par_iter()
+        .with_min_len(64)
+        .for_each(|l| {
+            for t in leaf_vstart[l]..leaf_vstart[l + 1] {
+                out[v_orig[t as usize] as usize].store(l as u32, Relaxed);
+            }
+        });
     VertexNumbering {
         v_orig,
         v_new,
@@ -387,10 +403,7 @@ fn reindex_cells_general(
         .collect();
     drop(std::mem::take(&mut v.leaf_in)); // not needed by the cell store: keep the peak low
     let c_orig = order;
-    let mut c_new = vec![0u32; nc];
-    for (new, &old) in c_orig.iter().enumerate() {
-        c_new[old as usize] = new as u32;
-    }
+    let c_new = crate::buf::invert(&c_orig);
     let cells = cell_store(k, &input, uniform, &c_orig, &v.v_new);
     CellNumbering {
         c_orig,
@@ -437,17 +450,35 @@ fn reindex_small_uniform(
             }
         })
         .collect();
-    // per home leaf: its cells, and those lying in it alone (which come first)
+    // per home leaf: its cells, and those lying in it alone (which come first); counted by
+    // chunks on every thread, the chunks' counts added
+    let counts = home
+        .par_chunks(1 << 16)
+        .fold(
+            || vec![[0u32; 2]; n_leaves],
+            |mut n, ch| {
+                for &h in ch {
+                    let e = &mut n[(h & !MULTI) as usize];
+                    e[0] += 1;
+                    e[1] += u32::from(h & MULTI == 0);
+                }
+                n
+            },
+        )
+        .reduce_with(|mut a, b| {
+            a.iter_mut().zip(&b).for_each(|(x, y)| {
+                x[0] += y[0];
+                x[1] += y[1];
+            });
+            a
+        })
+        .unwrap_or_else(|| vec![[0u32; 2]; n_leaves]);
     let mut start = vec![0u32; n_leaves + 1];
-    let mut singles = vec![0u32; n_leaves];
-    for &h in &home {
-        let l = (h & !MULTI) as usize;
-        start[l + 1] += 1;
-        singles[l] += u32::from(h & MULTI == 0);
+    let singles: Vec<u32> = counts.iter().map(|e| e[1]).collect();
+    for (l, e) in counts.iter().enumerate() {
+        start[l + 1] = start[l] + e[0];
     }
-    for l in 0..n_leaves {
-        start[l + 1] += start[l];
-    }
+    drop(counts);
     // the counting sort, stable: each home leaf's cells in input order, renumbered, those in
     // the leaf alone before the others
     let mut order = vec![0u32; nc];
@@ -556,9 +587,7 @@ fn reindex_small_uniform(
     let c_orig = order;
     // the home array's memory (every entry is overwritten: c_orig is a permutation)
     let mut c_new = home;
-    for (new, &old) in c_orig.iter().enumerate() {
-        c_new[old as usize] = new as u32;
-    }
+    crate::buf::invert_into(&c_orig, &mut c_new);
     CellNumbering {
         c_orig,
         c_new,
@@ -912,6 +941,89 @@ fn partition(ctx: &Ctx, idx: &mut [u32], axis: usize, mid: f64) -> usize {
     s
 }
 
+/// A node at least this large is partitioned on all threads ([`partition_par`]) when there
+/// are several: the first levels of the split are otherwise serial passes over every vertex.
+const PAR_PARTITION: usize = 1 << 18;
+
+/// The children of the box `lo`..`hi` split at its middle on every axis of `axes`, as the
+/// serial passes of [`split_rec`] make them (the first axis most significant; the points
+/// below the middle first), but with the points of each child in another order (each leaf is
+/// sorted by input id afterwards, so the tree is the same): each chunk of `idx` counts its
+/// points per child, then writes them to their place in a copy, on all threads.
+fn partition_par<'a>(
+    ctx: &Ctx,
+    idx: &'a mut [u32],
+    axes: &[usize],
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+) -> Vec<(&'a mut [u32], Vec<f64>, Vec<f64>)> {
+    const CHUNK: usize = 1 << 16;
+    let (n, c) = (ctx.n, ctx.coords);
+    let mids: Vec<f64> = axes.iter().map(|&a| 0.5 * (lo[a] + hi[a])).collect();
+    let n_children = 1usize << axes.len();
+    let child = |v: u32| {
+        let p = &c[v as usize * n..v as usize * n + n];
+        axes.iter()
+            .zip(&mids)
+            .fold(0usize, |k, (&a, &m)| (k << 1) | (1 - usize::from(p[a] < m)))
+    };
+    // per chunk, its first place in each child (the children in order, the chunks in order)
+    let mut at: Vec<Vec<usize>> = idx
+        .par_chunks(CHUNK)
+        .map(|ch| {
+            let mut k = vec![0usize; n_children];
+            ch.iter().for_each(|&v| k[child(v)] += 1);
+            k
+        })
+        .collect();
+    let mut sizes = vec![0usize; n_children];
+    for k in &mut at {
+        for (s, x) in sizes.iter_mut().zip(k.iter_mut()) {
+            (*s, *x) = (*s + *x, *s);
+        }
+    }
+    let mut first = 0;
+    let child_start: Vec<usize> = sizes
+        .iter()
+        .map(|&s| {
+            first += s;
+            first - s
+        })
+        .collect();
+    let mut copy = vec![0u32; idx.len()];
+    let out = crate::buf::atomic_view(&mut copy);
+    idx.par_chunks(CHUNK).zip(at).for_each(|(ch, mut k)| {
+        for (x, s) in k.iter_mut().zip(&child_start) {
+            *x += s;
+        }
+        for &v in ch {
+            let j = child(v);
+            out[k[j]].store(v, Relaxed);
+            k[j] += 1;
+        }
+    });
+    idx.par_chunks_mut(CHUNK)
+        .zip(copy.par_chunks(CHUNK))
+        .for_each(|(d, s)| d.copy_from_slice(s));
+    drop(copy);
+    let mut parts = Vec::with_capacity(n_children);
+    let mut rest = idx;
+    for (j, &size) in sizes.iter().enumerate() {
+        let (a, b) = rest.split_at_mut(size);
+        rest = b;
+        let (mut l, mut h) = (lo.clone(), hi.clone());
+        for (i, (&axis, &m)) in axes.iter().zip(&mids).enumerate() {
+            if (j >> (axes.len() - 1 - i)) & 1 == 0 {
+                h[axis] = m;
+            } else {
+                l[axis] = m;
+            }
+        }
+        parts.push((a, l, h));
+    }
+    parts
+}
+
 fn split_rec(ctx: &Ctx, idx: &mut [u32], offset: u32, lo: Vec<f64>, hi: Vec<f64>, depth: u32) -> T {
     let len = idx.len();
     let end = offset + len as u32;
@@ -919,12 +1031,15 @@ fn split_rec(ctx: &Ctx, idx: &mut [u32], offset: u32, lo: Vec<f64>, hi: Vec<f64>
         return T::Leaf(offset, end);
     }
     // children: (slice, lo, hi)
-    let mut parts: Vec<(&mut [u32], Vec<f64>, Vec<f64>)> = vec![(idx, lo, hi)];
     let axes: Vec<usize> = if ctx.regular {
         (0..ctx.n).collect()
     } else {
         vec![depth as usize % ctx.n]
     };
+    if len >= PAR_PARTITION && rayon::current_num_threads() > 1 {
+        return split_children(ctx, partition_par(ctx, idx, &axes, lo, hi), offset, depth);
+    }
+    let mut parts: Vec<(&mut [u32], Vec<f64>, Vec<f64>)> = vec![(idx, lo, hi)];
     for &axis in &axes {
         let mut next = Vec::with_capacity(parts.len() * 2);
         for (s, l, h) in parts {
@@ -940,6 +1055,19 @@ fn split_rec(ctx: &Ctx, idx: &mut [u32], offset: u32, lo: Vec<f64>, hi: Vec<f64>
         }
         parts = next;
     }
+    split_children(ctx, parts, offset, depth)
+}
+
+/// The node over `parts` (its children's vertices, in order, with their boxes), each child
+/// split further, in parallel when the node is large.
+fn split_children(
+    ctx: &Ctx,
+    parts: Vec<(&mut [u32], Vec<f64>, Vec<f64>)>,
+    offset: u32,
+    depth: u32,
+) -> T {
+    let len: usize = parts.iter().map(|p| p.0.len()).sum();
+    let end = offset + len as u32;
     let mut jobs = Vec::with_capacity(parts.len());
     let mut off = offset;
     for (s, l, h) in parts {
@@ -1004,6 +1132,80 @@ mod tests {
             ..Default::default()
         };
         b.build(&opts).unwrap().0
+    }
+
+    /// The parallel partition of a node makes the children of the serial passes: the same
+    /// points in each (as sets: each leaf is sorted afterwards) and the same boxes, for the
+    /// regular split (every axis) and the kD split (one), with points on the middles.
+    #[test]
+    fn parallel_partition_makes_the_serial_children() {
+        let mut r = XorShift::new(7);
+        let n_pts = 150_000u32; // more than one chunk
+        let coords: Vec<f64> = (0..n_pts * 3)
+            .map(|i| match r.below(8) {
+                0 => 0.5, // on the middle of the unit box
+                _ => r.below(1 << 20) as f64 / (1 << 20) as f64 + f64::from(i % 3 == 2),
+            })
+            .collect();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        for (regular, axes) in [(true, vec![0, 1, 2]), (false, vec![1]), (false, vec![2])] {
+            let ctx = Ctx {
+                coords: &coords,
+                n: 3,
+                kv: 10,
+                regular,
+                max_depth: 64,
+            };
+            let (lo, hi) = (vec![0.0, 0.0, 1.0], vec![1.0, 1.0, 2.0]);
+            // a shuffled start, as a node deeper in the tree has
+            let mut start: Vec<u32> = (0..n_pts).collect();
+            for i in (1..start.len()).rev() {
+                start.swap(i, r.below(i as u64 + 1) as usize);
+            }
+            let mut serial = start.clone();
+            let mut parts = vec![(&mut serial[..], lo.clone(), hi.clone())];
+            for &axis in &axes {
+                let mut next = Vec::new();
+                for (s, l, h) in parts {
+                    let mid = 0.5 * (l[axis] + h[axis]);
+                    let m = partition(&ctx, s, axis, mid);
+                    let (a, b) = s.split_at_mut(m);
+                    let (mut h1, mut l2) = (h.clone(), l.clone());
+                    (h1[axis], l2[axis]) = (mid, mid);
+                    next.push((a, l, h1));
+                    next.push((b, l2, h));
+                }
+                parts = next;
+            }
+            let want: Vec<(Vec<u32>, Vec<f64>, Vec<f64>)> = parts
+                .into_iter()
+                .map(|(s, l, h)| {
+                    let mut s = s.to_vec();
+                    s.sort_unstable();
+                    (s, l, h)
+                })
+                .collect();
+            let mut par = start.clone();
+            let got: Vec<(Vec<u32>, Vec<f64>, Vec<f64>)> = pool.install(|| {
+                partition_par(&ctx, &mut par, &axes, lo.clone(), hi.clone())
+                    .into_iter()
+                    .map(|(s, l, h)| {
+                        let mut s = s.to_vec();
+                        s.sort_unstable();
+                        (s, l, h)
+                    })
+                    .collect()
+            });
+            assert_eq!(got.len(), 1 << axes.len());
+            assert!(
+                want.iter().all(|w| !w.0.is_empty()),
+                "every child has points"
+            );
+            assert_eq!(got, want, "axes {axes:?}");
+        }
     }
 
     /// The one-kind path of the cell numbering gives what the general path gives: the same

@@ -33,6 +33,7 @@
 use super::relations::unpack;
 use super::{LeafView, StellarTree};
 use crate::algo::manifold::{local_singularities_global, Singularities};
+use crate::algo::orientation::PairParts;
 use crate::algo::unionfind::UnionFind;
 use crate::algo::validate::{finish_report, ValidationReport};
 use crate::cell::{simplex_facet_sign, CellKind};
@@ -41,6 +42,9 @@ use rayon::prelude::*;
 
 /// Pairs of top cells sharing a facet, with the product of the orientations they induce on it.
 type FacetPairs = Vec<(u32, u32, i8)>;
+
+/// Cells per part of the orientation's parallel union-find ([`StellarTree::pair_parts`]).
+const PART_CELLS: u32 = 1 << 16;
 
 struct LeafOut {
     boundary: Vec<Vec<u32>>,
@@ -130,7 +134,7 @@ impl StellarTree {
             &mut r,
             self.n_top_cells(),
             is_top,
-            &pairs,
+            &self.pair_parts(&pairs),
             Some(&self.c_orig),
             &joins,
         );
@@ -414,7 +418,7 @@ impl StellarTree {
         r: &mut ValidationReport,
         outs: Vec<LeafOut>,
         isolated: bool,
-    ) -> (FacetPairs, Vec<(u32, u32)>) {
+    ) -> (Vec<FacetPairs>, Vec<(u32, u32)>) {
         let to_in = |v: u32| VertexId(self.v_orig[v as usize]);
         let tv_in = |v: &TreeVertexId| to_in(v.0);
         let face_in = |f: &Vec<u32>| {
@@ -430,11 +434,11 @@ impl StellarTree {
                 [b, a]
             }
         };
-        // (d-1)-connectedness and orientation: the shared walk, on tree cell ids
-        let mut pairs: Vec<(u32, u32, i8)> =
-            Vec::with_capacity(outs.iter().map(|o| o.pairs.len()).sum());
+        // (d-1)-connectedness and orientation: the shared walk, on tree cell ids, over each
+        // leaf's pairs where they are (not copied into one array: a serial copy and twice
+        // the memory)
+        let mut pairs = Vec::with_capacity(outs.len());
         let mut joins = Vec::new();
-        // each leaf's findings are freed once copied: the pairs are not held twice
         for o in outs {
             r.boundary_faces.extend(o.boundary.iter().map(face_in));
             r.faces_in_more_than_two_cells
@@ -447,7 +451,7 @@ impl StellarTree {
                 .extend(o.sing.non_manifold_edges.iter().map(edge_in));
             r.unknown_edges
                 .extend(o.sing.unknown_edges.iter().map(edge_in));
-            pairs.extend_from_slice(&o.pairs);
+            pairs.push(o.pairs);
             joins.extend_from_slice(&o.joins);
             if isolated {
                 r.isolated_vertices
@@ -462,6 +466,44 @@ impl StellarTree {
         r.unknown_edges.sort_unstable();
         r.isolated_vertices.sort_unstable();
         (pairs, joins)
+    }
+
+    /// The leaves' facet pairs (`pairs[l]`: leaf `l`'s) grouped into parts of consecutive
+    /// leaves of about [`PART_CELLS`] cells, each with the cells whose home leaf (the leaf of
+    /// their smallest vertex, by which the build numbers them) is in it: a facet's two cells
+    /// mostly are, so most pairs are united part by part, in parallel.
+    fn pair_parts<'a>(&self, pairs: &'a [FacetPairs]) -> PairParts<'a> {
+        let nc = self.cells.n;
+        let leaf_of = |v: u32| self.leaf_vstart.partition_point(|&s| s <= v) as u32 - 1;
+        let home = |c: u32| {
+            let vs = self.cells.verts(c);
+            vs.iter().min().map_or(u32::MAX, |&v| leaf_of(v))
+        };
+        // the first cell whose home leaf is at least `l` (cells in home-leaf order; were they
+        // not, the parts would only be slower)
+        let first_cell = |l: u32| {
+            let (mut lo, mut hi) = (0u32, nc);
+            while lo < hi {
+                let m = lo + (hi - lo) / 2;
+                if home(m) < l {
+                    lo = m + 1;
+                } else {
+                    hi = m;
+                }
+            }
+            lo
+        };
+        let mut parts = vec![(0usize, 0u32)];
+        for l in 1..pairs.len() {
+            let c = first_cell(l as u32);
+            if c >= parts[parts.len() - 1].1 + PART_CELLS {
+                parts.push((l, c));
+            }
+        }
+        PairParts {
+            pieces: pairs.iter().map(|p| &p[..]).collect(),
+            parts,
+        }
     }
 
     /// Manifold tests for the vertices of a leaf and the edges they own (the edge's smaller
