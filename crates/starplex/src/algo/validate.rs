@@ -319,13 +319,29 @@ pub(crate) fn finish_report(
     to_input: Option<&[u32]>,
     joins: &[(u32, u32)],
 ) -> u64 {
-    // the top mask once: `is_top` may map ids and look up kinds
+    // the top mask once: `is_top` may map ids and look up kinds; none when every cell is a
+    // top (a pure complex: no test left in the loops over the pairs)
     let top: Vec<bool> = (0..n_cells as u32)
         .into_par_iter()
         .with_min_len(1 << 14)
         .map(&is_top)
         .collect();
-    let is_top = |c: u32| top[c as usize];
+    if top.iter().all(|&t| t) {
+        drop(top);
+        return finish_report_tops(r, n_cells, |_| true, pairs, to_input, joins);
+    }
+    finish_report_tops(r, n_cells, |c| top[c as usize], pairs, to_input, joins)
+}
+
+/// [`finish_report`] once the tops are known (`is_top` a cheap test).
+pub(crate) fn finish_report_tops(
+    r: &mut ValidationReport,
+    n_cells: usize,
+    is_top: impl Fn(u32) -> bool + Sync + Copy,
+    pairs: &PairParts<'_>,
+    to_input: Option<&[u32]>,
+    joins: &[(u32, u32)],
+) -> u64 {
     let joined = if r.faces_in_more_than_two_cells.is_empty() {
         // the orientation walk counts the components it walks: no separate union-find
         let (o, n_components, joined) = match to_input {

@@ -35,7 +35,7 @@ use super::{LeafView, StellarTree};
 use crate::algo::manifold::{local_singularities_global, Singularities};
 use crate::algo::orientation::PairParts;
 use crate::algo::unionfind::UnionFind;
-use crate::algo::validate::{finish_report, ValidationReport};
+use crate::algo::validate::{finish_report, finish_report_tops, ValidationReport};
 use crate::cell::{simplex_facet_sign, CellKind};
 use crate::ids::{CellId, LeafId, TreeVertexId, VertexId};
 use rayon::prelude::*;
@@ -130,14 +130,13 @@ impl StellarTree {
         r.pure = r.lower_dimensional_cells.is_empty() && r.isolated_vertices.is_empty();
         // the walk in tree ids, where the neighbours of a cell are near it; answers in input ids
         let is_top = |c: u32| self.cells.get(c).0.dim() == d;
-        let n_joined = finish_report(
-            &mut r,
-            self.n_top_cells(),
-            is_top,
-            &self.pair_parts(&pairs),
-            Some(&self.c_orig),
-            &joins,
-        );
+        let (nc, parts) = (self.n_top_cells(), self.pair_parts(&pairs));
+        let n_joined = if self.cells.uniform.is_some_and(|k| k.dim() == d) {
+            // one kind of cell, all tops: no mask to make or read
+            finish_report_tops(&mut r, nc, |_| true, &parts, Some(&self.c_orig), &joins)
+        } else {
+            finish_report(&mut r, nc, is_top, &parts, Some(&self.c_orig), &joins)
+        };
         if from_cells {
             // every cell is a top: the vertices' components are the cells' joined ones, and
             // each vertex in no cell is one more
@@ -493,12 +492,18 @@ impl StellarTree {
             }
             lo
         };
+        // a part ends with the home leaf of its PART_CELLS-th cell: a few binary searches
         let mut parts = vec![(0usize, 0u32)];
-        for l in 1..pairs.len() {
-            let c = first_cell(l as u32);
-            if c >= parts[parts.len() - 1].1 + PART_CELLS {
-                parts.push((l, c));
+        while let Some(&(l0, c0)) = parts.last() {
+            let Some(t) = c0.checked_add(PART_CELLS).filter(|&t| t < nc) else {
+                break;
+            };
+            let l = home(t).saturating_add(1);
+            let c = first_cell(l);
+            if l as usize >= pairs.len() || l as usize <= l0 || c <= c0 {
+                break;
             }
+            parts.push((l as usize, c));
         }
         PairParts {
             pieces: pairs.iter().map(|p| &p[..]).collect(),
@@ -711,6 +716,38 @@ mod tests {
 
     /// The triangle short cut answers like the generic test, on random (mostly non-manifold)
     /// sets of triangles, triangulated grids with holes, and stars mixing triangles and edges.
+    /// A tree of more tetrahedra than one part of the orientation's union-find holds, some
+    /// turned over (cells to flip) and some removed: on two threads, the report equals the
+    /// generic validation's.
+    #[test]
+    fn several_parts_orient_like_the_generic_validation() {
+        let g = crate::generate::kuhn_grid(&[30, 30, 30]).unwrap();
+        let mut b = ComplexBuilder::new(3).unwrap();
+        for p in g.coords().chunks_exact(3) {
+            b.push_vertex(p).unwrap();
+        }
+        let mut rng = crate::testkit::XorShift::new(0x0B5E_55ED);
+        for c in g.cells() {
+            let mut vs = c.vertices.to_vec();
+            match rng.below(40) {
+                0 => continue,
+                1..=4 => vs.swap(0, 1),
+                _ => {}
+            }
+            b.push_cell(c.kind, &vs).unwrap();
+        }
+        let k = b.build(&BuildOptions::default()).unwrap().0;
+        assert!(k.n_cells() > 2 * super::PART_CELLS as usize);
+        let want = crate::algo::validate::validate(&crate::topo::naive::VtIndex::new(&k));
+        assert!(want.cells_to_flip.as_ref().is_some_and(|f| f.len() > 1000));
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let t = StellarTree::build(&k, &StellarOptions::default()).unwrap();
+        assert_eq!(pool.install(|| t.validate()), want);
+    }
+
     #[test]
     fn tri_short_cut_equals_generic() {
         let mut rng = crate::testkit::XorShift::new(0x9E37_79B9_7F4A_7C15);
