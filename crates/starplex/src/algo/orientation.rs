@@ -356,22 +356,41 @@ pub(crate) fn orient_parts_joined(
         }
     }
     drop((rest, rank));
+    // every top linked to its root directly (a root's parity to itself is 0), the roots found
+    // on all threads reading the links only
+    let roots: Vec<u32> = (0..n_cells as u32)
+        .into_par_iter()
+        .with_min_len(1 << 14)
+        .map(|c| {
+            if !is_top(c) {
+                return link[c as usize];
+            }
+            let (mut x, mut par) = (c, 0);
+            loop {
+                let lx = link[x as usize];
+                if lx >> 1 == x {
+                    return (x << 1) | par;
+                }
+                par ^= lx & 1;
+                x = lx >> 1;
+            }
+        })
+        .collect();
+    drop(link);
+    let mut link = roots;
     // each component keeps the sign of its smallest answer id: per root, that id << 1 | its
     // parity to the root
-    const NONE: u32 = u32::MAX;
-    let mut least = vec![NONE; n_cells];
+    // (one sequential pass: the roots are known, no find left in it)
+    let mut least = vec![u32::MAX; n_cells];
     let mut n_comp = 0usize;
-    for c in 0..n_cells as u32 {
-        if !is_top(c) {
-            continue;
+    for (c, &l) in (0u32..).zip(&link) {
+        if is_top(c) {
+            let r = l >> 1;
+            n_comp += usize::from(r == c);
+            let x = (to_out[c as usize] << 1) | (l & 1);
+            let m = &mut least[r as usize];
+            *m = (*m).min(x);
         }
-        let (r, p) = parity_find(&mut link, c);
-        // linked to its root directly from now on (a root's parity to itself is 0)
-        link[c as usize] = (r << 1) | p;
-        n_comp += usize::from(r == c);
-        let x = (to_out[c as usize] << 1) | p;
-        let l = &mut least[r as usize];
-        *l = (*l).min(x);
     }
     let mut flips: Vec<CellId> = (0..n_cells)
         .into_par_iter()
