@@ -303,7 +303,8 @@ pub(crate) fn orient_parts_joined(
     // parts, the components and parities do not.
     let mut link = vec![0u32; n_cells];
     let mut rank = vec![0u8; n_cells];
-    let n_parts = pairs.parts.len();
+    // (no part given: one part)
+    let n_parts = pairs.parts.len().max(1);
     let bound = |j: usize| match pairs.parts.get(j) {
         Some(&(_, c)) => (c as usize).min(n_cells),
         None => n_cells,
@@ -326,7 +327,8 @@ pub(crate) fn orient_parts_joined(
             link.iter_mut().zip(0u32..).for_each(|(l, i)| *l = i << 1);
             let len = link.len() as u32;
             let mut others = Vec::new();
-            for piece in &pairs.pieces[pairs.parts[j].0.min(piece_end(j + 1))..piece_end(j + 1)] {
+            let first = pairs.parts.get(j).map_or(0, |x| x.0);
+            for piece in &pairs.pieces[first.min(piece_end(j + 1))..piece_end(j + 1)] {
                 for &(a, b, rel) in piece.iter() {
                     if !(is_top(a) && is_top(b)) {
                         continue;
@@ -617,6 +619,9 @@ mod tests {
                 if rng.below(3) == 0 && last < n {
                     parts.push((i, (last + 1 + rng.below((n - last) as u64) as usize) as u32));
                 }
+            }
+            if case % 7 == 6 {
+                parts.clear(); // none given: one part
             }
             let is_top = |c: u32| top[c as usize];
             let out: Vec<(u32, u32, i8)> = pairs
