@@ -451,9 +451,10 @@ fn reindex_small_uniform(
         })
         .collect();
     // per home leaf: its cells, and those lying in it alone (which come first); counted by
-    // chunks on every thread, the chunks' counts added
+    // chunks on every thread, the chunks' counts added (a chunk at least 8 entries a leaf, so
+    // that the per-job counts take at most a byte a cell, whatever the thread count)
     let counts = home
-        .par_chunks(1 << 16)
+        .par_chunks((1 << 16).max(8 * n_leaves))
         .fold(
             || vec![[0u32; 2]; n_leaves],
             |mut n, ch| {
