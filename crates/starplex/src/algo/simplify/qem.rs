@@ -645,7 +645,7 @@ fn run_qem(
             .flat_map(|p| p.iter().copied().take(stride))
             .collect()
     };
-    w.permute(&inverse(&to_new), &inverse(&order));
+    w.permute(&crate::buf::invert(&to_new), &crate::buf::invert(&order));
     Ok(stats)
 }
 
@@ -760,15 +760,6 @@ fn spread_bits(x: u64) -> u64 {
     x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
     x = (x | x << 2) & 0x1249_2492_4924_9249;
     x
-}
-
-/// The inverse of a permutation of `0..p.len()`.
-fn inverse(p: &[u32]) -> Vec<u32> {
-    let mut inv = vec![0u32; p.len()];
-    for (i, &x) in p.iter().enumerate() {
-        inv[x as usize] = i as u32;
-    }
-    inv
 }
 
 /// The state of a run that both of its phases share: the positions, quadrics and locks, and
@@ -1478,7 +1469,7 @@ mod tests {
             .map(|t| w.top(t).iter().copied().min().unwrap_or(u32::MAX))
             .collect();
         assert!(firsts.windows(2).all(|p| p[0] <= p[1]));
-        w.permute(&inverse(&to_new), &inverse(&order));
+        w.permute(&crate::buf::invert(&to_new), &crate::buf::invert(&order));
         assert_eq!(vertices(&w), before);
         for (t, top) in tops.iter().enumerate() {
             assert_eq!(w.top(t as u32), &top[..]);
