@@ -582,6 +582,15 @@ pub fn topology_kept(
         && after.non_manifold_edges <= before.non_manifold_edges
 }
 
+/// A value of the topology summary as a person reads it: `[1, 0, 0]`, `-4`, or why it is
+/// missing (over the counting budget).
+fn shown<T: std::fmt::Debug>(v: &Option<T>) -> String {
+    match v {
+        Some(x) => format!("{x:?}"),
+        None => "not computed (over the budget)".to_string(),
+    }
+}
+
 /// The human lines of `simplify` for the topology before and after.
 ///
 /// ```
@@ -592,12 +601,21 @@ pub fn print_topology_change(
     b: &starplex::algo::simplify::TopologySummary,
     f: &starplex::algo::simplify::TopologySummary,
 ) {
-    println!("  f-vector            {:?} -> {:?}", b.f_vector, f.f_vector);
     println!(
-        "  Euler char.         {:?} -> {:?}",
-        b.euler_characteristic, f.euler_characteristic
+        "  f-vector            {} -> {}",
+        shown(&b.f_vector),
+        shown(&f.f_vector)
     );
-    println!("  Betti (Z/2)         {:?} -> {:?}", b.betti, f.betti);
+    println!(
+        "  Euler char.         {} -> {}",
+        shown(&b.euler_characteristic),
+        shown(&f.euler_characteristic)
+    );
+    println!(
+        "  Betti (Z/2)         {} -> {}",
+        shown(&b.betti),
+        shown(&f.betti)
+    );
     println!(
         "  non-manifold        {} vertices, {} edges -> {} vertices, {} edges",
         b.non_manifold_vertices,

@@ -73,6 +73,33 @@ fn simplify_elephant_report() {
 }
 
 #[test]
+fn simplify_human_report_reads_as_numbers() {
+    let d = tmpdir("human");
+    let out = d.join("out.off");
+    let o = starplex(&[
+        "simplify",
+        &elephant(),
+        out.to_str().unwrap(),
+        "--ratio",
+        "0.1",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(!text.contains("Some("), "{text}");
+    let line = |key: &str| {
+        text.lines()
+            .find(|l| l.trim_start().starts_with(key))
+            .unwrap_or_else(|| panic!("no {key} line in {text}"))
+            .to_string()
+    };
+    assert!(line("Euler char.").ends_with("-4 -> -4"), "{text}");
+    assert!(
+        line("Betti (Z/2)").ends_with("[1, 6, 1] -> [1, 6, 1]"),
+        "{text}"
+    );
+}
+
+#[test]
 fn simplify_bad_input_exits_2_and_writes_nothing() {
     let d = tmpdir("bad");
     let out = d.join("out.off");
