@@ -305,6 +305,74 @@ fn facet_groups<S: TopCells + VertexStar + ?Sized>(
     }
 }
 
+/// Faces (short vertex lists) one after the other in one array: what a leaf pass finds
+/// without an allocation per face, turned into the report's sorted lists once
+/// ([`Faces::into_sorted`]).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Faces {
+    verts: Vec<u32>,
+    /// Face `i` is `verts[ends[i - 1]..ends[i]]` (from 0 for the first).
+    ends: Vec<u32>,
+}
+
+impl Faces {
+    /// Appends a face.
+    pub(crate) fn push(&mut self, f: &[u32]) {
+        self.verts.extend_from_slice(f);
+        self.ends.push(self.verts.len() as u32);
+    }
+
+    /// The faces in order.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        let starts = std::iter::once(0).chain(self.ends.iter().copied());
+        starts
+            .zip(self.ends.iter().copied())
+            .map(|(a, b)| &self.verts[a as usize..b as usize])
+    }
+
+    /// Appends all of `other`'s faces.
+    pub(crate) fn append(&mut self, other: &Faces) {
+        let base = self.verts.len() as u32;
+        self.verts.extend_from_slice(&other.verts);
+        self.ends.extend(other.ends.iter().map(|&e| base + e));
+    }
+
+    /// The faces through `map` (each then sorted) in increasing lexicographic order, as the
+    /// report lists them: faces of at most four vertices are sorted as fixed-size keys (no
+    /// pointer to follow per comparison) and allocated once, in their final order.
+    pub(crate) fn into_sorted(self, map: impl Fn(u32) -> u32) -> Vec<Vec<VertexId>> {
+        if self.iter().any(|f| f.len() > 4) {
+            let mut out: Vec<Vec<VertexId>> = self
+                .iter()
+                .map(|f| {
+                    let mut x: Vec<VertexId> = f.iter().map(|&v| VertexId(map(v))).collect();
+                    x.sort_unstable();
+                    x
+                })
+                .collect();
+            out.sort_unstable();
+            return out;
+        }
+        // padding with 0 keeps the order of lists (0 is no larger than any vertex; a list
+        // that is a prefix of another then ties with it, and the shorter comes first)
+        let mut keys: Vec<([u32; 4], u8)> = self
+            .iter()
+            .map(|f| {
+                let mut k = [0u32; 4];
+                for (x, &v) in k.iter_mut().zip(f) {
+                    *x = map(v);
+                }
+                k[..f.len()].sort_unstable();
+                (k, f.len() as u8)
+            })
+            .collect();
+        keys.sort_unstable();
+        keys.iter()
+            .map(|(k, n)| k[..*n as usize].iter().map(|&v| VertexId(v)).collect())
+            .collect()
+    }
+}
+
 /// Fills the parts of a report that follow from the facet pairs: (d-1)-connectedness,
 /// pseudo-manifoldness and the orientation. `pairs` are `(a, b, rel)` in input cell ids, or, with
 /// `to_input`, in a working numbering that `to_input` maps to input ids (`is_top` then takes
@@ -474,12 +542,13 @@ pub fn validate_parts<S: TopCells + VertexStar + ?Sized>(
         .collect();
     r.pure = r.lower_dimensional_cells.is_empty() && r.isolated_vertices.is_empty();
     let mut pairs = Vec::new();
+    let (mut boundary, mut over2) = (Faces::default(), Faces::default());
     if d > 0 {
         facet_groups(s, d, |face, group| {
             match group.len() {
-                1 => r.boundary_faces.push(face.to_vec()),
+                1 => boundary.push(bytemuck::cast_slice(face)),
                 2 => {}
-                _ => r.faces_in_more_than_two_cells.push(face.to_vec()),
+                _ => over2.push(bytemuck::cast_slice(face)),
             }
             for i in 0..group.len() {
                 for j in i + 1..group.len() {
@@ -495,8 +564,8 @@ pub fn validate_parts<S: TopCells + VertexStar + ?Sized>(
         r.non_manifold_edges = sing.non_manifold_edges;
         r.unknown_edges = sing.unknown_edges;
     }
-    r.boundary_faces.sort_unstable();
-    r.faces_in_more_than_two_cells.sort_unstable();
+    r.boundary_faces = boundary.into_sorted(|v| v);
+    r.faces_in_more_than_two_cells = over2.into_sorted(|v| v);
     (r, pairs)
 }
 
@@ -563,4 +632,46 @@ pub fn check<S: TopCells + VertexStar + ?Sized>(s: &S) -> Result<(), Problem> {
 /// ```
 pub fn errors<S: TopCells + VertexStar + ?Sized>(s: &S) -> Vec<Problem> {
     validate(s).problems()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Faces;
+    use crate::ids::VertexId;
+
+    /// Faces sorted as fixed-size keys come out as the report's lists sorted as vectors:
+    /// lengths mixed (prefixes of one another, vertex 0 included, which the padding also is),
+    /// and past four vertices by the vectors themselves.
+    #[test]
+    fn faces_sort_like_vectors() {
+        let mut rng = crate::testkit::XorShift::new(11);
+        for case in 0..200 {
+            let most = if case % 4 == 0 { 6 } else { 4 };
+            let mut faces = Faces::default();
+            let mut want: Vec<Vec<VertexId>> = Vec::new();
+            let map = |v: u32| (v * 7) % 5; // not monotone, and not one to one
+            for _ in 0..rng.below(30) {
+                let n = 1 + rng.below(most as u64) as usize;
+                let f: Vec<u32> = (0..n).map(|_| rng.below(6) as u32).collect();
+                faces.push(&f);
+                let mut x: Vec<VertexId> = f.iter().map(|&v| VertexId(map(v))).collect();
+                x.sort_unstable();
+                want.push(x);
+            }
+            let mut other = Faces::default();
+            other.push(&[3, 1]);
+            faces.append(&other);
+            want.push(vec![VertexId(map(3)), VertexId(map(1))]); // [1, 2]
+            want.sort_unstable();
+            let got = faces.into_sorted(map);
+            let i = (0..want.len()).find(|&i| got.get(i) != want.get(i));
+            assert_eq!(
+                got,
+                want,
+                "case {case}: first difference at {i:?}: {:?} {:?}",
+                i.map(|i| &got[i]),
+                i.map(|i| &want[i])
+            );
+        }
+    }
 }

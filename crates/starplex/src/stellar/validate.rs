@@ -35,7 +35,7 @@ use super::{LeafView, StellarTree};
 use crate::algo::manifold::{local_singularities_global, Singularities};
 use crate::algo::orientation::PairParts;
 use crate::algo::unionfind::UnionFind;
-use crate::algo::validate::{finish_report, finish_report_tops, ValidationReport};
+use crate::algo::validate::{finish_report, finish_report_tops, Faces, ValidationReport};
 use crate::cell::{simplex_facet_sign, CellKind};
 use crate::ids::{CellId, LeafId, TreeVertexId, VertexId};
 use rayon::prelude::*;
@@ -47,8 +47,8 @@ type FacetPairs = Vec<(u32, u32, i8)>;
 const PART_CELLS: u32 = 1 << 16;
 
 struct LeafOut {
-    boundary: Vec<Vec<u32>>,
-    over2: Vec<Vec<u32>>,
+    boundary: Faces,
+    over2: Faces,
     pairs: Vec<(u32, u32, i8)>,
     sing: Singularities<TreeVertexId>,
     /// Pairs of cells to join for the vertex components: at every vertex whose star is not
@@ -188,15 +188,15 @@ impl StellarTree {
             return (outs, true);
         }
         let facet_part = self.par_facet_groups(|_, keys| {
-            let mut o = (Vec::new(), Vec::new(), Vec::new());
+            let mut o = (Faces::default(), Faces::default(), Vec::new());
             keys.for_each_group(|key, pays| {
                 if key[0] as usize != d {
                     return;
                 }
                 match pays.len() {
-                    1 => o.0.push(key[1..].to_vec()),
+                    1 => o.0.push(&key[1..]),
                     2 => {}
-                    _ => o.1.push(key[1..].to_vec()),
+                    _ => o.1.push(&key[1..]),
                 }
                 for i in 0..pays.len() {
                     for j in i + 1..pays.len() {
@@ -249,8 +249,8 @@ impl StellarTree {
                 |(e, recs, parent), l| {
                     self.expand_leaf_into(LeafId(l), e);
                     let mut o = LeafOut {
-                        boundary: Vec::new(),
-                        over2: Vec::new(),
+                        boundary: Faces::default(),
+                        over2: Faces::default(),
                         pairs: Vec::new(),
                         sing: Singularities::default(),
                         joins: Vec::new(),
@@ -297,9 +297,9 @@ impl StellarTree {
                                     .push([TreeVertexId(v), TreeVertexId(w)]);
                             }
                             match g.len() {
-                                1 => o.boundary.push(vec![v, w]),
+                                1 => o.boundary.push(&[v, w]),
                                 2 => {}
-                                _ => o.over2.push(vec![v, w]),
+                                _ => o.over2.push(&[v, w]),
                             }
                             for (x, &rx) in g.iter().enumerate() {
                                 for &ry in &g[x + 1..] {
@@ -351,8 +351,8 @@ impl StellarTree {
                     self.expand_leaf_into(LeafId(l), e);
                     let view = LeafView { tree: self, e };
                     let mut o = LeafOut {
-                        boundary: Vec::new(),
-                        over2: Vec::new(),
+                        boundary: Faces::default(),
+                        over2: Faces::default(),
                         pairs: Vec::new(),
                         sing: Singularities::default(),
                         joins: Vec::new(),
@@ -380,13 +380,12 @@ impl StellarTree {
                             // its star may span several facet components
                             o.joins.extend(star[1..].iter().map(|x| (star[0].0, x.0)));
                         }
-                        tris.sort_unstable();
                         for &([a, b], at, n) in tris.iter() {
                             let group = &cells[at as usize..(at + n) as usize];
                             match n {
-                                1 => o.boundary.push(vec![v, a, b]),
+                                1 => o.boundary.push(&[v, a, b]),
                                 2 => {}
-                                _ => o.over2.push(vec![v, a, b]),
+                                _ => o.over2.push(&[v, a, b]),
                             }
                             for x in 0..group.len() {
                                 for y in x + 1..group.len() {
@@ -420,11 +419,6 @@ impl StellarTree {
     ) -> (Vec<FacetPairs>, Vec<(u32, u32)>) {
         let to_in = |v: u32| VertexId(self.v_orig[v as usize]);
         let tv_in = |v: &TreeVertexId| to_in(v.0);
-        let face_in = |f: &Vec<u32>| {
-            let mut x: Vec<VertexId> = f.iter().map(|&v| to_in(v)).collect();
-            x.sort_unstable();
-            x
-        };
         let edge_in = |e: &[TreeVertexId; 2]| {
             let (a, b) = (to_in(e[0].0), to_in(e[1].0));
             if a < b {
@@ -438,10 +432,10 @@ impl StellarTree {
         // the memory)
         let mut pairs = Vec::with_capacity(outs.len());
         let mut joins = Vec::new();
+        let (mut boundary, mut over2) = (Faces::default(), Faces::default());
         for o in outs {
-            r.boundary_faces.extend(o.boundary.iter().map(face_in));
-            r.faces_in_more_than_two_cells
-                .extend(o.over2.iter().map(face_in));
+            boundary.append(&o.boundary);
+            over2.append(&o.over2);
             r.non_manifold_vertices
                 .extend(o.sing.non_manifold_vertices.iter().map(tv_in));
             r.unknown_vertices
@@ -457,8 +451,9 @@ impl StellarTree {
                     .extend(o.isolated.iter().map(|&v| to_in(v)));
             }
         }
-        r.boundary_faces.sort_unstable();
-        r.faces_in_more_than_two_cells.sort_unstable();
+        let face_in = |v: u32| self.v_orig[v as usize];
+        r.boundary_faces = boundary.into_sorted(face_in);
+        r.faces_in_more_than_two_cells = over2.into_sorted(face_in);
         r.non_manifold_vertices.sort_unstable();
         r.unknown_vertices.sort_unstable();
         r.non_manifold_edges.sort_unstable();
