@@ -41,10 +41,8 @@ pub(crate) struct TetScratch {
     /// Links of at most [`DENSE`] vertices: edge index at `a * DENSE + b` (or EMPTY), in
     /// place of the edge hash.
     edense: Vec<u32>,
-    /// Per link edge: endpoints (local, a < b), number of triangles, the first two.
-    eab: Vec<(u32, u32)>,
-    ecnt: Vec<u32>,
-    etri: Vec<[u32; 2]>,
+    /// The link edges.
+    edges: Vec<LinkEdge>,
     /// Per local vertex: flags, root of its first corner.
     flags: Vec<u8>,
     root: Vec<u32>,
@@ -54,31 +52,38 @@ pub(crate) struct TetScratch {
     vuf: Vec<u32>,
 }
 
+/// A link edge: its endpoints (local ids, a < b), its number of triangles and the first two
+/// (one record, written once when the edge is first met).
+#[derive(Clone, Copy, Debug)]
+struct LinkEdge {
+    a: u32,
+    b: u32,
+    cnt: u32,
+    tri: [u32; 2],
+}
+
 /// Most link vertices for which the link edges are indexed directly (a 16 KB table).
 const DENSE: usize = 64;
 
 /// Triangle `i` meets link edge `e` again: one more, and the second one kept.
 #[inline(always)]
-fn edge_again(ecnt: &mut [u32], etri: &mut [[u32; 2]], e: usize, i: u32) {
-    if ecnt[e] == 1 {
-        etri[e][1] = i;
+fn edge_again(e: &mut LinkEdge, i: u32) {
+    if e.cnt == 1 {
+        e.tri[1] = i;
     }
-    ecnt[e] += 1;
+    e.cnt += 1;
 }
 
 /// A link edge `ab` first met by triangle `i`: its index.
 #[inline(always)]
-fn edge_new(
-    eab: &mut Vec<(u32, u32)>,
-    ecnt: &mut Vec<u32>,
-    etri: &mut Vec<[u32; 2]>,
-    ab: (u32, u32),
-    i: u32,
-) -> u32 {
-    eab.push(ab);
-    ecnt.push(1);
-    etri.push([i, EMPTY]);
-    eab.len() as u32 - 1
+fn edge_new(edges: &mut Vec<LinkEdge>, (a, b): (u32, u32), i: u32) -> u32 {
+    edges.push(LinkEdge {
+        a,
+        b,
+        cnt: 1,
+        tri: [i, EMPTY],
+    });
+    edges.len() as u32 - 1
 }
 
 #[inline]
@@ -134,7 +139,7 @@ pub(crate) fn star_tests_tets<S: StarCells + ?Sized>(
     // link edges with their triangles
     s.link_edges(shift, mask);
     let m = s.lv.len();
-    let ne = s.eab.len();
+    let ne = s.edges.len();
     let (mut bad, sets, n_boundary) = s.classify_edges(n);
     // Euler characteristic of the link: V - E + F
     let chi = m as i64 - ne as i64 + n as i64;
@@ -183,14 +188,15 @@ impl TetScratch {
         buf: &mut Vec<u32>,
         mut f: impl FnMut([u32; 2], &[u32]),
     ) {
-        for (e, &(a, b)) in self.eab.iter().enumerate() {
+        for e in self.edges.iter() {
+            let (a, b) = (e.a, e.b);
             let (ta, tb) = (self.lv[a as usize], self.lv[b as usize]);
             if ta < v || tb < v {
                 continue;
             }
             buf.clear();
-            if self.ecnt[e] <= 2 {
-                buf.extend(self.etri[e].iter().copied().filter(|&t| t != EMPTY));
+            if e.cnt <= 2 {
+                buf.extend(e.tri.iter().copied().filter(|&t| t != EMPTY));
             } else {
                 buf.extend((0..self.tri.len() as u32).filter(|&t| {
                     self.tri[t as usize].contains(&a) && self.tri[t as usize].contains(&b)
@@ -263,7 +269,7 @@ impl TetScratch {
         degenerate
     }
 
-    /// The link edges (`eab`, local ids a < b) with their triangle count and first two
+    /// The link edges (`edges`, local ids a < b) with their triangle count and first two
     /// triangles, from the edge hash (emptied again).
     #[inline]
     fn link_edges(&mut self, shift: u32, mask: usize) {
@@ -272,14 +278,10 @@ impl TetScratch {
             ekeys,
             evals,
             eslot,
-            eab,
-            ecnt,
-            etri,
+            edges,
             ..
         } = self;
-        eab.clear();
-        ecnt.clear();
-        etri.clear();
+        edges.clear();
         eslot.clear();
         if self.lv.len() <= DENSE {
             // local ids index the table directly: no hashing, no probing
@@ -292,9 +294,9 @@ impl TetScratch {
                     let h = a as usize * DENSE + b as usize;
                     let e = edense[h];
                     if e != EMPTY {
-                        edge_again(ecnt, etri, e as usize, i as u32);
+                        edge_again(&mut edges[e as usize], i as u32);
                     } else {
-                        edense[h] = edge_new(eab, ecnt, etri, (a, b), i as u32);
+                        edense[h] = edge_new(edges, (a, b), i as u32);
                         eslot.push(h as u32);
                     }
                 }
@@ -311,12 +313,12 @@ impl TetScratch {
                 loop {
                     let k = ekeys[h];
                     if k == key {
-                        edge_again(ecnt, etri, evals[h] as usize, i as u32);
+                        edge_again(&mut edges[evals[h] as usize], i as u32);
                         break;
                     }
                     if k == EMPTY2 {
                         ekeys[h] = key;
-                        evals[h] = edge_new(eab, ecnt, etri, (a, b), i as u32);
+                        evals[h] = edge_new(edges, (a, b), i as u32);
                         eslot.push(h as u32);
                         break;
                     }
@@ -336,15 +338,13 @@ impl TetScratch {
     fn classify_edges(&mut self, n: usize) -> (bool, usize, usize) {
         let TetScratch {
             lv,
-            eab,
-            ecnt,
-            etri,
+            edges,
             flags,
             tuf,
             ..
         } = self;
         let m = lv.len();
-        let ne = eab.len();
+        let ne = edges.len();
         flags.clear();
         flags.resize(m, 0);
         tuf.clear();
@@ -353,15 +353,15 @@ impl TetScratch {
         let mut bad = false;
         let mut n_boundary = 0usize;
         for e in 0..ne {
-            let (a, b) = eab[e];
-            match ecnt[e] {
+            let LinkEdge { a, b, cnt, tri } = edges[e];
+            match cnt {
                 1 => {
                     flags[a as usize] |= BOUNDARY;
                     flags[b as usize] |= BOUNDARY;
                     n_boundary += 1;
                 }
                 2 => {
-                    let [t0, t1] = etri[e];
+                    let [t0, t1] = tri;
                     if union(tuf, t0, t1) {
                         sets -= 1;
                     }
@@ -384,22 +384,24 @@ impl TetScratch {
         let TetScratch {
             lv,
             tri,
-            eab,
-            ecnt,
-            etri,
+            edges,
             flags,
             root,
             cuf,
             ..
         } = self;
         let m = lv.len();
-        let ne = eab.len();
+        let ne = edges.len();
         cuf.clear();
         cuf.extend(0..3 * n as u32);
         for e in 0..ne {
-            if ecnt[e] == 2 {
-                let (a, b) = eab[e];
-                let [t0, t1] = etri[e];
+            if edges[e].cnt == 2 {
+                let LinkEdge {
+                    a,
+                    b,
+                    tri: [t0, t1],
+                    ..
+                } = edges[e];
                 union(cuf, corner(tri, t0, a), corner(tri, t1, a));
                 union(cuf, corner(tri, t0, b), corner(tri, t1, b));
             }
@@ -425,20 +427,19 @@ impl TetScratch {
     fn boundary_is_one_cycle(&mut self) -> bool {
         let TetScratch {
             lv,
-            eab,
-            ecnt,
+            edges,
             flags,
             vuf,
             ..
         } = self;
         let m = lv.len();
-        let ne = eab.len();
+        let ne = edges.len();
         vuf.clear();
         vuf.extend(0..m as u32);
         let mut merged = 0usize;
         for e in 0..ne {
-            if ecnt[e] == 1 {
-                let (a, b) = eab[e];
+            if edges[e].cnt == 1 {
+                let (a, b) = (edges[e].a, edges[e].b);
                 merged += union(vuf, a, b) as usize;
             }
         }
