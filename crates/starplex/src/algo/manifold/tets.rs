@@ -344,7 +344,6 @@ impl TetScratch {
             ..
         } = self;
         let m = lv.len();
-        let ne = edges.len();
         flags.clear();
         flags.resize(m, 0);
         tuf.clear();
@@ -352,8 +351,7 @@ impl TetScratch {
         let mut sets = n;
         let mut bad = false;
         let mut n_boundary = 0usize;
-        for e in 0..ne {
-            let LinkEdge { a, b, cnt, tri } = edges[e];
+        for &LinkEdge { a, b, cnt, tri } in edges.iter() {
             match cnt {
                 1 => {
                     flags[a as usize] |= BOUNDARY;
@@ -391,17 +389,11 @@ impl TetScratch {
             ..
         } = self;
         let m = lv.len();
-        let ne = edges.len();
         cuf.clear();
         cuf.extend(0..3 * n as u32);
-        for e in 0..ne {
-            if edges[e].cnt == 2 {
-                let LinkEdge {
-                    a,
-                    b,
-                    tri: [t0, t1],
-                    ..
-                } = edges[e];
+        for e in edges.iter() {
+            if e.cnt == 2 {
+                let (a, b, [t0, t1]) = (e.a, e.b, e.tri);
                 union(cuf, corner(tri, t0, a), corner(tri, t1, a));
                 union(cuf, corner(tri, t0, b), corner(tri, t1, b));
             }
@@ -433,14 +425,12 @@ impl TetScratch {
             ..
         } = self;
         let m = lv.len();
-        let ne = edges.len();
         vuf.clear();
         vuf.extend(0..m as u32);
         let mut merged = 0usize;
-        for e in 0..ne {
-            if edges[e].cnt == 1 {
-                let (a, b) = (edges[e].a, edges[e].b);
-                merged += union(vuf, a, b) as usize;
+        for e in edges.iter() {
+            if e.cnt == 1 {
+                merged += union(vuf, e.a, e.b) as usize;
             }
         }
         let nb = flags.iter().filter(|&&f| f & BOUNDARY != 0).count();
