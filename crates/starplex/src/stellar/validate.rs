@@ -343,11 +343,9 @@ impl StellarTree {
                         TetScratch::default(),
                         Vec::<u32>::new(),
                         Vec::<(u32, Manifoldness)>::new(),
-                        Vec::<([u32; 2], u32, u32)>::new(),
-                        Vec::<u32>::new(),
                     )
                 },
-                |(e, ts, buf, edges, tris, cells), l| {
+                |(e, ts, buf, edges), l| {
                     self.expand_leaf_into(LeafId(l), e);
                     let view = LeafView { tree: self, e };
                     let mut o = LeafOut {
@@ -368,38 +366,38 @@ impl StellarTree {
                         }
                         let ps = PartStar { part: &view, star };
                         edges.clear();
-                        // (triangle, first cell index in `cells`, count)
-                        tris.clear();
-                        cells.clear();
-                        let m = tet_star_tests_and_triangles(v, &ps, ts, buf, edges, |t, cs| {
-                            tris.push((t, cells.len() as u32, cs.len() as u32));
-                            cells.extend_from_slice(cs);
-                        })?;
+                        // each triangle `v a b` that `v` owns, with its tetrahedra, as met
+                        let m = tet_star_tests_and_triangles(
+                            v,
+                            &ps,
+                            ts,
+                            buf,
+                            edges,
+                            |[a, b], group| {
+                                match group.len() {
+                                    1 => o.boundary.push(&[v, a, b]),
+                                    2 => {}
+                                    _ => o.over2.push(&[v, a, b]),
+                                }
+                                let omit = |c: u32| {
+                                    let vs = &verts[c as usize * 4..c as usize * 4 + 4];
+                                    vs.iter()
+                                        .position(|&u| u != v && u != a && u != b)
+                                        .expect("a tetrahedron has a fourth vertex")
+                                };
+                                for x in 0..group.len() {
+                                    for y in x + 1..group.len() {
+                                        let (p, q) =
+                                            (star[group[x] as usize].0, star[group[y] as usize].0);
+                                        o.pairs.push((p, q, sign(p, omit(p)) * sign(q, omit(q))));
+                                    }
+                                }
+                            },
+                        )?;
                         o.sing.record(TreeVertexId(v), m, edges);
                         if m != Manifoldness::Manifold {
                             // its star may span several facet components
                             o.joins.extend(star[1..].iter().map(|x| (star[0].0, x.0)));
-                        }
-                        for &([a, b], at, n) in tris.iter() {
-                            let group = &cells[at as usize..(at + n) as usize];
-                            match n {
-                                1 => o.boundary.push(&[v, a, b]),
-                                2 => {}
-                                _ => o.over2.push(&[v, a, b]),
-                            }
-                            for x in 0..group.len() {
-                                for y in x + 1..group.len() {
-                                    let (p, q) =
-                                        (star[group[x] as usize].0, star[group[y] as usize].0);
-                                    let omit = |c: u32| {
-                                        let vs = &verts[c as usize * 4..c as usize * 4 + 4];
-                                        vs.iter()
-                                            .position(|&u| u != v && u != a && u != b)
-                                            .expect("a tetrahedron has a fourth vertex")
-                                    };
-                                    o.pairs.push((p, q, sign(p, omit(p)) * sign(q, omit(q))));
-                                }
-                            }
                         }
                     }
                     Some(o)
