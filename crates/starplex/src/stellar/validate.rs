@@ -326,8 +326,8 @@ impl StellarTree {
     /// larger) are the facets the general pass would group in this leaf: boundary (one
     /// tetrahedron), in more than two, and the pairs with the product of their induced
     /// orientations (in another order: the report sorts the faces, and the orientation's
-    /// answer does not depend on the order of the pairs). `None` when a cell has a repeated vertex (a damaged tree file): the general pass then
-    /// runs.
+    /// answer does not depend on the order of the pairs). `None` when a cell has a repeated
+    /// vertex (a damaged tree file): the general pass then runs.
     fn leaf_outputs_tets(&self) -> Option<Vec<LeafOut>> {
         use crate::algo::manifold::{tet_star_tests_and_triangles, Manifoldness, TetScratch};
         use crate::topo::{LocalStar, PartStar};
