@@ -311,15 +311,16 @@ fn facet_groups<S: TopCells + VertexStar + ?Sized>(
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Faces {
     verts: Vec<u32>,
-    /// Face `i` is `verts[ends[i - 1]..ends[i]]` (from 0 for the first).
-    ends: Vec<u32>,
+    /// Face `i` is `verts[ends[i - 1]..ends[i]]` (from 0 for the first); `usize`, so that
+    /// the faces of a whole report never wrap.
+    ends: Vec<usize>,
 }
 
 impl Faces {
     /// Appends a face.
     pub(crate) fn push(&mut self, f: &[u32]) {
         self.verts.extend_from_slice(f);
-        self.ends.push(self.verts.len() as u32);
+        self.ends.push(self.verts.len());
     }
 
     /// The faces in order.
@@ -327,12 +328,12 @@ impl Faces {
         let starts = std::iter::once(0).chain(self.ends.iter().copied());
         starts
             .zip(self.ends.iter().copied())
-            .map(|(a, b)| &self.verts[a as usize..b as usize])
+            .map(|(a, b)| &self.verts[a..b])
     }
 
     /// Appends all of `other`'s faces.
     pub(crate) fn append(&mut self, other: &Faces) {
-        let base = self.verts.len() as u32;
+        let base = self.verts.len();
         self.verts.extend_from_slice(&other.verts);
         self.ends.extend(other.ends.iter().map(|&e| base + e));
     }
